@@ -1,0 +1,47 @@
+# Two commands for a fresh Debian 12 machine: `make demo` and `make test`.
+# Both install the system packages they need when missing (needs root or sudo).
+
+APT_PACKAGES := libmujoco-dev libosmesa6-dev
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+CARGO ?= cargo
+
+.PHONY: deps demo test bench bindings fmt clippy clean
+
+## deps: install the Debian packages (MuJoCo 2.2.2, OSMesa) when any is missing
+deps:
+	@missing=""; for p in $(APT_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing:$$missing"; \
+	  $(SUDO) apt-get update && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y --no-install-recommends $$missing; \
+	else echo "system packages present: $(APT_PACKAGES)"; fi
+
+## demo: build in release mode and run the main job (writes out/)
+demo: deps
+	$(CARGO) build --release --bins
+	$(CARGO) run --release --bin simulate -- --out out
+
+## test: the whole test suite, headless
+test: deps
+	$(CARGO) test --all-targets
+	$(CARGO) test --doc
+
+## bench: criterion benchmarks (figures go to docs/BENCHMARKS.md by hand)
+bench: deps
+	$(CARGO) bench
+
+## bindings: regenerate src/mujoco/ffi.rs with bindgen (needs libclang-dev)
+bindings:
+	@dpkg-query -W -f='$${Status}' libclang-dev 2>/dev/null | grep -q "install ok installed" || \
+	  ($(SUDO) apt-get update && $(SUDO) apt-get install -y libclang-dev)
+	$(CARGO) build --features regen-bindings
+
+fmt:
+	$(CARGO) fmt --all
+
+clippy:
+	$(CARGO) clippy --all-targets -- -D warnings
+
+clean:
+	$(CARGO) clean

@@ -1,0 +1,1 @@
+fn main() { println!("simulate: not yet wired"); }

@@ -1,0 +1,31 @@
+//! CoSCo-HSOM: Compressed Sparse Code Hierarchical Self-Organizing Map (Pierris & Dahl),
+//! with a MuJoCo-simulated Nao left arm to teach it gestures and reproduce them.
+//!
+//! Rooms:
+//! - [`mujoco`]: the only place with `unsafe`: bindings to Debian's MuJoCo 2.2.2 and a safe layer.
+//! - [`render`]: off-screen rendering with OSMesa, PNG frames, GIF clips, contact sheets.
+//! - [`sim`]: the Nao left arm model and its position controller with 40 Hz encoder recording.
+//! - [`som`]: a Kohonen map.
+//! - [`hsom`]: the CoSCo-HSOM hierarchy: activity lists, training, reproduction, save/load.
+//! - [`config`]: the XML configuration, validated once into a checked type.
+//! - [`demos`]: demonstration CSV files.
+//! - [`dtw`]: dynamic time warping.
+//! - [`gmr`]: the baseline, GMM/GMR.
+//! - [`gesture`]: synthetic human-like demonstrations.
+//! - [`metrics`]: fidelity metrics.
+//! - [`plot`]: PNG plots.
+#![warn(missing_docs)]
+
+pub mod config;
+pub mod demos;
+pub mod dtw;
+pub mod fsutil;
+pub mod gesture;
+pub mod gmr;
+pub mod hsom;
+pub mod metrics;
+pub mod mujoco;
+pub mod plot;
+pub mod render;
+pub mod sim;
+pub mod som;

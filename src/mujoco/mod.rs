@@ -1,0 +1,1 @@
+//! (room reserved; filled by its issue)
