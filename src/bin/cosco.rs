@@ -1,1 +1,3 @@
-fn main() { println!("cosco: not yet wired"); }
+fn main() {
+    println!("cosco: not yet wired");
+}

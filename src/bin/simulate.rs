@@ -1,1 +1,3 @@
-fn main() { println!("simulate: not yet wired"); }
+fn main() {
+    println!("simulate: not yet wired");
+}

@@ -1,0 +1,450 @@
+use std::path::{Path, PathBuf};
+use std::sync::Once;
+
+use plotters::prelude::*;
+use plotters::style::RGBColor;
+
+use crate::fsutil::write_atomic;
+
+static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+static REGISTER: Once = Once::new();
+
+/// Errors while drawing or writing a plot.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PlotError {
+    /// Nothing to draw: every series of a panel was empty.
+    #[error("plot {path}: panel '{panel}' has no finite data to draw")]
+    Empty {
+        /// The file that was to be written.
+        path: PathBuf,
+        /// The panel's title.
+        panel: String,
+    },
+    /// A figure needs at least one panel.
+    #[error("plot {path}: no panels to draw")]
+    NoPanels {
+        /// The file that was to be written.
+        path: PathBuf,
+    },
+    /// The drawing library failed.
+    #[error("plot {path}: drawing failed: {message}")]
+    Draw {
+        /// The file that was to be written.
+        path: PathBuf,
+        /// What the drawing backend said.
+        message: String,
+    },
+    /// Encoding or writing the PNG failed.
+    #[error("plot {path}: cannot write the PNG: {source}")]
+    Write {
+        /// The file that was to be written.
+        path: PathBuf,
+        /// The I/O or encoding error.
+        source: std::io::Error,
+    },
+}
+
+/// A line through `(x, y)` points.
+#[derive(Debug, Clone)]
+pub struct Series {
+    /// Legend entry; `None` keeps it out of the legend.
+    pub label: Option<String>,
+    /// Line colour.
+    pub color: RGBColor,
+    /// Line width in pixels.
+    pub width: u32,
+    /// The points, in drawing order. Non-finite points are skipped.
+    pub points: Vec<(f64, f64)>,
+}
+
+impl Series {
+    /// A labelled line of width 2.
+    pub fn new(label: impl Into<String>, color: RGBColor, points: Vec<(f64, f64)>) -> Self {
+        Series {
+            label: Some(label.into()),
+            color,
+            width: 2,
+            points,
+        }
+    }
+}
+
+/// A shaded envelope between `lower` and `upper` at each `x`.
+#[derive(Debug, Clone)]
+pub struct Band {
+    /// Legend entry.
+    pub label: Option<String>,
+    /// Fill colour (drawn translucent).
+    pub color: RGBColor,
+    /// `(x, lower, upper)` triples, ordered by `x`.
+    pub points: Vec<(f64, f64, f64)>,
+}
+
+/// A filled ellipse: a 2-D Gaussian's `n_sigma` contour.
+#[derive(Debug, Clone)]
+pub struct Ellipse {
+    /// Centre.
+    pub mean: (f64, f64),
+    /// Covariance `[[sxx, sxy], [sxy, syy]]`.
+    pub cov: [[f64; 2]; 2],
+    /// How many standard deviations the contour is at.
+    pub n_sigma: f64,
+    /// Fill colour (drawn translucent).
+    pub color: RGBColor,
+}
+
+/// A cloud of small dots.
+#[derive(Debug, Clone)]
+pub struct Scatter {
+    /// Legend entry.
+    pub label: Option<String>,
+    /// Dot colour.
+    pub color: RGBColor,
+    /// Dot radius in pixels.
+    pub size: u32,
+    /// The dots.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// One chart of a figure.
+#[derive(Debug, Clone, Default)]
+pub struct Panel {
+    /// Caption above the chart.
+    pub title: String,
+    /// X axis label.
+    pub x_label: String,
+    /// Y axis label.
+    pub y_label: String,
+    /// Envelopes, drawn first.
+    pub bands: Vec<Band>,
+    /// Ellipses, drawn after the envelopes.
+    pub ellipses: Vec<Ellipse>,
+    /// Dots, drawn after the ellipses.
+    pub scatter: Vec<Scatter>,
+    /// Lines, drawn last (on top).
+    pub series: Vec<Series>,
+    /// Keep one unit in x equal to one unit in y (for paths in space).
+    pub equal_aspect: bool,
+}
+
+impl Panel {
+    /// An empty panel with a title and axis labels.
+    pub fn new(
+        title: impl Into<String>,
+        x_label: impl Into<String>,
+        y_label: impl Into<String>,
+    ) -> Self {
+        Panel {
+            title: title.into(),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            ..Panel::default()
+        }
+    }
+
+    /// The data range over everything drawn, padded by 5 %, or `None` when nothing is finite.
+    fn bounds(&self) -> Option<((f64, f64), (f64, f64))> {
+        let mut xs = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut ys = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut add = |x: f64, y: f64| {
+            if x.is_finite() && y.is_finite() {
+                xs = (xs.0.min(x), xs.1.max(x));
+                ys = (ys.0.min(y), ys.1.max(y));
+            }
+        };
+        for s in &self.series {
+            s.points.iter().for_each(|&(x, y)| add(x, y));
+        }
+        for s in &self.scatter {
+            s.points.iter().for_each(|&(x, y)| add(x, y));
+        }
+        for b in &self.bands {
+            for &(x, lo, hi) in &b.points {
+                add(x, lo);
+                add(x, hi);
+            }
+        }
+        for e in &self.ellipses {
+            for (x, y) in ellipse_outline(e, 16) {
+                add(x, y);
+            }
+        }
+        if !xs.0.is_finite() {
+            return None;
+        }
+        let pad = |(lo, hi): (f64, f64)| {
+            let span = hi - lo;
+            let p = if span > 0.0 {
+                0.05 * span
+            } else {
+                0.5_f64.max(lo.abs() * 0.05)
+            };
+            (lo - p, hi + p)
+        };
+        Some((pad(xs), pad(ys)))
+    }
+}
+
+fn ellipse_outline(e: &Ellipse, n: usize) -> Vec<(f64, f64)> {
+    // Eigen-decomposition of the symmetric 2x2 covariance, in closed form.
+    let [[a, b], [_, d]] = e.cov;
+    let tr = a + d;
+    let det = a * d - b * b;
+    let disc = ((tr * tr / 4.0) - det).max(0.0).sqrt();
+    let l1 = (tr / 2.0 + disc).max(0.0);
+    let l2 = (tr / 2.0 - disc).max(0.0);
+    let angle = if b.abs() > 1e-300 {
+        (l1 - a).atan2(b)
+    } else if a >= d {
+        0.0
+    } else {
+        std::f64::consts::FRAC_PI_2
+    };
+    let (r1, r2) = (e.n_sigma * l1.sqrt(), e.n_sigma * l2.sqrt());
+    (0..n)
+        .map(|i| {
+            let t = i as f64 / n as f64 * std::f64::consts::TAU;
+            let (u, v) = (r1 * t.cos(), r2 * t.sin());
+            (
+                e.mean.0 + u * angle.cos() - v * angle.sin(),
+                e.mean.1 + u * angle.sin() + v * angle.cos(),
+            )
+        })
+        .collect()
+}
+
+fn register_font() {
+    REGISTER.call_once(|| {
+        // The shipped font is a valid TTF; if a future replacement were not, text would be
+        // missing but plots would still be drawn, so the error is deliberately not fatal.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+}
+
+/// Draw `panels` on a grid of `cols` columns, each panel `panel_size` pixels, with a figure
+/// title on top, and write the PNG atomically to `path`.
+pub fn panels_png(
+    path: &Path,
+    title: &str,
+    panels: &[Panel],
+    cols: usize,
+    panel_size: (u32, u32),
+) -> Result<(), PlotError> {
+    if panels.is_empty() {
+        return Err(PlotError::NoPanels {
+            path: path.to_path_buf(),
+        });
+    }
+    register_font();
+    let cols = cols.clamp(1, panels.len());
+    let rows = panels.len().div_ceil(cols);
+    let title_h = 40u32;
+    let (w, h) = (
+        panel_size.0 * cols as u32,
+        panel_size.1 * rows as u32 + title_h,
+    );
+    let mut buf = vec![255u8; (w * h * 3) as usize];
+    let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| draw_err(&e))?;
+        let (top, body) = root.split_vertically(title_h);
+        top.titled(title, ("sans-serif", 24))
+            .map_err(|e| draw_err(&e))?;
+        let areas = body.split_evenly((rows, cols));
+        for (panel, area) in panels.iter().zip(areas.iter()) {
+            draw_panel(path, panel, area)?;
+        }
+        root.present().map_err(|e| draw_err(&e))?;
+    }
+    let img = image::RgbImage::from_raw(w, h, buf).ok_or_else(|| PlotError::Draw {
+        path: path.to_path_buf(),
+        message: "pixel buffer has the wrong size".into(),
+    })?;
+    let mut png = Vec::new();
+    img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .map_err(|e| PlotError::Write {
+            path: path.to_path_buf(),
+            source: std::io::Error::other(e),
+        })?;
+    write_atomic(path, &png).map_err(|source| PlotError::Write {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+fn draw_panel(
+    path: &Path,
+    panel: &Panel,
+    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+) -> Result<(), PlotError> {
+    let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
+        path: path.to_path_buf(),
+        message: format!("panel '{}': {e}", panel.title),
+    };
+    let ((mut x0, mut x1), (mut y0, mut y1)) = panel.bounds().ok_or_else(|| PlotError::Empty {
+        path: path.to_path_buf(),
+        panel: panel.title.clone(),
+    })?;
+    if panel.equal_aspect {
+        let (pw, ph) = area.dim_in_pixel();
+        let (pw, ph) = ((pw as f64 - 80.0).max(1.0), (ph as f64 - 80.0).max(1.0));
+        let scale = ((x1 - x0) / pw).max((y1 - y0) / ph);
+        let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+        x0 = cx - scale * pw / 2.0;
+        x1 = cx + scale * pw / 2.0;
+        y0 = cy - scale * ph / 2.0;
+        y1 = cy + scale * ph / 2.0;
+    }
+    let mut chart = ChartBuilder::on(area)
+        .caption(&panel.title, ("sans-serif", 18))
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(|e| draw_err(&e))?;
+    chart
+        .configure_mesh()
+        .x_desc(panel.x_label.as_str())
+        .y_desc(panel.y_label.as_str())
+        .label_style(("sans-serif", 13))
+        .axis_desc_style(("sans-serif", 14))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(|e| draw_err(&e))?;
+    let mut legend = false;
+    for b in &panel.bands {
+        let mut poly: Vec<(f64, f64)> = b.points.iter().map(|&(x, _, hi)| (x, hi)).collect();
+        poly.extend(b.points.iter().rev().map(|&(x, lo, _)| (x, lo)));
+        let style = b.color.mix(0.25).filled();
+        let anno = chart
+            .draw_series(std::iter::once(Polygon::new(poly, style)))
+            .map_err(|e| draw_err(&e))?;
+        if let Some(l) = &b.label {
+            let c = b.color;
+            anno.label(l.as_str()).legend(move |(x, y)| {
+                Rectangle::new([(x, y - 5), (x + 20, y + 5)], c.mix(0.25).filled())
+            });
+            legend = true;
+        }
+    }
+    for e in &panel.ellipses {
+        let outline = ellipse_outline(e, 64);
+        chart
+            .draw_series(std::iter::once(Polygon::new(
+                outline.clone(),
+                e.color.mix(0.35).filled(),
+            )))
+            .map_err(|er| draw_err(&er))?;
+        let mut closed = outline;
+        closed.push(closed[0]);
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                closed,
+                e.color.stroke_width(1),
+            )))
+            .map_err(|er| draw_err(&er))?;
+    }
+    for s in &panel.scatter {
+        let c = s.color;
+        let size = s.size;
+        let anno = chart
+            .draw_series(
+                s.points
+                    .iter()
+                    .filter(|p| p.0.is_finite() && p.1.is_finite())
+                    .map(move |&p| Circle::new(p, size, c.filled())),
+            )
+            .map_err(|e| draw_err(&e))?;
+        if let Some(l) = &s.label {
+            anno.label(l.as_str())
+                .legend(move |(x, y)| Circle::new((x + 10, y), 3, c.filled()));
+            legend = true;
+        }
+    }
+    for s in &panel.series {
+        let style = s.color.stroke_width(s.width);
+        let pts: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .copied()
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .collect();
+        let anno = chart
+            .draw_series(LineSeries::new(pts, style))
+            .map_err(|e| draw_err(&e))?;
+        if let Some(l) = &s.label {
+            anno.label(l.as_str())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+            legend = true;
+        }
+    }
+    if legend {
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(180, 180, 180))
+            .label_font(("sans-serif", 13))
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| draw_err(&e))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn panels_png_writes_a_nonblank_png() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("x.png");
+        let mut panel = Panel::new("sine", "t (s)", "q (rad)");
+        panel.series.push(Series::new(
+            "demo",
+            RGBColor(200, 0, 0),
+            (0..100)
+                .map(|i| (i as f64 * 0.1, (i as f64 * 0.1).sin()))
+                .collect(),
+        ));
+        panel.ellipses.push(Ellipse {
+            mean: (5.0, 0.0),
+            cov: [[1.0, 0.3], [0.3, 0.2]],
+            n_sigma: 1.0,
+            color: RGBColor(0, 160, 0),
+        });
+        panels_png(&p, "test", &[panel], 1, (400, 300)).unwrap();
+        let img = image::open(&p).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (400, 340));
+        let non_white = img.pixels().filter(|px| px.0 != [255, 255, 255]).count();
+        assert!(non_white > 1000, "only {non_white} drawn pixels");
+    }
+
+    #[test]
+    fn empty_panel_is_an_error_naming_it() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("x.png");
+        let err =
+            panels_png(&p, "t", &[Panel::new("nothing", "x", "y")], 1, (200, 200)).unwrap_err();
+        assert!(err.to_string().contains("nothing"), "{err}");
+        assert!(!p.exists());
+    }
+
+    #[test]
+    fn ellipse_outline_matches_axis_aligned_radii() {
+        let e = Ellipse {
+            mean: (1.0, 2.0),
+            cov: [[4.0, 0.0], [0.0, 1.0]],
+            n_sigma: 2.0,
+            color: BLACK,
+        };
+        let pts = ellipse_outline(&e, 4);
+        assert!((pts[0].0 - 5.0).abs() < 1e-9 && (pts[0].1 - 2.0).abs() < 1e-9);
+        assert!((pts[1].0 - 1.0).abs() < 1e-9 && (pts[1].1 - 4.0).abs() < 1e-9);
+    }
+}
