@@ -1,1 +1,12 @@
-//! (room reserved; filled by its issue)
+//! Synthetic, human-like demonstrations of named gestures.
+//!
+//! [`library`] holds the gestures (key poses and nominal timing); [`demonstrator`] turns one
+//! into the continuous trajectory a person guiding the arm would produce, with a person's
+//! variability. Recording it from the simulated joint encoders happens in the simulator
+//! (see `crate::sim`), as in kinesthetic teaching.
+
+pub mod demonstrator;
+pub mod library;
+
+pub use demonstrator::{HumanTrajectory, Variation};
+pub use library::{Gesture, Pose, Segment, N_JOINTS, STAND_INIT};

@@ -1,0 +1,398 @@
+//! A synthetic demonstrator: turns a [`Gesture`] into the continuous joint trajectory a
+//! person guiding the arm would produce, with a person's variability.
+//!
+//! The trajectory is a superposition of per-joint minimum-jerk blends (one per `Move`,
+//! starting at a slightly different moment for each joint, as a hand guiding an arm never
+//! moves all joints at once), faded oscillations, and a smooth low-frequency wobble that is
+//! present only while the person moves the arm. Idle time before and after varies widely
+//! (the paper's footnote 3), overall speed by about +-20 %, key poses by a few degrees.
+
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+
+use super::library::{Gesture, Pose, Segment, N_JOINTS};
+
+/// How much one demonstration differs from the next. All angles in degrees for readability.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Variation {
+    /// Idle time before the movement starts, uniform in this range (s).
+    pub idle_before: (f64, f64),
+    /// Idle time after the movement ends, uniform in this range (s).
+    pub idle_after: (f64, f64),
+    /// Relative speed spread: the speed factor is uniform in `1 +- speed` (0.2 = +-20 %).
+    pub speed: f64,
+    /// Standard deviation of each key pose's joint angles (degrees).
+    pub amplitude_deg: f64,
+    /// Amplitude of the smooth wobble while moving (degrees).
+    pub wobble_deg: f64,
+    /// Largest per-joint delay of a movement's start (s).
+    pub stagger: f64,
+}
+
+impl Default for Variation {
+    fn default() -> Self {
+        Variation {
+            idle_before: (0.4, 2.4),
+            idle_after: (0.4, 2.0),
+            speed: 0.2,
+            amplitude_deg: 3.0,
+            wobble_deg: 1.0,
+            stagger: 0.06,
+        }
+    }
+}
+
+impl Variation {
+    /// No variability at all: the nominal gesture with fixed 1 s idle times.
+    pub fn none() -> Self {
+        Variation {
+            idle_before: (1.0, 1.0),
+            idle_after: (1.0, 1.0),
+            speed: 0.0,
+            amplitude_deg: 0.0,
+            wobble_deg: 0.0,
+            stagger: 0.0,
+        }
+    }
+
+    /// Check every field: ranges ordered and non-negative, speed below 0.9, finite values.
+    pub fn check(&self) -> Result<(), String> {
+        for (name, (lo, hi)) in [
+            ("idle_before", self.idle_before),
+            ("idle_after", self.idle_after),
+        ] {
+            if !(lo.is_finite() && hi.is_finite() && lo >= 0.0 && hi >= lo) {
+                return Err(format!(
+                    "variation {name} = ({lo}, {hi}): need 0 <= low <= high"
+                ));
+            }
+        }
+        if !(self.speed.is_finite() && (0.0..0.9).contains(&self.speed)) {
+            return Err(format!(
+                "variation speed = {}: allowed 0 <= speed < 0.9",
+                self.speed
+            ));
+        }
+        for (name, v) in [
+            ("amplitude_deg", self.amplitude_deg),
+            ("wobble_deg", self.wobble_deg),
+            ("stagger", self.stagger),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(format!("variation {name} = {v}: need a finite value >= 0"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A time-continuous demonstrator trajectory, evaluated on demand.
+#[derive(Debug, Clone)]
+pub struct HumanTrajectory {
+    initial: Pose,
+    moves: Vec<Blend>,
+    oscillations: Vec<Oscillation>,
+    wobble: Vec<[(f64, f64, f64); 3]>,
+    motion_start: f64,
+    motion_end: f64,
+    total: f64,
+    limits: Vec<(f64, f64)>,
+}
+
+#[derive(Debug, Clone)]
+struct Blend {
+    start: [f64; N_JOINTS],
+    duration: f64,
+    delta: Pose,
+}
+
+#[derive(Debug, Clone)]
+struct Oscillation {
+    joint: usize,
+    start: f64,
+    amplitude: f64,
+    period: f64,
+    cycles: f64,
+}
+
+fn min_jerk(s: f64) -> f64 {
+    let s = s.clamp(0.0, 1.0);
+    s * s * s * (10.0 - 15.0 * s + 6.0 * s * s)
+}
+
+fn smoothstep(s: f64) -> f64 {
+    let s = s.clamp(0.0, 1.0);
+    s * s * (3.0 - 2.0 * s)
+}
+
+impl HumanTrajectory {
+    /// Draw one demonstration of `gesture` with `variation` from `rng`. `limits` are the joints'
+    /// `(lower, upper)` ranges: perturbed key poses are kept 0.02 rad inside them.
+    pub fn sample(
+        gesture: &Gesture,
+        variation: &Variation,
+        limits: &[(f64, f64)],
+        rng: &mut ChaCha8Rng,
+    ) -> Result<HumanTrajectory, String> {
+        variation.check()?;
+        if limits.len() != N_JOINTS {
+            return Err(format!(
+                "{} joint limits given, the gestures move {N_JOINTS} joints",
+                limits.len()
+            ));
+        }
+        let uniform = |rng: &mut ChaCha8Rng, (lo, hi): (f64, f64)| {
+            if hi > lo {
+                rng.gen_range(lo..hi)
+            } else {
+                lo
+            }
+        };
+        let idle_before = uniform(rng, variation.idle_before);
+        let idle_after = uniform(rng, variation.idle_after);
+        let speed = 1.0 + uniform(rng, (-variation.speed, variation.speed));
+        let amp =
+            Normal::new(0.0, variation.amplitude_deg.to_radians()).map_err(|e| e.to_string())?;
+
+        let mut t = idle_before;
+        let mut pose = gesture.initial;
+        let mut moves = Vec::new();
+        let mut oscillations = Vec::new();
+        for seg in &gesture.segments {
+            // Each segment's duration varies a little around the overall speed too.
+            let jitter = 1.0 + uniform(rng, (-0.05, 0.05)) * (variation.speed > 0.0) as u8 as f64;
+            match seg {
+                Segment::Move {
+                    to,
+                    duration,
+                    perturb,
+                } => {
+                    let d = duration / speed * jitter;
+                    let mut target = *to;
+                    if *perturb {
+                        for (j, v) in target.iter_mut().enumerate() {
+                            let (lo, hi) = limits[j];
+                            *v = (*v + amp.sample(rng)).clamp(lo + 0.02, hi - 0.02);
+                        }
+                    }
+                    let mut start = [t; N_JOINTS];
+                    for s in start.iter_mut() {
+                        *s += uniform(rng, (0.0, variation.stagger));
+                    }
+                    let mut delta = [0.0; N_JOINTS];
+                    for j in 0..N_JOINTS {
+                        delta[j] = target[j] - pose[j];
+                    }
+                    moves.push(Blend {
+                        start,
+                        duration: d,
+                        delta,
+                    });
+                    pose = target;
+                    t += d;
+                }
+                Segment::Hold { duration } => t += duration / speed * jitter,
+                Segment::Oscillate {
+                    joint,
+                    amplitude,
+                    period,
+                    cycles,
+                } => {
+                    let p = period / speed * jitter;
+                    let a = amplitude
+                        * (1.0
+                            + uniform(rng, (-0.15, 0.15))
+                                * (variation.amplitude_deg > 0.0) as u8 as f64);
+                    oscillations.push(Oscillation {
+                        joint: *joint,
+                        start: t,
+                        amplitude: a,
+                        period: p,
+                        cycles: *cycles,
+                    });
+                    t += p * cycles;
+                }
+            }
+        }
+        let motion_end = t + variation.stagger;
+        let wobble = (0..N_JOINTS)
+            .map(|_| {
+                let mut w = [(0.0, 0.0, 0.0); 3];
+                for c in w.iter_mut() {
+                    let freq = uniform(rng, (0.2, 0.9));
+                    let phase = uniform(rng, (0.0, std::f64::consts::TAU));
+                    *c = (
+                        variation.wobble_deg.to_radians() / 3.0_f64.sqrt(),
+                        freq,
+                        phase,
+                    );
+                }
+                w
+            })
+            .collect();
+        Ok(HumanTrajectory {
+            initial: gesture.initial,
+            moves,
+            oscillations,
+            wobble,
+            motion_start: idle_before,
+            motion_end,
+            total: motion_end + idle_after,
+            limits: limits.to_vec(),
+        })
+    }
+
+    /// Total length in seconds, idle times included.
+    pub fn duration(&self) -> f64 {
+        self.total
+    }
+
+    /// When the person starts and stops moving the arm (s).
+    pub fn motion_interval(&self) -> (f64, f64) {
+        (self.motion_start, self.motion_end)
+    }
+
+    /// The posture at time `t` (s), inside the joint limits.
+    pub fn at(&self, t: f64) -> Pose {
+        let mut q = self.initial;
+        for m in &self.moves {
+            for j in 0..N_JOINTS {
+                q[j] += m.delta[j] * min_jerk((t - m.start[j]) / m.duration);
+            }
+        }
+        for o in &self.oscillations {
+            let span = o.period * o.cycles;
+            let local = t - o.start;
+            if (0.0..=span).contains(&local) {
+                let fade = o.period / 4.0;
+                let env = smoothstep(local / fade) * smoothstep((span - local) / fade);
+                q[o.joint] += o.amplitude * env * (std::f64::consts::TAU * local / o.period).sin();
+            }
+        }
+        // The wobble lives only while the arm is guided: faded in and out over 0.3 s.
+        let env =
+            smoothstep((t - self.motion_start) / 0.3) * smoothstep((self.motion_end - t) / 0.3);
+        if env > 0.0 {
+            for (j, comps) in self.wobble.iter().enumerate() {
+                let w: f64 = comps
+                    .iter()
+                    .map(|&(a, f, ph)| a * ((std::f64::consts::TAU * f * t + ph).sin()))
+                    .sum();
+                q[j] += env * w;
+            }
+        }
+        for (j, v) in q.iter_mut().enumerate() {
+            let (lo, hi) = self.limits[j];
+            *v = v.clamp(lo, hi);
+        }
+        q
+    }
+
+    /// The posture sampled every `dt` seconds from 0 to the end, inclusive.
+    pub fn sampled(&self, dt: f64) -> Vec<(f64, Pose)> {
+        let n = (self.total / dt).floor() as usize;
+        (0..=n)
+            .map(|i| {
+                let t = i as f64 * dt;
+                (t, self.at(t))
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::library::{reading_watch, wave, STAND_INIT};
+    use super::*;
+    use rand::SeedableRng;
+
+    const LIMITS: [(f64, f64); 6] = [
+        (-2.08567, 2.08567),
+        (-0.314159, 1.32645),
+        (-2.08567, 2.08567),
+        (-1.54462, -0.0349066),
+        (-1.82387, 1.82387),
+        (0.0, 1.0),
+    ];
+
+    fn dist(a: &Pose, b: &Pose) -> f64 {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    }
+
+    #[test]
+    fn starts_and_ends_at_the_initial_posture_and_reaches_the_apex() {
+        let g = reading_watch();
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let h = HumanTrajectory::sample(&g, &Variation::default(), &LIMITS, &mut rng).unwrap();
+        assert!(dist(&h.at(0.0), &STAND_INIT) < 1e-12);
+        assert!(dist(&h.at(h.duration()), &STAND_INIT) < 1e-9);
+        let closest = h
+            .sampled(0.01)
+            .iter()
+            .map(|(_, q)| dist(q, &g.apex()))
+            .fold(f64::INFINITY, f64::min);
+        // key pose perturbed by 3 degrees per joint: within ~5 sigma of 6 joints
+        assert!(closest < 0.2, "closest approach to the apex {closest} rad");
+    }
+
+    #[test]
+    fn demonstrations_differ_in_length_and_seeds_repeat() {
+        let g = wave();
+        let v = Variation::default();
+        let mut r1 = ChaCha8Rng::seed_from_u64(1);
+        let a = HumanTrajectory::sample(&g, &v, &LIMITS, &mut r1).unwrap();
+        let b = HumanTrajectory::sample(&g, &v, &LIMITS, &mut r1).unwrap();
+        assert!((a.duration() - b.duration()).abs() > 0.05);
+        let mut r2 = ChaCha8Rng::seed_from_u64(1);
+        let a2 = HumanTrajectory::sample(&g, &v, &LIMITS, &mut r2).unwrap();
+        assert_eq!(a.sampled(0.05).len(), a2.sampled(0.05).len());
+        assert_eq!(a.at(2.0), a2.at(2.0));
+    }
+
+    #[test]
+    fn stays_inside_limits_and_is_still_while_idle() {
+        for g in super::super::library::Gesture::all() {
+            let mut rng = ChaCha8Rng::seed_from_u64(3);
+            let h = HumanTrajectory::sample(&g, &Variation::default(), &LIMITS, &mut rng).unwrap();
+            for (_, q) in h.sampled(0.01) {
+                for (j, v) in q.iter().enumerate() {
+                    assert!(
+                        *v >= LIMITS[j].0 && *v <= LIMITS[j].1,
+                        "{} joint {j} = {v}",
+                        g.name
+                    );
+                }
+            }
+            let (s, _) = h.motion_interval();
+            assert!(
+                dist(&h.at(s * 0.9), &g.initial) < 1e-12,
+                "{} moves while idle",
+                g.name
+            );
+        }
+    }
+
+    #[test]
+    fn bad_variation_is_rejected_with_the_field_name() {
+        let v = Variation {
+            speed: 1.5,
+            ..Variation::default()
+        };
+        let mut rng = ChaCha8Rng::seed_from_u64(0);
+        let e = HumanTrajectory::sample(&reading_watch(), &v, &LIMITS, &mut rng).unwrap_err();
+        assert!(e.contains("speed"), "{e}");
+        let e = HumanTrajectory::sample(
+            &reading_watch(),
+            &Variation::default(),
+            &LIMITS[..3],
+            &mut rng,
+        )
+        .unwrap_err();
+        assert!(e.contains("limits"), "{e}");
+    }
+}

@@ -1,0 +1,211 @@
+//! The named gestures: key poses and the timing a person would give them.
+
+/// Number of joints a gesture moves, in the model's order: LShoulderPitch, LShoulderRoll,
+/// LElbowYaw, LElbowRoll, LWristYaw, LHand.
+pub const N_JOINTS: usize = 6;
+
+/// A posture of the six joints (radians; LHand as an open fraction in 0..1).
+pub type Pose = [f64; N_JOINTS];
+
+/// NAOqi's StandInit posture: the initial and final posture of every gesture here.
+pub const STAND_INIT: Pose = [1.40, 0.30, -1.39, -1.01, 0.0, 0.25];
+
+/// One part of a gesture, in nominal (unperturbed) timing.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Segment {
+    /// Move to `to` in `duration` seconds (minimum-jerk profile per joint).
+    Move {
+        /// The key pose reached at the end.
+        to: Pose,
+        /// Nominal duration in seconds.
+        duration: f64,
+        /// Whether the demonstrator's imprecision perturbs this key pose (false for the final
+        /// return to the initial posture, which the gesture must end on).
+        perturb: bool,
+    },
+    /// Keep still for `duration` seconds.
+    Hold {
+        /// Nominal duration in seconds.
+        duration: f64,
+    },
+    /// Oscillate one joint around the current pose: `amplitude * sin(2 pi t / period)` for
+    /// `cycles` whole periods, faded in and out over a quarter period each.
+    Oscillate {
+        /// Index of the joint (0..6).
+        joint: usize,
+        /// Amplitude in radians.
+        amplitude: f64,
+        /// Nominal period in seconds.
+        period: f64,
+        /// Number of periods.
+        cycles: f64,
+    },
+}
+
+/// A named gesture: where it starts and the segments it goes through.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Gesture {
+    /// The name used on the command line (`reading-watch`, `wave`, ...).
+    pub name: &'static str,
+    /// One line for people.
+    pub description: &'static str,
+    /// The initial (and final) posture.
+    pub initial: Pose,
+    /// What the demonstrator does after the idle start and before the idle end.
+    pub segments: Vec<Segment>,
+}
+
+impl Gesture {
+    /// Every gesture this crate can demonstrate.
+    pub fn all() -> Vec<Gesture> {
+        vec![reading_watch(), wave(), reach_point(), salute()]
+    }
+
+    /// The names of [`Gesture::all`], for messages.
+    pub fn names() -> Vec<&'static str> {
+        Gesture::all().iter().map(|g| g.name).collect()
+    }
+
+    /// Look a gesture up by name.
+    pub fn by_name(name: &str) -> Option<Gesture> {
+        Gesture::all().into_iter().find(|g| g.name == name)
+    }
+
+    /// The key pose farthest (Euclidean, joint space) from the initial posture: the apex.
+    pub fn apex(&self) -> Pose {
+        let mut best = self.initial;
+        let mut best_d = 0.0;
+        for s in &self.segments {
+            if let Segment::Move { to, .. } = s {
+                let d: f64 = to
+                    .iter()
+                    .zip(&self.initial)
+                    .map(|(a, b)| (a - b).powi(2))
+                    .sum();
+                if d > best_d {
+                    best_d = d;
+                    best = *to;
+                }
+            }
+        }
+        best
+    }
+
+    /// Nominal duration of the movement (without idle time), in seconds.
+    pub fn nominal_duration(&self) -> f64 {
+        self.segments
+            .iter()
+            .map(|s| match s {
+                Segment::Move { duration, .. } | Segment::Hold { duration } => *duration,
+                Segment::Oscillate { period, cycles, .. } => period * cycles,
+            })
+            .sum()
+    }
+}
+
+/// The paper's gesture (Fig. 1): from StandInit raise the left forearm across the chest as if
+/// to read a wristwatch, hold, and return to StandInit.
+pub fn reading_watch() -> Gesture {
+    Gesture {
+        name: "reading-watch",
+        description: "raise the forearm across the chest to read a wristwatch, hold, return",
+        initial: STAND_INIT,
+        segments: vec![
+            Segment::Move {
+                to: READING_WATCH,
+                duration: 1.7,
+                perturb: true,
+            },
+            Segment::Hold { duration: 1.2 },
+            Segment::Move {
+                to: STAND_INIT,
+                duration: 1.7,
+                perturb: false,
+            },
+        ],
+    }
+}
+
+/// The "reading watch" key pose (shared/docs/nao-left-arm.md): forearm across the chest,
+/// back of the wrist towards the head camera; LHand as in StandInit.
+pub const READING_WATCH: Pose = [-0.22, -0.29, 0.15, -1.05, 0.43, 0.25];
+
+/// Raised forearm for waving: upper arm forward-up and out, elbow bent.
+pub const WAVE_UP: Pose = [-0.55, 0.55, -1.35, -0.95, -0.2, 0.8];
+
+/// A wave: raise the forearm, wave it three times (elbow roll), lower it.
+pub fn wave() -> Gesture {
+    Gesture {
+        name: "wave",
+        description: "raise the hand, wave three times with the elbow, lower it",
+        initial: STAND_INIT,
+        segments: vec![
+            Segment::Move {
+                to: WAVE_UP,
+                duration: 1.5,
+                perturb: true,
+            },
+            Segment::Oscillate {
+                joint: 3,
+                amplitude: 0.38,
+                period: 0.9,
+                cycles: 3.0,
+            },
+            Segment::Move {
+                to: STAND_INIT,
+                duration: 1.5,
+                perturb: false,
+            },
+        ],
+    }
+}
+
+/// Arm stretched forward at shoulder height, hand closed: pointing.
+pub const POINT_FORWARD: Pose = [0.05, 0.05, -1.0, -0.1, 0.0, 0.0];
+
+/// Reach forward and point, hold, come back.
+pub fn reach_point() -> Gesture {
+    Gesture {
+        name: "reach-point",
+        description: "stretch the arm forward and point, hold, come back",
+        initial: STAND_INIT,
+        segments: vec![
+            Segment::Move {
+                to: POINT_FORWARD,
+                duration: 1.3,
+                perturb: true,
+            },
+            Segment::Hold { duration: 0.9 },
+            Segment::Move {
+                to: STAND_INIT,
+                duration: 1.4,
+                perturb: false,
+            },
+        ],
+    }
+}
+
+/// Hand at the temple: elbow high and out, forearm folded towards the head.
+pub const SALUTE: Pose = [-0.95, 0.75, -1.6, -1.45, -0.6, 1.0];
+
+/// A quick salute: hand to the temple, short hold, down again.
+pub fn salute() -> Gesture {
+    Gesture {
+        name: "salute",
+        description: "bring the hand to the temple quickly, hold briefly, lower it",
+        initial: STAND_INIT,
+        segments: vec![
+            Segment::Move {
+                to: SALUTE,
+                duration: 1.0,
+                perturb: true,
+            },
+            Segment::Hold { duration: 0.6 },
+            Segment::Move {
+                to: STAND_INIT,
+                duration: 1.2,
+                perturb: false,
+            },
+        ],
+    }
+}
