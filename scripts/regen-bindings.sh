@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Regenerate src/mujoco/ffi.rs with bindgen from Debian's MuJoCo 2.2.2 and OSMesa headers.
+# Needs libclang-dev (`make bindings` installs it when missing). The output is committed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --lib --features regen-bindings
+cargo fmt -- src/mujoco/ffi.rs 2>/dev/null || rustfmt --edition 2021 src/mujoco/ffi.rs
+echo "src/mujoco/ffi.rs regenerated; review with: git diff --stat src/mujoco/ffi.rs"

@@ -1,0 +1,133 @@
+//! MuJoCo's error and warning hooks: record the message for the calling thread.
+
+use super::ffi;
+use std::cell::RefCell;
+use std::ffi::{c_char, CStr};
+
+thread_local! {
+    /// The first error MuJoCo raised on this thread since the last [`take_error`].
+    static ERROR: RefCell<Option<String>> = const { RefCell::new(None) };
+    /// Warnings MuJoCo raised on this thread since the last [`take_warnings`].
+    static WARNINGS: RefCell<Vec<String>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Keep at most this many warnings per thread (MuJoCo warns once per kind and mjData anyway).
+const MAX_WARNINGS: usize = 64;
+
+fn message(msg: *const c_char) -> String {
+    if msg.is_null() {
+        return String::from("(MuJoCo gave no message)");
+    }
+    // Safety: MuJoCo passes a NUL-terminated string that lives for the duration of the call.
+    unsafe { CStr::from_ptr(msg) }
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// Errors after which MuJoCo 2.2 goes on with memory it does not have: `mj_stackAlloc` hands
+/// out the overflowing block anyway, and the allocators return NULL to callers that then use
+/// it. Returning from the hook would let MuJoCo write out of bounds, so for these the process
+/// stops, as Rust itself does on stack overflow or allocation failure.
+const FATAL: [&str; 2] = ["Stack overflow", "Could not allocate"];
+
+fn is_fatal(text: &str) -> bool {
+    FATAL.iter().any(|f| text.contains(f))
+}
+
+/// The `mju_user_error` hook. Must not unwind: `try_with` and `try_borrow_mut` never panic,
+/// and a message that cannot be stored (thread exiting, re-entrant call) is dropped.
+unsafe extern "C" fn on_error(msg: *const c_char) {
+    let text = message(msg);
+    if is_fatal(&text) {
+        use std::io::Write;
+        let _ = writeln!(
+            std::io::stderr(),
+            "MuJoCo fatal error: {text}\n(MuJoCo 2.2 cannot continue safely after this error; \
+             aborting. Increase <size nstack=...> in the MJCF for a stack overflow.)"
+        );
+        std::process::abort();
+    }
+    let _ = ERROR.try_with(|slot| {
+        if let Ok(mut slot) = slot.try_borrow_mut() {
+            slot.get_or_insert(text);
+        }
+    });
+}
+
+/// The `mju_user_warning` hook. Must not unwind (see [`on_error`]).
+unsafe extern "C" fn on_warning(msg: *const c_char) {
+    let text = message(msg);
+    let _ = WARNINGS.try_with(|w| {
+        if let Ok(mut w) = w.try_borrow_mut() {
+            if w.len() < MAX_WARNINGS {
+                w.push(text);
+            }
+        }
+    });
+}
+
+/// Install the hooks (process-wide). Called once from `check_version` and after each model
+/// load, because MuJoCo's compiler swaps the hooks while it runs.
+pub(crate) fn install() {
+    // Safety: the hooks are plain global function pointers of libmujoco. Writes happen under
+    // the load lock (or once, before any model exists), and the functions installed are
+    // `extern "C"`, never unwind, and stay valid for the life of the process.
+    unsafe {
+        ffi::mju_user_error = Some(on_error);
+        ffi::mju_user_warning = Some(on_warning);
+    }
+}
+
+/// Take the error MuJoCo raised on this thread, if any.
+pub(crate) fn take_error() -> Option<String> {
+    ERROR.with(|slot| slot.borrow_mut().take())
+}
+
+/// Take the warnings MuJoCo raised on this thread.
+pub(crate) fn take_warnings() -> Vec<String> {
+    WARNINGS.with(|w| std::mem::take(&mut *w.borrow_mut()))
+}
+
+/// Forget errors and warnings left over from earlier calls on this thread.
+pub(crate) fn clear() {
+    let _ = take_error();
+    let _ = take_warnings();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mju_error_is_recorded_for_the_calling_thread_and_returns() {
+        crate::mujoco::check_version().unwrap();
+        clear();
+        let msg = std::ffi::CString::new("synthetic error for the test").unwrap();
+        // Safety: our hook is installed (check_version); it records and returns.
+        unsafe { ffi::mju_error(msg.as_ptr()) };
+        assert_eq!(
+            take_error().as_deref(),
+            Some("synthetic error for the test")
+        );
+        assert_eq!(take_error(), None, "taking the error clears it");
+        let other = std::thread::spawn(take_error).join().unwrap();
+        assert_eq!(other, None, "errors are per thread");
+    }
+
+    #[test]
+    fn mju_warning_is_recorded() {
+        crate::mujoco::check_version().unwrap();
+        clear();
+        let msg = std::ffi::CString::new("synthetic warning").unwrap();
+        // Safety: our hook is installed; it records and returns.
+        unsafe { ffi::mju_warning(msg.as_ptr()) };
+        assert_eq!(take_warnings(), vec!["synthetic warning".to_string()]);
+    }
+
+    #[test]
+    fn fatal_messages_are_recognised() {
+        assert!(is_fatal("Stack overflow: max = 1000"));
+        assert!(is_fatal("Could not allocate mjData buffer"));
+        assert!(!is_fatal("Pre-allocated contact buffer is full"));
+    }
+}

@@ -1,0 +1,402 @@
+//! [`Model`]: an owned, compiled `mjModel`.
+
+use super::{callbacks, check_version, ffi, MjError, Result};
+use std::ffi::{c_char, c_int, CStr, CString};
+use std::path::Path;
+use std::ptr::NonNull;
+use std::sync::Mutex;
+
+/// Size of the buffer MuJoCo writes a load error into.
+const ERROR_BUF: usize = 1000;
+/// Name under which an XML string is put into MuJoCo's virtual file system.
+const VFS_NAME: &str = "cosco_hsom_model.xml";
+
+/// MuJoCo 2.2's compiler swaps the global error hooks while it runs, without a lock: loads are
+/// serialised so two threads never interleave the swap, and our hooks are put back after each.
+static LOAD_LOCK: Mutex<()> = Mutex::new(());
+
+/// A compiled MuJoCo model (`mjModel`), freed with `mj_deleteModel` on drop.
+///
+/// ```
+/// use cosco_hsom::mujoco::Model;
+/// let model = Model::from_xml_str(
+///     r#"<mujoco><worldbody><body name="b"><joint name="j" type="hinge"/>
+///        <geom size="0.1"/></body></worldbody></mujoco>"#,
+/// )?;
+/// assert_eq!(model.nq(), 1);
+/// assert_eq!(model.joint_id("j"), Some(0));
+/// assert_eq!(model.joint_id("nope"), None);
+/// # Ok::<(), cosco_hsom::mujoco::MjError>(())
+/// ```
+#[derive(Debug)]
+pub struct Model {
+    ptr: NonNull<ffi::mjModel>,
+}
+
+// Safety: a Model owns its mjModel exclusively; the allocation has no thread affinity.
+// MuJoCo's simulation functions take `const mjModel*` and never write to it, and the `&self`
+// methods here only read, so sharing `&Model` between threads (Sync) and moving it (Send) is
+// sound. Tests and the trainer step one Data per thread on one shared Model.
+unsafe impl Send for Model {}
+// Safety: see `Send` above; no `&self` method mutates the mjModel.
+unsafe impl Sync for Model {}
+
+impl Drop for Model {
+    fn drop(&mut self) {
+        // Safety: `ptr` came from mj_loadXML, is owned by this Model and freed exactly once.
+        // Every Data borrows the Model, so none outlives it.
+        unsafe { ffi::mj_deleteModel(self.ptr.as_ptr()) }
+    }
+}
+
+/// MuJoCo object kinds looked up by name.
+#[derive(Clone, Copy)]
+enum Obj {
+    Body,
+    Joint,
+    Site,
+    Camera,
+    Actuator,
+}
+
+impl Obj {
+    fn code(self) -> c_int {
+        let code = match self {
+            Obj::Body => ffi::mjtObj__mjOBJ_BODY,
+            Obj::Joint => ffi::mjtObj__mjOBJ_JOINT,
+            Obj::Site => ffi::mjtObj__mjOBJ_SITE,
+            Obj::Camera => ffi::mjtObj__mjOBJ_CAMERA,
+            Obj::Actuator => ffi::mjtObj__mjOBJ_ACTUATOR,
+        };
+        code as c_int
+    }
+}
+
+/// Heap-allocated, zeroed `mjVFS` (about 2 MB: never on the stack), released with
+/// `mj_deleteVFS` on drop.
+struct Vfs(Box<ffi::mjVFS>);
+
+impl Vfs {
+    fn new() -> Vfs {
+        // Safety: mjVFS is plain old data (ints, chars, raw pointers); all-zero is a valid
+        // value for every field. Allocating zeroed memory of its layout and handing it to Box
+        // is the documented way to build a Box without a stack temporary.
+        let mut vfs = unsafe {
+            let layout = std::alloc::Layout::new::<ffi::mjVFS>();
+            let raw = std::alloc::alloc_zeroed(layout) as *mut ffi::mjVFS;
+            if raw.is_null() {
+                std::alloc::handle_alloc_error(layout);
+            }
+            Box::from_raw(raw)
+        };
+        // Safety: `vfs` points to a valid, writable mjVFS.
+        unsafe { ffi::mj_defaultVFS(&mut *vfs) };
+        Vfs(vfs)
+    }
+
+    /// Add a file `name` with `bytes` as its content.
+    fn add(&mut self, name: &CStr, bytes: &[u8]) -> Result<()> {
+        let size = c_int::try_from(bytes.len()).map_err(|_| MjError::TooLarge {
+            what: "MJCF text",
+            size: bytes.len(),
+        })?;
+        // Safety: the VFS is valid; `name` is NUL-terminated. On success MuJoCo allocated
+        // `size` bytes for the new file at index nfile - 1.
+        let status = unsafe { ffi::mj_makeEmptyFileVFS(&mut *self.0, name.as_ptr(), size) };
+        match status {
+            0 => {}
+            1 => {
+                return Err(MjError::TooLarge {
+                    what: "MuJoCo virtual file system (full)",
+                    size: bytes.len(),
+                })
+            }
+            _ => {
+                return Err(MjError::Runtime {
+                    message: format!("virtual file {name:?} already exists"),
+                })
+            }
+        }
+        let index = (self.0.nfile - 1) as usize;
+        let dst = self.0.filedata[index] as *mut u8;
+        if dst.is_null() {
+            return Err(MjError::Runtime {
+                message: "MuJoCo could not allocate the virtual file".into(),
+            });
+        }
+        // Safety: MuJoCo allocated exactly `bytes.len()` bytes at `dst` for this file; the
+        // regions do not overlap.
+        unsafe { std::ptr::copy_nonoverlapping(bytes.as_ptr(), dst, bytes.len()) };
+        Ok(())
+    }
+}
+
+impl Drop for Vfs {
+    fn drop(&mut self) {
+        // Safety: frees the file buffers MuJoCo allocated; the Box frees the struct.
+        unsafe { ffi::mj_deleteVFS(&mut *self.0) }
+    }
+}
+
+impl Model {
+    /// Load and compile an MJCF file. The error names the path and carries MuJoCo's message.
+    pub fn from_xml_path(path: &Path) -> Result<Model> {
+        check_version()?;
+        let shown = path.display().to_string();
+        let c_path = CString::new(path.as_os_str().as_encoded_bytes())
+            .map_err(|_| MjError::NulByte { what: "model path" })?;
+        if !path.is_file() {
+            return Err(MjError::Load {
+                path: shown,
+                message: "no such file".into(),
+            });
+        }
+        Self::load(&c_path, None, shown)
+    }
+
+    /// Load and compile MJCF given as a string, through MuJoCo's virtual file system (2.2 has
+    /// no loader from memory). Files the XML refers to (meshes, includes) are looked up
+    /// relative to the working directory.
+    pub fn from_xml_str(xml: &str) -> Result<Model> {
+        check_version()?;
+        let name = CString::new(VFS_NAME).expect("constant has no NUL");
+        let mut vfs = Vfs::new();
+        vfs.add(&name, xml.as_bytes())?;
+        Self::load(&name, Some(&vfs), "<string>".into())
+    }
+
+    fn load(file: &CStr, vfs: Option<&Vfs>, shown: String) -> Result<Model> {
+        let mut err = [0 as c_char; ERROR_BUF];
+        let vfs_ptr = vfs.map_or(std::ptr::null(), |v| &*v.0 as *const ffi::mjVFS);
+        let guard = LOAD_LOCK.lock().unwrap_or_else(|p| p.into_inner());
+        callbacks::clear();
+        // Safety: `file` is NUL-terminated, `vfs_ptr` is null or a valid VFS that outlives the
+        // call, `err` is a writable buffer of the size given.
+        let raw = unsafe {
+            ffi::mj_loadXML(file.as_ptr(), vfs_ptr, err.as_mut_ptr(), ERROR_BUF as c_int)
+        };
+        callbacks::install();
+        drop(guard);
+        let hook_error = callbacks::take_error();
+        // Safety: MuJoCo writes a NUL-terminated message into `err`, which was zeroed and
+        // whose last byte it never overwrites.
+        let message = unsafe { CStr::from_ptr(err.as_ptr()) }
+            .to_string_lossy()
+            .trim()
+            .to_string();
+        match NonNull::new(raw) {
+            Some(ptr) => Ok(Model { ptr }),
+            None => Err(MjError::Load {
+                path: shown,
+                message: if !message.is_empty() {
+                    message
+                } else {
+                    hook_error.unwrap_or_else(|| "MuJoCo gave no reason".into())
+                },
+            }),
+        }
+    }
+
+    /// The raw pointer, for the rendering layer.
+    pub(crate) fn as_ptr(&self) -> *const ffi::mjModel {
+        self.ptr.as_ptr()
+    }
+
+    fn raw(&self) -> &ffi::mjModel {
+        // Safety: `ptr` is valid and not mutated while `self` is borrowed.
+        unsafe { self.ptr.as_ref() }
+    }
+
+    /// Number of generalized coordinates.
+    pub fn nq(&self) -> usize {
+        self.raw().nq as usize
+    }
+    /// Number of degrees of freedom.
+    pub fn nv(&self) -> usize {
+        self.raw().nv as usize
+    }
+    /// Number of actuators.
+    pub fn nu(&self) -> usize {
+        self.raw().nu as usize
+    }
+    /// Number of joints.
+    pub fn njnt(&self) -> usize {
+        self.raw().njnt as usize
+    }
+    /// Number of sites.
+    pub fn nsite(&self) -> usize {
+        self.raw().nsite as usize
+    }
+    /// Number of bodies, the world body included.
+    pub fn nbody(&self) -> usize {
+        self.raw().nbody as usize
+    }
+    /// Number of cameras defined in the model.
+    pub fn ncam(&self) -> usize {
+        self.raw().ncam as usize
+    }
+    /// Simulation timestep in seconds (`<option timestep>`).
+    pub fn timestep(&self) -> f64 {
+        self.raw().opt.timestep
+    }
+    /// Largest off-screen render size, `<visual><global offwidth offheight>`.
+    pub fn offscreen_size(&self) -> (usize, usize) {
+        let g = &self.raw().vis.global;
+        (g.offwidth.max(0) as usize, g.offheight.max(0) as usize)
+    }
+
+    fn name2id(&self, obj: Obj, name: &str) -> Option<usize> {
+        let c = CString::new(name).ok()?;
+        // Safety: valid model, valid object type, NUL-terminated name.
+        let id = unsafe { ffi::mj_name2id(self.as_ptr(), obj.code(), c.as_ptr()) };
+        usize::try_from(id).ok()
+    }
+
+    fn id2name(&self, obj: Obj, id: usize, count: usize) -> Option<String> {
+        if id >= count {
+            return None;
+        }
+        // Safety: valid model, type, and an id checked against the object count.
+        let p = unsafe { ffi::mj_id2name(self.as_ptr(), obj.code(), id as c_int) };
+        if p.is_null() {
+            return None;
+        }
+        // Safety: a non-null result points into the model's NUL-separated name buffer.
+        Some(unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned())
+    }
+
+    /// Id of the joint called `name`.
+    pub fn joint_id(&self, name: &str) -> Option<usize> {
+        self.name2id(Obj::Joint, name)
+    }
+    /// Id of the actuator called `name`.
+    pub fn actuator_id(&self, name: &str) -> Option<usize> {
+        self.name2id(Obj::Actuator, name)
+    }
+    /// Id of the site called `name`.
+    pub fn site_id(&self, name: &str) -> Option<usize> {
+        self.name2id(Obj::Site, name)
+    }
+    /// Id of the body called `name`.
+    pub fn body_id(&self, name: &str) -> Option<usize> {
+        self.name2id(Obj::Body, name)
+    }
+    /// Id of the camera called `name`.
+    pub fn camera_id(&self, name: &str) -> Option<usize> {
+        self.name2id(Obj::Camera, name)
+    }
+    /// Name of joint `id` (None when out of range or unnamed).
+    pub fn joint_name(&self, id: usize) -> Option<String> {
+        self.id2name(Obj::Joint, id, self.njnt())
+    }
+    /// Name of actuator `id` (None when out of range or unnamed).
+    pub fn actuator_name(&self, id: usize) -> Option<String> {
+        self.id2name(Obj::Actuator, id, self.nu())
+    }
+    /// Name of site `id` (None when out of range or unnamed).
+    pub fn site_name(&self, id: usize) -> Option<String> {
+        self.id2name(Obj::Site, id, self.nsite())
+    }
+    /// Name of body `id` (None when out of range or unnamed).
+    pub fn body_name(&self, id: usize) -> Option<String> {
+        self.id2name(Obj::Body, id, self.nbody())
+    }
+    /// Name of camera `id` (None when out of range or unnamed).
+    pub fn camera_name(&self, id: usize) -> Option<String> {
+        self.id2name(Obj::Camera, id, self.ncam())
+    }
+
+    /// Read element `i` of a model array of `len` elements.
+    ///
+    /// # Safety
+    /// `p` must be the model array with `len` elements that the caller names.
+    unsafe fn at<T: Copy>(p: *const T, i: usize, len: usize) -> T {
+        assert!(i < len, "index {i} out of range 0..{len}");
+        // Safety: guaranteed by the caller and the bounds check above.
+        unsafe { *p.add(i) }
+    }
+
+    /// Range of joint `id`, `None` when the joint is not limited.
+    ///
+    /// # Panics
+    /// When `id >= njnt()` (ids come from [`Model::joint_id`]).
+    pub fn joint_range(&self, id: usize) -> Option<(f64, f64)> {
+        let m = self.raw();
+        let n = self.njnt();
+        // Safety: jnt_limited has njnt entries, jnt_range 2*njnt.
+        unsafe {
+            if Self::at(m.jnt_limited, id, n) == 0 {
+                return None;
+            }
+            Some((
+                Self::at(m.jnt_range, 2 * id, 2 * n),
+                Self::at(m.jnt_range, 2 * id + 1, 2 * n),
+            ))
+        }
+    }
+    /// Address of joint `id`'s first coordinate in `qpos`. Panics when `id >= njnt()`.
+    pub fn joint_qpos_adr(&self, id: usize) -> usize {
+        // Safety: jnt_qposadr has njnt entries.
+        unsafe { Self::at(self.raw().jnt_qposadr, id, self.njnt()) as usize }
+    }
+    /// Address of joint `id`'s first degree of freedom in `qvel`. Panics when `id >= njnt()`.
+    pub fn joint_dof_adr(&self, id: usize) -> usize {
+        // Safety: jnt_dofadr has njnt entries.
+        unsafe { Self::at(self.raw().jnt_dofadr, id, self.njnt()) as usize }
+    }
+    /// Control range of actuator `id`, `None` when not limited. Panics when `id >= nu()`.
+    pub fn actuator_ctrl_range(&self, id: usize) -> Option<(f64, f64)> {
+        let m = self.raw();
+        let n = self.nu();
+        // Safety: actuator_ctrllimited has nu entries, actuator_ctrlrange 2*nu.
+        unsafe {
+            if Self::at(m.actuator_ctrllimited, id, n) == 0 {
+                return None;
+            }
+            Some((
+                Self::at(m.actuator_ctrlrange, 2 * id, 2 * n),
+                Self::at(m.actuator_ctrlrange, 2 * id + 1, 2 * n),
+            ))
+        }
+    }
+    /// Force range of actuator `id`, `None` when not limited. Panics when `id >= nu()`.
+    pub fn actuator_force_range(&self, id: usize) -> Option<(f64, f64)> {
+        let m = self.raw();
+        let n = self.nu();
+        // Safety: actuator_forcelimited has nu entries, actuator_forcerange 2*nu.
+        unsafe {
+            if Self::at(m.actuator_forcelimited, id, n) == 0 {
+                return None;
+            }
+            Some((
+                Self::at(m.actuator_forcerange, 2 * id, 2 * n),
+                Self::at(m.actuator_forcerange, 2 * id + 1, 2 * n),
+            ))
+        }
+    }
+    /// The joint actuator `id` drives, when its transmission is a joint. Panics when
+    /// `id >= nu()`.
+    pub fn actuator_joint(&self, id: usize) -> Option<usize> {
+        let m = self.raw();
+        let n = self.nu();
+        // Safety: actuator_trntype has nu entries, actuator_trnid 2*nu.
+        let (kind, target) = unsafe {
+            (
+                Self::at(m.actuator_trntype, id, n),
+                Self::at(m.actuator_trnid, 2 * id, 2 * n),
+            )
+        };
+        let is_joint = kind == ffi::mjtTrn__mjTRN_JOINT as c_int
+            || kind == ffi::mjtTrn__mjTRN_JOINTINPARENT as c_int;
+        if is_joint {
+            usize::try_from(target).ok()
+        } else {
+            None
+        }
+    }
+    /// Mass of body `id` in kg. Panics when `id >= nbody()`.
+    pub fn body_mass(&self, id: usize) -> f64 {
+        // Safety: body_mass has nbody entries.
+        unsafe { Self::at(self.raw().body_mass, id, self.nbody()) }
+    }
+}
