@@ -19,6 +19,7 @@
 pub mod config;
 pub mod demos;
 pub mod dtw;
+pub mod experiment;
 pub mod fsutil;
 pub mod gesture;
 pub mod gmr;

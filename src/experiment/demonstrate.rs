@@ -1,0 +1,81 @@
+//! Kinesthetic teaching in simulation: a synthetic demonstrator guides the simulated arm and
+//! the joint encoders are recorded at 40 Hz, as on the real robot.
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+use crate::gesture::{Gesture, HumanTrajectory, Variation};
+use crate::sim::{Controller, ControllerConfig, NaoArm, Recording, TargetTrajectory, JOINT_SPECS};
+
+use super::ExperimentError;
+
+/// How demonstrations are made.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DemoSettings {
+    /// How much the demonstrations differ from each other.
+    pub variation: Variation,
+    /// Standard deviation of the encoder noise, rad (0: exact encoders).
+    pub encoder_noise: f64,
+    /// Recording rate, Hz (40 as in the paper).
+    pub record_rate_hz: f64,
+    /// Rate at which the demonstrator's hand trajectory is sampled into servo targets, Hz.
+    pub guide_rate_hz: f64,
+}
+
+impl Default for DemoSettings {
+    fn default() -> Self {
+        DemoSettings {
+            variation: Variation::default(),
+            encoder_noise: 0.0,
+            record_rate_hz: 40.0,
+            guide_rate_hz: 100.0,
+        }
+    }
+}
+
+/// The joints' ranges in model order, for the demonstrator.
+pub fn joint_limits() -> Vec<(f64, f64)> {
+    JOINT_SPECS.iter().map(|s| s.range).collect()
+}
+
+/// Record `count` demonstrations of `gesture` on the simulated arm. Everything random comes
+/// from `seed`: demonstration `i` uses its own sub-stream, so demonstration 0 is the same
+/// whatever `count` is.
+pub fn record_demonstrations(
+    arm: &NaoArm,
+    gesture: &Gesture,
+    count: usize,
+    seed: u64,
+    settings: &DemoSettings,
+    mut on_done: impl FnMut(usize),
+) -> Result<Vec<Recording>, ExperimentError> {
+    if count == 0 {
+        return Err(ExperimentError::Invalid(
+            "demonstration count is 0: need at least 1".into(),
+        ));
+    }
+    let limits = joint_limits();
+    let mut out = Vec::with_capacity(count);
+    for i in 0..count {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        rng.set_stream(i as u64 + 1);
+        let human = HumanTrajectory::sample(gesture, &settings.variation, &limits, &mut rng)
+            .map_err(ExperimentError::Invalid)?;
+        let controller = Controller::new(ControllerConfig {
+            record_rate_hz: settings.record_rate_hz,
+            encoder_noise_std: settings.encoder_noise,
+            seed: seed.wrapping_add(1000 + i as u64),
+            ..ControllerConfig::default()
+        })?;
+        let samples = human.sampled(1.0 / settings.guide_rate_hz);
+        let times: Vec<f64> = samples.iter().map(|(t, _)| *t).collect();
+        let targets: Vec<Vec<f64>> = samples.iter().map(|(_, q)| q.to_vec()).collect();
+        let trajectory =
+            TargetTrajectory::new(&times, &targets)?.with_hold(1.0 / settings.record_rate_hz)?;
+        let mut sim = arm.sim()?;
+        sim.set_posture(&targets[0])?;
+        out.push(controller.follow(&mut sim, &trajectory)?);
+        on_done(i);
+    }
+    Ok(out)
+}

@@ -1,0 +1,19 @@
+//! The paper's experiment (Section IV), made repeatable: teach the simulated Nao a gesture from
+//! demonstrations recorded at 40 Hz, reproduce it from the initial posture alone on the
+//! simulated arm, and measure how faithful the reproduction is.
+
+pub mod demonstrate;
+
+pub use demonstrate::{joint_limits, record_demonstrations, DemoSettings};
+
+/// Errors of the experiment pipeline.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ExperimentError {
+    /// A setting is out of its allowed range.
+    #[error("{0}")]
+    Invalid(String),
+    /// The simulator refused something.
+    #[error(transparent)]
+    Sim(#[from] crate::sim::SimError),
+}
