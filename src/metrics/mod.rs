@@ -1,1 +1,12 @@
-//! (room reserved; filled by its issue)
+//! Fidelity metrics: how closely a reproduction follows the demonstrations, and how smooth
+//! it is. Pure functions over joint trajectories sampled at a fixed rate (40 Hz) with
+//! optional wrist positions; the simulator supplies the data. Definitions, formulas, units
+//! and thresholds: `docs/METRICS.md`.
+
+mod errors;
+mod fidelity;
+mod smoothness;
+
+pub use errors::MetricsError;
+pub use fidelity::{fidelity, DemoScores, FidelityReport, MetricsParams, Stat, Trajectory};
+pub use smoothness::{key_pose, normalized_jerk, smoothness, velocity_reversals, Smoothness};

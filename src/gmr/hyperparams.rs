@@ -1,0 +1,240 @@
+//! Parameters of the GMM/GMR baseline, checked once by [`GmrParams::check`].
+
+use super::errors::GmrError;
+use super::preprocess::IdleTrim;
+use crate::dtw::Band;
+
+/// How many mixture components to use.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ComponentChoice {
+    /// Exactly this many.
+    Fixed(usize),
+    /// Fit every count in `min..=max` and keep the one with the lowest BIC
+    /// (`−2 ln L + p ln N`, `p = (K−1) + K·d + K·d(d+1)/2`); ties go to the smaller count.
+    Bic {
+        /// Smallest count tried (≥ 1).
+        min: usize,
+        /// Largest count tried (≥ `min`).
+        max: usize,
+    },
+}
+
+/// Unchecked parameters of the baseline; consuming setters, then [`GmrParams::check`].
+///
+/// Defaults: components by BIC over 1..=8, `reg_covar` 1e-6 (added to every covariance
+/// diagonal; keeps joints that never move, such as the unused wrist, from making a
+/// covariance singular), EM tolerance 1e-6 on the change of the mean log-likelihood
+/// lower bound, at most 500 EM iterations, seed 0, 100 resampled points per
+/// demonstration, 0.025 s sample period (40 Hz) for files without a `time` column,
+/// [`IdleTrim::default`], DTW alignment on with no band, at least 2 demonstrations.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GmrParams {
+    components: ComponentChoice,
+    reg_covar: f64,
+    tolerance: f64,
+    max_iterations: u64,
+    seed: u64,
+    n_points: usize,
+    sample_period: f64,
+    trim: IdleTrim,
+    align: bool,
+    band: Band,
+}
+
+/// Validated parameters: the only type that can fit a model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GmrValidParams(pub(super) GmrParams);
+
+/// The pipeline needs this many demonstrations: GMR's envelope is the spread across
+/// demonstrations, and DTW alignment needs something to align. One demonstration is
+/// refused with [`GmrError::TooFewDemonstrations`]; to fit a mixture to any point set, use
+/// [`GmrValidParams::fit_gmm`].
+pub const MIN_DEMONSTRATIONS: usize = 2;
+
+impl Default for GmrParams {
+    fn default() -> Self {
+        GmrParams {
+            components: ComponentChoice::Bic { min: 1, max: 8 },
+            reg_covar: 1e-6,
+            tolerance: 1e-6,
+            max_iterations: 500,
+            seed: 0,
+            n_points: 100,
+            sample_period: 0.025,
+            trim: IdleTrim::default(),
+            align: true,
+            band: Band::None,
+        }
+    }
+}
+
+impl GmrParams {
+    /// The defaults (see the type's documentation).
+    pub fn new() -> Self {
+        Self::default()
+    }
+    /// Number of components, fixed or chosen by BIC.
+    pub fn components(mut self, c: ComponentChoice) -> Self {
+        self.components = c;
+        self
+    }
+    /// Regularisation added to every covariance diagonal (> 0).
+    pub fn reg_covar(mut self, v: f64) -> Self {
+        self.reg_covar = v;
+        self
+    }
+    /// EM convergence tolerance on the change of the lower bound (> 0).
+    pub fn tolerance(mut self, v: f64) -> Self {
+        self.tolerance = v;
+        self
+    }
+    /// EM iteration budget (≥ 1).
+    pub fn max_iterations(mut self, v: u64) -> Self {
+        self.max_iterations = v;
+        self
+    }
+    /// Seed of the k-means initialisation (ChaCha8): same seed, same model.
+    pub fn seed(mut self, v: u64) -> Self {
+        self.seed = v;
+        self
+    }
+    /// Points per demonstration after resampling (≥ 2).
+    pub fn n_points(mut self, v: usize) -> Self {
+        self.n_points = v;
+        self
+    }
+    /// Sample period in seconds for demonstrations without a `time` column (> 0).
+    pub fn sample_period(mut self, v: f64) -> Self {
+        self.sample_period = v;
+        self
+    }
+    /// Idle trimming of start and end.
+    pub fn trim(mut self, v: IdleTrim) -> Self {
+        self.trim = v;
+        self
+    }
+    /// Align the trimmed demonstrations to a reference with DTW before resampling.
+    pub fn align(mut self, v: bool) -> Self {
+        self.align = v;
+        self
+    }
+    /// Sakoe-Chiba band of the alignment.
+    pub fn band(mut self, v: Band) -> Self {
+        self.band = v;
+        self
+    }
+
+    /// Check every parameter once; only the checked type can fit.
+    pub fn check(self) -> Result<GmrValidParams, GmrError> {
+        let bad = |name, value: String, reason| {
+            Err(GmrError::InvalidParam {
+                name,
+                value,
+                reason,
+            })
+        };
+        match self.components {
+            ComponentChoice::Fixed(0) => {
+                return bad("components", "0".into(), "at least one component")
+            }
+            ComponentChoice::Bic { min, max } if min == 0 || max < min => {
+                return bad(
+                    "components",
+                    format!("BIC {min}..={max}"),
+                    "a range with 1 <= min <= max",
+                )
+            }
+            _ => {}
+        }
+        if !(self.reg_covar.is_finite() && self.reg_covar > 0.0) {
+            return bad(
+                "reg_covar",
+                self.reg_covar.to_string(),
+                "a finite value > 0",
+            );
+        }
+        if !(self.tolerance.is_finite() && self.tolerance > 0.0) {
+            return bad(
+                "tolerance",
+                self.tolerance.to_string(),
+                "a finite value > 0",
+            );
+        }
+        if self.max_iterations == 0 {
+            return bad("max_iterations", "0".into(), "at least 1");
+        }
+        if self.n_points < 2 {
+            return bad("n_points", self.n_points.to_string(), "at least 2");
+        }
+        if !(self.sample_period.is_finite() && self.sample_period > 0.0) {
+            return bad(
+                "sample_period",
+                self.sample_period.to_string(),
+                "a finite time in seconds > 0",
+            );
+        }
+        self.trim
+            .check()
+            .map_err(|(name, value, reason)| GmrError::InvalidParam {
+                name,
+                value,
+                reason,
+            })?;
+        if let Band::Fraction(f) = self.band {
+            if !(0.0..=1.0).contains(&f) {
+                return bad("band", f.to_string(), "a fraction within [0, 1]");
+            }
+        }
+        Ok(GmrValidParams(self))
+    }
+}
+
+impl GmrValidParams {
+    /// The checked parameters.
+    pub fn params(&self) -> &GmrParams {
+        &self.0
+    }
+}
+
+impl GmrParams {
+    /// Component choice.
+    pub fn get_components(&self) -> ComponentChoice {
+        self.components
+    }
+    /// Covariance regularisation.
+    pub fn get_reg_covar(&self) -> f64 {
+        self.reg_covar
+    }
+    /// EM tolerance.
+    pub fn get_tolerance(&self) -> f64 {
+        self.tolerance
+    }
+    /// EM iteration budget.
+    pub fn get_max_iterations(&self) -> u64 {
+        self.max_iterations
+    }
+    /// Seed.
+    pub fn get_seed(&self) -> u64 {
+        self.seed
+    }
+    /// Points per demonstration.
+    pub fn get_n_points(&self) -> usize {
+        self.n_points
+    }
+    /// Sample period for files without time.
+    pub fn get_sample_period(&self) -> f64 {
+        self.sample_period
+    }
+    /// Idle trimming.
+    pub fn get_trim(&self) -> IdleTrim {
+        self.trim
+    }
+    /// DTW alignment on or off.
+    pub fn get_align(&self) -> bool {
+        self.align
+    }
+    /// Alignment band.
+    pub fn get_band(&self) -> Band {
+        self.band
+    }
+}

@@ -1,0 +1,308 @@
+//! Pre-processing of the baseline (the paper's Section V): trim the idle start and end of
+//! every demonstration, align the trimmed demonstrations to a reference with DTW, and
+//! resample each to a fixed number of points. [`active_range`] is reused by the fidelity
+//! metrics, so both use one definition of "idle".
+//!
+//! **Idle trimming.** With `q_k` the samples and `Δt_k` the time between samples `k` and
+//! `k+1`, the joint-space speed is `v_k = ‖q_{k+1} − q_k‖₂ / Δt_k` (rad/s), smoothed by a
+//! centred moving average over `2·half_window + 1` values (clipped at the ends) into
+//! `s_k`. The threshold is `θ = max(min_speed, relative · max_k s_k)`. The active part runs
+//! from sample `first k with s_k > θ` to sample `(last k with s_k > θ) + 1`, inclusive.
+//! If `max_k s_k < min_speed` the sequence never moves and has no active part.
+//! Defaults: `min_speed` 0.02 rad/s, `relative` 0.05, `half_window` 2 (5 samples,
+//! 125 ms at 40 Hz).
+//!
+//! **Reference.** The reference is the medoid: the trimmed demonstration whose summed
+//! per-step DTW distance to the others is smallest (ties to the lower index). It is
+//! typical of the set, not an outlier, and its trimmed duration becomes the duration of
+//! the model.
+//!
+//! **Alignment.** Each demonstration is warped onto the reference's time line: for each
+//! reference index `r`, the aligned sample is the mean of the demonstration's samples that
+//! the DTW path pairs with `r`. Every aligned demonstration has the reference's length.
+//!
+//! **Resampling.** Each sequence of `L` samples becomes `n` samples by linear
+//! interpolation at the fractional indices `u_k = k (L−1)/(n−1)`. Samples are assumed
+//! evenly spaced (the recordings are at a fixed rate); a `time` column only sets speeds
+//! and durations.
+
+use std::ops::Range;
+
+use serde::Serialize;
+
+use super::errors::GmrError;
+use super::hyperparams::{GmrValidParams, MIN_DEMONSTRATIONS};
+use crate::demos::{validate_set, Demonstration};
+use crate::dtw::{dtw, dtw_distance, Band, DtwError};
+
+/// Idle trimming settings (see the module documentation for the formula).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct IdleTrim {
+    /// Absolute floor of the threshold, rad/s; also the "never moves" limit.
+    pub min_speed: f64,
+    /// Threshold as a fraction of the peak smoothed speed, in `[0, 1)`.
+    pub relative: f64,
+    /// Half-width of the speed smoothing window, in samples.
+    pub half_window: usize,
+}
+
+impl Default for IdleTrim {
+    fn default() -> Self {
+        IdleTrim {
+            min_speed: 0.02,
+            relative: 0.05,
+            half_window: 2,
+        }
+    }
+}
+
+impl IdleTrim {
+    /// Check the settings: `(name, value, reason)` of the first bad one.
+    pub fn check(&self) -> Result<(), (&'static str, String, &'static str)> {
+        if !(self.min_speed.is_finite() && self.min_speed > 0.0) {
+            return Err((
+                "trim.min_speed",
+                self.min_speed.to_string(),
+                "a finite speed in rad/s > 0",
+            ));
+        }
+        if !(self.relative.is_finite() && (0.0..1.0).contains(&self.relative)) {
+            return Err((
+                "trim.relative",
+                self.relative.to_string(),
+                "a fraction within [0, 1)",
+            ));
+        }
+        if self.half_window > 1000 {
+            return Err((
+                "trim.half_window",
+                self.half_window.to_string(),
+                "at most 1000 samples",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Smoothed joint-space speeds `s_k` (rad/s), `k = 0..n−1`, of evenly or explicitly timed
+/// samples: `times` when given (one per sample), else `period` seconds apart. Empty for
+/// fewer than two samples.
+pub fn smoothed_speeds<R: AsRef<[f64]>>(
+    rows: &[R],
+    times: Option<&[f64]>,
+    period: f64,
+    half_window: usize,
+) -> Vec<f64> {
+    if rows.len() < 2 {
+        return Vec::new();
+    }
+    let v: Vec<f64> = rows
+        .windows(2)
+        .enumerate()
+        .map(|(k, w)| {
+            let dt = times.map_or(period, |t| t[k + 1] - t[k]);
+            crate::dtw::euclidean(w[1].as_ref(), w[0].as_ref()) / dt
+        })
+        .collect();
+    let n = v.len();
+    (0..n)
+        .map(|k| {
+            let lo = k.saturating_sub(half_window);
+            let hi = (k + half_window + 1).min(n);
+            v[lo..hi].iter().sum::<f64>() / (hi - lo) as f64
+        })
+        .collect()
+}
+
+/// The active (non-idle) part of a sequence as a range of sample indices, or `None` when
+/// it never moves faster than `trim.min_speed` (or has fewer than two samples). Rows must
+/// share one width and `times`, when given, must hold one increasing time per row.
+pub fn active_range<R: AsRef<[f64]>>(
+    rows: &[R],
+    times: Option<&[f64]>,
+    period: f64,
+    trim: &IdleTrim,
+) -> Option<Range<usize>> {
+    let s = smoothed_speeds(rows, times, period, trim.half_window);
+    let peak = s.iter().cloned().fold(0.0, f64::max);
+    if peak < trim.min_speed {
+        return None;
+    }
+    let theta = trim.min_speed.max(trim.relative * peak);
+    let first = s.iter().position(|&x| x > theta)?;
+    let last = s.iter().rposition(|&x| x > theta)?;
+    Some(first..last + 2)
+}
+
+/// The baseline's training data: every demonstration trimmed, aligned and resampled to the
+/// same time line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TrainingSet {
+    /// Column names of the state variables.
+    pub columns: Vec<String>,
+    /// The shared time line, seconds from the start of the motion: `n_points` values from
+    /// 0 to `duration`.
+    pub times: Vec<f64>,
+    /// One resampled sequence per demonstration, each `times.len()` samples.
+    pub demos: Vec<Vec<Vec<f64>>>,
+    /// Index of the reference demonstration (`None` when alignment is off).
+    pub reference: Option<usize>,
+    /// Duration of the motion in seconds: the reference's trimmed duration, or the mean
+    /// trimmed duration when alignment is off.
+    pub duration: f64,
+    /// The kept (active) sample range of each demonstration.
+    pub kept: Vec<Range<usize>>,
+}
+
+impl TrainingSet {
+    /// The GMM's data: one point `[t, q_1 … q_D]` per sample of every demonstration.
+    pub fn points(&self) -> Vec<Vec<f64>> {
+        self.demos
+            .iter()
+            .flat_map(|d| {
+                d.iter().zip(&self.times).map(|(q, &t)| {
+                    let mut p = Vec::with_capacity(q.len() + 1);
+                    p.push(t);
+                    p.extend_from_slice(q);
+                    p
+                })
+            })
+            .collect()
+    }
+}
+
+/// The medoid of a set of sequences under per-step DTW distance (ties to the lower index).
+pub fn choose_reference(seqs: &[Vec<Vec<f64>>], band: Band) -> Result<usize, DtwError> {
+    let n = seqs.len();
+    let mut total = vec![0.0; n];
+    for i in 0..n {
+        for j in i + 1..n {
+            let d = dtw_distance(&seqs[i], &seqs[j], band)?.per_step();
+            total[i] += d;
+            total[j] += d;
+        }
+    }
+    let mut best = 0;
+    for (i, &t) in total.iter().enumerate() {
+        if t < total[best] {
+            best = i;
+        }
+    }
+    Ok(best)
+}
+
+/// Warp `seq` onto `reference`'s time line: for each reference index, the mean of the
+/// samples of `seq` that the DTW path pairs with it. The result has `reference.len()`
+/// samples.
+pub fn align_to(
+    reference: &[Vec<f64>],
+    seq: &[Vec<f64>],
+    band: Band,
+) -> Result<Vec<Vec<f64>>, DtwError> {
+    let al = dtw(reference, seq, band)?;
+    let width = reference[0].len();
+    let mut sum = vec![vec![0.0; width]; reference.len()];
+    let mut count = vec![0usize; reference.len()];
+    for &(r, s) in &al.path {
+        for (acc, v) in sum[r].iter_mut().zip(&seq[s]) {
+            *acc += v;
+        }
+        count[r] += 1;
+    }
+    for (row, c) in sum.iter_mut().zip(&count) {
+        for v in row.iter_mut() {
+            *v /= *c as f64;
+        }
+    }
+    Ok(sum)
+}
+
+/// Resample a sequence to `n` samples by linear interpolation at fractional indices
+/// `k (L−1)/(n−1)`. An empty sequence or `n == 0` gives an empty result; a single sample
+/// is repeated; `n == 1` gives the first sample.
+pub fn resample_linear<R: AsRef<[f64]>>(seq: &[R], n: usize) -> Vec<Vec<f64>> {
+    if seq.is_empty() || n == 0 {
+        return Vec::new();
+    }
+    let len = seq.len();
+    if len == 1 || n == 1 {
+        return vec![seq[0].as_ref().to_vec(); n];
+    }
+    (0..n)
+        .map(|k| {
+            let u = k as f64 * (len - 1) as f64 / (n - 1) as f64;
+            let i = (u.floor() as usize).min(len - 2);
+            let f = u - i as f64;
+            let (a, b) = (seq[i].as_ref(), seq[i + 1].as_ref());
+            a.iter().zip(b).map(|(x, y)| x + f * (y - x)).collect()
+        })
+        .collect()
+}
+
+fn duration_of(demo: &Demonstration, range: &Range<usize>, period: f64) -> f64 {
+    match &demo.time {
+        Some(t) => t[range.end - 1] - t[range.start],
+        None => (range.len() - 1) as f64 * period,
+    }
+}
+
+/// The whole pre-processing: validate the set (same columns), require at least
+/// [`MIN_DEMONSTRATIONS`], trim each, align to the medoid (when alignment is on), resample.
+pub fn preprocess(
+    demos: &[Demonstration],
+    params: &GmrValidParams,
+) -> Result<TrainingSet, GmrError> {
+    let p = params.params();
+    if demos.len() < MIN_DEMONSTRATIONS {
+        return Err(GmrError::TooFewDemonstrations {
+            found: demos.len(),
+            required: MIN_DEMONSTRATIONS,
+        });
+    }
+    validate_set(demos, None)?;
+    let trim = p.get_trim();
+    let period = p.get_sample_period();
+    let mut kept = Vec::with_capacity(demos.len());
+    let mut trimmed: Vec<Vec<Vec<f64>>> = Vec::with_capacity(demos.len());
+    for d in demos {
+        let range = active_range(&d.rows, d.time.as_deref(), period, &trim).ok_or_else(|| {
+            GmrError::NoMotion {
+                source_name: d.source.clone(),
+                threshold: trim.min_speed,
+            }
+        })?;
+        trimmed.push(d.rows[range.clone()].to_vec());
+        kept.push(range);
+    }
+    let n = p.get_n_points();
+    let (reference, duration, demos_out) = if p.get_align() {
+        let r = choose_reference(&trimmed, p.get_band())?;
+        let duration = duration_of(&demos[r], &kept[r], period);
+        let mut out = Vec::with_capacity(trimmed.len());
+        for t in &trimmed {
+            let aligned = align_to(&trimmed[r], t, p.get_band())?;
+            out.push(resample_linear(&aligned, n));
+        }
+        (Some(r), duration, out)
+    } else {
+        let duration = demos
+            .iter()
+            .zip(&kept)
+            .map(|(d, k)| duration_of(d, k, period))
+            .sum::<f64>()
+            / demos.len() as f64;
+        let out = trimmed.iter().map(|t| resample_linear(t, n)).collect();
+        (None, duration, out)
+    };
+    let times = (0..n)
+        .map(|k| duration * k as f64 / (n - 1) as f64)
+        .collect();
+    Ok(TrainingSet {
+        columns: demos[0].columns.clone(),
+        times,
+        demos: demos_out,
+        reference,
+        duration,
+        kept,
+    })
+}

@@ -1,0 +1,311 @@
+//! Baseline pre-processing (trim, DTW alignment, resampling), the pipeline's input checks,
+//! and one `invalid_*` test per parameter.
+
+use cosco_hsom::demos::{DemoError, Demonstration};
+use cosco_hsom::dtw::{dtw, Band};
+use cosco_hsom::gmr::preprocess::{align_to, choose_reference, preprocess, resample_linear};
+use cosco_hsom::gmr::{active_range, ComponentChoice, GmrError, GmrParams, IdleTrim};
+use std::f64::consts::PI;
+
+/// A reading-watch-like 2-D gesture: `idle` still samples, a raise and return over `len`
+/// samples, `idle_end` still samples.
+fn gesture(idle: usize, len: usize, idle_end: usize) -> Vec<Vec<f64>> {
+    let mut rows = vec![vec![1.5, 0.1]; idle];
+    rows.extend((0..len).map(|i| {
+        let s = (PI * i as f64 / (len - 1) as f64).sin();
+        vec![1.5 - 1.2 * s, 0.1 + 0.4 * s * s]
+    }));
+    rows.extend(vec![vec![1.5, 0.1]; idle_end]);
+    rows
+}
+
+fn demo(name: &str, rows: Vec<Vec<f64>>) -> Demonstration {
+    Demonstration {
+        source: name.into(),
+        columns: vec!["pitch".into(), "roll".into()],
+        time: None,
+        rows,
+    }
+}
+
+#[test]
+fn trim_finds_the_motion_between_idle_parts() {
+    let rows = gesture(40, 120, 25);
+    let r = active_range(&rows, None, 0.025, &IdleTrim::default()).unwrap();
+    // the motion occupies samples 40..160; trimming keeps it within a few samples
+    assert!(r.start >= 38 && r.start <= 45, "{r:?}");
+    assert!(r.end >= 155 && r.end <= 162, "{r:?}");
+}
+
+#[test]
+fn trim_uses_time_stamps_when_given() {
+    let rows = gesture(10, 60, 10);
+    let times: Vec<f64> = (0..rows.len()).map(|k| k as f64 * 0.025).collect();
+    let a = active_range(&rows, Some(&times), 99.0, &IdleTrim::default());
+    let b = active_range(&rows, None, 0.025, &IdleTrim::default());
+    assert_eq!(a, b);
+}
+
+#[test]
+fn motionless_sequence_has_no_active_part() {
+    let rows = vec![vec![0.3, 0.2]; 50];
+    assert_eq!(active_range(&rows, None, 0.025, &IdleTrim::default()), None);
+    let one = vec![vec![0.3]];
+    assert_eq!(active_range(&one, None, 0.025, &IdleTrim::default()), None);
+}
+
+#[test]
+fn resample_is_exact_on_lines_and_keeps_ends() {
+    let seq: Vec<Vec<f64>> = (0..7).map(|i| vec![i as f64, 2.0 * i as f64]).collect();
+    let r = resample_linear(&seq, 13);
+    assert_eq!(r.len(), 13);
+    for (k, p) in r.iter().enumerate() {
+        assert!((p[0] - k as f64 * 0.5).abs() < 1e-12);
+        assert!((p[1] - k as f64).abs() < 1e-12);
+    }
+    assert_eq!(
+        resample_linear(&seq, 2),
+        vec![seq[0].clone(), seq[6].clone()]
+    );
+}
+
+#[test]
+fn alignment_of_a_time_warped_copy_recovers_the_warp() {
+    // x(u) on a fine grid; y is x read at a warped clock w(s) = s^1.5 (slow start, fast end)
+    let n = 120;
+    let f = |u: f64| vec![(2.0 * PI * u).sin(), (3.0 * PI * u).cos() * u];
+    let x: Vec<Vec<f64>> = (0..n).map(|i| f(i as f64 / (n - 1) as f64)).collect();
+    let warp = |s: f64| s.powf(1.5);
+    let y: Vec<Vec<f64>> = (0..n).map(|i| f(warp(i as f64 / (n - 1) as f64))).collect();
+    let al = dtw(&y, &x, Band::None).unwrap();
+    // every pair (i, j) of the path: j/(n-1) ≈ w(i/(n-1))
+    let worst = al
+        .path
+        .iter()
+        .map(|&(i, j)| (j as f64 / (n - 1) as f64 - warp(i as f64 / (n - 1) as f64)).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 0.04, "worst warp error {worst}");
+    // aligning y back onto x's clock gives x again, nearly
+    let back = align_to(&x, &y, Band::None).unwrap();
+    let err = back
+        .iter()
+        .zip(&x)
+        .map(|(a, b)| cosco_hsom::dtw::euclidean(a, b))
+        .fold(0.0, f64::max);
+    assert!(err < 0.1, "aligned copy off by {err}");
+    // negative control: without alignment the warped copy is far from x
+    let raw = y
+        .iter()
+        .zip(&x)
+        .map(|(a, b)| cosco_hsom::dtw::euclidean(a, b))
+        .fold(0.0, f64::max);
+    assert!(raw > 5.0 * err.max(0.05), "raw {raw} vs aligned {err}");
+}
+
+#[test]
+fn reference_is_the_medoid() {
+    let a = gesture(0, 100, 0);
+    let b = gesture(0, 110, 0);
+    let mut c = gesture(0, 90, 0);
+    for r in &mut c {
+        r[0] += 0.5; // an outlier
+    }
+    let seqs = vec![c, a, b];
+    let r = choose_reference(&seqs, Band::None).unwrap();
+    assert_ne!(r, 0);
+}
+
+#[test]
+fn preprocess_trims_aligns_and_resamples() {
+    let demos = vec![
+        demo("d0", gesture(30, 120, 10)),
+        demo("d1", gesture(5, 140, 40)),
+        demo("d2", gesture(60, 100, 0)),
+    ];
+    let params = GmrParams::new().n_points(80).check().unwrap();
+    let set = preprocess(&demos, &params).unwrap();
+    assert_eq!(set.demos.len(), 3);
+    assert!(set.demos.iter().all(|d| d.len() == 80));
+    assert_eq!(set.times.len(), 80);
+    assert_eq!(set.times[0], 0.0);
+    let r = set.reference.unwrap();
+    assert!((set.duration - (set.kept[r].len() - 1) as f64 * 0.025).abs() < 1e-12);
+    // after alignment the three demonstrations nearly coincide at every point
+    for k in 0..80 {
+        let spread = cosco_hsom::dtw::euclidean(&set.demos[0][k], &set.demos[2][k]);
+        assert!(spread < 0.1, "k={k}: {spread}");
+    }
+    assert_eq!(set.points().len(), 240);
+    assert_eq!(set.points()[0].len(), 3);
+}
+
+#[test]
+fn fitted_baseline_reproduces_the_gesture() {
+    let demos = vec![
+        demo("d0", gesture(30, 120, 10)),
+        demo("d1", gesture(5, 140, 40)),
+        demo("d2", gesture(60, 100, 0)),
+    ];
+    let model = GmrParams::new()
+        .components(ComponentChoice::Fixed(6))
+        .check()
+        .unwrap()
+        .fit(&demos)
+        .unwrap();
+    let rep = model.reproduce(0.025).unwrap();
+    let min_pitch = rep.iter().map(|p| p.mean[0]).fold(f64::MAX, f64::min);
+    assert!((min_pitch - 0.3).abs() < 0.08, "apex pitch {min_pitch}");
+    assert!(
+        (rep[0].mean[0] - 1.5).abs() < 0.1,
+        "start {}",
+        rep[0].mean[0]
+    );
+    assert!((rep.last().unwrap().mean[0] - 1.5).abs() < 0.1);
+}
+
+#[test]
+fn single_demonstration_is_refused() {
+    let params = GmrParams::new().check().unwrap();
+    let e = params.fit(&[demo("d0", gesture(5, 60, 5))]).unwrap_err();
+    assert!(matches!(
+        e,
+        GmrError::TooFewDemonstrations {
+            found: 1,
+            required: 2
+        }
+    ));
+}
+
+#[test]
+fn mismatched_columns_are_refused() {
+    let mut b = demo("d1", gesture(5, 60, 5));
+    b.columns = vec!["pitch".into(), "yaw".into()];
+    let params = GmrParams::new().check().unwrap();
+    let e = params.fit(&[demo("d0", gesture(5, 60, 5)), b]).unwrap_err();
+    assert!(matches!(e, GmrError::Demo(DemoError::ColumnsDiffer { .. })));
+}
+
+#[test]
+fn mismatched_widths_are_refused() {
+    let mut b = demo("d1", gesture(5, 60, 5));
+    b.rows[3].pop();
+    let params = GmrParams::new().check().unwrap();
+    let e = params.fit(&[demo("d0", gesture(5, 60, 5)), b]).unwrap_err();
+    assert!(matches!(
+        e,
+        GmrError::Demo(DemoError::RowWidth { sample: 3, .. })
+    ));
+}
+
+#[test]
+fn motionless_demonstration_is_refused_by_name() {
+    let still = demo("still.csv", vec![vec![1.5, 0.1]; 50]);
+    let params = GmrParams::new().check().unwrap();
+    let e = params
+        .fit(&[demo("d0", gesture(5, 60, 5)), still])
+        .unwrap_err();
+    assert!(matches!(e, GmrError::NoMotion { .. }));
+    assert!(e.to_string().contains("still.csv"));
+}
+
+#[test]
+fn more_components_than_points_is_refused() {
+    let params = GmrParams::new()
+        .n_points(3)
+        .components(ComponentChoice::Fixed(7))
+        .check()
+        .unwrap();
+    let e = params
+        .fit(&[demo("d0", gesture(5, 60, 5)), demo("d1", gesture(5, 60, 5))])
+        .unwrap_err();
+    assert!(matches!(
+        e,
+        GmrError::TooFewPoints {
+            points: 6,
+            components: 7
+        }
+    ));
+}
+
+fn invalid(p: GmrParams, name: &str) {
+    match p.check() {
+        Err(GmrError::InvalidParam { name: n, .. }) => assert_eq!(n, name),
+        other => panic!("{name}: expected InvalidParam, got {other:?}"),
+    }
+}
+
+#[test]
+fn invalid_components() {
+    invalid(
+        GmrParams::new().components(ComponentChoice::Fixed(0)),
+        "components",
+    );
+    invalid(
+        GmrParams::new().components(ComponentChoice::Bic { min: 0, max: 3 }),
+        "components",
+    );
+    invalid(
+        GmrParams::new().components(ComponentChoice::Bic { min: 4, max: 3 }),
+        "components",
+    );
+}
+
+#[test]
+fn invalid_reg_covar() {
+    for v in [0.0, -1e-6, f64::NAN, f64::INFINITY] {
+        invalid(GmrParams::new().reg_covar(v), "reg_covar");
+    }
+}
+
+#[test]
+fn invalid_tolerance() {
+    for v in [0.0, -1.0, f64::NAN] {
+        invalid(GmrParams::new().tolerance(v), "tolerance");
+    }
+}
+
+#[test]
+fn invalid_max_iterations() {
+    invalid(GmrParams::new().max_iterations(0), "max_iterations");
+}
+
+#[test]
+fn invalid_n_points() {
+    invalid(GmrParams::new().n_points(1), "n_points");
+}
+
+#[test]
+fn invalid_sample_period() {
+    for v in [0.0, -0.025, f64::NAN] {
+        invalid(GmrParams::new().sample_period(v), "sample_period");
+    }
+}
+
+#[test]
+fn invalid_trim() {
+    let t = IdleTrim {
+        min_speed: 0.0,
+        ..IdleTrim::default()
+    };
+    invalid(GmrParams::new().trim(t), "trim.min_speed");
+    let t = IdleTrim {
+        relative: 1.0,
+        ..IdleTrim::default()
+    };
+    invalid(GmrParams::new().trim(t), "trim.relative");
+    let t = IdleTrim {
+        half_window: 5000,
+        ..IdleTrim::default()
+    };
+    invalid(GmrParams::new().trim(t), "trim.half_window");
+}
+
+#[test]
+fn invalid_band() {
+    invalid(GmrParams::new().band(Band::Fraction(1.5)), "band");
+}
+
+#[test]
+fn valid_defaults_pass() {
+    assert!(GmrParams::new().check().is_ok());
+}
