@@ -1,1 +1,27 @@
-//! (room reserved; filled by its issue)
+//! The Nao H25 V5 left arm in MuJoCo (models/nao_left_arm.xml) and its position controller
+//! with encoder recording (40 Hz by default).
+//!
+//! - [`spec`]: the reference joint table, [`JOINT_NAMES`], named postures, posture checks.
+//! - [`arm`]: [`NaoArm`] (the checked model) and [`ArmSim`] (one simulation of it).
+//! - [`interp`]: transition profiles ([`Interpolation`]).
+//! - [`controller`]: [`Controller`] for key-pose sequences and dense target trajectories.
+//! - [`recording`]: [`Recording`], what the controller records.
+//! - [`error`]: [`SimError`], the room's error type.
+
+pub mod arm;
+pub mod controller;
+pub mod error;
+pub mod interp;
+pub mod recording;
+pub mod spec;
+
+pub use arm::{ArmSim, NaoArm, ServoGains, DEFAULT_MODEL_PATH, GRIPPER_SITE, WRIST_SITE};
+pub use controller::{
+    Controller, ControllerConfig, KeyPose, TargetTrajectory, DEFAULT_RECORD_RATE_HZ,
+};
+pub use error::{Result, SimError};
+pub use interp::Interpolation;
+pub use recording::Recording;
+pub use spec::{
+    check_posture, clamp_posture, JointSpec, NamedPosture, Posture, JOINT_NAMES, JOINT_SPECS, NJ,
+};

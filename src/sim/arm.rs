@@ -1,0 +1,385 @@
+//! The arm model ([`NaoArm`]) and one simulation of it ([`ArmSim`]).
+
+use std::path::{Path, PathBuf};
+
+use super::error::{Result, SimError};
+use super::spec::{check_posture, clamp_posture, Posture, JOINT_NAMES, JOINT_SPECS, NJ};
+use crate::mujoco::{Data, Model};
+
+/// Path of the shipped model, models/nao_left_arm.xml in the crate.
+pub const DEFAULT_MODEL_PATH: &str =
+    concat!(env!("CARGO_MANIFEST_DIR"), "/models/nao_left_arm.xml");
+
+/// Name of the site at the LWristYaw joint origin.
+pub const WRIST_SITE: &str = "l_wrist";
+/// Name of the site at the hand point (HandOffsetX/Z beyond the wrist).
+pub const GRIPPER_SITE: &str = "l_gripper";
+
+/// Servo gains of one joint, as identified from the model: the actuator force is
+/// `kp (ctrl - q) - kv qdot`, clipped to the joint's maximum torque.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ServoGains {
+    /// Position gain, N m / rad.
+    pub kp: f64,
+    /// Velocity gain, N m s / rad.
+    pub kv: f64,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct JointIndex {
+    qpos: usize,
+    dof: usize,
+    actuator: usize,
+}
+
+/// The Nao left-arm model, checked against the reference joint table.
+///
+/// ```
+/// let arm = cosco_hsom::sim::NaoArm::load_default()?;
+/// let mut sim = arm.sim()?;
+/// sim.set_posture(&cosco_hsom::sim::NamedPosture::StandInit.angles())?;
+/// assert!(sim.gripper_position()[2] < 0.0); // the hand hangs below the shoulder
+/// # Ok::<(), cosco_hsom::sim::SimError>(())
+/// ```
+pub struct NaoArm {
+    model: Model,
+    joints: [JointIndex; NJ],
+    wrist_site: usize,
+    gripper_site: usize,
+    gains: [ServoGains; NJ],
+}
+
+impl std::fmt::Debug for NaoArm {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("NaoArm")
+            .field("gains", &self.gains)
+            .finish_non_exhaustive()
+    }
+}
+
+impl NaoArm {
+    /// Load and check an MJCF file.
+    pub fn load(path: impl AsRef<Path>) -> Result<NaoArm> {
+        Self::from_model(Model::from_xml_path(path.as_ref())?)
+    }
+
+    /// Load the shipped model ([`DEFAULT_MODEL_PATH`]).
+    pub fn load_default() -> Result<NaoArm> {
+        Self::load(DEFAULT_MODEL_PATH)
+    }
+
+    /// The shipped model's path.
+    pub fn default_model_path() -> PathBuf {
+        PathBuf::from(DEFAULT_MODEL_PATH)
+    }
+
+    /// Load and check an MJCF document given as a string.
+    pub fn from_xml_str(xml: &str) -> Result<NaoArm> {
+        Self::from_model(Model::from_xml_str(xml)?)
+    }
+
+    /// Check a loaded model: six named joints with the documented ranges, one actuator per joint
+    /// (named after it, driving it, with the joint's range as control range and the documented
+    /// torque limit), the two sites; then identify each servo's gains.
+    pub fn from_model(model: Model) -> Result<NaoArm> {
+        let mut joints = [JointIndex {
+            qpos: 0,
+            dof: 0,
+            actuator: 0,
+        }; NJ];
+        for (k, spec) in JOINT_SPECS.iter().enumerate() {
+            let missing = |kind| SimError::Missing {
+                kind,
+                name: spec.name.to_string(),
+            };
+            let j = model.joint_id(spec.name).ok_or_else(|| missing("joint"))?;
+            let a = model
+                .actuator_id(spec.name)
+                .ok_or_else(|| missing("actuator"))?;
+            let range = model.joint_range(j);
+            check_range(spec.name, "joint range", range, spec.range)?;
+            check_range(
+                spec.name,
+                "actuator control range",
+                model.actuator_ctrl_range(a),
+                spec.range,
+            )?;
+            check_range(
+                spec.name,
+                "actuator force range",
+                model.actuator_force_range(a),
+                (-spec.max_torque, spec.max_torque),
+            )?;
+            if model.actuator_joint(a) != Some(j) {
+                return Err(SimError::ModelMismatch {
+                    name: spec.name.to_string(),
+                    what: "actuator's joint",
+                    found: format!(
+                        "{:?}",
+                        model.actuator_joint(a).and_then(|i| model.joint_name(i))
+                    ),
+                    expected: spec.name.to_string(),
+                });
+            }
+            joints[k] = JointIndex {
+                qpos: model.joint_qpos_adr(j),
+                dof: model.joint_dof_adr(j),
+                actuator: a,
+            };
+        }
+        let site = |name: &str| {
+            model.site_id(name).ok_or_else(|| SimError::Missing {
+                kind: "site",
+                name: name.to_string(),
+            })
+        };
+        let wrist_site = site(WRIST_SITE)?;
+        let gripper_site = site(GRIPPER_SITE)?;
+        let gains = identify_gains(&model, &joints)?;
+        Ok(NaoArm {
+            model,
+            joints,
+            wrist_site,
+            gripper_site,
+            gains,
+        })
+    }
+
+    /// The MuJoCo model (for rendering or inspection).
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// The servo gains identified from the model, in [`JOINT_NAMES`] order.
+    pub fn servo_gains(&self) -> [ServoGains; NJ] {
+        self.gains
+    }
+
+    /// Physics time step, seconds.
+    pub fn timestep(&self) -> f64 {
+        self.model.timestep()
+    }
+
+    /// Start a simulation, at StandInit (teleported, at rest, servos holding it).
+    pub fn sim(&self) -> Result<ArmSim<'_>> {
+        let mut sim = ArmSim {
+            arm: self,
+            data: Data::new(&self.model)?,
+            targets: [0.0; NJ],
+        };
+        sim.set_posture(&super::spec::NamedPosture::StandInit.angles())?;
+        Ok(sim)
+    }
+}
+
+fn check_range(
+    name: &str,
+    what: &'static str,
+    found: Option<(f64, f64)>,
+    expected: (f64, f64),
+) -> Result<()> {
+    let ok = matches!(found, Some((lo, hi)) if (lo - expected.0).abs() < 1e-9 && (hi - expected.1).abs() < 1e-9);
+    if ok {
+        Ok(())
+    } else {
+        Err(SimError::ModelMismatch {
+            name: name.to_string(),
+            what,
+            found: match found {
+                Some(r) => format!("[{}, {}]", r.0, r.1),
+                None => "unlimited".to_string(),
+            },
+            expected: format!("[{}, {}]", expected.0, expected.1),
+        })
+    }
+}
+
+/// Identify kp and kv of each servo by probing: with the arm at rest at mid-range, a small
+/// control offset gives `kp * offset`; with the target at the posture, a small joint velocity
+/// gives `-kv * velocity`. Both probes stay far below the torque limits.
+fn identify_gains(model: &Model, joints: &[JointIndex; NJ]) -> Result<[ServoGains; NJ]> {
+    const DQ: f64 = 1e-3;
+    const DV: f64 = 1e-3;
+    let mut data = Data::new(model)?;
+    let mut mid = [0.0; NJ];
+    for (m, s) in mid.iter_mut().zip(JOINT_SPECS.iter()) {
+        *m = 0.5 * (s.range.0 + s.range.1);
+    }
+    let mut gains = [ServoGains { kp: 0.0, kv: 0.0 }; NJ];
+    for (k, ji) in joints.iter().enumerate() {
+        for (i, j) in joints.iter().enumerate() {
+            data.qpos_mut()[j.qpos] = mid[i];
+            data.qvel_mut()[j.dof] = 0.0;
+            data.ctrl_mut()[j.actuator] = mid[i];
+        }
+        data.ctrl_mut()[ji.actuator] = mid[k] + DQ;
+        data.forward()?;
+        let kp = data.actuator_force()[ji.actuator] / DQ;
+        data.ctrl_mut()[ji.actuator] = mid[k];
+        data.qvel_mut()[ji.dof] = DV;
+        data.forward()?;
+        let kv = -data.actuator_force()[ji.actuator] / DV;
+        if !(kp.is_finite() && kp > 0.0 && kv.is_finite() && kv >= 0.0) {
+            return Err(SimError::ModelMismatch {
+                name: JOINT_NAMES[k].to_string(),
+                what: "actuator (expected a position servo, force = kp (ctrl - q) - kv qdot)",
+                found: format!("kp = {kp}, kv = {kv}"),
+                expected: "kp > 0, kv >= 0".to_string(),
+            });
+        }
+        gains[k] = ServoGains { kp, kv };
+    }
+    Ok(gains)
+}
+
+/// One running simulation of the arm: owns MuJoCo's `Data`, borrows the [`NaoArm`].
+///
+/// Positions are in the torso frame (the model welds the torso to the world at the origin with
+/// the world's axes), metres.
+pub struct ArmSim<'a> {
+    arm: &'a NaoArm,
+    data: Data<'a>,
+    targets: Posture,
+}
+
+impl<'a> ArmSim<'a> {
+    /// The arm this simulation runs.
+    pub fn arm(&self) -> &'a NaoArm {
+        self.arm
+    }
+
+    /// MuJoCo's data (for rendering or inspection).
+    pub fn data(&self) -> &Data<'a> {
+        &self.data
+    }
+
+    /// Simulated time, seconds.
+    pub fn time(&self) -> f64 {
+        self.data.time()
+    }
+
+    /// Teleport to a posture (checked): joint positions set, velocities zeroed, servo targets set
+    /// to the posture, kinematics recomputed. Time is not reset.
+    pub fn set_posture(&mut self, posture: &[f64]) -> Result<()> {
+        let p = check_posture(posture)?;
+        self.teleport(p)
+    }
+
+    /// [`ArmSim::set_posture`], with out-of-range values clamped to the joint limits
+    /// (wrong joint count and NaN are still errors).
+    pub fn set_posture_clamped(&mut self, posture: &[f64]) -> Result<()> {
+        let p = clamp_posture(posture)?;
+        self.teleport(p)
+    }
+
+    fn teleport(&mut self, p: Posture) -> Result<()> {
+        for (k, j) in self.arm.joints.iter().enumerate() {
+            self.data.qpos_mut()[j.qpos] = p[k];
+            self.data.qvel_mut()[j.dof] = 0.0;
+        }
+        self.targets = p;
+        self.write_ctrl(&p, &[0.0; NJ], false);
+        self.data.forward()?;
+        Ok(())
+    }
+
+    /// Joint positions (the encoders), [`JOINT_NAMES`] order.
+    pub fn posture(&self) -> Posture {
+        let q = self.data.qpos();
+        std::array::from_fn(|k| q[self.arm.joints[k].qpos])
+    }
+
+    /// Joint velocities, rad/s.
+    pub fn velocities(&self) -> Posture {
+        let v = self.data.qvel();
+        std::array::from_fn(|k| v[self.arm.joints[k].dof])
+    }
+
+    /// Actuator torques of the last step, N m.
+    pub fn actuator_torques(&self) -> Posture {
+        let f = self.data.actuator_force();
+        std::array::from_fn(|k| f[self.arm.joints[k].actuator])
+    }
+
+    /// The current servo targets (last checked targets given).
+    pub fn targets(&self) -> Posture {
+        self.targets
+    }
+
+    /// Position of the `l_wrist` site (LWristYaw joint origin), torso frame, m.
+    pub fn wrist_position(&self) -> [f64; 3] {
+        self.data.site_xpos(self.arm.wrist_site)
+    }
+
+    /// Position of the `l_gripper` site (hand point), torso frame, m.
+    pub fn gripper_position(&self) -> [f64; 3] {
+        self.data.site_xpos(self.arm.gripper_site)
+    }
+
+    /// Orientation of the `l_gripper` site, row-major 3x3 rotation matrix (torso frame).
+    pub fn gripper_orientation(&self) -> [f64; 9] {
+        self.data.site_xmat(self.arm.gripper_site)
+    }
+
+    /// Set the servo targets (checked); they hold until changed.
+    pub fn set_targets(&mut self, targets: &[f64]) -> Result<()> {
+        let p = check_posture(targets)?;
+        self.command(&p, &[0.0; NJ], false);
+        Ok(())
+    }
+
+    /// [`ArmSim::set_targets`] with out-of-range values clamped to the joint limits.
+    pub fn set_targets_clamped(&mut self, targets: &[f64]) -> Result<()> {
+        let p = clamp_posture(targets)?;
+        self.command(&p, &[0.0; NJ], false);
+        Ok(())
+    }
+
+    /// Set the servo targets (checked) and advance the physics by one time step.
+    pub fn step_with_targets(&mut self, targets: &[f64]) -> Result<()> {
+        self.set_targets(targets)?;
+        self.step()
+    }
+
+    /// Recompute kinematics and forces for the current state without advancing time. After
+    /// [`ArmSim::step`], site positions belong to the state before the step (MuJoCo's Euler
+    /// step computes them, then integrates); call this to bring them up to date.
+    pub fn forward(&mut self) -> Result<()> {
+        self.data.forward()?;
+        Ok(())
+    }
+
+    /// Advance the physics by one time step with the current servo commands.
+    pub fn step(&mut self) -> Result<()> {
+        self.data.step()?;
+        Ok(())
+    }
+
+    /// Command a checked posture `q` with desired velocity `qd`: the servo target gets the
+    /// velocity feed-forward `(kv / kp) qd` and, with `gravity_compensation`, the static
+    /// feed-forward `bias / kp` (MuJoCo's gravity and Coriolis forces at the current state), so
+    /// that the servo's force is `kp (q - q_now) + kv (qd - qd_now) + bias`. MuJoCo clips the
+    /// command to the control range (the joint range) and the force to the torque limit.
+    pub(crate) fn command(&mut self, q: &Posture, qd: &Posture, gravity_compensation: bool) {
+        self.targets = *q;
+        self.write_ctrl(q, qd, gravity_compensation);
+    }
+
+    fn write_ctrl(&mut self, q: &Posture, qd: &Posture, gravity_compensation: bool) {
+        let mut ctrl = [0.0; NJ];
+        for k in 0..NJ {
+            let g = self.arm.gains[k];
+            let j = self.arm.joints[k];
+            let bias = if gravity_compensation {
+                self.data.qfrc_bias()[j.dof]
+            } else {
+                0.0
+            };
+            ctrl[k] = q[k] + (g.kv * qd[k] + bias) / g.kp;
+        }
+        let c = self.data.ctrl_mut();
+        for k in 0..NJ {
+            c[self.arm.joints[k].actuator] = ctrl[k];
+        }
+    }
+}

@@ -1,0 +1,439 @@
+//! The position controller: key-pose sequences and dense target trajectories, executed on
+//! [`ArmSim`] at the physics rate and recorded at a fixed rate (40 Hz by default).
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+
+use super::arm::ArmSim;
+use super::error::{Result, SimError};
+use super::interp::Interpolation;
+use super::recording::Recording;
+use super::spec::{check_posture, clamp_posture, Posture, JOINT_SPECS, NJ};
+
+/// The paper's recording rate, Hz.
+pub const DEFAULT_RECORD_RATE_HZ: f64 = 40.0;
+
+/// A key pose of a motion: where to go, at least how long the transition takes, how long to
+/// stay there afterwards.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KeyPose {
+    posture: Posture,
+    min_duration: f64,
+    hold: f64,
+}
+
+impl KeyPose {
+    /// A key pose (checked): six finite values within the joint ranges; no minimum duration,
+    /// no hold.
+    pub fn new(posture: &[f64]) -> Result<KeyPose> {
+        Ok(KeyPose {
+            posture: check_posture(posture)?,
+            min_duration: 0.0,
+            hold: 0.0,
+        })
+    }
+
+    /// [`KeyPose::new`] with out-of-range values clamped to the joint limits.
+    pub fn new_clamped(posture: &[f64]) -> Result<KeyPose> {
+        Ok(KeyPose {
+            posture: clamp_posture(posture)?,
+            min_duration: 0.0,
+            hold: 0.0,
+        })
+    }
+
+    /// The transition to this pose lasts at least `seconds` (finite, >= 0); it lasts longer when
+    /// the velocity limits need it.
+    pub fn with_min_duration(mut self, seconds: f64) -> Result<KeyPose> {
+        self.min_duration = non_negative("min_duration", seconds)?;
+        Ok(self)
+    }
+
+    /// Stay at this pose for `seconds` (finite, >= 0) after reaching it.
+    pub fn with_hold(mut self, seconds: f64) -> Result<KeyPose> {
+        self.hold = non_negative("hold", seconds)?;
+        Ok(self)
+    }
+
+    /// The target posture.
+    pub fn posture(&self) -> Posture {
+        self.posture
+    }
+
+    /// Minimum transition duration, s.
+    pub fn min_duration(&self) -> f64 {
+        self.min_duration
+    }
+
+    /// Hold time, s.
+    pub fn hold(&self) -> f64 {
+        self.hold
+    }
+}
+
+fn non_negative(name: &'static str, v: f64) -> Result<f64> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(SimError::InvalidParameter {
+            name,
+            value: v,
+            reason: "expected a finite number >= 0",
+        })
+    }
+}
+
+/// A dense target trajectory: postures at strictly increasing times (s, relative to the start),
+/// followed piecewise-linearly (with the segment's slope as velocity feed-forward) and held at
+/// the last target until `duration`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TargetTrajectory {
+    times: Vec<f64>,
+    targets: Vec<Posture>,
+    duration: f64,
+}
+
+impl TargetTrajectory {
+    /// Targets at given times (checked: same lengths, at least one target, times finite,
+    /// first time >= 0, strictly increasing; every target a valid posture). The motion lasts
+    /// until the last time.
+    pub fn new(times: &[f64], targets: &[Vec<f64>]) -> Result<TargetTrajectory> {
+        if times.len() != targets.len() {
+            return Err(SimError::InvalidTrajectory(format!(
+                "{} times for {} targets",
+                times.len(),
+                targets.len()
+            )));
+        }
+        if targets.is_empty() {
+            return Err(SimError::InvalidTrajectory("no targets".into()));
+        }
+        for (i, &t) in times.iter().enumerate() {
+            let bad = !t.is_finite() || t < 0.0 || (i > 0 && t <= times[i - 1]);
+            if bad {
+                return Err(SimError::InvalidTrajectory(format!(
+                    "time {i} = {t}: times must be finite, >= 0 and strictly increasing"
+                )));
+            }
+        }
+        let targets = targets
+            .iter()
+            .map(|t| check_posture(t))
+            .collect::<Result<Vec<_>>>()?;
+        Ok(TargetTrajectory {
+            duration: *times.last().unwrap_or(&0.0),
+            times: times.to_vec(),
+            targets,
+        })
+    }
+
+    /// One target per tick of a clock at `rate_hz` (target k at time k / rate_hz); the motion
+    /// lasts `targets.len() / rate_hz`, so recording at the same rate yields one sample per target.
+    pub fn at_rate(rate_hz: f64, targets: &[Vec<f64>]) -> Result<TargetTrajectory> {
+        check_rate("rate_hz", rate_hz)?;
+        let times: Vec<f64> = (0..targets.len()).map(|k| k as f64 / rate_hz).collect();
+        let mut t = Self::new(&times, targets)?;
+        t.duration = targets.len() as f64 / rate_hz;
+        Ok(t)
+    }
+
+    /// Hold the last target for `seconds` more (finite, >= 0).
+    pub fn with_hold(mut self, seconds: f64) -> Result<TargetTrajectory> {
+        self.duration += non_negative("hold", seconds)?;
+        Ok(self)
+    }
+
+    /// Total duration, s.
+    pub fn duration(&self) -> f64 {
+        self.duration
+    }
+
+    /// Number of targets.
+    pub fn len(&self) -> usize {
+        self.targets.len()
+    }
+
+    /// Always false (a trajectory has at least one target).
+    pub fn is_empty(&self) -> bool {
+        self.targets.is_empty()
+    }
+
+    /// Target posture and velocity at time `t` (before the first time: the first target).
+    fn sample(&self, t: f64) -> (Posture, Posture) {
+        let n = self.times.len();
+        if t <= self.times[0] {
+            return (self.targets[0], [0.0; NJ]);
+        }
+        if t >= self.times[n - 1] {
+            return (self.targets[n - 1], [0.0; NJ]);
+        }
+        let i = self.times.partition_point(|&x| x <= t) - 1;
+        let (t0, t1) = (self.times[i], self.times[i + 1]);
+        let (a, b) = (&self.targets[i], &self.targets[i + 1]);
+        let u = (t - t0) / (t1 - t0);
+        (
+            std::array::from_fn(|k| a[k] + u * (b[k] - a[k])),
+            std::array::from_fn(|k| (b[k] - a[k]) / (t1 - t0)),
+        )
+    }
+}
+
+fn check_rate(name: &'static str, rate: f64) -> Result<f64> {
+    if rate.is_finite() && rate > 0.0 && rate <= 10_000.0 {
+        Ok(rate)
+    } else {
+        Err(SimError::InvalidParameter {
+            name,
+            value: rate,
+            reason: "expected a rate in (0, 10000] Hz",
+        })
+    }
+}
+
+/// Controller settings; check them with [`Controller::new`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ControllerConfig {
+    /// Transition profile between key poses (default minimum jerk).
+    pub interpolation: Interpolation,
+    /// Fraction of each joint's maximum velocity a transition may reach, in (0, 1] (default 0.5).
+    pub speed_fraction: f64,
+    /// Recording rate, Hz (default 40, the paper's).
+    pub record_rate_hz: f64,
+    /// Standard deviation of the Gaussian noise added to recorded encoder values, rad
+    /// (default 0: exact encoders). Targets and hand positions are recorded without noise.
+    pub encoder_noise_std: f64,
+    /// Seed of the noise stream (ChaCha8).
+    pub seed: u64,
+    /// Add MuJoCo's gravity/Coriolis forces as a feed-forward to the servo targets (default
+    /// true): the arm holds postures without the static sag `tau_gravity / kp`.
+    pub gravity_compensation: bool,
+}
+
+impl Default for ControllerConfig {
+    fn default() -> Self {
+        ControllerConfig {
+            interpolation: Interpolation::MinimumJerk,
+            speed_fraction: 0.5,
+            record_rate_hz: DEFAULT_RECORD_RATE_HZ,
+            encoder_noise_std: 0.0,
+            seed: 0,
+            gravity_compensation: true,
+        }
+    }
+}
+
+/// A checked position controller.
+///
+/// ```
+/// use cosco_hsom::sim::{Controller, ControllerConfig, KeyPose, NaoArm, NamedPosture};
+/// let arm = NaoArm::load_default()?;
+/// let mut sim = arm.sim()?; // at StandInit
+/// let ctl = Controller::new(ControllerConfig::default())?;
+/// let poses = [KeyPose::new(&NamedPosture::Stand.angles())?.with_hold(0.5)?];
+/// let rec = ctl.execute(&mut sim, &poses)?;
+/// assert_eq!(rec.joint_names[0], "LShoulderPitch");
+/// assert!(rec.len() > 20); // 40 samples per second
+/// # Ok::<(), cosco_hsom::sim::SimError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Controller {
+    config: ControllerConfig,
+}
+
+struct Segment {
+    start: Posture,
+    end: Posture,
+    t0: f64,
+    duration: f64,
+}
+
+impl Controller {
+    /// Check the settings: speed fraction in (0, 1], rate in (0, 10000] Hz, noise finite >= 0.
+    pub fn new(config: ControllerConfig) -> Result<Controller> {
+        let f = config.speed_fraction;
+        if !(f.is_finite() && f > 0.0 && f <= 1.0) {
+            return Err(SimError::InvalidParameter {
+                name: "speed_fraction",
+                value: f,
+                reason: "expected a fraction of the maximum velocity in (0, 1]",
+            });
+        }
+        check_rate("record_rate_hz", config.record_rate_hz)?;
+        non_negative("encoder_noise_std", config.encoder_noise_std)?;
+        Ok(Controller { config })
+    }
+
+    /// The checked settings.
+    pub fn config(&self) -> &ControllerConfig {
+        &self.config
+    }
+
+    /// Duration of a transition from `from` to `to`: the shortest time in which no joint
+    /// exceeds `speed_fraction` of its maximum velocity under the chosen profile, at least
+    /// `min_duration`.
+    pub fn transition_duration(&self, from: &Posture, to: &Posture, min_duration: f64) -> f64 {
+        let peak = self.config.interpolation.peak_velocity_factor();
+        let t = (0..NJ)
+            .map(|k| {
+                (to[k] - from[k]).abs() * peak
+                    / (self.config.speed_fraction * JOINT_SPECS[k].max_velocity)
+            })
+            .fold(0.0, f64::max);
+        t.max(min_duration)
+    }
+
+    /// Execute key poses from the current posture: one smooth transition per pose (timed by
+    /// [`Controller::transition_duration`]), then its hold. Servo commands are updated at every
+    /// physics step; the recording starts at time 0 (the initial state) and has one sample per
+    /// tick `k / record_rate_hz` before the end of the motion.
+    pub fn execute(&self, sim: &mut ArmSim<'_>, poses: &[KeyPose]) -> Result<Recording> {
+        let mut segments = Vec::with_capacity(2 * poses.len());
+        let mut from = sim.targets();
+        let mut t = 0.0;
+        for pose in poses {
+            let d = self.transition_duration(&from, &pose.posture, pose.min_duration);
+            segments.push(Segment {
+                start: from,
+                end: pose.posture,
+                t0: t,
+                duration: d,
+            });
+            t += d;
+            if pose.hold > 0.0 {
+                segments.push(Segment {
+                    start: pose.posture,
+                    end: pose.posture,
+                    t0: t,
+                    duration: pose.hold,
+                });
+                t += pose.hold;
+            }
+            from = pose.posture;
+        }
+        let interp = self.config.interpolation;
+        let start = sim.targets();
+        self.run(sim, t, |time| {
+            let i = segments.partition_point(|s| s.t0 <= time);
+            let Some(s) = i.checked_sub(1).map(|i| &segments[i]) else {
+                return (start, [0.0; NJ]);
+            };
+            if s.duration <= 0.0 || time >= s.t0 + s.duration {
+                return (s.end, [0.0; NJ]);
+            }
+            let (p, dp) = interp.profile((time - s.t0) / s.duration);
+            (
+                std::array::from_fn(|k| s.start[k] + p * (s.end[k] - s.start[k])),
+                std::array::from_fn(|k| dp * (s.end[k] - s.start[k]) / s.duration),
+            )
+        })
+    }
+
+    /// Hold the current targets for `seconds`, recording.
+    pub fn hold(&self, sim: &mut ArmSim<'_>, seconds: f64) -> Result<Recording> {
+        let pose = KeyPose::new(&sim.targets())?.with_hold(seconds)?;
+        self.execute(sim, &[pose])
+    }
+
+    /// Follow a dense target trajectory (e.g. a demonstration replayed, or a learner's
+    /// predicted postures) from time 0 to its duration. The speed fraction is not applied: the
+    /// servos follow as fast as their torque limits allow. Start from the trajectory's first
+    /// posture (e.g. with [`ArmSim::set_posture`] or [`Controller::execute`]) to avoid a jump.
+    pub fn follow(&self, sim: &mut ArmSim<'_>, trajectory: &TargetTrajectory) -> Result<Recording> {
+        self.run(sim, trajectory.duration, |t| trajectory.sample(t))
+    }
+
+    fn run(
+        &self,
+        sim: &mut ArmSim<'_>,
+        duration: f64,
+        desired: impl Fn(f64) -> (Posture, Posture),
+    ) -> Result<Recording> {
+        let dt = sim.arm().timestep();
+        let rate = self.config.record_rate_hz;
+        let gc = self.config.gravity_compensation;
+        let mut rng = ChaCha8Rng::seed_from_u64(self.config.seed);
+        let noise = Normal::new(0.0, self.config.encoder_noise_std).map_err(|_| {
+            SimError::InvalidParameter {
+                name: "encoder_noise_std",
+                value: self.config.encoder_noise_std,
+                reason: "expected a finite number >= 0",
+            }
+        })?;
+        let n_samples = ((duration * rate) - 1e-9).ceil().max(0.0) as usize;
+        let n_steps = ((duration / dt) - 1e-9).ceil().max(0.0) as usize;
+        let mut rec = Recording::new(rate);
+        rec.time.reserve(n_samples);
+
+        // After mj_step (Euler), MuJoCo's positions-dependent quantities (site positions) belong
+        // to the state *before* the integration: the encoders read before a step and the sites
+        // read after it form a consistent state. A final forward() completes the last one.
+        sim.forward()?;
+        let mut prev: State = (sim.posture(), sim.wrist_position(), sim.gripper_position());
+        let mut t_prev = 0.0;
+        let mut push = |rec: &mut Recording, k: usize, a: &State, b: &State, alpha: f64| {
+            let tk = k as f64 / rate;
+            let lerp = |x: f64, y: f64| x + alpha * (y - x);
+            rec.time.push(tk);
+            rec.qpos.push(
+                (0..NJ)
+                    .map(|j| {
+                        let e = if self.config.encoder_noise_std > 0.0 {
+                            noise.sample(&mut rng)
+                        } else {
+                            0.0
+                        };
+                        lerp(a.0[j], b.0[j]) + e
+                    })
+                    .collect(),
+            );
+            rec.target.push(desired(tk).0.to_vec());
+            rec.wrist
+                .push(std::array::from_fn(|i| lerp(a.1[i], b.1[i])));
+            rec.gripper
+                .push(std::array::from_fn(|i| lerp(a.2[i], b.2[i])));
+        };
+        let mut next = 0usize;
+        let mut record_until = |rec: &mut Recording,
+                                next: &mut usize,
+                                prev: &State,
+                                now: &State,
+                                t_prev: f64,
+                                t_now: f64| {
+            while *next < n_samples && (*next as f64 / rate) <= t_now + 1e-12 {
+                let alpha = if t_now > t_prev {
+                    ((*next as f64 / rate) - t_prev) / (t_now - t_prev)
+                } else {
+                    1.0
+                };
+                push(rec, *next, prev, now, alpha.clamp(0.0, 1.0));
+                *next += 1;
+            }
+        };
+        record_until(&mut rec, &mut next, &prev, &prev, 0.0, 0.0);
+        for n in 0..n_steps {
+            let t = n as f64 * dt;
+            let (q, qd) = desired(t);
+            sim.command(&q, &qd, gc);
+            let q_before = sim.posture();
+            sim.step()?;
+            // consistent state at time t (n > 0; at n = 0 it is `prev` again)
+            if n > 0 {
+                let now: State = (q_before, sim.wrist_position(), sim.gripper_position());
+                record_until(&mut rec, &mut next, &prev, &now, t_prev, t);
+                prev = now;
+                t_prev = t;
+            }
+        }
+        sim.forward()?;
+        let t_end = n_steps as f64 * dt;
+        let now: State = (sim.posture(), sim.wrist_position(), sim.gripper_position());
+        record_until(&mut rec, &mut next, &prev, &now, t_prev, t_end);
+        // leave the servos at the final target, at rest
+        let (q, _) = desired(duration);
+        sim.command(&q, &[0.0; NJ], gc);
+        Ok(rec)
+    }
+}
+
+type State = (Posture, [f64; 3], [f64; 3]);

@@ -1,0 +1,65 @@
+//! Time-scaling profiles of a point-to-point transition.
+
+use serde::{Deserialize, Serialize};
+
+/// How a transition between two postures is timed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum Interpolation {
+    /// Constant velocity: position linear in time (velocity jumps at the ends).
+    Linear,
+    /// Minimum-jerk quintic s = 10 u^3 - 15 u^4 + 6 u^5: zero velocity and acceleration at both
+    /// ends, a smooth bell-shaped velocity profile (Flash & Hogan), like human reaching.
+    #[default]
+    MinimumJerk,
+}
+
+impl Interpolation {
+    /// Progress `s` in [0, 1] and its derivative `ds/du` at normalised time `u` (clamped to [0, 1]).
+    pub fn profile(self, u: f64) -> (f64, f64) {
+        let u = u.clamp(0.0, 1.0);
+        match self {
+            Interpolation::Linear => (u, 1.0),
+            Interpolation::MinimumJerk => {
+                let u2 = u * u;
+                let u3 = u2 * u;
+                (
+                    u3 * (10.0 - 15.0 * u + 6.0 * u2),
+                    30.0 * u2 * (1.0 - u) * (1.0 - u),
+                )
+            }
+        }
+    }
+
+    /// Peak of `ds/du` over [0, 1]: the ratio of peak to mean velocity (1 for linear, 15/8 for
+    /// minimum jerk). A transition of amplitude `d` in time `T` peaks at `d * peak / T`.
+    pub fn peak_velocity_factor(self) -> f64 {
+        match self {
+            Interpolation::Linear => 1.0,
+            Interpolation::MinimumJerk => 1.875,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn profiles_start_at_zero_end_at_one_and_peak_as_stated() {
+        for i in [Interpolation::Linear, Interpolation::MinimumJerk] {
+            assert_eq!(i.profile(0.0).0, 0.0);
+            assert!((i.profile(1.0).0 - 1.0).abs() < 1e-12);
+            let peak = (0..=1000)
+                .map(|k| i.profile(k as f64 / 1000.0).1)
+                .fold(0.0, f64::max);
+            assert!(
+                (peak - i.peak_velocity_factor()).abs() < 1e-6,
+                "{i:?} {peak}"
+            );
+            // the derivative is the derivative
+            let (a, _) = i.profile(0.3);
+            let (b, _) = i.profile(0.3 + 1e-6);
+            assert!(((b - a) / 1e-6 - i.profile(0.3).1).abs() < 1e-4);
+        }
+    }
+}
