@@ -9,75 +9,32 @@ fn run(name: &str, demos: &[cosco_hsom::demos::Demonstration], cfg: &HsomConfig)
     let model = cfg.fit(&demos[1..]).unwrap();
     let init = &demos[0].rows[0];
     let mut res = Vec::new();
-    for (label, mode, dec, maxl, conf) in [
-        (
-            "strided",
-            ReproductionMode::Strided,
-            IdDecoding::Round,
-            None,
-            0.0,
-        ),
-        (
-            "strided-l1",
-            ReproductionMode::Strided,
-            IdDecoding::Round,
-            Some(1),
-            0.0,
-        ),
-        (
-            "strided-l2",
-            ReproductionMode::Strided,
-            IdDecoding::Round,
-            Some(2),
-            0.0,
-        ),
-        (
-            "strided-l3",
-            ReproductionMode::Strided,
-            IdDecoding::Round,
-            Some(3),
-            0.0,
-        ),
-        (
-            "strided-conf1",
-            ReproductionMode::Strided,
-            IdDecoding::Round,
-            None,
-            1.0,
-        ),
-        (
-            "strided-nearest",
-            ReproductionMode::Strided,
-            IdDecoding::Nearest,
-            None,
-            0.0,
-        ),
-        (
-            "literal",
-            ReproductionMode::Literal,
-            IdDecoding::Round,
-            None,
-            0.0,
-        ),
-        (
-            "reflex",
-            ReproductionMode::Strided,
-            IdDecoding::Round,
-            Some(0),
-            0.0,
-        ),
-    ] {
+    let mut cases = Vec::new();
+    for lam in [0.0, 0.5, 0.7, 0.85] {
+        for cl in [false] {
+            for (label, mode, maxl) in [
+                ("strided", ReproductionMode::Strided, None),
+                ("literal", ReproductionMode::Literal, None),
+                ("reflex", ReproductionMode::Strided, Some(0)),
+            ] {
+                cases.push((format!("{label} c{lam} cl{}", cl as u8), mode, IdDecoding::Round, maxl, 0.0, lam, cl));
+            }
+        }
+    }
+    for (label, mode, dec, maxl, conf, lam, cl) in cases {
         let mut r = cfg.params().reproduction.clone();
         r.mode = mode;
         r.id_decoding = dec;
         r.max_level = maxl;
         r.confusion_threshold = conf;
+        r.continuity = lam;
+        r.closed_loop = cl;
         let rep = model.reproduce_with(init, &r).unwrap();
         let e = relative_dtw(&rep.postures, &demos[1..]);
         let mean_len = demos[1..].iter().map(|d| d.rows.len()).sum::<usize>() as f64
             / (demos.len() - 1) as f64;
         println!(
-            "{name:<8} {label:<16} rel.DTW {e:.4}  length {} / demo mean {mean_len:.0}  stop {:?}",
+            "{name:<8} {label:<22} rel.DTW {e:.4}  length {} / demo mean {mean_len:.0}  stop {:?}",
             rep.postures.len(),
             rep.stop
         );

@@ -143,6 +143,14 @@ pub struct ReproductionParams {
     pub confusion_threshold: f64,
     /// Highest level used to predict (levels above are still trained); `None` = all.
     pub max_level: Option<usize>,
+    /// How much of the current posture's offset from the executed node's state half is
+    /// carried into the next posture: next = action + continuity (current - state). 0 snaps
+    /// to the node's action half (the paper's literal output); 1 applies the node's
+    /// displacement (action - state) to the current posture.
+    pub continuity: f64,
+    /// Record in the bottom activity list the node that best matches the executed transition
+    /// [current, next] (as in training), instead of the node that was predicted.
+    pub closed_loop: bool,
 }
 
 impl Default for ReproductionParams {
@@ -159,6 +167,8 @@ impl Default for ReproductionParams {
             stationary_steps: 40,
             confusion_threshold: 0.0,
             max_level: None,
+            continuity: 0.7,
+            closed_loop: false,
         }
     }
 }
@@ -328,6 +338,7 @@ impl HsomParams {
             0.0,
             1e6,
         )?;
+        real("reproduction/continuity", r.continuity, 0.0, 1.0)?;
         if let Some(m) = r.max_level {
             range("reproduction/maxLevel", m, 0, self.height - 1)?;
         }

@@ -90,6 +90,9 @@ struct RawReproduction {
     confusion_threshold: Option<String>,
     #[serde(rename = "maxLevel")]
     max_level: Option<String>,
+    continuity: Option<String>,
+    #[serde(rename = "closedLoop")]
+    closed_loop: Option<String>,
 }
 
 /// Read, parse and validate a configuration file.
@@ -402,6 +405,8 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
                 None => None,
                 Some(s) => Some(f.parse("reproduction/maxLevel", s)?),
             },
+            continuity: f.opt("reproduction/continuity", &r.continuity, d.continuity)?,
+            closed_loop: f.opt("reproduction/closedLoop", &r.closed_loop, d.closed_loop)?,
         },
     };
     let params = HsomParams {
@@ -563,6 +568,8 @@ impl HsomConfig {
             "    <confusionThreshold>{}</confusionThreshold>",
             r.confusion_threshold
         );
+        let _ = writeln!(s, "    <continuity>{}</continuity>", r.continuity);
+        let _ = writeln!(s, "    <closedLoop>{}</closedLoop>", r.closed_loop);
         if let Some(m) = r.max_level {
             let _ = writeln!(s, "    <maxLevel>{m}</maxLevel>");
         }

@@ -213,12 +213,25 @@ impl Gen<'_> {
     ) {
         let p = self.m.config.params();
         let state = p.state_length;
-        self.stm.push(0, node, &self.m.maps[0]);
+        let w = self.m.maps[0].weights(node);
+        let cur = self.out.last().cloned().unwrap_or_default();
+        let lambda = self.r.continuity;
+        let y: Vec<f64> = (0..state)
+            .map(|d| w[state + d] + lambda * (cur[d] - w[d]))
+            .collect();
+        let pushed = if self.r.closed_loop {
+            let x = &mut self.bufs[0];
+            x[..state].copy_from_slice(&cur);
+            x[state..].copy_from_slice(&y);
+            self.m.maps[0].bmu(x).0
+        } else {
+            node
+        };
+        self.stm.push(0, pushed, &self.m.maps[0]);
         self.s += 1;
-        let y = self.m.maps[0].weights(node)[state..].to_vec();
         self.out.push(y);
         self.by.push(by);
-        self.last_node = node;
+        self.last_node = pushed;
         for l in 1..p.height {
             if let Some((pl, pn)) = pending {
                 if pl == l {
@@ -249,7 +262,10 @@ impl Gen<'_> {
             return Some(StopReason::MaxLength);
         }
         if self.r.stop == StopRule::Learned && t >= self.min_len {
-            if self.m.end_hits[self.last_node] > 0 {
+            let state = self.m.config.params().state_length;
+            let y = &self.out[t - 1];
+            let (near, _) = self.m.maps[0].bmu_range(y, state..2 * state);
+            if self.m.end_hits[self.last_node] > 0 || self.m.end_hits[near] > 0 {
                 return Some(StopReason::EndNode);
             }
             let k = self.r.stationary_steps;
