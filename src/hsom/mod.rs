@@ -16,9 +16,11 @@
 mod algorithm;
 mod errors;
 mod memory;
+mod persist;
 mod reproduce;
 
 pub use algorithm::{Hsom, LevelSummary, ModelSummary};
 pub use errors::{HsomError, PersistError};
 pub use memory::{ActivityLevels, ActivityList};
+pub use persist::FORMAT_VERSION;
 pub use reproduce::{Reproduction, StopReason};
