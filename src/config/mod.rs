@@ -1,1 +1,14 @@
-//! (room reserved; filled by its issue)
+//! The CoSCo-HSOM configuration (the paper's III-D): one XML file holds every setting;
+//! it is parsed and validated once, up front, into a [`HsomConfig`] that only valid values
+//! can reach. The schema is documented in `docs/CONFIG.md`.
+
+mod errors;
+mod hyperparams;
+mod xml;
+
+pub use errors::ConfigError;
+pub use hyperparams::{
+    HsomConfig, HsomParams, IdDecoding, LevelParams, MemoryMode, Normalisation, PartialTraining,
+    ReproductionMode, ReproductionParams, StopRule,
+};
+pub use xml::{load_config, parse_config};

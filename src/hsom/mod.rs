@@ -1,1 +1,26 @@
-//! (room reserved; filled by its issue)
+//! The CoSCo-HSOM hierarchy (paper II and III-C): levels of Kohonen maps, short-term memory
+//! as activity lists (or, as the baseline, activity levels), sequential training with the
+//! exponential update schedule, reproduction from an initial posture, save and load.
+//!
+//! ```no_run
+//! use cosco_hsom::config::load_config;
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let config = load_config(std::path::Path::new("configs/table1.xml"))?;
+//! # let demos: Vec<cosco_hsom::demos::Demonstration> = vec![];
+//! let model = config.fit(&demos)?;
+//! let gesture = model.reproduce(&demos[0].rows[0])?;
+//! model.save(std::path::Path::new("model.bin"))?;
+//! # Ok(()) }
+//! ```
+
+mod algorithm;
+mod errors;
+mod memory;
+mod persist;
+mod reproduce;
+
+pub use algorithm::{Hsom, LevelSummary, ModelSummary};
+pub use errors::{HsomError, PersistError};
+pub use memory::{ActivityLevels, ActivityList};
+pub use persist::FORMAT_VERSION;
+pub use reproduce::{Reproduction, StopReason};

@@ -1,0 +1,385 @@
+//! Typed settings ([`HsomParams`], unchecked) and their validated form ([`HsomConfig`]).
+
+use crate::som::{Decay, Neighbourhood, Schedule, Topology};
+
+use super::errors::ConfigError;
+
+/// Short-term memory of each level (paper II).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MemoryMode {
+    /// CoSCo-HSOM: a fixed-size FIFO activity list of recent BMU IDs per level, updated in
+    /// constant time (the default).
+    Lists,
+    /// The sparse-code baseline the paper improves on (footnote 1): one activity level per
+    /// node, set to 1 on the BMU and decreased linearly by 1/memory on every node each step;
+    /// the level above learns the whole activity map.
+    Levels,
+}
+
+/// How a predicted real-valued ID is turned into a node of the level below (paper III-C.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IdDecoding {
+    /// Round each coordinate, clamped to the grid (the paper's first choice; the default).
+    Round,
+    /// Floor each coordinate, clamped to the grid ("might need the floor of the ID").
+    Floor,
+    /// The node (among those used by the training data) nearest to the predicted position.
+    Nearest,
+}
+
+/// How a level above the bottom trains while the list below is not yet full (at the start of
+/// every demonstration, since lists are cleared between demonstrations).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PartialTraining {
+    /// Do not train nor push until the list below is full (the default).
+    Skip,
+    /// Train on the known slots only (unknown slots are ignored in matching and update).
+    Masked,
+}
+
+/// Internal scaling of the bottom level's input.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Normalisation {
+    /// Subtract each variable's minimum and divide all by one common scale, the largest
+    /// range (keeps the data's geometry; the default).
+    Global,
+    /// Scale each variable to [0, 1] on its own (amplifies near-constant variables).
+    PerDimension,
+    /// Raw values.
+    None,
+}
+
+/// The reproduction procedure (paper III-C.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ReproductionMode {
+    /// The paper's procedure taken literally: the highest level whose lower list holds
+    /// `offset` entries predicts every unknown slot, each expanded in full, depth-first,
+    /// oldest first.
+    Literal,
+    /// Predict one entry of the level below at a time, at the time step it is due by the
+    /// training schedule, and expand it only into the bottom steps it adds (its newest
+    /// updatePeriod^(l-1) steps), so that overlapping windows are not replayed twice
+    /// (the default; see docs/ALGORITHM.md).
+    Strided,
+}
+
+/// When a reproduction ends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopRule {
+    /// Stop on a node where training demonstrations ended, on a stationary posture, or past
+    /// `lengthFactor` times the longest demonstration; all after `minLengthFraction` of the
+    /// shortest demonstration (the default); `maxLength` always applies.
+    Learned,
+    /// Run exactly `maxLength` postures.
+    MaxLength,
+}
+
+/// Settings of one level of the hierarchy.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LevelParams {
+    /// Grid rows.
+    pub rows: usize,
+    /// Grid columns.
+    pub cols: usize,
+    /// Grid topology.
+    pub topology: Topology,
+    /// Neighbourhood function.
+    pub neighbourhood: Neighbourhood,
+    /// Learning factor schedule over this level's own training steps.
+    pub learning_factor: Schedule,
+    /// Learning radius schedule (grid units) over this level's own training steps.
+    pub learning_radius: Schedule,
+}
+
+impl LevelParams {
+    /// A level with the documented defaults: learning factor `alpha` decaying exponentially
+    /// to alpha/100, radius max(rows, cols)/2 decaying exponentially to 0.5 (or the initial
+    /// radius when smaller), gaussian neighbourhood.
+    pub fn new(rows: usize, cols: usize, topology: Topology, alpha: f64) -> Self {
+        let r0 = (rows.max(cols) as f64 / 2.0).max(0.5);
+        LevelParams {
+            rows,
+            cols,
+            topology,
+            neighbourhood: Neighbourhood::Gaussian,
+            learning_factor: Schedule {
+                initial: alpha,
+                last: alpha / 100.0,
+                decay: Decay::Exponential,
+            },
+            learning_radius: Schedule {
+                initial: r0,
+                last: 0.5f64.min(r0),
+                decay: Decay::Exponential,
+            },
+        }
+    }
+}
+
+/// Settings of the reproduction phase.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReproductionParams {
+    /// Entries a list must hold before the level above is used to predict (1..=memory).
+    pub offset: usize,
+    /// Procedure.
+    pub mode: ReproductionMode,
+    /// Decoding of predicted IDs.
+    pub id_decoding: IdDecoding,
+    /// Replace a decoded node never used by the training data by the nearest used one.
+    pub unseen_fallback: bool,
+    /// Maximum number of postures produced (the initial one included).
+    pub max_length: usize,
+    /// When to stop.
+    pub stop: StopRule,
+    /// No learned stop before this fraction of the shortest demonstration's length.
+    pub min_length_fraction: f64,
+    /// Learned stop at this factor times the longest demonstration's length.
+    pub length_factor: f64,
+    /// Learned stop once the posture has not changed for this many steps.
+    pub stationary_steps: usize,
+    /// A level is "confused" (not used to predict) when the root-mean-square distance, per
+    /// known coordinate, between its best node and the known entries exceeds this many grid
+    /// cells; 0 disables the test.
+    pub confusion_threshold: f64,
+    /// Highest level used to predict (levels above are still trained); `None` = all.
+    pub max_level: Option<usize>,
+    /// How much of the current posture's offset from the executed node's state half is
+    /// carried into the next posture: next = action + continuity (current - state). 0 snaps
+    /// to the node's action half (the paper's literal output); 1 applies the node's
+    /// displacement (action - state) to the current posture.
+    pub continuity: f64,
+    /// Record in the bottom activity list the node that best matches the executed transition
+    /// [current, next] (as in training), instead of the node that was predicted.
+    pub closed_loop: bool,
+}
+
+impl Default for ReproductionParams {
+    fn default() -> Self {
+        ReproductionParams {
+            offset: 3,
+            mode: ReproductionMode::Strided,
+            id_decoding: IdDecoding::Round,
+            unseen_fallback: true,
+            max_length: 2000,
+            stop: StopRule::Learned,
+            min_length_fraction: 0.6,
+            length_factor: 1.5,
+            stationary_steps: 40,
+            confusion_threshold: 0.0,
+            max_level: None,
+            continuity: 0.7,
+            closed_loop: false,
+        }
+    }
+}
+
+/// All settings, as written (unchecked). Turn into a [`HsomConfig`] with [`HsomParams::check`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct HsomParams {
+    /// Seed of every random draw (same seed, bit-identical model).
+    pub seed: u64,
+    /// Number of levels; must equal `levels.len()`.
+    pub height: usize,
+    /// Size of each activity list (entries).
+    pub memory: usize,
+    /// Level l is trained every updatePeriod^l steps.
+    pub update_period: usize,
+    /// Length of the state S_t (the number of variables of a demonstration).
+    pub state_length: usize,
+    /// Length of the action S_t+1 (must equal `state_length`).
+    pub action_length: usize,
+    /// Number of training steps (state-action pairs fed, cycling through the demonstrations).
+    pub training_steps: usize,
+    /// Short-term memory encoding.
+    pub memory_mode: MemoryMode,
+    /// Input scaling of the bottom level.
+    pub normalisation: Normalisation,
+    /// Training of upper levels on partially filled lists.
+    pub partial_training: PartialTraining,
+    /// Level settings, index 0 = bottom.
+    pub levels: Vec<LevelParams>,
+    /// Reproduction settings.
+    pub reproduction: ReproductionParams,
+}
+
+impl HsomParams {
+    /// The paper's Table I (height 6, memory 4, updatePeriod 2, 5000 steps, state and action
+    /// length 6, all orthogonal) with the documented defaults for everything Table I omits.
+    pub fn table1() -> Self {
+        let sizes = [(16, 0.1), (10, 0.2), (8, 0.3), (6, 0.5), (2, 0.6), (1, 0.8)];
+        HsomParams {
+            seed: 1,
+            height: 6,
+            memory: 4,
+            update_period: 2,
+            state_length: 6,
+            action_length: 6,
+            training_steps: 5000,
+            memory_mode: MemoryMode::Lists,
+            normalisation: Normalisation::Global,
+            partial_training: PartialTraining::Skip,
+            levels: sizes
+                .iter()
+                .map(|&(n, a)| LevelParams::new(n, n, Topology::Orthogonal, a))
+                .collect(),
+            reproduction: ReproductionParams::default(),
+        }
+    }
+
+    /// Validate every value; `source` (a file name) is used in the error messages.
+    pub fn check(self, source: &str) -> Result<HsomConfig, ConfigError> {
+        let bad = |field: &str, value: String, reason: &str| ConfigError::Invalid {
+            file: source.to_string(),
+            field: field.to_string(),
+            value,
+            reason: reason.to_string(),
+        };
+        let range = |field: &str, v: usize, lo: usize, hi: usize| {
+            if v < lo || v > hi {
+                Err(bad(
+                    field,
+                    v.to_string(),
+                    &format!("expected an integer in {lo}..={hi}"),
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        range("height", self.height, 1, 16)?;
+        range("memory", self.memory, 1, 256)?;
+        range("updatePeriod", self.update_period, 1, 1024)?;
+        range("stateLength", self.state_length, 1, 4096)?;
+        range("actionLength", self.action_length, 1, 4096)?;
+        if self.action_length != self.state_length {
+            return Err(bad(
+                "actionLength",
+                self.action_length.to_string(),
+                &format!(
+                    "the action is the next state, so actionLength must equal stateLength ({})",
+                    self.state_length
+                ),
+            ));
+        }
+        range("trainingSteps", self.training_steps, 1, 1_000_000_000)?;
+        let period_top = (self.update_period as f64).powi(self.height as i32 - 1);
+        if period_top > 1e12 {
+            return Err(bad(
+                "updatePeriod",
+                self.update_period.to_string(),
+                &format!("updatePeriod^(height-1) = {period_top:e} is too large"),
+            ));
+        }
+        if self.levels.len() != self.height {
+            return Err(bad(
+                "height",
+                self.height.to_string(),
+                &format!(
+                    "height must equal the number of <level> elements ({})",
+                    self.levels.len()
+                ),
+            ));
+        }
+        for (i, l) in self.levels.iter().enumerate() {
+            let f = |name: &str| format!("levels/level[{i}]/{name}");
+            range(&f("rows"), l.rows, 1, 1024)?;
+            range(&f("cols"), l.cols, 1, 1024)?;
+            for (name, s, max) in [
+                ("learningFactor", &l.learning_factor, 1.0),
+                ("learningRadius", &l.learning_radius, 1e6),
+            ] {
+                for (suffix, v) in [("", s.initial), ("Final", s.last)] {
+                    if !(v.is_finite() && v > 0.0 && v <= max) {
+                        let reason = if max == 1.0 {
+                            "expected a number in (0, 1]".to_string()
+                        } else {
+                            "expected a positive number".to_string()
+                        };
+                        return Err(bad(&f(&format!("{name}{suffix}")), v.to_string(), &reason));
+                    }
+                }
+            }
+        }
+        let r = &self.reproduction;
+        range("reproduction/offset", r.offset, 1, self.memory).map_err(|_| {
+            bad(
+                "reproduction/offset",
+                r.offset.to_string(),
+                &format!("expected 1..=memory ({})", self.memory),
+            )
+        })?;
+        range("reproduction/maxLength", r.max_length, 1, 10_000_000)?;
+        range(
+            "reproduction/stationarySteps",
+            r.stationary_steps,
+            1,
+            10_000_000,
+        )?;
+        let real = |field: &str, v: f64, lo: f64, hi: f64| {
+            if !(v.is_finite() && v >= lo && v <= hi) {
+                Err(bad(
+                    field,
+                    v.to_string(),
+                    &format!("expected a number in [{lo}, {hi}]"),
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        real(
+            "reproduction/minLengthFraction",
+            r.min_length_fraction,
+            0.0,
+            100.0,
+        )?;
+        real("reproduction/lengthFactor", r.length_factor, 0.01, 1000.0)?;
+        real(
+            "reproduction/confusionThreshold",
+            r.confusion_threshold,
+            0.0,
+            1e6,
+        )?;
+        real("reproduction/continuity", r.continuity, 0.0, 1.0)?;
+        if let Some(m) = r.max_level {
+            range("reproduction/maxLevel", m, 0, self.height - 1)?;
+        }
+        Ok(HsomConfig {
+            params: self,
+            source: source.to_string(),
+        })
+    }
+}
+
+/// A validated configuration: the only way to train a hierarchy
+/// ([`HsomConfig::fit`](crate::hsom) lives in the `hsom` room).
+#[derive(Debug, Clone, PartialEq)]
+pub struct HsomConfig {
+    params: HsomParams,
+    source: String,
+}
+
+impl HsomConfig {
+    /// The checked settings.
+    pub fn params(&self) -> &HsomParams {
+        &self.params
+    }
+    /// Where the configuration came from (file name), for messages.
+    pub fn source(&self) -> &str {
+        &self.source
+    }
+    /// Back to unchecked settings (to change a value and check again).
+    pub fn into_params(self) -> HsomParams {
+        self.params
+    }
+    /// The same configuration with other (already valid) reproduction settings; fails when
+    /// they are out of range.
+    pub fn with_reproduction(self, r: ReproductionParams) -> Result<HsomConfig, ConfigError> {
+        let source = self.source.clone();
+        let mut p = self.params;
+        p.reproduction = r;
+        p.check(&source)
+    }
+    /// updatePeriod^level, the training period of `level`.
+    pub fn period(&self, level: usize) -> u64 {
+        (self.params.update_period as u64).pow(level as u32)
+    }
+}

@@ -1,0 +1,597 @@
+//! The trained hierarchy ([`Hsom`]), training (paper III-C.1) and its quality summary.
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+use crate::config::{HsomConfig, MemoryMode, Normalisation, PartialTraining};
+use crate::demos::Demonstration;
+use crate::som::{SelfOrganizingMap, Topology};
+
+use super::errors::HsomError;
+use super::memory::{ActivityLevels, ActivityList};
+
+/// A trained CoSCo-HSOM: one Kohonen map per level plus the few per-node statistics used by
+/// reproduction. Its size depends on the configuration only, never on the training data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hsom {
+    pub(crate) config: HsomConfig,
+    pub(crate) maps: Vec<SelfOrganizingMap>,
+    /// Per-variable offset and scale: the bottom level sees (x - offset) / scale.
+    pub(crate) offset: Vec<f64>,
+    pub(crate) scale: Vec<f64>,
+    /// Number of times each level was trained.
+    pub(crate) trained: Vec<u64>,
+    /// Per level, per node: how often the node is the BMU when the training data are replayed.
+    pub(crate) hits: Vec<Vec<u32>>,
+    /// Per bottom node: how many demonstrations end on it.
+    pub(crate) end_hits: Vec<u32>,
+    /// Per level quantization and topographic error on the training data.
+    pub(crate) qe: Vec<f64>,
+    pub(crate) te: Vec<f64>,
+    /// Shortest, mean and longest demonstration (samples).
+    pub(crate) demo_len: [f64; 3],
+}
+
+/// Quality of one level, as reported by [`Hsom::summary`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct LevelSummary {
+    /// Level index (0 = bottom).
+    pub level: usize,
+    /// Grid rows.
+    pub rows: usize,
+    /// Grid columns.
+    pub cols: usize,
+    /// Topology.
+    pub topology: Topology,
+    /// Input (weight vector) length.
+    pub input_dim: usize,
+    /// Training period (updatePeriod^level).
+    pub period: u64,
+    /// Times the level was trained.
+    pub trained: u64,
+    /// Nodes that are the BMU of some training input.
+    pub nodes_used: usize,
+    /// Mean distance from each training input to its BMU (level 0: in the data's units
+    /// unless normalisation is perDimension; upper levels: in grid cells of the level below).
+    pub quantization_error: f64,
+    /// Fraction of training inputs whose two best nodes are not adjacent.
+    pub topographic_error: f64,
+}
+
+/// What `cosco inspect` shows: the levels, their sizes and quality.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelSummary {
+    /// Short-term memory mode.
+    pub memory_mode: MemoryMode,
+    /// memory (list length).
+    pub memory: usize,
+    /// updatePeriod.
+    pub update_period: usize,
+    /// stateLength.
+    pub state_length: usize,
+    /// Number of weights over all levels.
+    pub weights: usize,
+    /// Shortest, mean and longest training demonstration (samples).
+    pub demo_lengths: [f64; 3],
+    /// One entry per level, bottom first.
+    pub levels: Vec<LevelSummary>,
+}
+
+impl std::fmt::Display for ModelSummary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(
+            f,
+            "CoSCo-HSOM: {} levels, memory {} ({:?}), updatePeriod {}, stateLength {}, {} weights",
+            self.levels.len(),
+            self.memory,
+            self.memory_mode,
+            self.update_period,
+            self.state_length,
+            self.weights
+        )?;
+        writeln!(
+            f,
+            "training demonstrations: {:.0} to {:.0} samples (mean {:.1})",
+            self.demo_lengths[0], self.demo_lengths[2], self.demo_lengths[1]
+        )?;
+        writeln!(
+            f,
+            "level  size     topology    input  period  trained  used    QE        TE"
+        )?;
+        for l in self.levels.iter().rev() {
+            writeln!(
+                f,
+                "{:<6} {:<8} {:<11} {:<6} {:<7} {:<8} {:<7} {:<9.4} {:.4}",
+                l.level,
+                format!("{}x{}", l.rows, l.cols),
+                l.topology.name(),
+                l.input_dim,
+                l.period,
+                l.trained,
+                l.nodes_used,
+                l.quantization_error,
+                l.topographic_error
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// The short-term memory of every level, in either mode.
+#[derive(Debug, Clone)]
+pub(crate) enum Memory {
+    Lists(Vec<ActivityList>),
+    Levels(Vec<ActivityLevels>),
+}
+
+#[derive(Debug, Clone)]
+pub(crate) struct Stm {
+    pub(crate) mem: Memory,
+    /// Pushes since the last clear, per level.
+    pub(crate) pushes: Vec<usize>,
+    pub(crate) memory: usize,
+}
+
+impl Stm {
+    pub(crate) fn new(config: &HsomConfig) -> Self {
+        let p = config.params();
+        let mem = match p.memory_mode {
+            MemoryMode::Lists => {
+                Memory::Lists((0..p.height).map(|_| ActivityList::new(p.memory)).collect())
+            }
+            MemoryMode::Levels => Memory::Levels(
+                p.levels
+                    .iter()
+                    .map(|l| ActivityLevels::new(l.rows * l.cols, p.memory))
+                    .collect(),
+            ),
+        };
+        Stm {
+            mem,
+            pushes: vec![0; p.height],
+            memory: p.memory,
+        }
+    }
+    pub(crate) fn clear(&mut self) {
+        match &mut self.mem {
+            Memory::Lists(v) => v.iter_mut().for_each(|l| l.clear()),
+            Memory::Levels(v) => v.iter_mut().for_each(|l| l.clear()),
+        }
+        self.pushes.iter_mut().for_each(|c| *c = 0);
+    }
+    #[inline]
+    pub(crate) fn push(&mut self, level: usize, node: usize, map: &SelfOrganizingMap) {
+        match &mut self.mem {
+            Memory::Lists(v) => v[level].push(map.id(node)),
+            Memory::Levels(v) => v[level].push(node),
+        }
+        self.pushes[level] += 1;
+    }
+    /// Input of level `level + 1` from the memory of `level`, for training: false when the
+    /// level above must not train now.
+    #[inline]
+    pub(crate) fn input(
+        &self,
+        level: usize,
+        partial: PartialTraining,
+        out: &mut [f64],
+        mask: &mut [bool],
+    ) -> bool {
+        let n = self.pushes[level];
+        if n == 0 || (partial == PartialTraining::Skip && n < self.memory) {
+            return false;
+        }
+        match &self.mem {
+            Memory::Lists(v) => v[level].encode(self.memory, 0, out, mask),
+            Memory::Levels(v) => {
+                out.copy_from_slice(v[level].levels());
+                mask.iter_mut().for_each(|m| *m = true);
+            }
+        }
+        true
+    }
+}
+
+/// A demonstration as borrowed rows with a name for messages.
+pub(crate) struct Series<'a> {
+    pub(crate) source: &'a str,
+    pub(crate) rows: &'a [Vec<f64>],
+}
+
+fn check_series(series: &[Series<'_>], state: usize) -> Result<(), HsomError> {
+    if series.is_empty() {
+        return Err(HsomError::NoDemonstrations);
+    }
+    for s in series {
+        if s.rows.len() < 2 {
+            return Err(HsomError::TooShort {
+                demo: s.source.to_string(),
+                rows: s.rows.len(),
+            });
+        }
+        for (i, r) in s.rows.iter().enumerate() {
+            if r.len() != state {
+                return Err(HsomError::DimensionMismatch {
+                    demo: s.source.to_string(),
+                    row: i,
+                    expected: state,
+                    found: r.len(),
+                });
+            }
+            if let Some(c) = r.iter().position(|v| !v.is_finite()) {
+                return Err(HsomError::NonFinite {
+                    demo: s.source.to_string(),
+                    row: i,
+                    column: c,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+pub(crate) fn input_dim(config: &HsomConfig, level: usize) -> usize {
+    let p = config.params();
+    if level == 0 {
+        p.state_length + p.action_length
+    } else {
+        match p.memory_mode {
+            MemoryMode::Lists => 2 * p.memory,
+            MemoryMode::Levels => p.levels[level - 1].rows * p.levels[level - 1].cols,
+        }
+    }
+}
+
+impl HsomConfig {
+    /// Train a hierarchy on demonstrations (each `stateLength` columns wide, at least two
+    /// samples), quietly.
+    pub fn fit(&self, demos: &[Demonstration]) -> Result<Hsom, HsomError> {
+        self.fit_with_progress(demos, None)
+    }
+
+    /// Train, calling `progress(done, total)` about a hundred times (for a progress bar).
+    pub fn fit_with_progress(
+        &self,
+        demos: &[Demonstration],
+        progress: Option<&dyn Fn(usize, usize)>,
+    ) -> Result<Hsom, HsomError> {
+        let series: Vec<Series<'_>> = demos
+            .iter()
+            .map(|d| Series {
+                source: &d.source,
+                rows: &d.rows,
+            })
+            .collect();
+        self.fit_inner(&series, progress, true)
+    }
+
+    /// An untrained hierarchy: the seeded initial weights (inside the data's bounding box)
+    /// with the same statistics as a trained one; the negative control of fidelity tests.
+    pub fn initialise(&self, demos: &[Demonstration]) -> Result<Hsom, HsomError> {
+        let series: Vec<Series<'_>> = demos
+            .iter()
+            .map(|d| Series {
+                source: &d.source,
+                rows: &d.rows,
+            })
+            .collect();
+        self.fit_inner(&series, None, false)
+    }
+
+    /// Train on plain time series (rows of `stateLength` values), quietly.
+    pub fn fit_series(&self, series: &[Vec<Vec<f64>>]) -> Result<Hsom, HsomError> {
+        let names: Vec<String> = (0..series.len()).map(|i| format!("series #{i}")).collect();
+        let s: Vec<Series<'_>> = series
+            .iter()
+            .zip(&names)
+            .map(|(r, n)| Series { source: n, rows: r })
+            .collect();
+        self.fit_inner(&s, None, true)
+    }
+
+    fn fit_inner(
+        &self,
+        series: &[Series<'_>],
+        progress: Option<&dyn Fn(usize, usize)>,
+        learn: bool,
+    ) -> Result<Hsom, HsomError> {
+        let p = self.params();
+        let state = p.state_length;
+        check_series(series, state)?;
+        // normalisation of the bottom input
+        let mut lo = vec![f64::INFINITY; state];
+        let mut hi = vec![f64::NEG_INFINITY; state];
+        for s in series {
+            for r in s.rows {
+                for d in 0..state {
+                    lo[d] = lo[d].min(r[d]);
+                    hi[d] = hi[d].max(r[d]);
+                }
+            }
+        }
+        let range: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| b - a).collect();
+        let (offset, scale) = match p.normalisation {
+            Normalisation::None => (vec![0.0; state], vec![1.0; state]),
+            Normalisation::Global => {
+                let m = range.iter().cloned().fold(0.0, f64::max);
+                (lo.clone(), vec![if m > 0.0 { m } else { 1.0 }; state])
+            }
+            Normalisation::PerDimension => (
+                lo.clone(),
+                range
+                    .iter()
+                    .map(|&r| if r > 0.0 { r } else { 1.0 })
+                    .collect(),
+            ),
+        };
+        let norm: Vec<Vec<Vec<f64>>> = series
+            .iter()
+            .map(|s| {
+                s.rows
+                    .iter()
+                    .map(|r| {
+                        r.iter()
+                            .enumerate()
+                            .map(|(d, v)| (v - offset[d]) / scale[d])
+                            .collect()
+                    })
+                    .collect()
+            })
+            .collect();
+        // initial weights: inside the (normalised) data's bounding box, from the seed
+        let mut rng = ChaCha8Rng::seed_from_u64(p.seed);
+        let mut maps = Vec::with_capacity(p.height);
+        for (l, lp) in p.levels.iter().enumerate() {
+            let dim = input_dim(self, l);
+            let (blo, bhi): (Vec<f64>, Vec<f64>) = if l == 0 {
+                let a: Vec<f64> = (0..state).map(|d| (lo[d] - offset[d]) / scale[d]).collect();
+                let b: Vec<f64> = (0..state).map(|d| (hi[d] - offset[d]) / scale[d]).collect();
+                (
+                    a.iter().chain(&a).cloned().collect(),
+                    b.iter().chain(&b).cloned().collect(),
+                )
+            } else {
+                let below = &p.levels[l - 1];
+                match p.memory_mode {
+                    MemoryMode::Lists => (
+                        vec![0.0; dim],
+                        (0..dim)
+                            .map(|i| if i % 2 == 0 { below.cols - 1 } else { below.rows - 1 } as f64)
+                            .collect(),
+                    ),
+                    MemoryMode::Levels => (vec![0.0; dim], vec![1.0; dim]),
+                }
+            };
+            maps.push(SelfOrganizingMap::new_random(
+                lp.rows,
+                lp.cols,
+                dim,
+                lp.topology,
+                &blo,
+                &bhi,
+                &mut rng,
+            ));
+        }
+        let mut stm = Stm::new(self);
+        let mut bufs: Vec<Vec<f64>> = (0..p.height)
+            .map(|l| vec![0.0; input_dim(self, l)])
+            .collect();
+        let mut masks: Vec<Vec<bool>> = (0..p.height)
+            .map(|l| vec![true; input_dim(self, l)])
+            .collect();
+        let total = if learn { p.training_steps } else { 0 };
+        let expected: Vec<f64> = (0..p.height)
+            .map(|l| ((total as u64 / self.period(l)).max(2) - 1) as f64)
+            .collect();
+        let mut trained = vec![0u64; p.height];
+        let (mut d, mut pos) = (0usize, 0usize);
+        let chunk = (total / 100).max(1);
+        for s in 1..=total as u64 {
+            {
+                let demo = &norm[d];
+                let x = &mut bufs[0];
+                x[..state].copy_from_slice(&demo[pos]);
+                x[state..].copy_from_slice(&demo[pos + 1]);
+                let lp = &p.levels[0];
+                let prog = trained[0] as f64 / expected[0];
+                let (b, _) = maps[0].bmu(x);
+                maps[0].update(
+                    x,
+                    None,
+                    b,
+                    lp.learning_factor.at(prog),
+                    lp.learning_radius.at(prog),
+                    lp.neighbourhood,
+                );
+                trained[0] += 1;
+                stm.push(0, b, &maps[0]);
+            }
+            for l in 1..p.height {
+                if s % self.period(l) != 0 {
+                    break;
+                }
+                let (lower, upper) = bufs.split_at_mut(l);
+                let _ = lower;
+                let x = &mut upper[0];
+                let mask = &mut masks[l];
+                if !stm.input(l - 1, p.partial_training, x, mask) {
+                    continue;
+                }
+                let full = mask.iter().all(|&m| m);
+                let lp = &p.levels[l];
+                let prog = trained[l] as f64 / expected[l];
+                let (b, _) = if full {
+                    maps[l].bmu(x)
+                } else {
+                    maps[l].bmu_masked(x, mask)
+                };
+                maps[l].update(
+                    x,
+                    if full { None } else { Some(mask) },
+                    b,
+                    lp.learning_factor.at(prog),
+                    lp.learning_radius.at(prog),
+                    lp.neighbourhood,
+                );
+                trained[l] += 1;
+                stm.push(l, b, &maps[l]);
+            }
+            pos += 1;
+            if pos + 1 >= norm[d].len() {
+                stm.clear();
+                d = (d + 1) % norm.len();
+                pos = 0;
+            }
+            if let Some(cb) = progress {
+                if s as usize % chunk == 0 || s as usize == total {
+                    cb(s as usize, total);
+                }
+            }
+        }
+        let lens: Vec<f64> = series.iter().map(|s| s.rows.len() as f64).collect();
+        let mut model = Hsom {
+            config: self.clone(),
+            maps,
+            offset,
+            scale,
+            trained,
+            hits: p.levels.iter().map(|l| vec![0; l.rows * l.cols]).collect(),
+            end_hits: vec![0; p.levels[0].rows * p.levels[0].cols],
+            qe: vec![0.0; p.height],
+            te: vec![0.0; p.height],
+            demo_len: [
+                lens.iter().cloned().fold(f64::INFINITY, f64::min),
+                lens.iter().sum::<f64>() / lens.len() as f64,
+                lens.iter().cloned().fold(0.0, f64::max),
+            ],
+        };
+        model.replay(&norm);
+        Ok(model)
+    }
+}
+
+impl Hsom {
+    /// Replay the (normalised) training data through the trained maps, without learning, with
+    /// the training schedule restarted at every demonstration: node usage, end nodes, QE, TE.
+    fn replay(&mut self, norm: &[Vec<Vec<f64>>]) {
+        let cfg = self.config.clone();
+        let p = cfg.params();
+        let state = p.state_length;
+        let mut stm = Stm::new(&cfg);
+        let mut bufs: Vec<Vec<f64>> = (0..p.height)
+            .map(|l| vec![0.0; input_dim(&cfg, l)])
+            .collect();
+        let mut masks: Vec<Vec<bool>> = (0..p.height)
+            .map(|l| vec![true; input_dim(&cfg, l)])
+            .collect();
+        let mut qe_sum = vec![0.0; p.height];
+        let mut te_bad = vec![0usize; p.height];
+        let mut count = vec![0usize; p.height];
+        for demo in norm {
+            stm.clear();
+            for pos in 0..demo.len() - 1 {
+                let s = pos as u64 + 1;
+                bufs[0][..state].copy_from_slice(&demo[pos]);
+                bufs[0][state..].copy_from_slice(&demo[pos + 1]);
+                let (a, b) = self.maps[0].best_two(&bufs[0]);
+                let d2: f64 = self.maps[0]
+                    .weights(a)
+                    .iter()
+                    .zip(&bufs[0])
+                    .map(|(w, x)| (w - x) * (w - x))
+                    .sum();
+                qe_sum[0] += d2.sqrt();
+                te_bad[0] +=
+                    usize::from(self.maps[0].len() > 1 && !self.maps[0].are_neighbours(a, b));
+                count[0] += 1;
+                self.hits[0][a] = self.hits[0][a].saturating_add(1);
+                if pos + 2 == demo.len() {
+                    self.end_hits[a] = self.end_hits[a].saturating_add(1);
+                }
+                stm.push(0, a, &self.maps[0]);
+                for l in 1..p.height {
+                    if s % cfg.period(l) != 0 {
+                        break;
+                    }
+                    let x = &mut bufs[l];
+                    let mask = &mut masks[l];
+                    if !stm.input(l - 1, p.partial_training, x, mask) {
+                        continue;
+                    }
+                    let full = mask.iter().all(|&m| m);
+                    let (b, d2) = if full {
+                        self.maps[l].bmu(x)
+                    } else {
+                        self.maps[l].bmu_masked(x, mask)
+                    };
+                    if full {
+                        let (_, b2) = self.maps[l].best_two(x);
+                        qe_sum[l] += d2.sqrt();
+                        te_bad[l] += usize::from(
+                            self.maps[l].len() > 1 && !self.maps[l].are_neighbours(b, b2),
+                        );
+                        count[l] += 1;
+                    }
+                    self.hits[l][b] = self.hits[l][b].saturating_add(1);
+                    stm.push(l, b, &self.maps[l]);
+                }
+            }
+        }
+        for l in 0..p.height {
+            let c = count[l].max(1) as f64;
+            self.qe[l] = qe_sum[l] / c;
+            self.te[l] = te_bad[l] as f64 / c;
+        }
+        if p.normalisation != Normalisation::PerDimension {
+            self.qe[0] *= self.scale[0];
+        }
+    }
+
+    /// The validated configuration the model was trained with.
+    pub fn config(&self) -> &HsomConfig {
+        &self.config
+    }
+    /// The maps, bottom first.
+    pub fn maps(&self) -> &[SelfOrganizingMap] {
+        &self.maps
+    }
+    /// Times each level was trained (bottom first).
+    pub fn trained_counts(&self) -> &[u64] {
+        &self.trained
+    }
+    /// Number of levels.
+    pub fn height(&self) -> usize {
+        self.maps.len()
+    }
+
+    /// Levels, sizes, node usage, quantization and topographic error per level (computed on
+    /// the training data when the model was trained).
+    pub fn summary(&self) -> ModelSummary {
+        let p = self.config.params();
+        ModelSummary {
+            memory_mode: p.memory_mode,
+            memory: p.memory,
+            update_period: p.update_period,
+            state_length: p.state_length,
+            weights: self.maps.iter().map(|m| m.all_weights().len()).sum(),
+            demo_lengths: self.demo_len,
+            levels: self
+                .maps
+                .iter()
+                .enumerate()
+                .map(|(l, m)| LevelSummary {
+                    level: l,
+                    rows: m.rows(),
+                    cols: m.cols(),
+                    topology: m.topology(),
+                    input_dim: m.dim(),
+                    period: self.config.period(l),
+                    trained: self.trained[l],
+                    nodes_used: self.hits[l].iter().filter(|&&h| h > 0).count(),
+                    quantization_error: self.qe[l],
+                    topographic_error: self.te[l],
+                })
+                .collect(),
+        }
+    }
+}

@@ -1,0 +1,182 @@
+//! Short-term memory of a level: the activity list (CoSCo-HSOM) and, as the baseline, the
+//! per-node activity levels of the sparse-code HSOM.
+
+use crate::som::NodeId;
+
+/// A fixed-size FIFO of the IDs of a level's recent best-matching units, newest first.
+/// `push` is O(1): a ring buffer overwrites the oldest entry when full.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ActivityList {
+    buf: Vec<NodeId>,
+    head: usize,
+    len: usize,
+}
+
+impl ActivityList {
+    /// An empty list of `memory` entries (`memory` >= 1).
+    pub fn new(memory: usize) -> Self {
+        ActivityList {
+            buf: vec![(0, 0); memory.max(1)],
+            head: 0,
+            len: 0,
+        }
+    }
+    /// Capacity (`memory`).
+    pub fn capacity(&self) -> usize {
+        self.buf.len()
+    }
+    /// Number of entries held.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+    /// True when empty.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+    /// True when it holds `memory` entries.
+    pub fn is_full(&self) -> bool {
+        self.len == self.buf.len()
+    }
+    /// Push the newest ID; the oldest is dropped when the list is full.
+    #[inline]
+    pub fn push(&mut self, id: NodeId) {
+        self.head = if self.head == 0 {
+            self.buf.len() - 1
+        } else {
+            self.head - 1
+        };
+        self.buf[self.head] = id;
+        if self.len < self.buf.len() {
+            self.len += 1;
+        }
+    }
+    /// Entry `k`, 0 = newest; `None` past the entries held.
+    #[inline]
+    pub fn get(&self, k: usize) -> Option<NodeId> {
+        if k < self.len {
+            Some(self.buf[(self.head + k) % self.buf.len()])
+        } else {
+            None
+        }
+    }
+    /// Entries newest first.
+    pub fn to_vec(&self) -> Vec<NodeId> {
+        (0..self.len).filter_map(|k| self.get(k)).collect()
+    }
+    /// Forget every entry (at the end of a demonstration).
+    pub fn clear(&mut self) {
+        self.len = 0;
+        self.head = 0;
+    }
+    /// Write the newest `count` entries (count <= len) as coordinates `(x, y)` into slots
+    /// `shift..shift + count` of `out` (slot k at `out[2k], out[2k+1]`) and mark them known in
+    /// `mask`; every other slot is marked unknown. Slots past `memory` are dropped.
+    pub fn encode(&self, count: usize, shift: usize, out: &mut [f64], mask: &mut [bool]) {
+        mask.iter_mut().for_each(|m| *m = false);
+        let slots = out.len() / 2;
+        for j in 0..count.min(self.len) {
+            let s = shift + j;
+            if s >= slots {
+                break;
+            }
+            let (x, y) = self.buf[(self.head + j) % self.buf.len()];
+            out[2 * s] = x as f64;
+            out[2 * s + 1] = y as f64;
+            mask[2 * s] = true;
+            mask[2 * s + 1] = true;
+        }
+    }
+}
+
+/// The sparse-code baseline: one activity level per node of a level. On every push each
+/// level decreases linearly by 1/memory (never below 0) and the best-matching unit is set to
+/// 1, so with memory 4 the last four BMUs hold 1.0, 0.75, 0.5, 0.25 (footnote 1).
+/// `push` is O(number of nodes).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ActivityLevels {
+    act: Vec<f64>,
+    step: f64,
+}
+
+impl ActivityLevels {
+    /// All levels zero, for a map of `nodes` nodes and a memory of `memory` steps.
+    pub fn new(nodes: usize, memory: usize) -> Self {
+        ActivityLevels {
+            act: vec![0.0; nodes],
+            step: 1.0 / memory.max(1) as f64,
+        }
+    }
+    /// Decay every node and raise the BMU (node index) to 1.
+    #[inline]
+    pub fn push(&mut self, node: usize) {
+        let s = self.step;
+        for a in self.act.iter_mut() {
+            *a = (*a - s).max(0.0);
+        }
+        if let Some(a) = self.act.get_mut(node) {
+            *a = 1.0;
+        }
+    }
+    /// The activity levels (the input of the level above).
+    pub fn levels(&self) -> &[f64] {
+        &self.act
+    }
+    /// Number of active (non-zero) nodes.
+    pub fn active(&self) -> usize {
+        self.act.iter().filter(|&&a| a > 0.0).count()
+    }
+    /// All levels back to zero.
+    pub fn clear(&mut self) {
+        self.act.iter_mut().for_each(|a| *a = 0.0);
+    }
+    /// The decay per step (1/memory).
+    pub fn decrement(&self) -> f64 {
+        self.step
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn list_is_fifo_newest_first() {
+        let mut l = ActivityList::new(3);
+        assert!(l.is_empty());
+        l.push((1, 0));
+        l.push((2, 0));
+        assert_eq!(l.to_vec(), vec![(2, 0), (1, 0)]);
+        l.push((3, 0));
+        assert!(l.is_full());
+        l.push((4, 0));
+        assert_eq!(l.to_vec(), vec![(4, 0), (3, 0), (2, 0)]);
+        assert_eq!(l.get(3), None);
+        l.clear();
+        assert_eq!(l.len(), 0);
+        l.push((9, 9));
+        assert_eq!(l.to_vec(), vec![(9, 9)]);
+    }
+
+    #[test]
+    fn encode_shifts_known_entries_and_masks_the_rest() {
+        let mut l = ActivityList::new(4);
+        for i in 1..=3u16 {
+            l.push((i, 10 + i));
+        }
+        let mut out = vec![-1.0; 8];
+        let mut mask = vec![true; 8];
+        l.encode(3, 1, &mut out, &mut mask);
+        assert_eq!(mask, [false, false, true, true, true, true, true, true]);
+        assert_eq!(&out[2..], &[3.0, 13.0, 2.0, 12.0, 1.0, 11.0]);
+    }
+
+    #[test]
+    fn levels_decay_linearly_as_in_footnote_1() {
+        let mut a = ActivityLevels::new(6, 4);
+        for n in 0..5 {
+            a.push(n);
+        }
+        assert_eq!(a.levels(), &[0.0, 0.25, 0.5, 0.75, 1.0, 0.0]);
+        assert_eq!(a.active(), 4);
+    }
+}

@@ -1,0 +1,464 @@
+//! Save and load a trained hierarchy: a binary (`.bin`) and a plain-text (`.txt`) format,
+//! both versioned and checksummed, written atomically. Every size read from a file is checked
+//! against the embedded configuration and the bytes left before anything is allocated.
+
+use std::path::{Path, PathBuf};
+
+use crate::config::{parse_config, HsomConfig};
+use crate::fsutil::write_atomic;
+use crate::som::SelfOrganizingMap;
+
+use super::algorithm::{input_dim, Hsom};
+use super::errors::PersistError;
+
+/// Magic bytes opening a binary model file.
+const MAGIC: &[u8; 8] = b"COSCOHSM";
+/// First line of a plain-text model file.
+const TEXT_MAGIC: &str = "cosco-hsom model";
+/// Format version of both formats.
+pub const FORMAT_VERSION: u32 = 1;
+/// Largest embedded configuration accepted (bytes).
+const MAX_CONFIG: u64 = 1 << 20;
+
+fn fnv1a(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for &b in bytes {
+        h ^= b as u64;
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
+/// Sizes implied by a configuration: (rows, cols, dim) per level.
+fn shapes(config: &HsomConfig) -> Vec<(usize, usize, usize)> {
+    config
+        .params()
+        .levels
+        .iter()
+        .enumerate()
+        .map(|(l, lp)| (lp.rows, lp.cols, input_dim(config, l)))
+        .collect()
+}
+
+impl Hsom {
+    /// Save to `path`: binary for `.bin`, plain text for `.txt` (atomic write).
+    pub fn save(&self, path: &Path) -> Result<(), PersistError> {
+        let bytes = match ext(path)? {
+            Format::Bin => self.to_bytes(),
+            Format::Txt => self.to_text().into_bytes(),
+        };
+        write_atomic(path, &bytes).map_err(|source| PersistError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+
+    /// Load a model saved by [`Hsom::save`]; the format is chosen by the extension.
+    pub fn load(path: &Path) -> Result<Hsom, PersistError> {
+        let fmt = ext(path)?;
+        let bytes = std::fs::read(path).map_err(|source| PersistError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        match fmt {
+            Format::Bin => Hsom::from_bytes(&bytes, path),
+            Format::Txt => match std::str::from_utf8(&bytes) {
+                Ok(t) => Hsom::from_text(t, path),
+                Err(_) => Err(PersistError::BadMagic {
+                    path: path.to_path_buf(),
+                }),
+            },
+        }
+    }
+
+    /// The binary form: magic, version, configuration XML, weights and statistics (all
+    /// little-endian), and an FNV-1a checksum of everything before it.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut b = Vec::new();
+        b.extend_from_slice(MAGIC);
+        b.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+        let xml = self.config.to_xml();
+        b.extend_from_slice(&(xml.len() as u64).to_le_bytes());
+        b.extend_from_slice(xml.as_bytes());
+        let f = |b: &mut Vec<u8>, v: f64| b.extend_from_slice(&v.to_le_bytes());
+        b.extend_from_slice(&(self.maps.len() as u32).to_le_bytes());
+        for (l, m) in self.maps.iter().enumerate() {
+            for v in [m.rows(), m.cols(), m.dim()] {
+                b.extend_from_slice(&(v as u32).to_le_bytes());
+            }
+            b.extend_from_slice(&self.trained[l].to_le_bytes());
+            f(&mut b, self.qe[l]);
+            f(&mut b, self.te[l]);
+            for &w in m.all_weights() {
+                f(&mut b, w);
+            }
+            for &h in &self.hits[l] {
+                b.extend_from_slice(&h.to_le_bytes());
+            }
+        }
+        for &h in &self.end_hits {
+            b.extend_from_slice(&h.to_le_bytes());
+        }
+        for &v in self.offset.iter().chain(&self.scale).chain(&self.demo_len) {
+            f(&mut b, v);
+        }
+        let sum = fnv1a(&b);
+        b.extend_from_slice(&sum.to_le_bytes());
+        b
+    }
+
+    /// Read the binary form; `path` is only used in error messages.
+    pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<Hsom, PersistError> {
+        let mut r = Reader {
+            b: bytes,
+            pos: 0,
+            path: path.to_path_buf(),
+        };
+        if bytes.len() < 8 || &bytes[..8] != MAGIC {
+            return Err(PersistError::BadMagic {
+                path: path.to_path_buf(),
+            });
+        }
+        r.pos = 8;
+        let version = r.u32("version")?;
+        if version != FORMAT_VERSION {
+            return Err(PersistError::Version {
+                path: path.to_path_buf(),
+                found: version,
+                expected: FORMAT_VERSION,
+            });
+        }
+        if bytes.len() < 8 + 4 + 8 {
+            return Err(r.truncated("header"));
+        }
+        let body = &bytes[..bytes.len().saturating_sub(8)];
+        let stored = u64::from_le_bytes(bytes[bytes.len() - 8..].try_into().unwrap_or([0; 8]));
+        let xml_len = r.u64("configuration length")?;
+        if xml_len > MAX_CONFIG || xml_len > r.remaining() as u64 {
+            return Err(if xml_len > MAX_CONFIG {
+                r.corrupted(format!("configuration length {xml_len} is implausible"))
+            } else {
+                r.truncated("configuration")
+            });
+        }
+        let xml = r.take(xml_len as usize, "configuration")?;
+        let xml = std::str::from_utf8(xml).map_err(|_| r.corrupted("configuration is not UTF-8".into()))?;
+        let config = parse_config(xml, &format!("{} (embedded configuration)", path.display()))
+            .map_err(|e| r.corrupted(e.to_string()))?;
+        let shapes = shapes(&config);
+        let height = r.u32("height")? as usize;
+        if height != shapes.len() {
+            return Err(r.corrupted(format!("{height} levels, the configuration has {}", shapes.len())));
+        }
+        let mut maps = Vec::new();
+        let (mut trained, mut qe, mut te, mut hits) = (vec![], vec![], vec![], vec![]);
+        for (l, &(rows, cols, dim)) in shapes.iter().enumerate() {
+            let got = (r.u32("rows")? as usize, r.u32("cols")? as usize, r.u32("dim")? as usize);
+            if got != (rows, cols, dim) {
+                return Err(r.corrupted(format!(
+                    "level {l} is {}x{} of dimension {}, the configuration says {rows}x{cols} of dimension {dim}",
+                    got.0, got.1, got.2
+                )));
+            }
+            trained.push(r.u64("trained")?);
+            qe.push(r.f64("qe")?);
+            te.push(r.f64("te")?);
+            let n = rows * cols * dim;
+            r.need(n * 8, "weights")?;
+            let w: Vec<f64> = (0..n).map(|_| r.f64("weights")).collect::<Result<_, _>>()?;
+            r.need(rows * cols * 4, "hits")?;
+            hits.push((0..rows * cols).map(|_| r.u32("hits")).collect::<Result<Vec<u32>, _>>()?);
+            maps.push(
+                SelfOrganizingMap::from_weights(rows, cols, dim, config.params().levels[l].topology, w)
+                    .map_err(|e| r.corrupted(e.to_string()))?,
+            );
+        }
+        let n0 = shapes[0].0 * shapes[0].1;
+        r.need(n0 * 4, "end nodes")?;
+        let end_hits = (0..n0).map(|_| r.u32("end nodes")).collect::<Result<Vec<u32>, _>>()?;
+        let state = config.params().state_length;
+        r.need((2 * state + 3) * 8, "normalisation")?;
+        let offset = (0..state).map(|_| r.f64("offset")).collect::<Result<Vec<f64>, _>>()?;
+        let scale = (0..state).map(|_| r.f64("scale")).collect::<Result<Vec<f64>, _>>()?;
+        let dl = [r.f64("lengths")?, r.f64("lengths")?, r.f64("lengths")?];
+        if r.remaining() != 8 {
+            return Err(r.corrupted(format!("{} unexpected bytes at the end", r.remaining() as i64 - 8)));
+        }
+        if fnv1a(body) != stored {
+            return Err(r.corrupted("checksum mismatch".into()));
+        }
+        build(config, maps, offset, scale, trained, hits, end_hits, qe, te, dl, path)
+    }
+
+    /// The plain-text form: a format line, the version, the configuration XML, then one line
+    /// per node and statistic, and a checksum line.
+    pub fn to_text(&self) -> String {
+        use std::fmt::Write;
+        let mut s = String::new();
+        let xml = self.config.to_xml();
+        let _ = writeln!(s, "{TEXT_MAGIC}");
+        let _ = writeln!(s, "version {FORMAT_VERSION}");
+        let _ = writeln!(s, "config {}", xml.lines().count());
+        for line in xml.lines() {
+            let _ = writeln!(s, "{line}");
+        }
+        let join = |v: &mut dyn Iterator<Item = String>| v.collect::<Vec<_>>().join(" ");
+        let _ = writeln!(s, "offset {}", join(&mut self.offset.iter().map(|v| v.to_string())));
+        let _ = writeln!(s, "scale {}", join(&mut self.scale.iter().map(|v| v.to_string())));
+        let _ = writeln!(s, "demo-lengths {}", join(&mut self.demo_len.iter().map(|v| v.to_string())));
+        let _ = writeln!(s, "end-nodes {}", join(&mut self.end_hits.iter().map(|v| v.to_string())));
+        for (l, m) in self.maps.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "level {l} rows {} cols {} dim {} trained {} qe {} te {}",
+                m.rows(),
+                m.cols(),
+                m.dim(),
+                self.trained[l],
+                self.qe[l],
+                self.te[l]
+            );
+            let _ = writeln!(s, "hits {}", join(&mut self.hits[l].iter().map(|v| v.to_string())));
+            for i in 0..m.len() {
+                let _ = writeln!(s, "node {}", join(&mut m.weights(i).iter().map(|v| v.to_string())));
+            }
+        }
+        let sum = fnv1a(s.as_bytes());
+        let _ = writeln!(s, "checksum {sum:016x}");
+        s
+    }
+
+    /// Read the plain-text form; `path` is only used in error messages.
+    pub fn from_text(text: &str, path: &Path) -> Result<Hsom, PersistError> {
+        let p = path.to_path_buf();
+        let corrupted = |what: String| PersistError::Corrupted {
+            path: p.clone(),
+            what,
+        };
+        let truncated = |what: &str| PersistError::Truncated {
+            path: p.clone(),
+            what: what.to_string(),
+        };
+        let mut lines = text.lines().enumerate();
+        match lines.next() {
+            Some((_, l)) if l.trim_end() == TEXT_MAGIC => {}
+            _ => return Err(PersistError::BadMagic { path: p.clone() }),
+        }
+        let version = match lines.next() {
+            None => return Err(truncated("version line")),
+            Some((_, l)) => l
+                .strip_prefix("version ")
+                .and_then(|v| v.trim().parse::<u32>().ok())
+                .ok_or_else(|| corrupted(format!("bad version line {l:?}")))?,
+        };
+        if version != FORMAT_VERSION {
+            return Err(PersistError::Version {
+                path: p.clone(),
+                found: version,
+                expected: FORMAT_VERSION,
+            });
+        }
+        // checksum over everything before the last line
+        let body_end = text.trim_end_matches('\n').rfind('\n').map(|i| i + 1).unwrap_or(0);
+        let last = text[body_end..].trim();
+        let stored = last
+            .strip_prefix("checksum ")
+            .and_then(|h| u64::from_str_radix(h.trim(), 16).ok())
+            .ok_or_else(|| truncated("checksum line missing"))?;
+        let total_lines = text.lines().count();
+        let mut next = |what: &str| lines.next().map(|(_, l)| l).ok_or_else(|| truncated(what));
+        let cl = next("config line")?;
+        let n: usize = cl
+            .strip_prefix("config ")
+            .and_then(|v| v.trim().parse().ok())
+            .ok_or_else(|| corrupted(format!("bad config line {cl:?}")))?;
+        if n > total_lines {
+            return Err(truncated("configuration"));
+        }
+        let mut xml = String::new();
+        for _ in 0..n {
+            xml.push_str(next("configuration")?);
+            xml.push('\n');
+        }
+        let config = parse_config(&xml, &format!("{} (embedded configuration)", path.display()))
+            .map_err(|e| corrupted(e.to_string()))?;
+        let shapes = shapes(&config);
+        let state = config.params().state_length;
+        fn values<T: std::str::FromStr>(
+            line: &str,
+            key: &str,
+            count: usize,
+            corrupted: &dyn Fn(String) -> PersistError,
+        ) -> Result<Vec<T>, PersistError> {
+            let rest = line
+                .strip_prefix(key)
+                .ok_or_else(|| corrupted(format!("expected a {key:?} line, found {:.40?}", line)))?;
+            let v: Vec<T> = rest
+                .split_whitespace()
+                .take(count + 1)
+                .map(|t| t.parse::<T>().map_err(|_| corrupted(format!("bad number {t:?} in {key:?} line"))))
+                .collect::<Result<_, _>>()?;
+            if v.len() != count {
+                return Err(corrupted(format!("{key:?} line has {} values, expected {count}", v.len())));
+            }
+            Ok(v)
+        }
+        let offset: Vec<f64> = values(next("offset")?, "offset ", state, &corrupted)?;
+        let scale: Vec<f64> = values(next("scale")?, "scale ", state, &corrupted)?;
+        let dl: Vec<f64> = values(next("demo-lengths")?, "demo-lengths ", 3, &corrupted)?;
+        let n0 = shapes[0].0 * shapes[0].1;
+        let end_hits: Vec<u32> = values(next("end-nodes")?, "end-nodes ", n0, &corrupted)?;
+        let mut maps = Vec::new();
+        let (mut trained, mut qe, mut te, mut hits) = (vec![], vec![], vec![], vec![]);
+        for (l, &(rows, cols, dim)) in shapes.iter().enumerate() {
+            let head = next("level line")?;
+            let t: Vec<&str> = head.split_whitespace().collect();
+            let expect = [
+                "level".to_string(),
+                l.to_string(),
+                "rows".into(),
+                rows.to_string(),
+                "cols".into(),
+                cols.to_string(),
+                "dim".into(),
+                dim.to_string(),
+                "trained".into(),
+            ];
+            if t.len() != 14 || t[..9].iter().zip(&expect).any(|(a, b)| a != b) || t[10] != "qe" || t[12] != "te" {
+                return Err(corrupted(format!(
+                    "level {l}: expected \"level {l} rows {rows} cols {cols} dim {dim} trained N qe Q te T\", found {head:.80?}"
+                )));
+            }
+            trained.push(t[9].parse().map_err(|_| corrupted(format!("bad trained count {:?}", t[9])))?);
+            qe.push(t[11].parse().map_err(|_| corrupted(format!("bad qe {:?}", t[11])))?);
+            te.push(t[13].parse().map_err(|_| corrupted(format!("bad te {:?}", t[13])))?);
+            hits.push(values::<u32>(next("hits")?, "hits ", rows * cols, &corrupted)?);
+            if rows * cols > total_lines {
+                return Err(truncated("nodes"));
+            }
+            let mut w = Vec::with_capacity(rows * cols * dim);
+            for _ in 0..rows * cols {
+                w.extend(values::<f64>(next("node")?, "node ", dim, &corrupted)?);
+            }
+            maps.push(
+                SelfOrganizingMap::from_weights(rows, cols, dim, config.params().levels[l].topology, w)
+                    .map_err(|e| corrupted(e.to_string()))?,
+            );
+        }
+        match next("checksum") {
+            Ok(l) if l.starts_with("checksum ") => {}
+            Ok(l) => return Err(corrupted(format!("unexpected line {l:.40?}"))),
+            Err(e) => return Err(e),
+        }
+        if fnv1a(text[..body_end].as_bytes()) != stored {
+            return Err(corrupted("checksum mismatch".into()));
+        }
+        build(config, maps, offset, scale, trained, hits, end_hits, qe, te, [dl[0], dl[1], dl[2]], path)
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn build(
+    config: HsomConfig,
+    maps: Vec<SelfOrganizingMap>,
+    offset: Vec<f64>,
+    scale: Vec<f64>,
+    trained: Vec<u64>,
+    hits: Vec<Vec<u32>>,
+    end_hits: Vec<u32>,
+    qe: Vec<f64>,
+    te: Vec<f64>,
+    demo_len: [f64; 3],
+    path: &Path,
+) -> Result<Hsom, PersistError> {
+    let finite = maps.iter().all(|m| m.all_weights().iter().all(|v| v.is_finite()))
+        && offset.iter().chain(&qe).chain(&te).chain(&demo_len).all(|v| v.is_finite())
+        && scale.iter().all(|v| v.is_finite() && *v > 0.0);
+    if !finite {
+        return Err(PersistError::Corrupted {
+            path: path.to_path_buf(),
+            what: "non-finite weight or statistic (or a non-positive scale)".into(),
+        });
+    }
+    Ok(Hsom {
+        config,
+        maps,
+        offset,
+        scale,
+        trained,
+        hits,
+        end_hits,
+        qe,
+        te,
+        demo_len,
+    })
+}
+
+enum Format {
+    Bin,
+    Txt,
+}
+
+fn ext(path: &Path) -> Result<Format, PersistError> {
+    match path.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase()) {
+        Some(e) if e == "bin" => Ok(Format::Bin),
+        Some(e) if e == "txt" => Ok(Format::Txt),
+        _ => Err(PersistError::UnknownExtension {
+            path: path.to_path_buf(),
+        }),
+    }
+}
+
+struct Reader<'a> {
+    b: &'a [u8],
+    pos: usize,
+    path: PathBuf,
+}
+
+impl<'a> Reader<'a> {
+    fn remaining(&self) -> usize {
+        self.b.len() - self.pos
+    }
+    fn truncated(&self, what: &str) -> PersistError {
+        PersistError::Truncated {
+            path: self.path.clone(),
+            what: what.to_string(),
+        }
+    }
+    fn corrupted(&self, what: String) -> PersistError {
+        PersistError::Corrupted {
+            path: self.path.clone(),
+            what,
+        }
+    }
+    /// Fail unless `n` bytes remain before the checksum.
+    fn need(&self, n: usize, what: &str) -> Result<(), PersistError> {
+        if self.remaining() < n.saturating_add(8) {
+            Err(self.truncated(what))
+        } else {
+            Ok(())
+        }
+    }
+    fn take(&mut self, n: usize, what: &str) -> Result<&'a [u8], PersistError> {
+        if self.remaining() < n {
+            return Err(self.truncated(what));
+        }
+        let b: &'a [u8] = self.b;
+        let s = &b[self.pos..self.pos + n];
+        self.pos += n;
+        Ok(s)
+    }
+    fn u32(&mut self, what: &str) -> Result<u32, PersistError> {
+        let s = self.take(4, what)?;
+        Ok(u32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+    }
+    fn u64(&mut self, what: &str) -> Result<u64, PersistError> {
+        let s = self.take(8, what)?;
+        let mut a = [0u8; 8];
+        a.copy_from_slice(s);
+        Ok(u64::from_le_bytes(a))
+    }
+    fn f64(&mut self, what: &str) -> Result<f64, PersistError> {
+        Ok(f64::from_bits(self.u64(what)?))
+    }
+}

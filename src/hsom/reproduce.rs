@@ -1,0 +1,406 @@
+//! Reproduction from an initial posture (paper III-C.2). See docs/ALGORITHM.md for every
+//! choice the paper leaves open.
+
+use crate::config::{IdDecoding, MemoryMode, ReproductionMode, ReproductionParams, StopRule};
+
+use super::algorithm::{input_dim, Hsom, Memory, Stm};
+use super::errors::HsomError;
+
+/// Why a reproduction ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopReason {
+    /// `maxLength` postures were produced.
+    MaxLength,
+    /// A bottom node on which training demonstrations ended was reached.
+    EndNode,
+    /// The posture stopped changing for `stationarySteps` steps.
+    Stationary,
+    /// `lengthFactor` times the longest demonstration was reached.
+    LearnedLength,
+}
+
+/// A reproduced gesture: postures (in the data's units) with their step index.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reproduction {
+    /// Step index of each posture (0 = the initial posture).
+    pub steps: Vec<usize>,
+    /// One posture per step, `stateLength` values each.
+    pub postures: Vec<Vec<f64>>,
+    /// Level whose prediction produced each posture (0 = the bottom level's reflex; the
+    /// initial posture counts as 0).
+    pub predicted_by: Vec<usize>,
+    /// Why it ended.
+    pub stop: StopReason,
+}
+
+struct Gen<'a> {
+    m: &'a Hsom,
+    r: &'a ReproductionParams,
+    stm: Stm,
+    s: u64,
+    out: Vec<Vec<f64>>,
+    by: Vec<usize>,
+    last_node: usize,
+    bufs: Vec<Vec<f64>>,
+    masks: Vec<Vec<bool>>,
+    min_len: usize,
+}
+
+impl Gen<'_> {
+    /// Turn a predicted (real-valued) ID into a node index of `level`.
+    fn decode(&self, level: usize, wx: f64, wy: f64) -> usize {
+        let map = &self.m.maps[level];
+        let (cols, rows) = (map.cols() as f64, map.rows() as f64);
+        let hits = &self.m.hits[level];
+        let any_used = hits.iter().any(|&h| h > 0);
+        let nearest_used = |x: f64, y: f64| -> usize {
+            let mut best = (0usize, f64::INFINITY);
+            for i in 0..map.len() {
+                if any_used && hits[i] == 0 {
+                    continue;
+                }
+                let (ix, iy) = map.id(i);
+                let d = (ix as f64 - x).powi(2) + (iy as f64 - y).powi(2);
+                if d < best.1 {
+                    best = (i, d);
+                }
+            }
+            best.0
+        };
+        let wx = if wx.is_finite() { wx } else { 0.0 };
+        let wy = if wy.is_finite() { wy } else { 0.0 };
+        let idx = match self.r.id_decoding {
+            IdDecoding::Nearest => return nearest_used(wx, wy),
+            IdDecoding::Round => {
+                let x = wx.round().clamp(0.0, cols - 1.0) as u16;
+                let y = wy.round().clamp(0.0, rows - 1.0) as u16;
+                map.index((x, y))
+            }
+            IdDecoding::Floor => {
+                let x = (wx + 1e-9).floor().clamp(0.0, cols - 1.0) as u16;
+                let y = (wy + 1e-9).floor().clamp(0.0, rows - 1.0) as u16;
+                map.index((x, y))
+            }
+        };
+        if self.r.unseen_fallback && any_used && hits[idx] == 0 {
+            nearest_used(wx, wy)
+        } else {
+            idx
+        }
+    }
+
+    /// Children of node `node` of `level` (>= 1) in the level below, oldest first.
+    fn children(&self, level: usize, node: usize) -> Vec<usize> {
+        let w = self.m.maps[level].weights(node);
+        match self.stm.mem {
+            Memory::Lists(_) => {
+                let slots = w.len() / 2;
+                (0..slots)
+                    .rev()
+                    .map(|k| self.decode(level - 1, w[2 * k], w[2 * k + 1]))
+                    .collect()
+            }
+            Memory::Levels(_) => {
+                let memory = self.stm.memory;
+                let thr = 0.5 / memory as f64;
+                let mut idx: Vec<usize> = (0..w.len()).filter(|&j| w[j] > thr).collect();
+                idx.sort_by(|&a, &b| w[b].total_cmp(&w[a]).then(a.cmp(&b)));
+                idx.truncate(memory);
+                if idx.is_empty() {
+                    let best = (0..w.len())
+                        .max_by(|&a, &b| w[a].total_cmp(&w[b]))
+                        .unwrap_or(0);
+                    idx.push(best);
+                }
+                idx.reverse();
+                idx
+            }
+        }
+    }
+
+    /// Depth-first expansion of a node of `level` into bottom nodes, oldest first. With
+    /// `strided`, every child after the first adds only the bottom steps it covers beyond its
+    /// predecessor (its newest updatePeriod^(level-1) steps). At most `cap` nodes.
+    fn expand(&self, level: usize, node: usize, strided: bool, cap: usize, out: &mut Vec<usize>) {
+        if level == 0 {
+            out.push(node);
+            return;
+        }
+        let period = self.m.config.period(level - 1) as usize;
+        for (i, c) in self.children(level, node).into_iter().enumerate() {
+            if out.len() >= cap {
+                return;
+            }
+            if strided && i > 0 {
+                let mut e = Vec::new();
+                self.expand(level - 1, c, strided, cap, &mut e);
+                let k = e.len().saturating_sub(period);
+                out.extend_from_slice(&e[k..]);
+            } else {
+                self.expand(level - 1, c, strided, cap, out);
+            }
+        }
+        out.truncate(cap);
+    }
+
+    /// Level `level` (>= 1) predicts the next entries of the memory of `level - 1`, oldest
+    /// first, or `None` when it has too little history or is confused.
+    fn predict(&mut self, level: usize) -> Option<Vec<usize>> {
+        let below = level - 1;
+        let n = self.stm.pushes[below];
+        if n < self.r.offset {
+            return None;
+        }
+        let memory = self.stm.memory;
+        if memory < 2 {
+            return None;
+        }
+        let map = &self.m.maps[level];
+        match &self.stm.mem {
+            Memory::Lists(lists) => {
+                let k = lists[below].len().min(memory - 1);
+                if k == 0 {
+                    return None;
+                }
+                let shift = memory - k;
+                let (x, mask) = (&mut self.bufs[level], &mut self.masks[level]);
+                lists[below].encode(k, shift, x, mask);
+                let (b, d2) = map.bmu_masked(x, mask);
+                let rms = (d2 / (2 * k) as f64).sqrt();
+                if self.r.confusion_threshold > 0.0 && rms > self.r.confusion_threshold {
+                    return None;
+                }
+                let w = map.weights(b);
+                let slots: Vec<usize> = match self.r.mode {
+                    ReproductionMode::Strided => vec![shift - 1],
+                    ReproductionMode::Literal => (0..shift).rev().collect(),
+                };
+                Some(
+                    slots
+                        .into_iter()
+                        .map(|s| self.decode(below, w[2 * s], w[2 * s + 1]))
+                        .collect(),
+                )
+            }
+            Memory::Levels(levels) => {
+                let a = levels[below].levels();
+                let dec = levels[below].decrement();
+                let x = &mut self.bufs[level];
+                for (xi, ai) in x.iter_mut().zip(a) {
+                    *xi = (ai - dec).max(0.0);
+                }
+                let (b, d2) = map.bmu(x);
+                let rms = (d2 / x.len() as f64).sqrt();
+                if self.r.confusion_threshold > 0.0 && rms > self.r.confusion_threshold {
+                    return None;
+                }
+                let w = map.weights(b);
+                let next = (0..w.len())
+                    .max_by(|&i, &j| (w[i] - x[i]).total_cmp(&(w[j] - x[j])).then(j.cmp(&i)))
+                    .unwrap_or(0);
+                Some(vec![next])
+            }
+        }
+    }
+
+    /// Execute bottom node `node`: its action half is the next posture; climb the schedule.
+    fn emit(
+        &mut self,
+        node: usize,
+        by: usize,
+        skip: Option<usize>,
+        pending: Option<(usize, usize)>,
+    ) {
+        let p = self.m.config.params();
+        let state = p.state_length;
+        let w = self.m.maps[0].weights(node);
+        let cur = self.out.last().cloned().unwrap_or_default();
+        let lambda = self.r.continuity;
+        let y: Vec<f64> = (0..state)
+            .map(|d| w[state + d] + lambda * (cur[d] - w[d]))
+            .collect();
+        let pushed = if self.r.closed_loop {
+            let x = &mut self.bufs[0];
+            x[..state].copy_from_slice(&cur);
+            x[state..].copy_from_slice(&y);
+            self.m.maps[0].bmu(x).0
+        } else {
+            node
+        };
+        self.stm.push(0, pushed, &self.m.maps[0]);
+        self.s += 1;
+        self.out.push(y);
+        self.by.push(by);
+        self.last_node = pushed;
+        for l in 1..p.height {
+            if let Some((pl, pn)) = pending {
+                if pl == l {
+                    self.stm.push(l, pn, &self.m.maps[l]);
+                    continue;
+                }
+            }
+            if skip == Some(l) || self.s % self.m.config.period(l) != 0 {
+                continue;
+            }
+            let (x, mask) = (&mut self.bufs[l], &mut self.masks[l]);
+            if !self.stm.input(l - 1, p.partial_training, x, mask) {
+                continue;
+            }
+            let full = mask.iter().all(|&m| m);
+            let (b, _) = if full {
+                self.m.maps[l].bmu(x)
+            } else {
+                self.m.maps[l].bmu_masked(x, mask)
+            };
+            self.stm.push(l, b, &self.m.maps[l]);
+        }
+    }
+
+    fn stop(&self) -> Option<StopReason> {
+        let t = self.out.len();
+        if t >= self.r.max_length {
+            return Some(StopReason::MaxLength);
+        }
+        if self.r.stop == StopRule::Learned && t >= self.min_len {
+            let state = self.m.config.params().state_length;
+            let y = &self.out[t - 1];
+            let (near, _) = self.m.maps[0].bmu_range(y, state..2 * state);
+            if self.m.end_hits[self.last_node] > 0 || self.m.end_hits[near] > 0 {
+                return Some(StopReason::EndNode);
+            }
+            let k = self.r.stationary_steps;
+            if t > k && self.out[t - k - 1..].windows(2).all(|w| w[0] == w[1]) {
+                return Some(StopReason::Stationary);
+            }
+            if t as f64 >= self.r.length_factor * self.m.demo_len[2] {
+                return Some(StopReason::LearnedLength);
+            }
+        }
+        None
+    }
+}
+
+impl Hsom {
+    /// Reproduce the learned gesture from `initial` (a posture of `stateLength` values, in the
+    /// data's units) with the configuration's reproduction settings.
+    pub fn reproduce(&self, initial: &[f64]) -> Result<Reproduction, HsomError> {
+        self.reproduce_with(initial, &self.config.params().reproduction)
+    }
+
+    /// Reproduce with other reproduction settings (validate them with
+    /// [`HsomConfig::with_reproduction`](crate::config::HsomConfig::with_reproduction) first;
+    /// out-of-range values are clamped here).
+    pub fn reproduce_with(
+        &self,
+        initial: &[f64],
+        r: &ReproductionParams,
+    ) -> Result<Reproduction, HsomError> {
+        let p = self.config.params();
+        let state = p.state_length;
+        if initial.len() != state {
+            return Err(HsomError::DimensionMismatch {
+                demo: "initial posture".into(),
+                row: 0,
+                expected: state,
+                found: initial.len(),
+            });
+        }
+        if let Some(c) = initial.iter().position(|v| !v.is_finite()) {
+            return Err(HsomError::NonFinite {
+                demo: "initial posture".into(),
+                row: 0,
+                column: c,
+            });
+        }
+        let mut r = r.clone();
+        r.offset = r.offset.clamp(1, p.memory);
+        r.max_length = r.max_length.max(1);
+        let y0: Vec<f64> = initial
+            .iter()
+            .enumerate()
+            .map(|(d, v)| (v - self.offset[d]) / self.scale[d])
+            .collect();
+        let mut g = Gen {
+            m: self,
+            r: &r,
+            stm: Stm::new(&self.config),
+            s: 0,
+            out: vec![y0],
+            by: vec![0],
+            last_node: 0,
+            bufs: (0..p.height)
+                .map(|l| vec![0.0; input_dim(&self.config, l)])
+                .collect(),
+            masks: (0..p.height)
+                .map(|l| vec![true; input_dim(&self.config, l)])
+                .collect(),
+            min_len: (r.min_length_fraction * self.demo_len[0]).ceil().max(2.0) as usize,
+        };
+        let strided = r.mode == ReproductionMode::Strided || p.memory_mode == MemoryMode::Levels;
+        let top = r.max_level.unwrap_or(p.height - 1).min(p.height - 1);
+        let reason = 'outer: loop {
+            if g.out.len() > 1 {
+                if let Some(reason) = g.stop() {
+                    break reason;
+                }
+            } else if r.max_length <= 1 {
+                break StopReason::MaxLength;
+            }
+            let mut done = false;
+            for l in (1..=top).rev() {
+                let period = self.config.period(l - 1);
+                if strided && g.s % period != 0 {
+                    continue;
+                }
+                let Some(preds) = g.predict(l) else { continue };
+                for pred in preds {
+                    let cap = r.max_length.saturating_sub(g.out.len()).max(1);
+                    let mut bottom = Vec::new();
+                    g.expand(
+                        l - 1,
+                        pred,
+                        strided,
+                        if strided { usize::MAX } else { cap },
+                        &mut bottom,
+                    );
+                    if strided {
+                        let k = bottom.len().saturating_sub(period as usize);
+                        bottom.drain(..k);
+                    }
+                    let n = bottom.len();
+                    for (j, node) in bottom.into_iter().enumerate() {
+                        let below = l - 1;
+                        let pending = (j + 1 == n && below >= 1).then_some((below, pred));
+                        g.emit(node, l, (below >= 1).then_some(below), pending);
+                        if let Some(reason) = g.stop() {
+                            break 'outer reason;
+                        }
+                    }
+                }
+                done = true;
+                break;
+            }
+            if !done {
+                let y = g.out.last().cloned().unwrap_or_default();
+                let (b, _) = self.maps[0].bmu_range(&y, 0..state);
+                g.emit(b, 0, None, None);
+            }
+        };
+        let postures: Vec<Vec<f64>> = g
+            .out
+            .iter()
+            .map(|y| {
+                y.iter()
+                    .enumerate()
+                    .map(|(d, v)| v * self.scale[d] + self.offset[d])
+                    .collect()
+            })
+            .collect();
+        Ok(Reproduction {
+            steps: (0..postures.len()).collect(),
+            postures,
+            predicted_by: g.by,
+            stop: reason,
+        })
+    }
+}

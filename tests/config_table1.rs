@@ -1,0 +1,341 @@
+//! The XML configuration: Table I, round trip, and one test per bad input.
+
+use std::path::Path;
+
+use cosco_hsom::config::{load_config, parse_config, ConfigError, HsomParams};
+use cosco_hsom::som::Topology;
+
+fn table1_text() -> String {
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/table1.xml"))
+        .unwrap()
+}
+
+#[test]
+fn table1_file_reproduces_the_paper_table() {
+    let c = load_config(&Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/table1.xml")).unwrap();
+    let p = c.params();
+    assert_eq!(
+        (p.height, p.memory, p.update_period, p.training_steps),
+        (6, 4, 2, 5000)
+    );
+    assert_eq!((p.state_length, p.action_length), (6, 6));
+    let expect = [(16, 0.1), (10, 0.2), (8, 0.3), (6, 0.5), (2, 0.6), (1, 0.8)];
+    for (l, &(n, a)) in p.levels.iter().zip(&expect) {
+        assert_eq!((l.rows, l.cols), (n, n));
+        assert_eq!(l.learning_factor.initial, a);
+        assert_eq!(l.topology, Topology::Orthogonal);
+    }
+    // the built-in Table I equals the file
+    assert_eq!(p, HsomParams::table1().check("x").unwrap().params());
+}
+
+#[test]
+fn to_xml_round_trips() {
+    let c = parse_config(&table1_text(), "table1.xml").unwrap();
+    let again = parse_config(&c.to_xml(), "again.xml").unwrap();
+    assert_eq!(c.params(), again.params());
+}
+
+fn err(text: &str) -> ConfigError {
+    parse_config(text, "bad.xml").unwrap_err()
+}
+
+fn replace(from: &str, to: &str) -> String {
+    let t = table1_text();
+    assert!(t.contains(from), "{from}");
+    t.replacen(from, to, 1)
+}
+
+fn assert_invalid(e: ConfigError, field: &str, value: &str) {
+    let msg = e.to_string();
+    match &e {
+        ConfigError::Invalid {
+            file,
+            field: f,
+            value: v,
+            ..
+        } => {
+            assert_eq!(file, "bad.xml");
+            assert_eq!(f, field, "{msg}");
+            assert_eq!(v, value, "{msg}");
+        }
+        other => panic!("expected Invalid for {field}, got {other:?}"),
+    }
+    assert!(
+        msg.contains("bad.xml") && msg.contains(field) && msg.contains(value),
+        "{msg}"
+    );
+}
+
+#[test]
+fn invalid_malformed_xml_reports_line_and_column() {
+    let e = err(&replace("<memory>4</memory>", "<memory>4</memroy>"));
+    match &e {
+        ConfigError::Malformed {
+            file, line, column, ..
+        } => {
+            assert_eq!(file, "bad.xml");
+            assert_eq!(*line, 8);
+            assert!(*column > 1);
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(e.to_string().starts_with("bad.xml:8:"), "{e}");
+    assert!(matches!(
+        err("<hsom><memory>4</memory>"),
+        ConfigError::Malformed { .. }
+    ));
+}
+
+#[test]
+fn invalid_unknown_element() {
+    let e = err(&replace(
+        "<memory>4</memory>",
+        "<memory>4</memory><colour>red</colour>",
+    ));
+    assert!(matches!(e, ConfigError::Schema { .. }), "{e:?}");
+    assert!(
+        e.to_string().contains("colour") && e.to_string().contains("bad.xml"),
+        "{e}"
+    );
+    let e = err(&replace(
+        "<rows>16</rows>",
+        "<rows>16</rows><depth>2</depth>",
+    ));
+    assert!(e.to_string().contains("depth"), "{e}");
+}
+
+#[test]
+fn invalid_missing_memory() {
+    let e = err(&replace("<memory>4</memory>", ""));
+    assert!(
+        matches!(&e, ConfigError::Missing { field, .. } if field == "memory"),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("bad.xml") && e.to_string().contains("memory"));
+}
+
+#[test]
+fn invalid_missing_level_rows() {
+    let e = err(&replace("<rows>16</rows>", ""));
+    assert!(
+        matches!(&e, ConfigError::Missing { field, .. } if field == "levels/level[0]/rows"),
+        "{e:?}"
+    );
+}
+
+#[test]
+fn invalid_memory_zero() {
+    assert_invalid(
+        err(&replace("<memory>4</memory>", "<memory>0</memory>")),
+        "memory",
+        "0",
+    );
+}
+
+#[test]
+fn invalid_memory_not_a_number() {
+    assert_invalid(
+        err(&replace("<memory>4</memory>", "<memory>four</memory>")),
+        "memory",
+        "four",
+    );
+}
+
+#[test]
+fn invalid_zero_size() {
+    assert_invalid(
+        err(&replace("<rows>16</rows>", "<rows>0</rows>")),
+        "levels/level[0]/rows",
+        "0",
+    );
+    assert_invalid(
+        err(&replace("<cols>10</cols>", "<cols>0</cols>")),
+        "levels/level[1]/cols",
+        "0",
+    );
+}
+
+#[test]
+fn invalid_offset_greater_than_memory() {
+    assert_invalid(
+        err(&replace("<offset>3</offset>", "<offset>5</offset>")),
+        "reproduction/offset",
+        "5",
+    );
+}
+
+#[test]
+fn invalid_offset_zero() {
+    assert_invalid(
+        err(&replace("<offset>3</offset>", "<offset>0</offset>")),
+        "reproduction/offset",
+        "0",
+    );
+}
+
+#[test]
+fn invalid_learning_factor_above_one() {
+    assert_invalid(
+        err(&replace(
+            "<learningFactor>0.8</learningFactor>",
+            "<learningFactor>1.5</learningFactor>",
+        )),
+        "levels/level[5]/learningFactor",
+        "1.5",
+    );
+}
+
+#[test]
+fn invalid_learning_factor_zero() {
+    assert_invalid(
+        err(&replace(
+            "<learningFactor>0.1</learningFactor>",
+            "<learningFactor>0</learningFactor>",
+        )),
+        "levels/level[0]/learningFactor",
+        "0",
+    );
+}
+
+#[test]
+fn invalid_learning_radius_negative() {
+    assert_invalid(
+        err(&replace(
+            "<learningRadius>8</learningRadius>",
+            "<learningRadius>-1</learningRadius>",
+        )),
+        "levels/level[0]/learningRadius",
+        "-1",
+    );
+}
+
+#[test]
+fn invalid_height_differs_from_level_count() {
+    assert_invalid(
+        err(&replace("<height>6</height>", "<height>5</height>")),
+        "height",
+        "5",
+    );
+}
+
+#[test]
+fn invalid_unknown_topology() {
+    assert_invalid(
+        err(&replace(
+            "<topology>orthogonal</topology>",
+            "<topology>toroidal</topology>",
+        )),
+        "levels/level[5]/topology",
+        "toroidal",
+    );
+}
+
+#[test]
+fn invalid_update_period_zero() {
+    assert_invalid(
+        err(&replace(
+            "<updatePeriod>2</updatePeriod>",
+            "<updatePeriod>0</updatePeriod>",
+        )),
+        "updatePeriod",
+        "0",
+    );
+}
+
+#[test]
+fn invalid_training_steps_zero() {
+    assert_invalid(
+        err(&replace(
+            "<trainingSteps>5000</trainingSteps>",
+            "<trainingSteps>0</trainingSteps>",
+        )),
+        "trainingSteps",
+        "0",
+    );
+}
+
+#[test]
+fn invalid_action_length_differs_from_state_length() {
+    assert_invalid(
+        err(&replace(
+            "<actionLength>6</actionLength>",
+            "<actionLength>3</actionLength>",
+        )),
+        "actionLength",
+        "3",
+    );
+}
+
+#[test]
+fn invalid_state_length_zero() {
+    assert_invalid(
+        err(&replace(
+            "<stateLength>6</stateLength>",
+            "<stateLength>0</stateLength>",
+        )),
+        "stateLength",
+        "0",
+    );
+}
+
+#[test]
+fn invalid_duplicate_level_index() {
+    assert_invalid(
+        err(&replace("<level index=\"4\">", "<level index=\"5\">")),
+        "levels/level[5]/@index",
+        "5",
+    );
+}
+
+#[test]
+fn invalid_id_decoding() {
+    assert_invalid(
+        err(&replace(
+            "<idDecoding>round</idDecoding>",
+            "<idDecoding>ceil</idDecoding>",
+        )),
+        "reproduction/idDecoding",
+        "ceil",
+    );
+}
+
+#[test]
+fn invalid_memory_mode() {
+    assert_invalid(
+        err(&replace(
+            "<memoryMode>lists</memoryMode>",
+            "<memoryMode>queue</memoryMode>",
+        )),
+        "memoryMode",
+        "queue",
+    );
+}
+
+#[test]
+fn invalid_max_length_zero() {
+    assert_invalid(
+        err(&replace(
+            "<maxLength>2000</maxLength>",
+            "<maxLength>0</maxLength>",
+        )),
+        "reproduction/maxLength",
+        "0",
+    );
+}
+
+#[test]
+fn invalid_seed() {
+    assert_invalid(
+        err(&replace("<seed>1</seed>", "<seed>-3</seed>")),
+        "seed",
+        "-3",
+    );
+}
+
+#[test]
+fn missing_file_is_an_io_error_naming_it() {
+    let e = load_config(Path::new("/nonexistent/cfg.xml")).unwrap_err();
+    assert!(matches!(e, ConfigError::Io { .. }));
+    assert!(e.to_string().contains("/nonexistent/cfg.xml"));
+}

@@ -1,0 +1,168 @@
+//! Synthetic demonstration families and a plain DTW distance, shared by the hsom tests.
+#![allow(dead_code)]
+
+use cosco_hsom::config::{HsomConfig, HsomParams};
+use cosco_hsom::demos::Demonstration;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+
+/// Mean Euclidean distance between aligned samples along the optimal DTW path.
+pub fn dtw(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
+    let (n, m) = (a.len(), b.len());
+    let inf = f64::INFINITY;
+    let mut cost = vec![inf; (n + 1) * (m + 1)];
+    let mut len = vec![0usize; (n + 1) * (m + 1)];
+    cost[0] = 0.0;
+    let at = |i: usize, j: usize| i * (m + 1) + j;
+    for i in 1..=n {
+        for j in 1..=m {
+            let d: f64 = a[i - 1]
+                .iter()
+                .zip(&b[j - 1])
+                .map(|(x, y)| (x - y) * (x - y))
+                .sum::<f64>()
+                .sqrt();
+            let cands = [
+                (cost[at(i - 1, j - 1)], len[at(i - 1, j - 1)]),
+                (cost[at(i - 1, j)], len[at(i - 1, j)]),
+                (cost[at(i, j - 1)], len[at(i, j - 1)]),
+            ];
+            let best = cands
+                .iter()
+                .cloned()
+                .fold((inf, 0), |acc, c| if c.0 < acc.0 { c } else { acc });
+            cost[at(i, j)] = best.0 + d;
+            len[at(i, j)] = best.1 + 1;
+        }
+    }
+    cost[at(n, m)] / len[at(n, m)] as f64
+}
+
+/// Diagonal of the bounding box of all demonstrations (the scale for relative errors).
+pub fn diagonal(demos: &[Demonstration]) -> f64 {
+    let d = demos[0].rows[0].len();
+    let mut lo = vec![f64::INFINITY; d];
+    let mut hi = vec![f64::NEG_INFINITY; d];
+    for r in demos.iter().flat_map(|x| &x.rows) {
+        for k in 0..d {
+            lo[k] = lo[k].min(r[k]);
+            hi[k] = hi[k].max(r[k]);
+        }
+    }
+    lo.iter()
+        .zip(&hi)
+        .map(|(a, b)| (b - a) * (b - a))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Mean DTW distance from `rep` to the demonstrations, relative to their bounding-box diagonal.
+pub fn relative_dtw(rep: &[Vec<f64>], demos: &[Demonstration]) -> f64 {
+    demos.iter().map(|d| dtw(rep, &d.rows)).sum::<f64>() / demos.len() as f64 / diagonal(demos)
+}
+
+fn demo(name: String, cols: usize, rows: Vec<Vec<f64>>) -> Demonstration {
+    Demonstration {
+        source: name,
+        columns: (0..cols).map(|i| format!("x{i}")).collect(),
+        time: None,
+        rows,
+    }
+}
+
+/// Monotone time warp of [0, 1]: u = t + a sin(pi t) sin(...) with |a| small.
+fn warp(t: f64, a: f64) -> f64 {
+    (t + a * (std::f64::consts::PI * t).sin() / std::f64::consts::PI).clamp(0.0, 1.0)
+}
+
+/// 2-D figure eight in pixel-like units (centre 300, 200; half-width 80), `k` demonstrations
+/// of 150..250 samples with timing variation and noise.
+pub fn figure_eight(k: usize, seed: u64) -> Vec<Demonstration> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let noise = Normal::new(0.0, 0.8).unwrap();
+    (0..k)
+        .map(|i| {
+            let n = rng.gen_range(150..250);
+            let a = rng.gen_range(-0.4..0.4);
+            let rows = (0..n)
+                .map(|j| {
+                    let u = warp(j as f64 / (n - 1) as f64, a) * 2.0 * std::f64::consts::PI;
+                    vec![
+                        300.0 + 80.0 * u.sin() + noise.sample(&mut rng),
+                        200.0 + 40.0 * (2.0 * u).sin() + noise.sample(&mut rng),
+                    ]
+                })
+                .collect();
+            demo(format!("eight{i}"), 2, rows)
+        })
+        .collect()
+}
+
+/// 2-D letter-like open stroke (a cursive "l e"-like curve with a loop), in millimetres.
+pub fn stroke(k: usize, seed: u64) -> Vec<Demonstration> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let noise = Normal::new(0.0, 0.15).unwrap();
+    (0..k)
+        .map(|i| {
+            let n = rng.gen_range(120..220);
+            let a = rng.gen_range(-0.4..0.4);
+            let rows = (0..n)
+                .map(|j| {
+                    let u = warp(j as f64 / (n - 1) as f64, a);
+                    let th = 3.0 * std::f64::consts::PI * u;
+                    vec![
+                        40.0 * u + 6.0 * th.sin() + noise.sample(&mut rng),
+                        10.0 * (1.0 - th.cos()) * (1.0 - 0.5 * u) + noise.sample(&mut rng),
+                    ]
+                })
+                .collect();
+            demo(format!("stroke{i}"), 2, rows)
+        })
+        .collect()
+}
+
+/// 6-D joint gesture in radians (raise an arm and come back, as in the paper's task: the
+/// initial and final postures are equal), idle start and end of random length, 150..300 samples.
+pub fn joints6(k: usize, seed: u64) -> Vec<Demonstration> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let noise = Normal::new(0.0, 0.004).unwrap();
+    let rest = [1.4, 0.2, -1.2, -0.5, 0.0, 0.3];
+    let peak = [-0.3, 0.6, -0.4, -1.4, 1.2, 0.3];
+    (0..k)
+        .map(|i| {
+            let idle0 = rng.gen_range(10..40);
+            let idle1 = rng.gen_range(10..40);
+            let m = rng.gen_range(120..200);
+            let a = rng.gen_range(-0.3..0.3);
+            let mut rows = Vec::new();
+            for _ in 0..idle0 {
+                rows.push(rest.iter().map(|v| v + noise.sample(&mut rng)).collect());
+            }
+            for j in 0..m {
+                let u = warp(j as f64 / (m - 1) as f64, a);
+                // up with a hold-ish shape, then down, joints slightly out of phase
+                let row = (0..6)
+                    .map(|d| {
+                        let ph = (u - 0.04 * d as f64).clamp(0.0, 1.0);
+                        let s = (std::f64::consts::PI * ph).sin().powf(1.5);
+                        rest[d] + (peak[d] - rest[d]) * s + noise.sample(&mut rng)
+                    })
+                    .collect();
+                rows.push(row);
+            }
+            for _ in 0..idle1 {
+                rows.push(rest.iter().map(|v| v + noise.sample(&mut rng)).collect());
+            }
+            demo(format!("joints{i}"), 6, rows)
+        })
+        .collect()
+}
+
+/// Table I with the state length of the data.
+pub fn table1_for(dims: usize) -> HsomConfig {
+    let mut p = HsomParams::table1();
+    p.state_length = dims;
+    p.action_length = dims;
+    p.check("table1").unwrap()
+}

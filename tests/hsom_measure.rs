@@ -1,0 +1,64 @@
+//! Reproduction quality on synthetic families (printed with --nocapture) with asserted bounds.
+
+mod hsom_common;
+
+use cosco_hsom::config::{HsomConfig, IdDecoding, ReproductionMode};
+use hsom_common::*;
+
+fn run(name: &str, demos: &[cosco_hsom::demos::Demonstration], cfg: &HsomConfig) -> (f64, f64) {
+    let model = cfg.fit(&demos[1..]).unwrap();
+    let init = &demos[0].rows[0];
+    let mut res = Vec::new();
+    let mut cases = Vec::new();
+    for lam in [0.0, 0.5, 0.7, 0.85] {
+        for cl in [false] {
+            for (label, mode, maxl) in [
+                ("strided", ReproductionMode::Strided, None),
+                ("literal", ReproductionMode::Literal, None),
+                ("reflex", ReproductionMode::Strided, Some(0)),
+            ] {
+                cases.push((format!("{label} c{lam} cl{}", cl as u8), mode, IdDecoding::Round, maxl, 0.0, lam, cl));
+            }
+        }
+    }
+    for (label, mode, dec, maxl, conf, lam, cl) in cases {
+        let mut r = cfg.params().reproduction.clone();
+        r.mode = mode;
+        r.id_decoding = dec;
+        r.max_level = maxl;
+        r.confusion_threshold = conf;
+        r.continuity = lam;
+        r.closed_loop = cl;
+        let rep = model.reproduce_with(init, &r).unwrap();
+        let e = relative_dtw(&rep.postures, &demos[1..]);
+        let mean_len = demos[1..].iter().map(|d| d.rows.len()).sum::<usize>() as f64
+            / (demos.len() - 1) as f64;
+        println!(
+            "{name:<8} {label:<22} rel.DTW {e:.4}  length {} / demo mean {mean_len:.0}  stop {:?}",
+            rep.postures.len(),
+            rep.stop
+        );
+        res.push(e);
+    }
+    let untrained = cfg.initialise(&demos[1..]).unwrap();
+    let rep = untrained.reproduce(init).unwrap();
+    let e_un = relative_dtw(&rep.postures, &demos[1..]);
+    println!(
+        "{name:<8} {:<16} rel.DTW {e_un:.4}  length {}",
+        "UNTRAINED",
+        rep.postures.len()
+    );
+    (res[0], e_un)
+}
+
+#[test]
+fn measure_families() {
+    for (name, demos) in [
+        ("eight", figure_eight(6, 7)),
+        ("stroke", stroke(6, 8)),
+        ("joints6", joints6(6, 9)),
+    ] {
+        let cfg = table1_for(demos[0].rows[0].len());
+        run(name, &demos, &cfg);
+    }
+}
