@@ -3,8 +3,12 @@
 //! simulated arm, and measure how faithful the reproduction is.
 
 pub mod demonstrate;
+pub mod execute;
+pub mod film;
 
 pub use demonstrate::{joint_limits, record_demonstrations, DemoSettings};
+pub use execute::execute_postures;
+pub use film::film;
 
 /// Errors of the experiment pipeline.
 #[derive(Debug, thiserror::Error)]
@@ -16,4 +20,7 @@ pub enum ExperimentError {
     /// The simulator refused something.
     #[error(transparent)]
     Sim(#[from] crate::sim::SimError),
+    /// Rendering failed.
+    #[error(transparent)]
+    Render(#[from] crate::render::RenderError),
 }
