@@ -364,12 +364,14 @@ impl<'m> Renderer<'m> {
 
 impl Drop for Renderer<'_> {
     fn drop(&mut self) {
-        // mjr_freeContext deletes GL objects of the *current* context: make ours current
-        // first. If that fails the GL objects die with the OSMesa context anyway; only the
-        // CPU-side buffers are freed then.
-        let _ = self.gl.make_current();
-        // Safety: `con` was made by gpu_context and is freed once, on its own GL context.
-        unsafe { ffi::mjr_freeContext(&mut *self.con) }
+        // mjr_freeContext deletes GL objects by name on the *current* context: make ours
+        // current first. If that fails, another renderer's context may be current, whose
+        // objects must not be deleted: skip it. The GL objects die with the OSMesa context
+        // below; only the small skin-buffer name arrays of a model with skins would leak.
+        if self.gl.make_current().is_ok() {
+            // Safety: `con` was made by gpu_context and is freed once, on its own GL context.
+            unsafe { ffi::mjr_freeContext(&mut *self.con) }
+        }
         // Then the fields drop: the scene (mjv_freeScene), and last the OSMesa context.
     }
 }
