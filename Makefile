@@ -35,7 +35,7 @@ bench: deps
 bindings:
 	@dpkg-query -W -f='$${Status}' libclang-dev 2>/dev/null | grep -q "install ok installed" || \
 	  ($(SUDO) apt-get update && $(SUDO) apt-get install -y libclang-dev)
-	$(CARGO) build --features regen-bindings
+	CARGO=$(CARGO) scripts/regen-bindings.sh
 
 fmt:
 	$(CARGO) fmt --all

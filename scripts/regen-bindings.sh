@@ -3,6 +3,9 @@
 # Needs libclang-dev (`make bindings` installs it when missing). The output is committed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo build --lib --features regen-bindings
-cargo fmt -- src/mujoco/ffi.rs 2>/dev/null || rustfmt --edition 2021 src/mujoco/ffi.rs
+CARGO="${CARGO:-cargo}"
+# build.rs re-runs only when build.rs or wrapper.h changed: touch the header to force it
+touch src/mujoco/wrapper.h
+"$CARGO" build --lib --features regen-bindings
+rustfmt --edition 2021 src/mujoco/ffi.rs
 echo "src/mujoco/ffi.rs regenerated; review with: git diff --stat src/mujoco/ffi.rs"

@@ -310,3 +310,66 @@ fn loading_in_parallel_with_errors_keeps_errors_apart() {
         }
     });
 }
+
+/// Twenty boxes falling on a floor with a MuJoCo stack large enough to compile (no contact
+/// at rest) but far too small once contacts pile up.
+fn tiny_stack_xml() -> String {
+    let mut bodies = String::new();
+    for i in 0..20 {
+        let (x, z) = ((i % 5) as f64 * 0.2, 0.1 + 0.15 * (i / 5) as f64);
+        bodies += &format!(
+            r#"<body pos="{x} 0 {z}"><freejoint/><geom type="box" size="0.05 0.05 0.05"/></body>"#
+        );
+    }
+    format!(
+        r#"<mujoco><size nstack="2000"/><worldbody><geom type="plane" size="5 5 0.1"/>{bodies}</worldbody></mujoco>"#
+    )
+}
+
+/// MuJoCo 2.2 goes on after a stack overflow when the error hook returns, writing past the
+/// stack: the hook aborts the process instead, with MuJoCo's message, and no log file.
+#[test]
+fn stack_overflow_aborts_with_mujocos_message_and_no_log_file() {
+    const CHILD: &str = "COSCO_HSOM_STACK_OVERFLOW_CHILD";
+    if std::env::var_os(CHILD).is_some() {
+        let m = Model::from_xml_str(&tiny_stack_xml()).unwrap();
+        let mut d = Data::new(&m).unwrap();
+        let mut outcome = Ok(());
+        for _ in 0..500 {
+            outcome = d.step();
+        }
+        // Not reached when the hook aborts; say so on stdout for the parent to see.
+        println!("CHILD RETURNED: {outcome:?}");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = std::process::Command::new(std::env::current_exe().unwrap())
+        .args([
+            "--exact",
+            "stack_overflow_aborts_with_mujocos_message_and_no_log_file",
+            "--nocapture",
+            "--test-threads=1",
+        ])
+        .env(CHILD, "1")
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !stdout.contains("CHILD RETURNED"),
+        "the step returned: {stdout}"
+    );
+    use std::os::unix::process::ExitStatusExt;
+    assert_eq!(
+        out.status.signal(),
+        Some(6),
+        "SIGABRT expected; status {:?}, stderr {stderr}",
+        out.status
+    );
+    assert!(
+        stderr.contains("Stack overflow") && stderr.contains("nstack"),
+        "{stderr}"
+    );
+    assert!(!dir.path().join("MUJOCO_LOG.TXT").exists());
+}

@@ -340,3 +340,33 @@ fn png_gif_and_contact_sheet_are_written() {
     let err = r.render_to_png(&d, &bad).unwrap_err();
     assert!(err.to_string().contains("missing"), "{err}");
 }
+
+#[test]
+fn nao_arm_renders_from_its_cameras_and_postures_differ() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("models/nao_left_arm.xml");
+    let m = Model::from_xml_path(&path).unwrap();
+    #[allow(clippy::approx_constant)] // the Stand keyframe, not log2(e)
+    let stand = [1.4426, 0.2245, -1.2023, -0.4173, 0.1, 0.3];
+    let zero = [0.0, 0.0087, 0.0, -0.0349066, 0.0, 0.0];
+    let pose = |q: &[f64; 6]| {
+        let mut d = Data::new(&m).unwrap();
+        d.qpos_mut().copy_from_slice(q);
+        d.forward().unwrap();
+        d
+    };
+    for camera in ["front", "side"] {
+        let mut r = Renderer::new(
+            &m,
+            RenderOptions {
+                camera: Some(camera.into()),
+                ..opts(240, 180)
+            },
+        )
+        .unwrap();
+        let a = r.render(&pose(&stand)).unwrap();
+        let b = r.render(&pose(&zero)).unwrap();
+        assert!(variance(&a) > 100.0, "{camera}: variance {}", variance(&a));
+        let diff = changed_fraction(&a, &b);
+        assert!(diff > 0.01, "{camera}: postures differ by {diff}");
+    }
+}

@@ -74,12 +74,12 @@ unsafe extern "C" fn on_warning(msg: *const c_char) {
     });
 }
 
-/// Install the hooks (process-wide). Called once from `check_version` and after each model
-/// load, because MuJoCo's compiler swaps the hooks while it runs.
+/// Install the hooks (process-wide). Called once, from `check_version`.
 pub(crate) fn install() {
-    // Safety: the hooks are plain global function pointers of libmujoco. Writes happen under
-    // the load lock (or once, before any model exists), and the functions installed are
-    // `extern "C"`, never unwind, and stay valid for the life of the process.
+    // Safety: the hooks are plain global function pointers of libmujoco, written once (inside
+    // a OnceLock initialiser, before any model or state exists, so no MuJoCo call reads them
+    // concurrently); the functions installed are `extern "C"`, never unwind, and stay valid
+    // for the life of the process.
     unsafe {
         ffi::mju_user_error = Some(on_error);
         ffi::mju_user_warning = Some(on_warning);

@@ -218,6 +218,7 @@ impl<'m> Data<'m> {
         call: unsafe extern "C" fn(*const ffi::mjModel, *mut ffi::mjData),
     ) -> Result<()> {
         self.check_poison()?;
+        callbacks::clear();
         let time = self.time();
         let before = self.warning_counts();
         // Safety: `call` is mj_step or mj_forward; model and data are valid and belong

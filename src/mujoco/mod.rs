@@ -29,9 +29,10 @@
 //!   allocation failure. Aborting is the only sound option without `setjmp`/`longjmp`.
 //!   Size the stack with `<size nstack="..."/>` in the MJCF.
 //!
-//! Loading a model installs MuJoCo's own compiler hooks for the duration of the call (MuJoCo
-//! 2.2 swaps the global pointers without a lock), so loads are serialised by a process-wide
-//! lock and our hooks are re-installed after each load.
+//! MuJoCo 2.2.2 checks a *thread-local* hook before the global one (`mju_error` in the
+//! library: thread-local handler, else `mju_user_error`, else log file + `exit`). Its XML
+//! compiler uses the thread-local slot to turn errors into its error buffer, so loading a
+//! model in one thread does not divert the hooks of threads that are stepping.
 
 pub mod ffi;
 

@@ -4,16 +4,11 @@ use super::{callbacks, check_version, ffi, MjError, Result};
 use std::ffi::{c_char, c_int, CStr, CString};
 use std::path::Path;
 use std::ptr::NonNull;
-use std::sync::Mutex;
 
 /// Size of the buffer MuJoCo writes a load error into.
 const ERROR_BUF: usize = 1000;
 /// Name under which an XML string is put into MuJoCo's virtual file system.
 const VFS_NAME: &str = "cosco_hsom_model.xml";
-
-/// MuJoCo 2.2's compiler swaps the global error hooks while it runs, without a lock: loads are
-/// serialised so two threads never interleave the swap, and our hooks are put back after each.
-static LOAD_LOCK: Mutex<()> = Mutex::new(());
 
 /// A compiled MuJoCo model (`mjModel`), freed with `mj_deleteModel` on drop.
 ///
@@ -168,15 +163,14 @@ impl Model {
     fn load(file: &CStr, vfs: Option<&Vfs>, shown: String) -> Result<Model> {
         let mut err = [0 as c_char; ERROR_BUF];
         let vfs_ptr = vfs.map_or(std::ptr::null(), |v| &*v.0 as *const ffi::mjVFS);
-        let guard = LOAD_LOCK.lock().unwrap_or_else(|p| p.into_inner());
         callbacks::clear();
         // Safety: `file` is NUL-terminated, `vfs_ptr` is null or a valid VFS that outlives the
         // call, `err` is a writable buffer of the size given.
         let raw = unsafe {
             ffi::mj_loadXML(file.as_ptr(), vfs_ptr, err.as_mut_ptr(), ERROR_BUF as c_int)
         };
-        callbacks::install();
-        drop(guard);
+        // MuJoCo's compiler reports through its own thread-local hooks (which take precedence
+        // over ours on this thread during the call) into `err`; ours only see engine errors.
         let hook_error = callbacks::take_error();
         // Safety: MuJoCo writes a NUL-terminated message into `err`, which was zeroed and
         // whose last byte it never overwrites.

@@ -232,7 +232,7 @@ impl<'m> Renderer<'m> {
             }
         }
 
-        let con = gpu_context(model, multisample)?;
+        let con = gpu_context(model, width, height, multisample)?;
         let mut renderer = Renderer {
             model,
             scene,
@@ -278,7 +278,7 @@ impl<'m> Renderer<'m> {
             return Ok(());
         }
         self.gl.make_current()?;
-        let con = gpu_context(self.model, on)?;
+        let con = gpu_context(self.model, self.width, self.height, on)?;
         let old = std::mem::replace(&mut self.con, con);
         free_gpu_context(old);
         // The new context is current after mjr_makeContext; nothing else refers to the old.
@@ -364,23 +364,36 @@ impl<'m> Renderer<'m> {
 
 impl Drop for Renderer<'_> {
     fn drop(&mut self) {
-        // mjr_freeContext deletes GL objects of the *current* context: make ours current
-        // first. If that fails the GL objects die with the OSMesa context anyway; only the
-        // CPU-side buffers are freed then.
-        let _ = self.gl.make_current();
-        // Safety: `con` was made by gpu_context and is freed once, on its own GL context.
-        unsafe { ffi::mjr_freeContext(&mut *self.con) }
+        // mjr_freeContext deletes GL objects by name on the *current* context: make ours
+        // current first. If that fails, another renderer's context may be current, whose
+        // objects must not be deleted: skip it. The GL objects die with the OSMesa context
+        // below; only the small skin-buffer name arrays of a model with skins would leak.
+        if self.gl.make_current().is_ok() {
+            // Safety: `con` was made by gpu_context and is freed once, on its own GL context.
+            unsafe { ffi::mjr_freeContext(&mut *self.con) }
+        }
         // Then the fields drop: the scene (mjv_freeScene), and last the OSMesa context.
     }
 }
 
 /// Make MuJoCo's GPU context for `model` on the current GL context, off-screen buffer
 /// selected, with or without multisampling, and with a shadow map.
-fn gpu_context(model: &Model, multisample: bool) -> Result<Box<ffi::mjrContext>> {
+///
+/// The off-screen framebuffer is made exactly `width` x `height` (already checked against the
+/// model's `offwidth` x `offheight`): llvmpipe clears and resolves the whole framebuffer every
+/// frame, so a 1280x960 buffer for a 320x240 image would cost several times the render.
+fn gpu_context(
+    model: &Model,
+    width: usize,
+    height: usize,
+    multisample: bool,
+) -> Result<Box<ffi::mjrContext>> {
     // Safety: mjModel is a plain C struct (bindgen derives Copy); the shallow copy shares the
     // model's arrays, is only read by mjr_makeContext while `model` is borrowed, and is never
-    // freed. Only its visual settings are changed, to choose samples and shadow size.
+    // freed. Only its visual settings are changed: buffer size, samples and shadow size.
     let mut vis_model: ffi::mjModel = unsafe { *model.as_ptr() };
+    vis_model.vis.global.offwidth = width as c_int;
+    vis_model.vis.global.offheight = height as c_int;
     let quality = &mut vis_model.vis.quality;
     quality.offsamples = match (multisample, quality.offsamples) {
         (false, _) => 0,
