@@ -27,11 +27,19 @@ fn message(msg: *const c_char) -> String {
 /// Errors after which MuJoCo 2.2 goes on with memory it does not have: `mj_stackAlloc` hands
 /// out the overflowing block anyway, and the allocators return NULL to callers that then use
 /// it. Returning from the hook would let MuJoCo write out of bounds, so for these the process
-/// stops, as Rust itself does on stack overflow or allocation failure.
-const FATAL: [&str; 2] = ["Stack overflow", "Could not allocate"];
-
+/// stops, as Rust itself does on stack overflow or allocation failure. Failures to allocate
+/// OpenGL objects (framebuffers, display lists) only lead to further GL calls on invalid names,
+/// which OpenGL ignores: those stay recoverable errors.
 fn is_fatal(text: &str) -> bool {
-    FATAL.iter().any(|f| text.contains(f))
+    const GL_OBJECTS: [&str; 4] = [
+        "offscreen",
+        "display lists",
+        "auxiliary",
+        "shadow framebuffer",
+    ];
+    let lower = text.to_ascii_lowercase();
+    lower.contains("stack overflow")
+        || (lower.contains("could not allocate") && !GL_OBJECTS.iter().any(|g| lower.contains(g)))
 }
 
 /// The `mju_user_error` hook. Must not unwind: `try_with` and `try_borrow_mut` never panic,
@@ -128,6 +136,8 @@ mod tests {
     fn fatal_messages_are_recognised() {
         assert!(is_fatal("Stack overflow: max = 1000"));
         assert!(is_fatal("Could not allocate mjData buffer"));
+        assert!(is_fatal("mj_makeEmptyFileVFS: could not allocate memory"));
+        assert!(!is_fatal("Could not allocate offscreen framebuffer"));
         assert!(!is_fatal("Pre-allocated contact buffer is full"));
     }
 }

@@ -87,12 +87,13 @@ impl<'m> Data<'m> {
         self.model
     }
 
-    #[allow(dead_code)] // used by crate::render
+    /// The raw pointer, for the rendering layer.
     pub(crate) fn as_ptr(&self) -> *const ffi::mjData {
         self.ptr.as_ptr()
     }
 
-    #[allow(dead_code)] // used by crate::render
+    /// The raw pointer for MuJoCo calls that write the state.
+    #[allow(dead_code)] // part of the layer's crate-internal API; no caller yet
     pub(crate) fn as_mut_ptr(&mut self) -> *mut ffi::mjData {
         self.ptr.as_ptr()
     }

@@ -24,7 +24,7 @@
 //!   error is marked *poisoned*: it refuses to step or forward until [`Data::reset`];
 //! - two kinds cannot be survived: "Stack overflow" (`mj_stackAlloc` hands out the overflowing
 //!   block anyway, so MuJoCo writes past the `mjData` stack) and "Could not allocate" (the
-//!   allocators return NULL to callers that use it). For these the hook prints MuJoCo's
+//!   allocators return NULL to callers that use it; GL objects excepted). For these the hook prints MuJoCo's
 //!   message to stderr and aborts the process, as Rust itself does on stack overflow or
 //!   allocation failure. Aborting is the only sound option without `setjmp`/`longjmp`.
 //!   Size the stack with `<size nstack="..."/>` in the MJCF.
@@ -35,7 +35,7 @@
 
 pub mod ffi;
 
-mod callbacks;
+pub(crate) mod callbacks;
 mod data;
 mod error;
 mod model;

@@ -1,0 +1,259 @@
+//! [`Clip`]: frames collected during a simulation, written as an animated GIF and a PNG
+//! contact sheet of key frames.
+
+use super::{font, save_png, RenderError, Result};
+use image::codecs::gif::{GifEncoder, Repeat};
+use image::{Delay, Frame, RgbImage};
+use std::path::Path;
+
+/// Frames of one simulation, with the simulation time of each.
+#[derive(Debug, Clone)]
+pub struct Clip {
+    frames: Vec<(f64, RgbImage)>,
+    delay_ms: u32,
+}
+
+impl Clip {
+    /// An empty clip whose GIF shows each frame for `delay_ms` milliseconds (at least 10:
+    /// GIF counts delays in hundredths of a second and viewers clamp shorter ones).
+    pub fn new(delay_ms: u32) -> Result<Clip> {
+        if delay_ms < 10 {
+            return Err(RenderError::Invalid {
+                field: "GIF frame delay",
+                value: format!("{delay_ms} ms"),
+                why: "must be at least 10 ms",
+            });
+        }
+        Ok(Clip {
+            frames: Vec::new(),
+            delay_ms,
+        })
+    }
+
+    /// Add a frame taken at simulation time `time` (seconds). All frames must have the size
+    /// of the first.
+    pub fn push(&mut self, time: f64, frame: RgbImage) -> Result<()> {
+        if let Some((_, first)) = self.frames.first() {
+            if first.dimensions() != frame.dimensions() {
+                return Err(RenderError::FrameSize {
+                    index: self.frames.len(),
+                    got: frame.dimensions(),
+                    expected: first.dimensions(),
+                });
+            }
+        }
+        self.frames.push((time, frame));
+        Ok(())
+    }
+
+    /// Number of frames.
+    pub fn len(&self) -> usize {
+        self.frames.len()
+    }
+
+    /// Whether the clip has no frame.
+    pub fn is_empty(&self) -> bool {
+        self.frames.is_empty()
+    }
+
+    /// Frame delay of the GIF in milliseconds.
+    pub fn delay_ms(&self) -> u32 {
+        self.delay_ms
+    }
+
+    /// The frames and their times.
+    pub fn frames(&self) -> impl Iterator<Item = (f64, &RgbImage)> {
+        self.frames.iter().map(|(t, f)| (*t, f))
+    }
+
+    /// Encode the clip as an animated GIF (looping forever).
+    pub fn gif_bytes(&self) -> Result<Vec<u8>> {
+        if self.frames.is_empty() {
+            return Err(RenderError::NoFrames("GIF"));
+        }
+        let enc = |source| RenderError::Encode {
+            what: "GIF",
+            source,
+        };
+        let mut bytes = Vec::new();
+        {
+            // speed 10: image's default trade-off between quantisation quality and time
+            let mut encoder = GifEncoder::new_with_speed(&mut bytes, 10);
+            encoder.set_repeat(Repeat::Infinite).map_err(enc)?;
+            let delay = Delay::from_numer_denom_ms(self.delay_ms, 1);
+            for (_, frame) in &self.frames {
+                let rgba = image::DynamicImage::ImageRgb8(frame.clone()).into_rgba8();
+                encoder
+                    .encode_frame(Frame::from_parts(rgba, 0, 0, delay))
+                    .map_err(enc)?;
+            }
+        }
+        Ok(bytes)
+    }
+
+    /// Write the clip as an animated GIF at `path`, atomically.
+    pub fn write_gif(&self, path: &Path) -> Result<()> {
+        let bytes = self.gif_bytes()?;
+        crate::fsutil::write_atomic(path, &bytes).map_err(|source| RenderError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+
+    /// Indices of `n` frames evenly spaced from the first to the last.
+    pub fn key_frames(&self, n: usize) -> Vec<usize> {
+        let len = self.frames.len();
+        if len == 0 || n == 0 {
+            return Vec::new();
+        }
+        let n = n.min(len);
+        if n == 1 {
+            return vec![0];
+        }
+        (0..n)
+            .map(|i| (i * (len - 1) + (n - 1) / 2) / (n - 1))
+            .collect()
+    }
+
+    /// A contact sheet of `n` evenly spaced key frames in a grid of `columns` columns,
+    /// optionally labelled with their simulation time.
+    pub fn contact_sheet(&self, n: usize, columns: usize, labels: bool) -> Result<RgbImage> {
+        if self.frames.is_empty() {
+            return Err(RenderError::NoFrames("contact sheet"));
+        }
+        let picked: Vec<(Option<String>, &RgbImage)> = self
+            .key_frames(n)
+            .into_iter()
+            .map(|i| {
+                let (t, f) = &self.frames[i];
+                (labels.then(|| format!("t={t:.2}s")), f)
+            })
+            .collect();
+        contact_sheet(&picked, columns)
+    }
+
+    /// Write the contact sheet (see [`Clip::contact_sheet`]) as a PNG at `path`, atomically.
+    pub fn write_contact_sheet(
+        &self,
+        path: &Path,
+        n: usize,
+        columns: usize,
+        labels: bool,
+    ) -> Result<()> {
+        let sheet = self.contact_sheet(n, columns, labels)?;
+        save_png(&sheet, path)
+    }
+}
+
+/// Lay `frames` (all the same size) out in a grid of `columns` columns with a 4-pixel white
+/// gutter, each with an optional label in its top-left corner.
+pub fn contact_sheet(frames: &[(Option<String>, &RgbImage)], columns: usize) -> Result<RgbImage> {
+    const GUTTER: u32 = 4;
+    if columns == 0 {
+        return Err(RenderError::Invalid {
+            field: "contact sheet columns",
+            value: "0".into(),
+            why: "must be at least 1",
+        });
+    }
+    let Some((_, first)) = frames.first() else {
+        return Err(RenderError::NoFrames("contact sheet"));
+    };
+    let (w, h) = first.dimensions();
+    for (index, (_, f)) in frames.iter().enumerate() {
+        if f.dimensions() != (w, h) {
+            return Err(RenderError::FrameSize {
+                index,
+                got: f.dimensions(),
+                expected: (w, h),
+            });
+        }
+    }
+    let cols = columns.min(frames.len()) as u32;
+    let rows = frames.len().div_ceil(columns) as u32;
+    let mut sheet = RgbImage::from_pixel(
+        cols * w + (cols + 1) * GUTTER,
+        rows * h + (rows + 1) * GUTTER,
+        image::Rgb([255, 255, 255]),
+    );
+    let scale = (h / 120).max(1);
+    for (i, (label, frame)) in frames.iter().enumerate() {
+        let (c, r) = (i as u32 % cols, i as u32 / cols);
+        let (x, y) = (GUTTER + c * (w + GUTTER), GUTTER + r * (h + GUTTER));
+        image::imageops::replace(&mut sheet, *frame, x as i64, y as i64);
+        if let Some(text) = label {
+            font::draw_label(&mut sheet, x + 2, y + 2, scale, text);
+        }
+    }
+    Ok(sheet)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn solid(v: u8) -> RgbImage {
+        RgbImage::from_pixel(8, 6, image::Rgb([v, v, v]))
+    }
+
+    #[test]
+    fn key_frames_are_evenly_spaced_and_include_both_ends() {
+        let mut clip = Clip::new(40).unwrap();
+        for i in 0..11 {
+            clip.push(i as f64, solid(i as u8)).unwrap();
+        }
+        assert_eq!(clip.key_frames(3), vec![0, 5, 10]);
+        assert_eq!(clip.key_frames(1), vec![0]);
+        assert_eq!(clip.key_frames(50).len(), 11);
+        assert_eq!(clip.key_frames(0), Vec::<usize>::new());
+    }
+
+    #[test]
+    fn contact_sheet_places_frames_in_a_grid() {
+        let mut clip = Clip::new(40).unwrap();
+        for i in 0..5 {
+            clip.push(i as f64, solid(40 * i as u8)).unwrap();
+        }
+        let sheet = clip.contact_sheet(5, 3, false).unwrap();
+        assert_eq!(sheet.dimensions(), (3 * 8 + 4 * 4, 2 * 6 + 3 * 4));
+        // frame 4 (value 160) is at row 1, column 1
+        assert_eq!(sheet.get_pixel(4 + 12 + 1, 4 + 10 + 1).0, [160, 160, 160]);
+        // gutter is white
+        assert_eq!(sheet.get_pixel(0, 0).0, [255, 255, 255]);
+    }
+
+    #[test]
+    fn gif_has_one_frame_per_pushed_frame() {
+        let mut clip = Clip::new(50).unwrap();
+        for i in 0..3 {
+            clip.push(i as f64, solid(80 * i as u8)).unwrap();
+        }
+        let bytes = clip.gif_bytes().unwrap();
+        assert_eq!(&bytes[..6], b"GIF89a");
+        use image::AnimationDecoder;
+        let dec = image::codecs::gif::GifDecoder::new(std::io::Cursor::new(bytes)).unwrap();
+        let frames = dec.into_frames().collect_frames().unwrap();
+        assert_eq!(frames.len(), 3);
+        let (num, den) = frames[1].delay().numer_denom_ms();
+        assert_eq!(num / den, 50);
+    }
+
+    #[test]
+    fn bad_inputs_are_errors() {
+        assert!(matches!(Clip::new(0), Err(RenderError::Invalid { .. })));
+        let clip = Clip::new(40).unwrap();
+        assert!(matches!(clip.gif_bytes(), Err(RenderError::NoFrames(_))));
+        assert!(matches!(
+            clip.contact_sheet(3, 2, true),
+            Err(RenderError::NoFrames(_))
+        ));
+        let mut clip = Clip::new(40).unwrap();
+        clip.push(0.0, solid(0)).unwrap();
+        let err = clip.push(0.1, RgbImage::new(4, 4)).unwrap_err();
+        assert!(matches!(err, RenderError::FrameSize { index: 1, .. }));
+        assert!(matches!(
+            clip.contact_sheet(1, 0, false),
+            Err(RenderError::Invalid { .. })
+        ));
+    }
+}

@@ -1,0 +1,91 @@
+//! A 3x5 pixel font for labels on contact sheets (digits, a few letters and signs), so that
+//! no font file or text-rendering crate is needed.
+
+use image::{Rgb, RgbImage};
+
+/// Rows of a glyph, 3 bits each, most significant bit on the left.
+fn glyph(c: char) -> Option<[u8; 5]> {
+    Some(match c {
+        '0' => [0b111, 0b101, 0b101, 0b101, 0b111],
+        '1' => [0b010, 0b110, 0b010, 0b010, 0b111],
+        '2' => [0b111, 0b001, 0b111, 0b100, 0b111],
+        '3' => [0b111, 0b001, 0b111, 0b001, 0b111],
+        '4' => [0b101, 0b101, 0b111, 0b001, 0b001],
+        '5' => [0b111, 0b100, 0b111, 0b001, 0b111],
+        '6' => [0b111, 0b100, 0b111, 0b101, 0b111],
+        '7' => [0b111, 0b001, 0b010, 0b010, 0b010],
+        '8' => [0b111, 0b101, 0b111, 0b101, 0b111],
+        '9' => [0b111, 0b101, 0b111, 0b001, 0b111],
+        '.' => [0b000, 0b000, 0b000, 0b000, 0b010],
+        '-' => [0b000, 0b000, 0b111, 0b000, 0b000],
+        '=' => [0b000, 0b111, 0b000, 0b111, 0b000],
+        ':' => [0b000, 0b010, 0b000, 0b010, 0b000],
+        '#' => [0b101, 0b111, 0b101, 0b111, 0b101],
+        's' => [0b000, 0b111, 0b110, 0b011, 0b111],
+        't' => [0b010, 0b111, 0b010, 0b010, 0b011],
+        ' ' => [0; 5],
+        _ => return None,
+    })
+}
+
+/// Draw `text` with its top-left corner at (`x`, `y`), each font pixel a `scale`x`scale`
+/// square, on a dark box for contrast. Unknown characters are drawn as blanks; pixels outside
+/// the image are skipped.
+pub(crate) fn draw_label(img: &mut RgbImage, x: u32, y: u32, scale: u32, text: &str) {
+    let n = text.chars().count() as u32;
+    let (box_w, box_h) = ((4 * n + 1) * scale, 7 * scale);
+    fill(img, x, y, box_w, box_h, Rgb([20, 20, 20]));
+    for (i, c) in text.chars().enumerate() {
+        let rows = glyph(c).unwrap_or([0; 5]);
+        let gx = x + (1 + 4 * i as u32) * scale;
+        for (r, bits) in rows.iter().enumerate() {
+            for col in 0..3 {
+                if bits & (0b100 >> col) != 0 {
+                    fill(
+                        img,
+                        gx + col * scale,
+                        y + (1 + r as u32) * scale,
+                        scale,
+                        scale,
+                        Rgb([255, 255, 255]),
+                    );
+                }
+            }
+        }
+    }
+}
+
+fn fill(img: &mut RgbImage, x: u32, y: u32, w: u32, h: u32, color: Rgb<u8>) {
+    for yy in y..(y + h).min(img.height()) {
+        for xx in x..(x + w).min(img.width()) {
+            img.put_pixel(xx, yy, color);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn label_draws_white_pixels_inside_its_box_only() {
+        let mut img = RgbImage::new(40, 20);
+        draw_label(&mut img, 2, 3, 1, "1.5s");
+        let white = img.pixels().filter(|p| p.0 == [255, 255, 255]).count();
+        assert!(white > 5);
+        for (x, y, p) in img.enumerate_pixels() {
+            if p.0 != [0, 0, 0] {
+                assert!(
+                    (2..2 + 17).contains(&x) && (3..3 + 7).contains(&y),
+                    "pixel at {x},{y}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn label_past_the_edge_does_not_panic() {
+        let mut img = RgbImage::new(8, 8);
+        draw_label(&mut img, 6, 6, 3, "12.25 s");
+    }
+}
