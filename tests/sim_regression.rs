@@ -642,6 +642,31 @@ fn follow_replays_one_target_per_tick() {
         assert!(max_abs_diff(got, want) < 1e-12);
     }
     assert!(max_abs_diff(&sim.posture(), &b) < 3e-3);
+    // StandInit -> Stand in 79 ticks: LElbowRoll moves 0.5927 rad in 1.975 s
+    let f = traj.peak_velocity_fractions();
+    assert!(
+        (f[3] - (1.01 - 0.4173) / (79.0 / 40.0) / 7.19407).abs() < 1e-9,
+        "{f:?}"
+    );
+    // as a demonstration for the learner
+    let demo = rec.to_demonstration("follow");
+    assert_eq!(demo.columns, JOINT_NAMES);
+    assert_eq!(demo.rows, rec.qpos);
+    assert_eq!(demo.time.as_deref(), Some(&rec.time[..]));
+}
+
+#[test]
+fn reset_to_restarts_time_at_a_posture() {
+    let arm = arm();
+    let ctl = controller(ControllerConfig::default());
+    let mut sim = arm.sim().unwrap();
+    ctl.hold(&mut sim, 0.5).unwrap();
+    assert!(sim.time() > 0.49);
+    sim.reset_to(&NamedPosture::Crouch.angles()).unwrap();
+    assert_eq!(sim.time(), 0.0);
+    assert_eq!(sim.posture(), NamedPosture::Crouch.angles());
+    assert_eq!(sim.velocities(), [0.0; 6]);
+    assert!(sim.reset_to(&[0.0; 6]).is_err()); // LElbowRoll 0 is beyond its limit
 }
 
 // ---------- loading ----------

@@ -258,6 +258,13 @@ impl<'a> ArmSim<'a> {
         self.data.time()
     }
 
+    /// Reset the simulation (time 0, MuJoCo's data cleared) and teleport to a posture (checked).
+    pub fn reset_to(&mut self, posture: &[f64]) -> Result<()> {
+        let p = check_posture(posture)?;
+        self.data.reset();
+        self.teleport(p)
+    }
+
     /// Teleport to a posture (checked): joint positions set, velocities zeroed, servo targets set
     /// to the posture, kinematics recomputed. Time is not reset.
     pub fn set_posture(&mut self, posture: &[f64]) -> Result<()> {

@@ -144,6 +144,20 @@ impl TargetTrajectory {
         Ok(self)
     }
 
+    /// Peak velocity of the piecewise-linear targets of each joint as a fraction of the joint's
+    /// maximum velocity ([`JOINT_NAMES`](super::JOINT_NAMES) order). Values above 1 mean the
+    /// servos cannot follow exactly (the controller still runs; the torque limits decide).
+    pub fn peak_velocity_fractions(&self) -> Posture {
+        let mut peak = [0.0f64; NJ];
+        for (w, t) in self.targets.windows(2).zip(self.times.windows(2)) {
+            for k in 0..NJ {
+                let v = (w[1][k] - w[0][k]).abs() / (t[1] - t[0]) / JOINT_SPECS[k].max_velocity;
+                peak[k] = peak[k].max(v);
+            }
+        }
+        peak
+    }
+
     /// Total duration, s.
     pub fn duration(&self) -> f64 {
         self.duration
