@@ -165,9 +165,13 @@ pub fn euclidean(x: &[f64], y: &[f64]) -> f64 {
         .sqrt()
 }
 
+/// Columns `lo..hi` of row `i` inside the band (all `0..m` without one).
 #[inline]
-fn in_band(i: usize, j: usize, w: Option<usize>) -> bool {
-    w.map_or(true, |w| i.abs_diff(j) <= w)
+fn band_columns(i: usize, m: usize, w: Option<usize>) -> (usize, usize) {
+    match w {
+        None => (0, m),
+        Some(w) => (i.saturating_sub(w), (i + w + 1).min(m)),
+    }
 }
 
 /// Choose the predecessor of cell (i, j) among diagonal, up (i−1, j), left (i, j−1):
@@ -196,11 +200,9 @@ pub fn dtw_distance<R: AsRef<[f64]>>(a: &[R], b: &[R], band: Band) -> Result<Dtw
     let mut cur = vec![INF; m];
     for (i, ai) in a.iter().enumerate() {
         let ai = ai.as_ref();
-        for (j, bj) in b.iter().enumerate() {
-            if !in_band(i, j, w) {
-                cur[j] = INF;
-                continue;
-            }
+        let (lo, hi) = band_columns(i, m, w);
+        cur.fill(INF);
+        for (j, bj) in b.iter().enumerate().take(hi).skip(lo) {
             let c = euclidean(ai, bj.as_ref());
             if i == 0 && j == 0 {
                 cur[j] = (c, 1);
@@ -227,10 +229,8 @@ pub fn dtw<R: AsRef<[f64]>>(a: &[R], b: &[R], band: Band) -> Result<Alignment, D
     let mut dir = vec![0u8; n * m];
     for (i, ai) in a.iter().enumerate() {
         let ai = ai.as_ref();
-        for (j, bj) in b.iter().enumerate() {
-            if !in_band(i, j, w) {
-                continue;
-            }
+        let (lo, hi) = band_columns(i, m, w);
+        for (j, bj) in b.iter().enumerate().take(hi).skip(lo) {
             let c = euclidean(ai, bj.as_ref());
             let k = i * m + j;
             if i == 0 && j == 0 {

@@ -290,3 +290,37 @@ fn bad_queries_are_errors() {
     assert_eq!(r.len(), 101);
     assert!((r.last().unwrap().time - 2.5).abs() < 1e-12);
 }
+
+mod properties {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(16))]
+
+        #[test]
+        fn save_load_identity_and_psd_conditional_covariance(
+            seed in 0u64..1000,
+            k in 1usize..4,
+            t in -1.0f64..4.0,
+        ) {
+            let pts = linear_points(60, seed);
+            let (gmm, _) = GmrParams::new()
+                .components(ComponentChoice::Fixed(k))
+                .seed(seed)
+                .check()
+                .unwrap()
+                .fit_gmm(&pts)
+                .unwrap();
+            let model = GmrModel::new(vec!["a".into(), "b".into()], 3.0, gmm).unwrap();
+            let text = model_to_string(&model).unwrap();
+            let back = model_from_str("p.txt", &text).unwrap();
+            prop_assert_eq!(&back, &model);
+            let p = model.predict(t).unwrap();
+            let c = DMatrix::from_fn(2, 2, |i, j| p.covariance[i][j]);
+            prop_assert!((c[(0, 1)] - c[(1, 0)]).abs() < 1e-12);
+            let eig = c.symmetric_eigen().eigenvalues;
+            prop_assert!(eig.iter().all(|&e| e > -1e-12), "{:?}", eig);
+        }
+    }
+}

@@ -309,3 +309,45 @@ fn invalid_band() {
 fn valid_defaults_pass() {
     assert!(GmrParams::new().check().is_ok());
 }
+
+#[test]
+fn six_joints_with_two_unused_fit_with_default_bic() {
+    // the Nao arm: wrist yaw and hand never move in the reading-watch gesture
+    let six = |idle: usize, len: usize, idle_end: usize| -> Demonstration {
+        let rows = gesture(idle, len, idle_end)
+            .into_iter()
+            .map(|q| vec![q[0], q[1], -1.2 + 0.5 * q[1], -0.5 - q[1], 0.0, 0.3])
+            .collect();
+        Demonstration {
+            source: format!("six{idle}"),
+            columns: [
+                "LShoulderPitch",
+                "LShoulderRoll",
+                "LElbowYaw",
+                "LElbowRoll",
+                "LWristYaw",
+                "LHand",
+            ]
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+            time: None,
+            rows,
+        }
+    };
+    let demos = vec![six(30, 120, 10), six(5, 140, 40), six(60, 100, 0)];
+    let (model, set, scores) = GmrParams::new()
+        .check()
+        .unwrap()
+        .fit_with_details(&demos)
+        .unwrap();
+    assert_eq!(scores.len(), 8);
+    assert!(model.gmm().n_components() >= 2, "{scores:?}");
+    assert_eq!(set.points()[0].len(), 7);
+    let rep = model.reproduce(0.025).unwrap();
+    for p in &rep {
+        assert!((p.mean[4] - 0.0).abs() < 1e-6 && (p.mean[5] - 0.3).abs() < 1e-6);
+    }
+    let min_pitch = rep.iter().map(|p| p.mean[0]).fold(f64::MAX, f64::min);
+    assert!((min_pitch - 0.3).abs() < 0.1, "apex pitch {min_pitch}");
+}

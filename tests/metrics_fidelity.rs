@@ -322,3 +322,18 @@ fn bad_inputs_are_clear_errors() {
         ));
     }
 }
+
+#[test]
+fn demonstrations_convert_to_trajectories() {
+    let d = cosco_hsom::demos::Demonstration {
+        source: "d".into(),
+        columns: vec!["a".into(), "b".into(), "c".into()],
+        time: None,
+        rows: gesture(5, 60, 5, 1.0),
+    };
+    let t = Trajectory::from(&d);
+    assert_eq!(t.joints, d.rows);
+    assert!(t.wrist.is_none());
+    let r = fidelity(std::slice::from_ref(&t), &t, &MetricsParams::default()).unwrap();
+    assert_eq!(r.joint_dtw_rad_per_step.worst, 0.0);
+}

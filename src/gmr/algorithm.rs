@@ -289,9 +289,9 @@ impl GmrValidParams {
     }
 
     /// Fit the mixture to `points` with the configured component choice: a fixed count, or
-    /// the lowest BIC over a range (counts whose fit fails are recorded and skipped; an
-    /// error only when every count fails, the last error then). Returns the model and the
-    /// score of every count tried.
+    /// the lowest BIC over a range (counts above the number of points are not tried; counts
+    /// whose fit fails are recorded and skipped; an error only when every count fails, the
+    /// last error then). Returns the model and the score of every count tried.
     pub fn fit_gmm(&self, points: &[Vec<f64>]) -> Result<(Gmm, Vec<BicScore>), GmrError> {
         let (lo, hi) = match self.params().get_components() {
             ComponentChoice::Fixed(k) => (k, k),

@@ -19,6 +19,14 @@ pub struct Trajectory {
     pub wrist: Option<Vec<[f64; 3]>>,
 }
 
+impl From<&crate::demos::Demonstration> for Trajectory {
+    /// The demonstration's rows as joint positions, without wrist positions (its `time`
+    /// column is not used: metrics assume the fixed `MetricsParams::sample_period`).
+    fn from(d: &crate::demos::Demonstration) -> Self {
+        Trajectory::from_joints(d.rows.clone())
+    }
+}
+
 impl Trajectory {
     /// A trajectory without wrist positions.
     pub fn from_joints(joints: Vec<Vec<f64>>) -> Self {
