@@ -142,18 +142,26 @@ impl Hsom {
             });
         }
         let xml = r.take(xml_len as usize, "configuration")?;
-        let xml = std::str::from_utf8(xml).map_err(|_| r.corrupted("configuration is not UTF-8".into()))?;
+        let xml = std::str::from_utf8(xml)
+            .map_err(|_| r.corrupted("configuration is not UTF-8".into()))?;
         let config = parse_config(xml, &format!("{} (embedded configuration)", path.display()))
             .map_err(|e| r.corrupted(e.to_string()))?;
         let shapes = shapes(&config);
         let height = r.u32("height")? as usize;
         if height != shapes.len() {
-            return Err(r.corrupted(format!("{height} levels, the configuration has {}", shapes.len())));
+            return Err(r.corrupted(format!(
+                "{height} levels, the configuration has {}",
+                shapes.len()
+            )));
         }
         let mut maps = Vec::new();
         let (mut trained, mut qe, mut te, mut hits) = (vec![], vec![], vec![], vec![]);
         for (l, &(rows, cols, dim)) in shapes.iter().enumerate() {
-            let got = (r.u32("rows")? as usize, r.u32("cols")? as usize, r.u32("dim")? as usize);
+            let got = (
+                r.u32("rows")? as usize,
+                r.u32("cols")? as usize,
+                r.u32("dim")? as usize,
+            );
             if got != (rows, cols, dim) {
                 return Err(r.corrupted(format!(
                     "level {l} is {}x{} of dimension {}, the configuration says {rows}x{cols} of dimension {dim}",
@@ -167,27 +175,48 @@ impl Hsom {
             r.need(n * 8, "weights")?;
             let w: Vec<f64> = (0..n).map(|_| r.f64("weights")).collect::<Result<_, _>>()?;
             r.need(rows * cols * 4, "hits")?;
-            hits.push((0..rows * cols).map(|_| r.u32("hits")).collect::<Result<Vec<u32>, _>>()?);
+            hits.push(
+                (0..rows * cols)
+                    .map(|_| r.u32("hits"))
+                    .collect::<Result<Vec<u32>, _>>()?,
+            );
             maps.push(
-                SelfOrganizingMap::from_weights(rows, cols, dim, config.params().levels[l].topology, w)
-                    .map_err(|e| r.corrupted(e.to_string()))?,
+                SelfOrganizingMap::from_weights(
+                    rows,
+                    cols,
+                    dim,
+                    config.params().levels[l].topology,
+                    w,
+                )
+                .map_err(|e| r.corrupted(e.to_string()))?,
             );
         }
         let n0 = shapes[0].0 * shapes[0].1;
         r.need(n0 * 4, "end nodes")?;
-        let end_hits = (0..n0).map(|_| r.u32("end nodes")).collect::<Result<Vec<u32>, _>>()?;
+        let end_hits = (0..n0)
+            .map(|_| r.u32("end nodes"))
+            .collect::<Result<Vec<u32>, _>>()?;
         let state = config.params().state_length;
         r.need((2 * state + 3) * 8, "normalisation")?;
-        let offset = (0..state).map(|_| r.f64("offset")).collect::<Result<Vec<f64>, _>>()?;
-        let scale = (0..state).map(|_| r.f64("scale")).collect::<Result<Vec<f64>, _>>()?;
+        let offset = (0..state)
+            .map(|_| r.f64("offset"))
+            .collect::<Result<Vec<f64>, _>>()?;
+        let scale = (0..state)
+            .map(|_| r.f64("scale"))
+            .collect::<Result<Vec<f64>, _>>()?;
         let dl = [r.f64("lengths")?, r.f64("lengths")?, r.f64("lengths")?];
         if r.remaining() != 8 {
-            return Err(r.corrupted(format!("{} unexpected bytes at the end", r.remaining() as i64 - 8)));
+            return Err(r.corrupted(format!(
+                "{} unexpected bytes at the end",
+                r.remaining() as i64 - 8
+            )));
         }
         if fnv1a(body) != stored {
             return Err(r.corrupted("checksum mismatch".into()));
         }
-        build(config, maps, offset, scale, trained, hits, end_hits, qe, te, dl, path)
+        build(
+            config, maps, offset, scale, trained, hits, end_hits, qe, te, dl, path,
+        )
     }
 
     /// The plain-text form: a format line, the version, the configuration XML, then one line
@@ -203,10 +232,26 @@ impl Hsom {
             let _ = writeln!(s, "{line}");
         }
         let join = |v: &mut dyn Iterator<Item = String>| v.collect::<Vec<_>>().join(" ");
-        let _ = writeln!(s, "offset {}", join(&mut self.offset.iter().map(|v| v.to_string())));
-        let _ = writeln!(s, "scale {}", join(&mut self.scale.iter().map(|v| v.to_string())));
-        let _ = writeln!(s, "demo-lengths {}", join(&mut self.demo_len.iter().map(|v| v.to_string())));
-        let _ = writeln!(s, "end-nodes {}", join(&mut self.end_hits.iter().map(|v| v.to_string())));
+        let _ = writeln!(
+            s,
+            "offset {}",
+            join(&mut self.offset.iter().map(|v| v.to_string()))
+        );
+        let _ = writeln!(
+            s,
+            "scale {}",
+            join(&mut self.scale.iter().map(|v| v.to_string()))
+        );
+        let _ = writeln!(
+            s,
+            "demo-lengths {}",
+            join(&mut self.demo_len.iter().map(|v| v.to_string()))
+        );
+        let _ = writeln!(
+            s,
+            "end-nodes {}",
+            join(&mut self.end_hits.iter().map(|v| v.to_string()))
+        );
         for (l, m) in self.maps.iter().enumerate() {
             let _ = writeln!(
                 s,
@@ -218,9 +263,17 @@ impl Hsom {
                 self.qe[l],
                 self.te[l]
             );
-            let _ = writeln!(s, "hits {}", join(&mut self.hits[l].iter().map(|v| v.to_string())));
+            let _ = writeln!(
+                s,
+                "hits {}",
+                join(&mut self.hits[l].iter().map(|v| v.to_string()))
+            );
             for i in 0..m.len() {
-                let _ = writeln!(s, "node {}", join(&mut m.weights(i).iter().map(|v| v.to_string())));
+                let _ = writeln!(
+                    s,
+                    "node {}",
+                    join(&mut m.weights(i).iter().map(|v| v.to_string()))
+                );
             }
         }
         let sum = fnv1a(s.as_bytes());
@@ -259,7 +312,11 @@ impl Hsom {
             });
         }
         // checksum over everything before the last line
-        let body_end = text.trim_end_matches('\n').rfind('\n').map(|i| i + 1).unwrap_or(0);
+        let body_end = text
+            .trim_end_matches('\n')
+            .rfind('\n')
+            .map(|i| i + 1)
+            .unwrap_or(0);
         let last = text[body_end..].trim();
         let stored = last
             .strip_prefix("checksum ")
@@ -280,8 +337,11 @@ impl Hsom {
             xml.push_str(next("configuration")?);
             xml.push('\n');
         }
-        let config = parse_config(&xml, &format!("{} (embedded configuration)", path.display()))
-            .map_err(|e| corrupted(e.to_string()))?;
+        let config = parse_config(
+            &xml,
+            &format!("{} (embedded configuration)", path.display()),
+        )
+        .map_err(|e| corrupted(e.to_string()))?;
         let shapes = shapes(&config);
         let state = config.params().state_length;
         fn values<T: std::str::FromStr>(
@@ -290,16 +350,22 @@ impl Hsom {
             count: usize,
             corrupted: &dyn Fn(String) -> PersistError,
         ) -> Result<Vec<T>, PersistError> {
-            let rest = line
-                .strip_prefix(key)
-                .ok_or_else(|| corrupted(format!("expected a {key:?} line, found {:.40?}", line)))?;
+            let rest = line.strip_prefix(key).ok_or_else(|| {
+                corrupted(format!("expected a {key:?} line, found {:.40?}", line))
+            })?;
             let v: Vec<T> = rest
                 .split_whitespace()
                 .take(count + 1)
-                .map(|t| t.parse::<T>().map_err(|_| corrupted(format!("bad number {t:?} in {key:?} line"))))
+                .map(|t| {
+                    t.parse::<T>()
+                        .map_err(|_| corrupted(format!("bad number {t:?} in {key:?} line")))
+                })
                 .collect::<Result<_, _>>()?;
             if v.len() != count {
-                return Err(corrupted(format!("{key:?} line has {} values, expected {count}", v.len())));
+                return Err(corrupted(format!(
+                    "{key:?} line has {} values, expected {count}",
+                    v.len()
+                )));
             }
             Ok(v)
         }
@@ -324,15 +390,35 @@ impl Hsom {
                 dim.to_string(),
                 "trained".into(),
             ];
-            if t.len() != 14 || t[..9].iter().zip(&expect).any(|(a, b)| a != b) || t[10] != "qe" || t[12] != "te" {
+            if t.len() != 14
+                || t[..9].iter().zip(&expect).any(|(a, b)| a != b)
+                || t[10] != "qe"
+                || t[12] != "te"
+            {
                 return Err(corrupted(format!(
                     "level {l}: expected \"level {l} rows {rows} cols {cols} dim {dim} trained N qe Q te T\", found {head:.80?}"
                 )));
             }
-            trained.push(t[9].parse().map_err(|_| corrupted(format!("bad trained count {:?}", t[9])))?);
-            qe.push(t[11].parse().map_err(|_| corrupted(format!("bad qe {:?}", t[11])))?);
-            te.push(t[13].parse().map_err(|_| corrupted(format!("bad te {:?}", t[13])))?);
-            hits.push(values::<u32>(next("hits")?, "hits ", rows * cols, &corrupted)?);
+            trained.push(
+                t[9].parse()
+                    .map_err(|_| corrupted(format!("bad trained count {:?}", t[9])))?,
+            );
+            qe.push(
+                t[11]
+                    .parse()
+                    .map_err(|_| corrupted(format!("bad qe {:?}", t[11])))?,
+            );
+            te.push(
+                t[13]
+                    .parse()
+                    .map_err(|_| corrupted(format!("bad te {:?}", t[13])))?,
+            );
+            hits.push(values::<u32>(
+                next("hits")?,
+                "hits ",
+                rows * cols,
+                &corrupted,
+            )?);
             if rows * cols > total_lines {
                 return Err(truncated("nodes"));
             }
@@ -341,8 +427,14 @@ impl Hsom {
                 w.extend(values::<f64>(next("node")?, "node ", dim, &corrupted)?);
             }
             maps.push(
-                SelfOrganizingMap::from_weights(rows, cols, dim, config.params().levels[l].topology, w)
-                    .map_err(|e| corrupted(e.to_string()))?,
+                SelfOrganizingMap::from_weights(
+                    rows,
+                    cols,
+                    dim,
+                    config.params().levels[l].topology,
+                    w,
+                )
+                .map_err(|e| corrupted(e.to_string()))?,
             );
         }
         match next("checksum") {
@@ -353,7 +445,19 @@ impl Hsom {
         if fnv1a(text[..body_end].as_bytes()) != stored {
             return Err(corrupted("checksum mismatch".into()));
         }
-        build(config, maps, offset, scale, trained, hits, end_hits, qe, te, [dl[0], dl[1], dl[2]], path)
+        build(
+            config,
+            maps,
+            offset,
+            scale,
+            trained,
+            hits,
+            end_hits,
+            qe,
+            te,
+            [dl[0], dl[1], dl[2]],
+            path,
+        )
     }
 }
 
@@ -371,8 +475,15 @@ fn build(
     demo_len: [f64; 3],
     path: &Path,
 ) -> Result<Hsom, PersistError> {
-    let finite = maps.iter().all(|m| m.all_weights().iter().all(|v| v.is_finite()))
-        && offset.iter().chain(&qe).chain(&te).chain(&demo_len).all(|v| v.is_finite())
+    let finite = maps
+        .iter()
+        .all(|m| m.all_weights().iter().all(|v| v.is_finite()))
+        && offset
+            .iter()
+            .chain(&qe)
+            .chain(&te)
+            .chain(&demo_len)
+            .all(|v| v.is_finite())
         && scale.iter().all(|v| v.is_finite() && *v > 0.0);
     if !finite {
         return Err(PersistError::Corrupted {
@@ -400,7 +511,11 @@ enum Format {
 }
 
 fn ext(path: &Path) -> Result<Format, PersistError> {
-    match path.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase()) {
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
+    {
         Some(e) if e == "bin" => Ok(Format::Bin),
         Some(e) if e == "txt" => Ok(Format::Txt),
         _ => Err(PersistError::UnknownExtension {
