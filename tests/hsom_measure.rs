@@ -19,22 +19,12 @@ fn run(name: &str, demos: &[cosco_hsom::demos::Demonstration], cfg: &HsomConfig)
         d.continuity,
         d.closed_loop,
     )];
-    for lam in [0.0, 0.5, 0.7, 0.85] {
-        for cl in [false] {
-            for (label, mode, maxl) in [
-                ("strided", ReproductionMode::Strided, None),
-                ("literal", ReproductionMode::Literal, None),
-                ("reflex", ReproductionMode::Strided, Some(0)),
-            ] {
-                cases.push((
-                    format!("{label} c{lam} cl{}", cl as u8),
-                    mode,
-                    IdDecoding::Round,
-                    maxl,
-                    0.0,
-                    lam,
-                    cl,
-                ));
+    if std::env::var("HSOM_SWEEP").is_ok() {
+        for maxl in [Some(2), Some(3), Some(4), None] {
+            for conf in [0.0, 0.5, 1.0, 2.0] {
+                for mode in [ReproductionMode::Strided, ReproductionMode::Literal] {
+                    cases.push((format!("{mode:?} l{maxl:?} conf{conf}"), mode, IdDecoding::Round, maxl, conf, 0.7, false));
+                }
             }
         }
     }
