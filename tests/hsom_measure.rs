@@ -9,15 +9,22 @@ fn run(name: &str, demos: &[cosco_hsom::demos::Demonstration], cfg: &HsomConfig)
     let model = cfg.fit(&demos[1..]).unwrap();
     let init = &demos[0].rows[0];
     let mut res = Vec::new();
-    let mut cases = Vec::new();
-    for lam in [0.0, 0.5, 0.7, 0.85] {
-        for cl in [false] {
-            for (label, mode, maxl) in [
-                ("strided", ReproductionMode::Strided, None),
-                ("literal", ReproductionMode::Literal, None),
-                ("reflex", ReproductionMode::Strided, Some(0)),
-            ] {
-                cases.push((format!("{label} c{lam} cl{}", cl as u8), mode, IdDecoding::Round, maxl, 0.0, lam, cl));
+    let d = cfg.params().reproduction.clone();
+    let mut cases = vec![(
+        "DEFAULT".to_string(),
+        d.mode,
+        d.id_decoding,
+        d.max_level,
+        d.confusion_threshold,
+        d.continuity,
+        d.closed_loop,
+    )];
+    if std::env::var("HSOM_SWEEP").is_ok() {
+        for maxl in [Some(2), Some(3), Some(4), None] {
+            for conf in [0.0, 0.5, 1.0, 2.0] {
+                for mode in [ReproductionMode::Strided, ReproductionMode::Literal] {
+                    cases.push((format!("{mode:?} l{maxl:?} conf{conf}"), mode, IdDecoding::Round, maxl, conf, 0.7, false));
+                }
             }
         }
     }
@@ -59,6 +66,10 @@ fn measure_families() {
         ("joints6", joints6(6, 9)),
     ] {
         let cfg = table1_for(demos[0].rows[0].len());
-        run(name, &demos, &cfg);
+        let (trained, untrained) = run(name, &demos, &cfg);
+        assert!(
+            trained < untrained,
+            "{name}: trained {trained} vs untrained {untrained}"
+        );
     }
 }

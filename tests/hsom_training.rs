@@ -15,7 +15,9 @@ fn small(height: usize, update_period: usize, memory: usize, steps: usize) -> Hs
     p.training_steps = steps;
     p.state_length = 2;
     p.action_length = 2;
-    p.levels = (0..height).map(|l| LevelParams::new(4 + l, 4, Topology::Orthogonal, 0.3)).collect();
+    p.levels = (0..height)
+        .map(|l| LevelParams::new(4 + l, 4, Topology::Orthogonal, 0.3))
+        .collect();
     p.reproduction.offset = 1;
     p
 }
@@ -25,7 +27,9 @@ fn line(n: usize, name: &str) -> Demonstration {
         source: name.into(),
         columns: vec!["a".into(), "b".into()],
         time: None,
-        rows: (0..n).map(|i| vec![i as f64, (i * i) as f64 * 0.1]).collect(),
+        rows: (0..n)
+            .map(|i| vec![i as f64, (i * i) as f64 * 0.1])
+            .collect(),
     }
 }
 
@@ -52,7 +56,12 @@ fn activity_lists_are_cleared_when_a_demonstration_ends() {
     // of 4 samples gives 3 state-action pairs: if lists were not cleared between
     // demonstrations they would fill up and level 1 would train.
     let p = small(2, 1, 4, 300);
-    let m = p.clone().check("t").unwrap().fit(&[line(4, "a"), line(4, "b")]).unwrap();
+    let m = p
+        .clone()
+        .check("t")
+        .unwrap()
+        .fit(&[line(4, "a"), line(4, "b")])
+        .unwrap();
     assert_eq!(m.trained_counts(), &[300, 0]);
     // with 6 samples (5 pairs) per demonstration the list is full at pairs 4 and 5 only:
     // 2 of every 5 steps
@@ -92,14 +101,23 @@ fn initial_weights_lie_in_the_data_bounding_box_whatever_the_units() {
         source: "big".into(),
         columns: vec!["a".into(), "b".into()],
         time: None,
-        rows: (0..100).map(|i| vec![5000.0 + i as f64 * 10.0, -3000.0 - i as f64]).collect(),
+        rows: (0..100)
+            .map(|i| vec![5000.0 + i as f64 * 10.0, -3000.0 - i as f64])
+            .collect(),
     };
-    let m = small(2, 2, 4, 10).check("t").unwrap().initialise(&[d.clone()]).unwrap();
+    let m = small(2, 2, 4, 10)
+        .check("t")
+        .unwrap()
+        .initialise(&[d.clone()])
+        .unwrap();
     let mut r = m.config().params().reproduction.clone();
     r.continuity = 0.0; // postures are the nodes' action halves
     let rep = m.reproduce_with(&d.rows[0], &r).unwrap();
     for y in &rep.postures[1..] {
-        assert!(y[0] >= 4999.0 && y[0] <= 6000.0 && y[1] <= -2999.0 && y[1] >= -3100.0, "{y:?}");
+        assert!(
+            y[0] >= 4999.0 && y[0] <= 6000.0 && y[1] <= -2999.0 && y[1] >= -3100.0,
+            "{y:?}"
+        );
     }
 }
 
@@ -107,7 +125,11 @@ fn initial_weights_lie_in_the_data_bounding_box_whatever_the_units() {
 fn levels_memory_mode_trains_on_activity_maps() {
     let mut p = small(3, 2, 4, 400);
     p.memory_mode = MemoryMode::Levels;
-    let m = p.check("t").unwrap().fit(&hsom_common::stroke(2, 3)).unwrap();
+    let m = p
+        .check("t")
+        .unwrap()
+        .fit(&hsom_common::stroke(2, 3))
+        .unwrap();
     assert_eq!(m.maps()[1].dim(), 4 * 4);
     assert_eq!(m.maps()[2].dim(), 5 * 4);
     assert!(m.trained_counts()[1] > 0);
@@ -118,12 +140,26 @@ fn levels_memory_mode_trains_on_activity_maps() {
 #[test]
 fn summary_lists_every_level_with_quality() {
     let demos = hsom_common::stroke(3, 2);
-    let m = small(3, 2, 4, 2000).check("t").unwrap().fit(&demos).unwrap();
+    let m = small(3, 2, 4, 2000)
+        .check("t")
+        .unwrap()
+        .fit(&demos)
+        .unwrap();
     let s = m.summary();
     assert_eq!(s.levels.len(), 3);
-    assert_eq!((s.levels[1].rows, s.levels[1].cols, s.levels[1].period), (5, 4, 2));
-    assert!(s.levels.iter().all(|l| l.quantization_error.is_finite() && (0.0..=1.0).contains(&l.topographic_error)));
-    let untrained = small(3, 2, 4, 2000).check("t").unwrap().initialise(&demos).unwrap();
+    assert_eq!(
+        (s.levels[1].rows, s.levels[1].cols, s.levels[1].period),
+        (5, 4, 2)
+    );
+    assert!(s
+        .levels
+        .iter()
+        .all(|l| l.quantization_error.is_finite() && (0.0..=1.0).contains(&l.topographic_error)));
+    let untrained = small(3, 2, 4, 2000)
+        .check("t")
+        .unwrap()
+        .initialise(&demos)
+        .unwrap();
     assert!(s.levels[0].quantization_error < untrained.summary().levels[0].quantization_error);
     let text = s.to_string();
     assert!(text.contains("level") && text.contains("5x4"), "{text}");
@@ -133,16 +169,43 @@ fn summary_lists_every_level_with_quality() {
 fn bad_demonstrations_are_clear_errors() {
     let c = small(2, 2, 4, 10).check("t").unwrap();
     assert!(matches!(c.fit(&[]), Err(HsomError::NoDemonstrations)));
-    assert!(matches!(c.fit(&[line(1, "one")]), Err(HsomError::TooShort { rows: 1, .. })));
+    assert!(matches!(
+        c.fit(&[line(1, "one")]),
+        Err(HsomError::TooShort { rows: 1, .. })
+    ));
     let mut d = line(5, "wide");
     d.rows[2].push(1.0);
     let e = c.fit(&[d]).unwrap_err();
-    assert!(matches!(e, HsomError::DimensionMismatch { row: 2, expected: 2, found: 3, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            HsomError::DimensionMismatch {
+                row: 2,
+                expected: 2,
+                found: 3,
+                ..
+            }
+        ),
+        "{e}"
+    );
     assert!(e.to_string().contains("wide"));
     let mut d = line(5, "nan");
     d.rows[3][1] = f64::NAN;
-    assert!(matches!(c.fit(&[d]), Err(HsomError::NonFinite { row: 3, column: 1, .. })));
+    assert!(matches!(
+        c.fit(&[d]),
+        Err(HsomError::NonFinite {
+            row: 3,
+            column: 1,
+            ..
+        })
+    ));
     let m = c.fit(&[line(5, "ok")]).unwrap();
-    assert!(matches!(m.reproduce(&[1.0]), Err(HsomError::DimensionMismatch { .. })));
-    assert!(matches!(m.reproduce(&[1.0, f64::INFINITY]), Err(HsomError::NonFinite { .. })));
+    assert!(matches!(
+        m.reproduce(&[1.0]),
+        Err(HsomError::DimensionMismatch { .. })
+    ));
+    assert!(matches!(
+        m.reproduce(&[1.0, f64::INFINITY]),
+        Err(HsomError::NonFinite { .. })
+    ));
 }

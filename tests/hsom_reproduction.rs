@@ -1,0 +1,250 @@
+//! Reproduction fidelity (with an untrained negative control) and persistence round trips.
+
+mod hsom_common;
+
+use cosco_hsom::config::ReproductionMode;
+use cosco_hsom::demos::Demonstration;
+use cosco_hsom::hsom::{Hsom, PersistError};
+use hsom_common::*;
+
+/// A deterministic gesture through five key postures (3-D), ramps of 12 samples and holds of
+/// 4, the same in every demonstration.
+fn key_postures() -> Vec<Demonstration> {
+    let keys = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.2, 0.5],
+        [1.5, 1.0, 0.0],
+        [0.5, 1.5, -0.5],
+        [-0.5, 0.8, 0.2],
+    ];
+    let mut rows = Vec::new();
+    for w in keys.windows(2) {
+        for _ in 0..4 {
+            rows.push(w[0].to_vec());
+        }
+        for j in 0..12 {
+            let t = j as f64 / 12.0;
+            rows.push((0..3).map(|d| w[0][d] + (w[1][d] - w[0][d]) * t).collect());
+        }
+    }
+    for _ in 0..4 {
+        rows.push(keys[4].to_vec());
+    }
+    (0..3)
+        .map(|i| Demonstration {
+            source: format!("keys{i}"),
+            columns: vec!["a".into(), "b".into(), "c".into()],
+            time: None,
+            rows: rows.clone(),
+        })
+        .collect()
+}
+
+/// Threshold of the fidelity check: mean DTW distance below 6 % of the data's diagonal.
+const FIDELITY: f64 = 0.06;
+
+#[test]
+fn trained_hierarchy_reproduces_the_key_posture_gesture_and_untrained_does_not() {
+    let demos = key_postures();
+    let cfg = table1_for(3);
+    let model = cfg.fit(&demos).unwrap();
+    let rep = model.reproduce(&demos[0].rows[0]).unwrap();
+    let e = relative_dtw(&rep.postures, &demos);
+    let untrained = cfg.initialise(&demos).unwrap();
+    let rep_u = untrained.reproduce(&demos[0].rows[0]).unwrap();
+    let e_u = relative_dtw(&rep_u.postures, &demos);
+    println!(
+        "trained {e:.4} ({} postures, {:?}), untrained {e_u:.4}",
+        rep.postures.len(),
+        rep.stop
+    );
+    assert!(e < FIDELITY, "trained relative DTW {e}");
+    assert!(
+        e_u >= FIDELITY,
+        "untrained relative DTW {e_u} passes the check: the check is too weak"
+    );
+    // it starts where it was asked to and leaves the initial posture
+    assert_eq!(rep.postures[0], demos[0].rows[0]);
+    assert!(rep.postures.len() > 10);
+    assert_eq!(rep.steps, (0..rep.postures.len()).collect::<Vec<_>>());
+}
+
+#[test]
+fn literal_mode_also_runs_and_respects_max_length() {
+    let demos = key_postures();
+    let model = table1_for(3).fit(&demos).unwrap();
+    let mut r = model.config().params().reproduction.clone();
+    r.mode = ReproductionMode::Literal;
+    r.max_length = 37;
+    r.stop = cosco_hsom::config::StopRule::MaxLength;
+    let rep = model.reproduce_with(&demos[0].rows[0], &r).unwrap();
+    assert_eq!(rep.postures.len(), 37);
+    assert!(
+        rep.predicted_by.iter().any(|&l| l >= 1),
+        "higher levels never used"
+    );
+}
+
+fn trained() -> (Hsom, Vec<f64>) {
+    let demos = stroke(3, 5);
+    let init = demos[0].rows[0].clone();
+    (table1_for(2).fit(&demos).unwrap(), init)
+}
+
+#[test]
+fn save_load_gives_an_identical_model_and_reproduction_in_both_formats() {
+    let (m, init) = trained();
+    let dir = tempfile::tempdir().unwrap();
+    let before = m.reproduce(&init).unwrap();
+    for name in ["m.bin", "m.txt"] {
+        let p = dir.path().join(name);
+        m.save(&p).unwrap();
+        let back = Hsom::load(&p).unwrap();
+        assert_eq!(back, m, "{name}");
+        assert_eq!(back.reproduce(&init).unwrap(), before, "{name}");
+    }
+    assert!(matches!(
+        m.save(&dir.path().join("m.json")),
+        Err(PersistError::UnknownExtension { .. })
+    ));
+}
+
+#[test]
+fn model_size_depends_on_the_configuration_not_on_the_data_length() {
+    let short = stroke(2, 11);
+    let long: Vec<Demonstration> = short
+        .iter()
+        .map(|d| {
+            let mut d = d.clone();
+            // 100x longer: the same stroke sampled 100 times more densely
+            let n = d.rows.len();
+            d.rows = (0..n * 100)
+                .map(|i| {
+                    let t = i as f64 / 100.0;
+                    let (a, b) = (t.floor() as usize, (t.floor() as usize + 1).min(n - 1));
+                    let f = t - t.floor();
+                    (0..2)
+                        .map(|k| d.rows[a][k] * (1.0 - f) + d.rows[b][k] * f)
+                        .collect()
+                })
+                .collect();
+            d
+        })
+        .collect();
+    let cfg = table1_for(2);
+    let a = cfg.fit(&short).unwrap();
+    let b = cfg.fit(&long).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let (pa, pb) = (dir.path().join("a.bin"), dir.path().join("b.bin"));
+    a.save(&pa).unwrap();
+    b.save(&pb).unwrap();
+    let (sa, sb) = (
+        std::fs::metadata(&pa).unwrap().len(),
+        std::fs::metadata(&pb).unwrap().len(),
+    );
+    assert_eq!(sa, sb);
+    let count = |m: &Hsom| {
+        let t = m.to_text();
+        (t.lines().count(), t.split_whitespace().count())
+    };
+    assert_eq!(count(&a), count(&b));
+}
+
+#[test]
+fn corrupted_truncated_and_other_version_files_are_refused() {
+    let (m, _) = trained();
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("x.bin");
+    let bytes = m.to_bytes();
+    // truncated
+    std::fs::write(&p, &bytes[..bytes.len() / 2]).unwrap();
+    let e = Hsom::load(&p).unwrap_err();
+    assert!(matches!(e, PersistError::Truncated { .. }), "{e}");
+    assert!(e.to_string().contains("truncated") && e.to_string().contains("x.bin"));
+    // a flipped bit in the weights
+    let mut b = bytes.clone();
+    let k = b.len() - 100;
+    b[k] ^= 0x10;
+    std::fs::write(&p, &b).unwrap();
+    assert!(matches!(
+        Hsom::load(&p),
+        Err(PersistError::Corrupted { .. })
+    ));
+    // another version
+    let mut b = bytes.clone();
+    b[8] = 2;
+    std::fs::write(&p, &b).unwrap();
+    let e = Hsom::load(&p).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            PersistError::Version {
+                found: 2,
+                expected: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    // not a model
+    std::fs::write(&p, b"hello world, not a model").unwrap();
+    assert!(matches!(Hsom::load(&p), Err(PersistError::BadMagic { .. })));
+    // a huge configuration length: refused without allocating
+    let mut b = bytes.clone();
+    b[12..20].copy_from_slice(&u64::MAX.to_le_bytes());
+    std::fs::write(&p, &b).unwrap();
+    assert!(matches!(
+        Hsom::load(&p),
+        Err(PersistError::Corrupted { .. })
+    ));
+    // inconsistent sizes: the embedded configuration says 11 rows where the data hold 10
+    let mut b = bytes.clone();
+    let at = b.windows(15).position(|w| w == b"<rows>10</rows>").unwrap();
+    b[at + 7] = b'1';
+    std::fs::write(&p, &b).unwrap();
+    let e = Hsom::load(&p).unwrap_err();
+    assert!(
+        matches!(e, PersistError::Corrupted { .. }) && e.to_string().contains("11x10"),
+        "{e}"
+    );
+    // empty file
+    std::fs::write(&p, b"").unwrap();
+    assert!(Hsom::load(&p).is_err());
+}
+
+#[test]
+fn corrupted_truncated_and_other_version_text_files_are_refused() {
+    let (m, _) = trained();
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("x.txt");
+    let text = m.to_text();
+    std::fs::write(&p, &text[..text.len() / 2]).unwrap();
+    assert!(matches!(
+        Hsom::load(&p),
+        Err(PersistError::Truncated { .. })
+    ));
+    std::fs::write(&p, text.replacen("version 1", "version 7", 1)).unwrap();
+    assert!(matches!(
+        Hsom::load(&p),
+        Err(PersistError::Version { found: 7, .. })
+    ));
+    let i = text.find("\nnode ").unwrap() + 6;
+    let mut t = text.clone();
+    t.replace_range(i..i + 1, "9");
+    std::fs::write(&p, &t).unwrap();
+    let e = Hsom::load(&p).unwrap_err();
+    assert!(matches!(e, PersistError::Corrupted { .. }), "{e}");
+    // a node line with a missing value
+    let j = text.find("\nnode ").unwrap() + 1;
+    let end = j + text[j..].find('\n').unwrap();
+    let line = &text[j..end];
+    let shorter = line[..line.rfind(' ').unwrap()].to_string();
+    std::fs::write(&p, text.replacen(line, &shorter, 1)).unwrap();
+    let e = Hsom::load(&p).unwrap_err();
+    assert!(
+        matches!(e, PersistError::Corrupted { .. }) && e.to_string().contains("values"),
+        "{e}"
+    );
+    std::fs::write(&p, "something else\n").unwrap();
+    assert!(matches!(Hsom::load(&p), Err(PersistError::BadMagic { .. })));
+}
