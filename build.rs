@@ -70,8 +70,10 @@ fn main() {
             "Install them with `make deps`, or `sudo apt-get install -y {}`.",
             packages.join(" ")
         ));
-        // A build-script panic prints the message and fails the build.
-        panic!("{msg}");
+        // Cargo shows a failing build script's stderr; exit instead of panicking so the
+        // message is not buried under a backtrace.
+        eprintln!("error: {msg}");
+        std::process::exit(1);
     }
 
     // Only the libraries we call: MuJoCo finds OSMesaGetProcAddress in the process, so linking
