@@ -1,3 +1,72 @@
-fn main() {
-    println!("simulate: not yet wired");
+//! `simulate`: the main job. Demonstrations -> CoSCo-HSOM training -> reproduction from the
+//! initial posture on the simulated Nao arm -> metrics, report, plots and a clip.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Result;
+use clap::Parser;
+
+mod cli;
+
+/// Teach the simulated Nao a gesture from demonstrations, reproduce it from the initial
+/// posture alone, and measure how faithful the reproduction is.
+#[derive(Parser, Debug)]
+#[command(name = "simulate", version)]
+struct Args {
+    /// Gesture of the synthetic demonstrations (reading-watch, wave, reach-point, salute).
+    #[arg(long, default_value = "reading-watch")]
+    gesture: String,
+    /// CoSCo-HSOM configuration (XML); default: the shipped configs/table1.xml (the paper's Table I).
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Learn from recorded demonstration CSV files in this directory instead of synthetic ones.
+    #[arg(long)]
+    demos: Option<PathBuf>,
+    /// Seed of every random choice of the job (demonstrations; the model's seed is in the config).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Number of synthetic demonstrations.
+    #[arg(long, default_value_t = 3)]
+    count: usize,
+    /// Standard deviation of the synthetic encoder noise, rad.
+    #[arg(long, default_value_t = cli::DEFAULT_ENCODER_NOISE)]
+    noise: f64,
+    /// Skip the off-screen rendering of the clip and contact sheet.
+    #[arg(long)]
+    no_render: bool,
+    /// Output directory.
+    #[arg(long, default_value = "out")]
+    out: PathBuf,
+    /// MJCF model of the arm (default: models/nao_left_arm.xml of this crate).
+    #[arg(long)]
+    model: Option<PathBuf>,
+}
+
+fn run(a: Args) -> Result<()> {
+    let job = cli::Job {
+        gesture: a.gesture,
+        config: a.config,
+        demos: a.demos,
+        seed: a.seed,
+        count: a.count,
+        noise: a.noise,
+        render: !a.no_render,
+        out: a.out,
+        model: a.model,
+    };
+    let report = cli::main_job(&job)?;
+    println!("{}", cli::summary_line(&report));
+    println!("report: {}", job.out.join("report.md").display());
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    match run(Args::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("Error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
 }

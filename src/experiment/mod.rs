@@ -3,11 +3,15 @@
 //! simulated arm, and measure how faithful the reproduction is.
 
 pub mod demonstrate;
+pub mod evaluate;
 pub mod execute;
+pub mod figures;
 pub mod film;
+pub mod report;
 
 pub use demonstrate::{joint_limits, record_demonstrations, DemoSettings};
-pub use execute::execute_postures;
+pub use evaluate::{are_arm_joints, evaluate, trajectory, wrist_path};
+pub use execute::{clamp_to_ranges, execute_postures};
 pub use film::film;
 
 /// Errors of the experiment pipeline.
@@ -23,4 +27,7 @@ pub enum ExperimentError {
     /// Rendering failed.
     #[error(transparent)]
     Render(#[from] crate::render::RenderError),
+    /// The metrics refused their input.
+    #[error(transparent)]
+    Metrics(#[from] crate::metrics::MetricsError),
 }

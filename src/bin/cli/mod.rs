@@ -3,14 +3,25 @@
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use cosco_hsom::demos::{self, Demonstration};
-use cosco_hsom::experiment::{record_demonstrations, DemoSettings};
+use cosco_hsom::config::{load_config, parse_config, HsomConfig};
+use cosco_hsom::demos::{self, write_csv, Demonstration};
+use cosco_hsom::experiment::figures::{joint_panels_png, wrist_png, Curve, Path3};
+use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report, Stage};
+use cosco_hsom::experiment::{
+    are_arm_joints, clamp_to_ranges, evaluate, execute_postures, film, record_demonstrations,
+    wrist_path, DemoSettings,
+};
 use cosco_hsom::gesture::Gesture;
-use cosco_hsom::sim::{NaoArm, Recording};
+use cosco_hsom::hsom::Hsom;
+use cosco_hsom::metrics::MetricsParams;
+use cosco_hsom::plot::{demo_color, BLACK};
+use cosco_hsom::render::RenderOptions;
+use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
 
 /// Default encoder noise of synthetic demonstrations, rad (about Nao's encoder resolution).
 pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
@@ -100,4 +111,330 @@ pub fn demos(
         })
         .collect();
     write_demos(out, &demos)
+}
+
+/// The shipped Table I configuration, built into the binaries so they run from any directory.
+pub const TABLE1_XML: &str = include_str!("../../../configs/table1.xml");
+
+/// Load a CoSCo-HSOM configuration file, or the built-in Table I.
+pub fn hsom_config(path: Option<&Path>) -> Result<HsomConfig> {
+    Ok(match path {
+        Some(p) => load_config(p)?,
+        None => parse_config(TABLE1_XML, "configs/table1.xml (built in)")?,
+    })
+}
+
+/// Read demonstration files (a directory of *.csv or explicit files), checked as a set.
+pub fn read_demos(paths: &[PathBuf], state_length: Option<usize>) -> Result<Vec<Demonstration>> {
+    let demos = demos::read_dir_or_files(paths)?;
+    if demos.is_empty() {
+        bail!(
+            "no demonstration files found in {}",
+            paths
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    demos::validate_set(&demos, state_length)?;
+    Ok(demos)
+}
+
+/// Seconds between samples of a demonstration: from its `time` column, else 1/40 s.
+pub fn sample_period(d: &Demonstration) -> f64 {
+    match &d.time {
+        Some(t) if t.len() >= 2 => (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64,
+        _ => 0.025,
+    }
+}
+
+/// Train with a progress bar.
+pub fn train(cfg: &HsomConfig, demos: &[Demonstration]) -> Result<Hsom> {
+    let pb = progress(cfg.params().training_steps as u64, "training");
+    let model = cfg.fit_with_progress(demos, Some(&|done, _total| pb.set_position(done as u64)))?;
+    pb.finish_and_clear();
+    Ok(model)
+}
+
+/// Everything the main job needs to know.
+#[derive(Debug, Clone)]
+pub struct Job {
+    /// Gesture of the synthetic demonstrations.
+    pub gesture: String,
+    /// Configuration file (None: built-in Table I).
+    pub config: Option<PathBuf>,
+    /// Directory of recorded demonstrations (None: synthetic).
+    pub demos: Option<PathBuf>,
+    /// Seed of the job.
+    pub seed: u64,
+    /// Number of synthetic demonstrations.
+    pub count: usize,
+    /// Encoder noise of synthetic demonstrations, rad.
+    pub noise: f64,
+    /// Render the clip and contact sheet.
+    pub render: bool,
+    /// Output directory.
+    pub out: PathBuf,
+    /// Arm model file.
+    pub model: Option<PathBuf>,
+}
+
+struct Stopwatch {
+    stages: Vec<Stage>,
+    t: Instant,
+}
+
+impl Stopwatch {
+    fn new() -> Self {
+        Stopwatch {
+            stages: Vec::new(),
+            t: Instant::now(),
+        }
+    }
+    fn lap(&mut self, stage: &str) -> f64 {
+        let s = self.t.elapsed().as_secs_f64();
+        self.stages.push(Stage {
+            stage: stage.to_string(),
+            seconds: s,
+        });
+        self.t = Instant::now();
+        s
+    }
+}
+
+/// File size in bytes (0 when it cannot be read).
+fn file_size(p: &Path) -> u64 {
+    std::fs::metadata(p).map(|m| m.len()).unwrap_or(0)
+}
+
+/// The four joints of the paper's Fig. 4.
+pub const FIG4_JOINTS: [(usize, &str); 4] = [
+    (0, "LShoulderPitch"),
+    (1, "LShoulderRoll"),
+    (2, "LElbowYaw"),
+    (3, "LElbowRoll"),
+];
+
+/// One line for the terminal.
+pub fn summary_line(r: &Report) -> String {
+    let m = &r.methods[0];
+    format!(
+        "{}: joint DTW {:.4} rad/step, wrist DTW {} mm, apex error {:.3} rad, final error {:.3} rad, duration ratio {:.2}, reversals {}",
+        m.name,
+        m.fidelity.joint_dtw_rad_per_step.mean,
+        m.fidelity.wrist_dtw_mm.map_or("n/a".into(), |s| format!("{:.1}", s.mean)),
+        m.fidelity.apex_error_rad.mean,
+        m.fidelity.final_error_rad.mean,
+        m.fidelity.duration_ratio.mean,
+        m.fidelity.reproduction_smoothness.total_reversals,
+    )
+}
+
+/// The main job: demonstrations -> training -> reproduction in the simulator -> report,
+/// plots and clip, all written into `job.out`.
+pub fn main_job(job: &Job) -> Result<Report> {
+    let mut clock = Stopwatch::new();
+    let out = &job.out;
+    std::fs::create_dir_all(out.join("demos"))
+        .with_context(|| format!("creating {}", out.display()))?;
+    let cfg = hsom_config(job.config.as_deref())?;
+    let arm = load_arm(job.model.as_deref())?;
+    let mut files = Vec::new();
+
+    // 1. Demonstrations.
+    let (demos, gesture) = match &job.demos {
+        Some(dir) => (
+            read_demos(std::slice::from_ref(dir), Some(cfg.params().state_length))?,
+            None,
+        ),
+        None => {
+            let g = gesture(&job.gesture)?;
+            let recs = record(&arm, &g, job.count, job.seed, job.noise)?;
+            let demos: Vec<Demonstration> = recs
+                .iter()
+                .enumerate()
+                .map(|(i, r)| {
+                    r.to_demonstration(format!(
+                        "{} demonstration {} (seed {})",
+                        g.name,
+                        i + 1,
+                        job.seed
+                    ))
+                })
+                .collect();
+            (demos, Some(g.name.to_string()))
+        }
+    };
+    if !are_arm_joints(&demos[0].columns) {
+        bail!(
+            "the demonstrations' columns are {:?}; the simulated arm needs exactly {:?} (use `cosco train` / `cosco reproduce` for other data)",
+            demos[0].columns,
+            JOINT_NAMES
+        );
+    }
+    let demo_files = write_demos(&out.join("demos"), &demos)?;
+    let demo_info: Vec<DemoInfo> = demos
+        .iter()
+        .zip(&demo_files)
+        .map(|(d, f)| DemoInfo {
+            file: f.strip_prefix(out).unwrap_or(f).display().to_string(),
+            samples: d.rows.len(),
+            duration_s: (d.rows.len().saturating_sub(1)) as f64 * sample_period(d),
+        })
+        .collect();
+    files.extend(demo_info.iter().map(|d| d.file.clone()));
+    clock.lap("demonstrations (simulate + record)");
+
+    // 2. Training.
+    let model = train(&cfg, &demos)?;
+    let train_s = clock.lap("training");
+    let model_path = out.join("model.bin");
+    model.save(&model_path)?;
+    files.push("model.bin".into());
+
+    // 3. Reproduction from the initial posture, executed on the simulated arm.
+    let dt = sample_period(&demos[0]);
+    let initial = demos[0].rows[0].clone();
+    let t = Instant::now();
+    let rep = model.reproduce(&initial)?;
+    let reproduce_s = t.elapsed().as_secs_f64();
+    let (postures, clamped) = clamp_to_ranges(&rep.postures)?;
+    let executed = execute_postures(&arm, &postures, 1.0 / dt)?;
+    write_csv(
+        &out.join("reproduction.csv"),
+        &executed.to_demonstration("CoSCo-HSOM reproduction"),
+    )?;
+    files.push("reproduction.csv".into());
+    clock.lap("reproduction (predict + execute)");
+
+    // 4. Metrics.
+    let params = MetricsParams {
+        sample_period: dt,
+        ..MetricsParams::default()
+    };
+    let fid = evaluate(Some(&arm), &demos, &executed.qpos, &params)?;
+    let hsom_result = MethodResult {
+        name: "CoSCo-HSOM".into(),
+        needs: "raw demonstrations; the initial posture".into(),
+        fidelity: fid,
+        train_s,
+        reproduce_s,
+        model_bytes: file_size(&model_path),
+        postures: rep.postures.len(),
+        clamped_values: clamped,
+        notes: vec![
+            format!("stopped: {:?}", rep.stop),
+            levels_note(&rep.predicted_by),
+        ],
+    };
+    clock.lap("metrics");
+
+    // 5. Plots.
+    let demo_curves: Vec<Curve> = demos
+        .iter()
+        .enumerate()
+        .map(|(i, d)| Curve::demo(i, d.time.as_deref().unwrap_or(&[]), &d.rows))
+        .collect();
+    let mut curves = demo_curves.clone();
+    curves.push(Curve::reproduction(
+        "CoSCo-HSOM reproduction",
+        &executed.time,
+        &executed.qpos,
+    ));
+    joint_panels_png(
+        &out.join("joints.png"),
+        "Training demonstrations (colour) and the reproduced gesture (black)",
+        &FIG4_JOINTS,
+        &curves,
+        "rad",
+    )?;
+    files.push("joints.png".into());
+    let demo_wrists = demos
+        .iter()
+        .map(|d| wrist_path(&arm, &d.rows))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut paths: Vec<Path3> = demo_wrists
+        .iter()
+        .enumerate()
+        .map(|(i, w)| Path3 {
+            label: format!("demonstration {}", i + 1),
+            color: demo_color(i),
+            width: 2,
+            points: w,
+        })
+        .collect();
+    paths.push(Path3 {
+        label: "CoSCo-HSOM reproduction".into(),
+        color: BLACK,
+        width: 3,
+        points: &executed.wrist,
+    });
+    wrist_png(
+        &out.join("wrist.png"),
+        "Wrist path (l_wrist), torso frame",
+        &paths,
+    )?;
+    files.push("wrist.png".into());
+    clock.lap("plots");
+
+    // 6. Clip.
+    if job.render {
+        let opts = RenderOptions {
+            width: 480,
+            height: 360,
+            shadows: true,
+            multisample: false,
+            camera: Some("front".into()),
+        };
+        let stride = 2;
+        let pb = progress(executed.len().div_ceil(stride) as u64, "rendering");
+        let clip = film(&arm, &executed, &opts, stride, |n, _| {
+            pb.set_position(n as u64)
+        })?;
+        pb.finish_and_clear();
+        clip.write_gif(&out.join("clip.gif"))?;
+        clip.write_contact_sheet(&out.join("contact_sheet.png"), 8, 4, true)?;
+        files.push("clip.gif".into());
+        files.push("contact_sheet.png".into());
+        clock.lap("rendering (clip + contact sheet)");
+    }
+
+    files.push("report.md".into());
+    files.push("report.json".into());
+    let report = Report {
+        title: format!(
+            "CoSCo-HSOM on the simulated Nao left arm{}",
+            gesture
+                .as_deref()
+                .map(|g| format!(": {g}"))
+                .unwrap_or_default()
+        ),
+        gesture,
+        seed: job.seed,
+        config: job
+            .config
+            .as_ref()
+            .map_or("configs/table1.xml (built in)".into(), |p| {
+                p.display().to_string()
+            }),
+        demos: demo_info,
+        methods: vec![hsom_result],
+        variants: Vec::new(),
+        stages: clock.stages,
+        files,
+    };
+    report
+        .write(out)
+        .with_context(|| format!("writing the report into {}", out.display()))?;
+    Ok(report)
+}
+
+/// "predicted by level": how many postures each level produced.
+fn levels_note(by: &[usize]) -> String {
+    let top = by.iter().copied().max().unwrap_or(0);
+    let counts: Vec<String> = (0..=top)
+        .map(|l| format!("L{l}: {}", by.iter().filter(|&&b| b == l).count()))
+        .collect();
+    format!("postures predicted per level: {}", counts.join(", "))
 }

@@ -1,0 +1,65 @@
+//! Fidelity of a reproduction against demonstrations, with wrist paths from the simulator's
+//! kinematics (see docs/METRICS.md for every definition).
+
+use crate::demos::Demonstration;
+use crate::metrics::{fidelity, FidelityReport, MetricsParams, Trajectory};
+use crate::sim::{NaoArm, JOINT_NAMES};
+
+use super::ExperimentError;
+
+/// The `l_wrist` position (m, torso frame) at each posture, from the simulated arm's kinematics.
+/// Postures are clamped into the joint ranges first: encoders (and their simulated noise) can
+/// read a hair beyond a limit the joint itself cannot pass; NaN is still an error.
+pub fn wrist_path(arm: &NaoArm, postures: &[Vec<f64>]) -> Result<Vec<[f64; 3]>, ExperimentError> {
+    let mut sim = arm.sim()?;
+    postures
+        .iter()
+        .map(|q| {
+            sim.set_posture_clamped(q)?;
+            Ok(sim.wrist_position())
+        })
+        .collect()
+}
+
+/// Whether `columns` are the arm's joints in the model's order (then wrist paths exist).
+pub fn are_arm_joints(columns: &[String]) -> bool {
+    columns.len() == JOINT_NAMES.len() && columns.iter().zip(JOINT_NAMES).all(|(c, j)| c == j)
+}
+
+/// A metrics trajectory from joint rows, with the wrist path when the columns are the arm's
+/// joints and an arm is given.
+pub fn trajectory(
+    arm: Option<&NaoArm>,
+    columns: &[String],
+    rows: &[Vec<f64>],
+) -> Result<Trajectory, ExperimentError> {
+    let wrist = match arm {
+        Some(arm) if are_arm_joints(columns) => Some(wrist_path(arm, rows)?),
+        _ => None,
+    };
+    Ok(Trajectory {
+        joints: rows.to_vec(),
+        wrist,
+    })
+}
+
+/// Score the reproduction `rows` (columns as in the demonstrations, sampled at the
+/// demonstrations' rate) against each demonstration.
+pub fn evaluate(
+    arm: Option<&NaoArm>,
+    demos: &[Demonstration],
+    rows: &[Vec<f64>],
+    params: &MetricsParams,
+) -> Result<FidelityReport, ExperimentError> {
+    let Some(first) = demos.first() else {
+        return Err(ExperimentError::Invalid(
+            "no demonstrations to evaluate against".into(),
+        ));
+    };
+    let demo_trajs = demos
+        .iter()
+        .map(|d| trajectory(arm, &d.columns, &d.rows))
+        .collect::<Result<Vec<_>, _>>()?;
+    let rep = trajectory(arm, &first.columns, rows)?;
+    Ok(fidelity(&demo_trajs, &rep, params)?)
+}

@@ -1,0 +1,284 @@
+//! The main job's report: `report.json` (everything, machine-readable) and `report.md` (the
+//! same for people: tables of every fidelity metric, side by side for each method or variant).
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use serde::Serialize;
+
+use crate::fsutil::write_atomic;
+use crate::metrics::{FidelityReport, Stat};
+
+/// One demonstration used for training.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DemoInfo {
+    /// File (relative to the output directory) or source.
+    pub file: String,
+    /// Number of samples.
+    pub samples: usize,
+    /// Duration, seconds.
+    pub duration_s: f64,
+}
+
+/// How one method (or variant of a method) did.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MethodResult {
+    /// Short name, e.g. `CoSCo-HSOM` or `GMM/GMR`.
+    pub name: String,
+    /// What the method needs as input (pre-processing, time index, initial posture).
+    pub needs: String,
+    /// Fidelity of the executed trajectory against each demonstration.
+    pub fidelity: FidelityReport,
+    /// Training (fitting) time, seconds.
+    pub train_s: f64,
+    /// Time to produce the postures to execute, seconds.
+    pub reproduce_s: f64,
+    /// Size of the saved model, bytes.
+    pub model_bytes: u64,
+    /// Number of postures the method produced.
+    pub postures: usize,
+    /// Posture values outside a joint's range, clamped before execution (0 = none).
+    pub clamped_values: usize,
+    /// Anything else worth a line (why the reproduction stopped, components chosen, ...).
+    pub notes: Vec<String>,
+}
+
+/// Wall time of one stage of the job.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Stage {
+    /// What was done.
+    pub stage: String,
+    /// Seconds.
+    pub seconds: f64,
+}
+
+/// Everything the main job found.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
+    /// Title line.
+    pub title: String,
+    /// Gesture name when the demonstrations were synthetic.
+    pub gesture: Option<String>,
+    /// Seed of every random choice.
+    pub seed: u64,
+    /// Configuration file of the hierarchy.
+    pub config: String,
+    /// The training demonstrations.
+    pub demos: Vec<DemoInfo>,
+    /// The methods compared, the main one first.
+    pub methods: Vec<MethodResult>,
+    /// Variants of the main method (beyond-the-paper options switched on and off).
+    pub variants: Vec<MethodResult>,
+    /// Wall time per stage.
+    pub stages: Vec<Stage>,
+    /// Files written, relative to the output directory.
+    pub files: Vec<String>,
+}
+
+fn stat(s: &Stat, digits: usize) -> String {
+    format!("{:.*} / {:.*}", digits, s.mean, digits, s.worst)
+}
+
+fn opt_stat(s: &Option<Stat>, digits: usize) -> String {
+    s.as_ref()
+        .map_or_else(|| "n/a".to_string(), |s| stat(s, digits))
+}
+
+/// A markdown table with one column per result: every fidelity metric (mean / worst over the
+/// demonstrations), smoothness, and costs.
+pub fn comparison_table(results: &[MethodResult]) -> String {
+    let mut t = String::new();
+    let _ = write!(t, "| metric (mean / worst) |");
+    for r in results {
+        let _ = write!(t, " {} |", r.name);
+    }
+    let _ = write!(t, "\n|---|");
+    for _ in results {
+        let _ = write!(t, "---|");
+    }
+    t.push('\n');
+    let demo_jerk = results
+        .first()
+        .map(|r| {
+            let v: Vec<f64> = r
+                .fidelity
+                .demo_smoothness
+                .iter()
+                .filter_map(|s| s.normalized_jerk)
+                .collect();
+            if v.is_empty() {
+                f64::NAN
+            } else {
+                v.iter().sum::<f64>() / v.len() as f64
+            }
+        })
+        .unwrap_or(f64::NAN);
+    let demo_rev = results
+        .first()
+        .map(|r| {
+            let v: Vec<usize> = r
+                .fidelity
+                .demo_smoothness
+                .iter()
+                .map(|s| s.total_reversals)
+                .collect();
+            if v.is_empty() {
+                f64::NAN
+            } else {
+                v.iter().sum::<usize>() as f64 / v.len() as f64
+            }
+        })
+        .unwrap_or(f64::NAN);
+    type Row<'a> = (&'a str, Box<dyn Fn(&MethodResult) -> String>);
+    let rows: Vec<Row> = vec![
+        (
+            "joint DTW (rad/step)",
+            Box::new(|r| stat(&r.fidelity.joint_dtw_rad_per_step, 4)),
+        ),
+        (
+            "wrist-path DTW (mm/step)",
+            Box::new(|r| opt_stat(&r.fidelity.wrist_dtw_mm, 1)),
+        ),
+        (
+            "apex error (rad)",
+            Box::new(|r| stat(&r.fidelity.apex_error_rad, 3)),
+        ),
+        (
+            "final-posture error (rad)",
+            Box::new(|r| stat(&r.fidelity.final_error_rad, 3)),
+        ),
+        (
+            "duration ratio",
+            Box::new(|r| stat(&r.fidelity.duration_ratio, 2)),
+        ),
+        (
+            "normalized jerk (demos' mean in brackets)",
+            Box::new(move |r| {
+                let j = r.fidelity.reproduction_smoothness.normalized_jerk;
+                format!(
+                    "{} ({demo_jerk:.0})",
+                    j.map_or("n/a".into(), |j| format!("{j:.0}"))
+                )
+            }),
+        ),
+        (
+            "velocity reversals, all joints (demos' mean)",
+            Box::new(move |r| {
+                format!(
+                    "{} ({demo_rev:.1})",
+                    r.fidelity.reproduction_smoothness.total_reversals
+                )
+            }),
+        ),
+        (
+            "velocity reversals per joint",
+            Box::new(|r| {
+                let v: Vec<String> = r
+                    .fidelity
+                    .reproduction_smoothness
+                    .reversals
+                    .iter()
+                    .map(|n| n.to_string())
+                    .collect();
+                v.join(" ")
+            }),
+        ),
+        (
+            "reproduction duration (s)",
+            Box::new(|r| format!("{:.2}", r.fidelity.reproduction_duration_s)),
+        ),
+        ("postures produced", Box::new(|r| r.postures.to_string())),
+        ("clamped values", Box::new(|r| r.clamped_values.to_string())),
+        (
+            "training time (s)",
+            Box::new(|r| format!("{:.3}", r.train_s)),
+        ),
+        (
+            "reproduction time (s)",
+            Box::new(|r| format!("{:.4}", r.reproduce_s)),
+        ),
+        (
+            "model size (bytes)",
+            Box::new(|r| r.model_bytes.to_string()),
+        ),
+        ("needs as input", Box::new(|r| r.needs.clone())),
+    ];
+    for (name, f) in rows {
+        let _ = write!(t, "| {name} |");
+        for r in results {
+            let _ = write!(t, " {} |", f(r));
+        }
+        t.push('\n');
+    }
+    t
+}
+
+impl Report {
+    /// The report for people.
+    pub fn to_markdown(&self) -> String {
+        let mut md = String::new();
+        let _ = writeln!(md, "# {}\n", self.title);
+        if let Some(g) = &self.gesture {
+            let _ = writeln!(md, "- gesture: `{g}` (synthetic demonstrations recorded from the simulated encoders at 40 Hz)");
+        }
+        let _ = writeln!(md, "- seed: {}", self.seed);
+        let _ = writeln!(md, "- configuration: `{}`", self.config);
+        let _ = writeln!(md, "- demonstrations:");
+        for d in &self.demos {
+            let _ = writeln!(
+                md,
+                "  - `{}`: {} samples, {:.2} s",
+                d.file, d.samples, d.duration_s
+            );
+        }
+        let _ = writeln!(
+            md,
+            "\nEvery metric is computed on the trajectory executed by the simulated arm, against \
+             each demonstration (idle start and end trimmed), and given as mean / worst. \
+             Definitions: docs/METRICS.md.\n"
+        );
+        let _ = writeln!(md, "## Methods side by side\n");
+        md.push_str(&comparison_table(&self.methods));
+        for m in &self.methods {
+            for n in &m.notes {
+                let _ = writeln!(md, "- {}: {n}", m.name);
+            }
+        }
+        if !self.variants.is_empty() {
+            let _ = writeln!(
+                md,
+                "\n## CoSCo-HSOM variants: before and after the beyond-the-paper options\n"
+            );
+            md.push_str(&comparison_table(&self.variants));
+            for m in &self.variants {
+                for n in &m.notes {
+                    let _ = writeln!(md, "- {}: {n}", m.name);
+                }
+            }
+        }
+        let _ = writeln!(
+            md,
+            "\n## Wall time per stage\n\n| stage | seconds |\n|---|---|"
+        );
+        let mut total = 0.0;
+        for s in &self.stages {
+            let _ = writeln!(md, "| {} | {:.3} |", s.stage, s.seconds);
+            total += s.seconds;
+        }
+        let _ = writeln!(md, "| **total** | {total:.3} |");
+        if !self.files.is_empty() {
+            let _ = writeln!(md, "\n## Files\n");
+            for f in &self.files {
+                let _ = writeln!(md, "- `{f}`");
+            }
+        }
+        md
+    }
+
+    /// Write `report.json` and `report.md` into `dir`, atomically.
+    pub fn write(&self, dir: &Path) -> std::io::Result<()> {
+        let json = serde_json::to_vec_pretty(self).map_err(std::io::Error::other)?;
+        write_atomic(&dir.join("report.json"), &json)?;
+        write_atomic(&dir.join("report.md"), self.to_markdown().as_bytes())
+    }
+}
