@@ -1,0 +1,484 @@
+//! The paper's baseline (Section V: GMM/GMR after Calinon) executed exactly like CoSCo-HSOM:
+//! the same demonstrations, the same position controller on the simulated arm, the same
+//! initial posture, recorded at the same rate, scored with the same metrics.
+//!
+//! **Starting from the initial posture.** GMR's mean trajectory starts wherever the
+//! regression puts `E[q | t = 0]` (close to, but not exactly at, the initial posture: it is
+//! a weighted mean over the aligned demonstrations' first samples). The executed plan is
+//! therefore
+//!
+//! 1. a minimum-jerk lead-in from the initial posture `q₀` to `m(0)` (GMR's first point):
+//!    `q(s) = q₀ + (m(0) − q₀)(10 s³ − 15 s⁴ + 6 s⁵)`, `s = k / n`, `k = 0 … n−1`, whose
+//!    duration `T = max(`[`LEAD_IN_MIN_S`]`, 1.875 · max_j |m_j(0) − q₀_j| / `[`LEAD_IN_PEAK_SPEED`]`)`
+//!    (1.875 · Δ / T is the peak speed of a minimum-jerk move), rounded up to whole ticks
+//!    (`n = ⌈T · rate⌉`);
+//! 2. then GMR's mean `m(t)` at `t = 0, dt, …, duration` (the reference demonstration's
+//!    trimmed duration).
+//!
+//! The lead-in is counted in the executed trajectory (it is part of what the arm does), so
+//! every metric includes it. Values outside a joint's range are clamped and counted, as for
+//! CoSCo-HSOM.
+
+use std::path::Path;
+use std::time::Instant;
+
+use plotters::style::RGBColor;
+
+use crate::demos::Demonstration;
+use crate::gmr::{BicScore, GmrError, GmrModel, GmrValidParams, Prediction, TrainingSet};
+use crate::metrics::{FidelityReport, MetricsParams};
+use crate::plot::{demo_color, panels_png, Band, Ellipse, Panel, PlotError, Scatter, Series};
+use crate::sim::{NaoArm, Recording, JOINT_NAMES};
+
+use super::report::MethodResult;
+use super::{are_arm_joints, clamp_to_ranges, evaluate, execute_postures, ExperimentError};
+
+/// Peak joint speed of the lead-in from the initial posture to GMR's first point, rad/s.
+pub const LEAD_IN_PEAK_SPEED: f64 = 1.0;
+/// Shortest lead-in, seconds.
+pub const LEAD_IN_MIN_S: f64 = 0.1;
+/// Name of the baseline in reports.
+pub const GMR_NAME: &str = "GMM/GMR";
+/// What the baseline needs as input (the report's "needs as input" row).
+pub const GMR_NEEDS: &str = "at least 2 demonstrations, pre-processed: idle start/end trimmed, \
+    DTW-aligned to the medoid demonstration, resampled to a fixed number of points; a time \
+    index t (it regresses q on t over the learned duration); the initial posture only for \
+    the minimum-jerk lead-in to GMR's first point";
+/// Colour of the baseline's curves.
+pub const GMR_COLOR: RGBColor = RGBColor(200, 0, 130);
+
+/// Errors of the baseline experiment.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum BaselineError {
+    /// The demonstrations are not the arm's joints, so the baseline cannot be executed.
+    #[error("the demonstrations' columns are {found:?}; executing on the simulated arm needs exactly {expected:?}")]
+    NotArmJoints {
+        /// Columns found.
+        found: Vec<String>,
+        /// Columns expected (the arm's joints in model order).
+        expected: Vec<String>,
+    },
+    /// Fitting or querying the GMM/GMR failed.
+    #[error("GMM/GMR: {0}")]
+    Gmr(#[from] GmrError),
+    /// Executing or evaluating failed.
+    #[error(transparent)]
+    Experiment(#[from] ExperimentError),
+    /// A figure could not be drawn or written.
+    #[error(transparent)]
+    Plot(#[from] PlotError),
+    /// A bad argument (named in the message).
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// Minimum-jerk samples from `from` to `to` at `s = k / n`, `k = 0 … n−1` (`to` itself is
+/// not included: it is the next posture of the plan). `n = 0` gives nothing.
+pub fn minimum_jerk(from: &[f64], to: &[f64], n: usize) -> Vec<Vec<f64>> {
+    (0..n)
+        .map(|k| {
+            let s = k as f64 / n as f64;
+            let h = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
+            from.iter().zip(to).map(|(a, b)| a + (b - a) * h).collect()
+        })
+        .collect()
+}
+
+/// Ticks of the lead-in from `from` to `to` at `rate_hz` (see the module documentation); at
+/// least 1 (the initial posture itself).
+pub fn lead_in_ticks(from: &[f64], to: &[f64], rate_hz: f64) -> usize {
+    let delta = from
+        .iter()
+        .zip(to)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    let t = LEAD_IN_MIN_S.max(1.875 * delta / LEAD_IN_PEAK_SPEED);
+    ((t * rate_hz).ceil() as usize).max(1)
+}
+
+/// The postures the baseline sends to the controller.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GmrPlan {
+    /// One posture per tick; the first is the initial posture.
+    pub postures: Vec<Vec<f64>>,
+    /// How many leading postures are the minimum-jerk lead-in.
+    pub lead_in: usize,
+    /// GMR's predictions (`time` on GMR's own time line, from 0), one per posture after
+    /// the lead-in.
+    pub predictions: Vec<Prediction>,
+}
+
+/// The plan: the lead-in from `initial` to GMR's first point, then GMR's mean every
+/// `1 / rate_hz` seconds over the model's duration.
+pub fn plan(model: &GmrModel, initial: &[f64], rate_hz: f64) -> Result<GmrPlan, BaselineError> {
+    if !(rate_hz.is_finite() && rate_hz > 0.0) {
+        return Err(BaselineError::Invalid(format!(
+            "rate_hz = {rate_hz}: needs a finite rate > 0"
+        )));
+    }
+    if initial.len() != model.columns().len() || initial.iter().any(|v| !v.is_finite()) {
+        return Err(BaselineError::Invalid(format!(
+            "initial posture {initial:?}: needs {} finite values ({})",
+            model.columns().len(),
+            model.columns().join(", ")
+        )));
+    }
+    let predictions = model.reproduce(1.0 / rate_hz)?;
+    let first = &predictions[0].mean;
+    let lead_in = lead_in_ticks(initial, first, rate_hz);
+    let mut postures = minimum_jerk(initial, first, lead_in);
+    postures.extend(predictions.iter().map(|p| p.mean.clone()));
+    Ok(GmrPlan {
+        postures,
+        lead_in,
+        predictions,
+    })
+}
+
+/// Everything one run of the baseline produced.
+#[derive(Debug, Clone)]
+pub struct BaselineRun {
+    /// The fitted model.
+    pub model: GmrModel,
+    /// The pre-processed training data (the paper's Fig. 3).
+    pub training: TrainingSet,
+    /// BIC of every component count tried.
+    pub bic: Vec<BicScore>,
+    /// Pre-processing + EM, seconds.
+    pub train_s: f64,
+    /// GMR regression + lead-in, seconds.
+    pub reproduce_s: f64,
+    /// The postures sent to the controller (before clamping).
+    pub plan: GmrPlan,
+    /// Posture values clamped into the joint ranges before execution.
+    pub clamped: usize,
+    /// The executed trajectory, recorded at the demonstrations' rate.
+    pub executed: Recording,
+    /// Fidelity of the executed trajectory against the demonstrations.
+    pub fidelity: FidelityReport,
+}
+
+/// Fit the baseline to `demos` (the arm's joints, sampled every `metrics.sample_period`
+/// seconds), execute its plan on the simulated arm from `demos[0]`'s first posture, and
+/// score the executed trajectory with `metrics`.
+pub fn run_baseline(
+    arm: &NaoArm,
+    demos: &[Demonstration],
+    params: &GmrValidParams,
+    metrics: &MetricsParams,
+) -> Result<BaselineRun, BaselineError> {
+    let Some(first) = demos.first() else {
+        return Err(BaselineError::Invalid(
+            "no demonstrations given to the GMM/GMR baseline".into(),
+        ));
+    };
+    if !are_arm_joints(&first.columns) {
+        return Err(BaselineError::NotArmJoints {
+            found: first.columns.clone(),
+            expected: JOINT_NAMES.iter().map(|s| s.to_string()).collect(),
+        });
+    }
+    if !(metrics.sample_period.is_finite() && metrics.sample_period > 0.0) {
+        return Err(BaselineError::Invalid(format!(
+            "metrics sample_period = {}: needs a finite period > 0",
+            metrics.sample_period
+        )));
+    }
+    let rate = 1.0 / metrics.sample_period;
+    let t = Instant::now();
+    let (model, training, bic) = params.fit_with_details(demos)?;
+    let train_s = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let plan = plan(&model, &first.rows[0], rate)?;
+    let reproduce_s = t.elapsed().as_secs_f64();
+    let (postures, clamped) = clamp_to_ranges(&plan.postures)?;
+    let executed = execute_postures(arm, &postures, rate)?;
+    let fidelity = evaluate(Some(arm), demos, &executed.qpos, metrics)?;
+    Ok(BaselineRun {
+        model,
+        training,
+        bic,
+        train_s,
+        reproduce_s,
+        plan,
+        clamped,
+        executed,
+        fidelity,
+    })
+}
+
+impl BaselineRun {
+    /// The baseline's column of the comparison table; `model_bytes` is the size of the saved
+    /// model file.
+    pub fn method_result(&self, model_bytes: u64) -> MethodResult {
+        let g = self.model.gmm();
+        let chosen: Vec<String> = self
+            .bic
+            .iter()
+            .map(|b| match b.bic {
+                Some(v) => format!("K={}: {v:.0}", b.components),
+                None => format!("K={}: failed", b.components),
+            })
+            .collect();
+        let mut notes = vec![
+            format!(
+                "{} Gaussian components over [t, q] (dimension {}); {} numbers in the model",
+                g.n_components(),
+                g.dim(),
+                g.n_components() * (1 + g.dim() + g.dim() * g.dim())
+            ),
+            format!(
+                "training data: {} demonstrations x {} points, aligned to demonstration {} \
+                 (the medoid); learned duration {:.2} s",
+                self.training.demos.len(),
+                self.training.times.len(),
+                self.training
+                    .reference
+                    .map_or("none".into(), |r| (r + 1).to_string()),
+                self.training.duration
+            ),
+            format!(
+                "minimum-jerk lead-in from the initial posture to GMR's first point: {} ticks \
+                 ({:.3} s), then {} GMR postures",
+                self.plan.lead_in,
+                self.plan.lead_in as f64 / self.executed.rate_hz,
+                self.plan.predictions.len()
+            ),
+        ];
+        if chosen.len() > 1 {
+            notes.push(format!(
+                "components chosen by BIC (lowest wins): {}",
+                chosen.join(", ")
+            ));
+        }
+        MethodResult {
+            name: GMR_NAME.into(),
+            needs: GMR_NEEDS.into(),
+            fidelity: self.fidelity.clone(),
+            train_s: self.train_s,
+            reproduce_s: self.reproduce_s,
+            model_bytes,
+            postures: self.plan.postures.len(),
+            clamped_values: self.clamped,
+            notes,
+        }
+    }
+}
+
+/// The paper's Fig. 3: the pre-processed (trimmed, aligned, resampled) training data, one
+/// panel per `(column index, name)` of `joints`.
+pub fn fig3_png(
+    path: &Path,
+    training: &TrainingSet,
+    joints: &[(usize, &str)],
+) -> Result<(), BaselineError> {
+    let panels: Vec<Panel> = joints
+        .iter()
+        .map(|&(k, name)| {
+            let mut p = Panel::new(name, "time (s)", format!("{name} (rad)"));
+            for (i, d) in training.demos.iter().enumerate() {
+                p.series.push(Series::new(
+                    format!("demonstration {}", i + 1),
+                    demo_color(i),
+                    training
+                        .times
+                        .iter()
+                        .zip(d)
+                        .filter_map(|(t, q)| q.get(k).map(|v| (*t, *v)))
+                        .collect(),
+                ));
+            }
+            p
+        })
+        .collect();
+    let title = format!(
+        "Pre-processed training data for GMM: idle trimmed, DTW-aligned{}, {} points each",
+        training
+            .reference
+            .map_or(String::new(), |r| format!(" to demonstration {}", r + 1)),
+        training.times.len()
+    );
+    Ok(panels_png(path, &title, &panels, 2, (620, 380))?)
+}
+
+/// The paper's Fig. 5 for column `joint` (named `name`): each Gaussian's marginal over
+/// `[t, q_joint]` as its 1-sigma ellipse, GMR's mean, the ±2σ envelope of GMR's conditional
+/// variance, and the aligned training data as dots.
+pub fn fig5_png(
+    path: &Path,
+    model: &GmrModel,
+    training: &TrainingSet,
+    joint: usize,
+    name: &str,
+    period: f64,
+) -> Result<(), BaselineError> {
+    if joint >= model.columns().len() {
+        return Err(BaselineError::Invalid(format!(
+            "joint index {joint} for {name}: the model has {} columns",
+            model.columns().len()
+        )));
+    }
+    let preds = model.reproduce(period)?;
+    let mut p = Panel::new(
+        format!("{name}: Gaussians (1 sigma), GMR mean, +-2 sigma envelope, aligned data"),
+        "time (s)",
+        format!("{name} (rad)"),
+    );
+    let g = model.gmm();
+    for (m, s) in g.means().iter().zip(g.covariances()) {
+        let j = joint + 1;
+        p.ellipses.push(Ellipse {
+            mean: (m[0], m[j]),
+            cov: [[s[(0, 0)], s[(0, j)]], [s[(j, 0)], s[(j, j)]]],
+            n_sigma: 1.0,
+            color: RGBColor(40, 170, 60),
+        });
+    }
+    p.bands.push(Band {
+        label: Some("GMR +-2 sigma".into()),
+        color: RGBColor(90, 160, 255),
+        points: preds
+            .iter()
+            .map(|q| {
+                let sd = q.covariance[joint][joint].max(0.0).sqrt();
+                (q.time, q.mean[joint] - 2.0 * sd, q.mean[joint] + 2.0 * sd)
+            })
+            .collect(),
+    });
+    p.scatter.push(Scatter {
+        label: Some("aligned demonstrations".into()),
+        color: RGBColor(60, 60, 60),
+        size: 2,
+        points: training
+            .demos
+            .iter()
+            .flat_map(|d| {
+                training
+                    .times
+                    .iter()
+                    .zip(d)
+                    .filter_map(|(t, q)| q.get(joint).map(|v| (*t, *v)))
+            })
+            .collect(),
+    });
+    p.series.push(Series {
+        label: Some("GMR mean".into()),
+        color: RGBColor(0, 40, 200),
+        width: 3,
+        points: preds.iter().map(|q| (q.time, q.mean[joint])).collect(),
+    });
+    let title = format!(
+        "GMM/GMR, {} components (green: Gaussians)",
+        g.n_components()
+    );
+    Ok(panels_png(path, &title, &[p], 1, (900, 560))?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gmr::{ComponentChoice, Gmm};
+    use nalgebra::{DMatrix, DVector};
+
+    #[test]
+    fn minimum_jerk_starts_at_from_and_approaches_to_monotonically() {
+        let s = minimum_jerk(&[0.0, 1.0], &[1.0, 1.0], 10);
+        assert_eq!(s.len(), 10);
+        assert_eq!(s[0], vec![0.0, 1.0]);
+        for w in s.windows(2) {
+            assert!(w[1][0] > w[0][0]);
+            assert_eq!(w[1][1], 1.0);
+        }
+        // symmetric about the middle: h(1/2) = 1/2
+        assert!((s[5][0] - 0.5).abs() < 1e-12);
+        assert!(minimum_jerk(&[0.0], &[1.0], 0).is_empty());
+    }
+
+    #[test]
+    fn lead_in_respects_the_peak_speed_and_the_minimum() {
+        // tiny distance: the minimum duration, 0.1 s at 40 Hz = 4 ticks
+        assert_eq!(lead_in_ticks(&[0.0], &[1e-6], 40.0), 4);
+        // 1 rad at 1 rad/s peak: 1.875 s = 75 ticks
+        assert_eq!(lead_in_ticks(&[0.0, 0.0], &[0.2, -1.0], 40.0), 75);
+        // the samples' peak speed stays under the limit
+        let s = minimum_jerk(&[0.0], &[1.0], 75);
+        let peak = s
+            .windows(2)
+            .map(|w| (w[1][0] - w[0][0]) * 40.0)
+            .fold(0.0, f64::max);
+        assert!(peak <= LEAD_IN_PEAK_SPEED + 1e-9, "{peak}");
+    }
+
+    fn line_model() -> GmrModel {
+        // one component: q = 0.5 + 0.25 t on 6 joints, duration 2 s
+        let d = 7;
+        let mut cov = DMatrix::identity(d, d) * 0.01;
+        cov[(0, 0)] = 1.0;
+        cov[(0, 1)] = 0.25;
+        cov[(1, 0)] = 0.25;
+        cov[(1, 1)] = 0.0625 + 0.01;
+        let mut mean = DVector::from_element(d, 0.5);
+        mean[0] = 1.0;
+        mean[1] = 0.75;
+        let gmm = Gmm::new(vec![1.0], vec![mean], vec![cov]).unwrap();
+        GmrModel::new(
+            JOINT_NAMES.iter().map(|s| s.to_string()).collect(),
+            2.0,
+            gmm,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn plan_starts_at_the_initial_posture_then_follows_gmr() {
+        let m = line_model();
+        let initial = vec![0.0; 6];
+        let p = plan(&m, &initial, 40.0).unwrap();
+        assert_eq!(p.postures[0], initial);
+        assert_eq!(p.predictions.len(), 81);
+        assert_eq!(p.postures.len(), p.lead_in + 81);
+        // after the lead-in: GMR's mean, q0 = 0.5 + 0.25 t
+        let at = &p.postures[p.lead_in + 40];
+        assert!((at[0] - 0.75).abs() < 1e-9, "{at:?}");
+        // the lead-in respects the peak speed
+        for w in p.postures[..=p.lead_in].windows(2) {
+            for (a, b) in w[0].iter().zip(&w[1]) {
+                assert!((b - a).abs() * 40.0 <= LEAD_IN_PEAK_SPEED + 1e-9);
+            }
+        }
+    }
+
+    #[test]
+    fn plan_rejects_bad_initial_posture_and_rate() {
+        let m = line_model();
+        let e = plan(&m, &[0.0; 5], 40.0).unwrap_err();
+        assert!(e.to_string().contains("LShoulderPitch"), "{e}");
+        let e = plan(&m, &[f64::NAN; 6], 40.0).unwrap_err();
+        assert!(e.to_string().contains("finite"), "{e}");
+        let e = plan(&m, &[0.0; 6], 0.0).unwrap_err();
+        assert!(e.to_string().contains("rate_hz"), "{e}");
+    }
+
+    #[test]
+    fn run_baseline_refuses_columns_that_are_not_the_arm() {
+        let arm = NaoArm::load_default().unwrap();
+        let d = Demonstration {
+            source: "x.csv".into(),
+            columns: vec!["a".into(), "b".into()],
+            time: None,
+            rows: vec![vec![0.0, 0.0]; 10],
+        };
+        let params = crate::gmr::GmrParams::new()
+            .components(ComponentChoice::Fixed(1))
+            .check()
+            .unwrap();
+        let e =
+            run_baseline(&arm, &[d.clone(), d], &params, &MetricsParams::default()).unwrap_err();
+        let msg = e.to_string();
+        assert!(
+            msg.contains("LShoulderPitch") && msg.contains("\"a\""),
+            "{msg}"
+        );
+    }
+}
