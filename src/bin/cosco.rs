@@ -42,6 +42,25 @@ enum Command {
         #[arg(long)]
         model: Option<PathBuf>,
     },
+    /// Compare CoSCo-HSOM with the paper's GMM/GMR baseline on the same demonstrations, both
+    /// executed on the simulated arm from the same initial posture (report, csvs, plots).
+    Compare {
+        /// Directory of demonstration CSVs (columns: time, then the arm's six joints).
+        #[arg(long)]
+        demos: PathBuf,
+        /// CoSCo-HSOM configuration (XML); default: the built-in Table I.
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Output directory (created if missing).
+        #[arg(long, default_value = "out-compare")]
+        out: PathBuf,
+        /// GMM components: a number K >= 1, or `bic` (lowest BIC over 1..=8).
+        #[arg(long, default_value = "bic", value_parser = cli::compare::parse_components)]
+        components: cosco_hsom::gmr::ComponentChoice,
+        /// MJCF model of the arm.
+        #[arg(long)]
+        model: Option<PathBuf>,
+    },
 }
 
 fn run(cli: Cli) -> Result<()> {
@@ -58,6 +77,26 @@ fn run(cli: Cli) -> Result<()> {
             for f in files {
                 println!("{}", f.display());
             }
+        }
+        Command::Compare {
+            demos,
+            config,
+            out,
+            components,
+            model,
+        } => {
+            let job = cli::compare::CompareJob {
+                demos,
+                config,
+                out,
+                components,
+                model,
+            };
+            let report = cli::compare::compare(&job)?;
+            for line in cli::compare::summary_lines(&report) {
+                println!("{line}");
+            }
+            println!("report: {}", job.out.join("report.md").display());
         }
     }
     Ok(())

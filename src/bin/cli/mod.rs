@@ -2,6 +2,8 @@
 //! only); the library's typed errors carry the file, field and value.
 #![allow(dead_code)]
 
+pub mod compare;
+
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -378,6 +380,27 @@ pub fn main_job(job: &Job) -> Result<Report> {
     files.push("wrist.png".into());
     clock.lap("plots");
 
+    // 5b. The paper's baseline (GMM/GMR) on the same demonstrations, executed and scored the
+    // same way (cli/compare.rs). It needs at least two demonstrations: otherwise noted, skipped.
+    let mut methods = vec![hsom_result];
+    match compare::baseline_section(
+        &arm,
+        &demos,
+        &executed,
+        out,
+        compare::DEFAULT_COMPONENTS,
+        &mut files,
+    ) {
+        Ok(gmr_result) => methods.push(gmr_result),
+        Err(e) => {
+            eprintln!("warning: GMM/GMR baseline skipped: {e:#}");
+            methods[0]
+                .notes
+                .push(format!("GMM/GMR baseline not run: {e:#}"));
+        }
+    }
+    clock.lap("GMM/GMR baseline (fit + execute + metrics + plots)");
+
     // 6. Clip.
     if job.render {
         let opts = RenderOptions {
@@ -419,7 +442,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
                 p.display().to_string()
             }),
         demos: demo_info,
-        methods: vec![hsom_result],
+        methods,
         variants: Vec::new(),
         stages: clock.stages,
         files,

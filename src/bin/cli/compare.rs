@@ -1,0 +1,316 @@
+//! `cosco compare` and the baseline section of `simulate`: the paper's GMM/GMR baseline and
+//! CoSCo-HSOM trained on the same demonstrations, both executed on the simulated arm from
+//! the same initial posture, scored with the same metrics, side by side in one table.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+
+use cosco_hsom::demos::{validate_set, write_csv, Demonstration};
+use cosco_hsom::experiment::baseline::{fig3_png, fig5_png, run_baseline, GMR_COLOR};
+use cosco_hsom::experiment::figures::{joint_panels_png, wrist_png, Curve, Path3};
+use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report};
+use cosco_hsom::experiment::{
+    are_arm_joints, clamp_to_ranges, evaluate, execute_postures, wrist_path,
+};
+use cosco_hsom::gmr::{load_model, save_model, ComponentChoice, GmrParams};
+use cosco_hsom::metrics::MetricsParams;
+use cosco_hsom::plot::{demo_color, BLACK};
+use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
+
+use super::{
+    file_size, hsom_config, levels_note, load_arm, read_demos, sample_period, train, Stopwatch,
+    FIG4_JOINTS,
+};
+
+/// The default component choice: BIC over 1..=8.
+pub const DEFAULT_COMPONENTS: ComponentChoice = ComponentChoice::Bic { min: 1, max: 8 };
+
+/// Parse `--components`: a count `K` (≥ 1) or `bic` (BIC over 1..=8).
+pub fn parse_components(s: &str) -> Result<ComponentChoice, String> {
+    let t = s.trim();
+    if t.eq_ignore_ascii_case("bic") {
+        return Ok(DEFAULT_COMPONENTS);
+    }
+    match t.parse::<usize>() {
+        Ok(k) if k >= 1 => Ok(ComponentChoice::Fixed(k)),
+        _ => Err(format!(
+            "--components '{s}': expected a number of components >= 1 or 'bic'"
+        )),
+    }
+}
+
+/// Fail with the expected columns when the demonstrations are not the arm's joints.
+pub fn require_arm_joints(demos: &[Demonstration]) -> Result<()> {
+    if let Some(d) = demos.first() {
+        if !are_arm_joints(&d.columns) {
+            bail!(
+                "{}: the demonstrations' columns are {:?}; comparing needs the simulator to \
+                 execute both methods, so the columns must be exactly time (optional) then {:?}",
+                d.source,
+                d.columns,
+                JOINT_NAMES
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Fit, execute and score the GMM/GMR baseline on `demos` (the arm's joints), then write into
+/// `out`: `gmr_model.txt` (reloaded and checked identical), `gmr_reproduction.csv`,
+/// `fig3_gmr_training_data.png`, `fig5_gmr_lshoulderpitch.png`, and, with CoSCo-HSOM's
+/// executed trajectory `hsom`, `joints_compare.png` and `wrist_compare.png`. Returns the
+/// baseline's column of the comparison table; the files written are appended to `files`.
+pub fn baseline_section(
+    arm: &NaoArm,
+    demos: &[Demonstration],
+    hsom: &Recording,
+    out: &Path,
+    components: ComponentChoice,
+    files: &mut Vec<String>,
+) -> Result<MethodResult> {
+    let dt = sample_period(&demos[0]);
+    let params = GmrParams::new()
+        .components(components)
+        .sample_period(dt)
+        .check()?;
+    let metrics = MetricsParams {
+        sample_period: dt,
+        ..MetricsParams::default()
+    };
+    let run = run_baseline(arm, demos, &params, &metrics)?;
+
+    let model_path = out.join("gmr_model.txt");
+    save_model(&model_path, &run.model)?;
+    let back = load_model(&model_path)?;
+    if back != run.model {
+        bail!(
+            "{}: the reloaded GMR model differs from the saved one",
+            model_path.display()
+        );
+    }
+    files.push("gmr_model.txt".into());
+    write_csv(
+        &out.join("gmr_reproduction.csv"),
+        &run.executed.to_demonstration("GMM/GMR reproduction"),
+    )?;
+    files.push("gmr_reproduction.csv".into());
+
+    fig3_png(
+        &out.join("fig3_gmr_training_data.png"),
+        &run.training,
+        &FIG4_JOINTS,
+    )?;
+    files.push("fig3_gmr_training_data.png".into());
+    fig5_png(
+        &out.join("fig5_gmr_lshoulderpitch.png"),
+        &run.model,
+        &run.training,
+        0,
+        JOINT_NAMES[0],
+        dt,
+    )?;
+    files.push("fig5_gmr_lshoulderpitch.png".into());
+
+    let mut curves: Vec<Curve> = demos
+        .iter()
+        .enumerate()
+        .map(|(i, d)| Curve::demo(i, d.time.as_deref().unwrap_or(&[]), &d.rows))
+        .collect();
+    curves.push(Curve::reproduction(
+        "CoSCo-HSOM reproduction",
+        &hsom.time,
+        &hsom.qpos,
+    ));
+    curves.push(Curve {
+        label: "GMM/GMR reproduction".into(),
+        color: GMR_COLOR,
+        width: 3,
+        time: &run.executed.time,
+        rows: &run.executed.qpos,
+    });
+    joint_panels_png(
+        &out.join("joints_compare.png"),
+        "Demonstrations (colour), CoSCo-HSOM (black) and GMM/GMR (magenta), executed on the arm",
+        &FIG4_JOINTS,
+        &curves,
+        "rad",
+    )?;
+    files.push("joints_compare.png".into());
+
+    let demo_wrists = demos
+        .iter()
+        .map(|d| wrist_path(arm, &d.rows))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut paths: Vec<Path3> = demo_wrists
+        .iter()
+        .enumerate()
+        .map(|(i, w)| Path3 {
+            label: format!("demonstration {}", i + 1),
+            color: demo_color(i),
+            width: 2,
+            points: w,
+        })
+        .collect();
+    paths.push(Path3 {
+        label: "CoSCo-HSOM reproduction".into(),
+        color: BLACK,
+        width: 3,
+        points: &hsom.wrist,
+    });
+    paths.push(Path3 {
+        label: "GMM/GMR reproduction".into(),
+        color: GMR_COLOR,
+        width: 3,
+        points: &run.executed.wrist,
+    });
+    wrist_png(
+        &out.join("wrist_compare.png"),
+        "Wrist path (l_wrist), torso frame: both methods",
+        &paths,
+    )?;
+    files.push("wrist_compare.png".into());
+
+    Ok(run.method_result(file_size(&model_path)))
+}
+
+/// What `cosco compare` needs.
+#[derive(Debug, Clone)]
+pub struct CompareJob {
+    /// Directory (or file) of demonstration CSVs.
+    pub demos: PathBuf,
+    /// CoSCo-HSOM configuration (None: built-in Table I).
+    pub config: Option<PathBuf>,
+    /// Output directory.
+    pub out: PathBuf,
+    /// GMM component choice.
+    pub components: ComponentChoice,
+    /// Arm model file.
+    pub model: Option<PathBuf>,
+}
+
+/// Train CoSCo-HSOM, reproduce from `demos[0]`'s first posture, execute on the arm, score;
+/// writes `model.bin` and `reproduction.csv` into `out`.
+fn hsom_method(
+    cfg: &cosco_hsom::config::HsomConfig,
+    arm: &NaoArm,
+    demos: &[Demonstration],
+    out: &Path,
+    files: &mut Vec<String>,
+) -> Result<(MethodResult, Recording)> {
+    let t = Instant::now();
+    let model = train(cfg, demos)?;
+    let train_s = t.elapsed().as_secs_f64();
+    let model_path = out.join("model.bin");
+    model.save(&model_path)?;
+    files.push("model.bin".into());
+    let dt = sample_period(&demos[0]);
+    let t = Instant::now();
+    let rep = model.reproduce(&demos[0].rows[0])?;
+    let reproduce_s = t.elapsed().as_secs_f64();
+    let (postures, clamped) = clamp_to_ranges(&rep.postures)?;
+    let executed = execute_postures(arm, &postures, 1.0 / dt)?;
+    write_csv(
+        &out.join("reproduction.csv"),
+        &executed.to_demonstration("CoSCo-HSOM reproduction"),
+    )?;
+    files.push("reproduction.csv".into());
+    let params = MetricsParams {
+        sample_period: dt,
+        ..MetricsParams::default()
+    };
+    let fidelity = evaluate(Some(arm), demos, &executed.qpos, &params)?;
+    Ok((
+        MethodResult {
+            name: "CoSCo-HSOM".into(),
+            needs: "raw demonstrations; the initial posture".into(),
+            fidelity,
+            train_s,
+            reproduce_s,
+            model_bytes: file_size(&model_path),
+            postures: rep.postures.len(),
+            clamped_values: clamped,
+            notes: vec![
+                format!("stopped: {:?}", rep.stop),
+                levels_note(&rep.predicted_by),
+            ],
+        },
+        executed,
+    ))
+}
+
+/// `cosco compare`: both methods on the same demonstrations, executed on the simulated arm;
+/// report, csvs, models and plots written into `job.out`.
+pub fn compare(job: &CompareJob) -> Result<Report> {
+    let mut clock = Stopwatch::new();
+    let out = &job.out;
+    let cfg = hsom_config(job.config.as_deref())?;
+    let demos = read_demos(std::slice::from_ref(&job.demos), None)?;
+    require_arm_joints(&demos)?;
+    validate_set(&demos, Some(cfg.params().state_length)).with_context(|| {
+        format!(
+            "the configuration's stateLength is {}",
+            cfg.params().state_length
+        )
+    })?;
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let arm = load_arm(job.model.as_deref())?;
+    let demo_info: Vec<DemoInfo> = demos
+        .iter()
+        .map(|d| DemoInfo {
+            file: d.source.clone(),
+            samples: d.rows.len(),
+            duration_s: (d.rows.len().saturating_sub(1)) as f64 * sample_period(d),
+        })
+        .collect();
+    clock.lap("read demonstrations");
+
+    let mut files = Vec::new();
+    let (hsom_result, hsom_exec) = hsom_method(&cfg, &arm, &demos, out, &mut files)?;
+    clock.lap("CoSCo-HSOM (train + reproduce + execute + metrics)");
+    let gmr_result = baseline_section(&arm, &demos, &hsom_exec, out, job.components, &mut files)?;
+    clock.lap("GMM/GMR (fit + reproduce + execute + metrics + plots)");
+
+    files.push("report.md".into());
+    files.push("report.json".into());
+    let report = Report {
+        title: "CoSCo-HSOM and the GMM/GMR baseline on the simulated Nao left arm".into(),
+        gesture: None,
+        seed: cfg.params().seed,
+        config: job
+            .config
+            .as_ref()
+            .map_or("configs/table1.xml (built in)".into(), |p| {
+                p.display().to_string()
+            }),
+        demos: demo_info,
+        methods: vec![hsom_result, gmr_result],
+        variants: Vec::new(),
+        stages: clock.stages,
+        files,
+    };
+    report
+        .write(out)
+        .with_context(|| format!("writing the report into {}", out.display()))?;
+    Ok(report)
+}
+
+/// One terminal line per method.
+pub fn summary_lines(r: &Report) -> Vec<String> {
+    r.methods
+        .iter()
+        .map(|m| {
+            format!(
+                "{}: joint DTW {:.4} rad/step, wrist DTW {} mm, apex error {:.3} rad, final error {:.3} rad, duration ratio {:.2}, reversals {}",
+                m.name,
+                m.fidelity.joint_dtw_rad_per_step.mean,
+                m.fidelity.wrist_dtw_mm.map_or("n/a".into(), |s| format!("{:.1}", s.mean)),
+                m.fidelity.apex_error_rad.mean,
+                m.fidelity.final_error_rad.mean,
+                m.fidelity.duration_ratio.mean,
+                m.fidelity.reproduction_smoothness.total_reversals,
+            )
+        })
+        .collect()
+}
