@@ -54,7 +54,7 @@ enum Command {
         /// Output directory (created if missing).
         #[arg(long, default_value = "out-compare")]
         out: PathBuf,
-        /// GMM components: a number K >= 1, or `bic` (lowest BIC over 1..=8).
+        /// GMM components: a number K >= 1, or `bic` (lowest BIC over 1..=16).
         #[arg(long, default_value = "bic", value_parser = cli::compare::parse_components)]
         components: cosco_hsom::gmr::ComponentChoice,
         /// MJCF model of the arm.

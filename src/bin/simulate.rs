@@ -57,6 +57,10 @@ fn run(a: Args) -> Result<()> {
     };
     let report = cli::main_job(&job)?;
     println!("{}", cli::summary_line(&report));
+    // the baseline's line (cli/compare.rs), when it ran
+    for line in cli::compare::summary_lines(&report).iter().skip(1) {
+        println!("{line}");
+    }
     println!("report: {}", job.out.join("report.md").display());
     Ok(())
 }

@@ -247,8 +247,14 @@ impl BaselineRun {
             ),
         ];
         if chosen.len() > 1 {
+            let top = self.bic.last().map(|b| b.components);
+            let edge = if top == Some(g.n_components()) {
+                " -- the largest count tried: a wider range may fit better"
+            } else {
+                ""
+            };
             notes.push(format!(
-                "components chosen by BIC (lowest wins): {}",
+                "components chosen by BIC (lowest wins): {}{edge}",
                 chosen.join(", ")
             ));
         }
@@ -303,7 +309,7 @@ pub fn fig3_png(
 }
 
 /// The paper's Fig. 5 for column `joint` (named `name`): each Gaussian's marginal over
-/// `[t, q_joint]` as its 1-sigma ellipse, GMR's mean, the ±2σ envelope of GMR's conditional
+/// `[t, q_joint]` as its 2-sigma ellipse, GMR's mean, the ±2σ envelope of GMR's conditional
 /// variance, and the aligned training data as dots.
 pub fn fig5_png(
     path: &Path,
@@ -321,7 +327,7 @@ pub fn fig5_png(
     }
     let preds = model.reproduce(period)?;
     let mut p = Panel::new(
-        format!("{name}: Gaussians (1 sigma), GMR mean, +-2 sigma envelope, aligned data"),
+        "green: Gaussians (2 sigma); blue: GMR mean; light blue: +-2 sigma; dots: aligned data",
         "time (s)",
         format!("{name} (rad)"),
     );
@@ -331,12 +337,12 @@ pub fn fig5_png(
         p.ellipses.push(Ellipse {
             mean: (m[0], m[j]),
             cov: [[s[(0, 0)], s[(0, j)]], [s[(j, 0)], s[(j, j)]]],
-            n_sigma: 1.0,
+            n_sigma: 2.0,
             color: RGBColor(40, 170, 60),
         });
     }
     p.bands.push(Band {
-        label: Some("GMR +-2 sigma".into()),
+        label: None,
         color: RGBColor(90, 160, 255),
         points: preds
             .iter()
@@ -347,7 +353,7 @@ pub fn fig5_png(
             .collect(),
     });
     p.scatter.push(Scatter {
-        label: Some("aligned demonstrations".into()),
+        label: None,
         color: RGBColor(60, 60, 60),
         size: 2,
         points: training
@@ -363,16 +369,16 @@ pub fn fig5_png(
             .collect(),
     });
     p.series.push(Series {
-        label: Some("GMR mean".into()),
+        label: None,
         color: RGBColor(0, 40, 200),
-        width: 3,
+        width: 2,
         points: preds.iter().map(|q| (q.time, q.mean[joint])).collect(),
     });
     let title = format!(
-        "GMM/GMR, {} components (green: Gaussians)",
+        "GMM/GMR on {name}: {} Gaussian components, regression of q on t",
         g.n_components()
     );
-    Ok(panels_png(path, &title, &[p], 1, (900, 560))?)
+    Ok(panels_png(path, &title, &[p], 1, (1000, 600))?)
 }
 
 #[cfg(test)]
