@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 
 mod cli;
@@ -42,6 +42,21 @@ enum Command {
         #[arg(long)]
         model: Option<PathBuf>,
     },
+    /// Fidelity metrics of a reproduction CSV against demonstrations (docs/METRICS.md).
+    Evaluate {
+        /// Reproduction CSV (`time` or `step` column, then the demonstrations' columns).
+        #[arg(long)]
+        reproduction: PathBuf,
+        /// Demonstrations: a directory of *.csv files, or files.
+        #[arg(long, num_args = 1.., required = true)]
+        demos: Vec<PathBuf>,
+        /// Also write the full report as JSON here.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// MJCF model of the arm, for wrist paths (default: the crate's model).
+        #[arg(long)]
+        model: Option<PathBuf>,
+    },
 }
 
 fn run(cli: Cli) -> Result<()> {
@@ -57,6 +72,15 @@ fn run(cli: Cli) -> Result<()> {
             let files = cli::demos(&gesture, count, seed, &out, noise, model.as_deref())?;
             for f in files {
                 println!("{}", f.display());
+            }
+        }
+        Command::Evaluate { reproduction, demos, json, model } => {
+            let report = cli::evaluate_files(&reproduction, &demos, model.as_deref())?;
+            print!("{}", cli::fidelity_lines(&report));
+            if let Some(p) = json {
+                let bytes = serde_json::to_vec_pretty(&report)?;
+                cosco_hsom::fsutil::write_atomic(&p, &bytes)
+                    .with_context(|| format!("writing {}", p.display()))?;
             }
         }
     }

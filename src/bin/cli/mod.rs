@@ -18,7 +18,7 @@ use cosco_hsom::experiment::{
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::hsom::Hsom;
-use cosco_hsom::metrics::MetricsParams;
+use cosco_hsom::metrics::{FidelityReport, MetricsParams};
 use cosco_hsom::plot::{demo_color, BLACK};
 use cosco_hsom::render::RenderOptions;
 use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
@@ -437,4 +437,57 @@ fn levels_note(by: &[usize]) -> String {
         .map(|l| format!("L{l}: {}", by.iter().filter(|&&b| b == l).count()))
         .collect();
     format!("postures predicted per level: {}", counts.join(", "))
+}
+
+/// Read a reproduction CSV (`time` or `step` first column, then the demonstrations' columns).
+pub fn read_reproduction(path: &Path) -> Result<Demonstration> {
+    let mut d = demos::read_csv(path)?;
+    if d.columns.first().map(String::as_str) == Some("step") {
+        d.columns.remove(0);
+        for r in &mut d.rows {
+            r.remove(0);
+        }
+        if d.columns.is_empty() {
+            bail!("{}: only a `step` column, no state variables", path.display());
+        }
+    }
+    Ok(d)
+}
+
+/// `cosco evaluate`: the fidelity metrics of a reproduction CSV against demonstrations.
+pub fn evaluate_files(reproduction: &Path, demo_paths: &[PathBuf], model: Option<&Path>) -> Result<FidelityReport> {
+    let demos = read_demos(demo_paths, None)?;
+    let rep = read_reproduction(reproduction)?;
+    if rep.columns != demos[0].columns {
+        bail!(
+            "{}: columns {:?} differ from the demonstrations' {:?} ({})",
+            reproduction.display(),
+            rep.columns,
+            demos[0].columns,
+            demos[0].source
+        );
+    }
+    let arm = if are_arm_joints(&rep.columns) { Some(load_arm(model)?) } else { None };
+    let params = MetricsParams { sample_period: sample_period(&demos[0]), ..MetricsParams::default() };
+    Ok(evaluate(arm.as_ref(), &demos, &rep.rows, &params)?)
+}
+
+/// Human-readable lines of a fidelity report.
+pub fn fidelity_lines(f: &FidelityReport) -> String {
+    let st = |s: &cosco_hsom::metrics::Stat| format!("mean {:.4}, worst {:.4}", s.mean, s.worst);
+    let mut out = String::new();
+    out += &format!("joint DTW (rad/step):       {}\n", st(&f.joint_dtw_rad_per_step));
+    if let Some(w) = &f.wrist_dtw_mm {
+        out += &format!("wrist-path DTW (mm/step):   {}\n", st(w));
+    }
+    out += &format!("apex error (rad):           {}\n", st(&f.apex_error_rad));
+    out += &format!("final-posture error (rad):  {}\n", st(&f.final_error_rad));
+    out += &format!("duration ratio:             {}\n", st(&f.duration_ratio));
+    out += &format!(
+        "smoothness: normalized jerk {}, velocity reversals {} ({:?} per column)\n",
+        f.reproduction_smoothness.normalized_jerk.map_or("n/a".into(), |j| format!("{j:.0}")),
+        f.reproduction_smoothness.total_reversals,
+        f.reproduction_smoothness.reversals
+    );
+    out
 }
