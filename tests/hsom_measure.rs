@@ -23,7 +23,15 @@ fn run(name: &str, demos: &[cosco_hsom::demos::Demonstration], cfg: &HsomConfig)
         for maxl in [Some(2), Some(3), Some(4), None] {
             for conf in [0.0, 0.5, 1.0, 2.0] {
                 for mode in [ReproductionMode::Strided, ReproductionMode::Literal] {
-                    cases.push((format!("{mode:?} l{maxl:?} conf{conf}"), mode, IdDecoding::Round, maxl, conf, 0.7, false));
+                    cases.push((
+                        format!("{mode:?} l{maxl:?} conf{conf}"),
+                        mode,
+                        IdDecoding::Round,
+                        maxl,
+                        conf,
+                        0.7,
+                        false,
+                    ));
                 }
             }
         }

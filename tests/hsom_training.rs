@@ -108,7 +108,7 @@ fn initial_weights_lie_in_the_data_bounding_box_whatever_the_units() {
     let m = small(2, 2, 4, 10)
         .check("t")
         .unwrap()
-        .initialise(&[d.clone()])
+        .initialise(std::slice::from_ref(&d))
         .unwrap();
     let mut r = m.config().params().reproduction.clone();
     r.continuity = 0.0; // postures are the nodes' action halves

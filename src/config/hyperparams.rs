@@ -299,6 +299,27 @@ impl HsomParams {
                 }
             }
         }
+        let mut weights: u64 = 0;
+        for (i, l) in self.levels.iter().enumerate() {
+            let dim = if i == 0 {
+                (2 * self.state_length) as u64
+            } else {
+                match self.memory_mode {
+                    MemoryMode::Lists => 2 * self.memory as u64,
+                    MemoryMode::Levels => {
+                        (self.levels[i - 1].rows * self.levels[i - 1].cols) as u64
+                    }
+                }
+            };
+            weights += (l.rows * l.cols) as u64 * dim;
+        }
+        if weights > 100_000_000 {
+            return Err(bad(
+                "levels",
+                format!("{weights} weights"),
+                "the hierarchy would hold more than 100 million weights; use smaller maps",
+            ));
+        }
         let r = &self.reproduction;
         range("reproduction/offset", r.offset, 1, self.memory).map_err(|_| {
             bad(

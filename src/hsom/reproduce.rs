@@ -55,8 +55,8 @@ impl Gen<'_> {
         let any_used = hits.iter().any(|&h| h > 0);
         let nearest_used = |x: f64, y: f64| -> usize {
             let mut best = (0usize, f64::INFINITY);
-            for i in 0..map.len() {
-                if any_used && hits[i] == 0 {
+            for (i, &h) in hits.iter().enumerate() {
+                if any_used && h == 0 {
                     continue;
                 }
                 let (ix, iy) = map.id(i);
