@@ -209,3 +209,40 @@ fn bad_demonstrations_are_clear_errors() {
         Err(HsomError::NonFinite { .. })
     ));
 }
+
+#[test]
+fn partial_matching_ignores_unknown_slots() {
+    use cosco_hsom::hsom::ActivityList;
+    use cosco_hsom::som::SelfOrganizingMap;
+    // memory 4; three known entries go into the three oldest slots, slot 0 is unknown.
+    let mut list = ActivityList::new(4);
+    for id in [(1, 1), (2, 2), (3, 3)] {
+        list.push(id);
+    }
+    // node 0 recalls the known history exactly and predicts (9, 9) in slot 0;
+    // node 1 is closer on every slot counted together but wrong on the known ones.
+    let node0 = [9.0, 9.0, 3.0, 3.0, 2.0, 2.0, 1.0, 1.0];
+    let node1 = [0.0, 0.0, 3.5, 3.5, 2.5, 2.5, 1.5, 1.5];
+    let w: Vec<f64> = node0.iter().chain(&node1).cloned().collect();
+    let map = SelfOrganizingMap::from_weights(1, 2, 8, Topology::Orthogonal, w).unwrap();
+    let mut x = vec![0.0; 8];
+    let mut mask = vec![true; 8];
+    list.encode(3, 1, &mut x, &mut mask);
+    assert_eq!(&mask[..2], &[false, false]);
+    assert_eq!(map.bmu_masked(&x, &mask).0, 0);
+    // counting the unknown slot as zeros would pick the wrong node
+    assert_eq!(map.bmu(&x).0, 1);
+}
+
+#[test]
+fn hexagonal_hierarchy_trains_and_reproduces() {
+    let mut p = small(3, 2, 4, 1000);
+    for l in p.levels.iter_mut() {
+        l.topology = Topology::Hexagonal;
+    }
+    let demos = hsom_common::stroke(3, 4);
+    let m = p.check("t").unwrap().fit(&demos).unwrap();
+    assert_eq!(m.maps()[0].topology(), Topology::Hexagonal);
+    let rep = m.reproduce(&demos[0].rows[0]).unwrap();
+    assert!(rep.postures.len() > 2 && rep.postures.iter().all(|y| y.iter().all(|v| v.is_finite())));
+}
