@@ -246,3 +246,79 @@ fn hexagonal_hierarchy_trains_and_reproduces() {
     let rep = m.reproduce(&demos[0].rows[0]).unwrap();
     assert!(rep.postures.len() > 2 && rep.postures.iter().all(|y| y.iter().all(|v| v.is_finite())));
 }
+
+#[test]
+fn random_small_configurations_never_panic_and_round_trip() {
+    use cosco_hsom::config::{IdDecoding, ReproductionMode};
+    use cosco_hsom::hsom::Hsom;
+    use rand::{Rng, SeedableRng};
+    let dir = tempfile::tempdir().unwrap();
+    for seed in 0..40u64 {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let dims = rng.gen_range(1..5);
+        let height = rng.gen_range(1..5);
+        let memory = rng.gen_range(1..6);
+        let mut p = small(height, rng.gen_range(1..4), memory, rng.gen_range(1..300));
+        p.state_length = dims;
+        p.action_length = dims;
+        for l in p.levels.iter_mut() {
+            *l = LevelParams::new(
+                rng.gen_range(1..7),
+                rng.gen_range(1..7),
+                if rng.gen() {
+                    Topology::Hexagonal
+                } else {
+                    Topology::Orthogonal
+                },
+                rng.gen_range(0.05..1.0),
+            );
+        }
+        p.memory_mode = if rng.gen_bool(0.3) {
+            MemoryMode::Levels
+        } else {
+            MemoryMode::Lists
+        };
+        p.partial_training = if rng.gen() {
+            PartialTraining::Masked
+        } else {
+            PartialTraining::Skip
+        };
+        p.reproduction.offset = rng.gen_range(1..=memory);
+        p.reproduction.mode = if rng.gen() {
+            ReproductionMode::Literal
+        } else {
+            ReproductionMode::Strided
+        };
+        p.reproduction.id_decoding =
+            [IdDecoding::Round, IdDecoding::Floor, IdDecoding::Nearest][rng.gen_range(0..3)];
+        p.reproduction.max_length = rng.gen_range(1..300);
+        p.reproduction.continuity = rng.gen_range(0.0..1.0);
+        p.reproduction.closed_loop = rng.gen();
+        p.reproduction.confusion_threshold = if rng.gen() { 0.0 } else { 1.0 };
+        let cfg = p.check("random").unwrap();
+        let demos: Vec<Demonstration> = (0..rng.gen_range(1..4))
+            .map(|i| Demonstration {
+                source: format!("r{i}"),
+                columns: (0..dims).map(|d| format!("c{d}")).collect(),
+                time: None,
+                rows: (0..rng.gen_range(2..60))
+                    .map(|_| (0..dims).map(|_| rng.gen_range(-1e3..1e3)).collect())
+                    .collect(),
+            })
+            .collect();
+        let m = cfg.fit(&demos).unwrap();
+        let rep = m.reproduce(&demos[0].rows[0]).unwrap();
+        assert!(
+            !rep.postures.is_empty() && rep.postures.len() <= cfg.params().reproduction.max_length
+        );
+        assert!(
+            rep.postures.iter().flatten().all(|v| v.is_finite()),
+            "seed {seed}"
+        );
+        for ext in ["bin", "txt"] {
+            let path = dir.path().join(format!("m{seed}.{ext}"));
+            m.save(&path).unwrap();
+            assert_eq!(Hsom::load(&path).unwrap(), m, "seed {seed} {ext}");
+        }
+    }
+}
