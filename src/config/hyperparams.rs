@@ -165,7 +165,7 @@ impl Default for ReproductionParams {
     fn default() -> Self {
         ReproductionParams {
             offset: 3,
-            mode: ReproductionMode::Strided,
+            mode: ReproductionMode::Literal,
             id_decoding: IdDecoding::Round,
             unseen_fallback: true,
             max_length: 2000,
@@ -177,8 +177,8 @@ impl Default for ReproductionParams {
             stationary_tolerance: 1.0,
             confusion_threshold: 0.0,
             max_level: None,
-            continuity: 0.7,
-            closed_loop: false,
+            continuity: 0.85,
+            closed_loop: true,
         }
     }
 }
