@@ -124,6 +124,11 @@ fn measure_families() {
             p.seed = s.parse().unwrap();
             cfg = p.check("seed").unwrap();
         }
+        if let Ok(s) = std::env::var("HSOM_LF") {
+            let mut p = cfg.into_params();
+            p.reproduction.length_factor = s.parse().unwrap();
+            cfg = p.check("lf").unwrap();
+        }
         if let Ok(s) = std::env::var("HSOM_STEPS") {
             let mut p = cfg.into_params();
             p.training_steps = s.parse().unwrap();
