@@ -42,6 +42,23 @@ enum Command {
         #[arg(long)]
         model: Option<PathBuf>,
     },
+    /// Train a CoSCo-HSOM hierarchy on demonstration CSV files and save it (.bin or .txt).
+    Train {
+        /// XML configuration (default: the built-in Table I of the paper).
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Demonstrations: a directory of *.csv files, or files.
+        #[arg(long, num_args = 1.., required = true)]
+        demos: Vec<PathBuf>,
+        /// Where to save the model: `.bin` (binary) or `.txt` (plain text).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Print a saved model's levels, sizes and quality measures.
+    Inspect {
+        /// A model saved by `cosco train` (.bin or .txt).
+        model: PathBuf,
+    },
     /// Fidelity metrics of a reproduction CSV against demonstrations (docs/METRICS.md).
     Evaluate {
         /// Reproduction CSV (`time` or `step` column, then the demonstrations' columns).
@@ -74,6 +91,16 @@ fn run(cli: Cli) -> Result<()> {
                 println!("{}", f.display());
             }
         }
+        Command::Train { config, demos, out } => {
+            let model = cli::train_files(config.as_deref(), &demos, &out)?;
+            print!("{}", model.summary());
+            println!("saved {}", out.display());
+        }
+        Command::Inspect { model } => {
+            let m = cli::load_model(&model)?;
+            println!("{}", model.display());
+            print!("{}", m.summary());
+        }
         Command::Evaluate { reproduction, demos, json, model } => {
             let report = cli::evaluate_files(&reproduction, &demos, model.as_deref())?;
             print!("{}", cli::fidelity_lines(&report));
@@ -91,7 +118,7 @@ fn main() -> ExitCode {
     match run(Cli::parse()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("Error: {e:#}");
+            eprintln!("Error: {}", cli::error_line(&e));
             ExitCode::FAILURE
         }
     }

@@ -65,7 +65,7 @@ fn main() -> ExitCode {
     match run(Args::parse()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("Error: {e:#}");
+            eprintln!("Error: {}", cli::error_line(&e));
             ExitCode::FAILURE
         }
     }

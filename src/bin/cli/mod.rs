@@ -491,3 +491,41 @@ pub fn fidelity_lines(f: &FidelityReport) -> String {
     );
     out
 }
+
+/// The extension of a model file: `.bin` or `.txt`, else an error saying so.
+pub fn check_model_extension(path: &Path) -> Result<()> {
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("bin") | Some("txt") => Ok(()),
+        _ => bail!("{}: a model file must end in .bin (binary) or .txt (plain text)", path.display()),
+    }
+}
+
+/// `cosco train`: read, train with a progress bar, save atomically.
+pub fn train_files(config: Option<&Path>, demo_paths: &[PathBuf], out: &Path) -> Result<Hsom> {
+    check_model_extension(out)?;
+    let cfg = hsom_config(config)?;
+    let demos = read_demos(demo_paths, Some(cfg.params().state_length))?;
+    let model = train(&cfg, &demos)?;
+    model.save(out)?;
+    Ok(model)
+}
+
+/// Load a saved model (.bin or .txt).
+pub fn load_model(path: &Path) -> Result<Hsom> {
+    check_model_extension(path)?;
+    Ok(Hsom::load(path)?)
+}
+
+/// The error and its causes on one line, leaving out causes whose text the message above
+/// already contains (many library errors quote their cause).
+pub fn error_line(e: &anyhow::Error) -> String {
+    let mut line = e.to_string();
+    for cause in e.chain().skip(1) {
+        let c = cause.to_string();
+        if !line.contains(&c) {
+            line.push_str(": ");
+            line.push_str(&c);
+        }
+    }
+    line
+}
