@@ -101,7 +101,12 @@ fn run(cli: Cli) -> Result<()> {
             println!("{}", model.display());
             print!("{}", m.summary());
         }
-        Command::Evaluate { reproduction, demos, json, model } => {
+        Command::Evaluate {
+            reproduction,
+            demos,
+            json,
+            model,
+        } => {
             let report = cli::evaluate_files(&reproduction, &demos, model.as_deref())?;
             print!("{}", cli::fidelity_lines(&report));
             if let Some(p) = json {
