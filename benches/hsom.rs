@@ -85,7 +85,7 @@ fn table1(c: &mut Criterion) {
 fn lists_vs_levels(c: &mut Criterion) {
     let mut g = c.benchmark_group("stm_step");
     for side in [8usize, 16, 32, 64] {
-        for height in [3usize, 6] {
+        for height in 3usize..=6 {
             let nodes = side * side;
             let id = format!("{side}x{side}_h{height}");
             let mut lists: Vec<ActivityList> = (0..height).map(|_| ActivityList::new(4)).collect();
