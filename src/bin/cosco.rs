@@ -8,6 +8,22 @@ use clap::{Parser, Subcommand};
 
 mod cli;
 
+/// `print!` that ignores a closed stdout (e.g. `| head`), instead of panicking.
+macro_rules! out {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stdout(), $($t)*);
+    }};
+}
+
+/// `println!` that ignores a closed stdout.
+macro_rules! outln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($t)*);
+    }};
+}
+
 #[derive(Parser)]
 #[command(
     name = "cosco",
@@ -88,18 +104,18 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             let files = cli::demos(&gesture, count, seed, &out, noise, model.as_deref())?;
             for f in files {
-                println!("{}", f.display());
+                outln!("{}", f.display());
             }
         }
         Command::Train { config, demos, out } => {
             let model = cli::train_files(config.as_deref(), &demos, &out)?;
-            print!("{}", model.summary());
-            println!("saved {}", out.display());
+            out!("{}", model.summary());
+            outln!("saved {}", out.display());
         }
         Command::Inspect { model } => {
             let m = cli::load_model(&model)?;
-            println!("{}", model.display());
-            print!("{}", m.summary());
+            outln!("{}", model.display());
+            out!("{}", m.summary());
         }
         Command::Evaluate {
             reproduction,
@@ -108,7 +124,7 @@ fn run(cli: Cli) -> Result<()> {
             model,
         } => {
             let report = cli::evaluate_files(&reproduction, &demos, model.as_deref())?;
-            print!("{}", cli::fidelity_lines(&report));
+            out!("{}", cli::fidelity_lines(&report));
             if let Some(p) = json {
                 let bytes = serde_json::to_vec_pretty(&report)?;
                 cosco_hsom::fsutil::write_atomic(&p, &bytes)

@@ -12,9 +12,9 @@ pub mod report;
 
 pub use demonstrate::{joint_limits, record_demonstrations, DemoSettings};
 pub use evaluate::{are_arm_joints, evaluate, trajectory, wrist_path};
-pub use execute::{clamp_to_ranges, execute_postures};
+pub use execute::{clamp_to_ranges, execute_postures, Transition};
 pub use film::film;
-pub use pipeline::{learn_and_reproduce, sample_period, Outcome, Training};
+pub use pipeline::{learn_and_reproduce, reproduce_variant, sample_period, Outcome, Training};
 
 /// Errors of the experiment pipeline.
 #[derive(Debug, thiserror::Error)]

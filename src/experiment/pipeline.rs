@@ -9,7 +9,7 @@ use crate::hsom::{Hsom, Reproduction};
 use crate::metrics::{FidelityReport, MetricsParams};
 use crate::sim::{NaoArm, Recording};
 
-use super::{clamp_to_ranges, evaluate, execute_postures, ExperimentError};
+use super::{clamp_to_ranges, evaluate, execute_postures, ExperimentError, Transition};
 
 /// Whether the hierarchy learns (the real thing) or keeps its seeded initial weights (the
 /// negative control of every fidelity check).
@@ -49,12 +49,14 @@ pub fn sample_period(d: &Demonstration) -> f64 {
 }
 
 /// Train on `demos` (or not), reproduce from the first demonstration's first posture, execute
-/// on `arm` and score against `demos`. `progress(done, total)` follows the training.
+/// on `arm` with `transition` and score against `demos`. `progress(done, total)` follows the
+/// training.
 pub fn learn_and_reproduce(
     arm: &NaoArm,
     config: &HsomConfig,
     demos: &[Demonstration],
     training: Training,
+    transition: Transition,
     progress: Option<&dyn Fn(usize, usize)>,
 ) -> Result<Outcome, ExperimentError> {
     let first = demos
@@ -75,6 +77,7 @@ pub fn learn_and_reproduce(
     let reproduction = model.reproduce(&initial)?;
     let reproduce_s = t.elapsed().as_secs_f64();
     let (postures, clamped_values) = clamp_to_ranges(&reproduction.postures)?;
+    let postures = transition.shape(&postures);
     let dt = sample_period(first);
     let executed = execute_postures(arm, &postures, 1.0 / dt)?;
     let params = MetricsParams {
@@ -91,4 +94,36 @@ pub fn learn_and_reproduce(
         train_s,
         reproduce_s,
     })
+}
+
+/// Execute and score another reproduction of an already trained model (a variant of the
+/// reproduction settings or of the transition), for before/after comparisons. Returns the
+/// reproduction, the number of clamped values, the executed trajectory, its fidelity and the
+/// time taken to produce the postures.
+pub fn reproduce_variant(
+    arm: &NaoArm,
+    model: &Hsom,
+    reproduction: &crate::config::ReproductionParams,
+    demos: &[Demonstration],
+    transition: Transition,
+) -> Result<(Reproduction, usize, Recording, FidelityReport, f64), ExperimentError> {
+    let first = demos
+        .first()
+        .ok_or_else(|| ExperimentError::Invalid("no demonstrations".into()))?;
+    let initial = first
+        .rows
+        .first()
+        .ok_or_else(|| ExperimentError::Invalid(format!("{}: no samples", first.source)))?;
+    let t = Instant::now();
+    let rep = model.reproduce_with(initial, reproduction)?;
+    let reproduce_s = t.elapsed().as_secs_f64();
+    let (postures, clamped) = clamp_to_ranges(&rep.postures)?;
+    let dt = sample_period(first);
+    let executed = execute_postures(arm, &transition.shape(&postures), 1.0 / dt)?;
+    let params = MetricsParams {
+        sample_period: dt,
+        ..MetricsParams::default()
+    };
+    let fidelity = evaluate(Some(arm), demos, &executed.qpos, &params)?;
+    Ok((rep, clamped, executed, fidelity, reproduce_s))
 }

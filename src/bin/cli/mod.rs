@@ -14,7 +14,7 @@ use cosco_hsom::experiment::figures::{joint_panels_png, wrist_png, Curve, Path3}
 use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report, Stage};
 use cosco_hsom::experiment::{
     are_arm_joints, evaluate, film, learn_and_reproduce, record_demonstrations, sample_period,
-    wrist_path, DemoSettings, Training,
+    wrist_path, DemoSettings, Training, Transition,
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::hsom::Hsom;
@@ -170,6 +170,8 @@ pub struct Job {
     pub out: PathBuf,
     /// Arm model file.
     pub model: Option<PathBuf>,
+    /// How the learned postures become servo targets.
+    pub transition: Transition,
 }
 
 struct Stopwatch {
@@ -285,6 +287,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
         &cfg,
         &demos,
         Training::Trained,
+        job.transition,
         Some(&|done, _| pb.set_position(done as u64)),
     )?;
     pb.finish_and_clear();
