@@ -9,14 +9,6 @@ use clap::Parser;
 
 mod cli;
 
-/// `print!` that ignores a closed stdout (e.g. `| head`), instead of panicking.
-macro_rules! out {
-    ($($t:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stdout(), $($t)*);
-    }};
-}
-
 /// `println!` that ignores a closed stdout.
 macro_rules! outln {
     ($($t:tt)*) => {{
