@@ -339,3 +339,22 @@ fn missing_file_is_an_io_error_naming_it() {
     assert!(matches!(e, ConfigError::Io { .. }));
     assert!(e.to_string().contains("/nonexistent/cfg.xml"));
 }
+
+#[test]
+fn invalid_too_many_weights() {
+    let t = replace("<rows>16</rows>", "<rows>1024</rows>").replacen(
+        "<cols>16</cols>",
+        "<cols>1024</cols>",
+        1,
+    );
+    let t = t.replacen(
+        "<memoryMode>lists</memoryMode>",
+        "<memoryMode>levels</memoryMode>",
+        1,
+    );
+    let e = err(&t);
+    assert!(
+        matches!(&e, ConfigError::Invalid { field, .. } if field == "levels"),
+        "{e:?}"
+    );
+}

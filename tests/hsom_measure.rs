@@ -20,10 +20,58 @@ fn run(name: &str, demos: &[cosco_hsom::demos::Demonstration], cfg: &HsomConfig)
         d.closed_loop,
     )];
     if std::env::var("HSOM_SWEEP").is_ok() {
+        for lam in [0.0, 0.5, 0.85] {
+            for mode in [ReproductionMode::Strided, ReproductionMode::Literal] {
+                cases.push((
+                    format!("{mode:?} continuity{lam}"),
+                    mode,
+                    IdDecoding::Round,
+                    None,
+                    0.0,
+                    lam,
+                    false,
+                ));
+                cases.push((
+                    format!("{mode:?} continuity{lam} closed"),
+                    mode,
+                    IdDecoding::Round,
+                    None,
+                    0.0,
+                    lam,
+                    true,
+                ));
+            }
+        }
+        cases.push((
+            "Literal nearest".into(),
+            ReproductionMode::Literal,
+            IdDecoding::Nearest,
+            None,
+            0.0,
+            0.7,
+            false,
+        ));
+        cases.push((
+            "Literal floor".into(),
+            ReproductionMode::Literal,
+            IdDecoding::Floor,
+            None,
+            0.0,
+            0.7,
+            false,
+        ));
         for maxl in [Some(2), Some(3), Some(4), None] {
             for conf in [0.0, 0.5, 1.0, 2.0] {
                 for mode in [ReproductionMode::Strided, ReproductionMode::Literal] {
-                    cases.push((format!("{mode:?} l{maxl:?} conf{conf}"), mode, IdDecoding::Round, maxl, conf, 0.7, false));
+                    cases.push((
+                        format!("{mode:?} l{maxl:?} conf{conf}"),
+                        mode,
+                        IdDecoding::Round,
+                        maxl,
+                        conf,
+                        0.7,
+                        false,
+                    ));
                 }
             }
         }
@@ -65,11 +113,33 @@ fn measure_families() {
         ("stroke", stroke(6, 8)),
         ("joints6", joints6(6, 9)),
     ] {
-        let cfg = table1_for(demos[0].rows[0].len());
+        let mut cfg = table1_for(demos[0].rows[0].len());
+        if std::env::var("HSOM_MASKED").is_ok() {
+            let mut p = cfg.into_params();
+            p.partial_training = cosco_hsom::config::PartialTraining::Masked;
+            cfg = p.check("masked").unwrap();
+        }
+        if let Ok(s) = std::env::var("HSOM_SEED") {
+            let mut p = cfg.into_params();
+            p.seed = s.parse().unwrap();
+            cfg = p.check("seed").unwrap();
+        }
+        if let Ok(s) = std::env::var("HSOM_LF") {
+            let mut p = cfg.into_params();
+            p.reproduction.length_factor = s.parse().unwrap();
+            cfg = p.check("lf").unwrap();
+        }
+        if let Ok(s) = std::env::var("HSOM_STEPS") {
+            let mut p = cfg.into_params();
+            p.training_steps = s.parse().unwrap();
+            cfg = p.check("steps").unwrap();
+        }
         let (trained, untrained) = run(name, &demos, &cfg);
-        assert!(
-            trained < untrained,
-            "{name}: trained {trained} vs untrained {untrained}"
-        );
+        if std::env::var("HSOM_SEED").is_err() {
+            assert!(
+                trained < untrained,
+                "{name}: trained {trained} vs untrained {untrained}"
+            );
+        }
     }
 }

@@ -108,7 +108,7 @@ fn initial_weights_lie_in_the_data_bounding_box_whatever_the_units() {
     let m = small(2, 2, 4, 10)
         .check("t")
         .unwrap()
-        .initialise(&[d.clone()])
+        .initialise(std::slice::from_ref(&d))
         .unwrap();
     let mut r = m.config().params().reproduction.clone();
     r.continuity = 0.0; // postures are the nodes' action halves
@@ -208,4 +208,117 @@ fn bad_demonstrations_are_clear_errors() {
         m.reproduce(&[1.0, f64::INFINITY]),
         Err(HsomError::NonFinite { .. })
     ));
+}
+
+#[test]
+fn partial_matching_ignores_unknown_slots() {
+    use cosco_hsom::hsom::ActivityList;
+    use cosco_hsom::som::SelfOrganizingMap;
+    // memory 4; three known entries go into the three oldest slots, slot 0 is unknown.
+    let mut list = ActivityList::new(4);
+    for id in [(1, 1), (2, 2), (3, 3)] {
+        list.push(id);
+    }
+    // node 0 recalls the known history exactly and predicts (9, 9) in slot 0;
+    // node 1 is closer on every slot counted together but wrong on the known ones.
+    let node0 = [9.0, 9.0, 3.0, 3.0, 2.0, 2.0, 1.0, 1.0];
+    let node1 = [0.0, 0.0, 3.5, 3.5, 2.5, 2.5, 1.5, 1.5];
+    let w: Vec<f64> = node0.iter().chain(&node1).cloned().collect();
+    let map = SelfOrganizingMap::from_weights(1, 2, 8, Topology::Orthogonal, w).unwrap();
+    let mut x = vec![0.0; 8];
+    let mut mask = vec![true; 8];
+    list.encode(3, 1, &mut x, &mut mask);
+    assert_eq!(&mask[..2], &[false, false]);
+    assert_eq!(map.bmu_masked(&x, &mask).0, 0);
+    // counting the unknown slot as zeros would pick the wrong node
+    assert_eq!(map.bmu(&x).0, 1);
+}
+
+#[test]
+fn hexagonal_hierarchy_trains_and_reproduces() {
+    let mut p = small(3, 2, 4, 1000);
+    for l in p.levels.iter_mut() {
+        l.topology = Topology::Hexagonal;
+    }
+    let demos = hsom_common::stroke(3, 4);
+    let m = p.check("t").unwrap().fit(&demos).unwrap();
+    assert_eq!(m.maps()[0].topology(), Topology::Hexagonal);
+    let rep = m.reproduce(&demos[0].rows[0]).unwrap();
+    assert!(rep.postures.len() > 2 && rep.postures.iter().all(|y| y.iter().all(|v| v.is_finite())));
+}
+
+#[test]
+fn random_small_configurations_never_panic_and_round_trip() {
+    use cosco_hsom::config::{IdDecoding, ReproductionMode};
+    use cosco_hsom::hsom::Hsom;
+    use rand::{Rng, SeedableRng};
+    let dir = tempfile::tempdir().unwrap();
+    for seed in 0..40u64 {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let dims = rng.gen_range(1..5);
+        let height = rng.gen_range(1..5);
+        let memory = rng.gen_range(1..6);
+        let mut p = small(height, rng.gen_range(1..4), memory, rng.gen_range(1..300));
+        p.state_length = dims;
+        p.action_length = dims;
+        for l in p.levels.iter_mut() {
+            *l = LevelParams::new(
+                rng.gen_range(1..7),
+                rng.gen_range(1..7),
+                if rng.gen() {
+                    Topology::Hexagonal
+                } else {
+                    Topology::Orthogonal
+                },
+                rng.gen_range(0.05..1.0),
+            );
+        }
+        p.memory_mode = if rng.gen_bool(0.3) {
+            MemoryMode::Levels
+        } else {
+            MemoryMode::Lists
+        };
+        p.partial_training = if rng.gen() {
+            PartialTraining::Masked
+        } else {
+            PartialTraining::Skip
+        };
+        p.reproduction.offset = rng.gen_range(1..=memory);
+        p.reproduction.mode = if rng.gen() {
+            ReproductionMode::Literal
+        } else {
+            ReproductionMode::Strided
+        };
+        p.reproduction.id_decoding =
+            [IdDecoding::Round, IdDecoding::Floor, IdDecoding::Nearest][rng.gen_range(0..3)];
+        p.reproduction.max_length = rng.gen_range(1..300);
+        p.reproduction.continuity = rng.gen_range(0.0..1.0);
+        p.reproduction.closed_loop = rng.gen();
+        p.reproduction.confusion_threshold = if rng.gen() { 0.0 } else { 1.0 };
+        let cfg = p.check("random").unwrap();
+        let demos: Vec<Demonstration> = (0..rng.gen_range(1..4))
+            .map(|i| Demonstration {
+                source: format!("r{i}"),
+                columns: (0..dims).map(|d| format!("c{d}")).collect(),
+                time: None,
+                rows: (0..rng.gen_range(2..60))
+                    .map(|_| (0..dims).map(|_| rng.gen_range(-1e3..1e3)).collect())
+                    .collect(),
+            })
+            .collect();
+        let m = cfg.fit(&demos).unwrap();
+        let rep = m.reproduce(&demos[0].rows[0]).unwrap();
+        assert!(
+            !rep.postures.is_empty() && rep.postures.len() <= cfg.params().reproduction.max_length
+        );
+        assert!(
+            rep.postures.iter().flatten().all(|v| v.is_finite()),
+            "seed {seed}"
+        );
+        for ext in ["bin", "txt"] {
+            let path = dir.path().join(format!("m{seed}.{ext}"));
+            m.save(&path).unwrap();
+            assert_eq!(Hsom::load(&path).unwrap(), m, "seed {seed} {ext}");
+        }
+    }
 }

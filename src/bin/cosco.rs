@@ -3,10 +3,26 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 
 mod cli;
+
+/// `print!` that ignores a closed stdout (e.g. `| head`), instead of panicking.
+macro_rules! out {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stdout(), $($t)*);
+    }};
+}
+
+/// `println!` that ignores a closed stdout.
+macro_rules! outln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($t)*);
+    }};
+}
 
 #[derive(Parser)]
 #[command(
@@ -42,6 +58,38 @@ enum Command {
         #[arg(long)]
         model: Option<PathBuf>,
     },
+    /// Train a CoSCo-HSOM hierarchy on demonstration CSV files and save it (.bin or .txt).
+    Train {
+        /// XML configuration (default: the built-in Table I of the paper).
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Demonstrations: a directory of *.csv files, or files.
+        #[arg(long, num_args = 1.., required = true)]
+        demos: Vec<PathBuf>,
+        /// Where to save the model: `.bin` (binary) or `.txt` (plain text).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Print a saved model's levels, sizes and quality measures.
+    Inspect {
+        /// A model saved by `cosco train` (.bin or .txt).
+        model: PathBuf,
+    },
+    /// Fidelity metrics of a reproduction CSV against demonstrations (docs/METRICS.md).
+    Evaluate {
+        /// Reproduction CSV (`time` or `step` column, then the demonstrations' columns).
+        #[arg(long)]
+        reproduction: PathBuf,
+        /// Demonstrations: a directory of *.csv files, or files.
+        #[arg(long, num_args = 1.., required = true)]
+        demos: Vec<PathBuf>,
+        /// Also write the full report as JSON here.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// MJCF model of the arm, for wrist paths (default: the crate's model).
+        #[arg(long)]
+        model: Option<PathBuf>,
+    },
     /// Compare CoSCo-HSOM with the paper's GMM/GMR baseline on the same demonstrations, both
     /// executed on the simulated arm from the same initial posture (report, csvs, plots).
     Compare {
@@ -57,6 +105,10 @@ enum Command {
         /// GMM components: a number K >= 1, or `bic` (lowest BIC over 1..=16).
         #[arg(long, default_value = "bic", value_parser = cli::compare::parse_components)]
         components: cosco_hsom::gmr::ComponentChoice,
+        /// How CoSCo-HSOM's postures become servo targets: `linear` (the paper) or
+        /// `min-jerk[:TOL]` (as for `simulate`).
+        #[arg(long, default_value = "linear")]
+        transition: String,
         /// MJCF model of the arm.
         #[arg(long)]
         model: Option<PathBuf>,
@@ -75,7 +127,31 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             let files = cli::demos(&gesture, count, seed, &out, noise, model.as_deref())?;
             for f in files {
-                println!("{}", f.display());
+                outln!("{}", f.display());
+            }
+        }
+        Command::Train { config, demos, out } => {
+            let model = cli::train_files(config.as_deref(), &demos, &out)?;
+            out!("{}", model.summary());
+            outln!("saved {}", out.display());
+        }
+        Command::Inspect { model } => {
+            let m = cli::load_model(&model)?;
+            outln!("{}", model.display());
+            out!("{}", m.summary());
+        }
+        Command::Evaluate {
+            reproduction,
+            demos,
+            json,
+            model,
+        } => {
+            let report = cli::evaluate_files(&reproduction, &demos, model.as_deref())?;
+            out!("{}", cli::fidelity_lines(&report));
+            if let Some(p) = json {
+                let bytes = serde_json::to_vec_pretty(&report)?;
+                cosco_hsom::fsutil::write_atomic(&p, &bytes)
+                    .with_context(|| format!("writing {}", p.display()))?;
             }
         }
         Command::Compare {
@@ -83,6 +159,7 @@ fn run(cli: Cli) -> Result<()> {
             config,
             out,
             components,
+            transition,
             model,
         } => {
             let job = cli::compare::CompareJob {
@@ -91,12 +168,13 @@ fn run(cli: Cli) -> Result<()> {
                 out,
                 components,
                 model,
+                transition: cosco_hsom::experiment::Transition::parse(&transition)?,
             };
             let report = cli::compare::compare(&job)?;
             for line in cli::compare::summary_lines(&report) {
-                println!("{line}");
+                outln!("{line}");
             }
-            println!("report: {}", job.out.join("report.md").display());
+            outln!("report: {}", job.out.join("report.md").display());
         }
     }
     Ok(())
@@ -106,7 +184,7 @@ fn main() -> ExitCode {
     match run(Cli::parse()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("Error: {e:#}");
+            eprintln!("Error: {}", cli::error_line(&e));
             ExitCode::FAILURE
         }
     }

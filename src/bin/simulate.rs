@@ -9,6 +9,14 @@ use clap::Parser;
 
 mod cli;
 
+/// `println!` that ignores a closed stdout.
+macro_rules! outln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($t)*);
+    }};
+}
+
 /// Teach the simulated Nao a gesture from demonstrations, reproduce it from the initial
 /// posture alone, and measure how faithful the reproduction is.
 #[derive(Parser, Debug)]
@@ -38,6 +46,10 @@ struct Args {
     /// Output directory.
     #[arg(long, default_value = "out")]
     out: PathBuf,
+    /// How learned postures become servo targets: `linear` (the paper: posture to posture at
+    /// 40 Hz) or `min-jerk[:TOL]` (key poses within TOL rad joined by minimum-jerk transitions).
+    #[arg(long, default_value = "linear")]
+    transition: String,
     /// MJCF model of the arm (default: models/nao_left_arm.xml of this crate).
     #[arg(long)]
     model: Option<PathBuf>,
@@ -54,14 +66,15 @@ fn run(a: Args) -> Result<()> {
         render: !a.no_render,
         out: a.out,
         model: a.model,
+        transition: cosco_hsom::experiment::Transition::parse(&a.transition)?,
     };
     let report = cli::main_job(&job)?;
-    println!("{}", cli::summary_line(&report));
+    outln!("{}", cli::summary_line(&report));
     // the baseline's line (cli/compare.rs), when it ran
     for line in cli::compare::summary_lines(&report).iter().skip(1) {
-        println!("{line}");
+        outln!("{line}");
     }
-    println!("report: {}", job.out.join("report.md").display());
+    outln!("report: {}", job.out.join("report.md").display());
     Ok(())
 }
 
@@ -69,7 +82,7 @@ fn main() -> ExitCode {
     match run(Args::parse()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("Error: {e:#}");
+            eprintln!("Error: {}", cli::error_line(&e));
             ExitCode::FAILURE
         }
     }

@@ -133,10 +133,18 @@ pub struct ReproductionParams {
     pub stop: StopRule,
     /// No learned stop before this fraction of the shortest demonstration's length.
     pub min_length_fraction: f64,
+    /// Learned stop when the posture comes within this many bottom quantization errors of
+    /// the action half of a node on which a training demonstration ended (0: only when that
+    /// node is executed or nearest).
+    pub end_tolerance: f64,
     /// Learned stop at this factor times the longest demonstration's length.
     pub length_factor: f64,
-    /// Learned stop once the posture has not changed for this many steps.
+    /// Learned stop once the posture has stayed for this many steps within
+    /// `stationary_tolerance` of its mean over those steps.
     pub stationary_steps: usize,
+    /// Radius of the stationarity test, in multiples of the bottom level's quantization
+    /// error (0: the posture must not change at all).
+    pub stationary_tolerance: f64,
     /// A level is "confused" (not used to predict) when the root-mean-square distance, per
     /// known coordinate, between its best node and the known entries exceeds this many grid
     /// cells; 0 disables the test.
@@ -157,18 +165,20 @@ impl Default for ReproductionParams {
     fn default() -> Self {
         ReproductionParams {
             offset: 3,
-            mode: ReproductionMode::Strided,
+            mode: ReproductionMode::Literal,
             id_decoding: IdDecoding::Round,
             unseen_fallback: true,
             max_length: 2000,
             stop: StopRule::Learned,
             min_length_fraction: 0.6,
             length_factor: 1.5,
-            stationary_steps: 40,
+            end_tolerance: 0.0,
+            stationary_steps: 60,
+            stationary_tolerance: 1.0,
             confusion_threshold: 0.0,
             max_level: None,
-            continuity: 0.7,
-            closed_loop: false,
+            continuity: 0.85,
+            closed_loop: true,
         }
     }
 }
@@ -299,6 +309,27 @@ impl HsomParams {
                 }
             }
         }
+        let mut weights: u64 = 0;
+        for (i, l) in self.levels.iter().enumerate() {
+            let dim = if i == 0 {
+                (2 * self.state_length) as u64
+            } else {
+                match self.memory_mode {
+                    MemoryMode::Lists => 2 * self.memory as u64,
+                    MemoryMode::Levels => {
+                        (self.levels[i - 1].rows * self.levels[i - 1].cols) as u64
+                    }
+                }
+            };
+            weights += (l.rows * l.cols) as u64 * dim;
+        }
+        if weights > 100_000_000 {
+            return Err(bad(
+                "levels",
+                format!("{weights} weights"),
+                "the hierarchy would hold more than 100 million weights; use smaller maps",
+            ));
+        }
         let r = &self.reproduction;
         range("reproduction/offset", r.offset, 1, self.memory).map_err(|_| {
             bad(
@@ -339,6 +370,13 @@ impl HsomParams {
             1e6,
         )?;
         real("reproduction/continuity", r.continuity, 0.0, 1.0)?;
+        real("reproduction/endTolerance", r.end_tolerance, 0.0, 1e6)?;
+        real(
+            "reproduction/stationaryTolerance",
+            r.stationary_tolerance,
+            0.0,
+            1e6,
+        )?;
         if let Some(m) = r.max_level {
             range("reproduction/maxLevel", m, 0, self.height - 1)?;
         }

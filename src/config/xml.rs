@@ -91,6 +91,10 @@ struct RawReproduction {
     #[serde(rename = "maxLevel")]
     max_level: Option<String>,
     continuity: Option<String>,
+    #[serde(rename = "endTolerance")]
+    end_tolerance: Option<String>,
+    #[serde(rename = "stationaryTolerance")]
+    stationary_tolerance: Option<String>,
     #[serde(rename = "closedLoop")]
     closed_loop: Option<String>,
 }
@@ -406,6 +410,16 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
                 Some(s) => Some(f.parse("reproduction/maxLevel", s)?),
             },
             continuity: f.opt("reproduction/continuity", &r.continuity, d.continuity)?,
+            end_tolerance: f.opt(
+                "reproduction/endTolerance",
+                &r.end_tolerance,
+                d.end_tolerance,
+            )?,
+            stationary_tolerance: f.opt(
+                "reproduction/stationaryTolerance",
+                &r.stationary_tolerance,
+                d.stationary_tolerance,
+            )?,
             closed_loop: f.opt("reproduction/closedLoop", &r.closed_loop, d.closed_loop)?,
         },
     };
@@ -569,6 +583,12 @@ impl HsomConfig {
             r.confusion_threshold
         );
         let _ = writeln!(s, "    <continuity>{}</continuity>", r.continuity);
+        let _ = writeln!(s, "    <endTolerance>{}</endTolerance>", r.end_tolerance);
+        let _ = writeln!(
+            s,
+            "    <stationaryTolerance>{}</stationaryTolerance>",
+            r.stationary_tolerance
+        );
         let _ = writeln!(s, "    <closedLoop>{}</closedLoop>", r.closed_loop);
         if let Some(m) = r.max_level {
             let _ = writeln!(s, "    <maxLevel>{m}</maxLevel>");

@@ -8,12 +8,130 @@ use crate::sim::{
 use super::ExperimentError;
 
 /// How predicted postures become servo targets.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Transition {
     /// One predicted posture per recording tick, linear in between (the paper: "execute the
     /// transition from posture to posture").
     #[default]
     Linear,
+    /// Beyond the paper: keep only the key poses of the predicted sequence (Ramer-Douglas-
+    /// Peucker simplification of the (step, posture) polyline: every dropped posture lies within
+    /// `tolerance` rad of the simplified path) at their own time index, and join them with
+    /// minimum-jerk transitions. Removes the jitter and sharp edges below `tolerance`, keeps
+    /// the timing and the extremes.
+    MinimumJerk {
+        /// Largest joint-space distance (rad) of a dropped posture from the simplified path.
+        tolerance: f64,
+    },
+}
+
+impl Transition {
+    /// Parse `linear` or `min-jerk` / `min-jerk:TOL` (tolerance in rad, default 0.02).
+    pub fn parse(s: &str) -> Result<Transition, ExperimentError> {
+        let bad = || {
+            ExperimentError::Invalid(format!(
+                "transition '{s}': allowed `linear`, `min-jerk` or `min-jerk:TOL` with TOL a tolerance in rad > 0"
+            ))
+        };
+        match s.split_once(':') {
+            None if s == "linear" => Ok(Transition::Linear),
+            None if s == "min-jerk" => Ok(Transition::MinimumJerk { tolerance: 0.02 }),
+            Some(("min-jerk", t)) => {
+                let tolerance: f64 = t.parse().map_err(|_| bad())?;
+                if tolerance.is_finite() && tolerance > 0.0 {
+                    Ok(Transition::MinimumJerk { tolerance })
+                } else {
+                    Err(bad())
+                }
+            }
+            _ => Err(bad()),
+        }
+    }
+
+    /// The postures to send, one per tick, after this transition's shaping.
+    pub fn shape(&self, postures: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        match *self {
+            Transition::Linear => postures.to_vec(),
+            Transition::MinimumJerk { tolerance } => {
+                min_jerk_through_key_poses(postures, tolerance)
+            }
+        }
+    }
+
+    /// Short name for reports.
+    pub fn name(&self) -> String {
+        match self {
+            Transition::Linear => "linear".into(),
+            Transition::MinimumJerk { tolerance } => format!("min-jerk:{tolerance}"),
+        }
+    }
+}
+
+fn dist_to_segment(p: &[f64], a: &[f64], b: &[f64], u: f64) -> f64 {
+    // distance in joint space from p to the point of segment a-b at the same time fraction u
+    p.iter()
+        .zip(a.iter().zip(b))
+        .map(|(x, (y, z))| (x - (y + u * (z - y))).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Indices of the key poses: Ramer-Douglas-Peucker on the time-indexed polyline (the
+/// distance of a posture to a segment is measured at its own time, so timing is kept).
+pub fn key_pose_indices(postures: &[Vec<f64>], tolerance: f64) -> Vec<usize> {
+    let n = postures.len();
+    if n <= 2 {
+        return (0..n).collect();
+    }
+    let mut keep = vec![false; n];
+    keep[0] = true;
+    keep[n - 1] = true;
+    let mut stack = vec![(0usize, n - 1)];
+    while let Some((i, j)) = stack.pop() {
+        if j <= i + 1 {
+            continue;
+        }
+        let (mut worst, mut at) = (0.0, i);
+        for k in i + 1..j {
+            let u = (k - i) as f64 / (j - i) as f64;
+            let d = dist_to_segment(&postures[k], &postures[i], &postures[j], u);
+            if d > worst {
+                worst = d;
+                at = k;
+            }
+        }
+        if worst > tolerance {
+            keep[at] = true;
+            stack.push((i, at));
+            stack.push((at, j));
+        }
+    }
+    (0..n).filter(|&k| keep[k]).collect()
+}
+
+/// Key poses (see [`key_pose_indices`]) joined by minimum-jerk transitions, one posture per
+/// original step.
+pub fn min_jerk_through_key_poses(postures: &[Vec<f64>], tolerance: f64) -> Vec<Vec<f64>> {
+    let keys = key_pose_indices(postures, tolerance);
+    let mut out = Vec::with_capacity(postures.len());
+    for w in keys.windows(2) {
+        let (i, j) = (w[0], w[1]);
+        for k in i..j {
+            let s = (k - i) as f64 / (j - i) as f64;
+            let m = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
+            out.push(
+                postures[i]
+                    .iter()
+                    .zip(&postures[j])
+                    .map(|(a, b)| a + m * (b - a))
+                    .collect(),
+            );
+        }
+    }
+    if let Some(last) = postures.last() {
+        out.push(last.clone());
+    }
+    out
 }
 
 /// Execute `postures` (one per tick of `rate_hz`, the first being the initial posture) on the
@@ -71,6 +189,57 @@ pub fn clamp_to_ranges(postures: &[Vec<f64>]) -> Result<(Vec<Vec<f64>>, usize), 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn min_jerk_keeps_length_endpoints_and_extremes_and_removes_jitter() {
+        // a ramp up, a hold with +-5 mrad jitter, a ramp down
+        let mut p: Vec<Vec<f64>> = Vec::new();
+        for k in 0..40 {
+            p.push(vec![k as f64 / 40.0]);
+        }
+        for k in 0..40 {
+            p.push(vec![1.0 + if k % 2 == 0 { 0.005 } else { -0.005 }]);
+        }
+        for k in 0..41 {
+            p.push(vec![1.0 - k as f64 / 40.0]);
+        }
+        let s = Transition::MinimumJerk { tolerance: 0.02 }.shape(&p);
+        assert_eq!(s.len(), p.len());
+        assert_eq!(s[0], p[0]);
+        assert_eq!(s.last(), p.last());
+        let max = s.iter().map(|r| r[0]).fold(f64::MIN, f64::max);
+        assert!((max - 1.0).abs() < 0.02, "apex {max}");
+        // jitter gone: no sign change of the step difference inside the hold
+        let d: Vec<f64> = s[45..75].windows(2).map(|w| w[1][0] - w[0][0]).collect();
+        let flips = d.windows(2).filter(|w| w[0] * w[1] < -1e-12).count();
+        assert_eq!(flips, 0, "{d:?}");
+        // linear is the identity
+        assert_eq!(Transition::Linear.shape(&p), p);
+    }
+
+    #[test]
+    fn transition_parse_accepts_the_documented_forms_only() {
+        assert_eq!(Transition::parse("linear").unwrap(), Transition::Linear);
+        assert_eq!(
+            Transition::parse("min-jerk").unwrap(),
+            Transition::MinimumJerk { tolerance: 0.02 }
+        );
+        assert_eq!(
+            Transition::parse("min-jerk:0.05").unwrap(),
+            Transition::MinimumJerk { tolerance: 0.05 }
+        );
+        for bad in [
+            "",
+            "cubic",
+            "min-jerk:0",
+            "min-jerk:x",
+            "min-jerk:-1",
+            "linear:1",
+        ] {
+            let e = Transition::parse(bad).unwrap_err().to_string();
+            assert!(e.contains("allowed"), "{bad}: {e}");
+        }
+    }
 
     #[test]
     fn clamp_counts_values_outside_and_rejects_nan() {

@@ -8,12 +8,14 @@ pub mod evaluate;
 pub mod execute;
 pub mod figures;
 pub mod film;
+pub mod pipeline;
 pub mod report;
 
 pub use demonstrate::{joint_limits, record_demonstrations, DemoSettings};
 pub use evaluate::{are_arm_joints, evaluate, trajectory, wrist_path};
-pub use execute::{clamp_to_ranges, execute_postures};
+pub use execute::{clamp_to_ranges, execute_postures, Transition};
 pub use film::film;
+pub use pipeline::{learn_and_reproduce, reproduce_variant, sample_period, Outcome, Training};
 
 /// Errors of the experiment pipeline.
 #[derive(Debug, thiserror::Error)]
@@ -31,4 +33,7 @@ pub enum ExperimentError {
     /// The metrics refused their input.
     #[error(transparent)]
     Metrics(#[from] crate::metrics::MetricsError),
+    /// Training or reproduction failed.
+    #[error(transparent)]
+    Hsom(#[from] crate::hsom::HsomError),
 }

@@ -185,8 +185,9 @@ pub fn reach_point() -> Gesture {
     }
 }
 
-/// Hand at the temple: elbow high and out, forearm folded towards the head.
-pub const SALUTE: Pose = [-0.95, 0.75, -1.6, -1.45, -0.6, 1.0];
+/// Hand at the forehead: elbow high and out, forearm folded across towards the head (found by
+/// a grid search of the simulated kinematics: gripper about 2 cm from (0.06, 0.055, 0.20) m).
+pub const SALUTE: Pose = [-1.0, 0.45, -0.15, -1.48, -0.6, 1.0];
 
 /// A quick salute: hand to the temple, short hold, down again.
 pub fn salute() -> Gesture {

@@ -442,7 +442,7 @@ impl Hsom {
             Ok(l) => return Err(corrupted(format!("unexpected line {l:.40?}"))),
             Err(e) => return Err(e),
         }
-        if fnv1a(text[..body_end].as_bytes()) != stored {
+        if fnv1a(&text.as_bytes()[..body_end]) != stored {
             return Err(corrupted("checksum mismatch".into()));
         }
         build(

@@ -44,6 +44,8 @@ struct Gen<'a> {
     bufs: Vec<Vec<f64>>,
     masks: Vec<Vec<bool>>,
     min_len: usize,
+    /// Bottom quantization error in normalised units.
+    qe0: f64,
 }
 
 impl Gen<'_> {
@@ -55,8 +57,8 @@ impl Gen<'_> {
         let any_used = hits.iter().any(|&h| h > 0);
         let nearest_used = |x: f64, y: f64| -> usize {
             let mut best = (0usize, f64::INFINITY);
-            for i in 0..map.len() {
-                if any_used && hits[i] == 0 {
+            for (i, &h) in hits.iter().enumerate() {
+                if any_used && h == 0 {
                     continue;
                 }
                 let (ix, iy) = map.id(i);
@@ -265,12 +267,39 @@ impl Gen<'_> {
             let state = self.m.config.params().state_length;
             let y = &self.out[t - 1];
             let (near, _) = self.m.maps[0].bmu_range(y, state..2 * state);
-            if self.m.end_hits[self.last_node] > 0 || self.m.end_hits[near] > 0 {
+            let tol = self.r.end_tolerance * self.qe0;
+            let close = tol > 0.0
+                && self.m.end_hits.iter().enumerate().any(|(i, &h)| {
+                    h > 0 && {
+                        let w = &self.m.maps[0].weights(i)[state..];
+                        w.iter().zip(y).map(|(a, b)| (a - b) * (a - b)).sum::<f64>() <= tol * tol
+                    }
+                });
+            if close || self.m.end_hits[self.last_node] > 0 || self.m.end_hits[near] > 0 {
                 return Some(StopReason::EndNode);
             }
             let k = self.r.stationary_steps;
-            if t > k && self.out[t - k - 1..].windows(2).all(|w| w[0] == w[1]) {
-                return Some(StopReason::Stationary);
+            if t > k {
+                let win = &self.out[t - k - 1..];
+                let tol = self.r.stationary_tolerance * self.qe0;
+                let still = if tol <= 0.0 {
+                    win.windows(2).all(|w| w[0] == w[1])
+                } else {
+                    let n = win.len() as f64;
+                    let mean: Vec<f64> = (0..state)
+                        .map(|d| win.iter().map(|y| y[d]).sum::<f64>() / n)
+                        .collect();
+                    win.iter().all(|y| {
+                        y.iter()
+                            .zip(&mean)
+                            .map(|(a, b)| (a - b) * (a - b))
+                            .sum::<f64>()
+                            <= tol * tol
+                    })
+                };
+                if still {
+                    return Some(StopReason::Stationary);
+                }
             }
             if t as f64 >= self.r.length_factor * self.m.demo_len[2] {
                 return Some(StopReason::LearnedLength);
@@ -334,6 +363,11 @@ impl Hsom {
             masks: (0..p.height)
                 .map(|l| vec![true; input_dim(&self.config, l)])
                 .collect(),
+            qe0: if p.normalisation == crate::config::Normalisation::PerDimension {
+                self.qe[0]
+            } else {
+                self.qe[0] / self.scale[0]
+            },
             min_len: (r.min_length_fraction * self.demo_len[0]).ceil().max(2.0) as usize,
         };
         let strided = r.mode == ReproductionMode::Strided || p.memory_mode == MemoryMode::Levels;

@@ -3,7 +3,6 @@
 //! the same initial posture, scored with the same metrics, side by side in one table.
 
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 
@@ -12,7 +11,7 @@ use cosco_hsom::experiment::baseline::{fig3_png, fig5_png, run_baseline, GMR_COL
 use cosco_hsom::experiment::figures::{joint_panels_png, wrist_png, Curve, Path3};
 use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report};
 use cosco_hsom::experiment::{
-    are_arm_joints, clamp_to_ranges, evaluate, execute_postures, wrist_path,
+    are_arm_joints, learn_and_reproduce, sample_period, wrist_path, Training, Transition,
 };
 use cosco_hsom::gmr::{load_model, save_model, ComponentChoice, GmrParams};
 use cosco_hsom::metrics::MetricsParams;
@@ -20,8 +19,7 @@ use cosco_hsom::plot::{demo_color, BLACK};
 use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
 
 use super::{
-    file_size, hsom_config, levels_note, load_arm, read_demos, sample_period, train, Stopwatch,
-    FIG4_JOINTS,
+    file_size, hsom_config, levels_note, load_arm, progress, read_demos, Stopwatch, FIG4_JOINTS,
 };
 
 /// The default component choice: the lowest BIC over 1..=16. Wider than the library's
@@ -190,55 +188,56 @@ pub struct CompareJob {
     pub components: ComponentChoice,
     /// Arm model file.
     pub model: Option<PathBuf>,
+    /// How CoSCo-HSOM's postures become servo targets (the main job's `--transition`).
+    pub transition: Transition,
 }
 
-/// Train CoSCo-HSOM, reproduce from `demos[0]`'s first posture, execute on the arm, score;
-/// writes `model.bin` and `reproduction.csv` into `out`.
+/// Train CoSCo-HSOM, reproduce from `demos[0]`'s first posture, execute on the arm with
+/// `transition`, score (the main job's `learn_and_reproduce`); writes `model.bin` and
+/// `reproduction.csv` into `out`.
 fn hsom_method(
     cfg: &cosco_hsom::config::HsomConfig,
     arm: &NaoArm,
     demos: &[Demonstration],
+    transition: Transition,
     out: &Path,
     files: &mut Vec<String>,
 ) -> Result<(MethodResult, Recording)> {
-    let t = Instant::now();
-    let model = train(cfg, demos)?;
-    let train_s = t.elapsed().as_secs_f64();
+    let pb = progress(cfg.params().training_steps as u64, "training");
+    let run = learn_and_reproduce(
+        arm,
+        cfg,
+        demos,
+        Training::Trained,
+        transition,
+        Some(&|done, _| pb.set_position(done as u64)),
+    )?;
+    pb.finish_and_clear();
     let model_path = out.join("model.bin");
-    model.save(&model_path)?;
+    run.model.save(&model_path)?;
     files.push("model.bin".into());
-    let dt = sample_period(&demos[0]);
-    let t = Instant::now();
-    let rep = model.reproduce(&demos[0].rows[0])?;
-    let reproduce_s = t.elapsed().as_secs_f64();
-    let (postures, clamped) = clamp_to_ranges(&rep.postures)?;
-    let executed = execute_postures(arm, &postures, 1.0 / dt)?;
     write_csv(
         &out.join("reproduction.csv"),
-        &executed.to_demonstration("CoSCo-HSOM reproduction"),
+        &run.executed.to_demonstration("CoSCo-HSOM reproduction"),
     )?;
     files.push("reproduction.csv".into());
-    let params = MetricsParams {
-        sample_period: dt,
-        ..MetricsParams::default()
-    };
-    let fidelity = evaluate(Some(arm), demos, &executed.qpos, &params)?;
     Ok((
         MethodResult {
             name: "CoSCo-HSOM".into(),
             needs: "raw demonstrations; the initial posture".into(),
-            fidelity,
-            train_s,
-            reproduce_s,
+            fidelity: run.fidelity,
+            train_s: run.train_s,
+            reproduce_s: run.reproduce_s,
             model_bytes: file_size(&model_path),
-            postures: rep.postures.len(),
-            clamped_values: clamped,
+            postures: run.reproduction.postures.len(),
+            clamped_values: run.clamped_values,
             notes: vec![
-                format!("stopped: {:?}", rep.stop),
-                levels_note(&rep.predicted_by),
+                format!("stopped: {:?}", run.reproduction.stop),
+                levels_note(&run.reproduction.predicted_by),
+                format!("transition: {transition:?}"),
             ],
         },
-        executed,
+        run.executed,
     ))
 }
 
@@ -269,7 +268,8 @@ pub fn compare(job: &CompareJob) -> Result<Report> {
     clock.lap("read demonstrations");
 
     let mut files = Vec::new();
-    let (hsom_result, hsom_exec) = hsom_method(&cfg, &arm, &demos, out, &mut files)?;
+    let (hsom_result, hsom_exec) =
+        hsom_method(&cfg, &arm, &demos, job.transition, out, &mut files)?;
     clock.lap("CoSCo-HSOM (train + reproduce + execute + metrics)");
     let gmr_result = baseline_section(&arm, &demos, &hsom_exec, out, job.components, &mut files)?;
     clock.lap("GMM/GMR (fit + reproduce + execute + metrics + plots)");

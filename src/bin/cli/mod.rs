@@ -15,12 +15,12 @@ use cosco_hsom::demos::{self, write_csv, Demonstration};
 use cosco_hsom::experiment::figures::{joint_panels_png, wrist_png, Curve, Path3};
 use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report, Stage};
 use cosco_hsom::experiment::{
-    are_arm_joints, clamp_to_ranges, evaluate, execute_postures, film, record_demonstrations,
-    wrist_path, DemoSettings,
+    are_arm_joints, evaluate, film, learn_and_reproduce, record_demonstrations, sample_period,
+    wrist_path, DemoSettings, Training, Transition,
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::hsom::Hsom;
-use cosco_hsom::metrics::MetricsParams;
+use cosco_hsom::metrics::{FidelityReport, MetricsParams};
 use cosco_hsom::plot::{demo_color, BLACK};
 use cosco_hsom::render::RenderOptions;
 use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
@@ -143,14 +143,6 @@ pub fn read_demos(paths: &[PathBuf], state_length: Option<usize>) -> Result<Vec<
     Ok(demos)
 }
 
-/// Seconds between samples of a demonstration: from its `time` column, else 1/40 s.
-pub fn sample_period(d: &Demonstration) -> f64 {
-    match &d.time {
-        Some(t) if t.len() >= 2 => (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64,
-        _ => 0.025,
-    }
-}
-
 /// Train with a progress bar.
 pub fn train(cfg: &HsomConfig, demos: &[Demonstration]) -> Result<Hsom> {
     let pb = progress(cfg.params().training_steps as u64, "training");
@@ -180,6 +172,8 @@ pub struct Job {
     pub out: PathBuf,
     /// Arm model file.
     pub model: Option<PathBuf>,
+    /// How the learned postures become servo targets.
+    pub transition: Transition,
 }
 
 struct Stopwatch {
@@ -288,49 +282,50 @@ pub fn main_job(job: &Job) -> Result<Report> {
     files.extend(demo_info.iter().map(|d| d.file.clone()));
     clock.lap("demonstrations (simulate + record)");
 
-    // 2. Training.
-    let model = train(&cfg, &demos)?;
-    let train_s = clock.lap("training");
+    // 2-4. Training, reproduction from the initial posture on the simulated arm, metrics.
+    let pb = progress(cfg.params().training_steps as u64, "training");
+    let run = learn_and_reproduce(
+        &arm,
+        &cfg,
+        &demos,
+        Training::Trained,
+        job.transition,
+        Some(&|done, _| pb.set_position(done as u64)),
+    )?;
+    pb.finish_and_clear();
+    clock.stages.push(Stage {
+        stage: "training".into(),
+        seconds: run.train_s,
+    });
+    clock.stages.push(Stage {
+        stage: "reproduction (predict + execute) and metrics".into(),
+        seconds: (clock.t.elapsed().as_secs_f64() - run.train_s).max(0.0),
+    });
+    clock.t = Instant::now();
     let model_path = out.join("model.bin");
-    model.save(&model_path)?;
+    run.model.save(&model_path)?;
     files.push("model.bin".into());
-
-    // 3. Reproduction from the initial posture, executed on the simulated arm.
-    let dt = sample_period(&demos[0]);
-    let initial = demos[0].rows[0].clone();
-    let t = Instant::now();
-    let rep = model.reproduce(&initial)?;
-    let reproduce_s = t.elapsed().as_secs_f64();
-    let (postures, clamped) = clamp_to_ranges(&rep.postures)?;
-    let executed = execute_postures(&arm, &postures, 1.0 / dt)?;
+    let executed = &run.executed;
     write_csv(
         &out.join("reproduction.csv"),
         &executed.to_demonstration("CoSCo-HSOM reproduction"),
     )?;
     files.push("reproduction.csv".into());
-    clock.lap("reproduction (predict + execute)");
-
-    // 4. Metrics.
-    let params = MetricsParams {
-        sample_period: dt,
-        ..MetricsParams::default()
-    };
-    let fid = evaluate(Some(&arm), &demos, &executed.qpos, &params)?;
     let hsom_result = MethodResult {
         name: "CoSCo-HSOM".into(),
         needs: "raw demonstrations; the initial posture".into(),
-        fidelity: fid,
-        train_s,
-        reproduce_s,
+        fidelity: run.fidelity.clone(),
+        train_s: run.train_s,
+        reproduce_s: run.reproduce_s,
         model_bytes: file_size(&model_path),
-        postures: rep.postures.len(),
-        clamped_values: clamped,
+        postures: run.reproduction.postures.len(),
+        clamped_values: run.clamped_values,
         notes: vec![
-            format!("stopped: {:?}", rep.stop),
-            levels_note(&rep.predicted_by),
+            format!("stopped: {:?}", run.reproduction.stop),
+            levels_note(&run.reproduction.predicted_by),
         ],
     };
-    clock.lap("metrics");
+    clock.lap("writing the model and reproduction.csv");
 
     // 5. Plots.
     let demo_curves: Vec<Curve> = demos
@@ -412,7 +407,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
         };
         let stride = 2;
         let pb = progress(executed.len().div_ceil(stride) as u64, "rendering");
-        let clip = film(&arm, &executed, &opts, stride, |n, _| {
+        let clip = film(&arm, executed, &opts, stride, |n, _| {
             pb.set_position(n as u64)
         })?;
         pb.finish_and_clear();
@@ -460,4 +455,117 @@ fn levels_note(by: &[usize]) -> String {
         .map(|l| format!("L{l}: {}", by.iter().filter(|&&b| b == l).count()))
         .collect();
     format!("postures predicted per level: {}", counts.join(", "))
+}
+
+/// Read a reproduction CSV (`time` or `step` first column, then the demonstrations' columns).
+pub fn read_reproduction(path: &Path) -> Result<Demonstration> {
+    let mut d = demos::read_csv(path)?;
+    if d.columns.first().map(String::as_str) == Some("step") {
+        d.columns.remove(0);
+        for r in &mut d.rows {
+            r.remove(0);
+        }
+        if d.columns.is_empty() {
+            bail!(
+                "{}: only a `step` column, no state variables",
+                path.display()
+            );
+        }
+    }
+    Ok(d)
+}
+
+/// `cosco evaluate`: the fidelity metrics of a reproduction CSV against demonstrations.
+pub fn evaluate_files(
+    reproduction: &Path,
+    demo_paths: &[PathBuf],
+    model: Option<&Path>,
+) -> Result<FidelityReport> {
+    let demos = read_demos(demo_paths, None)?;
+    let rep = read_reproduction(reproduction)?;
+    if rep.columns != demos[0].columns {
+        bail!(
+            "{}: columns {:?} differ from the demonstrations' {:?} ({})",
+            reproduction.display(),
+            rep.columns,
+            demos[0].columns,
+            demos[0].source
+        );
+    }
+    let arm = if are_arm_joints(&rep.columns) {
+        Some(load_arm(model)?)
+    } else {
+        None
+    };
+    let params = MetricsParams {
+        sample_period: sample_period(&demos[0]),
+        ..MetricsParams::default()
+    };
+    Ok(evaluate(arm.as_ref(), &demos, &rep.rows, &params)?)
+}
+
+/// Human-readable lines of a fidelity report.
+pub fn fidelity_lines(f: &FidelityReport) -> String {
+    let st = |s: &cosco_hsom::metrics::Stat| format!("mean {:.4}, worst {:.4}", s.mean, s.worst);
+    let mut out = String::new();
+    out += &format!(
+        "joint DTW (rad/step):       {}\n",
+        st(&f.joint_dtw_rad_per_step)
+    );
+    if let Some(w) = &f.wrist_dtw_mm {
+        out += &format!("wrist-path DTW (mm/step):   {}\n", st(w));
+    }
+    out += &format!("apex error (rad):           {}\n", st(&f.apex_error_rad));
+    out += &format!("final-posture error (rad):  {}\n", st(&f.final_error_rad));
+    out += &format!("duration ratio:             {}\n", st(&f.duration_ratio));
+    out += &format!(
+        "smoothness: normalized jerk {}, velocity reversals {} ({:?} per column)\n",
+        f.reproduction_smoothness
+            .normalized_jerk
+            .map_or("n/a".into(), |j| format!("{j:.0}")),
+        f.reproduction_smoothness.total_reversals,
+        f.reproduction_smoothness.reversals
+    );
+    out
+}
+
+/// The extension of a model file: `.bin` or `.txt`, else an error saying so.
+pub fn check_model_extension(path: &Path) -> Result<()> {
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("bin") | Some("txt") => Ok(()),
+        _ => bail!(
+            "{}: a model file must end in .bin (binary) or .txt (plain text)",
+            path.display()
+        ),
+    }
+}
+
+/// `cosco train`: read, train with a progress bar, save atomically.
+pub fn train_files(config: Option<&Path>, demo_paths: &[PathBuf], out: &Path) -> Result<Hsom> {
+    check_model_extension(out)?;
+    let cfg = hsom_config(config)?;
+    let demos = read_demos(demo_paths, Some(cfg.params().state_length))?;
+    let model = train(&cfg, &demos)?;
+    model.save(out)?;
+    Ok(model)
+}
+
+/// Load a saved model (.bin or .txt).
+pub fn load_model(path: &Path) -> Result<Hsom> {
+    check_model_extension(path)?;
+    Ok(Hsom::load(path)?)
+}
+
+/// The error and its causes on one line, leaving out causes whose text the message above
+/// already contains (many library errors quote their cause).
+pub fn error_line(e: &anyhow::Error) -> String {
+    let mut line = e.to_string();
+    for cause in e.chain().skip(1) {
+        let c = cause.to_string();
+        if !line.contains(&c) {
+            line.push_str(": ");
+            line.push_str(&c);
+        }
+    }
+    line
 }

@@ -1,0 +1,119 @@
+//! CoSCo-HSOM benchmarks (criterion), on data generated here.
+//!
+//! cargo bench --bench hsom -- --warm-up-time 1 --measurement-time 2
+
+use cosco_hsom::config::{HsomParams, MemoryMode};
+use cosco_hsom::demos::Demonstration;
+use cosco_hsom::hsom::{ActivityLevels, ActivityList};
+use cosco_hsom::som::{Neighbourhood, SelfOrganizingMap, Topology};
+use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+fn gestures(k: usize, n: usize) -> Vec<Demonstration> {
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    (0..k)
+        .map(|i| Demonstration {
+            source: format!("g{i}"),
+            columns: (0..6).map(|d| format!("j{d}")).collect(),
+            time: None,
+            rows: (0..n)
+                .map(|j| {
+                    let u = j as f64 / n as f64 * std::f64::consts::PI;
+                    (0..6)
+                        .map(|d| (u + 0.2 * d as f64).sin() + rng.gen_range(-0.01..0.01))
+                        .collect()
+                })
+                .collect(),
+        })
+        .collect()
+}
+
+fn step_vs_bmu(c: &mut Criterion) {
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let mut map = SelfOrganizingMap::new_random(
+        16,
+        16,
+        12,
+        Topology::Orthogonal,
+        &[0.0; 12],
+        &[1.0; 12],
+        &mut rng,
+    );
+    let xs: Vec<Vec<f64>> = (0..64)
+        .map(|_| (0..12).map(|_| rng.gen()).collect())
+        .collect();
+    let mut g = c.benchmark_group("som16x16_12d");
+    let mut i = 0;
+    g.bench_function("bmu_scan", |b| {
+        b.iter(|| {
+            i = (i + 1) % xs.len();
+            black_box(map.bmu(black_box(&xs[i])))
+        })
+    });
+    g.bench_function("training_step", |b| {
+        b.iter(|| {
+            i = (i + 1) % xs.len();
+            let (n, _) = map.bmu(&xs[i]);
+            map.update(&xs[i], None, n, 0.1, 2.0, Neighbourhood::Gaussian);
+        })
+    });
+    g.finish();
+}
+
+fn table1(c: &mut Criterion) {
+    let demos = gestures(3, 300);
+    let cfg = HsomParams::table1().check("table1").unwrap();
+    let mut g = c.benchmark_group("table1");
+    g.sample_size(10);
+    g.bench_function("fit_3x300", |b| {
+        b.iter(|| black_box(cfg.fit(&demos).unwrap()))
+    });
+    let model = cfg.fit(&demos).unwrap();
+    g.bench_function("reproduce", |b| {
+        b.iter(|| black_box(model.reproduce(&demos[0].rows[0]).unwrap()))
+    });
+    let mut p = HsomParams::table1();
+    p.memory_mode = MemoryMode::Levels;
+    let cfg_levels = p.check("t").unwrap();
+    g.bench_function("fit_3x300_activity_levels", |b| {
+        b.iter(|| black_box(cfg_levels.fit(&demos).unwrap()))
+    });
+    g.finish();
+}
+
+fn lists_vs_levels(c: &mut Criterion) {
+    let mut g = c.benchmark_group("stm_step");
+    for side in [8usize, 16, 32, 64] {
+        for height in 3usize..=6 {
+            let nodes = side * side;
+            let id = format!("{side}x{side}_h{height}");
+            let mut lists: Vec<ActivityList> = (0..height).map(|_| ActivityList::new(4)).collect();
+            let mut k = 0usize;
+            g.bench_with_input(BenchmarkId::new("lists", &id), &nodes, |b, &n| {
+                b.iter(|| {
+                    k = (k + 7) % n;
+                    for l in lists.iter_mut() {
+                        l.push(((k % side) as u16, (k / side) as u16));
+                    }
+                    black_box(&lists);
+                })
+            });
+            let mut levels: Vec<ActivityLevels> =
+                (0..height).map(|_| ActivityLevels::new(nodes, 4)).collect();
+            g.bench_with_input(BenchmarkId::new("levels", &id), &nodes, |b, &n| {
+                b.iter(|| {
+                    k = (k + 7) % n;
+                    for l in levels.iter_mut() {
+                        l.push(k);
+                    }
+                    black_box(&levels);
+                })
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, step_vs_bmu, table1, lists_vs_levels);
+criterion_main!(benches);
