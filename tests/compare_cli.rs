@@ -265,3 +265,60 @@ fn compare_with_one_demonstration_says_the_baseline_needs_two() {
     let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
     assert!(err.contains("at least 2 demonstrations"), "{err}");
 }
+
+#[test]
+fn simulate_report_has_the_baseline_column_and_its_files() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let assert = Command::cargo_bin("simulate")
+        .unwrap()
+        .args(["--gesture", "salute", "--no-render"])
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    let stdout = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
+    assert!(stdout.contains("GMM/GMR:"), "{stdout}");
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        md.contains("| metric (mean / worst) | CoSCo-HSOM | GMM/GMR |"),
+        "{md}"
+    );
+    for f in [
+        "gmr_model.txt",
+        "gmr_reproduction.csv",
+        "fig3_gmr_training_data.png",
+        "fig5_gmr_lshoulderpitch.png",
+        "joints_compare.png",
+        "wrist_compare.png",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+        assert!(
+            md.contains(&format!("`{f}`")),
+            "{f} not listed in the report"
+        );
+    }
+}
+
+#[test]
+fn simulate_with_one_demonstration_notes_that_the_baseline_did_not_run() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    Command::cargo_bin("simulate")
+        .unwrap()
+        .args(["--count", "1", "--no-render"])
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        md.contains("| metric (mean / worst) | CoSCo-HSOM |\n"),
+        "{md}"
+    );
+    assert!(
+        md.contains("GMM/GMR baseline not run") && md.contains("at least 2 demonstrations"),
+        "{md}"
+    );
+    assert!(!out.join("gmr_model.txt").exists());
+}
