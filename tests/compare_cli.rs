@@ -264,6 +264,8 @@ fn compare_with_one_demonstration_says_the_baseline_needs_two() {
         .failure();
     let err = String::from_utf8_lossy(&out.get_output().stderr).to_string();
     assert!(err.contains("at least 2 demonstrations"), "{err}");
+    // refused before anything is trained or written
+    assert!(!tmp.path().join("out").join("model.bin").exists());
 }
 
 #[test]

@@ -13,7 +13,7 @@ use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report};
 use cosco_hsom::experiment::{
     are_arm_joints, learn_and_reproduce, sample_period, wrist_path, Training, Transition,
 };
-use cosco_hsom::gmr::{load_model, save_model, ComponentChoice, GmrParams};
+use cosco_hsom::gmr::{load_model, save_model, ComponentChoice, GmrParams, MIN_DEMONSTRATIONS};
 use cosco_hsom::metrics::MetricsParams;
 use cosco_hsom::plot::{demo_color, BLACK};
 use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
@@ -249,6 +249,14 @@ pub fn compare(job: &CompareJob) -> Result<Report> {
     let cfg = hsom_config(job.config.as_deref())?;
     let demos = read_demos(std::slice::from_ref(&job.demos), None)?;
     require_arm_joints(&demos)?;
+    if demos.len() < MIN_DEMONSTRATIONS {
+        bail!(
+            "{}: {} demonstration file(s); the GMM/GMR baseline needs at least \
+             {MIN_DEMONSTRATIONS} demonstrations to align and to estimate their spread",
+            job.demos.display(),
+            demos.len()
+        );
+    }
     validate_set(&demos, Some(cfg.params().state_length)).with_context(|| {
         format!(
             "the configuration's stateLength is {}",
