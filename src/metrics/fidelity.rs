@@ -38,7 +38,7 @@ impl Trajectory {
 }
 
 /// Settings of the metrics. Defaults: 0.025 s sample period (40 Hz), the baseline's
-/// [`IdleTrim::default`] (so "idle" means the same everywhere), a 0.1 rad/s deadband for
+/// [`IdleTrim::default`] (so "idle" means the same everywhere), a 0.25 rad/s deadband for
 /// velocity reversals, no DTW band.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct MetricsParams {
@@ -58,7 +58,7 @@ impl Default for MetricsParams {
         MetricsParams {
             sample_period: 0.025,
             trim: IdleTrim::default(),
-            reversal_deadband: 0.1,
+            reversal_deadband: 0.25,
             band: Band::None,
         }
     }
