@@ -257,8 +257,8 @@ impl HumanTrajectory {
     pub fn at(&self, t: f64) -> Pose {
         let mut q = self.initial;
         for m in &self.moves {
-            for j in 0..N_JOINTS {
-                q[j] += m.delta[j] * min_jerk((t - m.start[j]) / m.duration);
+            for ((v, d), s) in q.iter_mut().zip(&m.delta).zip(&m.start) {
+                *v += d * min_jerk((t - s) / m.duration);
             }
         }
         for o in &self.oscillations {

@@ -381,7 +381,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
     match compare::baseline_section(
         &arm,
         &demos,
-        &executed,
+        executed,
         out,
         compare::DEFAULT_COMPONENTS,
         &mut files,
