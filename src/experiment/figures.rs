@@ -90,6 +90,28 @@ pub struct Path3<'a> {
     pub points: &'a [[f64; 3]],
 }
 
+impl<'a> Path3<'a> {
+    /// The `i`-th demonstration's path, in the palette's `i`-th colour.
+    pub fn demo(i: usize, points: &'a [[f64; 3]]) -> Self {
+        Path3 {
+            label: format!("demonstration {}", i + 1),
+            color: demo_color(i),
+            width: 2,
+            points,
+        }
+    }
+
+    /// A reproduction's path, drawn thicker.
+    pub fn reproduction(label: impl Into<String>, color: RGBColor, points: &'a [[f64; 3]]) -> Self {
+        Path3 {
+            label: label.into(),
+            color,
+            width: 3,
+            points,
+        }
+    }
+}
+
 /// The wrist paths seen from the front (y-z plane: as a viewer facing the robot sees it, the
 /// robot's left on the right of the picture) and from the side (x-z plane), in millimetres,
 /// with equal axis scales.

@@ -15,7 +15,7 @@ use cosco_hsom::experiment::{
 };
 use cosco_hsom::gmr::{load_model, save_model, ComponentChoice, GmrParams, MIN_DEMONSTRATIONS};
 use cosco_hsom::metrics::MetricsParams;
-use cosco_hsom::plot::{demo_color, BLACK};
+use cosco_hsom::plot::BLACK;
 use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
 
 use super::{
@@ -146,25 +146,18 @@ pub fn baseline_section(
     let mut paths: Vec<Path3> = demo_wrists
         .iter()
         .enumerate()
-        .map(|(i, w)| Path3 {
-            label: format!("demonstration {}", i + 1),
-            color: demo_color(i),
-            width: 2,
-            points: w,
-        })
+        .map(|(i, w)| Path3::demo(i, w))
         .collect();
-    paths.push(Path3 {
-        label: "CoSCo-HSOM reproduction".into(),
-        color: BLACK,
-        width: 3,
-        points: &hsom.wrist,
-    });
-    paths.push(Path3 {
-        label: "GMM/GMR reproduction".into(),
-        color: GMR_COLOR,
-        width: 3,
-        points: &run.executed.wrist,
-    });
+    paths.push(Path3::reproduction(
+        "CoSCo-HSOM reproduction",
+        BLACK,
+        &hsom.wrist,
+    ));
+    paths.push(Path3::reproduction(
+        "GMM/GMR reproduction",
+        GMR_COLOR,
+        &run.executed.wrist,
+    ));
     wrist_png(
         &out.join("wrist_compare.png"),
         "Wrist path (l_wrist), torso frame: both methods",

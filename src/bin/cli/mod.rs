@@ -21,7 +21,7 @@ use cosco_hsom::experiment::{
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::hsom::Hsom;
 use cosco_hsom::metrics::{FidelityReport, MetricsParams};
-use cosco_hsom::plot::{demo_color, BLACK};
+use cosco_hsom::plot::BLACK;
 use cosco_hsom::render::RenderOptions;
 use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
 
@@ -354,19 +354,13 @@ pub fn main_job(job: &Job) -> Result<Report> {
     let mut paths: Vec<Path3> = demo_wrists
         .iter()
         .enumerate()
-        .map(|(i, w)| Path3 {
-            label: format!("demonstration {}", i + 1),
-            color: demo_color(i),
-            width: 2,
-            points: w,
-        })
+        .map(|(i, w)| Path3::demo(i, w))
         .collect();
-    paths.push(Path3 {
-        label: "CoSCo-HSOM reproduction".into(),
-        color: BLACK,
-        width: 3,
-        points: &executed.wrist,
-    });
+    paths.push(Path3::reproduction(
+        "CoSCo-HSOM reproduction",
+        BLACK,
+        &executed.wrist,
+    ));
     wrist_png(
         &out.join("wrist.png"),
         "Wrist path (l_wrist), torso frame",
