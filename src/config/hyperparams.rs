@@ -37,6 +37,41 @@ pub enum PartialTraining {
     Masked,
 }
 
+/// When the bottom level's activity list is updated (and so when the schedule of the upper
+/// levels advances), in training and in reproduction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ListUpdate {
+    /// Push the bottom BMU at every step (the paper taken literally): with densely sampled
+    /// data the list fills with repeats of the same node.
+    EveryStep,
+    /// Push the bottom BMU only when it differs from the newest entry, so the lists hold
+    /// sequences of distinct key postures; how long each node lasts is learned per node
+    /// (its dwell) and restored in reproduction with `timing = dwell`.
+    OnChange,
+}
+
+/// What the bottom level does when no level above can predict (paper III-C.2's reflex).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reflex {
+    /// The BMU of the current posture (state half) is executed (the paper's reflex).
+    Bmu,
+    /// As `Bmu`, but when that node is the one just executed (a stationary reflex, e.g. the
+    /// idle initial posture), the node that most often followed it in the training
+    /// demonstrations is executed instead.
+    Successor,
+}
+
+/// How many postures an executed bottom node produces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Timing {
+    /// One posture per executed node (the paper).
+    Step,
+    /// The learned dwell of the node (mean number of consecutive steps it was the BMU in the
+    /// training demonstrations, idle start and end excluded): the posture moves linearly
+    /// from the current one to the node's output over that many steps.
+    Dwell,
+}
+
 /// Internal scaling of the bottom level's input.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Normalisation {
@@ -159,6 +194,10 @@ pub struct ReproductionParams {
     /// Record in the bottom activity list the node that best matches the executed transition
     /// [current, next] (as in training), instead of the node that was predicted.
     pub closed_loop: bool,
+    /// The bottom reflex.
+    pub reflex: Reflex,
+    /// Postures per executed bottom node.
+    pub timing: Timing,
 }
 
 impl Default for ReproductionParams {
@@ -179,6 +218,8 @@ impl Default for ReproductionParams {
             max_level: None,
             continuity: 0.85,
             closed_loop: true,
+            reflex: Reflex::Bmu,
+            timing: Timing::Step,
         }
     }
 }
@@ -206,6 +247,11 @@ pub struct HsomParams {
     pub normalisation: Normalisation,
     /// Training of upper levels on partially filled lists.
     pub partial_training: PartialTraining,
+    /// When the bottom activity list is updated.
+    pub list_update: ListUpdate,
+    /// With `OnChange`: a new bottom BMU replaces the newest entry only when its distance to
+    /// the input is below this fraction of the newest entry's distance (1: on any change).
+    pub change_ratio: f64,
     /// Level settings, index 0 = bottom.
     pub levels: Vec<LevelParams>,
     /// Reproduction settings.
@@ -228,6 +274,8 @@ impl HsomParams {
             memory_mode: MemoryMode::Lists,
             normalisation: Normalisation::Global,
             partial_training: PartialTraining::Skip,
+            list_update: ListUpdate::EveryStep,
+            change_ratio: 1.0,
             levels: sizes
                 .iter()
                 .map(|&(n, a)| LevelParams::new(n, n, Topology::Orthogonal, a))
@@ -328,6 +376,13 @@ impl HsomParams {
                 "levels",
                 format!("{weights} weights"),
                 "the hierarchy would hold more than 100 million weights; use smaller maps",
+            ));
+        }
+        if !(self.change_ratio.is_finite() && self.change_ratio > 0.0 && self.change_ratio <= 1.0) {
+            return Err(bad(
+                "changeRatio",
+                self.change_ratio.to_string(),
+                "expected a number in (0, 1]",
             ));
         }
         let r = &self.reproduction;

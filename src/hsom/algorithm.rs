@@ -3,7 +3,7 @@
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-use crate::config::{HsomConfig, MemoryMode, Normalisation, PartialTraining};
+use crate::config::{HsomConfig, ListUpdate, MemoryMode, Normalisation, PartialTraining};
 use crate::demos::Demonstration;
 use crate::som::{SelfOrganizingMap, Topology};
 
@@ -30,6 +30,18 @@ pub struct Hsom {
     pub(crate) te: Vec<f64>,
     /// Shortest, mean and longest demonstration (samples).
     pub(crate) demo_len: [f64; 3],
+    /// Shortest, mean and longest demonstration in runs of the same bottom BMU (the length
+    /// of its sequence of distinct bottom nodes).
+    pub(crate) demo_runs: [f64; 3],
+    /// Per bottom node: mean length (steps) of its runs as the BMU inside the demonstrations
+    /// (first and last run of each demonstration, the idle start and end, excluded); 0 when
+    /// it never had such a run.
+    pub(crate) dwell: Vec<f64>,
+    /// Per bottom node: the distinct node that most often followed its runs (`u32::MAX`:
+    /// none).
+    pub(crate) successor: Vec<u32>,
+    /// Names of the demonstrations' columns (`x0`, `x1`, ... for plain series).
+    pub(crate) columns: Vec<String>,
 }
 
 /// Quality of one level, as reported by [`Hsom::summary`].
@@ -127,6 +139,10 @@ pub(crate) enum Memory {
 #[derive(Debug, Clone)]
 pub(crate) struct Stm {
     pub(crate) mem: Memory,
+    /// Newest bottom entry (node index), for `listUpdate = onChange`.
+    pub(crate) last0: Option<usize>,
+    pub(crate) on_change: bool,
+    pub(crate) change_ratio: f64,
     /// Pushes since the last clear, per level.
     pub(crate) pushes: Vec<usize>,
     pub(crate) memory: usize,
@@ -148,6 +164,9 @@ impl Stm {
         };
         Stm {
             mem,
+            last0: None,
+            on_change: p.list_update == ListUpdate::OnChange,
+            change_ratio: p.change_ratio,
             pushes: vec![0; p.height],
             memory: p.memory,
         }
@@ -158,6 +177,51 @@ impl Stm {
             Memory::Levels(v) => v.iter_mut().for_each(|l| l.clear()),
         }
         self.pushes.iter_mut().for_each(|c| *c = 0);
+        self.last0 = None;
+    }
+    /// Push a bottom BMU, unless `listUpdate = onChange` and it is the newest entry already;
+    /// true when pushed (the schedule of the upper levels then advances).
+    #[inline]
+    pub(crate) fn push_bottom(&mut self, node: usize, map: &SelfOrganizingMap) -> bool {
+        self.push_bottom_observed(node, map, None)
+    }
+    /// As [`Stm::push_bottom`] for an observed input `x` whose BMU `node` is at squared
+    /// distance `d2`: with `onChange` and `changeRatio` r < 1 the newest entry is kept while
+    /// the BMU is not clearly closer, d2 > r^2 |x - w(newest)|^2 (hysteresis against noise
+    /// flickering between neighbouring nodes).
+    #[inline]
+    pub(crate) fn push_bottom_observed(
+        &mut self,
+        node: usize,
+        map: &SelfOrganizingMap,
+        obs: Option<(&[f64], f64)>,
+    ) -> bool {
+        if self.on_change {
+            let Some(last) = self.last0 else {
+                self.push(0, node, map);
+                self.last0 = Some(node);
+                return true;
+            };
+            if last == node {
+                return false;
+            }
+            if let Some((x, d2)) = obs {
+                if self.change_ratio < 1.0 {
+                    let dl2: f64 = map
+                        .weights(last)
+                        .iter()
+                        .zip(x)
+                        .map(|(w, v)| (w - v) * (w - v))
+                        .sum();
+                    if d2 > self.change_ratio * self.change_ratio * dl2 {
+                        return false;
+                    }
+                }
+            }
+        }
+        self.push(0, node, map);
+        self.last0 = Some(node);
+        true
     }
     #[inline]
     pub(crate) fn push(&mut self, level: usize, node: usize, map: &SelfOrganizingMap) {
@@ -230,6 +294,10 @@ fn check_series(series: &[Series<'_>], state: usize) -> Result<(), HsomError> {
     Ok(())
 }
 
+fn demo_columns(demos: &[Demonstration]) -> Vec<String> {
+    demos.first().map(|d| d.columns.clone()).unwrap_or_default()
+}
+
 pub(crate) fn input_dim(config: &HsomConfig, level: usize) -> usize {
     let p = config.params();
     if level == 0 {
@@ -262,7 +330,7 @@ impl HsomConfig {
                 rows: &d.rows,
             })
             .collect();
-        self.fit_inner(&series, progress, true)
+        self.fit_inner(&series, progress, true, demo_columns(demos))
     }
 
     /// An untrained hierarchy: the seeded initial weights (inside the data's bounding box)
@@ -275,7 +343,7 @@ impl HsomConfig {
                 rows: &d.rows,
             })
             .collect();
-        self.fit_inner(&series, None, false)
+        self.fit_inner(&series, None, false, demo_columns(demos))
     }
 
     /// Train on plain time series (rows of `stateLength` values), quietly.
@@ -286,7 +354,10 @@ impl HsomConfig {
             .zip(&names)
             .map(|(r, n)| Series { source: n, rows: r })
             .collect();
-        self.fit_inner(&s, None, true)
+        let columns = (0..self.params().state_length)
+            .map(|i| format!("x{i}"))
+            .collect();
+        self.fit_inner(&s, None, true, columns)
     }
 
     fn fit_inner(
@@ -294,10 +365,16 @@ impl HsomConfig {
         series: &[Series<'_>],
         progress: Option<&dyn Fn(usize, usize)>,
         learn: bool,
+        columns: Vec<String>,
     ) -> Result<Hsom, HsomError> {
         let p = self.params();
         let state = p.state_length;
         check_series(series, state)?;
+        let columns = if columns.len() == state {
+            columns
+        } else {
+            (0..state).map(|i| format!("x{i}")).collect()
+        };
         // normalisation of the bottom input
         let mut lo = vec![f64::INFINITY; state];
         let mut hi = vec![f64::NEG_INFINITY; state];
@@ -385,16 +462,19 @@ impl HsomConfig {
             .collect();
         let mut trained = vec![0u64; p.height];
         let (mut d, mut pos) = (0usize, 0usize);
+        // bottom pushes (the upper levels' clock; = the step with listUpdate = everyStep)
+        let mut sc = 0u64;
         let chunk = (total / 100).max(1);
         for s in 1..=total as u64 {
-            {
+            let pushed = {
                 let demo = &norm[d];
                 let x = &mut bufs[0];
                 x[..state].copy_from_slice(&demo[pos]);
                 x[state..].copy_from_slice(&demo[pos + 1]);
                 let lp = &p.levels[0];
                 let prog = trained[0] as f64 / expected[0];
-                let (b, _) = maps[0].bmu(x);
+                let (b, d2) = maps[0].bmu(x);
+                let pushed = stm.push_bottom_observed(b, &maps[0], Some((&x[..], d2)));
                 maps[0].update(
                     x,
                     None,
@@ -404,10 +484,13 @@ impl HsomConfig {
                     lp.neighbourhood,
                 );
                 trained[0] += 1;
-                stm.push(0, b, &maps[0]);
+                pushed
+            };
+            if pushed {
+                sc += 1;
             }
             for l in 1..p.height {
-                if s % self.period(l) != 0 {
+                if !pushed || sc % self.period(l) != 0 {
                     break;
                 }
                 let (lower, upper) = bufs.split_at_mut(l);
@@ -419,7 +502,13 @@ impl HsomConfig {
                 }
                 let full = mask.iter().all(|&m| m);
                 let lp = &p.levels[l];
-                let prog = trained[l] as f64 / expected[l];
+                // with onChange the number of trainings is not known in advance: the
+                // schedules follow the global step instead
+                let prog = if stm.on_change {
+                    (s - 1) as f64 / total.max(1) as f64
+                } else {
+                    trained[l] as f64 / expected[l]
+                };
                 let (b, _) = if full {
                     maps[l].bmu(x)
                 } else {
@@ -464,6 +553,10 @@ impl HsomConfig {
                 lens.iter().sum::<f64>() / lens.len() as f64,
                 lens.iter().cloned().fold(0.0, f64::max),
             ],
+            demo_runs: [0.0; 3],
+            dwell: vec![0.0; p.levels[0].rows * p.levels[0].cols],
+            successor: vec![u32::MAX; p.levels[0].rows * p.levels[0].cols],
+            columns,
         };
         model.replay(&norm);
         Ok(model)
@@ -487,10 +580,17 @@ impl Hsom {
         let mut qe_sum = vec![0.0; p.height];
         let mut te_bad = vec![0usize; p.height];
         let mut count = vec![0usize; p.height];
+        let n0 = self.maps[0].len();
+        let mut dwell_sum = vec![0.0f64; n0];
+        let mut dwell_n = vec![0u32; n0];
+        let mut trans: std::collections::BTreeMap<(usize, usize), u32> = Default::default();
+        let mut runs_per_demo = Vec::with_capacity(norm.len());
         for demo in norm {
             stm.clear();
+            let mut sc = 0u64;
+            // runs of the same bottom BMU: (node, length)
+            let mut runs: Vec<(usize, usize)> = Vec::new();
             for pos in 0..demo.len() - 1 {
-                let s = pos as u64 + 1;
                 bufs[0][..state].copy_from_slice(&demo[pos]);
                 bufs[0][state..].copy_from_slice(&demo[pos + 1]);
                 let (a, b) = self.maps[0].best_two(&bufs[0]);
@@ -508,9 +608,18 @@ impl Hsom {
                 if pos + 2 == demo.len() {
                     self.end_hits[a] = self.end_hits[a].saturating_add(1);
                 }
-                stm.push(0, a, &self.maps[0]);
+                let pushed = stm.push_bottom_observed(a, &self.maps[0], Some((&bufs[0], d2)));
+                // runs: steps between pushes, on the pushed node (= runs of the same BMU
+                // with everyStep or changeRatio 1)
+                match runs.last_mut() {
+                    Some((n, len)) if !pushed || *n == a => *len += 1,
+                    _ => runs.push((a, 1)),
+                }
+                if pushed {
+                    sc += 1;
+                }
                 for l in 1..p.height {
-                    if s % cfg.period(l) != 0 {
+                    if !pushed || sc % cfg.period(l) != 0 {
                         break;
                     }
                     let x = &mut bufs[l];
@@ -536,7 +645,39 @@ impl Hsom {
                     stm.push(l, b, &self.maps[l]);
                 }
             }
+            let k = runs.len();
+            for (i, &(n, len)) in runs.iter().enumerate() {
+                if i > 0 && i + 1 < k {
+                    dwell_sum[n] += len as f64;
+                    dwell_n[n] += 1;
+                }
+                if i + 1 < k {
+                    *trans.entry((n, runs[i + 1].0)).or_insert(0) += 1;
+                }
+            }
+            runs_per_demo.push(k as f64);
         }
+        for i in 0..n0 {
+            self.dwell[i] = if dwell_n[i] > 0 {
+                dwell_sum[i] / dwell_n[i] as f64
+            } else {
+                0.0
+            };
+        }
+        // most frequent successor, ties to the smaller node index (BTreeMap order)
+        let mut best = vec![(0u32, u32::MAX); n0];
+        for (&(from, to), &c) in &trans {
+            if c > best[from].0 {
+                best[from] = (c, to as u32);
+            }
+        }
+        self.successor = best.into_iter().map(|(_, t)| t).collect();
+        let nd = runs_per_demo.len().max(1) as f64;
+        self.demo_runs = [
+            runs_per_demo.iter().cloned().fold(f64::INFINITY, f64::min),
+            runs_per_demo.iter().sum::<f64>() / nd,
+            runs_per_demo.iter().cloned().fold(0.0, f64::max),
+        ];
         for l in 0..p.height {
             let c = count[l].max(1) as f64;
             self.qe[l] = qe_sum[l] / c;
@@ -562,6 +703,11 @@ impl Hsom {
     /// Number of levels.
     pub fn height(&self) -> usize {
         self.maps.len()
+    }
+    /// Names of the variables (the demonstrations' columns; `x0`, `x1`, ... when trained on
+    /// plain series).
+    pub fn columns(&self) -> &[String] {
+        &self.columns
     }
 
     /// Levels, sizes, node usage, quantization and topographic error per level (computed on
