@@ -33,6 +33,9 @@ fn table1_file_reproduces_the_paper_table() {
     let mut b = HsomParams::table1();
     b.list_update = ListUpdate::OnChange;
     b.change_ratio = 0.6;
+    b.action_horizon = 10;
+    b.reproduction.end_tolerance = 2.0;
+    b.reproduction.min_accuracy = 0.1;
     b.reproduction.mode = ReproductionMode::Strided;
     b.reproduction.continuity = 0.0;
     b.reproduction.reflex = Reflex::Successor;

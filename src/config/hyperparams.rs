@@ -194,6 +194,10 @@ pub struct ReproductionParams {
     /// Record in the bottom activity list the node that best matches the executed transition
     /// [current, next] (as in training), instead of the node that was predicted.
     pub closed_loop: bool,
+    /// A level whose measured prediction accuracy (the fraction of next entries of the level
+    /// below it predicted exactly when the training data were replayed) is below this is
+    /// "confused" and not used; 0 disables the test.
+    pub min_accuracy: f64,
     /// The bottom reflex.
     pub reflex: Reflex,
     /// Postures per executed bottom node.
@@ -218,6 +222,7 @@ impl Default for ReproductionParams {
             max_level: None,
             continuity: 0.85,
             closed_loop: true,
+            min_accuracy: 0.0,
             reflex: Reflex::Bmu,
             timing: Timing::Step,
         }
@@ -252,6 +257,10 @@ pub struct HsomParams {
     /// With `OnChange`: a new bottom BMU replaces the newest entry only when its distance to
     /// the input is below this fraction of the newest entry's distance (1: on any change).
     pub change_ratio: f64,
+    /// The bottom level learns [S_t, S_t+h] with this h (1: the paper's next state); the
+    /// sample h steps ahead makes the direction of motion visible in the node even when
+    /// consecutive samples are nearly equal. Reproduction uses S_t + (S_t+h - S_t) / h.
+    pub action_horizon: usize,
     /// Level settings, index 0 = bottom.
     pub levels: Vec<LevelParams>,
     /// Reproduction settings.
@@ -276,6 +285,7 @@ impl HsomParams {
             partial_training: PartialTraining::Skip,
             list_update: ListUpdate::EveryStep,
             change_ratio: 1.0,
+            action_horizon: 1,
             levels: sizes
                 .iter()
                 .map(|&(n, a)| LevelParams::new(n, n, Topology::Orthogonal, a))
@@ -385,6 +395,7 @@ impl HsomParams {
                 "expected a number in (0, 1]",
             ));
         }
+        range("actionHorizon", self.action_horizon, 1, 100_000)?;
         let r = &self.reproduction;
         range("reproduction/offset", r.offset, 1, self.memory).map_err(|_| {
             bad(
@@ -425,6 +436,7 @@ impl HsomParams {
             1e6,
         )?;
         real("reproduction/continuity", r.continuity, 0.0, 1.0)?;
+        real("reproduction/minAccuracy", r.min_accuracy, 0.0, 1.0)?;
         real("reproduction/endTolerance", r.end_tolerance, 0.0, 1e6)?;
         real(
             "reproduction/stationaryTolerance",

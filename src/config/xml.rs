@@ -38,6 +38,8 @@ struct RawConfig {
     list_update: Option<String>,
     #[serde(rename = "changeRatio")]
     change_ratio: Option<String>,
+    #[serde(rename = "actionHorizon")]
+    action_horizon: Option<String>,
     levels: Option<RawLevels>,
     reproduction: Option<RawReproduction>,
 }
@@ -103,6 +105,8 @@ struct RawReproduction {
     closed_loop: Option<String>,
     reflex: Option<String>,
     timing: Option<String>,
+    #[serde(rename = "minAccuracy")]
+    min_accuracy: Option<String>,
 }
 
 /// Read, parse and validate a configuration file.
@@ -427,6 +431,7 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
                 d.stationary_tolerance,
             )?,
             closed_loop: f.opt("reproduction/closedLoop", &r.closed_loop, d.closed_loop)?,
+            min_accuracy: f.opt("reproduction/minAccuracy", &r.min_accuracy, d.min_accuracy)?,
             reflex: f.name(
                 "reproduction/reflex",
                 &r.reflex,
@@ -490,6 +495,7 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
             "everyStep, onChange",
         )?,
         change_ratio: f.opt("changeRatio", &raw.change_ratio, 1.0)?,
+        action_horizon: f.opt("actionHorizon", &raw.action_horizon, 1usize)?,
         levels,
         reproduction,
     };
@@ -534,6 +540,7 @@ impl HsomConfig {
         };
         let _ = writeln!(s, "  <listUpdate>{lu}</listUpdate>");
         let _ = writeln!(s, "  <changeRatio>{}</changeRatio>", p.change_ratio);
+        let _ = writeln!(s, "  <actionHorizon>{}</actionHorizon>", p.action_horizon);
         let _ = writeln!(s, "  <levels>");
         for (i, l) in p.levels.iter().enumerate().rev() {
             let _ = writeln!(s, "    <level index=\"{i}\">");
@@ -631,6 +638,7 @@ impl HsomConfig {
             Reflex::Bmu => "bmu",
             Reflex::Successor => "successor",
         };
+        let _ = writeln!(s, "    <minAccuracy>{}</minAccuracy>", r.min_accuracy);
         let _ = writeln!(s, "    <reflex>{rf}</reflex>");
         let tm = match r.timing {
             Timing::Step => "step",

@@ -42,6 +42,9 @@ pub struct Hsom {
     pub(crate) successor: Vec<u32>,
     /// Names of the demonstrations' columns (`x0`, `x1`, ... for plain series).
     pub(crate) columns: Vec<String>,
+    /// Per level: how often its partial match predicted the next entry of the level below
+    /// exactly during the replay of the training data (0 for level 0).
+    pub(crate) accuracy: Vec<f64>,
 }
 
 /// Quality of one level, as reported by [`Hsom::summary`].
@@ -68,6 +71,9 @@ pub struct LevelSummary {
     pub quantization_error: f64,
     /// Fraction of training inputs whose two best nodes are not adjacent.
     pub topographic_error: f64,
+    /// Fraction of the next entries of the level below predicted exactly from the partial
+    /// list on the training data (0 for the bottom level).
+    pub prediction_accuracy: f64,
 }
 
 /// What `cosco inspect` shows: the levels, their sizes and quality.
@@ -108,12 +114,12 @@ impl std::fmt::Display for ModelSummary {
         )?;
         writeln!(
             f,
-            "level  size     topology    input  period  trained  used    QE        TE"
+            "level  size     topology    input  period  trained  used    QE        TE       acc"
         )?;
         for l in self.levels.iter().rev() {
             writeln!(
                 f,
-                "{:<6} {:<8} {:<11} {:<6} {:<7} {:<8} {:<7} {:<9.4} {:.4}",
+                "{:<6} {:<8} {:<11} {:<6} {:<7} {:<8} {:<7} {:<9.4} {:<8.4} {:.3}",
                 l.level,
                 format!("{}x{}", l.rows, l.cols),
                 l.topology.name(),
@@ -122,7 +128,8 @@ impl std::fmt::Display for ModelSummary {
                 l.trained,
                 l.nodes_used,
                 l.quantization_error,
-                l.topographic_error
+                l.topographic_error,
+                l.prediction_accuracy
             )?;
         }
         Ok(())
@@ -464,15 +471,29 @@ impl HsomConfig {
         let (mut d, mut pos) = (0usize, 0usize);
         // bottom pushes (the upper levels' clock; = the step with listUpdate = everyStep)
         let mut sc = 0u64;
+        let horizon = p.action_horizon.max(1);
         let chunk = (total / 100).max(1);
-        for s in 1..=total as u64 {
+        // with onChange, trainingSteps counts bottom list updates (distinct key postures), so
+        // that the upper levels train as often as with everyStep
+        let on_change = stm.on_change;
+        let mut s = 0u64;
+        loop {
+            let done = if on_change { sc } else { s };
+            if done >= total as u64 {
+                break;
+            }
+            s += 1;
             let pushed = {
                 let demo = &norm[d];
                 let x = &mut bufs[0];
                 x[..state].copy_from_slice(&demo[pos]);
-                x[state..].copy_from_slice(&demo[pos + 1]);
+                x[state..].copy_from_slice(&demo[(pos + horizon).min(demo.len() - 1)]);
                 let lp = &p.levels[0];
-                let prog = trained[0] as f64 / expected[0];
+                let prog = if on_change {
+                    (sc as f64 / total.max(1) as f64).min(1.0)
+                } else {
+                    trained[0] as f64 / expected[0]
+                };
                 let (b, d2) = maps[0].bmu(x);
                 let pushed = stm.push_bottom_observed(b, &maps[0], Some((&x[..], d2)));
                 maps[0].update(
@@ -504,8 +525,8 @@ impl HsomConfig {
                 let lp = &p.levels[l];
                 // with onChange the number of trainings is not known in advance: the
                 // schedules follow the global step instead
-                let prog = if stm.on_change {
-                    (s - 1) as f64 / total.max(1) as f64
+                let prog = if on_change {
+                    ((sc - 1) as f64 / total.max(1) as f64).min(1.0)
                 } else {
                     trained[l] as f64 / expected[l]
                 };
@@ -532,8 +553,9 @@ impl HsomConfig {
                 pos = 0;
             }
             if let Some(cb) = progress {
-                if s as usize % chunk == 0 || s as usize == total {
-                    cb(s as usize, total);
+                let done = if on_change { sc } else { s } as usize;
+                if (done % chunk == 0 || done == total) && (!on_change || pushed) {
+                    cb(done, total);
                 }
             }
         }
@@ -557,6 +579,7 @@ impl HsomConfig {
             dwell: vec![0.0; p.levels[0].rows * p.levels[0].cols],
             successor: vec![u32::MAX; p.levels[0].rows * p.levels[0].cols],
             columns,
+            accuracy: vec![0.0; p.height],
         };
         model.replay(&norm);
         Ok(model)
@@ -585,6 +608,11 @@ impl Hsom {
         let mut dwell_n = vec![0u32; n0];
         let mut trans: std::collections::BTreeMap<(usize, usize), u32> = Default::default();
         let mut runs_per_demo = Vec::with_capacity(norm.len());
+        let horizon = p.action_horizon.max(1);
+        let offset = p.reproduction.offset;
+        let (mut acc_n, mut acc_ok) = (vec![0u32; p.height], vec![0u32; p.height]);
+        let mut pbuf = vec![0.0; 2 * p.memory];
+        let mut pmask = vec![true; 2 * p.memory];
         for demo in norm {
             stm.clear();
             let mut sc = 0u64;
@@ -592,7 +620,7 @@ impl Hsom {
             let mut runs: Vec<(usize, usize)> = Vec::new();
             for pos in 0..demo.len() - 1 {
                 bufs[0][..state].copy_from_slice(&demo[pos]);
-                bufs[0][state..].copy_from_slice(&demo[pos + 1]);
+                bufs[0][state..].copy_from_slice(&demo[(pos + horizon).min(demo.len() - 1)]);
                 let (a, b) = self.maps[0].best_two(&bufs[0]);
                 let d2: f64 = self.maps[0]
                     .weights(a)
@@ -608,7 +636,14 @@ impl Hsom {
                 if pos + 2 == demo.len() {
                     self.end_hits[a] = self.end_hits[a].saturating_add(1);
                 }
+                let guess = self.predict_next(&stm, 1, offset, &mut pbuf, &mut pmask);
                 let pushed = stm.push_bottom_observed(a, &self.maps[0], Some((&bufs[0], d2)));
+                if pushed {
+                    if let Some(g) = guess {
+                        acc_n[1] += 1;
+                        acc_ok[1] += u32::from(g == a);
+                    }
+                }
                 // runs: steps between pushes, on the pushed node (= runs of the same BMU
                 // with everyStep or changeRatio 1)
                 match runs.last_mut() {
@@ -642,6 +677,14 @@ impl Hsom {
                         count[l] += 1;
                     }
                     self.hits[l][b] = self.hits[l][b].saturating_add(1);
+                    if l + 1 < p.height {
+                        if let Some(g) =
+                            self.predict_next(&stm, l + 1, offset, &mut pbuf, &mut pmask)
+                        {
+                            acc_n[l + 1] += 1;
+                            acc_ok[l + 1] += u32::from(g == b);
+                        }
+                    }
                     stm.push(l, b, &self.maps[l]);
                 }
             }
@@ -672,6 +715,15 @@ impl Hsom {
             }
         }
         self.successor = best.into_iter().map(|(_, t)| t).collect();
+        self.accuracy = (0..p.height)
+            .map(|l| {
+                if acc_n[l] > 0 {
+                    acc_ok[l] as f64 / acc_n[l] as f64
+                } else {
+                    0.0
+                }
+            })
+            .collect();
         let nd = runs_per_demo.len().max(1) as f64;
         self.demo_runs = [
             runs_per_demo.iter().cloned().fold(f64::INFINITY, f64::min),
@@ -704,6 +756,51 @@ impl Hsom {
     pub fn height(&self) -> usize {
         self.maps.len()
     }
+    /// Level `level` (>= 1) predicts the next entry of the list of `level - 1` from its
+    /// `offset` or more newest entries (as in reproduction: known entries in the oldest
+    /// slots, rounded ID clamped to the grid); `None` with too little history or activity
+    /// levels.
+    pub(crate) fn predict_next(
+        &self,
+        stm: &Stm,
+        level: usize,
+        offset: usize,
+        buf: &mut [f64],
+        mask: &mut [bool],
+    ) -> Option<usize> {
+        let memory = stm.memory;
+        if level == 0 || level >= self.maps.len() {
+            return None;
+        }
+        let Memory::Lists(lists) = &stm.mem else {
+            return None;
+        };
+        let list = &lists[level - 1];
+        if memory < 2 || list.len() < offset.max(1) {
+            return None;
+        }
+        let k = list.len().min(memory - 1);
+        let shift = memory - k;
+        list.encode(k, shift, buf, mask);
+        let (b, _) = self.maps[level].bmu_masked(buf, mask);
+        let w = self.maps[level].weights(b);
+        let below = &self.maps[level - 1];
+        let x = w[2 * (shift - 1)]
+            .round()
+            .clamp(0.0, below.cols() as f64 - 1.0) as u16;
+        let y = w[2 * (shift - 1) + 1]
+            .round()
+            .clamp(0.0, below.rows() as f64 - 1.0) as u16;
+        Some(below.index((x, y)))
+    }
+
+    /// Per level (>= 1): the fraction of the entries of the level below that the level
+    /// predicted exactly from the partial list when the training data were replayed (0 for
+    /// the bottom level or without lists).
+    pub fn prediction_accuracy(&self) -> &[f64] {
+        &self.accuracy
+    }
+
     /// Names of the variables (the demonstrations' columns; `x0`, `x1`, ... when trained on
     /// plain series).
     pub fn columns(&self) -> &[String] {
@@ -736,6 +833,7 @@ impl Hsom {
                     nodes_used: self.hits[l].iter().filter(|&&h| h > 0).count(),
                     quantization_error: self.qe[l],
                     topographic_error: self.te[l],
+                    prediction_accuracy: self.accuracy.get(l).copied().unwrap_or(0.0),
                 })
                 .collect(),
         }

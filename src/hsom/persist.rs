@@ -102,7 +102,12 @@ impl Hsom {
         for &v in self.offset.iter().chain(&self.scale).chain(&self.demo_len) {
             f(&mut b, v);
         }
-        for &v in self.demo_runs.iter().chain(&self.dwell) {
+        for &v in self
+            .demo_runs
+            .iter()
+            .chain(&self.dwell)
+            .chain(&self.accuracy)
+        {
             f(&mut b, v);
         }
         for &v in &self.successor {
@@ -215,10 +220,13 @@ impl Hsom {
             .map(|_| r.f64("scale"))
             .collect::<Result<Vec<f64>, _>>()?;
         let dl = [r.f64("lengths")?, r.f64("lengths")?, r.f64("lengths")?];
-        r.need((3 + n0) * 8 + n0 * 4, "run statistics")?;
+        r.need((3 + n0 + height) * 8 + n0 * 4, "run statistics")?;
         let runs = [r.f64("runs")?, r.f64("runs")?, r.f64("runs")?];
         let dwell = (0..n0)
             .map(|_| r.f64("dwell"))
+            .collect::<Result<Vec<f64>, _>>()?;
+        let accuracy = (0..height)
+            .map(|_| r.f64("accuracy"))
             .collect::<Result<Vec<f64>, _>>()?;
         let successor = (0..n0)
             .map(|_| r.u32("successors"))
@@ -259,6 +267,7 @@ impl Hsom {
                 dwell,
                 successor,
                 columns,
+                accuracy,
             },
             path,
         )
@@ -306,6 +315,11 @@ impl Hsom {
             s,
             "dwell {}",
             join(&mut self.dwell.iter().map(|v| v.to_string()))
+        );
+        let _ = writeln!(
+            s,
+            "accuracy {}",
+            join(&mut self.accuracy.iter().map(|v| v.to_string()))
         );
         let _ = writeln!(
             s,
@@ -440,6 +454,7 @@ impl Hsom {
         let end_hits: Vec<u32> = values(next("end-nodes")?, "end-nodes ", n0, &corrupted)?;
         let runs: Vec<f64> = values(next("demo-runs")?, "demo-runs ", 3, &corrupted)?;
         let dwell: Vec<f64> = values(next("dwell")?, "dwell ", n0, &corrupted)?;
+        let accuracy: Vec<f64> = values(next("accuracy")?, "accuracy ", shapes.len(), &corrupted)?;
         let successor: Vec<u32> = values(next("successors")?, "successors ", n0, &corrupted)?;
         let nc: Vec<usize> = values(next("columns")?, "columns ", 1, &corrupted)?;
         if nc[0] != state {
@@ -544,6 +559,7 @@ impl Hsom {
                 dwell,
                 successor,
                 columns,
+                accuracy,
             },
             path,
         )
@@ -568,6 +584,10 @@ fn build(
     let n0 = maps.first().map_or(0, |m| m.len()) as u32;
     let stats_ok = extra.runs.iter().all(|v| v.is_finite() && *v >= 0.0)
         && extra.dwell.iter().all(|v| v.is_finite() && *v >= 0.0)
+        && extra
+            .accuracy
+            .iter()
+            .all(|v| v.is_finite() && (0.0..=1.0).contains(v))
         && extra.successor.iter().all(|&v| v < n0 || v == u32::MAX);
     if !stats_ok {
         return Err(PersistError::Corrupted {
@@ -606,6 +626,7 @@ fn build(
         dwell: extra.dwell,
         successor: extra.successor,
         columns: extra.columns,
+        accuracy: extra.accuracy,
     })
 }
 
@@ -615,6 +636,7 @@ struct Extra {
     dwell: Vec<f64>,
     successor: Vec<u32>,
     columns: Vec<String>,
+    accuracy: Vec<f64>,
 }
 
 enum Format {

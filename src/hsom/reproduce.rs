@@ -263,8 +263,17 @@ impl Gen<'_> {
         let w = self.m.maps[0].weights(node);
         let cur = self.out.last().cloned().unwrap_or_default();
         let lambda = self.r.continuity;
+        let h = p.action_horizon.max(1) as f64;
+        // the node's one-step action: S_t + (S_t+h - S_t) / h (its action half when h = 1)
         let y: Vec<f64> = (0..state)
-            .map(|d| w[state + d] + lambda * (cur[d] - w[d]))
+            .map(|d| {
+                let a = if h == 1.0 {
+                    w[state + d]
+                } else {
+                    w[d] + (w[state + d] - w[d]) / h
+                };
+                a + lambda * (cur[d] - w[d])
+            })
             .collect();
         let k = match self.r.timing {
             Timing::Step => 1,
@@ -287,7 +296,13 @@ impl Gen<'_> {
                     .collect()
             };
             x[..state].copy_from_slice(&last);
-            x[state..].copy_from_slice(&y);
+            if h == 1.0 {
+                x[state..].copy_from_slice(&y);
+            } else {
+                for d in 0..state {
+                    x[state + d] = last[d] + h * (y[d] - last[d]);
+                }
+            }
             self.m.maps[0].bmu(x).0
         } else {
             node
@@ -476,6 +491,11 @@ impl Hsom {
             for l in (1..=top).rev() {
                 let period = self.config.period(l - 1);
                 if strided && g.s % period != 0 {
+                    continue;
+                }
+                if r.min_accuracy > 0.0
+                    && self.accuracy.get(l).copied().unwrap_or(0.0) < r.min_accuracy
+                {
                     continue;
                 }
                 let Some(preds) = g.predict(l) else { continue };
