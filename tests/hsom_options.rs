@@ -104,6 +104,8 @@ fn dwell_timing_restores_the_time_spent_on_each_node() {
     r.stop = cosco_hsom::config::StopRule::Learned;
     r.timing = Timing::Dwell;
     let dwell = model.reproduce_with(init, &r).unwrap();
+    r.timing = Timing::Speed;
+    let speed_timing = model.reproduce_with(init, &r).unwrap();
     r.timing = Timing::Step;
     let step = model.reproduce_with(init, &r).unwrap();
     println!(
@@ -130,7 +132,12 @@ fn dwell_timing_restores_the_time_spent_on_each_node() {
     };
     let demo_speed = demos.iter().map(|d| speed(&d.rows)).sum::<f64>() / demos.len() as f64;
     let (sd, ss) = (speed(&dwell.postures), speed(&step.postures));
-    println!("speed: demos {demo_speed:.4}, dwell {sd:.4}, step {ss:.4}");
+    let sv = speed(&speed_timing.postures);
+    println!("speed: demos {demo_speed:.4}, dwell {sd:.4}, speed {sv:.4}, step {ss:.4}");
+    assert!(
+        (sv / demo_speed).ln().abs() < (ss / demo_speed).ln().abs(),
+        "speed-timed pace {sv} vs demos {demo_speed} (step {ss})"
+    );
     // one posture per key node jumps from node to node; the dwell restores the pace
     assert!(
         ss > 2.0 * demo_speed,

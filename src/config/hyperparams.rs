@@ -70,6 +70,10 @@ pub enum Timing {
     /// training demonstrations, idle start and end excluded): the posture moves linearly
     /// from the current one to the node's output over that many steps.
     Dwell,
+    /// The learned speed of the node (mean distance between consecutive samples while it
+    /// was the BMU): the posture moves linearly to the node's output at that speed, so the
+    /// pace is kept even when nodes are skipped; nodes without a speed use their dwell.
+    Speed,
 }
 
 /// Internal scaling of the bottom level's input.

@@ -443,8 +443,12 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
                 "reproduction/timing",
                 &r.timing,
                 d.timing,
-                word(&[("step", Timing::Step), ("dwell", Timing::Dwell)]),
-                "step, dwell",
+                word(&[
+                    ("step", Timing::Step),
+                    ("dwell", Timing::Dwell),
+                    ("speed", Timing::Speed),
+                ]),
+                "step, dwell, speed",
             )?,
         },
     };
@@ -643,6 +647,7 @@ impl HsomConfig {
         let tm = match r.timing {
             Timing::Step => "step",
             Timing::Dwell => "dwell",
+            Timing::Speed => "speed",
         };
         let _ = writeln!(s, "    <timing>{tm}</timing>");
         if let Some(m) = r.max_level {

@@ -37,6 +37,9 @@ pub struct Hsom {
     /// (first and last run of each demonstration, the idle start and end, excluded); 0 when
     /// it never had such a run.
     pub(crate) dwell: Vec<f64>,
+    /// Per bottom node: mean distance (normalised units) between consecutive samples during
+    /// those runs, its speed in the demonstrations; 0 when unknown.
+    pub(crate) speed: Vec<f64>,
     /// Per bottom node: the distinct node that most often followed its runs (`u32::MAX`:
     /// none).
     pub(crate) successor: Vec<u32>,
@@ -577,6 +580,7 @@ impl HsomConfig {
             ],
             demo_runs: [0.0; 3],
             dwell: vec![0.0; p.levels[0].rows * p.levels[0].cols],
+            speed: vec![0.0; p.levels[0].rows * p.levels[0].cols],
             successor: vec![u32::MAX; p.levels[0].rows * p.levels[0].cols],
             columns,
             accuracy: vec![0.0; p.height],
@@ -606,6 +610,7 @@ impl Hsom {
         let n0 = self.maps[0].len();
         let mut dwell_sum = vec![0.0f64; n0];
         let mut dwell_n = vec![0u32; n0];
+        let mut path_sum = vec![0.0f64; n0];
         let mut trans: std::collections::BTreeMap<(usize, usize), u32> = Default::default();
         let mut runs_per_demo = Vec::with_capacity(norm.len());
         let horizon = p.action_horizon.max(1);
@@ -617,7 +622,7 @@ impl Hsom {
             stm.clear();
             let mut sc = 0u64;
             // runs of the same bottom BMU: (node, length)
-            let mut runs: Vec<(usize, usize)> = Vec::new();
+            let mut runs: Vec<(usize, usize, f64)> = Vec::new();
             for pos in 0..demo.len() - 1 {
                 bufs[0][..state].copy_from_slice(&demo[pos]);
                 bufs[0][state..].copy_from_slice(&demo[(pos + horizon).min(demo.len() - 1)]);
@@ -636,6 +641,12 @@ impl Hsom {
                 if pos + 2 == demo.len() {
                     self.end_hits[a] = self.end_hits[a].saturating_add(1);
                 }
+                let step_len = demo[pos]
+                    .iter()
+                    .zip(&demo[pos + 1])
+                    .map(|(a, b)| (a - b) * (a - b))
+                    .sum::<f64>()
+                    .sqrt();
                 let guess = self.predict_next(&stm, 1, offset, &mut pbuf, &mut pmask);
                 let pushed = stm.push_bottom_observed(a, &self.maps[0], Some((&bufs[0], d2)));
                 if pushed {
@@ -647,8 +658,11 @@ impl Hsom {
                 // runs: steps between pushes, on the pushed node (= runs of the same BMU
                 // with everyStep or changeRatio 1)
                 match runs.last_mut() {
-                    Some((n, len)) if !pushed || *n == a => *len += 1,
-                    _ => runs.push((a, 1)),
+                    Some((n, len, path)) if !pushed || *n == a => {
+                        *len += 1;
+                        *path += step_len;
+                    }
+                    _ => runs.push((a, 1, step_len)),
                 }
                 if pushed {
                     sc += 1;
@@ -689,10 +703,11 @@ impl Hsom {
                 }
             }
             let k = runs.len();
-            for (i, &(n, len)) in runs.iter().enumerate() {
+            for (i, &(n, len, path)) in runs.iter().enumerate() {
                 if i > 0 && i + 1 < k {
                     dwell_sum[n] += len as f64;
                     dwell_n[n] += 1;
+                    path_sum[n] += path;
                 }
                 if i + 1 < k {
                     *trans.entry((n, runs[i + 1].0)).or_insert(0) += 1;
@@ -703,6 +718,11 @@ impl Hsom {
         for i in 0..n0 {
             self.dwell[i] = if dwell_n[i] > 0 {
                 dwell_sum[i] / dwell_n[i] as f64
+            } else {
+                0.0
+            };
+            self.speed[i] = if dwell_sum[i] > 0.0 {
+                path_sum[i] / dwell_sum[i]
             } else {
                 0.0
             };

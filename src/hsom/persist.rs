@@ -106,6 +106,7 @@ impl Hsom {
             .demo_runs
             .iter()
             .chain(&self.dwell)
+            .chain(&self.speed)
             .chain(&self.accuracy)
         {
             f(&mut b, v);
@@ -220,10 +221,13 @@ impl Hsom {
             .map(|_| r.f64("scale"))
             .collect::<Result<Vec<f64>, _>>()?;
         let dl = [r.f64("lengths")?, r.f64("lengths")?, r.f64("lengths")?];
-        r.need((3 + n0 + height) * 8 + n0 * 4, "run statistics")?;
+        r.need((3 + 2 * n0 + height) * 8 + n0 * 4, "run statistics")?;
         let runs = [r.f64("runs")?, r.f64("runs")?, r.f64("runs")?];
         let dwell = (0..n0)
             .map(|_| r.f64("dwell"))
+            .collect::<Result<Vec<f64>, _>>()?;
+        let speed = (0..n0)
+            .map(|_| r.f64("speed"))
             .collect::<Result<Vec<f64>, _>>()?;
         let accuracy = (0..height)
             .map(|_| r.f64("accuracy"))
@@ -265,6 +269,7 @@ impl Hsom {
             Extra {
                 runs,
                 dwell,
+                speed,
                 successor,
                 columns,
                 accuracy,
@@ -315,6 +320,11 @@ impl Hsom {
             s,
             "dwell {}",
             join(&mut self.dwell.iter().map(|v| v.to_string()))
+        );
+        let _ = writeln!(
+            s,
+            "speed {}",
+            join(&mut self.speed.iter().map(|v| v.to_string()))
         );
         let _ = writeln!(
             s,
@@ -454,6 +464,7 @@ impl Hsom {
         let end_hits: Vec<u32> = values(next("end-nodes")?, "end-nodes ", n0, &corrupted)?;
         let runs: Vec<f64> = values(next("demo-runs")?, "demo-runs ", 3, &corrupted)?;
         let dwell: Vec<f64> = values(next("dwell")?, "dwell ", n0, &corrupted)?;
+        let speed: Vec<f64> = values(next("speed")?, "speed ", n0, &corrupted)?;
         let accuracy: Vec<f64> = values(next("accuracy")?, "accuracy ", shapes.len(), &corrupted)?;
         let successor: Vec<u32> = values(next("successors")?, "successors ", n0, &corrupted)?;
         let nc: Vec<usize> = values(next("columns")?, "columns ", 1, &corrupted)?;
@@ -557,6 +568,7 @@ impl Hsom {
             Extra {
                 runs: [runs[0], runs[1], runs[2]],
                 dwell,
+                speed,
                 successor,
                 columns,
                 accuracy,
@@ -584,6 +596,7 @@ fn build(
     let n0 = maps.first().map_or(0, |m| m.len()) as u32;
     let stats_ok = extra.runs.iter().all(|v| v.is_finite() && *v >= 0.0)
         && extra.dwell.iter().all(|v| v.is_finite() && *v >= 0.0)
+        && extra.speed.iter().all(|v| v.is_finite() && *v >= 0.0)
         && extra
             .accuracy
             .iter()
@@ -624,6 +637,7 @@ fn build(
         demo_len,
         demo_runs: extra.runs,
         dwell: extra.dwell,
+        speed: extra.speed,
         successor: extra.successor,
         columns: extra.columns,
         accuracy: extra.accuracy,
@@ -634,6 +648,7 @@ fn build(
 struct Extra {
     runs: [f64; 3],
     dwell: Vec<f64>,
+    speed: Vec<f64>,
     successor: Vec<u32>,
     columns: Vec<String>,
     accuracy: Vec<f64>,

@@ -54,6 +54,8 @@ struct Gen<'a> {
     acc: f64,
     /// Length of the stationarity window (postures).
     still_window: usize,
+    /// Longest learned dwell (steps).
+    max_dwell: f64,
 }
 
 impl Gen<'_> {
@@ -285,6 +287,25 @@ impl Gen<'_> {
                 self.acc -= k;
                 k as usize
             }
+            Timing::Speed => {
+                let v = self.m.speed.get(node).copied().unwrap_or(0.0);
+                let steps = if v > 0.0 {
+                    let dist = cur
+                        .iter()
+                        .zip(&y)
+                        .map(|(a, b)| (a - b) * (a - b))
+                        .sum::<f64>()
+                        .sqrt();
+                    // never slower than the slowest learned dwell allows
+                    (dist / v).min(self.max_dwell.max(1.0))
+                } else {
+                    self.dwell(node)
+                };
+                self.acc += steps;
+                let k = self.acc.floor();
+                self.acc -= k;
+                k as usize
+            }
         };
         let pushed = if self.r.closed_loop && !self.stm.on_change && k > 0 {
             let x = &mut self.bufs[0];
@@ -468,7 +489,8 @@ impl Hsom {
             min_len: (r.min_length_fraction * self.demo_len[0]).ceil().max(2.0) as usize,
             prev_node: None,
             acc: 0.0,
-            still_window: if r.timing == Timing::Dwell {
+            max_dwell: self.dwell.iter().cloned().fold(1.0, f64::max),
+            still_window: if r.timing != Timing::Step {
                 let dmax = self.dwell.iter().cloned().fold(1.0, f64::max);
                 r.stationary_steps.max((2.0 * dmax).ceil() as usize)
             } else {
