@@ -55,9 +55,10 @@ pub enum ListUpdate {
 pub enum Reflex {
     /// The BMU of the current posture (state half) is executed (the paper's reflex).
     Bmu,
-    /// As `Bmu`, but when that node is the one just executed (a stationary reflex, e.g. the
-    /// idle initial posture), the node that most often followed it in the training
-    /// demonstrations is executed instead.
+    /// The node that most often followed the node just executed in the training
+    /// demonstrations (its learned successor; the BMU when it has none, the nearest node
+    /// that has one when the BMU is the node just executed): the reflex follows the learned
+    /// sequence of key postures and leaves a still initial posture.
     Successor,
 }
 

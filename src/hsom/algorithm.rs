@@ -611,7 +611,8 @@ impl Hsom {
         let mut dwell_sum = vec![0.0f64; n0];
         let mut dwell_n = vec![0u32; n0];
         let mut path_sum = vec![0.0f64; n0];
-        let mut trans: std::collections::BTreeMap<(usize, usize), u32> = Default::default();
+        // (from, to) -> (forward transitions, all transitions)
+        let mut trans: std::collections::BTreeMap<(usize, usize), (u32, u32)> = Default::default();
         let mut runs_per_demo = Vec::with_capacity(norm.len());
         let horizon = p.action_horizon.max(1);
         let offset = p.reproduction.offset;
@@ -710,7 +711,15 @@ impl Hsom {
                     path_sum[n] += path;
                 }
                 if i + 1 < k {
-                    *trans.entry((n, runs[i + 1].0)).or_insert(0) += 1;
+                    // a forward transition goes to a node not among the previous `memory`
+                    // runs (noise flicker and immediate returns are not departures)
+                    let to = runs[i + 1].0;
+                    let back = runs[i.saturating_sub(p.memory)..=i]
+                        .iter()
+                        .any(|r| r.0 == to);
+                    let e = trans.entry((n, to)).or_insert((0, 0));
+                    e.0 += u32::from(!back);
+                    e.1 += 1;
                 }
             }
             runs_per_demo.push(k as f64);
@@ -728,7 +737,8 @@ impl Hsom {
             };
         }
         // most frequent successor, ties to the smaller node index (BTreeMap order)
-        let mut best = vec![(0u32, u32::MAX); n0];
+        // the most frequent forward successor, else the most frequent one
+        let mut best = vec![((0u32, 0u32), u32::MAX); n0];
         for (&(from, to), &c) in &trans {
             if c > best[from].0 {
                 best[from] = (c, to as u32);

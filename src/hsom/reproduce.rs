@@ -555,17 +555,21 @@ impl Hsom {
                 let y = g.out.last().cloned().unwrap_or_default();
                 let (b, _) = self.maps[0].bmu_range(&y, 0..state);
                 let stationary = g.s > 0 && b == g.last_node;
-                let node = if stationary && r.reflex == Reflex::Successor {
-                    match self.successor.get(b) {
-                        Some(&n) if n != u32::MAX => n as usize,
+                let learned = self
+                    .successor
+                    .get(g.last_node)
+                    .copied()
+                    .filter(|&n| g.s > 0 && n != u32::MAX);
+                let node = match (r.reflex, learned) {
+                    (Reflex::Successor, Some(n)) => n as usize,
+                    (Reflex::Successor, None) if stationary => {
                         // never left in training: the nearest node that was
-                        _ => match g.nearest_with_successor(&y, b) {
+                        match g.nearest_with_successor(&y, b) {
                             Some(n) => n,
                             None => break StopReason::EndNode,
-                        },
+                        }
                     }
-                } else {
-                    b
+                    _ => b,
                 };
                 g.emit(node, 0, None, None);
             }
