@@ -39,7 +39,7 @@ fn table1_file_reproduces_the_paper_table() {
     b.reproduction.mode = ReproductionMode::Strided;
     b.reproduction.continuity = 0.0;
     b.reproduction.reflex = Reflex::Successor;
-    b.reproduction.timing = Timing::Dwell;
+    b.reproduction.timing = Timing::Speed;
     assert_eq!(p, b.check("x").unwrap().params());
 }
 
