@@ -106,6 +106,13 @@ fn run(name: &str, demos: &[cosco_hsom::demos::Demonstration], cfg: &HsomConfig)
     (res[0], e_un)
 }
 
+fn table1_file() -> cosco_hsom::config::HsomParams {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/table1.xml");
+    cosco_hsom::config::load_config(&path)
+        .unwrap()
+        .into_params()
+}
+
 #[test]
 fn measure_families() {
     for (name, demos) in [
@@ -139,6 +146,22 @@ fn measure_families() {
             assert!(
                 trained < untrained,
                 "{name}: trained {trained} vs untrained {untrained}"
+            );
+        }
+        // the shipped configs/table1.xml (its options chosen for the densely sampled Nao
+        // gestures), stateLength adapted
+        let mut p = table1_file();
+        p.state_length = demos[0].rows[0].len();
+        p.action_length = p.state_length;
+        if let Ok(s) = std::env::var("HSOM_SEED") {
+            p.seed = s.parse().unwrap();
+        }
+        let file_cfg = p.check("table1.xml").unwrap();
+        let (trained, untrained) = run(&format!("{name}/xml"), &demos, &file_cfg);
+        if std::env::var("HSOM_SEED").is_err() {
+            assert!(
+                trained < untrained,
+                "{name} (table1.xml): trained {trained} vs untrained {untrained}"
             );
         }
     }

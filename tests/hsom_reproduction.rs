@@ -172,15 +172,15 @@ fn corrupted_truncated_and_other_version_files_are_refused() {
     ));
     // another version
     let mut b = bytes.clone();
-    b[8] = 2;
+    b[8] = 1;
     std::fs::write(&p, &b).unwrap();
     let e = Hsom::load(&p).unwrap_err();
     assert!(
         matches!(
             e,
             PersistError::Version {
-                found: 2,
-                expected: 1,
+                found: 1,
+                expected: 2,
                 ..
             }
         ),
@@ -223,7 +223,7 @@ fn corrupted_truncated_and_other_version_text_files_are_refused() {
         Hsom::load(&p),
         Err(PersistError::Truncated { .. })
     ));
-    std::fs::write(&p, text.replacen("version 1", "version 7", 1)).unwrap();
+    std::fs::write(&p, text.replacen("version 2", "version 7", 1)).unwrap();
     assert!(matches!(
         Hsom::load(&p),
         Err(PersistError::Version { found: 7, .. })

@@ -37,6 +37,46 @@ pub enum PartialTraining {
     Masked,
 }
 
+/// When the bottom level's activity list is updated (and so when the schedule of the upper
+/// levels advances), in training and in reproduction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ListUpdate {
+    /// Push the bottom BMU at every step (the paper taken literally): with densely sampled
+    /// data the list fills with repeats of the same node.
+    EveryStep,
+    /// Push the bottom BMU only when it differs from the newest entry, so the lists hold
+    /// sequences of distinct key postures; how long each node lasts is learned per node
+    /// (its dwell) and restored in reproduction with `timing = dwell`.
+    OnChange,
+}
+
+/// What the bottom level does when no level above can predict (paper III-C.2's reflex).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reflex {
+    /// The BMU of the current posture (state half) is executed (the paper's reflex).
+    Bmu,
+    /// The node that most often followed the node just executed in the training
+    /// demonstrations (its learned successor; the BMU when it has none, the nearest node
+    /// that has one when the BMU is the node just executed): the reflex follows the learned
+    /// sequence of key postures and leaves a still initial posture.
+    Successor,
+}
+
+/// How many postures an executed bottom node produces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Timing {
+    /// One posture per executed node (the paper).
+    Step,
+    /// The learned dwell of the node (mean number of consecutive steps it was the BMU in the
+    /// training demonstrations, idle start and end excluded): the posture moves linearly
+    /// from the current one to the node's output over that many steps.
+    Dwell,
+    /// The learned speed of the node (mean distance between consecutive samples while it
+    /// was the BMU): the posture moves linearly to the node's output at that speed, so the
+    /// pace is kept even when nodes are skipped; nodes without a speed use their dwell.
+    Speed,
+}
+
 /// Internal scaling of the bottom level's input.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Normalisation {
@@ -159,6 +199,14 @@ pub struct ReproductionParams {
     /// Record in the bottom activity list the node that best matches the executed transition
     /// [current, next] (as in training), instead of the node that was predicted.
     pub closed_loop: bool,
+    /// A level whose measured prediction accuracy (the fraction of next entries of the level
+    /// below it predicted exactly when the training data were replayed) is below this is
+    /// "confused" and not used; 0 disables the test.
+    pub min_accuracy: f64,
+    /// The bottom reflex.
+    pub reflex: Reflex,
+    /// Postures per executed bottom node.
+    pub timing: Timing,
 }
 
 impl Default for ReproductionParams {
@@ -179,6 +227,9 @@ impl Default for ReproductionParams {
             max_level: None,
             continuity: 0.85,
             closed_loop: true,
+            min_accuracy: 0.0,
+            reflex: Reflex::Bmu,
+            timing: Timing::Step,
         }
     }
 }
@@ -206,6 +257,15 @@ pub struct HsomParams {
     pub normalisation: Normalisation,
     /// Training of upper levels on partially filled lists.
     pub partial_training: PartialTraining,
+    /// When the bottom activity list is updated.
+    pub list_update: ListUpdate,
+    /// With `OnChange`: a new bottom BMU replaces the newest entry only when its distance to
+    /// the input is below this fraction of the newest entry's distance (1: on any change).
+    pub change_ratio: f64,
+    /// The bottom level learns [S_t, S_t+h] with this h (1: the paper's next state); the
+    /// sample h steps ahead makes the direction of motion visible in the node even when
+    /// consecutive samples are nearly equal. Reproduction uses S_t + (S_t+h - S_t) / h.
+    pub action_horizon: usize,
     /// Level settings, index 0 = bottom.
     pub levels: Vec<LevelParams>,
     /// Reproduction settings.
@@ -228,6 +288,9 @@ impl HsomParams {
             memory_mode: MemoryMode::Lists,
             normalisation: Normalisation::Global,
             partial_training: PartialTraining::Skip,
+            list_update: ListUpdate::EveryStep,
+            change_ratio: 1.0,
+            action_horizon: 1,
             levels: sizes
                 .iter()
                 .map(|&(n, a)| LevelParams::new(n, n, Topology::Orthogonal, a))
@@ -330,6 +393,14 @@ impl HsomParams {
                 "the hierarchy would hold more than 100 million weights; use smaller maps",
             ));
         }
+        if !(self.change_ratio.is_finite() && self.change_ratio > 0.0 && self.change_ratio <= 1.0) {
+            return Err(bad(
+                "changeRatio",
+                self.change_ratio.to_string(),
+                "expected a number in (0, 1]",
+            ));
+        }
+        range("actionHorizon", self.action_horizon, 1, 100_000)?;
         let r = &self.reproduction;
         range("reproduction/offset", r.offset, 1, self.memory).map_err(|_| {
             bad(
@@ -370,6 +441,7 @@ impl HsomParams {
             1e6,
         )?;
         real("reproduction/continuity", r.continuity, 0.0, 1.0)?;
+        real("reproduction/minAccuracy", r.min_accuracy, 0.0, 1.0)?;
         real("reproduction/endTolerance", r.end_tolerance, 0.0, 1e6)?;
         real(
             "reproduction/stationaryTolerance",

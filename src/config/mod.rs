@@ -8,7 +8,7 @@ mod xml;
 
 pub use errors::ConfigError;
 pub use hyperparams::{
-    HsomConfig, HsomParams, IdDecoding, LevelParams, MemoryMode, Normalisation, PartialTraining,
-    ReproductionMode, ReproductionParams, StopRule,
+    HsomConfig, HsomParams, IdDecoding, LevelParams, ListUpdate, MemoryMode, Normalisation,
+    PartialTraining, Reflex, ReproductionMode, ReproductionParams, StopRule, Timing,
 };
 pub use xml::{load_config, parse_config};

@@ -9,8 +9,8 @@ use crate::som::{Decay, Neighbourhood, Schedule, Topology};
 
 use super::errors::ConfigError;
 use super::hyperparams::{
-    HsomConfig, HsomParams, IdDecoding, LevelParams, MemoryMode, Normalisation, PartialTraining,
-    ReproductionMode, ReproductionParams, StopRule,
+    HsomConfig, HsomParams, IdDecoding, LevelParams, ListUpdate, MemoryMode, Normalisation,
+    PartialTraining, Reflex, ReproductionMode, ReproductionParams, StopRule, Timing,
 };
 
 #[derive(Debug, Deserialize)]
@@ -34,6 +34,12 @@ struct RawConfig {
     normalisation: Option<String>,
     #[serde(rename = "partialTraining")]
     partial_training: Option<String>,
+    #[serde(rename = "listUpdate")]
+    list_update: Option<String>,
+    #[serde(rename = "changeRatio")]
+    change_ratio: Option<String>,
+    #[serde(rename = "actionHorizon")]
+    action_horizon: Option<String>,
     levels: Option<RawLevels>,
     reproduction: Option<RawReproduction>,
 }
@@ -97,6 +103,10 @@ struct RawReproduction {
     stationary_tolerance: Option<String>,
     #[serde(rename = "closedLoop")]
     closed_loop: Option<String>,
+    reflex: Option<String>,
+    timing: Option<String>,
+    #[serde(rename = "minAccuracy")]
+    min_accuracy: Option<String>,
 }
 
 /// Read, parse and validate a configuration file.
@@ -421,6 +431,25 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
                 d.stationary_tolerance,
             )?,
             closed_loop: f.opt("reproduction/closedLoop", &r.closed_loop, d.closed_loop)?,
+            min_accuracy: f.opt("reproduction/minAccuracy", &r.min_accuracy, d.min_accuracy)?,
+            reflex: f.name(
+                "reproduction/reflex",
+                &r.reflex,
+                d.reflex,
+                word(&[("bmu", Reflex::Bmu), ("successor", Reflex::Successor)]),
+                "bmu, successor",
+            )?,
+            timing: f.name(
+                "reproduction/timing",
+                &r.timing,
+                d.timing,
+                word(&[
+                    ("step", Timing::Step),
+                    ("dwell", Timing::Dwell),
+                    ("speed", Timing::Speed),
+                ]),
+                "step, dwell, speed",
+            )?,
         },
     };
     let params = HsomParams {
@@ -459,6 +488,18 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
             ]),
             "skip, masked",
         )?,
+        list_update: f.name(
+            "listUpdate",
+            &raw.list_update,
+            ListUpdate::EveryStep,
+            word(&[
+                ("everystep", ListUpdate::EveryStep),
+                ("onchange", ListUpdate::OnChange),
+            ]),
+            "everyStep, onChange",
+        )?,
+        change_ratio: f.opt("changeRatio", &raw.change_ratio, 1.0)?,
+        action_horizon: f.opt("actionHorizon", &raw.action_horizon, 1usize)?,
         levels,
         reproduction,
     };
@@ -497,6 +538,13 @@ impl HsomConfig {
             PartialTraining::Masked => "masked",
         };
         let _ = writeln!(s, "  <partialTraining>{pt}</partialTraining>");
+        let lu = match p.list_update {
+            ListUpdate::EveryStep => "everyStep",
+            ListUpdate::OnChange => "onChange",
+        };
+        let _ = writeln!(s, "  <listUpdate>{lu}</listUpdate>");
+        let _ = writeln!(s, "  <changeRatio>{}</changeRatio>", p.change_ratio);
+        let _ = writeln!(s, "  <actionHorizon>{}</actionHorizon>", p.action_horizon);
         let _ = writeln!(s, "  <levels>");
         for (i, l) in p.levels.iter().enumerate().rev() {
             let _ = writeln!(s, "    <level index=\"{i}\">");
@@ -590,6 +638,18 @@ impl HsomConfig {
             r.stationary_tolerance
         );
         let _ = writeln!(s, "    <closedLoop>{}</closedLoop>", r.closed_loop);
+        let rf = match r.reflex {
+            Reflex::Bmu => "bmu",
+            Reflex::Successor => "successor",
+        };
+        let _ = writeln!(s, "    <minAccuracy>{}</minAccuracy>", r.min_accuracy);
+        let _ = writeln!(s, "    <reflex>{rf}</reflex>");
+        let tm = match r.timing {
+            Timing::Step => "step",
+            Timing::Dwell => "dwell",
+            Timing::Speed => "speed",
+        };
+        let _ = writeln!(s, "    <timing>{tm}</timing>");
         if let Some(m) = r.max_level {
             let _ = writeln!(s, "    <maxLevel>{m}</maxLevel>");
         }

@@ -3,7 +3,7 @@
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-use crate::config::{HsomConfig, MemoryMode, Normalisation, PartialTraining};
+use crate::config::{HsomConfig, ListUpdate, MemoryMode, Normalisation, PartialTraining};
 use crate::demos::Demonstration;
 use crate::som::{SelfOrganizingMap, Topology};
 
@@ -30,6 +30,24 @@ pub struct Hsom {
     pub(crate) te: Vec<f64>,
     /// Shortest, mean and longest demonstration (samples).
     pub(crate) demo_len: [f64; 3],
+    /// Shortest, mean and longest demonstration in runs of the same bottom BMU (the length
+    /// of its sequence of distinct bottom nodes).
+    pub(crate) demo_runs: [f64; 3],
+    /// Per bottom node: mean length (steps) of its runs as the BMU inside the demonstrations
+    /// (first and last run of each demonstration, the idle start and end, excluded); 0 when
+    /// it never had such a run.
+    pub(crate) dwell: Vec<f64>,
+    /// Per bottom node: mean distance (normalised units) between consecutive samples during
+    /// those runs, its speed in the demonstrations; 0 when unknown.
+    pub(crate) speed: Vec<f64>,
+    /// Per bottom node: the distinct node that most often followed its runs (`u32::MAX`:
+    /// none).
+    pub(crate) successor: Vec<u32>,
+    /// Names of the demonstrations' columns (`x0`, `x1`, ... for plain series).
+    pub(crate) columns: Vec<String>,
+    /// Per level: how often its partial match predicted the next entry of the level below
+    /// exactly during the replay of the training data (0 for level 0).
+    pub(crate) accuracy: Vec<f64>,
 }
 
 /// Quality of one level, as reported by [`Hsom::summary`].
@@ -56,6 +74,9 @@ pub struct LevelSummary {
     pub quantization_error: f64,
     /// Fraction of training inputs whose two best nodes are not adjacent.
     pub topographic_error: f64,
+    /// Fraction of the next entries of the level below predicted exactly from the partial
+    /// list on the training data (0 for the bottom level).
+    pub prediction_accuracy: f64,
 }
 
 /// What `cosco inspect` shows: the levels, their sizes and quality.
@@ -96,12 +117,12 @@ impl std::fmt::Display for ModelSummary {
         )?;
         writeln!(
             f,
-            "level  size     topology    input  period  trained  used    QE        TE"
+            "level  size     topology    input  period  trained  used    QE        TE       acc"
         )?;
         for l in self.levels.iter().rev() {
             writeln!(
                 f,
-                "{:<6} {:<8} {:<11} {:<6} {:<7} {:<8} {:<7} {:<9.4} {:.4}",
+                "{:<6} {:<8} {:<11} {:<6} {:<7} {:<8} {:<7} {:<9.4} {:<8.4} {:.3}",
                 l.level,
                 format!("{}x{}", l.rows, l.cols),
                 l.topology.name(),
@@ -110,7 +131,8 @@ impl std::fmt::Display for ModelSummary {
                 l.trained,
                 l.nodes_used,
                 l.quantization_error,
-                l.topographic_error
+                l.topographic_error,
+                l.prediction_accuracy
             )?;
         }
         Ok(())
@@ -127,6 +149,10 @@ pub(crate) enum Memory {
 #[derive(Debug, Clone)]
 pub(crate) struct Stm {
     pub(crate) mem: Memory,
+    /// Newest bottom entry (node index), for `listUpdate = onChange`.
+    pub(crate) last0: Option<usize>,
+    pub(crate) on_change: bool,
+    pub(crate) change_ratio: f64,
     /// Pushes since the last clear, per level.
     pub(crate) pushes: Vec<usize>,
     pub(crate) memory: usize,
@@ -148,6 +174,9 @@ impl Stm {
         };
         Stm {
             mem,
+            last0: None,
+            on_change: p.list_update == ListUpdate::OnChange,
+            change_ratio: p.change_ratio,
             pushes: vec![0; p.height],
             memory: p.memory,
         }
@@ -158,6 +187,51 @@ impl Stm {
             Memory::Levels(v) => v.iter_mut().for_each(|l| l.clear()),
         }
         self.pushes.iter_mut().for_each(|c| *c = 0);
+        self.last0 = None;
+    }
+    /// Push a bottom BMU, unless `listUpdate = onChange` and it is the newest entry already;
+    /// true when pushed (the schedule of the upper levels then advances).
+    #[inline]
+    pub(crate) fn push_bottom(&mut self, node: usize, map: &SelfOrganizingMap) -> bool {
+        self.push_bottom_observed(node, map, None)
+    }
+    /// As [`Stm::push_bottom`] for an observed input `x` whose BMU `node` is at squared
+    /// distance `d2`: with `onChange` and `changeRatio` r < 1 the newest entry is kept while
+    /// the BMU is not clearly closer, d2 > r^2 |x - w(newest)|^2 (hysteresis against noise
+    /// flickering between neighbouring nodes).
+    #[inline]
+    pub(crate) fn push_bottom_observed(
+        &mut self,
+        node: usize,
+        map: &SelfOrganizingMap,
+        obs: Option<(&[f64], f64)>,
+    ) -> bool {
+        if self.on_change {
+            let Some(last) = self.last0 else {
+                self.push(0, node, map);
+                self.last0 = Some(node);
+                return true;
+            };
+            if last == node {
+                return false;
+            }
+            if let Some((x, d2)) = obs {
+                if self.change_ratio < 1.0 {
+                    let dl2: f64 = map
+                        .weights(last)
+                        .iter()
+                        .zip(x)
+                        .map(|(w, v)| (w - v) * (w - v))
+                        .sum();
+                    if d2 > self.change_ratio * self.change_ratio * dl2 {
+                        return false;
+                    }
+                }
+            }
+        }
+        self.push(0, node, map);
+        self.last0 = Some(node);
+        true
     }
     #[inline]
     pub(crate) fn push(&mut self, level: usize, node: usize, map: &SelfOrganizingMap) {
@@ -230,6 +304,10 @@ fn check_series(series: &[Series<'_>], state: usize) -> Result<(), HsomError> {
     Ok(())
 }
 
+fn demo_columns(demos: &[Demonstration]) -> Vec<String> {
+    demos.first().map(|d| d.columns.clone()).unwrap_or_default()
+}
+
 pub(crate) fn input_dim(config: &HsomConfig, level: usize) -> usize {
     let p = config.params();
     if level == 0 {
@@ -262,7 +340,7 @@ impl HsomConfig {
                 rows: &d.rows,
             })
             .collect();
-        self.fit_inner(&series, progress, true)
+        self.fit_inner(&series, progress, true, demo_columns(demos))
     }
 
     /// An untrained hierarchy: the seeded initial weights (inside the data's bounding box)
@@ -275,7 +353,7 @@ impl HsomConfig {
                 rows: &d.rows,
             })
             .collect();
-        self.fit_inner(&series, None, false)
+        self.fit_inner(&series, None, false, demo_columns(demos))
     }
 
     /// Train on plain time series (rows of `stateLength` values), quietly.
@@ -286,7 +364,10 @@ impl HsomConfig {
             .zip(&names)
             .map(|(r, n)| Series { source: n, rows: r })
             .collect();
-        self.fit_inner(&s, None, true)
+        let columns = (0..self.params().state_length)
+            .map(|i| format!("x{i}"))
+            .collect();
+        self.fit_inner(&s, None, true, columns)
     }
 
     fn fit_inner(
@@ -294,10 +375,16 @@ impl HsomConfig {
         series: &[Series<'_>],
         progress: Option<&dyn Fn(usize, usize)>,
         learn: bool,
+        columns: Vec<String>,
     ) -> Result<Hsom, HsomError> {
         let p = self.params();
         let state = p.state_length;
         check_series(series, state)?;
+        let columns = if columns.len() == state {
+            columns
+        } else {
+            (0..state).map(|i| format!("x{i}")).collect()
+        };
         // normalisation of the bottom input
         let mut lo = vec![f64::INFINITY; state];
         let mut hi = vec![f64::NEG_INFINITY; state];
@@ -385,16 +472,33 @@ impl HsomConfig {
             .collect();
         let mut trained = vec![0u64; p.height];
         let (mut d, mut pos) = (0usize, 0usize);
+        // bottom pushes (the upper levels' clock; = the step with listUpdate = everyStep)
+        let mut sc = 0u64;
+        let horizon = p.action_horizon.max(1);
         let chunk = (total / 100).max(1);
-        for s in 1..=total as u64 {
-            {
+        // with onChange, trainingSteps counts bottom list updates (distinct key postures), so
+        // that the upper levels train as often as with everyStep
+        let on_change = stm.on_change;
+        let mut s = 0u64;
+        loop {
+            let done = if on_change { sc } else { s };
+            if done >= total as u64 {
+                break;
+            }
+            s += 1;
+            let pushed = {
                 let demo = &norm[d];
                 let x = &mut bufs[0];
                 x[..state].copy_from_slice(&demo[pos]);
-                x[state..].copy_from_slice(&demo[pos + 1]);
+                x[state..].copy_from_slice(&demo[(pos + horizon).min(demo.len() - 1)]);
                 let lp = &p.levels[0];
-                let prog = trained[0] as f64 / expected[0];
-                let (b, _) = maps[0].bmu(x);
+                let prog = if on_change {
+                    (sc as f64 / total.max(1) as f64).min(1.0)
+                } else {
+                    trained[0] as f64 / expected[0]
+                };
+                let (b, d2) = maps[0].bmu(x);
+                let pushed = stm.push_bottom_observed(b, &maps[0], Some((&x[..], d2)));
                 maps[0].update(
                     x,
                     None,
@@ -404,10 +508,13 @@ impl HsomConfig {
                     lp.neighbourhood,
                 );
                 trained[0] += 1;
-                stm.push(0, b, &maps[0]);
+                pushed
+            };
+            if pushed {
+                sc += 1;
             }
             for l in 1..p.height {
-                if s % self.period(l) != 0 {
+                if !pushed || sc % self.period(l) != 0 {
                     break;
                 }
                 let (lower, upper) = bufs.split_at_mut(l);
@@ -419,7 +526,13 @@ impl HsomConfig {
                 }
                 let full = mask.iter().all(|&m| m);
                 let lp = &p.levels[l];
-                let prog = trained[l] as f64 / expected[l];
+                // with onChange the number of trainings is not known in advance: the
+                // schedules follow the global step instead
+                let prog = if on_change {
+                    ((sc - 1) as f64 / total.max(1) as f64).min(1.0)
+                } else {
+                    trained[l] as f64 / expected[l]
+                };
                 let (b, _) = if full {
                     maps[l].bmu(x)
                 } else {
@@ -443,8 +556,9 @@ impl HsomConfig {
                 pos = 0;
             }
             if let Some(cb) = progress {
-                if s as usize % chunk == 0 || s as usize == total {
-                    cb(s as usize, total);
+                let done = if on_change { sc } else { s } as usize;
+                if (done % chunk == 0 || done == total) && (!on_change || pushed) {
+                    cb(done, total);
                 }
             }
         }
@@ -464,6 +578,12 @@ impl HsomConfig {
                 lens.iter().sum::<f64>() / lens.len() as f64,
                 lens.iter().cloned().fold(0.0, f64::max),
             ],
+            demo_runs: [0.0; 3],
+            dwell: vec![0.0; p.levels[0].rows * p.levels[0].cols],
+            speed: vec![0.0; p.levels[0].rows * p.levels[0].cols],
+            successor: vec![u32::MAX; p.levels[0].rows * p.levels[0].cols],
+            columns,
+            accuracy: vec![0.0; p.height],
         };
         model.replay(&norm);
         Ok(model)
@@ -487,12 +607,26 @@ impl Hsom {
         let mut qe_sum = vec![0.0; p.height];
         let mut te_bad = vec![0usize; p.height];
         let mut count = vec![0usize; p.height];
+        let n0 = self.maps[0].len();
+        let mut dwell_sum = vec![0.0f64; n0];
+        let mut dwell_n = vec![0u32; n0];
+        let mut path_sum = vec![0.0f64; n0];
+        // (from, to) -> (forward transitions, all transitions)
+        let mut trans: std::collections::BTreeMap<(usize, usize), (u32, u32)> = Default::default();
+        let mut runs_per_demo = Vec::with_capacity(norm.len());
+        let horizon = p.action_horizon.max(1);
+        let offset = p.reproduction.offset;
+        let (mut acc_n, mut acc_ok) = (vec![0u32; p.height], vec![0u32; p.height]);
+        let mut pbuf = vec![0.0; 2 * p.memory];
+        let mut pmask = vec![true; 2 * p.memory];
         for demo in norm {
             stm.clear();
+            let mut sc = 0u64;
+            // runs of the same bottom BMU: (node, length)
+            let mut runs: Vec<(usize, usize, f64)> = Vec::new();
             for pos in 0..demo.len() - 1 {
-                let s = pos as u64 + 1;
                 bufs[0][..state].copy_from_slice(&demo[pos]);
-                bufs[0][state..].copy_from_slice(&demo[pos + 1]);
+                bufs[0][state..].copy_from_slice(&demo[(pos + horizon).min(demo.len() - 1)]);
                 let (a, b) = self.maps[0].best_two(&bufs[0]);
                 let d2: f64 = self.maps[0]
                     .weights(a)
@@ -508,9 +642,34 @@ impl Hsom {
                 if pos + 2 == demo.len() {
                     self.end_hits[a] = self.end_hits[a].saturating_add(1);
                 }
-                stm.push(0, a, &self.maps[0]);
+                let step_len = demo[pos]
+                    .iter()
+                    .zip(&demo[pos + 1])
+                    .map(|(a, b)| (a - b) * (a - b))
+                    .sum::<f64>()
+                    .sqrt();
+                let guess = self.predict_next(&stm, 1, offset, &mut pbuf, &mut pmask);
+                let pushed = stm.push_bottom_observed(a, &self.maps[0], Some((&bufs[0], d2)));
+                if pushed {
+                    if let Some(g) = guess {
+                        acc_n[1] += 1;
+                        acc_ok[1] += u32::from(g == a);
+                    }
+                }
+                // runs: steps between pushes, on the pushed node (= runs of the same BMU
+                // with everyStep or changeRatio 1)
+                match runs.last_mut() {
+                    Some((n, len, path)) if !pushed || *n == a => {
+                        *len += 1;
+                        *path += step_len;
+                    }
+                    _ => runs.push((a, 1, step_len)),
+                }
+                if pushed {
+                    sc += 1;
+                }
                 for l in 1..p.height {
-                    if s % cfg.period(l) != 0 {
+                    if !pushed || sc % cfg.period(l) != 0 {
                         break;
                     }
                     let x = &mut bufs[l];
@@ -533,10 +692,74 @@ impl Hsom {
                         count[l] += 1;
                     }
                     self.hits[l][b] = self.hits[l][b].saturating_add(1);
+                    if l + 1 < p.height {
+                        if let Some(g) =
+                            self.predict_next(&stm, l + 1, offset, &mut pbuf, &mut pmask)
+                        {
+                            acc_n[l + 1] += 1;
+                            acc_ok[l + 1] += u32::from(g == b);
+                        }
+                    }
                     stm.push(l, b, &self.maps[l]);
                 }
             }
+            let k = runs.len();
+            for (i, &(n, len, path)) in runs.iter().enumerate() {
+                if i > 0 && i + 1 < k {
+                    dwell_sum[n] += len as f64;
+                    dwell_n[n] += 1;
+                    path_sum[n] += path;
+                }
+                if i + 1 < k {
+                    // a forward transition goes to a node not among the previous `memory`
+                    // runs (noise flicker and immediate returns are not departures)
+                    let to = runs[i + 1].0;
+                    let back = runs[i.saturating_sub(p.memory)..=i]
+                        .iter()
+                        .any(|r| r.0 == to);
+                    let e = trans.entry((n, to)).or_insert((0, 0));
+                    e.0 += u32::from(!back);
+                    e.1 += 1;
+                }
+            }
+            runs_per_demo.push(k as f64);
         }
+        for i in 0..n0 {
+            self.dwell[i] = if dwell_n[i] > 0 {
+                dwell_sum[i] / dwell_n[i] as f64
+            } else {
+                0.0
+            };
+            self.speed[i] = if dwell_sum[i] > 0.0 {
+                path_sum[i] / dwell_sum[i]
+            } else {
+                0.0
+            };
+        }
+        // most frequent successor, ties to the smaller node index (BTreeMap order)
+        // the most frequent forward successor, else the most frequent one
+        let mut best = vec![((0u32, 0u32), u32::MAX); n0];
+        for (&(from, to), &c) in &trans {
+            if c > best[from].0 {
+                best[from] = (c, to as u32);
+            }
+        }
+        self.successor = best.into_iter().map(|(_, t)| t).collect();
+        self.accuracy = (0..p.height)
+            .map(|l| {
+                if acc_n[l] > 0 {
+                    acc_ok[l] as f64 / acc_n[l] as f64
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let nd = runs_per_demo.len().max(1) as f64;
+        self.demo_runs = [
+            runs_per_demo.iter().cloned().fold(f64::INFINITY, f64::min),
+            runs_per_demo.iter().sum::<f64>() / nd,
+            runs_per_demo.iter().cloned().fold(0.0, f64::max),
+        ];
         for l in 0..p.height {
             let c = count[l].max(1) as f64;
             self.qe[l] = qe_sum[l] / c;
@@ -562,6 +785,56 @@ impl Hsom {
     /// Number of levels.
     pub fn height(&self) -> usize {
         self.maps.len()
+    }
+    /// Level `level` (>= 1) predicts the next entry of the list of `level - 1` from its
+    /// `offset` or more newest entries (as in reproduction: known entries in the oldest
+    /// slots, rounded ID clamped to the grid); `None` with too little history or activity
+    /// levels.
+    pub(crate) fn predict_next(
+        &self,
+        stm: &Stm,
+        level: usize,
+        offset: usize,
+        buf: &mut [f64],
+        mask: &mut [bool],
+    ) -> Option<usize> {
+        let memory = stm.memory;
+        if level == 0 || level >= self.maps.len() {
+            return None;
+        }
+        let Memory::Lists(lists) = &stm.mem else {
+            return None;
+        };
+        let list = &lists[level - 1];
+        if memory < 2 || list.len() < offset.max(1) {
+            return None;
+        }
+        let k = list.len().min(memory - 1);
+        let shift = memory - k;
+        list.encode(k, shift, buf, mask);
+        let (b, _) = self.maps[level].bmu_masked(buf, mask);
+        let w = self.maps[level].weights(b);
+        let below = &self.maps[level - 1];
+        let x = w[2 * (shift - 1)]
+            .round()
+            .clamp(0.0, below.cols() as f64 - 1.0) as u16;
+        let y = w[2 * (shift - 1) + 1]
+            .round()
+            .clamp(0.0, below.rows() as f64 - 1.0) as u16;
+        Some(below.index((x, y)))
+    }
+
+    /// Per level (>= 1): the fraction of the entries of the level below that the level
+    /// predicted exactly from the partial list when the training data were replayed (0 for
+    /// the bottom level or without lists).
+    pub fn prediction_accuracy(&self) -> &[f64] {
+        &self.accuracy
+    }
+
+    /// Names of the variables (the demonstrations' columns; `x0`, `x1`, ... when trained on
+    /// plain series).
+    pub fn columns(&self) -> &[String] {
+        &self.columns
     }
 
     /// Levels, sizes, node usage, quantization and topographic error per level (computed on
@@ -590,6 +863,7 @@ impl Hsom {
                     nodes_used: self.hits[l].iter().filter(|&&h| h > 0).count(),
                     quantization_error: self.qe[l],
                     topographic_error: self.te[l],
+                    prediction_accuracy: self.accuracy.get(l).copied().unwrap_or(0.0),
                 })
                 .collect(),
         }

@@ -16,7 +16,7 @@ const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of both formats.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 /// Largest embedded configuration accepted (bytes).
 const MAX_CONFIG: u64 = 1 << 20;
 
@@ -101,6 +101,22 @@ impl Hsom {
         }
         for &v in self.offset.iter().chain(&self.scale).chain(&self.demo_len) {
             f(&mut b, v);
+        }
+        for &v in self
+            .demo_runs
+            .iter()
+            .chain(&self.dwell)
+            .chain(&self.speed)
+            .chain(&self.accuracy)
+        {
+            f(&mut b, v);
+        }
+        for &v in &self.successor {
+            b.extend_from_slice(&v.to_le_bytes());
+        }
+        for c in &self.columns {
+            b.extend_from_slice(&(c.len() as u32).to_le_bytes());
+            b.extend_from_slice(c.as_bytes());
         }
         let sum = fnv1a(&b);
         b.extend_from_slice(&sum.to_le_bytes());
@@ -205,6 +221,31 @@ impl Hsom {
             .map(|_| r.f64("scale"))
             .collect::<Result<Vec<f64>, _>>()?;
         let dl = [r.f64("lengths")?, r.f64("lengths")?, r.f64("lengths")?];
+        r.need((3 + 2 * n0 + height) * 8 + n0 * 4, "run statistics")?;
+        let runs = [r.f64("runs")?, r.f64("runs")?, r.f64("runs")?];
+        let dwell = (0..n0)
+            .map(|_| r.f64("dwell"))
+            .collect::<Result<Vec<f64>, _>>()?;
+        let speed = (0..n0)
+            .map(|_| r.f64("speed"))
+            .collect::<Result<Vec<f64>, _>>()?;
+        let accuracy = (0..height)
+            .map(|_| r.f64("accuracy"))
+            .collect::<Result<Vec<f64>, _>>()?;
+        let successor = (0..n0)
+            .map(|_| r.u32("successors"))
+            .collect::<Result<Vec<u32>, _>>()?;
+        let mut columns = Vec::with_capacity(state.min(r.remaining() / 4));
+        for _ in 0..state {
+            let n = r.u32("column name length")? as usize;
+            r.need(n, "column name")?;
+            let name = r.take(n, "column name")?;
+            columns.push(
+                std::str::from_utf8(name)
+                    .map_err(|_| r.corrupted("column name is not UTF-8".into()))?
+                    .to_string(),
+            );
+        }
         if r.remaining() != 8 {
             return Err(r.corrupted(format!(
                 "{} unexpected bytes at the end",
@@ -215,7 +256,25 @@ impl Hsom {
             return Err(r.corrupted("checksum mismatch".into()));
         }
         build(
-            config, maps, offset, scale, trained, hits, end_hits, qe, te, dl, path,
+            config,
+            maps,
+            offset,
+            scale,
+            trained,
+            hits,
+            end_hits,
+            qe,
+            te,
+            dl,
+            Extra {
+                runs,
+                dwell,
+                speed,
+                successor,
+                columns,
+                accuracy,
+            },
+            path,
         )
     }
 
@@ -252,6 +311,35 @@ impl Hsom {
             "end-nodes {}",
             join(&mut self.end_hits.iter().map(|v| v.to_string()))
         );
+        let _ = writeln!(
+            s,
+            "demo-runs {}",
+            join(&mut self.demo_runs.iter().map(|v| v.to_string()))
+        );
+        let _ = writeln!(
+            s,
+            "dwell {}",
+            join(&mut self.dwell.iter().map(|v| v.to_string()))
+        );
+        let _ = writeln!(
+            s,
+            "speed {}",
+            join(&mut self.speed.iter().map(|v| v.to_string()))
+        );
+        let _ = writeln!(
+            s,
+            "accuracy {}",
+            join(&mut self.accuracy.iter().map(|v| v.to_string()))
+        );
+        let _ = writeln!(
+            s,
+            "successors {}",
+            join(&mut self.successor.iter().map(|v| v.to_string()))
+        );
+        let _ = writeln!(s, "columns {}", self.columns.len());
+        for c in &self.columns {
+            let _ = writeln!(s, "column {}", c.replace(['\n', '\r'], " "));
+        }
         for (l, m) in self.maps.iter().enumerate() {
             let _ = writeln!(
                 s,
@@ -374,6 +462,27 @@ impl Hsom {
         let dl: Vec<f64> = values(next("demo-lengths")?, "demo-lengths ", 3, &corrupted)?;
         let n0 = shapes[0].0 * shapes[0].1;
         let end_hits: Vec<u32> = values(next("end-nodes")?, "end-nodes ", n0, &corrupted)?;
+        let runs: Vec<f64> = values(next("demo-runs")?, "demo-runs ", 3, &corrupted)?;
+        let dwell: Vec<f64> = values(next("dwell")?, "dwell ", n0, &corrupted)?;
+        let speed: Vec<f64> = values(next("speed")?, "speed ", n0, &corrupted)?;
+        let accuracy: Vec<f64> = values(next("accuracy")?, "accuracy ", shapes.len(), &corrupted)?;
+        let successor: Vec<u32> = values(next("successors")?, "successors ", n0, &corrupted)?;
+        let nc: Vec<usize> = values(next("columns")?, "columns ", 1, &corrupted)?;
+        if nc[0] != state {
+            return Err(corrupted(format!(
+                "{} column names, the configuration has stateLength {state}",
+                nc[0]
+            )));
+        }
+        let mut columns = Vec::with_capacity(state);
+        for _ in 0..state {
+            let l = next("column")?;
+            let name = l
+                .strip_prefix("column ")
+                .or_else(|| (l == "column").then_some(""))
+                .ok_or_else(|| corrupted(format!("expected a column line, found {l:.40?}")))?;
+            columns.push(name.to_string());
+        }
         let mut maps = Vec::new();
         let (mut trained, mut qe, mut te, mut hits) = (vec![], vec![], vec![], vec![]);
         for (l, &(rows, cols, dim)) in shapes.iter().enumerate() {
@@ -456,6 +565,14 @@ impl Hsom {
             qe,
             te,
             [dl[0], dl[1], dl[2]],
+            Extra {
+                runs: [runs[0], runs[1], runs[2]],
+                dwell,
+                speed,
+                successor,
+                columns,
+                accuracy,
+            },
             path,
         )
     }
@@ -473,8 +590,24 @@ fn build(
     qe: Vec<f64>,
     te: Vec<f64>,
     demo_len: [f64; 3],
+    extra: Extra,
     path: &Path,
 ) -> Result<Hsom, PersistError> {
+    let n0 = maps.first().map_or(0, |m| m.len()) as u32;
+    let stats_ok = extra.runs.iter().all(|v| v.is_finite() && *v >= 0.0)
+        && extra.dwell.iter().all(|v| v.is_finite() && *v >= 0.0)
+        && extra.speed.iter().all(|v| v.is_finite() && *v >= 0.0)
+        && extra
+            .accuracy
+            .iter()
+            .all(|v| v.is_finite() && (0.0..=1.0).contains(v))
+        && extra.successor.iter().all(|&v| v < n0 || v == u32::MAX);
+    if !stats_ok {
+        return Err(PersistError::Corrupted {
+            path: path.to_path_buf(),
+            what: "bad run statistics (negative or non-finite dwell, or a successor outside the bottom map)".into(),
+        });
+    }
     let finite = maps
         .iter()
         .all(|m| m.all_weights().iter().all(|v| v.is_finite()))
@@ -502,7 +635,23 @@ fn build(
         qe,
         te,
         demo_len,
+        demo_runs: extra.runs,
+        dwell: extra.dwell,
+        speed: extra.speed,
+        successor: extra.successor,
+        columns: extra.columns,
+        accuracy: extra.accuracy,
     })
+}
+
+/// The version-2 additions: run statistics and column names.
+struct Extra {
+    runs: [f64; 3],
+    dwell: Vec<f64>,
+    speed: Vec<f64>,
+    successor: Vec<u32>,
+    columns: Vec<String>,
+    accuracy: Vec<f64>,
 }
 
 enum Format {

@@ -1,7 +1,9 @@
 //! Reproduction from an initial posture (paper III-C.2). See docs/ALGORITHM.md for every
 //! choice the paper leaves open.
 
-use crate::config::{IdDecoding, MemoryMode, ReproductionMode, ReproductionParams, StopRule};
+use crate::config::{
+    IdDecoding, MemoryMode, Reflex, ReproductionMode, ReproductionParams, StopRule, Timing,
+};
 
 use super::algorithm::{input_dim, Hsom, Memory, Stm};
 use super::errors::HsomError;
@@ -46,6 +48,14 @@ struct Gen<'a> {
     min_len: usize,
     /// Bottom quantization error in normalised units.
     qe0: f64,
+    /// Node executed before `last_node` (None at the start).
+    prev_node: Option<usize>,
+    /// Fractional postures carried over (`timing = dwell`).
+    acc: f64,
+    /// Length of the stationarity window (postures).
+    still_window: usize,
+    /// Longest learned dwell (steps).
+    max_dwell: f64,
 }
 
 impl Gen<'_> {
@@ -205,7 +215,41 @@ impl Gen<'_> {
         }
     }
 
-    /// Execute bottom node `node`: its action half is the next posture; climb the schedule.
+    /// The bottom node nearest to posture `y` (state half) that has a learned successor,
+    /// other than `except`.
+    fn nearest_with_successor(&self, y: &[f64], except: usize) -> Option<usize> {
+        let map = &self.m.maps[0];
+        let state = y.len();
+        let mut best: Option<(usize, f64)> = None;
+        for i in 0..map.len() {
+            if i == except || self.m.successor[i] == u32::MAX {
+                continue;
+            }
+            let d: f64 = map.weights(i)[..state]
+                .iter()
+                .zip(y)
+                .map(|(w, v)| (w - v) * (w - v))
+                .sum();
+            if best.map_or(true, |(_, bd)| d < bd) {
+                best = Some((i, d));
+            }
+        }
+        best.map(|(i, _)| i)
+    }
+
+    /// Learned dwell of a bottom node (1 when unknown).
+    fn dwell(&self, node: usize) -> f64 {
+        let d = self.m.dwell.get(node).copied().unwrap_or(0.0);
+        if d > 0.0 {
+            d
+        } else {
+            1.0
+        }
+    }
+
+    /// Execute bottom node `node`: its action half is the next posture (reached over the
+    /// node's dwell with `timing = dwell`); push it and climb the schedule. With
+    /// `listUpdate = onChange` a node equal to the newest bottom entry is not executed.
     fn emit(
         &mut self,
         node: usize,
@@ -213,26 +257,85 @@ impl Gen<'_> {
         skip: Option<usize>,
         pending: Option<(usize, usize)>,
     ) {
+        if self.stm.on_change && self.stm.last0 == Some(node) {
+            return;
+        }
         let p = self.m.config.params();
         let state = p.state_length;
         let w = self.m.maps[0].weights(node);
         let cur = self.out.last().cloned().unwrap_or_default();
         let lambda = self.r.continuity;
+        let h = p.action_horizon.max(1) as f64;
+        // the node's one-step action: S_t + (S_t+h - S_t) / h (its action half when h = 1)
         let y: Vec<f64> = (0..state)
-            .map(|d| w[state + d] + lambda * (cur[d] - w[d]))
+            .map(|d| {
+                let a = if h == 1.0 {
+                    w[state + d]
+                } else {
+                    w[d] + (w[state + d] - w[d]) / h
+                };
+                a + lambda * (cur[d] - w[d])
+            })
             .collect();
-        let pushed = if self.r.closed_loop {
+        let k = match self.r.timing {
+            Timing::Step => 1,
+            Timing::Dwell => {
+                let d = self.dwell(node);
+                let dp = self.prev_node.map_or(d, |n| self.dwell(n));
+                self.acc += 0.5 * (d + dp);
+                let k = self.acc.floor();
+                self.acc -= k;
+                k as usize
+            }
+            Timing::Speed => {
+                let v = self.m.speed.get(node).copied().unwrap_or(0.0);
+                let steps = if v > 0.0 {
+                    let dist = cur
+                        .iter()
+                        .zip(&y)
+                        .map(|(a, b)| (a - b) * (a - b))
+                        .sum::<f64>()
+                        .sqrt();
+                    // never slower than the slowest learned dwell allows
+                    (dist / v).min(self.max_dwell.max(1.0))
+                } else {
+                    self.dwell(node)
+                };
+                self.acc += steps;
+                let k = self.acc.floor();
+                self.acc -= k;
+                k as usize
+            }
+        };
+        let pushed = if self.r.closed_loop && !self.stm.on_change && k > 0 {
             let x = &mut self.bufs[0];
-            x[..state].copy_from_slice(&cur);
-            x[state..].copy_from_slice(&y);
+            let last = if k == 1 {
+                cur.clone()
+            } else {
+                (0..state)
+                    .map(|d| cur[d] + (y[d] - cur[d]) * (k - 1) as f64 / k as f64)
+                    .collect()
+            };
+            x[..state].copy_from_slice(&last);
+            if h == 1.0 {
+                x[state..].copy_from_slice(&y);
+            } else {
+                for d in 0..state {
+                    x[state + d] = last[d] + h * (y[d] - last[d]);
+                }
+            }
             self.m.maps[0].bmu(x).0
         } else {
             node
         };
-        self.stm.push(0, pushed, &self.m.maps[0]);
+        if !self.stm.push_bottom(pushed, &self.m.maps[0]) {
+            // closed loop found the node just executed: the list does not change
+            self.emit_postures(&cur, &y, k, by);
+            return;
+        }
         self.s += 1;
-        self.out.push(y);
-        self.by.push(by);
+        self.emit_postures(&cur, &y, k, by);
+        self.prev_node = (self.s > 1).then_some(self.last_node);
         self.last_node = pushed;
         for l in 1..p.height {
             if let Some((pl, pn)) = pending {
@@ -258,12 +361,27 @@ impl Gen<'_> {
         }
     }
 
+    /// Append `k` postures moving linearly from `cur` to `y` (just `y` when k = 1).
+    fn emit_postures(&mut self, cur: &[f64], y: &[f64], k: usize, by: usize) {
+        for j in 1..=k {
+            let f = j as f64 / k as f64;
+            self.out
+                .push(cur.iter().zip(y).map(|(a, b)| a + f * (b - a)).collect());
+            self.by.push(by);
+        }
+    }
+
     fn stop(&self) -> Option<StopReason> {
         let t = self.out.len();
         if t >= self.r.max_length {
             return Some(StopReason::MaxLength);
         }
-        if self.r.stop == StopRule::Learned && t >= self.min_len {
+        let long_enough = if self.stm.on_change {
+            self.s as f64 >= self.r.min_length_fraction * self.m.demo_runs[0]
+        } else {
+            t >= self.min_len
+        };
+        if self.r.stop == StopRule::Learned && long_enough {
             let state = self.m.config.params().state_length;
             let y = &self.out[t - 1];
             let (near, _) = self.m.maps[0].bmu_range(y, state..2 * state);
@@ -278,7 +396,7 @@ impl Gen<'_> {
             if close || self.m.end_hits[self.last_node] > 0 || self.m.end_hits[near] > 0 {
                 return Some(StopReason::EndNode);
             }
-            let k = self.r.stationary_steps;
+            let k = self.still_window;
             if t > k {
                 let win = &self.out[t - k - 1..];
                 let tol = self.r.stationary_tolerance * self.qe0;
@@ -369,7 +487,17 @@ impl Hsom {
                 self.qe[0] / self.scale[0]
             },
             min_len: (r.min_length_fraction * self.demo_len[0]).ceil().max(2.0) as usize,
+            prev_node: None,
+            acc: 0.0,
+            max_dwell: self.dwell.iter().cloned().fold(1.0, f64::max),
+            still_window: if r.timing != Timing::Step {
+                let dmax = self.dwell.iter().cloned().fold(1.0, f64::max);
+                r.stationary_steps.max((2.0 * dmax).ceil() as usize)
+            } else {
+                r.stationary_steps
+            },
         };
+        let mut stalls = 0usize;
         let strided = r.mode == ReproductionMode::Strided || p.memory_mode == MemoryMode::Levels;
         let top = r.max_level.unwrap_or(p.height - 1).min(p.height - 1);
         let reason = 'outer: loop {
@@ -380,10 +508,16 @@ impl Hsom {
             } else if r.max_length <= 1 {
                 break StopReason::MaxLength;
             }
+            let before = (g.s, g.out.len());
             let mut done = false;
             for l in (1..=top).rev() {
                 let period = self.config.period(l - 1);
                 if strided && g.s % period != 0 {
+                    continue;
+                }
+                if r.min_accuracy > 0.0
+                    && self.accuracy.get(l).copied().unwrap_or(0.0) < r.min_accuracy
+                {
                     continue;
                 }
                 let Some(preds) = g.predict(l) else { continue };
@@ -406,20 +540,51 @@ impl Hsom {
                         let below = l - 1;
                         let pending = (j + 1 == n && below >= 1).then_some((below, pred));
                         g.emit(node, l, (below >= 1).then_some(below), pending);
-                        if let Some(reason) = g.stop() {
-                            break 'outer reason;
+                        if g.out.len() > 1 {
+                            if let Some(reason) = g.stop() {
+                                break 'outer reason;
+                            }
                         }
                     }
                 }
                 done = true;
                 break;
             }
-            if !done {
+            // no level could predict, or (onChange) it predicted only the node just executed
+            if !done || g.s == before.0 {
                 let y = g.out.last().cloned().unwrap_or_default();
                 let (b, _) = self.maps[0].bmu_range(&y, 0..state);
-                g.emit(b, 0, None, None);
+                let stationary = g.s > 0 && b == g.last_node;
+                let learned = self
+                    .successor
+                    .get(g.last_node)
+                    .copied()
+                    .filter(|&n| g.s > 0 && n != u32::MAX);
+                let node = match (r.reflex, learned) {
+                    (Reflex::Successor, Some(n)) => n as usize,
+                    (Reflex::Successor, None) if stationary => {
+                        // never left in training: the nearest node that was
+                        match g.nearest_with_successor(&y, b) {
+                            Some(n) => n,
+                            None => break StopReason::EndNode,
+                        }
+                    }
+                    _ => b,
+                };
+                g.emit(node, 0, None, None);
+            }
+            if (g.s, g.out.len()) == before {
+                // nothing executed: the reproduction cannot move any more
+                stalls += 1;
+                if stalls >= 3 {
+                    break StopReason::Stationary;
+                }
+            } else {
+                stalls = 0;
             }
         };
+        g.out.truncate(r.max_length);
+        g.by.truncate(r.max_length);
         let postures: Vec<Vec<f64>> = g
             .out
             .iter()
