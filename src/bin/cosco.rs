@@ -70,6 +70,26 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Reproduce a gesture from an initial posture with a saved model; writes `step` then the
+    /// demonstrations' columns.
+    Reproduce {
+        /// A model saved by `cosco train` (.bin or .txt).
+        #[arg(long)]
+        model: PathBuf,
+        /// The initial posture, comma-separated, one value per state variable.
+        #[arg(
+            long,
+            conflicts_with = "initial_from",
+            required_unless_present = "initial_from"
+        )]
+        initial: Option<String>,
+        /// Take the initial posture from the first row of this demonstration CSV.
+        #[arg(long)]
+        initial_from: Option<PathBuf>,
+        /// Output CSV.
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Print a saved model's levels, sizes and quality measures.
     Inspect {
         /// A model saved by `cosco train` (.bin or .txt).
@@ -134,6 +154,15 @@ fn run(cli: Cli) -> Result<()> {
             let model = cli::train_files(config.as_deref(), &demos, &out)?;
             out!("{}", model.summary());
             outln!("saved {}", out.display());
+        }
+        Command::Reproduce {
+            model,
+            initial,
+            initial_from,
+            out,
+        } => {
+            let n = cli::reproduce_file(&model, initial.as_deref(), initial_from.as_deref(), &out)?;
+            outln!("{n} postures written to {}", out.display());
         }
         Command::Inspect { model } => {
             let m = cli::load_model(&model)?;

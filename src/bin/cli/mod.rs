@@ -563,3 +563,71 @@ pub fn error_line(e: &anyhow::Error) -> String {
     }
     line
 }
+
+/// Parse `"v1,v2,..."` into numbers, naming the bad entry.
+pub fn parse_posture(text: &str) -> Result<Vec<f64>> {
+    text.split(',')
+        .enumerate()
+        .map(|(i, v)| {
+            let v = v.trim();
+            match v.parse::<f64>() {
+                Ok(x) if x.is_finite() => Ok(x),
+                _ => bail!("--initial: value {} is '{v}': need a finite number", i + 1),
+            }
+        })
+        .collect()
+}
+
+/// `cosco reproduce`: the initial posture from the command line or a demonstration's first
+/// row, the reproduction written as `step` + the model's column names. Returns the number of
+/// postures.
+pub fn reproduce_file(
+    model: &Path,
+    initial: Option<&str>,
+    initial_from: Option<&Path>,
+    out: &Path,
+) -> Result<usize> {
+    let m = load_model(model)?;
+    let columns = m.columns().to_vec();
+    let initial = match (initial, initial_from) {
+        (Some(text), None) => parse_posture(text)?,
+        (None, Some(p)) => {
+            let d = demos::read_csv(p)?;
+            if d.columns != columns {
+                bail!(
+                    "{}: columns {:?} differ from the model's {:?}",
+                    p.display(),
+                    d.columns,
+                    columns
+                );
+            }
+            d.rows[0].clone()
+        }
+        _ => bail!("give exactly one of --initial and --initial-from"),
+    };
+    if initial.len() != columns.len() {
+        bail!(
+            "the initial posture has {} values; the model {} learned {} variables ({})",
+            initial.len(),
+            model.display(),
+            columns.len(),
+            columns.join(", ")
+        );
+    }
+    let rep = m.reproduce(&initial)?;
+    let mut header = vec!["step".to_string()];
+    header.extend(columns);
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(&header)?;
+    for (step, row) in rep.steps.iter().zip(&rep.postures) {
+        let mut rec = vec![step.to_string()];
+        rec.extend(row.iter().map(|v| v.to_string()));
+        w.write_record(&rec)?;
+    }
+    let bytes = w
+        .into_inner()
+        .map_err(|e| anyhow::anyhow!("CSV buffer: {e}"))?;
+    cosco_hsom::fsutil::write_atomic(out, &bytes)
+        .with_context(|| format!("writing {}", out.display()))?;
+    Ok(rep.postures.len())
+}
