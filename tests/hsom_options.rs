@@ -234,3 +234,43 @@ fn the_model_keeps_the_column_names_in_both_formats() {
         assert_eq!(back, m, "{name}");
     }
 }
+
+#[test]
+fn new_options_in_small_configurations_never_panic_and_round_trip() {
+    use cosco_hsom::config::{LevelParams, MemoryMode, PartialTraining};
+    use cosco_hsom::som::Topology;
+    let demos = idle_gesture(2);
+    let dir = tempfile::tempdir().unwrap();
+    let mut n = 0;
+    for height in [1, 2, 3] {
+        for memory in [1, 2, 4] {
+            for mode in [MemoryMode::Lists, MemoryMode::Levels] {
+                for horizon in [1, 3, 500] {
+                    for partial in [PartialTraining::Skip, PartialTraining::Masked] {
+                        let mut p = file_options(2);
+                        p.height = height;
+                        p.memory = memory;
+                        p.memory_mode = mode;
+                        p.partial_training = partial;
+                        p.action_horizon = horizon;
+                        p.training_steps = 300;
+                        p.levels = (0..height)
+                            .map(|l| LevelParams::new(3 + l, 2, Topology::Hexagonal, 0.4))
+                            .collect();
+                        p.reproduction.offset = memory.min(p.reproduction.offset).max(1);
+                        p.reproduction.max_length = 200;
+                        let cfg = p.check("t").unwrap();
+                        let m = cfg.fit(&demos).unwrap();
+                        let rep = m.reproduce(&demos[0].rows[0]).unwrap();
+                        assert!(!rep.postures.is_empty() && rep.postures.len() <= 200);
+                        assert!(rep.postures.iter().flatten().all(|v| v.is_finite()));
+                        let path = dir.path().join(format!("m{n}.txt"));
+                        m.save(&path).unwrap();
+                        assert_eq!(Hsom::load(&path).unwrap(), m);
+                        n += 1;
+                    }
+                }
+            }
+        }
+    }
+}
