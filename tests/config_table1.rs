@@ -35,7 +35,7 @@ fn table1_file_reproduces_the_paper_table() {
     b.change_ratio = 0.6;
     b.action_horizon = 10;
     b.reproduction.end_tolerance = 2.0;
-    b.reproduction.min_accuracy = 0.1;
+    b.reproduction.min_accuracy = 0.2;
     b.reproduction.mode = ReproductionMode::Strided;
     b.reproduction.continuity = 0.0;
     b.reproduction.reflex = Reflex::Successor;
@@ -388,7 +388,7 @@ fn new_options_parse_and_bad_values_are_named() {
         ("<timing>speed<", "<timing>fast<", "reproduction/timing"),
         ("<reflex>successor<", "<reflex>jump<", "reproduction/reflex"),
         (
-            "<minAccuracy>0.1<",
+            "<minAccuracy>0.2<",
             "<minAccuracy>2<",
             "reproduction/minAccuracy",
         ),
