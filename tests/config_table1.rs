@@ -35,7 +35,7 @@ fn table1_file_reproduces_the_paper_table() {
     b.change_ratio = 0.6;
     b.action_horizon = 10;
     b.reproduction.end_tolerance = 2.0;
-    b.reproduction.min_accuracy = 0.1;
+    b.reproduction.min_accuracy = 0.2;
     b.reproduction.mode = ReproductionMode::Strided;
     b.reproduction.continuity = 0.0;
     b.reproduction.reflex = Reflex::Successor;
@@ -371,4 +371,43 @@ fn invalid_too_many_weights() {
         matches!(&e, ConfigError::Invalid { field, .. } if field == "levels"),
         "{e:?}"
     );
+}
+
+#[test]
+fn new_options_parse_and_bad_values_are_named() {
+    let t = table1_text();
+    for (from, to, field) in [
+        ("<changeRatio>0.6<", "<changeRatio>0<", "changeRatio"),
+        ("<changeRatio>0.6<", "<changeRatio>1.5<", "changeRatio"),
+        ("<actionHorizon>10<", "<actionHorizon>0<", "actionHorizon"),
+        (
+            "<listUpdate>onChange<",
+            "<listUpdate>sometimes<",
+            "listUpdate",
+        ),
+        ("<timing>speed<", "<timing>fast<", "reproduction/timing"),
+        ("<reflex>successor<", "<reflex>jump<", "reproduction/reflex"),
+        (
+            "<minAccuracy>0.2<",
+            "<minAccuracy>2<",
+            "reproduction/minAccuracy",
+        ),
+    ] {
+        assert!(t.contains(from), "{from}");
+        match err(&t.replacen(from, to, 1)) {
+            ConfigError::Invalid { field: f, .. } => assert_eq!(f, field),
+            e => panic!("{to}: {e}"),
+        }
+    }
+    // every word is accepted, case-insensitively
+    for (from, to) in [
+        ("<listUpdate>onChange<", "<listUpdate>EVERYSTEP<"),
+        ("<timing>speed<", "<timing>dwell<"),
+        ("<timing>speed<", "<timing>step<"),
+        ("<reflex>successor<", "<reflex>bmu<"),
+    ] {
+        let c = parse_config(&t.replacen(from, to, 1), "ok.xml").unwrap();
+        let again = parse_config(&c.to_xml(), "again.xml").unwrap();
+        assert_eq!(c.params(), again.params());
+    }
 }

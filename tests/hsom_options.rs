@@ -102,6 +102,8 @@ fn dwell_timing_restores_the_time_spent_on_each_node() {
     let init = &demos[0].rows[0];
     let mut r = p.reproduction.clone();
     r.stop = cosco_hsom::config::StopRule::Learned;
+    // the whole hierarchy predicts (its expansions skip key postures)
+    r.min_accuracy = 0.0;
     r.timing = Timing::Dwell;
     let dwell = model.reproduce_with(init, &r).unwrap();
     r.timing = Timing::Speed;
@@ -169,13 +171,15 @@ fn accuracy_is_measured_per_level_and_min_accuracy_keeps_confused_levels_out() {
     r.min_accuracy = 1.0;
     let rep = model.reproduce_with(&demos[0].rows[0], &r).unwrap();
     assert!(rep.predicted_by.iter().all(|&l| l == 0));
-    // with the shipped threshold the levels that measured well do predict
-    let rep = model.reproduce(&demos[0].rows[0]).unwrap();
+    // with level 1's own accuracy as the threshold, level 1 (and any level that measured at
+    // least as well) predicts, no other
+    r.min_accuracy = acc[1];
+    let rep = model.reproduce_with(&demos[0].rows[0], &r).unwrap();
     assert!(rep.predicted_by.iter().any(|&l| l >= 1));
     assert!(rep
         .predicted_by
         .iter()
-        .all(|&l| l == 0 || acc[l] >= p.reproduction.min_accuracy));
+        .all(|&l| l == 0 || acc[l] >= r.min_accuracy));
 }
 
 #[test]
@@ -232,5 +236,45 @@ fn the_model_keeps_the_column_names_in_both_formats() {
         let back = Hsom::load(&p).unwrap();
         assert_eq!(back.columns(), m.columns(), "{name}");
         assert_eq!(back, m, "{name}");
+    }
+}
+
+#[test]
+fn new_options_in_small_configurations_never_panic_and_round_trip() {
+    use cosco_hsom::config::{LevelParams, MemoryMode, PartialTraining};
+    use cosco_hsom::som::Topology;
+    let demos = idle_gesture(2);
+    let dir = tempfile::tempdir().unwrap();
+    let mut n = 0;
+    for height in [1, 2, 3] {
+        for memory in [1, 2, 4] {
+            for mode in [MemoryMode::Lists, MemoryMode::Levels] {
+                for horizon in [1, 3, 500] {
+                    for partial in [PartialTraining::Skip, PartialTraining::Masked] {
+                        let mut p = file_options(2);
+                        p.height = height;
+                        p.memory = memory;
+                        p.memory_mode = mode;
+                        p.partial_training = partial;
+                        p.action_horizon = horizon;
+                        p.training_steps = 300;
+                        p.levels = (0..height)
+                            .map(|l| LevelParams::new(3 + l, 2, Topology::Hexagonal, 0.4))
+                            .collect();
+                        p.reproduction.offset = memory.min(p.reproduction.offset).max(1);
+                        p.reproduction.max_length = 200;
+                        let cfg = p.check("t").unwrap();
+                        let m = cfg.fit(&demos).unwrap();
+                        let rep = m.reproduce(&demos[0].rows[0]).unwrap();
+                        assert!(!rep.postures.is_empty() && rep.postures.len() <= 200);
+                        assert!(rep.postures.iter().flatten().all(|v| v.is_finite()));
+                        let path = dir.path().join(format!("m{n}.txt"));
+                        m.save(&path).unwrap();
+                        assert_eq!(Hsom::load(&path).unwrap(), m);
+                        n += 1;
+                    }
+                }
+            }
+        }
     }
 }
