@@ -50,6 +50,9 @@ struct Args {
     /// 40 Hz) or `min-jerk[:TOL]` (key poses within TOL rad joined by minimum-jerk transitions).
     #[arg(long, default_value = "linear")]
     transition: String,
+    /// Skip the before/after variants (the beyond-the-paper options switched off one at a time).
+    #[arg(long)]
+    no_variants: bool,
     /// MJCF model of the arm (default: models/nao_left_arm.xml of this crate).
     #[arg(long)]
     model: Option<PathBuf>,
@@ -67,6 +70,7 @@ fn run(a: Args) -> Result<()> {
         out: a.out,
         model: a.model,
         transition: cosco_hsom::experiment::Transition::parse(&a.transition)?,
+        variants: !a.no_variants,
     };
     let report = cli::main_job(&job)?;
     outln!("{}", cli::summary_line(&report));

@@ -10,6 +10,7 @@ pub mod figures;
 pub mod film;
 pub mod pipeline;
 pub mod report;
+pub mod variants;
 
 pub use demonstrate::{joint_limits, record_demonstrations, DemoSettings};
 pub use evaluate::{are_arm_joints, evaluate, trajectory, wrist_path};

@@ -498,6 +498,14 @@ impl Hsom {
             },
         };
         let mut stalls = 0usize;
+        // Guards against a reproduction that keeps stepping without producing postures (e.g.
+        // `timing = speed` on a node whose output equals the current posture: zero distance,
+        // zero postures, forever): `STILL_ITERATIONS` steps without a new posture end it as
+        // stationary, and the loop never runs more than `ITERATION_CAP_FACTOR * maxLength`.
+        const STILL_ITERATIONS: usize = 1000;
+        const ITERATION_CAP_FACTOR: usize = 20;
+        let mut iterations = 0usize;
+        let mut no_output = 0usize;
         let strided = r.mode == ReproductionMode::Strided || p.memory_mode == MemoryMode::Levels;
         let top = r.max_level.unwrap_or(p.height - 1).min(p.height - 1);
         let reason = 'outer: loop {
@@ -572,6 +580,14 @@ impl Hsom {
                     _ => b,
                 };
                 g.emit(node, 0, None, None);
+            }
+            iterations += 1;
+            no_output = if g.out.len() == before.1 { no_output + 1 } else { 0 };
+            if no_output >= STILL_ITERATIONS {
+                break StopReason::Stationary;
+            }
+            if iterations >= ITERATION_CAP_FACTOR * r.max_length.max(1) + STILL_ITERATIONS {
+                break StopReason::MaxLength;
             }
             if (g.s, g.out.len()) == before {
                 // nothing executed: the reproduction cannot move any more

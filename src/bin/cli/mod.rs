@@ -14,6 +14,7 @@ use cosco_hsom::config::{load_config, parse_config, HsomConfig};
 use cosco_hsom::demos::{self, write_csv, Demonstration};
 use cosco_hsom::experiment::figures::{joint_panels_png, wrist_png, Curve, Path3};
 use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report, Stage};
+use cosco_hsom::experiment::variants::variants;
 use cosco_hsom::experiment::{
     are_arm_joints, evaluate, film, learn_and_reproduce, record_demonstrations, sample_period,
     wrist_path, DemoSettings, Training, Transition,
@@ -174,6 +175,8 @@ pub struct Job {
     pub model: Option<PathBuf>,
     /// How the learned postures become servo targets.
     pub transition: Transition,
+    /// Also run the before/after variants.
+    pub variants: bool,
 }
 
 struct Stopwatch {
@@ -390,6 +393,33 @@ pub fn main_job(job: &Job) -> Result<Report> {
     }
     clock.lap("GMM/GMR baseline (fit + execute + metrics + plots)");
 
+    // 5c. Before / after: the beyond-the-paper options switched off (docs/ALGORITHM.md).
+    let mut variant_results = Vec::new();
+    if job.variants {
+        let vs = variants(&cfg, job.transition)?;
+        let pb = progress(vs.len() as u64, "variants");
+        let mut main = methods[0].clone();
+        main.name = format!("{} ({})", cfg.source(), job.transition.name());
+        variant_results.push(main);
+        for v in vs {
+            let run = learn_and_reproduce(&arm, &v.config, &demos, Training::Trained, v.transition, None)?;
+            variant_results.push(MethodResult {
+                name: v.name,
+                needs: "raw demonstrations; the initial posture".into(),
+                fidelity: run.fidelity,
+                train_s: run.train_s,
+                reproduce_s: run.reproduce_s,
+                model_bytes: run.model.to_bytes().len() as u64,
+                postures: run.reproduction.postures.len(),
+                clamped_values: run.clamped_values,
+                notes: Vec::new(),
+            });
+            pb.inc(1);
+        }
+        pb.finish_and_clear();
+        clock.lap("before/after variants (train + reproduce + execute + metrics each)");
+    }
+
     // 6. Clip.
     if job.render {
         let opts = RenderOptions {
@@ -432,7 +462,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
             }),
         demos: demo_info,
         methods,
-        variants: Vec::new(),
+        variants: variant_results,
         stages: clock.stages,
         files,
     };

@@ -1,0 +1,93 @@
+//! Before and after: the beyond-the-paper options switched off one at a time, and all at once
+//! (the paper taken literally), each trained, reproduced from the initial posture, executed and
+//! scored exactly like the main result, so `report.md` shows what every option buys.
+
+use crate::config::{HsomConfig, HsomParams, ListUpdate, Reflex, ReproductionMode, Timing};
+
+use super::{ExperimentError, Transition};
+
+/// One variant to run: a name, the configuration and the transition.
+#[derive(Debug, Clone)]
+pub struct Variant {
+    /// What differs from the main result.
+    pub name: String,
+    /// The configuration (trained anew).
+    pub config: HsomConfig,
+    /// How its postures are executed.
+    pub transition: Transition,
+}
+
+/// The paper taken literally: activity lists updated every step, the bottom reflex, one
+/// posture per node, action = next sample, no level skipped for low accuracy, the literal
+/// (full depth-first) expansion, the node's action half as output, no end tolerance.
+pub fn paper_literal(p: &HsomParams) -> HsomParams {
+    let mut q = p.clone();
+    q.list_update = ListUpdate::EveryStep;
+    q.change_ratio = 1.0;
+    q.action_horizon = 1;
+    q.reproduction.mode = ReproductionMode::Literal;
+    q.reproduction.reflex = Reflex::Bmu;
+    q.reproduction.timing = Timing::Step;
+    q.reproduction.min_accuracy = 0.0;
+    q.reproduction.continuity = 0.0;
+    q.reproduction.closed_loop = false;
+    q.reproduction.end_tolerance = 0.0;
+    q
+}
+
+/// The variants of `config` (executed with `transition` unless said otherwise): the paper
+/// literal, each option of the configuration that departs from the paper switched back alone,
+/// and the other transition.
+pub fn variants(config: &HsomConfig, transition: Transition) -> Result<Vec<Variant>, ExperimentError> {
+    let p = config.params();
+    let src = |what: &str| format!("{} ({what})", config.source());
+    let mut out = Vec::new();
+    let mut push = |name: &str, params: HsomParams, transition: Transition| -> Result<(), ExperimentError> {
+        let config = params
+            .check(&src(name))
+            .map_err(|e| ExperimentError::Invalid(format!("variant '{name}': {e}")))?;
+        out.push(Variant { name: name.to_string(), config, transition });
+        Ok(())
+    };
+    let literal = paper_literal(p);
+    if &literal != p {
+        push("paper literal (every option off)", literal, Transition::Linear)?;
+    }
+    if p.list_update == ListUpdate::OnChange {
+        let mut q = p.clone();
+        q.list_update = ListUpdate::EveryStep;
+        q.change_ratio = 1.0;
+        push("without listUpdate=onChange", q, transition)?;
+    }
+    if p.action_horizon > 1 {
+        let mut q = p.clone();
+        q.action_horizon = 1;
+        push("without actionHorizon", q, transition)?;
+    }
+    if p.reproduction.reflex != Reflex::Bmu {
+        let mut q = p.clone();
+        q.reproduction.reflex = Reflex::Bmu;
+        push("without reflex=successor", q, transition)?;
+    }
+    if p.reproduction.timing != Timing::Step {
+        let mut q = p.clone();
+        q.reproduction.timing = Timing::Step;
+        push("without learned timing", q, transition)?;
+    }
+    if p.reproduction.min_accuracy > 0.0 {
+        let mut q = p.clone();
+        q.reproduction.min_accuracy = 0.0;
+        push("without minAccuracy", q, transition)?;
+    }
+    if p.reproduction.end_tolerance > 0.0 {
+        let mut q = p.clone();
+        q.reproduction.end_tolerance = 0.0;
+        push("without endTolerance", q, transition)?;
+    }
+    let other = match transition {
+        Transition::Linear => Transition::MinimumJerk { tolerance: 0.02 },
+        Transition::MinimumJerk { .. } => Transition::Linear,
+    };
+    push(&format!("with --transition {}", other.name()), p.clone(), other)?;
+    Ok(out)
+}
