@@ -19,8 +19,13 @@ fn changed_fraction(a: &image::RgbImage, b: &image::RgbImage) -> f64 {
 fn clip_frames_change_while_the_arm_moves_and_stop_while_it_holds() {
     let arm = NaoArm::load_default().unwrap();
     // No variability and no encoder noise: 1 s of stillness, the gesture, 1 s of stillness.
-    let settings = DemoSettings { variation: Variation::none(), ..DemoSettings::default() };
-    let rec = record_demonstrations(&arm, &reading_watch(), 1, 3, &settings, |_| {}).unwrap().remove(0);
+    let settings = DemoSettings {
+        variation: Variation::none(),
+        ..DemoSettings::default()
+    };
+    let rec = record_demonstrations(&arm, &reading_watch(), 1, 3, &settings, |_| {})
+        .unwrap()
+        .remove(0);
     let opts = RenderOptions {
         width: 160,
         height: 120,
@@ -45,22 +50,44 @@ fn clip_frames_change_while_the_arm_moves_and_stop_while_it_holds() {
         let diff = changed_fraction(&frames[i], &frames[i + 1]);
         if moved < 1e-4 {
             still_pairs += 1;
-            assert!(diff < 0.001, "frames {i}->{} changed {diff:.4} while the arm held", i + 1);
+            assert!(
+                diff < 0.001,
+                "frames {i}->{} changed {diff:.4} while the arm held",
+                i + 1
+            );
         } else if moved > 0.05 {
             moving_pairs += 1;
-            assert!(diff > 0.003, "frames {i}->{} changed only {diff:.4} while a joint moved {moved:.3} rad", i + 1);
+            assert!(
+                diff > 0.003,
+                "frames {i}->{} changed only {diff:.4} while a joint moved {moved:.3} rad",
+                i + 1
+            );
         }
     }
-    assert!(still_pairs >= 10, "only {still_pairs} still frame pairs: the clip should show the idle start and end");
+    assert!(
+        still_pairs >= 10,
+        "only {still_pairs} still frame pairs: the clip should show the idle start and end"
+    );
     assert!(moving_pairs >= 10, "only {moving_pairs} moving frame pairs");
 }
 
 #[test]
 fn film_rejects_a_zero_stride_and_an_empty_recording() {
     let arm = NaoArm::load_default().unwrap();
-    let settings = DemoSettings { variation: Variation::none(), ..DemoSettings::default() };
-    let rec = record_demonstrations(&arm, &reading_watch(), 1, 3, &settings, |_| {}).unwrap().remove(0);
-    let opts = RenderOptions { width: 64, height: 48, shadows: false, multisample: false, camera: None };
+    let settings = DemoSettings {
+        variation: Variation::none(),
+        ..DemoSettings::default()
+    };
+    let rec = record_demonstrations(&arm, &reading_watch(), 1, 3, &settings, |_| {})
+        .unwrap()
+        .remove(0);
+    let opts = RenderOptions {
+        width: 64,
+        height: 48,
+        shadows: false,
+        multisample: false,
+        camera: None,
+    };
     let e = film(&arm, &rec, &opts, 0, |_, _| {}).unwrap_err();
     assert!(e.to_string().contains("stride"), "{e}");
     let mut empty = rec.clone();

@@ -44,27 +44,42 @@ fn failures(f: &FidelityReport) -> Vec<String> {
         f.final_error_rad.mean,
         f.wrist_dtw_mm.map_or(f64::NAN, |w| w.mean),
         f.reproduction_smoothness.total_reversals,
-        f.demo_smoothness.iter().map(|s| s.total_reversals).collect::<Vec<_>>(),
+        f.demo_smoothness
+            .iter()
+            .map(|s| s.total_reversals)
+            .collect::<Vec<_>>(),
         f.reproduction_moves
     );
     let mut out = Vec::new();
     if f.apex_error_rad.mean > APEX_RAD {
-        out.push(format!("apex error {:.3} rad > {APEX_RAD}", f.apex_error_rad.mean));
+        out.push(format!(
+            "apex error {:.3} rad > {APEX_RAD}",
+            f.apex_error_rad.mean
+        ));
     }
     if f.final_error_rad.mean > FINAL_RAD {
-        out.push(format!("final-posture error {:.3} rad > {FINAL_RAD}", f.final_error_rad.mean));
+        out.push(format!(
+            "final-posture error {:.3} rad > {FINAL_RAD}",
+            f.final_error_rad.mean
+        ));
     }
     match &f.wrist_dtw_mm {
         Some(w) if w.mean <= WRIST_DTW_MM => {}
         Some(w) => out.push(format!("wrist-path DTW {:.1} mm > {WRIST_DTW_MM}", w.mean)),
         None => out.push("no wrist path".into()),
     }
-    let demo_rev = f.demo_smoothness.iter().map(|s| s.total_reversals as f64).sum::<f64>()
+    let demo_rev = f
+        .demo_smoothness
+        .iter()
+        .map(|s| s.total_reversals as f64)
+        .sum::<f64>()
         / f.demo_smoothness.len().max(1) as f64;
     let bound = REVERSALS_FACTOR * demo_rev + REVERSALS_SLACK;
     let rev = f.reproduction_smoothness.total_reversals as f64;
     if rev > bound {
-        out.push(format!("{rev} velocity reversals > {bound:.0} (demos: {demo_rev:.1})"));
+        out.push(format!(
+            "{rev} velocity reversals > {bound:.0} (demos: {demo_rev:.1})"
+        ));
     }
     if !f.reproduction_moves {
         out.push("the reproduction never moves".into());
@@ -73,11 +88,18 @@ fn failures(f: &FidelityReport) -> Vec<String> {
 }
 
 fn table1() -> HsomConfig {
-    load_config(std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/configs/table1.xml"))).unwrap()
+    load_config(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/configs/table1.xml"
+    )))
+    .unwrap()
 }
 
 fn demos(arm: &NaoArm, g: &Gesture, seed: u64) -> Vec<Demonstration> {
-    let settings = DemoSettings { encoder_noise: 0.001, ..DemoSettings::default() };
+    let settings = DemoSettings {
+        encoder_noise: 0.001,
+        ..DemoSettings::default()
+    };
     record_demonstrations(arm, g, 3, seed, &settings, |_| {})
         .unwrap()
         .iter()
@@ -96,7 +118,9 @@ fn check_gesture(name: &str, other: &str) {
     for seed in SEEDS {
         let d = demos(&arm, &g, seed);
         eprintln!("{name} seed {seed}: trained");
-        let trained = learn_and_reproduce(&arm, &cfg, &d, Training::Trained, Transition::Linear, None).unwrap();
+        let trained =
+            learn_and_reproduce(&arm, &cfg, &d, Training::Trained, Transition::Linear, None)
+                .unwrap();
         let f = failures(&trained.fidelity);
         if f.is_empty() {
             passing += 1;
@@ -105,7 +129,15 @@ fn check_gesture(name: &str, other: &str) {
 
         // Negative control 1: the same configuration, untrained.
         eprintln!("{name} seed {seed}: untrained");
-        let untrained = learn_and_reproduce(&arm, &cfg, &d, Training::Untrained, Transition::Linear, None).unwrap();
+        let untrained = learn_and_reproduce(
+            &arm,
+            &cfg,
+            &d,
+            Training::Untrained,
+            Transition::Linear,
+            None,
+        )
+        .unwrap();
         assert!(
             !failures(&untrained.fidelity).is_empty(),
             "{name} seed {seed}: the UNTRAINED hierarchy passes the fidelity checks"
@@ -114,8 +146,16 @@ fn check_gesture(name: &str, other: &str) {
         // Negative control 2: trained on another gesture, scored against this one's demonstrations.
         eprintln!("{name} seed {seed}: trained on {other}");
         let od = demos(&arm, &og, seed);
-        let wrong = learn_and_reproduce(&arm, &cfg, &od, Training::Trained, Transition::Linear, None).unwrap();
-        let scored = evaluate(Some(&arm), &d, &wrong.executed.qpos, &MetricsParams::default()).unwrap();
+        let wrong =
+            learn_and_reproduce(&arm, &cfg, &od, Training::Trained, Transition::Linear, None)
+                .unwrap();
+        let scored = evaluate(
+            Some(&arm),
+            &d,
+            &wrong.executed.qpos,
+            &MetricsParams::default(),
+        )
+        .unwrap();
         assert!(
             !failures(&scored).is_empty(),
             "{name} seed {seed}: a hierarchy trained on {other} passes {name}'s checks"

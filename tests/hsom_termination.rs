@@ -11,13 +11,20 @@ use cosco_hsom::sim::NaoArm;
 fn reproduction_ends_when_steps_produce_no_postures() {
     let arm = NaoArm::load_default().unwrap();
     let g = Gesture::by_name("reading-watch").unwrap();
-    let settings = DemoSettings { encoder_noise: 0.001, ..DemoSettings::default() };
+    let settings = DemoSettings {
+        encoder_noise: 0.001,
+        ..DemoSettings::default()
+    };
     let demos: Vec<_> = record_demonstrations(&arm, &g, 3, 1, &settings, |_| {})
         .unwrap()
         .iter()
         .map(|r| r.to_demonstration("reading-watch"))
         .collect();
-    let cfg = load_config(std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/configs/table1.xml"))).unwrap();
+    let cfg = load_config(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/configs/table1.xml"
+    )))
+    .unwrap();
     let mut p = cfg.params().clone();
     p.list_update = ListUpdate::EveryStep;
     p.change_ratio = 1.0;

@@ -38,20 +38,32 @@ pub fn paper_literal(p: &HsomParams) -> HsomParams {
 /// The variants of `config` (executed with `transition` unless said otherwise): the paper
 /// literal, each option of the configuration that departs from the paper switched back alone,
 /// and the other transition.
-pub fn variants(config: &HsomConfig, transition: Transition) -> Result<Vec<Variant>, ExperimentError> {
+pub fn variants(
+    config: &HsomConfig,
+    transition: Transition,
+) -> Result<Vec<Variant>, ExperimentError> {
     let p = config.params();
     let src = |what: &str| format!("{} ({what})", config.source());
     let mut out = Vec::new();
-    let mut push = |name: &str, params: HsomParams, transition: Transition| -> Result<(), ExperimentError> {
-        let config = params
-            .check(&src(name))
-            .map_err(|e| ExperimentError::Invalid(format!("variant '{name}': {e}")))?;
-        out.push(Variant { name: name.to_string(), config, transition });
-        Ok(())
-    };
+    let mut push =
+        |name: &str, params: HsomParams, transition: Transition| -> Result<(), ExperimentError> {
+            let config = params
+                .check(&src(name))
+                .map_err(|e| ExperimentError::Invalid(format!("variant '{name}': {e}")))?;
+            out.push(Variant {
+                name: name.to_string(),
+                config,
+                transition,
+            });
+            Ok(())
+        };
     let literal = paper_literal(p);
     if &literal != p {
-        push("paper literal (every option off)", literal, Transition::Linear)?;
+        push(
+            "paper literal (every option off)",
+            literal,
+            Transition::Linear,
+        )?;
     }
     if p.list_update == ListUpdate::OnChange {
         let mut q = p.clone();
@@ -88,6 +100,10 @@ pub fn variants(config: &HsomConfig, transition: Transition) -> Result<Vec<Varia
         Transition::Linear => Transition::MinimumJerk { tolerance: 0.02 },
         Transition::MinimumJerk { .. } => Transition::Linear,
     };
-    push(&format!("with --transition {}", other.name()), p.clone(), other)?;
+    push(
+        &format!("with --transition {}", other.name()),
+        p.clone(),
+        other,
+    )?;
     Ok(out)
 }

@@ -582,7 +582,11 @@ impl Hsom {
                 g.emit(node, 0, None, None);
             }
             iterations += 1;
-            no_output = if g.out.len() == before.1 { no_output + 1 } else { 0 };
+            no_output = if g.out.len() == before.1 {
+                no_output + 1
+            } else {
+                0
+            };
             if no_output >= STILL_ITERATIONS {
                 break StopReason::Stationary;
             }

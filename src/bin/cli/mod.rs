@@ -402,7 +402,14 @@ pub fn main_job(job: &Job) -> Result<Report> {
         main.name = format!("{} ({})", cfg.source(), job.transition.name());
         variant_results.push(main);
         for v in vs {
-            let run = learn_and_reproduce(&arm, &v.config, &demos, Training::Trained, v.transition, None)?;
+            let run = learn_and_reproduce(
+                &arm,
+                &v.config,
+                &demos,
+                Training::Trained,
+                v.transition,
+                None,
+            )?;
             variant_results.push(MethodResult {
                 name: v.name,
                 needs: "raw demonstrations; the initial posture".into(),
