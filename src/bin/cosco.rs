@@ -175,8 +175,8 @@ fn run(cli: Cli) -> Result<()> {
             json,
             model,
         } => {
-            let report = cli::evaluate_files(&reproduction, &demos, model.as_deref())?;
-            out!("{}", cli::fidelity_lines(&report));
+            let (report, unit) = cli::evaluate_files(&reproduction, &demos, model.as_deref())?;
+            out!("{}", cli::fidelity_lines(&report, unit));
             if let Some(p) = json {
                 let bytes = serde_json::to_vec_pretty(&report)?;
                 cosco_hsom::fsutil::write_atomic(&p, &bytes)

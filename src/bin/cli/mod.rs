@@ -506,12 +506,13 @@ pub fn read_reproduction(path: &Path) -> Result<Demonstration> {
     Ok(d)
 }
 
-/// `cosco evaluate`: the fidelity metrics of a reproduction CSV against demonstrations.
+/// `cosco evaluate`: the fidelity metrics of a reproduction CSV against demonstrations, and
+/// the unit of its distances (`rad` for the arm's joints, the data's own units otherwise).
 pub fn evaluate_files(
     reproduction: &Path,
     demo_paths: &[PathBuf],
     model: Option<&Path>,
-) -> Result<FidelityReport> {
+) -> Result<(FidelityReport, &'static str)> {
     let demos = read_demos(demo_paths, None)?;
     let rep = read_reproduction(reproduction)?;
     if rep.columns != demos[0].columns {
@@ -532,23 +533,28 @@ pub fn evaluate_files(
         sample_period: sample_period(&demos[0]),
         ..MetricsParams::default()
     };
-    Ok(evaluate(arm.as_ref(), &demos, &rep.rows, &params)?)
+    let unit = if arm.is_some() { "rad" } else { "data units" };
+    Ok((evaluate(arm.as_ref(), &demos, &rep.rows, &params)?, unit))
 }
 
 /// Human-readable lines of a fidelity report.
-pub fn fidelity_lines(f: &FidelityReport) -> String {
+pub fn fidelity_lines(f: &FidelityReport, unit: &str) -> String {
     let st = |s: &cosco_hsom::metrics::Stat| format!("mean {:.4}, worst {:.4}", s.mean, s.worst);
     let mut out = String::new();
-    out += &format!(
-        "joint DTW (rad/step):       {}\n",
-        st(&f.joint_dtw_rad_per_step)
+    let line = |label: String, value: String| format!("{label:<34}{value}\n");
+    out += &line(
+        format!("joint DTW ({unit}/step):"),
+        st(&f.joint_dtw_rad_per_step),
     );
     if let Some(w) = &f.wrist_dtw_mm {
-        out += &format!("wrist-path DTW (mm/step):   {}\n", st(w));
+        out += &line("wrist-path DTW (mm/step):".into(), st(w));
     }
-    out += &format!("apex error (rad):           {}\n", st(&f.apex_error_rad));
-    out += &format!("final-posture error (rad):  {}\n", st(&f.final_error_rad));
-    out += &format!("duration ratio:             {}\n", st(&f.duration_ratio));
+    out += &line(format!("apex error ({unit}):"), st(&f.apex_error_rad));
+    out += &line(
+        format!("final-posture error ({unit}):"),
+        st(&f.final_error_rad),
+    );
+    out += &line("duration ratio:".into(), st(&f.duration_ratio));
     out += &format!(
         "smoothness: normalized jerk {}, velocity reversals {} ({:?} per column)\n",
         f.reproduction_smoothness
