@@ -21,6 +21,14 @@ pub fn wrist_path(arm: &NaoArm, postures: &[Vec<f64>]) -> Result<Vec<[f64; 3]>, 
         .collect()
 }
 
+/// The `l_wrist` path of every demonstration (see [`wrist_path`]).
+pub fn demo_wrist_paths(
+    arm: &NaoArm,
+    demos: &[Demonstration],
+) -> Result<Vec<Vec<[f64; 3]>>, ExperimentError> {
+    demos.iter().map(|d| wrist_path(arm, &d.rows)).collect()
+}
+
 /// Whether `columns` are the arm's joints in the model's order (then wrist paths exist).
 pub fn are_arm_joints(columns: &[String]) -> bool {
     columns.len() == JOINT_NAMES.len() && columns.iter().zip(JOINT_NAMES).all(|(c, j)| c == j)

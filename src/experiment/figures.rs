@@ -112,6 +112,15 @@ impl<'a> Path3<'a> {
     }
 }
 
+/// The demonstrations' wrist paths, each in its palette colour.
+pub fn demo_paths(wrists: &[Vec<[f64; 3]>]) -> Vec<Path3<'_>> {
+    wrists
+        .iter()
+        .enumerate()
+        .map(|(i, w)| Path3::demo(i, w))
+        .collect()
+}
+
 /// The wrist paths seen from the front (y-z plane: as a viewer facing the robot sees it, the
 /// robot's left on the right of the picture) and from the side (x-z plane), in millimetres,
 /// with equal axis scales.

@@ -13,7 +13,7 @@ pub mod report;
 pub mod variants;
 
 pub use demonstrate::{joint_limits, record_demonstrations, DemoSettings};
-pub use evaluate::{are_arm_joints, evaluate, trajectory, wrist_path};
+pub use evaluate::{are_arm_joints, demo_wrist_paths, evaluate, trajectory, wrist_path};
 pub use execute::{clamp_to_ranges, execute_postures, Transition};
 pub use film::film;
 pub use pipeline::{learn_and_reproduce, reproduce_variant, sample_period, Outcome, Training};

@@ -8,10 +8,10 @@ use anyhow::{bail, Context, Result};
 
 use cosco_hsom::demos::{validate_set, write_csv, Demonstration};
 use cosco_hsom::experiment::baseline::{fig3_png, fig5_png, run_baseline, GMR_COLOR};
-use cosco_hsom::experiment::figures::{joint_panels_png, wrist_png, Curve, Path3};
+use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
 use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report};
 use cosco_hsom::experiment::{
-    are_arm_joints, learn_and_reproduce, sample_period, wrist_path, Training, Transition,
+    are_arm_joints, demo_wrist_paths, learn_and_reproduce, sample_period, Training, Transition,
 };
 use cosco_hsom::gmr::{load_model, save_model, ComponentChoice, GmrParams, MIN_DEMONSTRATIONS};
 use cosco_hsom::metrics::MetricsParams;
@@ -139,15 +139,8 @@ pub fn baseline_section(
     )?;
     files.push("joints_compare.png".into());
 
-    let demo_wrists = demos
-        .iter()
-        .map(|d| wrist_path(arm, &d.rows))
-        .collect::<Result<Vec<_>, _>>()?;
-    let mut paths: Vec<Path3> = demo_wrists
-        .iter()
-        .enumerate()
-        .map(|(i, w)| Path3::demo(i, w))
-        .collect();
+    let demo_wrists = demo_wrist_paths(arm, demos)?;
+    let mut paths = demo_paths(&demo_wrists);
     paths.push(Path3::reproduction(
         "CoSCo-HSOM reproduction",
         BLACK,

@@ -12,12 +12,12 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use cosco_hsom::config::{load_config, parse_config, HsomConfig};
 use cosco_hsom::demos::{self, write_csv, Demonstration};
-use cosco_hsom::experiment::figures::{joint_panels_png, wrist_png, Curve, Path3};
+use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
 use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report, Stage};
 use cosco_hsom::experiment::variants::variants;
 use cosco_hsom::experiment::{
-    are_arm_joints, evaluate, film, learn_and_reproduce, record_demonstrations, sample_period,
-    wrist_path, DemoSettings, Training, Transition,
+    are_arm_joints, demo_wrist_paths, evaluate, film, learn_and_reproduce, record_demonstrations,
+    sample_period, DemoSettings, Training, Transition,
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::hsom::Hsom;
@@ -350,15 +350,8 @@ pub fn main_job(job: &Job) -> Result<Report> {
         "rad",
     )?;
     files.push("joints.png".into());
-    let demo_wrists = demos
-        .iter()
-        .map(|d| wrist_path(&arm, &d.rows))
-        .collect::<Result<Vec<_>, _>>()?;
-    let mut paths: Vec<Path3> = demo_wrists
-        .iter()
-        .enumerate()
-        .map(|(i, w)| Path3::demo(i, w))
-        .collect();
+    let demo_wrists = demo_wrist_paths(&arm, &demos)?;
+    let mut paths = demo_paths(&demo_wrists);
     paths.push(Path3::reproduction(
         "CoSCo-HSOM reproduction",
         BLACK,
