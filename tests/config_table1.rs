@@ -40,6 +40,7 @@ fn table1_file_reproduces_the_paper_table() {
     b.reproduction.continuity = 0.0;
     b.reproduction.reflex = Reflex::Successor;
     b.reproduction.timing = Timing::Speed;
+    b.reproduction.loop_visits = 2;
     assert_eq!(p, b.check("x").unwrap().params());
 }
 
@@ -391,6 +392,11 @@ fn new_options_parse_and_bad_values_are_named() {
             "<minAccuracy>0.2<",
             "<minAccuracy>2<",
             "reproduction/minAccuracy",
+        ),
+        (
+            "<loopWindow>24<",
+            "<loopWindow>0<",
+            "reproduction/loopWindow",
         ),
     ] {
         assert!(t.contains(from), "{from}");

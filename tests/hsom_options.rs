@@ -240,6 +240,43 @@ fn the_model_keeps_the_column_names_in_both_formats() {
 }
 
 #[test]
+fn loop_breaking_is_off_by_default_deterministic_and_keeps_good_reproductions() {
+    assert_eq!(HsomParams::table1().reproduction.loop_visits, 0);
+    for (name, demos) in [("joints6", joints6(5, 9)), ("idle", idle_gesture(3))] {
+        let dims = demos[0].rows[0].len();
+        let mut off = file_options(dims);
+        off.reproduction.loop_visits = 0;
+        let on = file_options(dims);
+        assert!(
+            on.reproduction.loop_visits > 0,
+            "configs/table1.xml switches it on"
+        );
+        let init = &demos[0].rows[0];
+        let m = off.clone().check("t").unwrap().fit(&demos[1..]).unwrap();
+        let (r_off, r_on) = (&off.reproduction, &on.reproduction);
+        let a = m.reproduce_with(init, r_off).unwrap();
+        let b = m.reproduce_with(init, r_on).unwrap();
+        assert_eq!(
+            b,
+            m.reproduce_with(init, r_on).unwrap(),
+            "{name}: not deterministic"
+        );
+        let (ea, eb) = (
+            relative_dtw(&a.postures, &demos[1..]),
+            relative_dtw(&b.postures, &demos[1..]),
+        );
+        println!("{name}: loop breaking off {ea:.4}, on {eb:.4}");
+        assert!(eb < 0.08, "{name}: with loop breaking {eb}");
+        // the strictest setting (any revisit within a window of 1) never panics
+        let mut strict = r_on.clone();
+        strict.loop_visits = 1;
+        strict.loop_window = 1;
+        let c = m.reproduce_with(init, &strict).unwrap();
+        assert!(c.postures.iter().flatten().all(|v| v.is_finite()));
+    }
+}
+
+#[test]
 fn new_options_in_small_configurations_never_panic_and_round_trip() {
     use cosco_hsom::config::{LevelParams, MemoryMode, PartialTraining};
     use cosco_hsom::som::Topology;

@@ -207,6 +207,13 @@ pub struct ReproductionParams {
     pub reflex: Reflex,
     /// Postures per executed bottom node.
     pub timing: Timing,
+    /// Loop breaking: a bottom node about to be executed that is already among the last
+    /// `loop_window` executed bottom nodes `loop_visits` times marks a loop; the learned
+    /// successor (of the newest recent node whose successor is not among them) is executed
+    /// instead. 0 disables it (the paper executes what the hierarchy predicts).
+    pub loop_visits: usize,
+    /// Number of most recently executed bottom nodes looked at by `loop_visits`.
+    pub loop_window: usize,
 }
 
 impl Default for ReproductionParams {
@@ -230,6 +237,8 @@ impl Default for ReproductionParams {
             min_accuracy: 0.0,
             reflex: Reflex::Bmu,
             timing: Timing::Step,
+            loop_visits: 0,
+            loop_window: 24,
         }
     }
 }
@@ -452,6 +461,8 @@ impl HsomParams {
         if let Some(m) = r.max_level {
             range("reproduction/maxLevel", m, 0, self.height - 1)?;
         }
+        range("reproduction/loopVisits", r.loop_visits, 0, 1_000_000)?;
+        range("reproduction/loopWindow", r.loop_window, 1, 1_000_000)?;
         Ok(HsomConfig {
             params: self,
             source: source.to_string(),

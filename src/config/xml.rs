@@ -107,6 +107,10 @@ struct RawReproduction {
     timing: Option<String>,
     #[serde(rename = "minAccuracy")]
     min_accuracy: Option<String>,
+    #[serde(rename = "loopVisits")]
+    loop_visits: Option<String>,
+    #[serde(rename = "loopWindow")]
+    loop_window: Option<String>,
 }
 
 /// Read, parse and validate a configuration file.
@@ -432,6 +436,8 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
             )?,
             closed_loop: f.opt("reproduction/closedLoop", &r.closed_loop, d.closed_loop)?,
             min_accuracy: f.opt("reproduction/minAccuracy", &r.min_accuracy, d.min_accuracy)?,
+            loop_visits: f.opt("reproduction/loopVisits", &r.loop_visits, d.loop_visits)?,
+            loop_window: f.opt("reproduction/loopWindow", &r.loop_window, d.loop_window)?,
             reflex: f.name(
                 "reproduction/reflex",
                 &r.reflex,
@@ -644,6 +650,8 @@ impl HsomConfig {
         };
         let _ = writeln!(s, "    <minAccuracy>{}</minAccuracy>", r.min_accuracy);
         let _ = writeln!(s, "    <reflex>{rf}</reflex>");
+        let _ = writeln!(s, "    <loopVisits>{}</loopVisits>", r.loop_visits);
+        let _ = writeln!(s, "    <loopWindow>{}</loopWindow>", r.loop_window);
         let tm = match r.timing {
             Timing::Step => "step",
             Timing::Dwell => "dwell",

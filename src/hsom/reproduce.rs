@@ -56,6 +56,8 @@ struct Gen<'a> {
     still_window: usize,
     /// Longest learned dwell (steps).
     max_dwell: f64,
+    /// Bottom nodes pushed so far, oldest first (`loopVisits`).
+    recent: Vec<usize>,
 }
 
 impl Gen<'_> {
@@ -247,6 +249,29 @@ impl Gen<'_> {
         }
     }
 
+    /// `loopVisits`: when `node` is already `loop_visits` times among the last `loop_window`
+    /// executed bottom nodes, the reproduction is cycling; the learned successor of the
+    /// newest recent node whose successor is not among them (the way out of the cycle) is
+    /// returned instead. Otherwise `node`.
+    fn break_loop(&self, node: usize) -> usize {
+        let v = self.r.loop_visits;
+        if v == 0 {
+            return node;
+        }
+        let n = self.recent.len();
+        let win = &self.recent[n.saturating_sub(self.r.loop_window.max(1))..];
+        if win.iter().filter(|&&x| x == node).count() < v {
+            return node;
+        }
+        for &x in win.iter().rev() {
+            let s = self.m.successor[x];
+            if s != u32::MAX && !win.contains(&(s as usize)) {
+                return s as usize;
+            }
+        }
+        node
+    }
+
     /// Execute bottom node `node`: its action half is the next posture (reached over the
     /// node's dwell with `timing = dwell`); push it and climb the schedule. With
     /// `listUpdate = onChange` a node equal to the newest bottom entry is not executed.
@@ -257,6 +282,7 @@ impl Gen<'_> {
         skip: Option<usize>,
         pending: Option<(usize, usize)>,
     ) {
+        let node = self.break_loop(node);
         if self.stm.on_change && self.stm.last0 == Some(node) {
             return;
         }
@@ -334,6 +360,7 @@ impl Gen<'_> {
             return;
         }
         self.s += 1;
+        self.recent.push(pushed);
         self.emit_postures(&cur, &y, k, by);
         self.prev_node = (self.s > 1).then_some(self.last_node);
         self.last_node = pushed;
@@ -489,6 +516,7 @@ impl Hsom {
             min_len: (r.min_length_fraction * self.demo_len[0]).ceil().max(2.0) as usize,
             prev_node: None,
             acc: 0.0,
+            recent: Vec::new(),
             max_dwell: self.dwell.iter().cloned().fold(1.0, f64::max),
             still_window: if r.timing != Timing::Step {
                 let dmax = self.dwell.iter().cloned().fold(1.0, f64::max);
