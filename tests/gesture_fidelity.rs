@@ -24,18 +24,19 @@ const APEX_RAD: f64 = 0.45;
 /// (trained: 0.003-0.15 when it does; 1.0-1.25 on the runs that loop; untrained 0.9-1.4).
 const FINAL_RAD: f64 = 0.25;
 /// Mean wrist-path DTW, mm per step: the hand follows the demonstrated path (trained:
-/// 3.8-10.9 mm; untrained 28-45 mm; another gesture 38-161 mm).
+/// 3.7-14.7 mm; untrained 19-50 mm; another gesture 54-105 mm).
 const WRIST_DTW_MM: f64 = 15.0;
 /// Velocity reversals of the reproduction (all joints) at most this factor times the
 /// demonstrations' mean plus `REVERSALS_SLACK`: no more oscillation than a bound (demos 4-10;
-/// trained 4-40; the paper-literal reproduction 146-860; runs that loop 218-305).
+/// trained 4-51; the paper-literal reproduction 146-860; runs that loop 218-305).
 const REVERSALS_FACTOR: f64 = 5.0;
 const REVERSALS_SLACK: f64 = 20.0;
 /// Seeds of the demonstrations; a gesture passes when at least `MIN_PASSING` of them pass
-/// every check (measured over seeds 1-5: 18 of 20 runs pass; wave seed 5 and salute seed 2
-/// loop around the apex), and every negative control must fail on every seed.
+/// every check (measured over seeds 1-5: 20 of 20 runs pass with the loop breaker; before it,
+/// wave seed 5 and salute seed 2 looped around the apex), and every negative control must
+/// fail on every seed.
 const SEEDS: [u64; 3] = [1, 2, 3];
-const MIN_PASSING: usize = 2;
+const MIN_PASSING: usize = 3;
 
 fn failures(f: &FidelityReport) -> Vec<String> {
     eprintln!(
