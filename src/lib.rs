@@ -2,7 +2,8 @@
 //! with a MuJoCo-simulated Nao left arm to teach it gestures and reproduce them.
 //!
 //! Rooms:
-//! - [`mujoco`]: the only place with `unsafe`: bindings to Debian's MuJoCo 2.2.2 and a safe layer.
+//! - [`mujoco`]: bindings to Debian's MuJoCo 2.2.2 and a safe layer; with [`render`], the only
+//!   places with `unsafe`.
 //! - [`render`]: off-screen rendering with OSMesa, PNG frames, GIF clips, contact sheets.
 //! - [`sim`]: the Nao left arm model and its position controller with 40 Hz encoder recording.
 //! - [`som`]: a Kohonen map.
@@ -14,6 +15,8 @@
 //! - [`gesture`]: synthetic human-like demonstrations.
 //! - [`metrics`]: fidelity metrics.
 //! - [`plot`]: PNG plots.
+//! - [`experiment`]: the paper's experiment end to end: demonstrate, execute, evaluate, report.
+//! - [`fsutil`]: atomic file writes.
 #![warn(missing_docs)]
 
 pub mod config;
