@@ -41,6 +41,7 @@ fn table1_file_reproduces_the_paper_table() {
     b.reproduction.reflex = Reflex::Successor;
     b.reproduction.timing = Timing::Speed;
     b.reproduction.loop_visits = 2;
+    b.reproduction.revisit_successors = true;
     assert_eq!(p, b.check("x").unwrap().params());
 }
 

@@ -214,6 +214,12 @@ pub struct ReproductionParams {
     pub loop_visits: usize,
     /// Number of most recently executed bottom nodes looked at by `loop_visits`.
     pub loop_window: usize,
+    /// Successors that remember revisits: on the first execution of a bottom node that the
+    /// demonstrations revisited, the successor reflex takes the transition that came first in
+    /// the demonstrations (among the equally frequent ones), and the loop breaker, when no
+    /// recent node's successor leaves the cycle, takes the transition that came last. false:
+    /// one successor per node.
+    pub revisit_successors: bool,
 }
 
 impl Default for ReproductionParams {
@@ -239,6 +245,7 @@ impl Default for ReproductionParams {
             timing: Timing::Step,
             loop_visits: 0,
             loop_window: 24,
+            revisit_successors: false,
         }
     }
 }

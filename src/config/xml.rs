@@ -111,6 +111,8 @@ struct RawReproduction {
     loop_visits: Option<String>,
     #[serde(rename = "loopWindow")]
     loop_window: Option<String>,
+    #[serde(rename = "revisitSuccessors")]
+    revisit_successors: Option<String>,
 }
 
 /// Read, parse and validate a configuration file.
@@ -438,6 +440,11 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
             min_accuracy: f.opt("reproduction/minAccuracy", &r.min_accuracy, d.min_accuracy)?,
             loop_visits: f.opt("reproduction/loopVisits", &r.loop_visits, d.loop_visits)?,
             loop_window: f.opt("reproduction/loopWindow", &r.loop_window, d.loop_window)?,
+            revisit_successors: f.opt(
+                "reproduction/revisitSuccessors",
+                &r.revisit_successors,
+                d.revisit_successors,
+            )?,
             reflex: f.name(
                 "reproduction/reflex",
                 &r.reflex,
@@ -652,6 +659,11 @@ impl HsomConfig {
         let _ = writeln!(s, "    <reflex>{rf}</reflex>");
         let _ = writeln!(s, "    <loopVisits>{}</loopVisits>", r.loop_visits);
         let _ = writeln!(s, "    <loopWindow>{}</loopWindow>", r.loop_window);
+        let _ = writeln!(
+            s,
+            "    <revisitSuccessors>{}</revisitSuccessors>",
+            r.revisit_successors
+        );
         let tm = match r.timing {
             Timing::Step => "step",
             Timing::Dwell => "dwell",

@@ -43,6 +43,13 @@ pub struct Hsom {
     /// Per bottom node: the distinct node that most often followed its runs (`u32::MAX`:
     /// none).
     pub(crate) successor: Vec<u32>,
+    /// Per bottom node: as `successor`, but ties between equally frequent transitions go to
+    /// the one that came first in the demonstrations (smallest mean relative position); equal
+    /// to `successor` for nodes no demonstration revisited (`revisitSuccessors`).
+    pub(crate) first_successor: Vec<u32>,
+    /// Per bottom node: the distinct node that followed it latest in the demonstrations
+    /// (largest mean relative position of the transition; `u32::MAX`: none).
+    pub(crate) last_successor: Vec<u32>,
     /// Names of the demonstrations' columns (`x0`, `x1`, ... for plain series).
     pub(crate) columns: Vec<String>,
     /// Per level: how often its partial match predicted the next entry of the level below
@@ -582,6 +589,8 @@ impl HsomConfig {
             dwell: vec![0.0; p.levels[0].rows * p.levels[0].cols],
             speed: vec![0.0; p.levels[0].rows * p.levels[0].cols],
             successor: vec![u32::MAX; p.levels[0].rows * p.levels[0].cols],
+            first_successor: vec![u32::MAX; p.levels[0].rows * p.levels[0].cols],
+            last_successor: vec![u32::MAX; p.levels[0].rows * p.levels[0].cols],
             columns,
             accuracy: vec![0.0; p.height],
         };
@@ -613,6 +622,10 @@ impl Hsom {
         let mut path_sum = vec![0.0f64; n0];
         // (from, to) -> (forward transitions, all transitions)
         let mut trans: std::collections::BTreeMap<(usize, usize), (u32, u32)> = Default::default();
+        // nodes with more than one run within one demonstration (oscillations, turnarounds)
+        let mut revisited = vec![false; n0];
+        // per transition: sum of the relative positions (run index / runs) where it occurred
+        let mut trans_phase: std::collections::BTreeMap<(usize, usize), f64> = Default::default();
         let mut runs_per_demo = Vec::with_capacity(norm.len());
         let horizon = p.action_horizon.max(1);
         let offset = p.reproduction.offset;
@@ -720,6 +733,12 @@ impl Hsom {
                     let e = trans.entry((n, to)).or_insert((0, 0));
                     e.0 += u32::from(!back);
                     e.1 += 1;
+                    *trans_phase.entry((n, to)).or_insert(0.0) += i as f64 / k as f64;
+                }
+            }
+            for (i, r) in runs.iter().enumerate() {
+                if runs[..i].iter().any(|q| q.0 == r.0) {
+                    revisited[r.0] = true;
                 }
             }
             runs_per_demo.push(k as f64);
@@ -737,14 +756,36 @@ impl Hsom {
             };
         }
         // most frequent successor, ties to the smaller node index (BTreeMap order)
-        // the most frequent forward successor, else the most frequent one
+        // the most frequent forward successor, else the most frequent one;
+        // `first_successor`: the same counts, ties to the transition with the smallest mean
+        // relative position (only for nodes revisited within a demonstration);
+        // `last_successor`: the transition with the largest mean relative position
         let mut best = vec![((0u32, 0u32), u32::MAX); n0];
+        let mut first = vec![((0u32, 0u32), f64::INFINITY, u32::MAX); n0];
         for (&(from, to), &c) in &trans {
             if c > best[from].0 {
                 best[from] = (c, to as u32);
             }
+            // the same counts, ties to the transition that came first in the demonstrations
+            let ph = trans_phase[&(from, to)] / c.1.max(1) as f64;
+            if c > first[from].0 || (c == first[from].0 && ph < first[from].1) {
+                first[from] = (c, ph, to as u32);
+            }
         }
         self.successor = best.into_iter().map(|(_, t)| t).collect();
+        let mut late = vec![(f64::NEG_INFINITY, u32::MAX); n0];
+        for (&(from, to), &c) in &trans {
+            let ph = trans_phase[&(from, to)] / c.1.max(1) as f64;
+            if ph > late[from].0 {
+                late[from] = (ph, to as u32);
+            }
+        }
+        self.last_successor = late.into_iter().map(|(_, t)| t).collect();
+        self.first_successor = first
+            .into_iter()
+            .enumerate()
+            .map(|(i, (_, _, t))| if !revisited[i] { self.successor[i] } else { t })
+            .collect();
         self.accuracy = (0..p.height)
             .map(|l| {
                 if acc_n[l] > 0 {

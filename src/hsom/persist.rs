@@ -16,7 +16,7 @@ const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of both formats.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 /// Largest embedded configuration accepted (bytes).
 const MAX_CONFIG: u64 = 1 << 20;
 
@@ -111,7 +111,12 @@ impl Hsom {
         {
             f(&mut b, v);
         }
-        for &v in &self.successor {
+        for &v in self
+            .successor
+            .iter()
+            .chain(&self.first_successor)
+            .chain(&self.last_successor)
+        {
             b.extend_from_slice(&v.to_le_bytes());
         }
         for c in &self.columns {
@@ -235,6 +240,12 @@ impl Hsom {
         let successor = (0..n0)
             .map(|_| r.u32("successors"))
             .collect::<Result<Vec<u32>, _>>()?;
+        let first_successor = (0..n0)
+            .map(|_| r.u32("first successors"))
+            .collect::<Result<Vec<u32>, _>>()?;
+        let last_successor = (0..n0)
+            .map(|_| r.u32("last successors"))
+            .collect::<Result<Vec<u32>, _>>()?;
         let mut columns = Vec::with_capacity(state.min(r.remaining() / 4));
         for _ in 0..state {
             let n = r.u32("column name length")? as usize;
@@ -271,6 +282,8 @@ impl Hsom {
                 dwell,
                 speed,
                 successor,
+                first_successor,
+                last_successor,
                 columns,
                 accuracy,
             },
@@ -335,6 +348,16 @@ impl Hsom {
             s,
             "successors {}",
             join(&mut self.successor.iter().map(|v| v.to_string()))
+        );
+        let _ = writeln!(
+            s,
+            "first-successors {}",
+            join(&mut self.first_successor.iter().map(|v| v.to_string()))
+        );
+        let _ = writeln!(
+            s,
+            "last-successors {}",
+            join(&mut self.last_successor.iter().map(|v| v.to_string()))
         );
         let _ = writeln!(s, "columns {}", self.columns.len());
         for c in &self.columns {
@@ -467,6 +490,14 @@ impl Hsom {
         let speed: Vec<f64> = values(next("speed")?, "speed ", n0, &corrupted)?;
         let accuracy: Vec<f64> = values(next("accuracy")?, "accuracy ", shapes.len(), &corrupted)?;
         let successor: Vec<u32> = values(next("successors")?, "successors ", n0, &corrupted)?;
+        let first_successor: Vec<u32> = values(
+            next("first-successors")?,
+            "first-successors ",
+            n0,
+            &corrupted,
+        )?;
+        let last_successor: Vec<u32> =
+            values(next("last-successors")?, "last-successors ", n0, &corrupted)?;
         let nc: Vec<usize> = values(next("columns")?, "columns ", 1, &corrupted)?;
         if nc[0] != state {
             return Err(corrupted(format!(
@@ -570,6 +601,8 @@ impl Hsom {
                 dwell,
                 speed,
                 successor,
+                first_successor,
+                last_successor,
                 columns,
                 accuracy,
             },
@@ -601,7 +634,12 @@ fn build(
             .accuracy
             .iter()
             .all(|v| v.is_finite() && (0.0..=1.0).contains(v))
-        && extra.successor.iter().all(|&v| v < n0 || v == u32::MAX);
+        && extra
+            .successor
+            .iter()
+            .chain(&extra.first_successor)
+            .chain(&extra.last_successor)
+            .all(|&v| v < n0 || v == u32::MAX);
     if !stats_ok {
         return Err(PersistError::Corrupted {
             path: path.to_path_buf(),
@@ -639,6 +677,8 @@ fn build(
         dwell: extra.dwell,
         speed: extra.speed,
         successor: extra.successor,
+        first_successor: extra.first_successor,
+        last_successor: extra.last_successor,
         columns: extra.columns,
         accuracy: extra.accuracy,
     })
@@ -650,6 +690,8 @@ struct Extra {
     dwell: Vec<f64>,
     speed: Vec<f64>,
     successor: Vec<u32>,
+    first_successor: Vec<u32>,
+    last_successor: Vec<u32>,
     columns: Vec<String>,
     accuracy: Vec<f64>,
 }

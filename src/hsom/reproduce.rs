@@ -252,7 +252,8 @@ impl Gen<'_> {
     /// `loopVisits`: when `node` is already `loop_visits` times among the last `loop_window`
     /// executed bottom nodes, the reproduction is cycling; the learned successor of the
     /// newest recent node whose successor is not among them (the way out of the cycle) is
-    /// returned instead. Otherwise `node`.
+    /// returned instead; with `revisitSuccessors`, failing that, the latest learned transition
+    /// (`last_successor`) of the newest recent node that leaves them. Otherwise `node`.
     fn break_loop(&self, node: usize) -> usize {
         let v = self.r.loop_visits;
         if v == 0 {
@@ -267,6 +268,14 @@ impl Gen<'_> {
             let s = self.m.successor[x];
             if s != u32::MAX && !win.contains(&(s as usize)) {
                 return s as usize;
+            }
+        }
+        if self.r.revisit_successors {
+            for &x in win.iter().rev() {
+                let s = self.m.last_successor[x];
+                if s != u32::MAX && !win.contains(&(s as usize)) {
+                    return s as usize;
+                }
             }
         }
         node
@@ -591,8 +600,16 @@ impl Hsom {
                 let y = g.out.last().cloned().unwrap_or_default();
                 let (b, _) = self.maps[0].bmu_range(&y, 0..state);
                 let stationary = g.s > 0 && b == g.last_node;
-                let learned = self
-                    .successor
+                // revisitSuccessors: the first execution of a node follows the transition the
+                // demonstrations took first from it (e.g. into an oscillation, not out of it)
+                let first_visit = r.revisit_successors
+                    && g.recent.iter().filter(|&&x| x == g.last_node).count() <= 1;
+                let succ = if first_visit {
+                    &self.first_successor
+                } else {
+                    &self.successor
+                };
+                let learned = succ
                     .get(g.last_node)
                     .copied()
                     .filter(|&n| g.s > 0 && n != u32::MAX);
