@@ -18,13 +18,13 @@ use cosco_hsom::metrics::{FidelityReport, MetricsParams};
 use cosco_hsom::sim::NaoArm;
 
 /// Mean apex (key-pose) error over the demonstrations, rad: the reproduction gets close to
-/// the pose the gesture is about (trained, seeds 1-5: 0.05-0.40).
+/// the pose the gesture is about (trained, seeds 1-5: 0.05-0.18).
 const APEX_RAD: f64 = 0.45;
 /// Mean final-posture error, rad: the reproduction comes back to the initial posture
 /// (trained: 0.003-0.15 when it does; 1.0-1.25 on the runs that loop; untrained 0.9-1.4).
 const FINAL_RAD: f64 = 0.25;
 /// Mean wrist-path DTW, mm per step: the hand follows the demonstrated path (trained:
-/// 3.7-14.7 mm; untrained 19-50 mm; another gesture 54-105 mm).
+/// 4.0-15.0 mm; untrained 19-50 mm; another gesture 54-105 mm).
 const WRIST_DTW_MM: f64 = 15.0;
 /// Velocity reversals of the reproduction (all joints) at most this factor times the
 /// demonstrations' mean plus `REVERSALS_SLACK`: no more oscillation than a bound (demos 4-10;
