@@ -32,6 +32,8 @@ pub fn paper_literal(p: &HsomParams) -> HsomParams {
     q.reproduction.continuity = 0.0;
     q.reproduction.closed_loop = false;
     q.reproduction.end_tolerance = 0.0;
+    q.reproduction.loop_visits = 0;
+    q.reproduction.revisit_successors = false;
     q
 }
 
@@ -95,6 +97,16 @@ pub fn variants(
         let mut q = p.clone();
         q.reproduction.end_tolerance = 0.0;
         push("without endTolerance", q, transition)?;
+    }
+    if p.reproduction.loop_visits > 0 {
+        let mut q = p.clone();
+        q.reproduction.loop_visits = 0;
+        push("without the loop breaker", q, transition)?;
+    }
+    if p.reproduction.revisit_successors {
+        let mut q = p.clone();
+        q.reproduction.revisit_successors = false;
+        push("without revisitSuccessors", q, transition)?;
     }
     let other = match transition {
         Transition::Linear => Transition::MinimumJerk { tolerance: 0.02 },
