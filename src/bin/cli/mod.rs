@@ -215,21 +215,6 @@ pub const FIG4_JOINTS: [(usize, &str); 4] = [
     (3, "LElbowRoll"),
 ];
 
-/// One line for the terminal.
-pub fn summary_line(r: &Report) -> String {
-    let m = &r.methods[0];
-    format!(
-        "{}: joint DTW {:.4} rad/step, wrist DTW {} mm, apex error {:.3} rad, final error {:.3} rad, duration ratio {:.2}, reversals {}",
-        m.name,
-        m.fidelity.joint_dtw_rad_per_step.mean,
-        m.fidelity.wrist_dtw_mm.map_or("n/a".into(), |s| format!("{:.1}", s.mean)),
-        m.fidelity.apex_error_rad.mean,
-        m.fidelity.final_error_rad.mean,
-        m.fidelity.duration_ratio.mean,
-        m.fidelity.reproduction_smoothness.total_reversals,
-    )
-}
-
 /// The main job: demonstrations -> training -> reproduction in the simulator -> report,
 /// plots and clip, all written into `job.out`.
 pub fn main_job(job: &Job) -> Result<Report> {
