@@ -62,9 +62,12 @@ pub fn require_arm_joints(demos: &[Demonstration]) -> Result<()> {
 /// `fig3_gmr_training_data.png`, `fig5_gmr_lshoulderpitch.png`, and, with CoSCo-HSOM's
 /// executed trajectory `hsom`, `joints_compare.png` and `wrist_compare.png`. Returns the
 /// baseline's column of the comparison table; the files written are appended to `files`.
+/// `demo_wrists` are the demonstrations' wrist paths (`demo_wrist_paths`), computed once by
+/// the caller.
 pub fn baseline_section(
     arm: &NaoArm,
     demos: &[Demonstration],
+    demo_wrists: &[Vec<[f64; 3]>],
     hsom: &Recording,
     out: &Path,
     components: ComponentChoice,
@@ -139,8 +142,7 @@ pub fn baseline_section(
     )?;
     files.push("joints_compare.png".into());
 
-    let demo_wrists = demo_wrist_paths(arm, demos)?;
-    let mut paths = demo_paths(&demo_wrists);
+    let mut paths = demo_paths(demo_wrists);
     paths.push(Path3::reproduction(
         "CoSCo-HSOM reproduction",
         BLACK,
@@ -265,7 +267,16 @@ pub fn compare(job: &CompareJob) -> Result<Report> {
     let (hsom_result, hsom_exec) =
         hsom_method(&cfg, &arm, &demos, job.transition, out, &mut files)?;
     clock.lap("CoSCo-HSOM (train + reproduce + execute + metrics)");
-    let gmr_result = baseline_section(&arm, &demos, &hsom_exec, out, job.components, &mut files)?;
+    let demo_wrists = demo_wrist_paths(&arm, &demos)?;
+    let gmr_result = baseline_section(
+        &arm,
+        &demos,
+        &demo_wrists,
+        &hsom_exec,
+        out,
+        job.components,
+        &mut files,
+    )?;
     clock.lap("GMM/GMR (fit + reproduce + execute + metrics + plots)");
 
     files.push("report.md".into());

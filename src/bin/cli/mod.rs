@@ -356,6 +356,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
     match compare::baseline_section(
         &arm,
         &demos,
+        &demo_wrists,
         executed,
         out,
         compare::DEFAULT_COMPONENTS,
