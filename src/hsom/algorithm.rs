@@ -311,6 +311,17 @@ fn check_series(series: &[Series<'_>], state: usize) -> Result<(), HsomError> {
     Ok(())
 }
 
+/// The demonstrations as borrowed series for training.
+fn demo_series(demos: &[Demonstration]) -> Vec<Series<'_>> {
+    demos
+        .iter()
+        .map(|d| Series {
+            source: &d.source,
+            rows: &d.rows,
+        })
+        .collect()
+}
+
 fn demo_columns(demos: &[Demonstration]) -> Vec<String> {
     demos.first().map(|d| d.columns.clone()).unwrap_or_default()
 }
@@ -340,26 +351,14 @@ impl HsomConfig {
         demos: &[Demonstration],
         progress: Option<&dyn Fn(usize, usize)>,
     ) -> Result<Hsom, HsomError> {
-        let series: Vec<Series<'_>> = demos
-            .iter()
-            .map(|d| Series {
-                source: &d.source,
-                rows: &d.rows,
-            })
-            .collect();
+        let series = demo_series(demos);
         self.fit_inner(&series, progress, true, demo_columns(demos))
     }
 
     /// An untrained hierarchy: the seeded initial weights (inside the data's bounding box)
     /// with the same statistics as a trained one; the negative control of fidelity tests.
     pub fn initialise(&self, demos: &[Demonstration]) -> Result<Hsom, HsomError> {
-        let series: Vec<Series<'_>> = demos
-            .iter()
-            .map(|d| Series {
-                source: &d.source,
-                rows: &d.rows,
-            })
-            .collect();
+        let series = demo_series(demos);
         self.fit_inner(&series, None, false, demo_columns(demos))
     }
 

@@ -214,38 +214,20 @@ impl Hsom {
         }
         let n0 = shapes[0].0 * shapes[0].1;
         r.need(n0 * 4, "end nodes")?;
-        let end_hits = (0..n0)
-            .map(|_| r.u32("end nodes"))
-            .collect::<Result<Vec<u32>, _>>()?;
+        let end_hits = r.u32s(n0, "end nodes")?;
         let state = config.params().state_length;
         r.need((2 * state + 3) * 8, "normalisation")?;
-        let offset = (0..state)
-            .map(|_| r.f64("offset"))
-            .collect::<Result<Vec<f64>, _>>()?;
-        let scale = (0..state)
-            .map(|_| r.f64("scale"))
-            .collect::<Result<Vec<f64>, _>>()?;
+        let offset = r.f64s(state, "offset")?;
+        let scale = r.f64s(state, "scale")?;
         let dl = [r.f64("lengths")?, r.f64("lengths")?, r.f64("lengths")?];
         r.need((3 + 2 * n0 + height) * 8 + n0 * 4, "run statistics")?;
         let runs = [r.f64("runs")?, r.f64("runs")?, r.f64("runs")?];
-        let dwell = (0..n0)
-            .map(|_| r.f64("dwell"))
-            .collect::<Result<Vec<f64>, _>>()?;
-        let speed = (0..n0)
-            .map(|_| r.f64("speed"))
-            .collect::<Result<Vec<f64>, _>>()?;
-        let accuracy = (0..height)
-            .map(|_| r.f64("accuracy"))
-            .collect::<Result<Vec<f64>, _>>()?;
-        let successor = (0..n0)
-            .map(|_| r.u32("successors"))
-            .collect::<Result<Vec<u32>, _>>()?;
-        let first_successor = (0..n0)
-            .map(|_| r.u32("first successors"))
-            .collect::<Result<Vec<u32>, _>>()?;
-        let last_successor = (0..n0)
-            .map(|_| r.u32("last successors"))
-            .collect::<Result<Vec<u32>, _>>()?;
+        let dwell = r.f64s(n0, "dwell")?;
+        let speed = r.f64s(n0, "speed")?;
+        let accuracy = r.f64s(height, "accuracy")?;
+        let successor = r.u32s(n0, "successors")?;
+        let first_successor = r.u32s(n0, "first successors")?;
+        let last_successor = r.u32s(n0, "last successors")?;
         let mut columns = Vec::with_capacity(state.min(r.remaining() / 4));
         for _ in 0..state {
             let n = r.u32("column name length")? as usize;
@@ -303,62 +285,21 @@ impl Hsom {
         for line in xml.lines() {
             let _ = writeln!(s, "{line}");
         }
-        let join = |v: &mut dyn Iterator<Item = String>| v.collect::<Vec<_>>().join(" ");
-        let _ = writeln!(
-            s,
-            "offset {}",
-            join(&mut self.offset.iter().map(|v| v.to_string()))
-        );
-        let _ = writeln!(
-            s,
-            "scale {}",
-            join(&mut self.scale.iter().map(|v| v.to_string()))
-        );
-        let _ = writeln!(
-            s,
-            "demo-lengths {}",
-            join(&mut self.demo_len.iter().map(|v| v.to_string()))
-        );
-        let _ = writeln!(
-            s,
-            "end-nodes {}",
-            join(&mut self.end_hits.iter().map(|v| v.to_string()))
-        );
-        let _ = writeln!(
-            s,
-            "demo-runs {}",
-            join(&mut self.demo_runs.iter().map(|v| v.to_string()))
-        );
-        let _ = writeln!(
-            s,
-            "dwell {}",
-            join(&mut self.dwell.iter().map(|v| v.to_string()))
-        );
-        let _ = writeln!(
-            s,
-            "speed {}",
-            join(&mut self.speed.iter().map(|v| v.to_string()))
-        );
-        let _ = writeln!(
-            s,
-            "accuracy {}",
-            join(&mut self.accuracy.iter().map(|v| v.to_string()))
-        );
-        let _ = writeln!(
-            s,
-            "successors {}",
-            join(&mut self.successor.iter().map(|v| v.to_string()))
-        );
-        let _ = writeln!(
-            s,
-            "first-successors {}",
-            join(&mut self.first_successor.iter().map(|v| v.to_string()))
-        );
-        let _ = writeln!(
-            s,
-            "last-successors {}",
-            join(&mut self.last_successor.iter().map(|v| v.to_string()))
-        );
+        fn line<T: ToString>(s: &mut String, key: &str, values: &[T]) {
+            let v: Vec<String> = values.iter().map(T::to_string).collect();
+            let _ = writeln!(s, "{key} {}", v.join(" "));
+        }
+        line(&mut s, "offset", &self.offset);
+        line(&mut s, "scale", &self.scale);
+        line(&mut s, "demo-lengths", &self.demo_len);
+        line(&mut s, "end-nodes", &self.end_hits);
+        line(&mut s, "demo-runs", &self.demo_runs);
+        line(&mut s, "dwell", &self.dwell);
+        line(&mut s, "speed", &self.speed);
+        line(&mut s, "accuracy", &self.accuracy);
+        line(&mut s, "successors", &self.successor);
+        line(&mut s, "first-successors", &self.first_successor);
+        line(&mut s, "last-successors", &self.last_successor);
         let _ = writeln!(s, "columns {}", self.columns.len());
         for c in &self.columns {
             let _ = writeln!(s, "column {}", c.replace(['\n', '\r'], " "));
@@ -374,17 +315,9 @@ impl Hsom {
                 self.qe[l],
                 self.te[l]
             );
-            let _ = writeln!(
-                s,
-                "hits {}",
-                join(&mut self.hits[l].iter().map(|v| v.to_string()))
-            );
+            line(&mut s, "hits", &self.hits[l]);
             for i in 0..m.len() {
-                let _ = writeln!(
-                    s,
-                    "node {}",
-                    join(&mut m.weights(i).iter().map(|v| v.to_string()))
-                );
+                line(&mut s, "node", m.weights(i));
             }
         }
         let sum = fnv1a(s.as_bytes());
@@ -766,5 +699,13 @@ impl<'a> Reader<'a> {
     }
     fn f64(&mut self, what: &str) -> Result<f64, PersistError> {
         Ok(f64::from_bits(self.u64(what)?))
+    }
+    /// `n` f64 values; the caller has checked with [`Reader::need`] that they are there.
+    fn f64s(&mut self, n: usize, what: &str) -> Result<Vec<f64>, PersistError> {
+        (0..n).map(|_| self.f64(what)).collect()
+    }
+    /// `n` u32 values; the caller has checked with [`Reader::need`] that they are there.
+    fn u32s(&mut self, n: usize, what: &str) -> Result<Vec<u32>, PersistError> {
+        (0..n).map(|_| self.u32(what)).collect()
     }
 }
