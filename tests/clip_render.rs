@@ -4,7 +4,7 @@
 use cosco_hsom::experiment::{film, record_demonstrations, DemoSettings};
 use cosco_hsom::gesture::{library::reading_watch, Variation};
 use cosco_hsom::render::RenderOptions;
-use cosco_hsom::sim::NaoArm;
+use cosco_hsom::sim::{NaoArm, Recording};
 
 fn changed_fraction(a: &image::RgbImage, b: &image::RgbImage) -> f64 {
     let changed = a
@@ -15,17 +15,22 @@ fn changed_fraction(a: &image::RgbImage, b: &image::RgbImage) -> f64 {
     changed as f64 / (a.width() * a.height()) as f64
 }
 
-#[test]
-fn clip_frames_change_while_the_arm_moves_and_stop_while_it_holds() {
-    let arm = NaoArm::load_default().unwrap();
-    // No variability and no encoder noise: 1 s of stillness, the gesture, 1 s of stillness.
+/// One reading-watch demonstration with no variability and no encoder noise: 1 s of
+/// stillness, the gesture, 1 s of stillness.
+fn still_gesture(arm: &NaoArm) -> Recording {
     let settings = DemoSettings {
         variation: Variation::none(),
         ..DemoSettings::default()
     };
-    let rec = record_demonstrations(&arm, &reading_watch(), 1, 3, &settings, |_| {})
+    record_demonstrations(arm, &reading_watch(), 1, 3, &settings, |_| {})
         .unwrap()
-        .remove(0);
+        .remove(0)
+}
+
+#[test]
+fn clip_frames_change_while_the_arm_moves_and_stop_while_it_holds() {
+    let arm = NaoArm::load_default().unwrap();
+    let rec = still_gesture(&arm);
     let opts = RenderOptions {
         width: 160,
         height: 120,
@@ -74,13 +79,7 @@ fn clip_frames_change_while_the_arm_moves_and_stop_while_it_holds() {
 #[test]
 fn film_rejects_a_zero_stride_and_an_empty_recording() {
     let arm = NaoArm::load_default().unwrap();
-    let settings = DemoSettings {
-        variation: Variation::none(),
-        ..DemoSettings::default()
-    };
-    let rec = record_demonstrations(&arm, &reading_watch(), 1, 3, &settings, |_| {})
-        .unwrap()
-        .remove(0);
+    let rec = still_gesture(&arm);
     let opts = RenderOptions {
         width: 64,
         height: 48,
