@@ -223,7 +223,7 @@ fn corrupted_truncated_and_other_version_text_files_are_refused() {
         Hsom::load(&p),
         Err(PersistError::Truncated { .. })
     ));
-    std::fs::write(&p, text.replacen("version 3", "version 7", 1)).unwrap();
+    std::fs::write(&p, text.replacen("version 4", "version 7", 1)).unwrap();
     assert!(matches!(
         Hsom::load(&p),
         Err(PersistError::Version { found: 7, .. })

@@ -77,6 +77,20 @@ pub enum Timing {
     Speed,
 }
 
+/// Which sequence model the levels above the bottom are (docs/ALGORITHM.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Algorithm {
+    /// The paper's procedure: activity lists of node IDs, levels trained every
+    /// updatePeriod^level steps on overlapping windows, IDs decoded by rounding (the default).
+    Paper,
+    /// The extension of docs/ALGORITHM.md: activity lists of events (a node and how long it was
+    /// held), levels whose nodes tile `memory` consecutive events of the level below, lists
+    /// encoded and predictions decoded by content, a learned begin and end, reproduction that
+    /// climbs while its matches lie within what the level saw in training and re-plans on
+    /// surprise, executed at the learned tempo.
+    Events,
+}
+
 /// Internal scaling of the bottom level's input.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Normalisation {
@@ -282,6 +296,8 @@ pub struct HsomParams {
     /// sample h steps ahead makes the direction of motion visible in the node even when
     /// consecutive samples are nearly equal. Reproduction uses S_t + (S_t+h - S_t) / h.
     pub action_horizon: usize,
+    /// The sequence model of the upper levels.
+    pub algorithm: Algorithm,
     /// Level settings, index 0 = bottom.
     pub levels: Vec<LevelParams>,
     /// Reproduction settings.
@@ -307,6 +323,7 @@ impl HsomParams {
             list_update: ListUpdate::EveryStep,
             change_ratio: 1.0,
             action_horizon: 1,
+            algorithm: Algorithm::Paper,
             levels: sizes
                 .iter()
                 .map(|&(n, a)| LevelParams::new(n, n, Topology::Orthogonal, a))

@@ -9,7 +9,7 @@ use crate::som::{Decay, Neighbourhood, Schedule, Topology};
 
 use super::errors::ConfigError;
 use super::hyperparams::{
-    HsomConfig, HsomParams, IdDecoding, LevelParams, ListUpdate, MemoryMode, Normalisation,
+    Algorithm, HsomConfig, HsomParams, IdDecoding, LevelParams, ListUpdate, MemoryMode, Normalisation,
     PartialTraining, Reflex, ReproductionMode, ReproductionParams, StopRule, Timing,
 };
 
@@ -40,6 +40,7 @@ struct RawConfig {
     change_ratio: Option<String>,
     #[serde(rename = "actionHorizon")]
     action_horizon: Option<String>,
+    algorithm: Option<String>,
     levels: Option<RawLevels>,
     reproduction: Option<RawReproduction>,
 }
@@ -513,6 +514,13 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
         )?,
         change_ratio: f.opt("changeRatio", &raw.change_ratio, 1.0)?,
         action_horizon: f.opt("actionHorizon", &raw.action_horizon, 1usize)?,
+        algorithm: f.name(
+            "algorithm",
+            &raw.algorithm,
+            Algorithm::Paper,
+            word(&[("paper", Algorithm::Paper), ("events", Algorithm::Events)]),
+            "paper, events",
+        )?,
         levels,
         reproduction,
     };
@@ -558,6 +566,11 @@ impl HsomConfig {
         let _ = writeln!(s, "  <listUpdate>{lu}</listUpdate>");
         let _ = writeln!(s, "  <changeRatio>{}</changeRatio>", p.change_ratio);
         let _ = writeln!(s, "  <actionHorizon>{}</actionHorizon>", p.action_horizon);
+        let alg = match p.algorithm {
+            Algorithm::Paper => "paper",
+            Algorithm::Events => "events",
+        };
+        let _ = writeln!(s, "  <algorithm>{alg}</algorithm>");
         let _ = writeln!(s, "  <levels>");
         for (i, l) in p.levels.iter().enumerate().rev() {
             let _ = writeln!(s, "    <level index=\"{i}\">");

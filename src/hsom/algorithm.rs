@@ -55,6 +55,14 @@ pub struct Hsom {
     /// Per level: how often its partial match predicted the next entry of the level below
     /// exactly during the replay of the training data (0 for level 0).
     pub(crate) accuracy: Vec<f64>,
+    /// Per level: how often a lookup table of "next entry given the last entry" of the level
+    /// below, counted on the same replay, predicted that entry (0 for level 0): the simple
+    /// baseline every level must beat.
+    pub(crate) lookup: Vec<f64>,
+    /// Per level (`algorithm = events`): the largest partial-match distance (RMS per known
+    /// coordinate) seen when the training data were replayed; a level whose match in
+    /// reproduction is farther is "confused". 0 with the paper's algorithm.
+    pub(crate) threshold: Vec<f64>,
 }
 
 /// Quality of one level, as reported by [`Hsom::summary`].
@@ -84,6 +92,9 @@ pub struct LevelSummary {
     /// Fraction of the next entries of the level below predicted exactly from the partial
     /// list on the training data (0 for the bottom level).
     pub prediction_accuracy: f64,
+    /// The same fraction for a lookup table of "next entry given the last entry" of the level
+    /// below, counted on the same training data (the baseline the level must beat).
+    pub lookup_accuracy: f64,
 }
 
 /// What `cosco inspect` shows: the levels, their sizes and quality.
@@ -592,6 +603,8 @@ impl HsomConfig {
             last_successor: vec![u32::MAX; p.levels[0].rows * p.levels[0].cols],
             columns,
             accuracy: vec![0.0; p.height],
+            lookup: vec![0.0; p.height],
+            threshold: vec![0.0; p.height],
         };
         model.replay(&norm);
         Ok(model)
@@ -904,6 +917,7 @@ impl Hsom {
                     quantization_error: self.qe[l],
                     topographic_error: self.te[l],
                     prediction_accuracy: self.accuracy.get(l).copied().unwrap_or(0.0),
+                    lookup_accuracy: self.lookup.get(l).copied().unwrap_or(0.0),
                 })
                 .collect(),
         }

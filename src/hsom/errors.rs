@@ -66,7 +66,7 @@ pub enum PersistError {
         path: PathBuf,
     },
     /// A model file of another format version.
-    #[error("{path}: model format version {found}, this program reads version {expected}")]
+    #[error("{path}: model format version {found}, this program reads version {expected}: retrain the model with this version (`cosco train`)")]
     Version {
         /// The file.
         path: PathBuf,

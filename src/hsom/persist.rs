@@ -16,7 +16,7 @@ const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of both formats.
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 /// Largest embedded configuration accepted (bytes).
 const MAX_CONFIG: u64 = 1 << 20;
 
@@ -108,6 +108,8 @@ impl Hsom {
             .chain(&self.dwell)
             .chain(&self.speed)
             .chain(&self.accuracy)
+            .chain(&self.lookup)
+            .chain(&self.threshold)
         {
             f(&mut b, v);
         }
@@ -220,11 +222,13 @@ impl Hsom {
         let offset = r.f64s(state, "offset")?;
         let scale = r.f64s(state, "scale")?;
         let dl = [r.f64("lengths")?, r.f64("lengths")?, r.f64("lengths")?];
-        r.need((3 + 2 * n0 + height) * 8 + n0 * 4, "run statistics")?;
+        r.need((3 + 2 * n0 + 3 * height) * 8 + n0 * 4, "run statistics")?;
         let runs = [r.f64("runs")?, r.f64("runs")?, r.f64("runs")?];
         let dwell = r.f64s(n0, "dwell")?;
         let speed = r.f64s(n0, "speed")?;
         let accuracy = r.f64s(height, "accuracy")?;
+        let lookup = r.f64s(height, "lookup accuracy")?;
+        let threshold = r.f64s(height, "match thresholds")?;
         let successor = r.u32s(n0, "successors")?;
         let first_successor = r.u32s(n0, "first successors")?;
         let last_successor = r.u32s(n0, "last successors")?;
@@ -268,6 +272,8 @@ impl Hsom {
                 last_successor,
                 columns,
                 accuracy,
+                lookup,
+                threshold,
             },
             path,
         )
@@ -297,6 +303,8 @@ impl Hsom {
         line(&mut s, "dwell", &self.dwell);
         line(&mut s, "speed", &self.speed);
         line(&mut s, "accuracy", &self.accuracy);
+        line(&mut s, "lookup-accuracy", &self.lookup);
+        line(&mut s, "match-thresholds", &self.threshold);
         line(&mut s, "successors", &self.successor);
         line(&mut s, "first-successors", &self.first_successor);
         line(&mut s, "last-successors", &self.last_successor);
@@ -422,6 +430,18 @@ impl Hsom {
         let dwell: Vec<f64> = values(next("dwell")?, "dwell ", n0, &corrupted)?;
         let speed: Vec<f64> = values(next("speed")?, "speed ", n0, &corrupted)?;
         let accuracy: Vec<f64> = values(next("accuracy")?, "accuracy ", shapes.len(), &corrupted)?;
+        let lookup: Vec<f64> = values(
+            next("lookup-accuracy")?,
+            "lookup-accuracy ",
+            shapes.len(),
+            &corrupted,
+        )?;
+        let threshold: Vec<f64> = values(
+            next("match-thresholds")?,
+            "match-thresholds ",
+            shapes.len(),
+            &corrupted,
+        )?;
         let successor: Vec<u32> = values(next("successors")?, "successors ", n0, &corrupted)?;
         let first_successor: Vec<u32> = values(
             next("first-successors")?,
@@ -538,6 +558,8 @@ impl Hsom {
                 last_successor,
                 columns,
                 accuracy,
+                lookup,
+                threshold,
             },
             path,
         )
@@ -566,7 +588,9 @@ fn build(
         && extra
             .accuracy
             .iter()
+            .chain(&extra.lookup)
             .all(|v| v.is_finite() && (0.0..=1.0).contains(v))
+        && extra.threshold.iter().all(|v| v.is_finite() && *v >= 0.0)
         && extra
             .successor
             .iter()
@@ -614,6 +638,8 @@ fn build(
         last_successor: extra.last_successor,
         columns: extra.columns,
         accuracy: extra.accuracy,
+        lookup: extra.lookup,
+        threshold: extra.threshold,
     })
 }
 
@@ -627,6 +653,8 @@ struct Extra {
     last_successor: Vec<u32>,
     columns: Vec<String>,
     accuracy: Vec<f64>,
+    lookup: Vec<f64>,
+    threshold: Vec<f64>,
 }
 
 enum Format {
