@@ -2,8 +2,10 @@
 //! simulated encoders -> CoSCo-HSOM with the paper's Table I -> reproduction from the initial
 //! posture executed on the simulated arm -> metrics (docs/METRICS.md).
 //!
-//! Each gesture must meet the thresholds below; two negative controls must fail the same
-//! checks: an untrained hierarchy (seeded initial weights, same configuration), and a hierarchy
+//! The configuration is the recommended configs/nao-gestures.xml (the events extension).
+//! Each gesture must meet the thresholds below; three negative controls must fail the same
+//! checks: an untrained hierarchy (seeded initial weights, same configuration), a hierarchy
+//! trained on the same demonstrations with their event order shuffled, and a hierarchy
 //! trained on demonstrations of another gesture. The thresholds were measured (see
 //! docs/METRICS.md, "Fidelity thresholds") and sit between the trained results and the
 //! controls.
@@ -91,7 +93,7 @@ fn failures(f: &FidelityReport) -> Vec<String> {
 fn table1() -> HsomConfig {
     load_config(std::path::Path::new(concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/configs/table1.xml"
+        "/configs/nao-gestures.xml"
     )))
     .unwrap()
 }
@@ -107,6 +109,19 @@ fn demos(arm: &NaoArm, g: &Gesture, seed: u64) -> Vec<Demonstration> {
         .enumerate()
         .map(|(i, r)| r.to_demonstration(format!("{} #{i}", g.name)))
         .collect()
+}
+
+/// The demonstration cut into blocks of 20 samples put in a seeded random order (its first
+/// block stays first, so the initial posture is unchanged).
+fn shuffle_blocks(d: &Demonstration, seed: u64) -> Demonstration {
+    use rand::seq::SliceRandom;
+    use rand::SeedableRng;
+    let mut blocks: Vec<Vec<Vec<f64>>> = d.rows.chunks(20).map(|c| c.to_vec()).collect();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    blocks[1..].shuffle(&mut rng);
+    let mut out = d.clone();
+    out.rows = blocks.concat();
+    out
 }
 
 fn check_gesture(name: &str, other: &str) {
@@ -142,6 +157,26 @@ fn check_gesture(name: &str, other: &str) {
         assert!(
             !failures(&untrained.fidelity).is_empty(),
             "{name} seed {seed}: the UNTRAINED hierarchy passes the fidelity checks"
+        );
+
+        // Negative control 3: the same demonstrations with their event order shuffled (blocks
+        // of 20 samples, about half a second, in a seeded random order).
+        eprintln!("{name} seed {seed}: shuffled");
+        let shuffled: Vec<Demonstration> = d.iter().map(|x| shuffle_blocks(x, seed)).collect();
+        let sh = learn_and_reproduce(
+            &arm,
+            &cfg,
+            &shuffled,
+            Training::Trained,
+            Transition::Linear,
+            None,
+        )
+        .unwrap();
+        let scored =
+            evaluate(Some(&arm), &d, &sh.executed.qpos, &MetricsParams::default()).unwrap();
+        assert!(
+            !failures(&scored).is_empty(),
+            "{name} seed {seed}: a hierarchy trained on shuffled demonstrations passes"
         );
 
         // Negative control 2: trained on another gesture, scored against this one's demonstrations.

@@ -107,7 +107,8 @@ fn run(name: &str, demos: &[cosco_hsom::demos::Demonstration], cfg: &HsomConfig)
 }
 
 fn table1_file() -> cosco_hsom::config::HsomParams {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/table1.xml");
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/configs/successor-table.xml");
     cosco_hsom::config::load_config(&path)
         .unwrap()
         .into_params()

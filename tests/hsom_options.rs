@@ -10,7 +10,8 @@ use hsom_common::*;
 
 /// Table I with the options of the shipped configs/table1.xml, for `dims` variables.
 fn file_options(dims: usize) -> HsomParams {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/table1.xml");
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/configs/successor-table.xml");
     let mut p = cosco_hsom::config::load_config(&path)
         .unwrap()
         .into_params();

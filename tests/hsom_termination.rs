@@ -22,7 +22,7 @@ fn reproduction_ends_when_steps_produce_no_postures() {
         .collect();
     let cfg = load_config(std::path::Path::new(concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/configs/table1.xml"
+        "/tests/configs/successor-table.xml"
     )))
     .unwrap();
     let mut p = cfg.params().clone();

@@ -9,8 +9,8 @@ use crate::som::{Decay, Neighbourhood, Schedule, Topology};
 
 use super::errors::ConfigError;
 use super::hyperparams::{
-    Algorithm, HsomConfig, HsomParams, IdDecoding, LevelParams, ListUpdate, MemoryMode, Normalisation,
-    PartialTraining, Reflex, ReproductionMode, ReproductionParams, StopRule, Timing,
+    Algorithm, HsomConfig, HsomParams, IdDecoding, LevelParams, ListUpdate, MemoryMode,
+    Normalisation, PartialTraining, Reflex, ReproductionMode, ReproductionParams, StopRule, Timing,
 };
 
 #[derive(Debug, Deserialize)]

@@ -63,6 +63,10 @@ pub struct Hsom {
     /// coordinate) seen when the training data were replayed; a level whose match in
     /// reproduction is farther is "confused". 0 with the paper's algorithm.
     pub(crate) threshold: Vec<f64>,
+    /// Per level (`algorithm = events`): up to `FOLLOWERS` entries that most often followed
+    /// each node (and, in the last row, the begin) in training; `u32::MAX` pads. Decoding
+    /// by content chooses among them.
+    pub(crate) followers: Vec<Vec<u32>>,
 }
 
 /// Quality of one level, as reported by [`Hsom::summary`].
@@ -112,6 +116,9 @@ pub struct ModelSummary {
     pub weights: usize,
     /// Shortest, mean and longest training demonstration (samples).
     pub demo_lengths: [f64; 3],
+    /// Shortest, mean and longest training demonstration in bottom events (runs of the
+    /// bottom BMU).
+    pub demo_events: [f64; 3],
     /// One entry per level, bottom first.
     pub levels: Vec<LevelSummary>,
 }
@@ -135,12 +142,17 @@ impl std::fmt::Display for ModelSummary {
         )?;
         writeln!(
             f,
-            "level  size     topology    input  period  trained  used    QE        TE       acc"
+            "bottom events per demonstration: {:.0} to {:.0} (mean {:.1})",
+            self.demo_events[0], self.demo_events[2], self.demo_events[1]
+        )?;
+        writeln!(
+            f,
+            "level  size     topology    input  period  trained  used    QE        TE       acc    lookup"
         )?;
         for l in self.levels.iter().rev() {
             writeln!(
                 f,
-                "{:<6} {:<8} {:<11} {:<6} {:<7} {:<8} {:<7} {:<9.4} {:<8.4} {:.3}",
+                "{:<6} {:<8} {:<11} {:<6} {:<7} {:<8} {:<7} {:<9.4} {:<8.4} {:<6.3} {:.3}",
                 l.level,
                 format!("{}x{}", l.rows, l.cols),
                 l.topology.name(),
@@ -150,7 +162,8 @@ impl std::fmt::Display for ModelSummary {
                 l.nodes_used,
                 l.quantization_error,
                 l.topographic_error,
-                l.prediction_accuracy
+                l.prediction_accuracy,
+                l.lookup_accuracy
             )?;
         }
         Ok(())
@@ -341,6 +354,8 @@ pub(crate) fn input_dim(config: &HsomConfig, level: usize) -> usize {
     let p = config.params();
     if level == 0 {
         p.state_length + p.action_length
+    } else if p.algorithm == crate::config::Algorithm::Events {
+        super::events::Layout::of(config).dim()
     } else {
         match p.memory_mode {
             MemoryMode::Lists => 2 * p.memory,
@@ -496,6 +511,7 @@ impl HsomConfig {
         // with onChange, trainingSteps counts bottom list updates (distinct key postures), so
         // that the upper levels train as often as with everyStep
         let on_change = stm.on_change;
+        let events = p.algorithm == crate::config::Algorithm::Events;
         let mut s = 0u64;
         loop {
             let done = if on_change { sc } else { s };
@@ -531,7 +547,7 @@ impl HsomConfig {
                 sc += 1;
             }
             for l in 1..p.height {
-                if !pushed || sc % self.period(l) != 0 {
+                if events || !pushed || sc % self.period(l) != 0 {
                     break;
                 }
                 let (lower, upper) = bufs.split_at_mut(l);
@@ -605,8 +621,16 @@ impl HsomConfig {
             accuracy: vec![0.0; p.height],
             lookup: vec![0.0; p.height],
             threshold: vec![0.0; p.height],
+            followers: p
+                .levels
+                .iter()
+                .map(|l| vec![u32::MAX; (l.rows * l.cols + 1) * super::events::FOLLOWERS])
+                .collect(),
         };
         model.replay(&norm);
+        if events {
+            model.fit_events(&norm, learn, &mut rng);
+        }
         Ok(model)
     }
 }
@@ -618,6 +642,7 @@ impl Hsom {
         let cfg = self.config.clone();
         let p = cfg.params();
         let state = p.state_length;
+        let events = p.algorithm == crate::config::Algorithm::Events;
         let mut stm = Stm::new(&cfg);
         let mut bufs: Vec<Vec<f64>> = (0..p.height)
             .map(|l| vec![0.0; input_dim(&cfg, l)])
@@ -673,7 +698,11 @@ impl Hsom {
                     .map(|(a, b)| (a - b) * (a - b))
                     .sum::<f64>()
                     .sqrt();
-                let guess = self.predict_next(&stm, 1, offset, &mut pbuf, &mut pmask);
+                let guess = if events {
+                    None
+                } else {
+                    self.predict_next(&stm, 1, offset, &mut pbuf, &mut pmask)
+                };
                 let pushed = stm.push_bottom_observed(a, &self.maps[0], Some((&bufs[0], d2)));
                 if pushed {
                     if let Some(g) = guess {
@@ -694,7 +723,7 @@ impl Hsom {
                     sc += 1;
                 }
                 for l in 1..p.height {
-                    if !pushed || sc % cfg.period(l) != 0 {
+                    if events || !pushed || sc % cfg.period(l) != 0 {
                         break;
                     }
                     let x = &mut bufs[l];
@@ -901,6 +930,7 @@ impl Hsom {
             state_length: p.state_length,
             weights: self.maps.iter().map(|m| m.all_weights().len()).sum(),
             demo_lengths: self.demo_len,
+            demo_events: self.demo_runs,
             levels: self
                 .maps
                 .iter()

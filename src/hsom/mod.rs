@@ -15,6 +15,7 @@
 
 mod algorithm;
 mod errors;
+mod events;
 mod memory;
 mod persist;
 mod reproduce;

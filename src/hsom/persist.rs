@@ -10,6 +10,7 @@ use crate::som::SelfOrganizingMap;
 
 use super::algorithm::{input_dim, Hsom};
 use super::errors::PersistError;
+use super::events::FOLLOWERS;
 
 /// Magic bytes opening a binary model file.
 const MAGIC: &[u8; 8] = b"COSCOHSM";
@@ -118,6 +119,7 @@ impl Hsom {
             .iter()
             .chain(&self.first_successor)
             .chain(&self.last_successor)
+            .chain(self.followers.iter().flatten())
         {
             b.extend_from_slice(&v.to_le_bytes());
         }
@@ -232,6 +234,12 @@ impl Hsom {
         let successor = r.u32s(n0, "successors")?;
         let first_successor = r.u32s(n0, "first successors")?;
         let last_successor = r.u32s(n0, "last successors")?;
+        let mut followers = Vec::with_capacity(shapes.len());
+        for &(rows, cols, _) in &shapes {
+            let n = (rows * cols + 1) * FOLLOWERS;
+            r.need(n * 4, "followers")?;
+            followers.push(r.u32s(n, "followers")?);
+        }
         let mut columns = Vec::with_capacity(state.min(r.remaining() / 4));
         for _ in 0..state {
             let n = r.u32("column name length")? as usize;
@@ -274,6 +282,7 @@ impl Hsom {
                 accuracy,
                 lookup,
                 threshold,
+                followers,
             },
             path,
         )
@@ -308,6 +317,9 @@ impl Hsom {
         line(&mut s, "successors", &self.successor);
         line(&mut s, "first-successors", &self.first_successor);
         line(&mut s, "last-successors", &self.last_successor);
+        for (l, f) in self.followers.iter().enumerate() {
+            line(&mut s, &format!("followers-{l}"), f);
+        }
         let _ = writeln!(s, "columns {}", self.columns.len());
         for c in &self.columns {
             let _ = writeln!(s, "column {}", c.replace(['\n', '\r'], " "));
@@ -451,6 +463,17 @@ impl Hsom {
         )?;
         let last_successor: Vec<u32> =
             values(next("last-successors")?, "last-successors ", n0, &corrupted)?;
+        let mut followers = Vec::with_capacity(shapes.len());
+        for (l, &(rows, cols, _)) in shapes.iter().enumerate() {
+            let key = format!("followers-{l}");
+            let f: Vec<u32> = values(
+                next(&key)?,
+                &format!("{key} "),
+                (rows * cols + 1) * FOLLOWERS,
+                &corrupted,
+            )?;
+            followers.push(f);
+        }
         let nc: Vec<usize> = values(next("columns")?, "columns ", 1, &corrupted)?;
         if nc[0] != state {
             return Err(corrupted(format!(
@@ -560,6 +583,7 @@ impl Hsom {
                 accuracy,
                 lookup,
                 threshold,
+                followers,
             },
             path,
         )
@@ -591,12 +615,16 @@ fn build(
             .chain(&extra.lookup)
             .all(|v| v.is_finite() && (0.0..=1.0).contains(v))
         && extra.threshold.iter().all(|v| v.is_finite() && *v >= 0.0)
+        && extra.followers.iter().zip(&maps).all(|(f, m)| {
+            f.iter()
+                .all(|&v| (v as usize) < m.len() || v == u32::MAX || v == super::events::END)
+        })
         && extra
             .successor
             .iter()
             .chain(&extra.first_successor)
             .chain(&extra.last_successor)
-            .all(|&v| v < n0 || v == u32::MAX);
+            .all(|&v| v < n0 || v == u32::MAX || v == super::events::END);
     if !stats_ok {
         return Err(PersistError::Corrupted {
             path: path.to_path_buf(),
@@ -640,6 +668,7 @@ fn build(
         accuracy: extra.accuracy,
         lookup: extra.lookup,
         threshold: extra.threshold,
+        followers: extra.followers,
     })
 }
 
@@ -655,6 +684,7 @@ struct Extra {
     accuracy: Vec<f64>,
     lookup: Vec<f64>,
     threshold: Vec<f64>,
+    followers: Vec<Vec<u32>>,
 }
 
 enum Format {

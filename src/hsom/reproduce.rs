@@ -19,6 +19,8 @@ pub enum StopReason {
     Stationary,
     /// `lengthFactor` times the longest demonstration was reached.
     LearnedLength,
+    /// The hierarchy predicted the end of the gesture (`algorithm = events`).
+    EndEvent,
 }
 
 /// A reproduced gesture: postures (in the data's units) with their step index.
@@ -503,6 +505,13 @@ impl Hsom {
             .enumerate()
             .map(|(d, v)| (v - self.offset[d]) / self.scale[d])
             .collect();
+        if p.algorithm == crate::config::Algorithm::Events {
+            let mut rep = self.reproduce_events(&y0, &r);
+            rep.postures.truncate(r.max_length);
+            rep.steps.truncate(r.max_length);
+            rep.predicted_by.truncate(r.max_length);
+            return Ok(rep);
+        }
         let mut g = Gen {
             m: self,
             r: &r,

@@ -144,6 +144,15 @@ impl SelfOrganizingMap {
         })
     }
 
+    /// Set node `i`'s weights (`dim` values; shorter or longer slices are cut or padded by
+    /// what is there already).
+    pub fn set_weights(&mut self, i: usize, w: &[f64]) {
+        let d = self.dim;
+        for (dst, src) in self.weights[i * d..(i + 1) * d].iter_mut().zip(w) {
+            *dst = *src;
+        }
+    }
+
     /// Number of grid rows.
     pub fn rows(&self) -> usize {
         self.rows

@@ -1,0 +1,908 @@
+//! The events extension (`algorithm = events`, docs/ALGORITHM.md "The hierarchy as the sequence
+//! model"): activity lists of events (a bottom node and how long it was held), levels whose
+//! nodes tile `memory` consecutive entries of the level below, lists encoded by content, a
+//! learned begin and end, and a reproduction that climbs while the levels' matches lie within
+//! what they saw in training, expands the highest confident level's prediction down to timed
+//! bottom events, and re-plans when what was executed is not what the plan expected.
+//!
+//! Layout of a level-l input (l >= 1), all in the bottom level's normalised units:
+//! `[context | slot 0 | ... | slot memory-1]`, context = `[previous posture (S), begin, phase]`,
+//! slot = `[a (S), b (S), duration, end]`. At level 1 a slot is a bottom event: a and b are
+//! its node's state and action halves, duration its encoded length in samples. Higher up a
+//! slot summarises a node of the level below: a = its first posture, b = its last, duration
+//! the encoded sum of its slots' durations, end the largest of their end flags.
+
+use std::collections::{BTreeMap, VecDeque};
+
+use rand::Rng;
+
+use crate::config::{HsomConfig, ReproductionParams};
+use crate::som::SelfOrganizingMap;
+
+use super::algorithm::Hsom;
+use super::reproduce::{Reproduction, StopReason};
+
+/// A node index that stands for the end of the gesture in item sequences and successors.
+pub(crate) const END: u32 = u32::MAX - 1;
+
+/// Sizes of the event encoding.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Layout {
+    /// stateLength.
+    pub(crate) s: usize,
+    /// memory: entries per chunk.
+    pub(crate) k: usize,
+}
+
+impl Layout {
+    pub(crate) fn of(config: &HsomConfig) -> Self {
+        let p = config.params();
+        Layout {
+            s: p.state_length,
+            k: p.memory,
+        }
+    }
+    /// Values of one slot.
+    pub(crate) fn slot(&self) -> usize {
+        2 * self.s + 2
+    }
+    /// Values of the context.
+    pub(crate) fn ctx(&self) -> usize {
+        self.s + 2
+    }
+    /// Input length of a level above the bottom.
+    pub(crate) fn dim(&self) -> usize {
+        self.ctx() + self.k * self.slot()
+    }
+    fn slot_range(&self, j: usize) -> std::ops::Range<usize> {
+        let o = self.ctx() + j * self.slot();
+        o..o + self.slot()
+    }
+}
+
+/// Encoded durations: `scale * ln(1 + samples)`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct DurationCode {
+    scale: f64,
+}
+
+impl DurationCode {
+    /// The scale that maps the longest mean event duration to 0.5 (half the posture range of
+    /// the global normalisation), derived from the stored per-node durations so that a loaded
+    /// model decodes as the trained one did.
+    pub(crate) fn from_dwell(dwell: &[f64]) -> Self {
+        let longest = dwell.iter().cloned().fold(1.0, f64::max);
+        DurationCode {
+            scale: 0.5 / (1.0 + longest).ln(),
+        }
+    }
+    fn encode(&self, samples: f64) -> f64 {
+        self.scale * (1.0 + samples.max(0.0)).ln()
+    }
+    fn decode(&self, v: f64) -> f64 {
+        ((v.max(0.0) / self.scale).min(30.0)).exp() - 1.0
+    }
+}
+
+/// One entry of an activity list: the node (or [`END`]) and its content (a slot).
+#[derive(Debug, Clone)]
+struct Item {
+    node: u32,
+    content: Vec<f64>,
+}
+
+/// The events of one demonstration: runs of the bottom BMU with hysteresis (`changeRatio`),
+/// as (node, length in samples). Constant work per sample.
+pub(crate) fn bottom_events(model: &Hsom, demo: &[Vec<f64>]) -> Vec<(usize, f64)> {
+    let p = model.config.params();
+    let s = p.state_length;
+    let h = p.action_horizon.max(1);
+    let map = &model.maps[0];
+    let mut x = vec![0.0; 2 * s];
+    let mut out: Vec<(usize, f64)> = Vec::new();
+    let mut cur: Option<usize> = None;
+    for pos in 0..demo.len().saturating_sub(1) {
+        x[..s].copy_from_slice(&demo[pos]);
+        x[s..].copy_from_slice(&demo[(pos + h).min(demo.len() - 1)]);
+        let (b, d2) = map.bmu(&x);
+        let switch = match cur {
+            None => true,
+            Some(c) if c == b => false,
+            Some(c) => {
+                let dc = dist2(map.weights(c), &x);
+                d2.sqrt() < p.change_ratio * dc.sqrt()
+            }
+        };
+        if switch {
+            out.push((b, 1.0));
+            cur = Some(b);
+        } else if let Some(last) = out.last_mut() {
+            last.1 += 1.0;
+        }
+    }
+    out
+}
+
+fn dist2(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
+}
+
+/// Content of a bottom event.
+fn event_content(
+    map: &SelfOrganizingMap,
+    node: usize,
+    samples: f64,
+    code: DurationCode,
+) -> Vec<f64> {
+    let mut c = map.weights(node).to_vec();
+    c.push(code.encode(samples));
+    c.push(0.0);
+    c
+}
+
+/// Content of the end of the gesture after an item whose last posture is `b`.
+fn end_content(lay: Layout, b: &[f64]) -> Vec<f64> {
+    let mut c = Vec::with_capacity(lay.slot());
+    c.extend_from_slice(b);
+    c.extend_from_slice(b);
+    c.push(0.0);
+    c.push(1.0);
+    c
+}
+
+/// The summary of a node of level >= 1 (its slot form one level up).
+fn summary(lay: Layout, w: &[f64], code: DurationCode) -> Vec<f64> {
+    let s = lay.s;
+    let first = &w[lay.slot_range(0)];
+    let last = &w[lay.slot_range(lay.k - 1)];
+    let mut c = Vec::with_capacity(lay.slot());
+    c.extend_from_slice(&first[..s]);
+    c.extend_from_slice(&last[s..2 * s]);
+    let mut total = 0.0;
+    let mut end = 0.0f64;
+    for j in 0..lay.k {
+        let sl = &w[lay.slot_range(j)];
+        total += code.decode(sl[2 * s]);
+        end = end.max(sl[2 * s + 1]);
+    }
+    c.push(code.encode(total));
+    c.push(end);
+    c
+}
+
+fn a_part(lay: Layout, c: &[f64]) -> &[f64] {
+    &c[..lay.s]
+}
+fn b_part(lay: Layout, c: &[f64]) -> &[f64] {
+    &c[lay.s..2 * lay.s]
+}
+
+/// Write the context of a chunk into `x` (and mark it known).
+fn write_ctx(lay: Layout, prev: &[f64], begin: bool, phase: f64, x: &mut [f64], mask: &mut [bool]) {
+    x[..lay.s].copy_from_slice(prev);
+    x[lay.s] = if begin { 1.0 } else { 0.0 };
+    x[lay.s + 1] = phase;
+    mask[..lay.ctx()].iter_mut().for_each(|m| *m = true);
+}
+
+/// Build the input of a chunk with `known` slots (the rest masked out).
+fn chunk_input(
+    lay: Layout,
+    prev: &[f64],
+    begin: bool,
+    phase: f64,
+    slots: &[&[f64]],
+    x: &mut [f64],
+    mask: &mut [bool],
+) -> usize {
+    mask.iter_mut().for_each(|m| *m = false);
+    write_ctx(lay, prev, begin, phase, x, mask);
+    for (j, c) in slots.iter().enumerate() {
+        let r = lay.slot_range(j);
+        x[r.clone()].copy_from_slice(c);
+        mask[r].iter_mut().for_each(|m| *m = true);
+    }
+    lay.ctx() + slots.len() * lay.slot()
+}
+
+/// The chunks of one item sequence at the level above: for each, (context prev, begin,
+/// phase, slot contents padded with the end).
+fn chunks(
+    lay: Layout,
+    items: &[Item],
+    per_item: f64,
+    mean_events: f64,
+) -> Vec<(Vec<f64>, bool, f64, Vec<Vec<f64>>)> {
+    let mut out = Vec::new();
+    if items.is_empty() {
+        return out;
+    }
+    let last_b = b_part(lay, &items[items.len() - 1].content).to_vec();
+    let mut k = 0;
+    while k * lay.k < items.len() {
+        let start = k * lay.k;
+        let prev = if start == 0 {
+            a_part(lay, &items[0].content).to_vec()
+        } else {
+            b_part(lay, &items[start - 1].content).to_vec()
+        };
+        let slots: Vec<Vec<f64>> = (start..start + lay.k)
+            .map(|i| match items.get(i) {
+                Some(it) => it.content.clone(),
+                None => end_content(lay, &last_b),
+            })
+            .collect();
+        let phase = start as f64 * per_item / mean_events.max(1.0);
+        out.push((prev, k == 0, phase, slots));
+        k += 1;
+    }
+    out
+}
+
+/// Most frequent follower of each item (END included), counted on item sequences that start
+/// with a begin marker (`u32::MAX`), and how often the table predicted the next item.
+fn lookup_table(seqs: &[Vec<u32>]) -> (BTreeMap<u32, u32>, f64) {
+    let mut counts: BTreeMap<(u32, u32), u32> = BTreeMap::new();
+    for s in seqs {
+        let mut prev = u32::MAX;
+        for &n in s {
+            *counts.entry((prev, n)).or_insert(0) += 1;
+            prev = n;
+        }
+    }
+    let mut best: BTreeMap<u32, (u32, u32)> = BTreeMap::new();
+    for (&(a, b), &c) in &counts {
+        let e = best.entry(a).or_insert((0, b));
+        if c > e.0 {
+            *e = (c, b);
+        }
+    }
+    let table: BTreeMap<u32, u32> = best.into_iter().map(|(a, (_, b))| (a, b)).collect();
+    let (mut n, mut ok) = (0u32, 0u32);
+    for s in seqs {
+        let mut prev = u32::MAX;
+        for &x in s {
+            n += 1;
+            ok += u32::from(table.get(&prev) == Some(&x));
+            prev = x;
+        }
+    }
+    (table, if n > 0 { ok as f64 / n as f64 } else { 0.0 })
+}
+
+/// Nodes of a level that some training entry selected.
+fn used(model: &Hsom, level: usize) -> Vec<usize> {
+    (0..model.maps[level].len())
+        .filter(|&i| model.hits[level][i] > 0)
+        .collect()
+}
+
+/// Followers kept per entry (fixed, so the model's size does not depend on the data).
+pub(crate) const FOLLOWERS: usize = 4;
+
+/// The content of entry `m` of level `level` as a slot of the level above.
+fn entry_content(
+    model: &Hsom,
+    lay: Layout,
+    level: usize,
+    m: usize,
+    code: DurationCode,
+) -> Vec<f64> {
+    if level == 0 {
+        event_content(&model.maps[0], m, model.dwell[m], code)
+    } else {
+        summary(lay, model.maps[level].weights(m), code)
+    }
+}
+
+/// Decode a predicted slot of level `level`'s input into an entry of the level below: among
+/// the entries that followed `prev` in training (the end included; all used entries when
+/// `prev` has no recorded follower), the one whose content is nearest.
+fn decode(
+    model: &Hsom,
+    lay: Layout,
+    level: usize,
+    c: &[f64],
+    code: DurationCode,
+    used_below: &[usize],
+    prev: u32,
+) -> u32 {
+    let s = lay.s;
+    if level == 1 && c[2 * s + 1] > 0.5 {
+        // the predicted event is mostly the end of the gesture
+        return END;
+    }
+    let below = level - 1;
+    let n = model.maps[below].len();
+    let row = if prev == u32::MAX || prev == END {
+        n
+    } else {
+        prev as usize
+    };
+    let table = &model.followers[below];
+    let cands: Vec<u32> = table[row * FOLLOWERS..(row + 1) * FOLLOWERS]
+        .iter()
+        .copied()
+        .filter(|&f| f != u32::MAX)
+        .collect();
+    let all: Vec<u32>;
+    let cands = if cands.is_empty() {
+        all = used_below.iter().map(|&m| m as u32).collect();
+        &all
+    } else {
+        &cands
+    };
+    let prev_b: Vec<f64> = if (prev as usize) < n {
+        b_part(lay, &entry_content(model, lay, below, prev as usize, code)).to_vec()
+    } else {
+        c[s..2 * s].to_vec()
+    };
+    let mut best = (END, f64::INFINITY);
+    for &m in cands {
+        let d = if m == END {
+            dist2(&prev_b, &c[..s]) + dist2(&prev_b, &c[s..2 * s]) + (c[2 * s + 1] - 1.0).powi(2)
+        } else {
+            let e = entry_content(model, lay, below, m as usize, code);
+            dist2(&e[..2 * s], &c[..2 * s]) + (c[2 * s + 1] - e[2 * s + 1]).powi(2)
+        };
+        if d < best.1 {
+            best = (m, d);
+        }
+    }
+    best.0
+}
+
+/// The table of up to [`FOLLOWERS`] most frequent followers of every entry of a level (row
+/// `nodes` is the begin of a demonstration), from its entry sequences.
+fn followers_table(nodes: usize, seqs: &[Vec<u32>]) -> Vec<u32> {
+    let mut counts: BTreeMap<(u32, u32), u32> = BTreeMap::new();
+    for sq in seqs {
+        let mut prev = nodes as u32;
+        for &x in sq {
+            *counts.entry((prev, x)).or_insert(0) += 1;
+            if x == END {
+                break;
+            }
+            prev = x;
+        }
+    }
+    let mut rows: Vec<Vec<(u32, u32)>> = vec![Vec::new(); nodes + 1];
+    for (&(a, b), &c) in &counts {
+        rows[a as usize].push((c, b));
+    }
+    let mut t = vec![u32::MAX; (nodes + 1) * FOLLOWERS];
+    for (i, r) in rows.iter_mut().enumerate() {
+        r.sort_by(|x, y| y.0.cmp(&x.0).then(x.1.cmp(&y.1)));
+        for (j, &(_, b)) in r.iter().take(FOLLOWERS).enumerate() {
+            t[i * FOLLOWERS + j] = b;
+        }
+    }
+    t
+}
+
+impl Hsom {
+    /// Train the levels above the bottom on the events of `norm` (already normalised
+    /// demonstrations; the bottom map is trained), level by level, and compute every
+    /// statistic the events reproduction uses.
+    pub(crate) fn fit_events<R: Rng>(&mut self, norm: &[Vec<Vec<f64>>], learn: bool, rng: &mut R) {
+        let cfg = self.config.clone();
+        let p = cfg.params();
+        let lay = Layout::of(&cfg);
+        let n0 = self.maps[0].len();
+        // 1. bottom events, their durations and the bottom's own lookup table
+        let events: Vec<Vec<(usize, f64)>> = norm.iter().map(|d| bottom_events(self, d)).collect();
+        let mut dsum = vec![0.0; n0];
+        let mut dn = vec![0u32; n0];
+        for ev in &events {
+            for &(n, d) in ev {
+                dsum[n] += d;
+                dn[n] += 1;
+            }
+        }
+        for i in 0..n0 {
+            self.dwell[i] = if dn[i] > 0 {
+                dsum[i] / dn[i] as f64
+            } else {
+                0.0
+            };
+        }
+        let counts: Vec<f64> = events.iter().map(|e| e.len() as f64).collect();
+        let nd = counts.len().max(1) as f64;
+        self.demo_runs = [
+            counts.iter().cloned().fold(f64::INFINITY, f64::min),
+            counts.iter().sum::<f64>() / nd,
+            counts.iter().cloned().fold(0.0, f64::max),
+        ];
+        let seqs0: Vec<Vec<u32>> = events
+            .iter()
+            .map(|e| e.iter().map(|&(n, _)| n as u32).chain([END]).collect())
+            .collect();
+        let (table, _) = lookup_table(&seqs0);
+        for i in 0..n0 {
+            self.successor[i] = table.get(&(i as u32)).copied().unwrap_or(u32::MAX);
+            self.first_successor[i] = self.successor[i];
+            self.last_successor[i] = self.successor[i];
+        }
+        let code = DurationCode::from_dwell(&self.dwell);
+        let mean_events = self.demo_runs[1];
+        // 2. level by level
+        let mut items: Vec<Vec<Item>> = events
+            .iter()
+            .map(|ev| {
+                let mut v: Vec<Item> = ev
+                    .iter()
+                    .map(|&(n, d)| Item {
+                        node: n as u32,
+                        content: event_content(&self.maps[0], n, d, code),
+                    })
+                    .collect();
+                let last_b = b_part(lay, &v[v.len() - 1].content).to_vec();
+                v.push(Item {
+                    node: END,
+                    content: end_content(lay, &last_b),
+                });
+                v
+            })
+            .collect();
+        let mut x = vec![0.0; lay.dim()];
+        let mut mask = vec![true; lay.dim()];
+        for l in 1..p.height {
+            let seqs: Vec<Vec<u32>> = items
+                .iter()
+                .map(|it| it.iter().map(|i| i.node).collect())
+                .collect();
+            self.followers[l - 1] = followers_table(self.maps[l - 1].len(), &seqs);
+            let per_item = (lay.k as f64).powi(l as i32 - 1);
+            let demo_chunks: Vec<_> = items
+                .iter()
+                .map(|it| chunks(lay, it, per_item, mean_events))
+                .collect();
+            let inputs: Vec<Vec<f64>> = demo_chunks
+                .iter()
+                .flatten()
+                .map(|(prev, begin, phase, slots)| {
+                    let refs: Vec<&[f64]> = slots.iter().map(|v| v.as_slice()).collect();
+                    chunk_input(lay, prev, *begin, *phase, &refs, &mut x, &mut mask);
+                    x.clone()
+                })
+                .collect();
+            if inputs.is_empty() {
+                break;
+            }
+            // initial weights: randomly chosen training inputs (from the seed)
+            let map = &mut self.maps[l];
+            for i in 0..map.len() {
+                let pick = &inputs[rng.gen_range(0..inputs.len())];
+                map.set_weights(i, pick);
+            }
+            let lp = &p.levels[l];
+            let steps = if learn {
+                (p.training_steps / lay.k.pow(l as u32)).max(20 * inputs.len())
+            } else {
+                0
+            };
+            for t in 0..steps {
+                let prog = t as f64 / steps.max(1) as f64;
+                let xi = &inputs[t % inputs.len()];
+                let (b, _) = map.bmu(xi);
+                map.update(
+                    xi,
+                    None,
+                    b,
+                    lp.learning_factor.at(prog),
+                    lp.learning_radius.at(prog),
+                    lp.neighbourhood,
+                );
+            }
+            self.trained[l] = steps as u64;
+            // 3. replay: BMUs (the next level's entries), QE/TE, the match threshold, and the
+            // prediction accuracy of this level against the lookup table of the level below
+            let used_below: Vec<usize> = if l == 1 {
+                (0..n0).filter(|&i| self.dwell[i] > 0.0).collect()
+            } else {
+                used(self, l - 1)
+            };
+            let mut next_items = Vec::with_capacity(items.len());
+            let (mut qe, mut te, mut cnt, mut thr) = (0.0, 0usize, 0usize, 0.0f64);
+            let (mut pn, mut pok) = (0u32, 0u32);
+            for (di, dc) in demo_chunks.iter().enumerate() {
+                let mut v = Vec::with_capacity(dc.len());
+                for (ci, (prev, begin, phase, slots)) in dc.iter().enumerate() {
+                    let refs: Vec<&[f64]> = slots.iter().map(|v| v.as_slice()).collect();
+                    for j in 0..lay.k {
+                        let known =
+                            chunk_input(lay, prev, *begin, *phase, &refs[..j], &mut x, &mut mask);
+                        let (b, d2) = self.maps[l].bmu_masked(&x, &mask);
+                        thr = thr.max((d2 / known as f64).sqrt());
+                        let at = ci * lay.k + j;
+                        if let Some(actual) = items[di].get(at).map(|i| i.node) {
+                            let prev = if at == 0 {
+                                u32::MAX
+                            } else {
+                                items[di][at - 1].node
+                            };
+                            let c = &self.maps[l].weights(b)[lay.slot_range(j)];
+                            pn += 1;
+                            pok += u32::from(
+                                decode(self, lay, l, c, code, &used_below, prev) == actual,
+                            );
+                        }
+                    }
+                    chunk_input(lay, prev, *begin, *phase, &refs, &mut x, &mut mask);
+                    let (b, b2) = self.maps[l].best_two(&x);
+                    qe += dist2(self.maps[l].weights(b), &x).sqrt();
+                    te +=
+                        usize::from(self.maps[l].len() > 1 && !self.maps[l].are_neighbours(b, b2));
+                    cnt += 1;
+                    self.hits[l][b] = self.hits[l][b].saturating_add(1);
+                    v.push(Item {
+                        node: b as u32,
+                        content: summary(lay, self.maps[l].weights(b), code),
+                    });
+                }
+                next_items.push(v);
+            }
+            let (_, lookup_acc) = lookup_table(&seqs);
+            self.qe[l] = qe / cnt.max(1) as f64;
+            self.te[l] = te as f64 / cnt.max(1) as f64;
+            self.threshold[l] = thr;
+            self.accuracy[l] = if pn > 0 { pok as f64 / pn as f64 } else { 0.0 };
+            self.lookup[l] = lookup_acc;
+            items = next_items;
+        }
+    }
+
+    /// Reproduce with the events extension from the normalised initial posture `y0`.
+    pub(crate) fn reproduce_events(&self, y0: &[f64], r: &ReproductionParams) -> Reproduction {
+        let cfg = &self.config;
+        let p = cfg.params();
+        let max_len = r.max_length;
+        let lay = Layout::of(cfg);
+        let s = lay.s;
+        let h = p.height;
+        let code = DurationCode::from_dwell(&self.dwell);
+        let mean_events = self.demo_runs[1].max(1.0);
+        let cap = ((self.demo_len[2] * r.length_factor).ceil() as usize).clamp(2, max_len.max(2));
+        let used_levels: Vec<Vec<usize>> = (0..h)
+            .map(|l| {
+                if l == 0 {
+                    (0..self.maps[0].len())
+                        .filter(|&i| self.dwell[i] > 0.0)
+                        .collect()
+                } else {
+                    used(self, l)
+                }
+            })
+            .collect();
+        let top = r.max_level.unwrap_or(h - 1).min(h - 1);
+        // the initial event: the bottom node nearest to the initial posture (state half)
+        let (n_init, _) = self.maps[0].bmu_range(y0, 0..s);
+        let init_content = event_content(&self.maps[0], n_init, 0.0, code);
+        // per level l >= 1: the entries of level l-1 completed in its current chunk, the
+        // chunk's context and index
+        let mut chunk: Vec<Vec<Item>> = vec![Vec::new(); h];
+        let mut prev: Vec<Vec<f64>> = vec![a_part(lay, &init_content).to_vec(); h];
+        let mut index: Vec<usize> = vec![0; h];
+        let mut expected: Vec<VecDeque<u32>> = vec![VecDeque::new(); h];
+        let mut plan: VecDeque<(u32, f64, usize)> = VecDeque::new();
+        let mut executed: Vec<(usize, f64, usize)> = Vec::new();
+        let mut x = vec![0.0; lay.dim()];
+        let mut mask = vec![true; lay.dim()];
+        let mut total = 0.0;
+        let mut stop = StopReason::LearnedLength;
+        let mut first = true;
+        // per level: its last completed entry (u32::MAX: the begin)
+        let mut tail_exec: Vec<u32> = vec![u32::MAX; h];
+        'run: loop {
+            if plan.is_empty() {
+                expected.iter_mut().for_each(|e| e.clear());
+                // climb while the match lies within what the level saw in training
+                let mut matched: Vec<usize> = vec![0; h];
+                let mut level = 0;
+                for l in 1..=top {
+                    let refs: Vec<&[f64]> = chunk[l].iter().map(|i| i.content.as_slice()).collect();
+                    let phase = (index[l] * lay.k.pow(l as u32)) as f64 / mean_events;
+                    let known = chunk_input(
+                        lay,
+                        &prev[l],
+                        index[l] == 0,
+                        phase,
+                        &refs,
+                        &mut x,
+                        &mut mask,
+                    );
+                    let (b, d2) = self.maps[l].bmu_masked(&x, &mask);
+                    // level 1 always predicts (the lowest level with a sequence and a
+                    // context); higher levels only while they are not confused
+                    if l > 1
+                        && (d2 / known as f64).sqrt() > self.threshold[l] * (1.0 + 1e-9) + 1e-12
+                    {
+                        break;
+                    }
+                    matched[l] = b;
+                    level = l;
+                }
+                if level == 0 {
+                    // confused everywhere: the bottom's lookup table (its reflex)
+                    let last = executed.last().map_or(n_init, |e| e.0);
+                    let next = if first {
+                        n_init as u32
+                    } else {
+                        self.successor[last]
+                    };
+                    if next == u32::MAX || next == END {
+                        stop = StopReason::EndEvent;
+                        break 'run;
+                    }
+                    plan.push_back((next, self.dwell[next as usize].max(1.0), 0));
+                } else {
+                    let done: Vec<usize> = chunk.iter().map(|c| c.len()).collect();
+                    let ctx = Planner {
+                        lay,
+                        code,
+                        matched: &matched,
+                        done: &done,
+                        used: &used_levels,
+                        by: level,
+                    };
+                    // the chunk in progress at the top level used is its own match
+                    let mut tail = tail_exec.clone();
+                    self.expand(
+                        &ctx,
+                        level,
+                        matched[level],
+                        done[level],
+                        true,
+                        &mut plan,
+                        &mut expected,
+                        &mut tail,
+                    );
+                }
+            }
+            let Some((node, dur, by)) = plan.pop_front() else {
+                break;
+            };
+            first = false;
+            if node == END {
+                stop = StopReason::EndEvent;
+                break;
+            }
+            let node = node as usize;
+            tail_exec[0] = node as u32;
+            executed.push((node, dur, by));
+            total += dur;
+            if total >= cap as f64 {
+                stop = StopReason::LearnedLength;
+                break;
+            }
+            // push the executed event up the lists, as in training
+            let mut item = Item {
+                node: node as u32,
+                content: event_content(&self.maps[0], node, dur, code),
+            };
+            let mut surprise = false;
+            for l in 1..h {
+                chunk[l].push(item);
+                if chunk[l].len() < lay.k {
+                    break;
+                }
+                let refs: Vec<&[f64]> = chunk[l].iter().map(|i| i.content.as_slice()).collect();
+                let phase = (index[l] * lay.k.pow(l as u32)) as f64 / mean_events;
+                chunk_input(
+                    lay,
+                    &prev[l],
+                    index[l] == 0,
+                    phase,
+                    &refs,
+                    &mut x,
+                    &mut mask,
+                );
+                let (b, _) = self.maps[l].bmu(&x);
+                let last_b = b_part(lay, &chunk[l][lay.k - 1].content).to_vec();
+                chunk[l].clear();
+                prev[l] = last_b;
+                index[l] += 1;
+                tail_exec[l] = b as u32;
+                if let Some(e) = expected[l].pop_front() {
+                    surprise |= e != b as u32;
+                }
+                item = Item {
+                    node: b as u32,
+                    content: summary(lay, self.maps[l].weights(b), code),
+                };
+            }
+            if surprise {
+                plan.clear();
+            }
+        }
+        self.timed_postures(y0, &executed, stop)
+    }
+
+    /// Expand the prediction of node `n` of `level` from slot `from` into timed bottom
+    /// events (`plan`), and the entries of every level it expects (`expected`). With
+    /// `in_progress`, the slot `from` is the chunk being executed below: it is the lower
+    /// level's own match (`matched`), expanded from what that chunk has completed (`done`).
+    #[allow(clippy::too_many_arguments)]
+    fn expand(
+        &self,
+        ctx: &Planner<'_>,
+        level: usize,
+        n: usize,
+        from: usize,
+        in_progress: bool,
+        plan: &mut VecDeque<(u32, f64, usize)>,
+        expected: &mut [VecDeque<u32>],
+        tail: &mut [u32],
+    ) -> bool {
+        let lay = ctx.lay;
+        let w = self.maps[level].weights(n);
+        for j in from..lay.k {
+            let c = &w[lay.slot_range(j)];
+            if level == 1 {
+                let e = decode(self, lay, 1, c, ctx.code, &ctx.used[0], tail[0]);
+                tail[0] = e;
+                if e == END {
+                    plan.push_back((END, 0.0, ctx.by));
+                    return true;
+                }
+                plan.push_back((e, ctx.code.decode(c[2 * lay.s]).max(1.0), ctx.by));
+            } else {
+                let (m, sub_from, sub_prog) = if in_progress && j == from {
+                    (ctx.matched[level - 1] as u32, ctx.done[level - 1], true)
+                } else {
+                    let prev = tail[level - 1];
+                    (
+                        decode(self, lay, level, c, ctx.code, &ctx.used[level - 1], prev),
+                        0,
+                        false,
+                    )
+                };
+                tail[level - 1] = m;
+                if m == END {
+                    plan.push_back((END, 0.0, ctx.by));
+                    return true;
+                }
+                expected[level - 1].push_back(m);
+                if self.expand(
+                    ctx,
+                    level - 1,
+                    m as usize,
+                    sub_from,
+                    sub_prog,
+                    plan,
+                    expected,
+                    tail,
+                ) {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+}
+
+impl Hsom {
+    /// Postures at every sample from the executed events: each event's node posture (its
+    /// state half) is reached at the middle of the event, the initial posture is the first
+    /// knot and the last event's posture is held to its end; in between a monotone cubic
+    /// (Fritsch-Carlson) per variable, so holds are held, no variable overshoots its knots and
+    /// the motion starts and ends at rest.
+    fn timed_postures(
+        &self,
+        y0: &[f64],
+        executed: &[(usize, f64, usize)],
+        stop: StopReason,
+    ) -> Reproduction {
+        let s = y0.len();
+        let mut t = vec![0.0];
+        let mut v: Vec<Vec<f64>> = vec![y0.to_vec()];
+        let mut by = vec![0usize];
+        let mut now = 0.0;
+        for &(n, d, l) in executed {
+            t.push(now + d / 2.0);
+            v.push(self.maps[0].weights(n)[..s].to_vec());
+            by.push(l);
+            now += d;
+        }
+        if let Some(&(n, _, l)) = executed.last() {
+            t.push(now);
+            v.push(self.maps[0].weights(n)[..s].to_vec());
+            by.push(l);
+        }
+        let samples = now.floor() as usize + 1;
+        let mut out = vec![vec![0.0; s]; samples];
+        let mut out_by = vec![0usize; samples];
+        let k = t.len();
+        for d in 0..s {
+            let m = monotone_tangents(&t, &v.iter().map(|r| r[d]).collect::<Vec<_>>());
+            let mut seg = 0;
+            for (i, row) in out.iter_mut().enumerate() {
+                let ti = i as f64;
+                while seg + 2 < k && ti > t[seg + 1] {
+                    seg += 1;
+                }
+                row[d] = if k == 1 {
+                    v[0][d]
+                } else {
+                    hermite(
+                        t[seg],
+                        t[seg + 1],
+                        v[seg][d],
+                        v[seg + 1][d],
+                        m[seg],
+                        m[seg + 1],
+                        ti,
+                    )
+                };
+                if d == 0 {
+                    out_by[i] = by[(seg + 1).min(k - 1)];
+                }
+            }
+        }
+        let postures: Vec<Vec<f64>> = out
+            .iter()
+            .map(|y| {
+                y.iter()
+                    .enumerate()
+                    .map(|(d, v)| v * self.scale[d] + self.offset[d])
+                    .collect()
+            })
+            .collect();
+        Reproduction {
+            steps: (0..postures.len()).collect(),
+            postures,
+            predicted_by: out_by,
+            stop,
+        }
+    }
+}
+
+/// Fritsch-Carlson tangents of a monotone cubic through (t, v), zero at both ends.
+fn monotone_tangents(t: &[f64], v: &[f64]) -> Vec<f64> {
+    let k = t.len();
+    let mut m = vec![0.0; k];
+    if k < 3 {
+        return m;
+    }
+    let delta: Vec<f64> = (0..k - 1)
+        .map(|i| (v[i + 1] - v[i]) / (t[i + 1] - t[i]))
+        .collect();
+    for i in 1..k - 1 {
+        if delta[i - 1] * delta[i] > 0.0 {
+            // weighted harmonic mean (Fritsch-Butland), never more than 3x either secant
+            let (h0, h1) = (t[i] - t[i - 1], t[i + 1] - t[i]);
+            let w1 = 2.0 * h1 + h0;
+            let w2 = h1 + 2.0 * h0;
+            m[i] = (w1 + w2) / (w1 / delta[i - 1] + w2 / delta[i]);
+        }
+    }
+    m
+}
+
+/// Cubic Hermite between (t0, v0, m0) and (t1, v1, m1) at t (clamped to the segment).
+fn hermite(t0: f64, t1: f64, v0: f64, v1: f64, m0: f64, m1: f64, t: f64) -> f64 {
+    let h = t1 - t0;
+    if h <= 0.0 {
+        return v1;
+    }
+    let u = ((t - t0) / h).clamp(0.0, 1.0);
+    let (u2, u3) = (u * u, u * u * u);
+    (2.0 * u3 - 3.0 * u2 + 1.0) * v0
+        + (u3 - 2.0 * u2 + u) * h * m0
+        + (-2.0 * u3 + 3.0 * u2) * v1
+        + (u3 - u2) * h * m1
+}
+
+/// What a plan is made from.
+struct Planner<'a> {
+    lay: Layout,
+    code: DurationCode,
+    /// Per level, the partial match of its current chunk.
+    matched: &'a [usize],
+    /// Per level, the entries its current chunk has completed.
+    done: &'a [usize],
+    /// Per level, its used nodes.
+    used: &'a [Vec<usize>],
+    /// The level the plan comes from.
+    by: usize,
+}
