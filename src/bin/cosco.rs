@@ -60,7 +60,7 @@ enum Command {
     },
     /// Train a CoSCo-HSOM hierarchy on demonstration CSV files and save it (.bin or .txt).
     Train {
-        /// XML configuration (default: the built-in Table I of the paper).
+        /// XML configuration (default: the built-in configs/nao-gestures.xml, the recommended events extension).
         #[arg(long)]
         config: Option<PathBuf>,
         /// Demonstrations: a directory of *.csv files, or files.
@@ -116,7 +116,7 @@ enum Command {
         /// Directory of demonstration CSVs (columns: time, then the arm's six joints).
         #[arg(long)]
         demos: PathBuf,
-        /// CoSCo-HSOM configuration (XML); default: the built-in Table I.
+        /// CoSCo-HSOM configuration (XML); default: the built-in configs/nao-gestures.xml.
         #[arg(long)]
         config: Option<PathBuf>,
         /// Output directory (created if missing).

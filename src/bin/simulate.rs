@@ -25,7 +25,7 @@ struct Args {
     /// Gesture of the synthetic demonstrations (reading-watch, wave, reach-point, salute).
     #[arg(long, default_value = "reading-watch")]
     gesture: String,
-    /// CoSCo-HSOM configuration (XML); default: the shipped configs/table1.xml (the paper's Table I).
+    /// CoSCo-HSOM configuration (XML); default: the shipped configs/nao-gestures.xml (the recommended events extension; configs/table1.xml is the paper taken literally).
     #[arg(long)]
     config: Option<PathBuf>,
     /// Learn from recorded demonstration CSV files in this directory instead of synthetic ones.

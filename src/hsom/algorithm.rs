@@ -390,6 +390,16 @@ impl HsomConfig {
 
     /// Train on plain time series (rows of `stateLength` values), quietly.
     pub fn fit_series(&self, series: &[Vec<Vec<f64>>]) -> Result<Hsom, HsomError> {
+        self.series_inner(series, true)
+    }
+
+    /// The untrained model of [`HsomConfig::fit_series`] (seeded initial weights; the
+    /// negative control of quality checks on plain series).
+    pub fn initialise_series(&self, series: &[Vec<Vec<f64>>]) -> Result<Hsom, HsomError> {
+        self.series_inner(series, false)
+    }
+
+    fn series_inner(&self, series: &[Vec<Vec<f64>>], learn: bool) -> Result<Hsom, HsomError> {
         let names: Vec<String> = (0..series.len()).map(|i| format!("series #{i}")).collect();
         let s: Vec<Series<'_>> = series
             .iter()
@@ -399,7 +409,7 @@ impl HsomConfig {
         let columns = (0..self.params().state_length)
             .map(|i| format!("x{i}"))
             .collect();
-        self.fit_inner(&s, None, true, columns)
+        self.fit_inner(&s, None, learn, columns)
     }
 
     fn fit_inner(

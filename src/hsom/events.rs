@@ -906,3 +906,203 @@ struct Planner<'a> {
     /// The level the plan comes from.
     by: usize,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::{Algorithm, HsomParams};
+
+    /// A 2-D gesture: hold at the origin, go to (1, 0), hold, come back, hold.
+    fn gesture(hold: usize, noise_seed: u64) -> Vec<Vec<f64>> {
+        use rand::SeedableRng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(noise_seed);
+        let mut rows = Vec::new();
+        let mut push = |x: f64, rng: &mut rand_chacha::ChaCha8Rng| {
+            rows.push(vec![x + 0.002 * rng.gen::<f64>(), 0.5 * x]);
+        };
+        for _ in 0..hold {
+            push(0.0, &mut rng);
+        }
+        for i in 0..40 {
+            push(i as f64 / 40.0, &mut rng);
+        }
+        for _ in 0..hold {
+            push(1.0, &mut rng);
+        }
+        for i in 0..40 {
+            push(1.0 - i as f64 / 40.0, &mut rng);
+        }
+        for _ in 0..hold {
+            push(0.0, &mut rng);
+        }
+        rows
+    }
+
+    fn config(height: usize) -> HsomConfig {
+        let mut p = HsomParams::table1();
+        p.algorithm = Algorithm::Events;
+        p.state_length = 2;
+        p.action_length = 2;
+        p.height = height;
+        p.levels.truncate(height);
+        p.levels[0] = crate::config::LevelParams::new(8, 8, crate::som::Topology::Orthogonal, 0.1);
+        for l in 1..height {
+            p.levels[l] =
+                crate::config::LevelParams::new(6, 6, crate::som::Topology::Orthogonal, 0.5);
+        }
+        p.change_ratio = 0.6;
+        p.action_horizon = 5;
+        p.training_steps = 3000;
+        p.check("test").unwrap()
+    }
+
+    fn trained(height: usize) -> Hsom {
+        let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
+        config(height).fit_series(&series).unwrap()
+    }
+
+    #[test]
+    fn events_tile_the_demonstration_and_hold_their_durations() {
+        let m = trained(3);
+        let demo = gesture(30, 9);
+        let y: Vec<Vec<f64>> = demo
+            .iter()
+            .map(|r| {
+                r.iter()
+                    .enumerate()
+                    .map(|(d, v)| (v - m.offset[d]) / m.scale[d])
+                    .collect()
+            })
+            .collect();
+        let ev = bottom_events(&m, &y);
+        // every sample but the last belongs to exactly one event
+        let total: f64 = ev.iter().map(|e| e.1).sum();
+        assert_eq!(total as usize, y.len() - 1);
+        // consecutive events are different nodes (an event ends when the BMU changes)
+        assert!(ev.windows(2).all(|w| w[0].0 != w[1].0));
+        // the holds are single long events, not flicker from the noise
+        assert!(ev.first().unwrap().1 >= 25.0, "{ev:?}");
+        assert!(ev.iter().any(|e| e.1 >= 25.0 && e.0 != ev[0].0), "{ev:?}");
+        assert!(ev.len() < 40, "{} events for {} samples", ev.len(), y.len());
+    }
+
+    #[test]
+    fn chunks_tile_without_overlap_and_end_with_the_end() {
+        let lay = Layout { s: 1, k: 4 };
+        let items: Vec<Item> = (0..9)
+            .map(|i| Item {
+                node: i,
+                content: vec![i as f64, i as f64 + 0.5, 0.1, 0.0],
+            })
+            .collect();
+        let c = chunks(lay, &items, 1.0, 9.0);
+        assert_eq!(c.len(), 3);
+        assert!(
+            c[0].1 && !c[1].1 && !c[2].1,
+            "only the first chunk is the begin"
+        );
+        assert_eq!(
+            c[1].0,
+            vec![3.5],
+            "context: last posture of the chunk before"
+        );
+        assert_eq!(c[2].3[0], items[8].content);
+        // slots after the last entry are the end, holding the last posture
+        for j in 1..4 {
+            assert_eq!(c[2].3[j], vec![8.5, 8.5, 0.0, 1.0]);
+        }
+        let phases: Vec<f64> = c.iter().map(|x| x.2).collect();
+        assert_eq!(phases, vec![0.0, 4.0 / 9.0, 8.0 / 9.0]);
+    }
+
+    #[test]
+    fn followers_count_the_begin_and_the_most_frequent_first() {
+        let seqs = vec![
+            vec![1, 2, 3, END],
+            vec![1, 2, 4, END],
+            vec![1, 3, 2, 4, END],
+        ];
+        let t = followers_table(5, &seqs);
+        let row = |n: usize| t[n * FOLLOWERS..(n + 1) * FOLLOWERS].to_vec();
+        assert_eq!(row(5)[0], 1, "the begin is followed by 1");
+        assert_eq!(row(2)[0], 4, "2 -> 4 twice, 2 -> 3 once");
+        assert_eq!(row(2)[1], 3);
+        assert_eq!(row(4), vec![END, u32::MAX, u32::MAX, u32::MAX]);
+    }
+
+    #[test]
+    fn decoding_by_content_picks_the_nearest_follower() {
+        let m = trained(3);
+        let lay = Layout::of(&m.config);
+        let code = DurationCode::from_dwell(&m.dwell);
+        // the first follower of the begin, decoded from its own content
+        let first = m.followers[0][m.maps[0].len() * FOLLOWERS];
+        assert_ne!(first, u32::MAX);
+        let c = entry_content(&m, lay, 0, first as usize, code);
+        assert_eq!(decode(&m, lay, 1, &c, code, &[], u32::MAX), first);
+        // a slot whose end flag is set decodes to the end
+        let mut e = c.clone();
+        e[2 * lay.s + 1] = 1.0;
+        assert_eq!(decode(&m, lay, 1, &e, code, &[], u32::MAX), END);
+    }
+
+    #[test]
+    fn reproduction_goes_there_and_back_at_the_learned_tempo_and_ends_by_itself() {
+        let m = trained(3);
+        let rep = m.reproduce(&[0.0, 0.0]).unwrap();
+        assert_eq!(rep.stop, StopReason::EndEvent);
+        let xs: Vec<f64> = rep.postures.iter().map(|p| p[0]).collect();
+        let top = xs.iter().cloned().fold(f64::MIN, f64::max);
+        assert!(top > 0.85, "reaches the far posture: {top}");
+        assert!(xs.last().unwrap().abs() < 0.15, "comes back: {xs:?}");
+        // the hold at the far posture lasts about as long as demonstrated (30-40 samples)
+        let held = xs.iter().filter(|&&x| x > 0.9).count();
+        assert!((20..=60).contains(&held), "held {held} samples");
+        let n = rep.postures.len() as f64;
+        assert!((0.7 * 150.0..=1.3 * 200.0).contains(&n), "length {n}");
+        // an upper level carried it
+        assert!(rep.predicted_by.iter().any(|&l| l >= 2));
+        // deterministic
+        assert_eq!(rep, m.reproduce(&[0.0, 0.0]).unwrap());
+    }
+
+    #[test]
+    fn an_untrained_hierarchy_does_not_reproduce_the_gesture() {
+        let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
+        let m = config(3).initialise_series(&series).unwrap();
+        let rep = m.reproduce(&[0.0, 0.0]).unwrap();
+        let xs: Vec<f64> = rep.postures.iter().map(|p| p[0]).collect();
+        let held = xs.iter().filter(|&&x| x > 0.9).count();
+        let top = xs.iter().cloned().fold(f64::MIN, f64::max);
+        assert!(
+            !(top > 0.85 && (20..=60).contains(&held) && xs.last().unwrap().abs() < 0.15),
+            "untrained: top {top}, held {held}"
+        );
+    }
+
+    #[test]
+    fn monotone_cubic_holds_and_does_not_overshoot() {
+        let t = [0.0, 10.0, 20.0, 30.0];
+        let v = [0.0, 1.0, 1.0, 0.0];
+        let m = monotone_tangents(&t, &v);
+        assert_eq!(m[1], 0.0);
+        assert_eq!(m[2], 0.0);
+        for i in 0..=30 {
+            let ti = i as f64;
+            let seg = ((ti / 10.0) as usize).min(2);
+            let x = hermite(
+                t[seg],
+                t[seg + 1],
+                v[seg],
+                v[seg + 1],
+                m[seg],
+                m[seg + 1],
+                ti,
+            );
+            assert!((0.0..=1.0).contains(&x), "{ti}: {x}");
+            if (10.0..=20.0).contains(&ti) {
+                assert!((x - 1.0).abs() < 1e-12, "the hold is held");
+            }
+        }
+    }
+}

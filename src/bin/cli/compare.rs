@@ -288,7 +288,7 @@ pub fn compare(job: &CompareJob) -> Result<Report> {
         config: job
             .config
             .as_ref()
-            .map_or("configs/table1.xml (built in)".into(), |p| {
+            .map_or(super::DEFAULT_CONFIG_NAME.into(), |p| {
                 p.display().to_string()
             }),
         demos: demo_info,

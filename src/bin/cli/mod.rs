@@ -116,14 +116,21 @@ pub fn demos(
     write_demos(out, &demos)
 }
 
-/// The shipped Table I configuration, built into the binaries so they run from any directory.
+/// The shipped Table I configuration (the paper taken literally), built into the binaries.
 pub const TABLE1_XML: &str = include_str!("../../../configs/table1.xml");
 
-/// Load a CoSCo-HSOM configuration file, or the built-in Table I.
+/// The recommended configuration for the simulated Nao (the events extension), built into the
+/// binaries so they run from any directory; the default of `simulate` and `cosco`.
+pub const NAO_GESTURES_XML: &str = include_str!("../../../configs/nao-gestures.xml");
+
+/// Name of the built-in default configuration in reports and messages.
+pub const DEFAULT_CONFIG_NAME: &str = "configs/nao-gestures.xml (built in)";
+
+/// Load a CoSCo-HSOM configuration file, or the built-in recommended configuration.
 pub fn hsom_config(path: Option<&Path>) -> Result<HsomConfig> {
     Ok(match path {
         Some(p) => load_config(p)?,
-        None => parse_config(TABLE1_XML, "configs/table1.xml (built in)")?,
+        None => parse_config(NAO_GESTURES_XML, DEFAULT_CONFIG_NAME)?,
     })
 }
 
@@ -443,9 +450,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
         config: job
             .config
             .as_ref()
-            .map_or("configs/table1.xml (built in)".into(), |p| {
-                p.display().to_string()
-            }),
+            .map_or(DEFAULT_CONFIG_NAME.into(), |p| p.display().to_string()),
         demos: demo_info,
         methods,
         variants: variant_results,
