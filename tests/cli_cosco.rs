@@ -43,7 +43,11 @@ fn demos_train_inspect_reproduce_evaluate() {
         .arg(&model)
         .assert()
         .success()
-        .stdout(predicate::str::contains("6 levels").and(predicate::str::contains("QE")));
+        .stdout(
+            predicate::str::contains("4 levels")
+                .and(predicate::str::contains("QE"))
+                .and(predicate::str::contains("lookup")),
+        );
     let rep = d.join("rep.csv");
     cosco()
         .arg("reproduce")

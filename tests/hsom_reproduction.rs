@@ -180,12 +180,13 @@ fn corrupted_truncated_and_other_version_files_are_refused() {
             e,
             PersistError::Version {
                 found: 1,
-                expected: 3,
+                expected: 4,
                 ..
             }
         ),
         "{e}"
     );
+    assert!(e.to_string().contains("retrain"), "{e}");
     // not a model
     std::fs::write(&p, b"hello world, not a model").unwrap();
     assert!(matches!(Hsom::load(&p), Err(PersistError::BadMagic { .. })));

@@ -391,6 +391,11 @@ impl Hsom {
         let n0 = self.maps[0].len();
         // 1. bottom events, their durations and the bottom's own lookup table
         let events: Vec<Vec<(usize, f64)>> = norm.iter().map(|d| bottom_events(self, d)).collect();
+        if std::env::var_os("COSCO_DEBUG_EVENTS").is_some() {
+            for e in &events {
+                eprintln!("demo events: {e:?}");
+            }
+        }
         let mut dsum = vec![0.0; n0];
         let mut dn = vec![0u32; n0];
         for ev in &events {
@@ -715,6 +720,9 @@ impl Hsom {
                 plan.clear();
             }
         }
+        if std::env::var_os("COSCO_DEBUG_EVENTS").is_some() {
+            eprintln!("executed: {executed:?} stop {stop:?}");
+        }
         self.timed_postures(y0, &executed, stop)
     }
 
@@ -745,7 +753,7 @@ impl Hsom {
                     plan.push_back((END, 0.0, ctx.by));
                     return true;
                 }
-                plan.push_back((e, ctx.code.decode(c[2 * lay.s]).max(1.0), ctx.by));
+                plan.push_back((e, self.dwell[e as usize].max(1.0), ctx.by));
             } else {
                 let (m, sub_from, sub_prog) = if in_progress && j == from {
                     (ctx.matched[level - 1] as u32, ctx.done[level - 1], true)
