@@ -9,6 +9,8 @@ use serde::Serialize;
 use crate::fsutil::write_atomic;
 use crate::metrics::{FidelityReport, Stat};
 
+use super::heldout::HeldOutSummary;
+
 /// One demonstration used for training.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct DemoInfo {
@@ -41,6 +43,8 @@ pub struct MethodResult {
     pub clamped_values: usize,
     /// Anything else worth a line (why the reproduction stopped, components chosen, ...).
     pub notes: Vec<String>,
+    /// Held-out (leave-one-out) means, when evaluated.
+    pub heldout: Option<HeldOutSummary>,
 }
 
 /// Wall time of one stage of the job.

@@ -13,7 +13,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use cosco_hsom::config::{load_config, parse_config, HsomConfig};
 use cosco_hsom::demos::{self, write_csv, Demonstration};
 use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
-use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report, Stage};
+use cosco_hsom::experiment::report::{DemoInfo, Report, Stage};
 use cosco_hsom::experiment::variants::variants;
 use cosco_hsom::experiment::{
     are_arm_joints, demo_wrist_paths, evaluate, film, learn_and_reproduce, record_demonstrations,
@@ -299,20 +299,14 @@ pub fn main_job(job: &Job) -> Result<Report> {
         &executed.to_demonstration("CoSCo-HSOM reproduction"),
     )?;
     files.push("reproduction.csv".into());
-    let hsom_result = MethodResult {
-        name: "CoSCo-HSOM".into(),
-        needs: "raw demonstrations; the initial posture".into(),
-        fidelity: run.fidelity.clone(),
-        train_s: run.train_s,
-        reproduce_s: run.reproduce_s,
-        model_bytes: file_size(&model_path),
-        postures: run.reproduction.postures.len(),
-        clamped_values: run.clamped_values,
-        notes: vec![
+    let hsom_result = run.method_result(
+        "CoSCo-HSOM",
+        file_size(&model_path),
+        vec![
             format!("stopped: {:?}", run.reproduction.stop),
             levels_note(&run.reproduction.predicted_by),
         ],
-    };
+    );
     clock.lap("writing the model and reproduction.csv");
 
     // 5. Plots.
@@ -389,17 +383,8 @@ pub fn main_job(job: &Job) -> Result<Report> {
                 v.transition,
                 None,
             )?;
-            variant_results.push(MethodResult {
-                name: v.name,
-                needs: "raw demonstrations; the initial posture".into(),
-                fidelity: run.fidelity,
-                train_s: run.train_s,
-                reproduce_s: run.reproduce_s,
-                model_bytes: run.model.to_bytes().len() as u64,
-                postures: run.reproduction.postures.len(),
-                clamped_values: run.clamped_values,
-                notes: Vec::new(),
-            });
+            let bytes = run.model.to_bytes().len() as u64;
+            variant_results.push(run.method_result(&v.name, bytes, Vec::new()));
             pb.inc(1);
         }
         pb.finish_and_clear();
