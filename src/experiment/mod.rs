@@ -11,9 +11,12 @@ pub mod film;
 pub mod heldout;
 pub mod pipeline;
 pub mod report;
+pub mod study;
 pub mod variants;
 
-pub use demonstrate::{joint_limits, record_demonstrations, DemoSettings};
+pub use demonstrate::{
+    joint_limits, record_demonstrations, synthetic_demonstrations, DemoSettings,
+};
 pub use evaluate::{are_arm_joints, demo_wrist_paths, evaluate, trajectory, wrist_path};
 pub use execute::{clamp_to_ranges, execute_postures, Transition};
 pub use film::film;

@@ -16,15 +16,15 @@ use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, C
 use cosco_hsom::experiment::report::{DemoInfo, Report, Stage};
 use cosco_hsom::experiment::variants::variants;
 use cosco_hsom::experiment::{
-    are_arm_joints, demo_wrist_paths, evaluate, film, learn_and_reproduce, record_demonstrations,
-    sample_period, DemoSettings, Training, Transition,
+    are_arm_joints, demo_wrist_paths, evaluate, film, learn_and_reproduce, sample_period,
+    synthetic_demonstrations, DemoSettings, Training, Transition,
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::hsom::Hsom;
 use cosco_hsom::metrics::{FidelityReport, MetricsParams};
 use cosco_hsom::plot::BLACK;
 use cosco_hsom::render::RenderOptions;
-use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
+use cosco_hsom::sim::{NaoArm, JOINT_NAMES};
 
 /// Default encoder noise of synthetic demonstrations, rad (about Nao's encoder resolution).
 pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
@@ -64,22 +64,22 @@ pub fn gesture(name: &str) -> Result<Gesture> {
     }
 }
 
-/// Record synthetic demonstrations in the simulator.
+/// Record synthetic demonstrations in the simulator, with a progress bar.
 pub fn record(
     arm: &NaoArm,
     gesture: &Gesture,
     count: usize,
     seed: u64,
     noise: f64,
-) -> Result<Vec<Recording>> {
+) -> Result<Vec<Demonstration>> {
     let settings = DemoSettings {
         encoder_noise: noise,
         ..DemoSettings::default()
     };
     let pb = progress(count as u64, "demonstrating");
-    let recs = record_demonstrations(arm, gesture, count, seed, &settings, |_| pb.inc(1))?;
+    let demos = synthetic_demonstrations(arm, gesture, count, seed, &settings, |_| pb.inc(1))?;
     pb.finish_and_clear();
-    Ok(recs)
+    Ok(demos)
 }
 
 /// Write demonstrations as `demo_01.csv`, ... in `dir` (created if missing).
@@ -105,14 +105,7 @@ pub fn demos(
 ) -> Result<Vec<PathBuf>> {
     let g = gesture(gesture_name)?;
     let arm = load_arm(model)?;
-    let recs = record(&arm, &g, count, seed, noise)?;
-    let demos: Vec<Demonstration> = recs
-        .iter()
-        .enumerate()
-        .map(|(i, r)| {
-            r.to_demonstration(format!("{} demonstration {} (seed {seed})", g.name, i + 1))
-        })
-        .collect();
+    let demos = record(&arm, &g, count, seed, noise)?;
     write_demos(out, &demos)
 }
 
@@ -234,19 +227,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
         ),
         None => {
             let g = gesture(&job.gesture)?;
-            let recs = record(&arm, &g, job.count, job.seed, job.noise)?;
-            let demos: Vec<Demonstration> = recs
-                .iter()
-                .enumerate()
-                .map(|(i, r)| {
-                    r.to_demonstration(format!(
-                        "{} demonstration {} (seed {})",
-                        g.name,
-                        i + 1,
-                        job.seed
-                    ))
-                })
-                .collect();
+            let demos = record(&arm, &g, job.count, job.seed, job.noise)?;
             (demos, Some(g.name.to_string()))
         }
     };
