@@ -25,13 +25,17 @@ use std::time::Instant;
 use plotters::style::RGBColor;
 
 use crate::demos::Demonstration;
-use crate::gmr::{BicScore, GmrError, GmrModel, GmrValidParams, Prediction, TrainingSet};
+use crate::gmr::{
+    BicScore, ComponentChoice, GmrError, GmrModel, GmrParams, GmrValidParams, Prediction,
+    TrainingSet,
+};
 use crate::metrics::{FidelityReport, MetricsParams};
 use crate::plot::{demo_color, panels_png, Band, Ellipse, Panel, PlotError, Scatter, Series};
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
 
+use super::pipeline::{execute_and_score, Split};
 use super::report::MethodResult;
-use super::{are_arm_joints, clamp_to_ranges, evaluate, execute_postures, ExperimentError};
+use super::{are_arm_joints, ExperimentError, Transition};
 
 /// Peak joint speed of the lead-in from the initial posture to GMR's first point, rad/s.
 pub const LEAD_IN_PEAK_SPEED: f64 = 1.0;
@@ -44,6 +48,10 @@ pub const GMR_NEEDS: &str = "at least 2 demonstrations, pre-processed: idle star
     DTW-aligned to the medoid demonstration, resampled to a fixed number of points; a time \
     index t (it regresses q on t over the learned duration); the initial posture only for \
     the minimum-jerk lead-in to GMR's first point";
+/// The default component choice: the lowest BIC over 1..=16. Wider than the library's
+/// default 1..=8: on the four gestures BIC still fell at 8 components (a wave needs about
+/// two per oscillation), and over 1..=16 it has an interior minimum (12 to 15).
+pub const DEFAULT_COMPONENTS: ComponentChoice = ComponentChoice::Bic { min: 1, max: 16 };
 /// Colour of the baseline's curves.
 pub const GMR_COLOR: RGBColor = RGBColor(200, 0, 130);
 
@@ -161,23 +169,44 @@ pub struct BaselineRun {
 
 /// Fit the baseline to `demos` (the arm's joints, sampled every `metrics.sample_period`
 /// seconds), execute its plan on the simulated arm from `demos[0]`'s first posture, and
-/// score the executed trajectory with `metrics`.
+/// score the executed trajectory with `metrics` (the in-sample result: [`run_baseline_split`]
+/// with [`Split::in_sample`]).
 pub fn run_baseline(
     arm: &NaoArm,
     demos: &[Demonstration],
     params: &GmrValidParams,
     metrics: &MetricsParams,
 ) -> Result<BaselineRun, BaselineError> {
-    let Some(first) = demos.first() else {
+    if demos.is_empty() {
+        return Err(BaselineError::Invalid(
+            "no demonstrations given to the GMM/GMR baseline".into(),
+        ));
+    }
+    run_baseline_split(arm, Split::in_sample(demos), params, metrics)
+}
+
+/// Fit the baseline to `split.train` (the arm's joints, sampled every
+/// `metrics.sample_period` seconds), execute its plan on the simulated arm from the first
+/// posture of `split.test[0]`, and score the executed trajectory against `split.test` with
+/// `metrics`.
+pub fn run_baseline_split(
+    arm: &NaoArm,
+    split: Split<'_>,
+    params: &GmrValidParams,
+    metrics: &MetricsParams,
+) -> Result<BaselineRun, BaselineError> {
+    let Some(first) = split.train.first() else {
         return Err(BaselineError::Invalid(
             "no demonstrations given to the GMM/GMR baseline".into(),
         ));
     };
-    if !are_arm_joints(&first.columns) {
-        return Err(BaselineError::NotArmJoints {
-            found: first.columns.clone(),
-            expected: JOINT_NAMES.iter().map(|s| s.to_string()).collect(),
-        });
+    for d in [first, split.first_test()?] {
+        if !are_arm_joints(&d.columns) {
+            return Err(BaselineError::NotArmJoints {
+                found: d.columns.clone(),
+                expected: JOINT_NAMES.iter().map(|s| s.to_string()).collect(),
+            });
+        }
     }
     if !(metrics.sample_period.is_finite() && metrics.sample_period > 0.0) {
         return Err(BaselineError::Invalid(format!(
@@ -187,14 +216,12 @@ pub fn run_baseline(
     }
     let rate = 1.0 / metrics.sample_period;
     let t = Instant::now();
-    let (model, training, bic) = params.fit_with_details(demos)?;
+    let (model, training, bic) = params.fit_with_details(split.train)?;
     let train_s = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let plan = plan(&model, &first.rows[0], rate)?;
+    let plan = plan(&model, split.initial()?, rate)?;
     let reproduce_s = t.elapsed().as_secs_f64();
-    let (postures, clamped) = clamp_to_ranges(&plan.postures)?;
-    let executed = execute_postures(arm, &postures, rate)?;
-    let fidelity = evaluate(Some(arm), demos, &executed.qpos, metrics)?;
+    let run = execute_and_score(arm, &plan.postures, Transition::Linear, split.test, metrics)?;
     Ok(BaselineRun {
         model,
         training,
@@ -202,10 +229,22 @@ pub fn run_baseline(
         train_s,
         reproduce_s,
         plan,
-        clamped,
-        executed,
-        fidelity,
+        clamped: run.clamped_values,
+        executed: run.executed,
+        fidelity: run.fidelity,
     })
+}
+
+/// The baseline's settings used by the experiment: `components` chosen as given, the
+/// library's defaults otherwise, for demonstrations sampled every `sample_period` seconds.
+pub fn gmr_params(
+    components: ComponentChoice,
+    sample_period: f64,
+) -> Result<GmrValidParams, BaselineError> {
+    Ok(GmrParams::new()
+        .components(components)
+        .sample_period(sample_period)
+        .check()?)
 }
 
 impl BaselineRun {
@@ -268,6 +307,7 @@ impl BaselineRun {
             postures: self.plan.postures.len(),
             clamped_values: self.clamped,
             notes,
+            heldout: None,
         }
     }
 }

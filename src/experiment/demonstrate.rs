@@ -4,6 +4,7 @@
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
+use crate::demos::Demonstration;
 use crate::gesture::{Gesture, HumanTrajectory, Variation};
 use crate::sim::{Controller, ControllerConfig, NaoArm, Recording, TargetTrajectory, JOINT_SPECS};
 
@@ -78,4 +79,28 @@ pub fn record_demonstrations(
         on_done(i);
     }
     Ok(out)
+}
+
+/// [`record_demonstrations`] as demonstrations named `"<gesture> demonstration N (seed S)"`
+/// (N from 1), each with the recording's `time` column.
+pub fn synthetic_demonstrations(
+    arm: &NaoArm,
+    gesture: &Gesture,
+    count: usize,
+    seed: u64,
+    settings: &DemoSettings,
+    on_done: impl FnMut(usize),
+) -> Result<Vec<Demonstration>, ExperimentError> {
+    let recs = record_demonstrations(arm, gesture, count, seed, settings, on_done)?;
+    Ok(recs
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            r.to_demonstration(format!(
+                "{} demonstration {} (seed {seed})",
+                gesture.name,
+                i + 1
+            ))
+        })
+        .collect())
 }

@@ -8,15 +8,25 @@ pub mod evaluate;
 pub mod execute;
 pub mod figures;
 pub mod film;
+pub mod heldout;
 pub mod pipeline;
 pub mod report;
+pub mod study;
 pub mod variants;
 
-pub use demonstrate::{joint_limits, record_demonstrations, DemoSettings};
+pub use demonstrate::{
+    joint_limits, record_demonstrations, synthetic_demonstrations, DemoSettings,
+};
 pub use evaluate::{are_arm_joints, demo_wrist_paths, evaluate, trajectory, wrist_path};
 pub use execute::{clamp_to_ranges, execute_postures, Transition};
 pub use film::film;
-pub use pipeline::{learn_and_reproduce, reproduce_variant, sample_period, Outcome, Training};
+pub use heldout::{
+    gmr_folds, hsom_folds, leave_one_out, Fold, FoldScores, HeldOut, HeldOutSummary, Swings,
+};
+pub use pipeline::{
+    execute_and_score, learn_and_reproduce, learn_and_score, reproduce_variant, sample_period,
+    Executed, Outcome, Split, Training,
+};
 
 /// Errors of the experiment pipeline.
 #[derive(Debug, thiserror::Error)]

@@ -9,6 +9,9 @@ use serde::Serialize;
 use crate::fsutil::write_atomic;
 use crate::metrics::{FidelityReport, Stat};
 
+use super::heldout::HeldOutSummary;
+use crate::hsom::Hsom;
+
 /// One demonstration used for training.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct DemoInfo {
@@ -41,6 +44,40 @@ pub struct MethodResult {
     pub clamped_values: usize,
     /// Anything else worth a line (why the reproduction stopped, components chosen, ...).
     pub notes: Vec<String>,
+    /// Held-out (leave-one-out) means, when evaluated.
+    pub heldout: Option<HeldOutSummary>,
+}
+
+/// One level of a trained hierarchy: how many nodes it uses and how well it predicts the
+/// level below, beside the lookup-table baseline (`hsom::LevelSummary`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LevelRow {
+    /// Level (0 = bottom).
+    pub level: usize,
+    /// Nodes of the map (rows x cols).
+    pub nodes: usize,
+    /// Nodes that are the best match of some training input.
+    pub nodes_used: usize,
+    /// Fraction of the next entries of the level below predicted exactly (0 for level 0).
+    pub prediction_accuracy: f64,
+    /// The same for a "next entry given the last entry" lookup table.
+    pub lookup_accuracy: f64,
+}
+
+/// The levels of `model`, bottom first.
+pub fn level_rows(model: &Hsom) -> Vec<LevelRow> {
+    model
+        .summary()
+        .levels
+        .iter()
+        .map(|l| LevelRow {
+            level: l.level,
+            nodes: l.rows * l.cols,
+            nodes_used: l.nodes_used,
+            prediction_accuracy: l.prediction_accuracy,
+            lookup_accuracy: l.lookup_accuracy,
+        })
+        .collect()
 }
 
 /// Wall time of one stage of the job.

@@ -9,4 +9,7 @@ mod smoothness;
 
 pub use errors::MetricsError;
 pub use fidelity::{fidelity, DemoScores, FidelityReport, MetricsParams, Stat, Trajectory};
-pub use smoothness::{key_pose, normalized_jerk, smoothness, velocity_reversals, Smoothness};
+pub use smoothness::{
+    column_swings, key_pose, large_swings, normalized_jerk, smoothness, velocity_reversals,
+    Smoothness,
+};

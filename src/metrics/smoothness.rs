@@ -2,6 +2,7 @@
 
 use serde::Serialize;
 
+use super::errors::MetricsError;
 use crate::dtw::euclidean;
 
 /// Smoothness of one trajectory.
@@ -103,4 +104,144 @@ pub fn key_pose<R: AsRef<[f64]>>(rows: &[R]) -> Option<usize> {
         }
     }
     Some(best.0)
+}
+
+/// Large swings of one signal (a joint's trajectory): the number of direction changes whose
+/// excursions on both sides, between consecutive turning points, exceed `min_amplitude`
+/// (hysteresis, as a zig-zag filter). The direction is set once the signal has moved more
+/// than `min_amplitude` from its lowest (highest) value so far; from then on the running
+/// extreme in that direction is tracked, and a move back from it by more than
+/// `min_amplitude` confirms a turning point there and counts one swing. Wiggles, noise and
+/// hesitations smaller than `min_amplitude` never count, however many sign changes of the
+/// velocity they make; a sine of amplitude `a > min_amplitude / 2` over `k` whole periods,
+/// starting and ending at its mean, counts `2k`. `min_amplitude` must be finite and > 0;
+/// non-finite samples are skipped.
+pub fn large_swings(values: &[f64], min_amplitude: f64) -> Result<usize, MetricsError> {
+    if !(min_amplitude.is_finite() && min_amplitude > 0.0) {
+        return Err(MetricsError::InvalidParam {
+            name: "min_amplitude",
+            value: min_amplitude.to_string(),
+            reason: "a finite amplitude > 0",
+        });
+    }
+    let mut finite = values.iter().copied().filter(|v| v.is_finite());
+    let Some(first) = finite.next() else {
+        return Ok(0);
+    };
+    // None: no direction yet (lowest and highest so far); Some(up): the running extreme.
+    let (mut lo, mut hi) = (first, first);
+    let mut rising: Option<bool> = None;
+    let mut extreme = first;
+    let mut count = 0;
+    for v in finite {
+        match rising {
+            None => {
+                lo = lo.min(v);
+                hi = hi.max(v);
+                if v - lo > min_amplitude {
+                    rising = Some(true);
+                    extreme = v;
+                } else if hi - v > min_amplitude {
+                    rising = Some(false);
+                    extreme = v;
+                }
+            }
+            Some(true) => {
+                if v > extreme {
+                    extreme = v;
+                } else if extreme - v > min_amplitude {
+                    count += 1;
+                    rising = Some(false);
+                    extreme = v;
+                }
+            }
+            Some(false) => {
+                if v < extreme {
+                    extreme = v;
+                } else if v - extreme > min_amplitude {
+                    count += 1;
+                    rising = Some(true);
+                    extreme = v;
+                }
+            }
+        }
+    }
+    Ok(count)
+}
+
+/// [`large_swings`] of column `column` of `rows`; a column outside the rows is an error
+/// naming it.
+pub fn column_swings<R: AsRef<[f64]>>(
+    rows: &[R],
+    column: usize,
+    min_amplitude: f64,
+) -> Result<usize, MetricsError> {
+    let mut values = Vec::with_capacity(rows.len());
+    for (sample, r) in rows.iter().enumerate() {
+        let r = r.as_ref();
+        match r.get(column) {
+            Some(&v) => values.push(v),
+            None => {
+                return Err(MetricsError::Width {
+                    which: format!("column {column} for large swings"),
+                    sample,
+                    expected: column + 1,
+                    found: r.len(),
+                })
+            }
+        }
+    }
+    large_swings(&values, min_amplitude)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sine(periods: f64, amplitude: f64, n: usize) -> Vec<f64> {
+        (0..=n)
+            .map(|k| amplitude * (std::f64::consts::TAU * periods * k as f64 / n as f64).sin())
+            .collect()
+    }
+
+    #[test]
+    fn a_sine_counts_two_swings_per_period() {
+        assert_eq!(large_swings(&sine(3.0, 0.5, 600), 0.3).unwrap(), 6);
+        assert_eq!(large_swings(&sine(1.0, 0.5, 200), 0.3).unwrap(), 2);
+        // peak-to-peak 1.0 is below 1.2: nothing counts
+        assert_eq!(large_swings(&sine(3.0, 0.5, 600), 1.2).unwrap(), 0);
+    }
+
+    #[test]
+    fn small_wiggles_do_not_count_however_many_sign_changes() {
+        let wiggle: Vec<f64> = (0..400)
+            .map(|k| if k % 2 == 0 { 0.1 } else { -0.1 })
+            .collect();
+        assert_eq!(large_swings(&wiggle, 0.3).unwrap(), 0);
+        // a raise and return counts one turning point
+        let mut up_down: Vec<f64> = (0..50).map(|k| k as f64 / 50.0).collect();
+        up_down.extend((0..=50).map(|k| 1.0 - k as f64 / 50.0));
+        assert_eq!(large_swings(&up_down, 0.3).unwrap(), 1);
+        // the return stops short of the amplitude: no swing
+        let mut short: Vec<f64> = (0..50).map(|k| k as f64 / 50.0).collect();
+        short.extend((0..=10).map(|k| 1.0 - k as f64 / 50.0));
+        assert_eq!(large_swings(&short, 0.3).unwrap(), 0);
+        assert_eq!(large_swings(&[], 0.3).unwrap(), 0);
+    }
+
+    #[test]
+    fn bad_amplitude_and_column_are_named_errors() {
+        let e = large_swings(&[0.0, 1.0], 0.0).unwrap_err().to_string();
+        assert!(e.contains("min_amplitude") && e.contains('0'), "{e}");
+        let e = large_swings(&[0.0], f64::NAN).unwrap_err().to_string();
+        assert!(e.contains("NaN"), "{e}");
+        let e = column_swings(&[vec![0.0, 1.0]], 3, 0.3)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("column 3"), "{e}");
+        assert_eq!(
+            column_swings(&[[0.0, 0.0], [0.0, 1.0], [0.0, 0.0]], 1, 0.3).unwrap(),
+            1
+        );
+    }
 }

@@ -7,13 +7,13 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context, Result};
 
 use cosco_hsom::demos::{validate_set, write_csv, Demonstration};
-use cosco_hsom::experiment::baseline::{fig3_png, fig5_png, run_baseline, GMR_COLOR};
+use cosco_hsom::experiment::baseline::{fig3_png, fig5_png, gmr_params, run_baseline, GMR_COLOR};
 use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
 use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report};
 use cosco_hsom::experiment::{
     are_arm_joints, demo_wrist_paths, learn_and_reproduce, sample_period, Training, Transition,
 };
-use cosco_hsom::gmr::{load_model, save_model, ComponentChoice, GmrParams, MIN_DEMONSTRATIONS};
+use cosco_hsom::gmr::{load_model, save_model, ComponentChoice, MIN_DEMONSTRATIONS};
 use cosco_hsom::metrics::MetricsParams;
 use cosco_hsom::plot::BLACK;
 use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
@@ -22,10 +22,7 @@ use super::{
     file_size, hsom_config, levels_note, load_arm, progress, read_demos, Stopwatch, FIG4_JOINTS,
 };
 
-/// The default component choice: the lowest BIC over 1..=16. Wider than the library's
-/// default 1..=8: on the four gestures BIC still fell at 8 components (a wave needs about
-/// two per oscillation), and over 1..=16 it has an interior minimum (12 to 15).
-pub const DEFAULT_COMPONENTS: ComponentChoice = ComponentChoice::Bic { min: 1, max: 16 };
+pub use cosco_hsom::experiment::baseline::DEFAULT_COMPONENTS;
 
 /// Parse `--components`: a count `K` (≥ 1) or `bic` (BIC over 1..=16).
 pub fn parse_components(s: &str) -> Result<ComponentChoice, String> {
@@ -74,10 +71,7 @@ pub fn baseline_section(
     files: &mut Vec<String>,
 ) -> Result<MethodResult> {
     let dt = sample_period(&demos[0]);
-    let params = GmrParams::new()
-        .components(components)
-        .sample_period(dt)
-        .check()?;
+    let params = gmr_params(components, dt)?;
     let metrics = MetricsParams {
         sample_period: dt,
         ..MetricsParams::default()
@@ -209,24 +203,16 @@ fn hsom_method(
         &run.executed.to_demonstration("CoSCo-HSOM reproduction"),
     )?;
     files.push("reproduction.csv".into());
-    Ok((
-        MethodResult {
-            name: "CoSCo-HSOM".into(),
-            needs: "raw demonstrations; the initial posture".into(),
-            fidelity: run.fidelity,
-            train_s: run.train_s,
-            reproduce_s: run.reproduce_s,
-            model_bytes: file_size(&model_path),
-            postures: run.reproduction.postures.len(),
-            clamped_values: run.clamped_values,
-            notes: vec![
-                format!("stopped: {:?}", run.reproduction.stop),
-                levels_note(&run.reproduction.predicted_by),
-                format!("transition: {transition:?}"),
-            ],
-        },
-        run.executed,
-    ))
+    let result = run.method_result(
+        "CoSCo-HSOM",
+        file_size(&model_path),
+        vec![
+            format!("stopped: {:?}", run.reproduction.stop),
+            levels_note(&run.reproduction.predicted_by),
+            format!("transition: {transition:?}"),
+        ],
+    );
+    Ok((result, run.executed))
 }
 
 /// `cosco compare`: both methods on the same demonstrations, executed on the simulated arm;

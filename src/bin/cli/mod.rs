@@ -13,18 +13,18 @@ use indicatif::{ProgressBar, ProgressStyle};
 use cosco_hsom::config::{load_config, parse_config, HsomConfig};
 use cosco_hsom::demos::{self, write_csv, Demonstration};
 use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
-use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report, Stage};
+use cosco_hsom::experiment::report::{DemoInfo, Report, Stage};
 use cosco_hsom::experiment::variants::variants;
 use cosco_hsom::experiment::{
-    are_arm_joints, demo_wrist_paths, evaluate, film, learn_and_reproduce, record_demonstrations,
-    sample_period, DemoSettings, Training, Transition,
+    are_arm_joints, demo_wrist_paths, evaluate, film, learn_and_reproduce, sample_period,
+    synthetic_demonstrations, DemoSettings, Training, Transition,
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::hsom::Hsom;
 use cosco_hsom::metrics::{FidelityReport, MetricsParams};
 use cosco_hsom::plot::BLACK;
 use cosco_hsom::render::RenderOptions;
-use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
+use cosco_hsom::sim::{NaoArm, JOINT_NAMES};
 
 /// Default encoder noise of synthetic demonstrations, rad (about Nao's encoder resolution).
 pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
@@ -64,22 +64,22 @@ pub fn gesture(name: &str) -> Result<Gesture> {
     }
 }
 
-/// Record synthetic demonstrations in the simulator.
+/// Record synthetic demonstrations in the simulator, with a progress bar.
 pub fn record(
     arm: &NaoArm,
     gesture: &Gesture,
     count: usize,
     seed: u64,
     noise: f64,
-) -> Result<Vec<Recording>> {
+) -> Result<Vec<Demonstration>> {
     let settings = DemoSettings {
         encoder_noise: noise,
         ..DemoSettings::default()
     };
     let pb = progress(count as u64, "demonstrating");
-    let recs = record_demonstrations(arm, gesture, count, seed, &settings, |_| pb.inc(1))?;
+    let demos = synthetic_demonstrations(arm, gesture, count, seed, &settings, |_| pb.inc(1))?;
     pb.finish_and_clear();
-    Ok(recs)
+    Ok(demos)
 }
 
 /// Write demonstrations as `demo_01.csv`, ... in `dir` (created if missing).
@@ -105,14 +105,7 @@ pub fn demos(
 ) -> Result<Vec<PathBuf>> {
     let g = gesture(gesture_name)?;
     let arm = load_arm(model)?;
-    let recs = record(&arm, &g, count, seed, noise)?;
-    let demos: Vec<Demonstration> = recs
-        .iter()
-        .enumerate()
-        .map(|(i, r)| {
-            r.to_demonstration(format!("{} demonstration {} (seed {seed})", g.name, i + 1))
-        })
-        .collect();
+    let demos = record(&arm, &g, count, seed, noise)?;
     write_demos(out, &demos)
 }
 
@@ -241,19 +234,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
         ),
         None => {
             let g = gesture(&job.gesture)?;
-            let recs = record(&arm, &g, job.count, job.seed, job.noise)?;
-            let demos: Vec<Demonstration> = recs
-                .iter()
-                .enumerate()
-                .map(|(i, r)| {
-                    r.to_demonstration(format!(
-                        "{} demonstration {} (seed {})",
-                        g.name,
-                        i + 1,
-                        job.seed
-                    ))
-                })
-                .collect();
+            let demos = record(&arm, &g, job.count, job.seed, job.noise)?;
             (demos, Some(g.name.to_string()))
         }
     };
@@ -306,20 +287,14 @@ pub fn main_job(job: &Job) -> Result<Report> {
         &executed.to_demonstration("CoSCo-HSOM reproduction"),
     )?;
     files.push("reproduction.csv".into());
-    let hsom_result = MethodResult {
-        name: "CoSCo-HSOM".into(),
-        needs: "raw demonstrations; the initial posture".into(),
-        fidelity: run.fidelity.clone(),
-        train_s: run.train_s,
-        reproduce_s: run.reproduce_s,
-        model_bytes: file_size(&model_path),
-        postures: run.reproduction.postures.len(),
-        clamped_values: run.clamped_values,
-        notes: vec![
+    let hsom_result = run.method_result(
+        "CoSCo-HSOM",
+        file_size(&model_path),
+        vec![
             format!("stopped: {:?}", run.reproduction.stop),
             levels_note(&run.reproduction.predicted_by),
         ],
-    };
+    );
     clock.lap("writing the model and reproduction.csv");
 
     // 5. Plots.
@@ -396,17 +371,8 @@ pub fn main_job(job: &Job) -> Result<Report> {
                 v.transition,
                 None,
             )?;
-            variant_results.push(MethodResult {
-                name: v.name,
-                needs: "raw demonstrations; the initial posture".into(),
-                fidelity: run.fidelity,
-                train_s: run.train_s,
-                reproduce_s: run.reproduce_s,
-                model_bytes: run.model.to_bytes().len() as u64,
-                postures: run.reproduction.postures.len(),
-                clamped_values: run.clamped_values,
-                notes: Vec::new(),
-            });
+            let bytes = run.model.to_bytes().len() as u64;
+            variant_results.push(run.method_result(&v.name, bytes, Vec::new()));
             pb.inc(1);
         }
         pb.finish_and_clear();

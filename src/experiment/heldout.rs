@@ -1,0 +1,336 @@
+//! Held-out evaluation (leave-one-out): for each demonstration `i`, learn from all the others,
+//! reproduce from demonstration `i`'s first posture, execute on the simulated arm and score
+//! against demonstration `i` only, for CoSCo-HSOM and the GMM/GMR baseline alike. The
+//! in-sample result (learn from all, score against all) says how well a method reproduces
+//! what it saw; this says how well it reproduces the gesture from a start it has not seen.
+
+use serde::Serialize;
+
+use crate::config::HsomConfig;
+use crate::demos::Demonstration;
+use crate::gmr::MIN_DEMONSTRATIONS;
+use crate::metrics::{column_swings, FidelityReport};
+use crate::sim::{NaoArm, Recording, JOINT_NAMES};
+
+use super::baseline::{gmr_params, run_baseline_split, DEFAULT_COMPONENTS};
+use super::pipeline::{learn_and_score, Split, Training};
+use super::{are_arm_joints, ExperimentError, Transition};
+
+/// The joint whose large swings are counted (column 3, `LElbowRoll`: the wave's joint).
+pub const SWING_JOINT: usize = 3;
+/// Smallest excursion between turning points that counts as a swing, rad.
+pub const SWING_MIN_AMPLITUDE_RAD: f64 = 0.3;
+
+/// Large swings of [`SWING_JOINT`] (see [`crate::metrics::large_swings`]): the reproduction's
+/// and the held-out demonstration's.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Swings {
+    /// Joint name.
+    pub joint: String,
+    /// Smallest excursion counted, rad.
+    pub min_amplitude_rad: f64,
+    /// Swings of the executed reproduction.
+    pub reproduction: usize,
+    /// Swings of the held-out demonstration.
+    pub demo: usize,
+}
+
+/// One method on one fold.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FoldScores {
+    /// Fidelity of the executed trajectory against the held-out demonstration only.
+    pub fidelity: FidelityReport,
+    /// Large swings of [`SWING_JOINT`].
+    pub swings: Swings,
+    /// Postures the method produced.
+    pub postures: usize,
+    /// Posture values clamped into the joint ranges before execution.
+    pub clamped_values: usize,
+    /// Training time, seconds.
+    pub train_s: f64,
+    /// Time to produce the postures, seconds.
+    pub reproduce_s: f64,
+}
+
+/// One fold: a demonstration held out.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Fold {
+    /// 0-based index of the held-out demonstration.
+    pub held_out: usize,
+    /// Its source (file name or description).
+    pub source: String,
+    /// CoSCo-HSOM trained on the other demonstrations.
+    pub hsom: FoldScores,
+    /// GMM/GMR trained on the other demonstrations, when it could run.
+    pub gmr: Option<FoldScores>,
+    /// Why GMM/GMR did not run on this fold.
+    pub gmr_error: Option<String>,
+}
+
+/// Means over folds of one method.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HeldOutSummary {
+    /// Folds averaged.
+    pub folds: usize,
+    /// Joint-space DTW, rad per step.
+    pub joint_dtw_rad_per_step: f64,
+    /// Wrist-path DTW, mm per step (when every fold has wrist paths).
+    pub wrist_dtw_mm: Option<f64>,
+    /// Apex (key-pose) error, rad.
+    pub apex_error_rad: f64,
+    /// Final-posture error, rad.
+    pub final_error_rad: f64,
+    /// Duration ratio, reproduction / held-out demonstration (trimmed).
+    pub duration_ratio: f64,
+    /// Normalized jerk of the reproductions (mean over the folds where it is defined).
+    pub normalized_jerk: Option<f64>,
+    /// Velocity reversals of the reproductions, all joints.
+    pub velocity_reversals: f64,
+    /// Normalized jerk of the held-out demonstrations (mean where defined).
+    pub demo_normalized_jerk: Option<f64>,
+    /// Velocity reversals of the held-out demonstrations, all joints.
+    pub demo_velocity_reversals: f64,
+    /// Large swings of [`SWING_JOINT`] of the reproductions.
+    pub swings: f64,
+    /// Large swings of [`SWING_JOINT`] of the held-out demonstrations.
+    pub demo_swings: f64,
+}
+
+fn mean(values: impl Iterator<Item = f64>) -> Option<f64> {
+    let (sum, n) = values.fold((0.0, 0usize), |(s, n), v| (s + v, n + 1));
+    (n > 0).then(|| sum / n as f64)
+}
+
+impl HeldOutSummary {
+    /// Means over `folds`; `None` when there are none.
+    pub fn of(folds: &[&FoldScores]) -> Option<HeldOutSummary> {
+        let m = |f: &dyn Fn(&FoldScores) -> f64| mean(folds.iter().map(|s| f(s)));
+        let demo_smoothness = |s: &FoldScores| s.fidelity.demo_smoothness.first().cloned();
+        Some(HeldOutSummary {
+            folds: folds.len(),
+            joint_dtw_rad_per_step: m(&|s| s.fidelity.joint_dtw_rad_per_step.mean)?,
+            wrist_dtw_mm: folds
+                .iter()
+                .map(|s| s.fidelity.wrist_dtw_mm.map(|w| w.mean))
+                .collect::<Option<Vec<f64>>>()
+                .and_then(|v| mean(v.into_iter())),
+            apex_error_rad: m(&|s| s.fidelity.apex_error_rad.mean)?,
+            final_error_rad: m(&|s| s.fidelity.final_error_rad.mean)?,
+            duration_ratio: m(&|s| s.fidelity.duration_ratio.mean)?,
+            normalized_jerk: mean(
+                folds
+                    .iter()
+                    .filter_map(|s| s.fidelity.reproduction_smoothness.normalized_jerk),
+            ),
+            velocity_reversals: m(&|s| s.fidelity.reproduction_smoothness.total_reversals as f64)?,
+            demo_normalized_jerk: mean(
+                folds
+                    .iter()
+                    .filter_map(|s| demo_smoothness(s).and_then(|d| d.normalized_jerk)),
+            ),
+            demo_velocity_reversals: m(&|s| {
+                demo_smoothness(s).map_or(f64::NAN, |d| d.total_reversals as f64)
+            })?,
+            swings: m(&|s| s.swings.reproduction as f64)?,
+            demo_swings: m(&|s| s.swings.demo as f64)?,
+        })
+    }
+}
+
+/// The held-out evaluation of CoSCo-HSOM and GMM/GMR on one set of demonstrations.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HeldOut {
+    /// One fold per demonstration, in order.
+    pub folds: Vec<Fold>,
+    /// CoSCo-HSOM: means over all folds.
+    pub hsom: HeldOutSummary,
+    /// GMM/GMR: means over the folds where it ran (`None` when it ran on none).
+    pub gmr: Option<HeldOutSummary>,
+}
+
+impl HeldOut {
+    /// Put per-fold results together: `hsom[i]` and `gmr[i]` are the results of fold `i`
+    /// (demonstration `i` held out); `gmr[i]` is the reason when GMM/GMR did not run.
+    pub fn new(
+        demos: &[Demonstration],
+        hsom: Vec<FoldScores>,
+        gmr: Vec<Result<FoldScores, String>>,
+    ) -> Result<HeldOut, ExperimentError> {
+        if hsom.len() != demos.len() || gmr.len() != demos.len() {
+            return Err(ExperimentError::Invalid(format!(
+                "held-out results: {} CoSCo-HSOM and {} GMM/GMR folds for {} demonstrations; \
+                 need one per demonstration",
+                hsom.len(),
+                gmr.len(),
+                demos.len()
+            )));
+        }
+        let folds: Vec<Fold> = demos
+            .iter()
+            .zip(hsom.into_iter().zip(gmr))
+            .enumerate()
+            .map(|(i, (d, (h, g)))| {
+                let (gmr, gmr_error) = match g {
+                    Ok(s) => (Some(s), None),
+                    Err(e) => (None, Some(e)),
+                };
+                Fold {
+                    held_out: i,
+                    source: d.source.clone(),
+                    hsom: h,
+                    gmr,
+                    gmr_error,
+                }
+            })
+            .collect();
+        let all: Vec<&FoldScores> = folds.iter().map(|f| &f.hsom).collect();
+        let hsom = HeldOutSummary::of(&all).ok_or_else(|| {
+            ExperimentError::Invalid("held-out results: no folds (no demonstrations)".into())
+        })?;
+        let ran: Vec<&FoldScores> = folds.iter().filter_map(|f| f.gmr.as_ref()).collect();
+        Ok(HeldOut {
+            gmr: HeldOutSummary::of(&ran),
+            hsom,
+            folds,
+        })
+    }
+
+    /// Both methods averaged over the same folds (those where GMM/GMR ran): (CoSCo-HSOM,
+    /// GMM/GMR); `None` when GMM/GMR ran on none.
+    pub fn paired(&self) -> Option<(HeldOutSummary, HeldOutSummary)> {
+        let (h, g): (Vec<&FoldScores>, Vec<&FoldScores>) = self
+            .folds
+            .iter()
+            .filter_map(|f| f.gmr.as_ref().map(|g| (&f.hsom, g)))
+            .unzip();
+        Some((HeldOutSummary::of(&h)?, HeldOutSummary::of(&g)?))
+    }
+}
+
+/// Check that leave-one-out can run on `demos`: at least 2, the arm's joints.
+fn check_demos(demos: &[Demonstration]) -> Result<(), ExperimentError> {
+    if demos.len() < 2 {
+        return Err(ExperimentError::Invalid(format!(
+            "leave-one-out needs at least 2 demonstrations (one to hold out, one to learn \
+             from), got {}",
+            demos.len()
+        )));
+    }
+    for d in demos {
+        if !are_arm_joints(&d.columns) {
+            return Err(ExperimentError::Invalid(format!(
+                "{}: columns {:?}; executing on the simulated arm needs exactly {:?}",
+                d.source, d.columns, JOINT_NAMES
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Fold `i`'s training demonstrations: all but `demos[i]`.
+fn all_but(demos: &[Demonstration], i: usize) -> Vec<Demonstration> {
+    demos
+        .iter()
+        .enumerate()
+        .filter(|&(j, _)| j != i)
+        .map(|(_, d)| d.clone())
+        .collect()
+}
+
+fn swings(executed: &Recording, held_out: &Demonstration) -> Result<Swings, ExperimentError> {
+    Ok(Swings {
+        joint: JOINT_NAMES[SWING_JOINT].to_string(),
+        min_amplitude_rad: SWING_MIN_AMPLITUDE_RAD,
+        reproduction: column_swings(&executed.qpos, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD)?,
+        demo: column_swings(&held_out.rows, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD)?,
+    })
+}
+
+/// CoSCo-HSOM on every fold: `result[i]` learned from all demonstrations but `demos[i]`
+/// (with `training`), reproduced from `demos[i]`'s first posture, executed with
+/// `transition`, scored against `demos[i]` only.
+pub fn hsom_folds(
+    arm: &NaoArm,
+    config: &HsomConfig,
+    demos: &[Demonstration],
+    training: Training,
+    transition: Transition,
+) -> Result<Vec<FoldScores>, ExperimentError> {
+    check_demos(demos)?;
+    (0..demos.len())
+        .map(|i| {
+            let train = all_but(demos, i);
+            let test = std::slice::from_ref(&demos[i]);
+            let split = Split {
+                train: &train,
+                test,
+            };
+            let run = learn_and_score(arm, config, split, training, transition, None)?;
+            Ok(FoldScores {
+                swings: swings(&run.executed, &demos[i])?,
+                fidelity: run.fidelity,
+                postures: run.reproduction.postures.len(),
+                clamped_values: run.clamped_values,
+                train_s: run.train_s,
+                reproduce_s: run.reproduce_s,
+            })
+        })
+        .collect()
+}
+
+/// GMM/GMR ([`DEFAULT_COMPONENTS`]) on every fold, as [`hsom_folds`]; a fold where it cannot
+/// run (fewer than [`MIN_DEMONSTRATIONS`] to learn from, a failed fit) gives the reason.
+/// Errors only when `demos` cannot be used at all.
+pub fn gmr_folds(
+    arm: &NaoArm,
+    demos: &[Demonstration],
+) -> Result<Vec<Result<FoldScores, String>>, ExperimentError> {
+    check_demos(demos)?;
+    Ok((0..demos.len())
+        .map(|i| {
+            let train = all_but(demos, i);
+            if train.len() < MIN_DEMONSTRATIONS {
+                return Err(format!(
+                    "fold {}: GMM/GMR needs at least {MIN_DEMONSTRATIONS} demonstrations to \
+                     learn from, this fold has {}",
+                    i + 1,
+                    train.len()
+                ));
+            }
+            let split = Split {
+                train: &train,
+                test: std::slice::from_ref(&demos[i]),
+            };
+            let run = (|| {
+                let metrics = split.metrics()?;
+                let params = gmr_params(DEFAULT_COMPONENTS, metrics.sample_period)?;
+                let run = run_baseline_split(arm, split, &params, &metrics)?;
+                Ok::<_, super::baseline::BaselineError>(FoldScores {
+                    swings: swings(&run.executed, &demos[i])?,
+                    postures: run.plan.postures.len(),
+                    clamped_values: run.clamped,
+                    train_s: run.train_s,
+                    reproduce_s: run.reproduce_s,
+                    fidelity: run.fidelity,
+                })
+            })();
+            run.map_err(|e| format!("fold {}: {e}", i + 1))
+        })
+        .collect())
+}
+
+/// Leave-one-out for CoSCo-HSOM (trained with `config`, executed with `transition`) and
+/// GMM/GMR: fold `i` learns from every demonstration but `demos[i]`, reproduces from
+/// `demos[i]`'s first posture, executes on `arm` and is scored against `demos[i]` only.
+/// Needs at least 2 demonstrations of the arm's joints; GMM/GMR needs 2 to learn from, so
+/// with 2 demonstrations its folds hold the reason instead.
+pub fn leave_one_out(
+    arm: &NaoArm,
+    config: &HsomConfig,
+    demos: &[Demonstration],
+    transition: Transition,
+) -> Result<HeldOut, ExperimentError> {
+    let hsom = hsom_folds(arm, config, demos, Training::Trained, transition)?;
+    let gmr = gmr_folds(arm, demos)?;
+    HeldOut::new(demos, hsom, gmr)
+}

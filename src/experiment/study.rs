@@ -1,0 +1,594 @@
+//! A held-out study over gestures, seeds and configurations (`examples/heldout.rs`):
+//! demonstrations recorded once per (gesture, seed) and reused for every configuration,
+//! leave-one-out for CoSCo-HSOM and GMM/GMR (GMM/GMR does not depend on the configuration:
+//! run once per set), optionally the in-sample result, and the per-level accuracy of a
+//! hierarchy trained on the first three demonstrations. (gesture, seed) jobs run on worker
+//! threads sharing one arm model.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+use serde::Serialize;
+
+use crate::config::HsomConfig;
+use crate::demos::Demonstration;
+use crate::fsutil::write_atomic;
+use crate::gesture::Gesture;
+use crate::metrics::FidelityReport;
+use crate::sim::NaoArm;
+
+use super::baseline::{gmr_params, run_baseline, DEFAULT_COMPONENTS};
+use super::heldout::{gmr_folds, hsom_folds, HeldOut, HeldOutSummary};
+use super::pipeline::{learn_and_reproduce, Split, Training};
+use super::report::{level_rows, LevelRow};
+use super::{synthetic_demonstrations, DemoSettings, ExperimentError, Transition};
+
+/// Demonstrations the per-level accuracy is measured on (the first ones of each set).
+pub const LEVEL_DEMOS: usize = 3;
+
+/// How the study runs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudySettings {
+    /// Demonstrations per (gesture, seed), at least 2.
+    pub count: usize,
+    /// Encoder noise of the synthetic demonstrations, rad.
+    pub noise: f64,
+    /// How CoSCo-HSOM's postures become servo targets.
+    pub transition: Transition,
+    /// Also learn from all and score against all (the in-sample result).
+    pub in_sample: bool,
+    /// Worker threads (at least 1).
+    pub threads: usize,
+}
+
+/// The in-sample result of one set of demonstrations.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct InSample {
+    /// CoSCo-HSOM learned from all, scored against all.
+    pub hsom: FidelityReport,
+    /// GMM/GMR the same way, when it ran.
+    pub gmr: Option<FidelityReport>,
+    /// Why GMM/GMR did not run.
+    pub gmr_error: Option<String>,
+}
+
+/// One configuration on one (gesture, seed) set of demonstrations.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StudyRow {
+    /// Gesture name.
+    pub gesture: String,
+    /// Seed of the demonstrations.
+    pub seed: u64,
+    /// Leave-one-out for both methods.
+    pub heldout: HeldOut,
+    /// Learned from all, scored against all (with `in_sample`).
+    pub in_sample: Option<InSample>,
+    /// Levels of a hierarchy trained on the first `levels_demos` demonstrations.
+    pub levels: Vec<LevelRow>,
+    /// Demonstrations that hierarchy learned from.
+    pub levels_demos: usize,
+}
+
+/// Every row of one configuration.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ConfigStudy {
+    /// The configuration's source (file name).
+    pub config: String,
+    /// One row per (gesture, seed), in the order of the jobs.
+    pub rows: Vec<StudyRow>,
+}
+
+/// The whole study.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Study {
+    /// Demonstrations per set.
+    pub count: usize,
+    /// Encoder noise, rad.
+    pub noise: f64,
+    /// Transition of CoSCo-HSOM's postures.
+    pub transition: String,
+    /// One entry per configuration, in the order given.
+    pub configs: Vec<ConfigStudy>,
+}
+
+/// Parse seeds: a comma-separated list of numbers and inclusive ranges `A-B` (`1-5`,
+/// `1,3,7-9`). An empty entry, a bad number or a range with `A > B` is an error naming it.
+pub fn parse_seeds(text: &str) -> Result<Vec<u64>, ExperimentError> {
+    let bad = |entry: &str, why: &str| {
+        ExperimentError::Invalid(format!(
+            "seeds '{text}': entry '{entry}' {why}; give numbers and ranges A-B separated by \
+             commas, e.g. 1-5 or 1,3,7-9"
+        ))
+    };
+    let number = |entry: &str, v: &str| {
+        v.trim()
+            .parse::<u64>()
+            .map_err(|_| bad(entry, "is not a whole number >= 0"))
+    };
+    let mut out = Vec::new();
+    for entry in text.split(',') {
+        let e = entry.trim();
+        if e.is_empty() {
+            return Err(bad(entry, "is empty"));
+        }
+        match e.split_once('-') {
+            Some((a, b)) => {
+                let (a, b) = (number(e, a)?, number(e, b)?);
+                if a > b {
+                    return Err(bad(e, "is a range whose start exceeds its end"));
+                }
+                out.extend(a..=b);
+            }
+            None => out.push(number(e, e)?),
+        }
+    }
+    Ok(out)
+}
+
+/// Parse comma-separated gesture names; an unknown name is an error listing the known ones.
+pub fn parse_gestures(text: &str) -> Result<Vec<Gesture>, ExperimentError> {
+    text.split(',')
+        .map(|name| {
+            let name = name.trim();
+            Gesture::by_name(name).ok_or_else(|| {
+                ExperimentError::Invalid(format!(
+                    "unknown gesture '{name}' in '{text}': allowed {}",
+                    Gesture::names().join(", ")
+                ))
+            })
+        })
+        .collect()
+}
+
+/// Everything one (gesture, seed) job computes: one row per configuration.
+fn run_job(
+    arm: &NaoArm,
+    configs: &[HsomConfig],
+    gesture: &Gesture,
+    seed: u64,
+    settings: &StudySettings,
+) -> Result<Vec<StudyRow>, ExperimentError> {
+    let demo_settings = DemoSettings {
+        encoder_noise: settings.noise,
+        ..DemoSettings::default()
+    };
+    let demos =
+        synthetic_demonstrations(arm, gesture, settings.count, seed, &demo_settings, |_| {})?;
+    let gmr = gmr_folds(arm, &demos)?;
+    let gmr_in_sample = if settings.in_sample {
+        Some(gmr_in_sample(arm, &demos))
+    } else {
+        None
+    };
+    let levels_demos = LEVEL_DEMOS.min(demos.len());
+    configs
+        .iter()
+        .map(|config| {
+            let hsom = hsom_folds(arm, config, &demos, Training::Trained, settings.transition)?;
+            let heldout = HeldOut::new(&demos, hsom, gmr.clone())?;
+            let in_sample = match &gmr_in_sample {
+                Some(g) => {
+                    let run = learn_and_reproduce(
+                        arm,
+                        config,
+                        &demos,
+                        Training::Trained,
+                        settings.transition,
+                        None,
+                    )?;
+                    Some(InSample {
+                        hsom: run.fidelity,
+                        gmr: g.as_ref().ok().cloned(),
+                        gmr_error: g.as_ref().err().cloned(),
+                    })
+                }
+                None => None,
+            };
+            let model = config.fit(&demos[..levels_demos])?;
+            Ok(StudyRow {
+                gesture: gesture.name.to_string(),
+                seed,
+                heldout,
+                in_sample,
+                levels: level_rows(&model),
+                levels_demos,
+            })
+        })
+        .collect()
+}
+
+/// GMM/GMR learned from all `demos`, scored against all (the reason when it cannot run).
+fn gmr_in_sample(arm: &NaoArm, demos: &[Demonstration]) -> Result<FidelityReport, String> {
+    let run = || {
+        let metrics = Split::in_sample(demos).metrics()?;
+        let params = gmr_params(DEFAULT_COMPONENTS, metrics.sample_period)?;
+        run_baseline(arm, demos, &params, &metrics)
+    };
+    run().map(|r| r.fidelity).map_err(|e| e.to_string())
+}
+
+/// Run the study: every (gesture, seed) of `jobs` on `settings.threads` worker threads, each
+/// set of demonstrations recorded once and used for every configuration. `on_job_done(done,
+/// total)` is called after each job (from the worker threads).
+pub fn run_study(
+    arm: &NaoArm,
+    configs: &[HsomConfig],
+    jobs: &[(Gesture, u64)],
+    settings: &StudySettings,
+    on_job_done: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Study, ExperimentError> {
+    if settings.count < 2 {
+        return Err(ExperimentError::Invalid(format!(
+            "count = {}: leave-one-out needs at least 2 demonstrations per set",
+            settings.count
+        )));
+    }
+    if settings.threads == 0 {
+        return Err(ExperimentError::Invalid(
+            "threads = 0: need at least 1 worker thread".into(),
+        ));
+    }
+    if configs.is_empty() || jobs.is_empty() {
+        return Err(ExperimentError::Invalid(format!(
+            "{} configurations and {} (gesture, seed) jobs: need at least one of each",
+            configs.len(),
+            jobs.len()
+        )));
+    }
+    let next = AtomicUsize::new(0);
+    let done = AtomicUsize::new(0);
+    type Slot = Option<Result<Vec<StudyRow>, ExperimentError>>;
+    let results: Mutex<Vec<Slot>> = Mutex::new((0..jobs.len()).map(|_| None).collect());
+    std::thread::scope(|scope| {
+        for _ in 0..settings.threads.min(jobs.len()) {
+            scope.spawn(|| loop {
+                let j = next.fetch_add(1, Ordering::Relaxed);
+                let Some((gesture, seed)) = jobs.get(j) else {
+                    break;
+                };
+                let r = run_job(arm, configs, gesture, *seed, settings).map_err(|e| {
+                    ExperimentError::Invalid(format!("gesture {} seed {seed}: {e}", gesture.name))
+                });
+                let failed = r.is_err();
+                if let Ok(mut slots) = results.lock() {
+                    slots[j] = Some(r);
+                }
+                on_job_done(done.fetch_add(1, Ordering::Relaxed) + 1, jobs.len());
+                if failed {
+                    // stop handing out jobs: the study fails anyway
+                    next.store(jobs.len(), Ordering::Relaxed);
+                }
+            });
+        }
+    });
+    let slots = results
+        .into_inner()
+        .map_err(|_| ExperimentError::Invalid("a worker thread panicked".into()))?;
+    let mut configs_out: Vec<ConfigStudy> = configs
+        .iter()
+        .map(|c| ConfigStudy {
+            config: c.source().to_string(),
+            rows: Vec::with_capacity(jobs.len()),
+        })
+        .collect();
+    for (slot, (gesture, seed)) in slots.into_iter().zip(jobs) {
+        let rows = slot.ok_or_else(|| {
+            ExperimentError::Invalid(format!(
+                "gesture {} seed {seed}: not run (another job failed first)",
+                gesture.name
+            ))
+        })??;
+        for (c, row) in configs_out.iter_mut().zip(rows) {
+            c.rows.push(row);
+        }
+    }
+    Ok(Study {
+        count: settings.count,
+        noise: settings.noise,
+        transition: settings.transition.name(),
+        configs: configs_out,
+    })
+}
+
+/// The median of the finite values (`None` when there are none).
+pub fn median(values: impl IntoIterator<Item = f64>) -> Option<f64> {
+    let mut v: Vec<f64> = values.into_iter().filter(|x| x.is_finite()).collect();
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    Some(if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        (v[n / 2 - 1] + v[n / 2]) / 2.0
+    })
+}
+
+type Value = fn(&StudyRow) -> Option<f64>;
+
+/// A column of the study table: one or more values per cell (joined by " / ").
+struct Column {
+    header: &'static str,
+    values: Vec<Value>,
+    digits: usize,
+}
+
+fn col(header: &'static str, digits: usize, values: Vec<Value>) -> Column {
+    Column {
+        header,
+        values,
+        digits,
+    }
+}
+
+fn ratio(a: Option<f64>, b: Option<f64>) -> Option<f64> {
+    match (a, b) {
+        (Some(a), Some(b)) if b != 0.0 => Some(a / b),
+        _ => None,
+    }
+}
+
+fn hsom(r: &StudyRow) -> &HeldOutSummary {
+    &r.heldout.hsom
+}
+
+fn paired(r: &StudyRow) -> Option<(HeldOutSummary, HeldOutSummary)> {
+    r.heldout.paired()
+}
+
+fn columns(in_sample: bool) -> Vec<Column> {
+    let mut c = vec![
+        col(
+            "joint DTW (rad/step)",
+            4,
+            vec![|r| Some(hsom(r).joint_dtw_rad_per_step)],
+        ),
+        col("wrist DTW (mm/step)", 1, vec![|r| hsom(r).wrist_dtw_mm]),
+        col("apex (rad)", 3, vec![|r| Some(hsom(r).apex_error_rad)]),
+        col("final (rad)", 3, vec![|r| Some(hsom(r).final_error_rad)]),
+        col("duration ratio", 2, vec![|r| Some(hsom(r).duration_ratio)]),
+        col(
+            "reversals (rep / demos)",
+            1,
+            vec![|r| Some(hsom(r).velocity_reversals), |r| {
+                Some(hsom(r).demo_velocity_reversals)
+            }],
+        ),
+        col(
+            "jerk ratio (rep / demos)",
+            2,
+            vec![|r| ratio(hsom(r).normalized_jerk, hsom(r).demo_normalized_jerk)],
+        ),
+        col(
+            "LElbowRoll swings (rep / demo)",
+            1,
+            vec![|r| Some(hsom(r).swings), |r| Some(hsom(r).demo_swings)],
+        ),
+        col(
+            "GMR joint DTW",
+            4,
+            vec![|r| paired(r).map(|(_, g)| g.joint_dtw_rad_per_step)],
+        ),
+        col(
+            "GMR wrist DTW",
+            1,
+            vec![|r| paired(r).and_then(|(_, g)| g.wrist_dtw_mm)],
+        ),
+        col(
+            "HSOM/GMR joint",
+            2,
+            vec![|r| {
+                paired(r).and_then(|(h, g)| {
+                    ratio(
+                        Some(h.joint_dtw_rad_per_step),
+                        Some(g.joint_dtw_rad_per_step),
+                    )
+                })
+            }],
+        ),
+        col(
+            "HSOM/GMR wrist",
+            2,
+            vec![|r| paired(r).and_then(|(h, g)| ratio(h.wrist_dtw_mm, g.wrist_dtw_mm))],
+        ),
+    ];
+    if in_sample {
+        c.push(col(
+            "in-sample joint DTW (HSOM / GMR)",
+            4,
+            vec![
+                |r| {
+                    r.in_sample
+                        .as_ref()
+                        .map(|s| s.hsom.joint_dtw_rad_per_step.mean)
+                },
+                |r| {
+                    r.in_sample
+                        .as_ref()
+                        .and_then(|s| s.gmr.as_ref())
+                        .map(|g| g.joint_dtw_rad_per_step.mean)
+                },
+            ],
+        ));
+        c.push(col(
+            "in-sample wrist DTW (HSOM / GMR)",
+            1,
+            vec![
+                |r| {
+                    r.in_sample
+                        .as_ref()
+                        .and_then(|s| s.hsom.wrist_dtw_mm)
+                        .map(|w| w.mean)
+                },
+                |r| {
+                    r.in_sample
+                        .as_ref()
+                        .and_then(|s| s.gmr.as_ref())
+                        .and_then(|g| g.wrist_dtw_mm)
+                        .map(|w| w.mean)
+                },
+            ],
+        ));
+    }
+    c
+}
+
+fn number(v: Option<f64>, digits: usize) -> String {
+    match v {
+        Some(v) if v.is_finite() => format!("{v:.digits$}"),
+        _ => "n/a".into(),
+    }
+}
+
+fn cell(c: &Column, rows: &[&StudyRow], median_of: bool) -> String {
+    c.values
+        .iter()
+        .map(|f| {
+            let v = if median_of {
+                median(rows.iter().filter_map(|r| f(r)))
+            } else {
+                rows.first().and_then(|r| f(r))
+            };
+            number(v, c.digits)
+        })
+        .collect::<Vec<_>>()
+        .join(" / ")
+}
+
+impl ConfigStudy {
+    /// The held-out table: one row per (gesture, seed), the medians per gesture, the overall
+    /// medians; CoSCo-HSOM's means over folds, GMM/GMR's on the same folds.
+    pub fn table(&self, in_sample: bool) -> String {
+        let cols = columns(in_sample);
+        let mut t = String::from("| gesture | seed |");
+        for c in &cols {
+            let _ = write!(t, " {} |", c.header);
+        }
+        t.push_str("\n|---|---|");
+        for _ in &cols {
+            t.push_str("---|");
+        }
+        t.push('\n');
+        let line = |t: &mut String, g: &str, s: &str, rows: &[&StudyRow], med: bool| {
+            let _ = write!(t, "| {g} | {s} |");
+            for c in &cols {
+                let _ = write!(t, " {} |", cell(c, rows, med));
+            }
+            t.push('\n');
+        };
+        for r in &self.rows {
+            line(&mut t, &r.gesture, &r.seed.to_string(), &[r], false);
+        }
+        let mut gestures: Vec<&str> = Vec::new();
+        for r in &self.rows {
+            if !gestures.contains(&r.gesture.as_str()) {
+                gestures.push(&r.gesture);
+            }
+        }
+        for g in &gestures {
+            let rows: Vec<&StudyRow> = self.rows.iter().filter(|r| r.gesture == *g).collect();
+            line(&mut t, &format!("**{g}**"), "median", &rows, true);
+        }
+        let all: Vec<&StudyRow> = self.rows.iter().collect();
+        line(&mut t, "**all**", "median", &all, true);
+        t
+    }
+
+    /// Per-level accuracy of the hierarchies trained on the first demonstrations of each set:
+    /// prediction accuracy / lookup-table accuracy for every level above the bottom.
+    pub fn levels_table(&self) -> String {
+        let height = self.rows.iter().map(|r| r.levels.len()).max().unwrap_or(0);
+        let mut t = String::from("| gesture | seed |");
+        for l in 1..height {
+            let _ = write!(t, " L{l} prediction / lookup |");
+        }
+        t.push_str("\n|---|---|");
+        for _ in 1..height {
+            t.push_str("---|");
+        }
+        t.push('\n');
+        for r in &self.rows {
+            let _ = write!(t, "| {} | {} |", r.gesture, r.seed);
+            for l in 1..height {
+                let c = r.levels.get(l).map_or("n/a".into(), |l| {
+                    format!("{:.2} / {:.2}", l.prediction_accuracy, l.lookup_accuracy)
+                });
+                let _ = write!(t, " {c} |");
+            }
+            t.push('\n');
+        }
+        t
+    }
+}
+
+impl Study {
+    /// Every configuration's tables in Markdown.
+    pub fn to_markdown(&self, in_sample: bool) -> String {
+        let mut md = String::new();
+        for c in &self.configs {
+            let _ = writeln!(
+                md,
+                "## {}\n\nHeld-out (leave-one-out over {} demonstrations, encoder noise {} rad, \
+                 transition {}): CoSCo-HSOM's means over the folds; GMM/GMR on the same \
+                 folds.\n",
+                c.config, self.count, self.noise, self.transition
+            );
+            md.push_str(&c.table(in_sample));
+            let levels_demos = c.rows.first().map_or(0, |r| r.levels_demos);
+            let _ = writeln!(
+                md,
+                "\nPer level, a hierarchy trained on the first {levels_demos} demonstrations: \
+                 prediction accuracy / lookup-table accuracy.\n"
+            );
+            md.push_str(&c.levels_table());
+            md.push('\n');
+        }
+        md
+    }
+
+    /// Write every number as JSON to `path`, atomically.
+    pub fn write_json(&self, path: &Path) -> std::io::Result<()> {
+        let json = serde_json::to_vec_pretty(self).map_err(std::io::Error::other)?;
+        write_atomic(path, &json)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn seeds_parse_lists_and_ranges_and_name_bad_entries() {
+        assert_eq!(parse_seeds("1-5").unwrap(), vec![1, 2, 3, 4, 5]);
+        assert_eq!(parse_seeds("1, 3,7-9").unwrap(), vec![1, 3, 7, 8, 9]);
+        assert_eq!(parse_seeds("4").unwrap(), vec![4]);
+        for (bad, named) in [
+            ("1,,2", "''"),
+            ("x", "'x'"),
+            ("5-2", "'5-2'"),
+            ("-3", "'-3'"),
+        ] {
+            let e = parse_seeds(bad).unwrap_err().to_string();
+            assert!(e.contains(named), "{bad}: {e}");
+        }
+    }
+
+    #[test]
+    fn gestures_parse_and_unknown_names_list_the_known_ones() {
+        let g = parse_gestures("wave,salute").unwrap();
+        assert_eq!(g.len(), 2);
+        assert_eq!(g[0].name, "wave");
+        let e = parse_gestures("wave,dance").unwrap_err().to_string();
+        assert!(e.contains("'dance'") && e.contains("reading-watch"), "{e}");
+    }
+
+    #[test]
+    fn median_of_odd_even_and_empty() {
+        assert_eq!(median([3.0, 1.0, 2.0]), Some(2.0));
+        assert_eq!(median([4.0, 1.0, 2.0, 3.0]), Some(2.5));
+        assert_eq!(median([f64::NAN]), None);
+    }
+}
