@@ -119,6 +119,7 @@ fn measure_families() {
     for (name, demos) in [
         ("eight", figure_eight(6, 7)),
         ("stroke", stroke(6, 8)),
+        ("hand", handwriting(8, 9)),
         ("joints6", joints6(6, 9)),
     ] {
         let mut cfg = table1_for(demos[0].rows[0].len());
@@ -157,12 +158,26 @@ fn measure_families() {
         if let Ok(s) = std::env::var("HSOM_SEED") {
             p.seed = s.parse().unwrap();
         }
-        let file_cfg = p.check("table1.xml").unwrap();
-        let (trained, untrained) = run(&format!("{name}/xml"), &demos, &file_cfg);
+        let file_cfg = p.check("successor-table.xml").unwrap();
+        let (succ, untrained) = run(&format!("{name}/succ"), &demos, &file_cfg);
         if std::env::var("HSOM_SEED").is_err() {
             assert!(
-                trained < untrained,
-                "{name} (table1.xml): trained {trained} vs untrained {untrained}"
+                succ < untrained,
+                "{name} (successor-table.xml): trained {succ} vs untrained {untrained}"
+            );
+        }
+        // the recommended configs/nao-gestures.xml (the events extension), stateLength adapted
+        let mut p = recommended_for(demos[0].rows[0].len()).into_params();
+        if let Ok(s) = std::env::var("HSOM_SEED") {
+            p.seed = s.parse().unwrap();
+        }
+        let rec_cfg = p.check("nao-gestures.xml").unwrap();
+        let (events, untrained) = run(&format!("{name}/events"), &demos, &rec_cfg);
+        println!("{name:<8} events {events:.4} vs successor-table {succ:.4} vs built-in Table I {trained:.4}");
+        if std::env::var("HSOM_SEED").is_err() {
+            assert!(
+                events < untrained,
+                "{name} (nao-gestures.xml): trained {events} vs untrained {untrained}"
             );
         }
     }

@@ -159,6 +159,46 @@ pub fn joints6(k: usize, seed: u64) -> Vec<Demonstration> {
         .collect()
 }
 
+/// 2-D handwriting-like family: a cursive "w"-like word with a loop at the end, in
+/// millimetres, `k` demonstrations of about 100 samples (90..110) with timing warp, slant and
+/// size variation and pen noise.
+pub fn handwriting(k: usize, seed: u64) -> Vec<Demonstration> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let noise = Normal::new(0.0, 0.1).unwrap();
+    (0..k)
+        .map(|i| {
+            let n = rng.gen_range(90..110);
+            let a = rng.gen_range(-0.3..0.3);
+            let size = rng.gen_range(0.9..1.1);
+            let slant = rng.gen_range(-0.15..0.15);
+            let rows = (0..n)
+                .map(|j| {
+                    let u = warp(j as f64 / (n - 1) as f64, a);
+                    let th = 4.0 * std::f64::consts::PI * u;
+                    let y = size * (8.0 * (0.5 * th).sin().abs() + 3.0 * (u * 6.0).sin());
+                    let x = size * (30.0 * u + 2.5 * th.sin());
+                    vec![
+                        x + slant * y + noise.sample(&mut rng),
+                        y + noise.sample(&mut rng),
+                    ]
+                })
+                .collect();
+            demo(format!("hand{i}"), 2, rows)
+        })
+        .collect()
+}
+
+/// The recommended configs/nao-gestures.xml with the state length of the data.
+pub fn recommended_for(dims: usize) -> HsomConfig {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/nao-gestures.xml");
+    let mut p = cosco_hsom::config::load_config(&path)
+        .unwrap()
+        .into_params();
+    p.state_length = dims;
+    p.action_length = dims;
+    p.check("nao-gestures.xml").unwrap()
+}
+
 /// Table I with the state length of the data.
 pub fn table1_for(dims: usize) -> HsomConfig {
     let mut p = HsomParams::table1();
