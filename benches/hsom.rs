@@ -82,6 +82,34 @@ fn table1(c: &mut Criterion) {
     g.finish();
 }
 
+/// The recommended configs/nao-gestures.xml (events): training on 3 demonstrations plus one
+/// reproduction (target: under 50 ms together), and reproduction against gesture length
+/// (it must stay linear).
+fn events(c: &mut Criterion) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/nao-gestures.xml");
+    let cfg = cosco_hsom::config::load_config(&path).unwrap();
+    let demos = gestures(3, 300);
+    let mut g = c.benchmark_group("events");
+    g.sample_size(10);
+    g.bench_function("fit_3x300_and_reproduce", |b| {
+        b.iter(|| {
+            let m = cfg.fit(&demos).unwrap();
+            black_box(m.reproduce(&demos[0].rows[0]).unwrap())
+        })
+    });
+    for n in [300, 600, 1200, 2400] {
+        let d = gestures(3, n);
+        let m = cfg.fit(&d).unwrap();
+        let len = m.reproduce(&d[0].rows[0]).unwrap().postures.len();
+        g.bench_with_input(
+            BenchmarkId::new("reproduce", format!("{n}_samples_{len}_postures")),
+            &m,
+            |b, m| b.iter(|| black_box(m.reproduce(&d[0].rows[0]).unwrap())),
+        );
+    }
+    g.finish();
+}
+
 fn lists_vs_levels(c: &mut Criterion) {
     let mut g = c.benchmark_group("stm_step");
     for side in [8usize, 16, 32, 64] {
@@ -115,5 +143,5 @@ fn lists_vs_levels(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, step_vs_bmu, table1, lists_vs_levels);
+criterion_group!(benches, step_vs_bmu, table1, events, lists_vs_levels);
 criterion_main!(benches);
