@@ -12,12 +12,13 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use cosco_hsom::config::{load_config, parse_config, HsomConfig};
 use cosco_hsom::demos::{self, write_csv, Demonstration};
+use cosco_hsom::experiment::baseline::GMR_NAME;
 use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
-use cosco_hsom::experiment::report::{DemoInfo, Report, Stage};
+use cosco_hsom::experiment::report::{level_rows, DemoInfo, Report, Stage};
 use cosco_hsom::experiment::variants::variants;
 use cosco_hsom::experiment::{
-    are_arm_joints, demo_wrist_paths, evaluate, film, learn_and_reproduce, sample_period,
-    synthetic_demonstrations, DemoSettings, Training, Transition,
+    are_arm_joints, demo_wrist_paths, evaluate, film, learn_and_reproduce, leave_one_out,
+    sample_period, synthetic_demonstrations, DemoSettings, Training, Transition,
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::hsom::Hsom;
@@ -170,6 +171,8 @@ pub struct Job {
     pub transition: Transition,
     /// Also run the before/after variants.
     pub variants: bool,
+    /// Also run the held-out (leave-one-out) evaluation of both methods.
+    pub heldout: bool,
 }
 
 struct Stopwatch {
@@ -347,7 +350,29 @@ pub fn main_job(job: &Job) -> Result<Report> {
     }
     clock.lap("GMM/GMR baseline (fit + execute + metrics + plots)");
 
-    // 5c. Before / after: the beyond-the-paper options switched off (docs/ALGORITHM.md).
+    // 5c. Held-out: each demonstration in turn left out, both methods (experiment::heldout).
+    let (heldout, heldout_note) = if !job.heldout {
+        (None, Some("--no-heldout was given".to_string()))
+    } else if demos.len() < 2 {
+        let note = format!(
+            "{} demonstration(s); leave-one-out needs at least 2",
+            demos.len()
+        );
+        methods[0]
+            .notes
+            .push(format!("held-out evaluation not run: {note}"));
+        (None, Some(note))
+    } else {
+        let h = leave_one_out(&arm, &cfg, &demos, job.transition)?;
+        methods[0].heldout = Some(h.hsom.clone());
+        if let Some(g) = methods.iter_mut().find(|m| m.name == GMR_NAME) {
+            g.heldout = h.gmr.clone();
+        }
+        clock.lap("held-out (leave-one-out, both methods, every fold)");
+        (Some(h), None)
+    };
+
+    // 5d. Before / after: the beyond-the-paper options switched off (docs/ALGORITHM.md).
     let mut variant_results = Vec::new();
     if job.variants {
         let vs = variants(&cfg, job.transition)?;
@@ -415,6 +440,9 @@ pub fn main_job(job: &Job) -> Result<Report> {
         demos: demo_info,
         methods,
         variants: variant_results,
+        heldout,
+        heldout_note,
+        levels: level_rows(&run.model),
         stages: clock.stages,
         files,
     };
