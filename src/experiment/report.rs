@@ -459,6 +459,11 @@ impl Report {
                 md,
                 "\n## CoSCo-HSOM variants: before and after the beyond-the-paper options\n"
             );
+            if self.variants.iter().any(|v| v.heldout.is_some()) {
+                let _ = writeln!(md, "In-sample / held-out (leave-one-out) means:\n");
+                md.push_str(&heldout_table(&self.variants));
+                let _ = writeln!(md, "\nIn-sample, every metric:\n");
+            }
             md.push_str(&comparison_table(&self.variants));
             for m in &self.variants {
                 for n in &m.notes {

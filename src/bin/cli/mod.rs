@@ -15,10 +15,11 @@ use cosco_hsom::demos::{self, write_csv, Demonstration};
 use cosco_hsom::experiment::baseline::GMR_NAME;
 use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
 use cosco_hsom::experiment::report::{level_rows, DemoInfo, Report, Stage};
-use cosco_hsom::experiment::variants::variants;
+use cosco_hsom::experiment::variants::{reference_variants, run_variant, variants};
 use cosco_hsom::experiment::{
-    are_arm_joints, demo_wrist_paths, evaluate, film, learn_and_reproduce, leave_one_out,
-    sample_period, synthetic_demonstrations, DemoSettings, Training, Transition,
+    are_arm_joints, demo_wrist_paths, evaluate, film, hsom_folds, learn_and_reproduce,
+    leave_one_out, sample_period, synthetic_demonstrations, DemoSettings, HeldOutSummary, Training,
+    Transition,
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::hsom::Hsom;
@@ -111,13 +112,13 @@ pub fn demos(
 }
 
 /// The shipped Table I configuration, built into the binaries so they run from any directory.
-pub const TABLE1_XML: &str = include_str!("../../../configs/table1.xml");
+pub use cosco_hsom::experiment::variants::{TABLE1_SOURCE, TABLE1_XML};
 
 /// Load a CoSCo-HSOM configuration file, or the built-in Table I.
 pub fn hsom_config(path: Option<&Path>) -> Result<HsomConfig> {
     Ok(match path {
         Some(p) => load_config(p)?,
-        None => parse_config(TABLE1_XML, "configs/table1.xml (built in)")?,
+        None => parse_config(TABLE1_XML, TABLE1_SOURCE)?,
     })
 }
 
@@ -375,26 +376,26 @@ pub fn main_job(job: &Job) -> Result<Report> {
     // 5d. Before / after: the beyond-the-paper options switched off (docs/ALGORITHM.md).
     let mut variant_results = Vec::new();
     if job.variants {
-        let vs = variants(&cfg, job.transition)?;
+        let mut vs = reference_variants(&cfg, job.transition)?;
+        vs.extend(variants(&cfg, job.transition)?);
         let pb = progress(vs.len() as u64, "variants");
         let mut main = methods[0].clone();
         main.name = format!("{} ({})", cfg.source(), job.transition.name());
+        if job.heldout && main.heldout.is_none() && demos.len() >= 2 {
+            let folds = hsom_folds(&arm, &cfg, &demos, Training::Trained, job.transition)?;
+            main.heldout = HeldOutSummary::of(&folds.iter().collect::<Vec<_>>());
+        }
         variant_results.push(main);
-        for v in vs {
-            let run = learn_and_reproduce(
-                &arm,
-                &v.config,
-                &demos,
-                Training::Trained,
-                v.transition,
-                None,
-            )?;
-            let bytes = run.model.to_bytes().len() as u64;
-            variant_results.push(run.method_result(&v.name, bytes, Vec::new()));
+        for v in &vs {
+            variant_results.push(run_variant(&arm, v, &demos, job.heldout)?);
             pb.inc(1);
         }
         pb.finish_and_clear();
-        clock.lap("before/after variants (train + reproduce + execute + metrics each)");
+        clock.lap(if job.heldout {
+            "before/after variants (train + reproduce + execute + metrics each, in-sample and held-out)"
+        } else {
+            "before/after variants (train + reproduce + execute + metrics each)"
+        });
     }
 
     // 6. Clip.
