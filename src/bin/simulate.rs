@@ -34,8 +34,9 @@ struct Args {
     /// Seed of every random choice of the job (demonstrations; the model's seed is in the config).
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Number of synthetic demonstrations.
-    #[arg(long, default_value_t = 3)]
+    /// Number of synthetic demonstrations (in-sample: learn from all, score against all;
+    /// held-out: each left out in turn).
+    #[arg(long, default_value_t = 4)]
     count: usize,
     /// Standard deviation of the synthetic encoder noise, rad.
     #[arg(long, default_value_t = cli::DEFAULT_ENCODER_NOISE)]
@@ -53,6 +54,9 @@ struct Args {
     /// Skip the before/after variants (the beyond-the-paper options switched off one at a time).
     #[arg(long)]
     no_variants: bool,
+    /// Skip the held-out (leave-one-out) evaluation of both methods.
+    #[arg(long)]
+    no_heldout: bool,
     /// MJCF model of the arm (default: models/nao_left_arm.xml of this crate).
     #[arg(long)]
     model: Option<PathBuf>,
@@ -71,6 +75,7 @@ fn run(a: Args) -> Result<()> {
         model: a.model,
         transition: cosco_hsom::experiment::Transition::parse(&a.transition)?,
         variants: !a.no_variants,
+        heldout: !a.no_heldout,
     };
     let report = cli::main_job(&job)?;
     // one line per method (CoSCo-HSOM, then the baseline when it ran)

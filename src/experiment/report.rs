@@ -7,10 +7,11 @@ use std::path::Path;
 use serde::Serialize;
 
 use crate::fsutil::write_atomic;
-use crate::metrics::{FidelityReport, Stat};
+use crate::metrics::{FidelityReport, Smoothness, Stat};
 
-use super::heldout::HeldOutSummary;
+use super::heldout::{HeldOut, HeldOutSummary, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
 use crate::hsom::Hsom;
+use crate::sim::JOINT_NAMES;
 
 /// One demonstration used for training.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -106,6 +107,12 @@ pub struct Report {
     pub methods: Vec<MethodResult>,
     /// Variants of the main method (beyond-the-paper options switched on and off).
     pub variants: Vec<MethodResult>,
+    /// Held-out (leave-one-out) evaluation of both methods, every fold.
+    pub heldout: Option<HeldOut>,
+    /// Why the held-out evaluation did not run (when it did not).
+    pub heldout_note: Option<String>,
+    /// The levels of the main model.
+    pub levels: Vec<LevelRow>,
     /// Wall time per stage.
     pub stages: Vec<Stage>,
     /// Files written, relative to the output directory.
@@ -250,6 +257,139 @@ pub fn comparison_table(results: &[MethodResult]) -> String {
     t
 }
 
+fn num(v: Option<f64>, digits: usize) -> String {
+    match v {
+        Some(v) if v.is_finite() => format!("{v:.digits$}"),
+        _ => "n/a".into(),
+    }
+}
+
+/// Mean over the demonstrations of one smoothness figure (`None` when none has it).
+fn demo_mean(s: &[Smoothness], f: impl Fn(&Smoothness) -> Option<f64>) -> Option<f64> {
+    let v: Vec<f64> = s.iter().filter_map(f).collect();
+    (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+}
+
+/// A markdown table with one row per result: the in-sample mean (over the demonstrations)
+/// beside the held-out mean (over the leave-one-out folds) of every fidelity metric, and
+/// the held-out large swings of LElbowRoll. `n/a` where a figure was not computed.
+pub fn heldout_table(results: &[MethodResult]) -> String {
+    let mut t = format!(
+        "| method (in-sample / held-out) | folds | joint DTW (rad/step) | wrist-path DTW \
+         (mm/step) | apex error (rad) | final-posture error (rad) | duration ratio | \
+         normalized jerk (demos') | velocity reversals (demos') | {} swings > {} rad, \
+         held-out (demo) |\n|---|---|---|---|---|---|---|---|---|---|\n",
+        JOINT_NAMES[SWING_JOINT], SWING_MIN_AMPLITUDE_RAD
+    );
+    for r in results {
+        let f = &r.fidelity;
+        let h = r.heldout.as_ref();
+        let pair = |a: Option<f64>, b: Option<f64>, digits: usize| {
+            format!("{} / {}", num(a, digits), num(b, digits))
+        };
+        let demo_jerk = demo_mean(&f.demo_smoothness, |s| s.normalized_jerk);
+        let demo_rev = demo_mean(&f.demo_smoothness, |s| Some(s.total_reversals as f64));
+        let _ = writeln!(
+            t,
+            "| {} | {} | {} | {} | {} | {} | {} | {} ({}) | {} ({}) | {} |",
+            r.name,
+            h.map_or("n/a".into(), |h| h.folds.to_string()),
+            pair(
+                Some(f.joint_dtw_rad_per_step.mean),
+                h.map(|h| h.joint_dtw_rad_per_step),
+                4
+            ),
+            pair(
+                f.wrist_dtw_mm.map(|w| w.mean),
+                h.and_then(|h| h.wrist_dtw_mm),
+                1
+            ),
+            pair(Some(f.apex_error_rad.mean), h.map(|h| h.apex_error_rad), 3),
+            pair(
+                Some(f.final_error_rad.mean),
+                h.map(|h| h.final_error_rad),
+                3
+            ),
+            pair(Some(f.duration_ratio.mean), h.map(|h| h.duration_ratio), 2),
+            pair(
+                f.reproduction_smoothness.normalized_jerk,
+                h.and_then(|h| h.normalized_jerk),
+                0
+            ),
+            pair(demo_jerk, h.and_then(|h| h.demo_normalized_jerk), 0),
+            pair(
+                Some(f.reproduction_smoothness.total_reversals as f64),
+                h.map(|h| h.velocity_reversals),
+                1
+            ),
+            pair(demo_rev, h.map(|h| h.demo_velocity_reversals), 1),
+            h.map_or("n/a".into(), |h| format!(
+                "{} ({})",
+                num(Some(h.swings), 1),
+                num(Some(h.demo_swings), 1)
+            )),
+        );
+    }
+    t
+}
+
+/// A markdown table of every fold: the held-out demonstration and both methods' scores
+/// against it.
+pub fn folds_table(h: &HeldOut) -> String {
+    let mut t = String::from(
+        "| fold | held out | CoSCo-HSOM joint DTW | wrist DTW | apex | final | duration ratio \
+         | swings (demo) | GMM/GMR joint DTW | wrist DTW | apex | final | duration ratio \
+         | swings |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for f in &h.folds {
+        let scores = |s: &super::heldout::FoldScores| {
+            let r = &s.fidelity;
+            format!(
+                "{:.4} | {} | {:.3} | {:.3} | {:.2}",
+                r.joint_dtw_rad_per_step.mean,
+                num(r.wrist_dtw_mm.map(|w| w.mean), 1),
+                r.apex_error_rad.mean,
+                r.final_error_rad.mean,
+                r.duration_ratio.mean
+            )
+        };
+        let gmr = match (&f.gmr, &f.gmr_error) {
+            (Some(g), _) => format!("{} | {}", scores(g), g.swings.reproduction),
+            (None, e) => format!(
+                "not run: {} | | | | | ",
+                e.as_deref().unwrap_or("no reason given")
+            ),
+        };
+        let _ = writeln!(
+            t,
+            "| {} | {} | {} | {} ({}) | {gmr} |",
+            f.held_out + 1,
+            f.source,
+            scores(&f.hsom),
+            f.hsom.swings.reproduction,
+            f.hsom.swings.demo
+        );
+    }
+    t
+}
+
+/// A markdown table of a model's levels: nodes used, prediction accuracy, lookup-table
+/// accuracy.
+pub fn levels_table(levels: &[LevelRow]) -> String {
+    let mut t = String::from(
+        "| level | nodes used / nodes | prediction accuracy | lookup-table accuracy |\n\
+         |---|---|---|---|\n",
+    );
+    for l in levels {
+        let _ = writeln!(
+            t,
+            "| {} | {} / {} | {:.3} | {:.3} |",
+            l.level, l.nodes_used, l.nodes, l.prediction_accuracy, l.lookup_accuracy
+        );
+    }
+    t
+}
+
 impl Report {
     /// The report for people.
     pub fn to_markdown(&self) -> String {
@@ -281,11 +421,49 @@ impl Report {
                 let _ = writeln!(md, "- {}: {n}", m.name);
             }
         }
+        match &self.heldout {
+            None if self.heldout_note.is_none() => {}
+            Some(h) => {
+                let _ = writeln!(md, "\n## Held-out (leave-one-out)\n");
+                let _ = writeln!(
+                    md,
+                    "Each demonstration in turn is held out: the method learns from the \
+                     others, reproduces from the held-out demonstration's initial posture and \
+                     is scored against that demonstration only. In-sample: learned from all, \
+                     scored against all (the table above). Means; held-out over the folds.\n"
+                );
+                md.push_str(&heldout_table(&self.methods));
+                let _ = writeln!(md);
+                md.push_str(&folds_table(h));
+            }
+            None => {
+                let _ = writeln!(
+                    md,
+                    "\n## Held-out (leave-one-out)\n\nNot run: {}",
+                    self.heldout_note.as_deref().unwrap_or_default()
+                );
+            }
+        }
+        if !self.levels.is_empty() {
+            let _ = writeln!(
+                md,
+                "\n## Levels of the CoSCo-HSOM model\n\nPrediction accuracy: fraction of \
+                 the next entries of the level below predicted exactly from the partial list \
+                 on the training data; lookup-table accuracy: the same for a table of \"next \
+                 entry given the last entry\" (the baseline a level must beat).\n"
+            );
+            md.push_str(&levels_table(&self.levels));
+        }
         if !self.variants.is_empty() {
             let _ = writeln!(
                 md,
                 "\n## CoSCo-HSOM variants: before and after the beyond-the-paper options\n"
             );
+            if self.variants.iter().any(|v| v.heldout.is_some()) {
+                let _ = writeln!(md, "In-sample / held-out (leave-one-out) means:\n");
+                md.push_str(&heldout_table(&self.variants));
+                let _ = writeln!(md, "\nIn-sample, every metric:\n");
+            }
             md.push_str(&comparison_table(&self.variants));
             for m in &self.variants {
                 for n in &m.notes {

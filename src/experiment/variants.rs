@@ -2,9 +2,25 @@
 //! (the paper taken literally), each trained, reproduced from the initial posture, executed and
 //! scored exactly like the main result, so `report.md` shows what every option buys.
 
-use crate::config::{HsomConfig, HsomParams, ListUpdate, Reflex, ReproductionMode, Timing};
+use crate::config::{
+    parse_config, Algorithm, HsomConfig, HsomParams, ListUpdate, Reflex, ReproductionMode, Timing,
+};
+use crate::demos::Demonstration;
+use crate::sim::NaoArm;
 
+use super::heldout::{hsom_folds, HeldOutSummary};
+use super::pipeline::{learn_and_reproduce, Training};
+use super::report::MethodResult;
 use super::{ExperimentError, Transition};
+
+/// The shipped `configs/table1.xml` (the paper's Table I), built in.
+pub const TABLE1_XML: &str = include_str!("../../configs/table1.xml");
+/// Where [`TABLE1_XML`] comes from, for messages and reports.
+pub const TABLE1_SOURCE: &str = "configs/table1.xml (built in)";
+/// `tests/configs/successor-table.xml` (the successor-table settings), built in.
+pub const SUCCESSOR_TABLE_XML: &str = include_str!("../../tests/configs/successor-table.xml");
+/// Where [`SUCCESSOR_TABLE_XML`] comes from.
+pub const SUCCESSOR_TABLE_SOURCE: &str = "tests/configs/successor-table.xml (built in)";
 
 /// One variant to run: a name, the configuration and the transition.
 #[derive(Debug, Clone)]
@@ -22,6 +38,7 @@ pub struct Variant {
 /// (full depth-first) expansion, the node's action half as output, no end tolerance.
 pub fn paper_literal(p: &HsomParams) -> HsomParams {
     let mut q = p.clone();
+    q.algorithm = Algorithm::Paper;
     q.list_update = ListUpdate::EveryStep;
     q.change_ratio = 1.0;
     q.action_horizon = 1;
@@ -66,6 +83,12 @@ pub fn variants(
             literal,
             Transition::Linear,
         )?;
+    }
+    if p.algorithm == Algorithm::Events && p.change_ratio < 1.0 {
+        // events start on any change of the bottom BMU (no hysteresis)
+        let mut q = p.clone();
+        q.change_ratio = 1.0;
+        push("without changeRatio hysteresis", q, transition)?;
     }
     if p.list_update == ListUpdate::OnChange {
         let mut q = p.clone();
@@ -118,4 +141,73 @@ pub fn variants(
         other,
     )?;
     Ok(out)
+}
+
+/// Reference rows of the before/after table, each executed with `transition`: the paper
+/// literal (`configs/table1.xml`), the successor-table settings
+/// (`tests/configs/successor-table.xml`), and `config` at height 1 (the bottom level alone:
+/// `levels` truncated to the first, `height = 1`, no `maxLevel`).
+pub fn reference_variants(
+    config: &HsomConfig,
+    transition: Transition,
+) -> Result<Vec<Variant>, ExperimentError> {
+    let named = |name: &str, config: Result<HsomConfig, crate::config::ConfigError>| {
+        config
+            .map(|config| Variant {
+                name: name.to_string(),
+                config,
+                transition,
+            })
+            .map_err(|e| ExperimentError::Invalid(format!("variant '{name}': {e}")))
+    };
+    let mut p = config.params().clone();
+    p.levels.truncate(1);
+    p.height = 1;
+    p.reproduction.max_level = None;
+    Ok(vec![
+        named(
+            "paper literal (configs/table1.xml)",
+            parse_config(TABLE1_XML, TABLE1_SOURCE),
+        )?,
+        named(
+            "successor-table settings (tests/configs/successor-table.xml)",
+            parse_config(SUCCESSOR_TABLE_XML, SUCCESSOR_TABLE_SOURCE),
+        )?,
+        named(
+            "this configuration at height 1",
+            p.check(&format!("{} (at height 1)", config.source())),
+        )?,
+    ])
+}
+
+/// Run one variant on `demos`: learned from all and scored against all (the in-sample
+/// column) and, with `heldout` and at least 2 demonstrations, leave-one-out (the held-out
+/// means).
+pub fn run_variant(
+    arm: &NaoArm,
+    variant: &Variant,
+    demos: &[Demonstration],
+    heldout: bool,
+) -> Result<MethodResult, ExperimentError> {
+    let run = learn_and_reproduce(
+        arm,
+        &variant.config,
+        demos,
+        Training::Trained,
+        variant.transition,
+        None,
+    )?;
+    let mut result =
+        run.method_result(&variant.name, run.model.to_bytes().len() as u64, Vec::new());
+    if heldout && demos.len() >= 2 {
+        let folds = hsom_folds(
+            arm,
+            &variant.config,
+            demos,
+            Training::Trained,
+            variant.transition,
+        )?;
+        result.heldout = HeldOutSummary::of(&folds.iter().collect::<Vec<_>>());
+    }
+    Ok(result)
 }

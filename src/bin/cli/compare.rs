@@ -280,6 +280,9 @@ pub fn compare(job: &CompareJob) -> Result<Report> {
         demos: demo_info,
         methods: vec![hsom_result, gmr_result],
         variants: Vec::new(),
+        heldout: None,
+        heldout_note: None,
+        levels: Vec::new(),
         stages: clock.stages,
         files,
     };
@@ -303,7 +306,15 @@ pub fn summary_lines(r: &Report) -> Vec<String> {
                 m.fidelity.final_error_rad.mean,
                 m.fidelity.duration_ratio.mean,
                 m.fidelity.reproduction_smoothness.total_reversals,
-            )
+            ) + &m.heldout.as_ref().map_or(String::new(), |h| {
+                format!(
+                    "; held-out ({} folds): joint DTW {:.4}, wrist DTW {} mm, duration ratio {:.2}",
+                    h.folds,
+                    h.joint_dtw_rad_per_step,
+                    h.wrist_dtw_mm.map_or("n/a".into(), |w| format!("{w:.1}")),
+                    h.duration_ratio
+                )
+            })
         })
         .collect()
 }

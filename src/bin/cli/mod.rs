@@ -12,12 +12,14 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use cosco_hsom::config::{load_config, parse_config, HsomConfig};
 use cosco_hsom::demos::{self, write_csv, Demonstration};
+use cosco_hsom::experiment::baseline::GMR_NAME;
 use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
-use cosco_hsom::experiment::report::{DemoInfo, Report, Stage};
-use cosco_hsom::experiment::variants::variants;
+use cosco_hsom::experiment::report::{level_rows, DemoInfo, Report, Stage};
+use cosco_hsom::experiment::variants::{reference_variants, run_variant, variants};
 use cosco_hsom::experiment::{
-    are_arm_joints, demo_wrist_paths, evaluate, film, learn_and_reproduce, sample_period,
-    synthetic_demonstrations, DemoSettings, Training, Transition,
+    are_arm_joints, demo_wrist_paths, evaluate, film, hsom_folds, learn_and_reproduce,
+    leave_one_out, sample_period, synthetic_demonstrations, DemoSettings, HeldOutSummary, Training,
+    Transition,
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::hsom::Hsom;
@@ -109,9 +111,6 @@ pub fn demos(
     write_demos(out, &demos)
 }
 
-/// The shipped Table I configuration (the paper taken literally), built into the binaries.
-pub const TABLE1_XML: &str = include_str!("../../../configs/table1.xml");
-
 /// The recommended configuration for the simulated Nao (the events extension), built into the
 /// binaries so they run from any directory; the default of `simulate` and `cosco`.
 pub const NAO_GESTURES_XML: &str = include_str!("../../../configs/nao-gestures.xml");
@@ -177,6 +176,8 @@ pub struct Job {
     pub transition: Transition,
     /// Also run the before/after variants.
     pub variants: bool,
+    /// Also run the held-out (leave-one-out) evaluation of both methods.
+    pub heldout: bool,
 }
 
 struct Stopwatch {
@@ -354,29 +355,51 @@ pub fn main_job(job: &Job) -> Result<Report> {
     }
     clock.lap("GMM/GMR baseline (fit + execute + metrics + plots)");
 
-    // 5c. Before / after: the beyond-the-paper options switched off (docs/ALGORITHM.md).
+    // 5c. Held-out: each demonstration in turn left out, both methods (experiment::heldout).
+    let (heldout, heldout_note) = if !job.heldout {
+        (None, Some("--no-heldout was given".to_string()))
+    } else if demos.len() < 2 {
+        let note = format!(
+            "{} demonstration(s); leave-one-out needs at least 2",
+            demos.len()
+        );
+        methods[0]
+            .notes
+            .push(format!("held-out evaluation not run: {note}"));
+        (None, Some(note))
+    } else {
+        let h = leave_one_out(&arm, &cfg, &demos, job.transition)?;
+        methods[0].heldout = Some(h.hsom.clone());
+        if let Some(g) = methods.iter_mut().find(|m| m.name == GMR_NAME) {
+            g.heldout = h.gmr.clone();
+        }
+        clock.lap("held-out (leave-one-out, both methods, every fold)");
+        (Some(h), None)
+    };
+
+    // 5d. Before / after: the beyond-the-paper options switched off (docs/ALGORITHM.md).
     let mut variant_results = Vec::new();
     if job.variants {
-        let vs = variants(&cfg, job.transition)?;
+        let mut vs = reference_variants(&cfg, job.transition)?;
+        vs.extend(variants(&cfg, job.transition)?);
         let pb = progress(vs.len() as u64, "variants");
         let mut main = methods[0].clone();
         main.name = format!("{} ({})", cfg.source(), job.transition.name());
+        if job.heldout && main.heldout.is_none() && demos.len() >= 2 {
+            let folds = hsom_folds(&arm, &cfg, &demos, Training::Trained, job.transition)?;
+            main.heldout = HeldOutSummary::of(&folds.iter().collect::<Vec<_>>());
+        }
         variant_results.push(main);
-        for v in vs {
-            let run = learn_and_reproduce(
-                &arm,
-                &v.config,
-                &demos,
-                Training::Trained,
-                v.transition,
-                None,
-            )?;
-            let bytes = run.model.to_bytes().len() as u64;
-            variant_results.push(run.method_result(&v.name, bytes, Vec::new()));
+        for v in &vs {
+            variant_results.push(run_variant(&arm, v, &demos, job.heldout)?);
             pb.inc(1);
         }
         pb.finish_and_clear();
-        clock.lap("before/after variants (train + reproduce + execute + metrics each)");
+        clock.lap(if job.heldout {
+            "before/after variants (train + reproduce + execute + metrics each, in-sample and held-out)"
+        } else {
+            "before/after variants (train + reproduce + execute + metrics each)"
+        });
     }
 
     // 6. Clip.
@@ -420,6 +443,9 @@ pub fn main_job(job: &Job) -> Result<Report> {
         demos: demo_info,
         methods,
         variants: variant_results,
+        heldout,
+        heldout_note,
+        levels: level_rows(&run.model),
         stages: clock.stages,
         files,
     };
