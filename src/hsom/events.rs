@@ -297,7 +297,11 @@ fn entry_content(
 
 /// Decode a predicted slot of level `level`'s input into an entry of the level below: among
 /// the entries that followed `prev` in training (the end included; all used entries when
-/// `prev` has no recorded follower), the one whose content is nearest.
+/// `prev` has no recorded follower), the one whose content is nearest. At level 1 the end is
+/// taken when a demonstration ended after `prev` and either the slot is mostly the end or
+/// `events_before` (bottom events so far) has reached the shortest demonstration's count:
+/// where a gesture starts and ends in the same posture, content alone cannot tell "end here"
+/// from "start again" (the paper's replication).
 fn decode(
     model: &Hsom,
     lay: Layout,
@@ -306,12 +310,9 @@ fn decode(
     code: DurationCode,
     used_below: &[usize],
     prev: u32,
+    events_before: f64,
 ) -> u32 {
     let s = lay.s;
-    if level == 1 && c[2 * s + 1] > 0.5 {
-        // the predicted event is mostly the end of the gesture
-        return END;
-    }
     let below = level - 1;
     let n = model.maps[below].len();
     let row = if prev == u32::MAX || prev == END {
@@ -325,6 +326,11 @@ fn decode(
         .copied()
         .filter(|&f| f != u32::MAX)
         .collect();
+    if level == 1
+        && (c[2 * s + 1] > 0.5 || (cands.contains(&END) && events_before >= model.demo_runs[0]))
+    {
+        return END;
+    }
     let all: Vec<u32>;
     let cands = if cands.is_empty() {
         all = used_below.iter().map(|&m| m as u32).collect();
@@ -529,7 +535,8 @@ impl Hsom {
                             let c = &self.maps[l].weights(b)[lay.slot_range(j)];
                             pn += 1;
                             pok += u32::from(
-                                decode(self, lay, l, c, code, &used_below, prev) == actual,
+                                decode(self, lay, l, c, code, &used_below, prev, at as f64)
+                                    == actual,
                             );
                         }
                     }
@@ -649,6 +656,7 @@ impl Hsom {
                         done: &done,
                         used: &used_levels,
                         by: level,
+                        executed: executed.len(),
                     };
                     // the chunk in progress at the top level used is its own match
                     let mut tail = tail_exec.clone();
@@ -747,7 +755,8 @@ impl Hsom {
         for j in from..lay.k {
             let c = &w[lay.slot_range(j)];
             if level == 1 {
-                let e = decode(self, lay, 1, c, ctx.code, &ctx.used[0], tail[0]);
+                let before = (ctx.executed + plan.len()) as f64;
+                let e = decode(self, lay, 1, c, ctx.code, &ctx.used[0], tail[0], before);
                 tail[0] = e;
                 if e == END {
                     plan.push_back((END, 0.0, ctx.by));
@@ -760,7 +769,16 @@ impl Hsom {
                 } else {
                     let prev = tail[level - 1];
                     (
-                        decode(self, lay, level, c, ctx.code, &ctx.used[level - 1], prev),
+                        decode(
+                            self,
+                            lay,
+                            level,
+                            c,
+                            ctx.code,
+                            &ctx.used[level - 1],
+                            prev,
+                            0.0,
+                        ),
                         0,
                         false,
                     )
@@ -913,6 +931,8 @@ struct Planner<'a> {
     used: &'a [Vec<usize>],
     /// The level the plan comes from.
     by: usize,
+    /// Bottom events executed before the plan.
+    executed: usize,
 }
 
 #[cfg(test)]
@@ -1047,11 +1067,11 @@ mod tests {
         let first = m.followers[0][m.maps[0].len() * FOLLOWERS];
         assert_ne!(first, u32::MAX);
         let c = entry_content(&m, lay, 0, first as usize, code);
-        assert_eq!(decode(&m, lay, 1, &c, code, &[], u32::MAX), first);
+        assert_eq!(decode(&m, lay, 1, &c, code, &[], u32::MAX, 0.0), first);
         // a slot whose end flag is set decodes to the end
         let mut e = c.clone();
         e[2 * lay.s + 1] = 1.0;
-        assert_eq!(decode(&m, lay, 1, &e, code, &[], u32::MAX), END);
+        assert_eq!(decode(&m, lay, 1, &e, code, &[], u32::MAX, 0.0), END);
     }
 
     #[test]
