@@ -83,7 +83,7 @@ fn run(a: Args) -> Result<()> {
     let _ = write!(out, "{}", study.to_markdown(a.in_sample));
     let _ = writeln!(
         out,
-        "\n{} sets x {} configurations in {:.1} s",
+        "{} sets x {} configurations in {:.1} s",
         jobs.len(),
         configs.len(),
         t.elapsed().as_secs_f64()

@@ -1,0 +1,195 @@
+//! Held-out (leave-one-out) evaluation: one fold per demonstration, each scored against the
+//! held-out demonstration only, for CoSCo-HSOM and GMM/GMR; an untrained hierarchy (the
+//! negative control) scores worse held-out than a trained one; the large-swing counter.
+
+use std::sync::OnceLock;
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use cosco_hsom::config::{load_config, HsomConfig};
+use cosco_hsom::demos::Demonstration;
+use cosco_hsom::experiment::heldout::{SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
+use cosco_hsom::experiment::{
+    hsom_folds, leave_one_out, sample_period, synthetic_demonstrations, DemoSettings, HeldOut,
+    HeldOutSummary, Training, Transition,
+};
+use cosco_hsom::gesture::Gesture;
+use cosco_hsom::gmr::{active_range, IdleTrim};
+use cosco_hsom::metrics::{column_swings, large_swings};
+use cosco_hsom::sim::NaoArm;
+
+const COUNT: usize = 4;
+const SEED: u64 = 11;
+
+struct Fixture {
+    arm: NaoArm,
+    config: HsomConfig,
+    demos: Vec<Demonstration>,
+    heldout: HeldOut,
+}
+
+/// reading-watch, 4 demonstrations, seed 11, the default configuration; recorded and
+/// evaluated once for every test of this file.
+fn fixture() -> &'static Fixture {
+    static F: OnceLock<Fixture> = OnceLock::new();
+    F.get_or_init(|| {
+        let arm = NaoArm::load_default().unwrap();
+        let config = load_config(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/nao-gestures.xml"),
+        )
+        .unwrap();
+        let settings = DemoSettings {
+            encoder_noise: 0.001,
+            ..DemoSettings::default()
+        };
+        let g = Gesture::by_name("reading-watch").unwrap();
+        let demos = synthetic_demonstrations(&arm, &g, COUNT, SEED, &settings, |_| {}).unwrap();
+        let heldout = leave_one_out(&arm, &config, &demos, Transition::Linear).unwrap();
+        Fixture {
+            arm,
+            config,
+            demos,
+            heldout,
+        }
+    })
+}
+
+/// Trimmed duration of a demonstration, seconds (docs/METRICS.md).
+fn trimmed_duration(d: &Demonstration) -> f64 {
+    let dt = sample_period(d);
+    let r = active_range(&d.rows, None, dt, &IdleTrim::default()).unwrap();
+    (r.len() - 1) as f64 * dt
+}
+
+#[test]
+fn one_fold_per_demonstration_each_scored_against_it_alone() {
+    let f = fixture();
+    let h = &f.heldout;
+    assert_eq!(h.folds.len(), COUNT);
+    assert_eq!(h.hsom.folds, COUNT);
+    assert_eq!(h.gmr.as_ref().map(|g| g.folds), Some(COUNT));
+    let durations: Vec<f64> = f.demos.iter().map(trimmed_duration).collect();
+    // the demonstrations differ in tempo, so scoring against the wrong one would show
+    for w in durations.windows(2) {
+        assert!((w[0] - w[1]).abs() > 0.05, "{durations:?}");
+    }
+    for (i, fold) in h.folds.iter().enumerate() {
+        assert_eq!(fold.held_out, i);
+        assert_eq!(fold.source, f.demos[i].source);
+        let gmr = fold
+            .gmr
+            .as_ref()
+            .unwrap_or_else(|| panic!("fold {i}: GMM/GMR did not run: {:?}", fold.gmr_error));
+        for (method, s) in [("CoSCo-HSOM", &fold.hsom), ("GMM/GMR", gmr)] {
+            let r = &s.fidelity;
+            assert_eq!(r.per_demo.len(), 1, "{method} fold {i}");
+            assert_eq!(r.demo_smoothness.len(), 1, "{method} fold {i}");
+            let d = &r.per_demo[0];
+            assert!(
+                (d.demo_duration_s - durations[i]).abs() < 1e-9,
+                "{method} fold {i}: scored against a demonstration of {} s, held out {} s",
+                d.demo_duration_s,
+                durations[i]
+            );
+            let expected = r.reproduction_duration_s / durations[i];
+            assert!(
+                (r.duration_ratio.mean - expected).abs() < 1e-9,
+                "{method} fold {i}: duration ratio {} != {expected}",
+                r.duration_ratio.mean
+            );
+            assert_eq!(
+                s.swings.demo,
+                column_swings(&f.demos[i].rows, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD).unwrap()
+            );
+            assert!(r.wrist_dtw_mm.is_some(), "{method} fold {i}: no wrist path");
+        }
+    }
+    // the summary is the mean over the folds
+    let mean = h
+        .folds
+        .iter()
+        .map(|f| f.hsom.fidelity.joint_dtw_rad_per_step.mean)
+        .sum::<f64>()
+        / COUNT as f64;
+    assert!((h.hsom.joint_dtw_rad_per_step - mean).abs() < 1e-12);
+    let (ph, pg) = h.paired().unwrap();
+    assert_eq!(ph, h.hsom);
+    assert_eq!(Some(pg), h.gmr.clone());
+}
+
+#[test]
+fn an_untrained_hierarchy_scores_worse_held_out_than_a_trained_one() {
+    let f = fixture();
+    let untrained = hsom_folds(
+        &f.arm,
+        &f.config,
+        &f.demos,
+        Training::Untrained,
+        Transition::Linear,
+    )
+    .unwrap();
+    let u = HeldOutSummary::of(&untrained.iter().collect::<Vec<_>>()).unwrap();
+    let t = &f.heldout.hsom;
+    eprintln!("trained {t:?}\nuntrained {u:?}");
+    assert!(
+        u.joint_dtw_rad_per_step > t.joint_dtw_rad_per_step,
+        "joint DTW: untrained {} <= trained {}",
+        u.joint_dtw_rad_per_step,
+        t.joint_dtw_rad_per_step
+    );
+    assert!(
+        u.wrist_dtw_mm.unwrap() > t.wrist_dtw_mm.unwrap(),
+        "wrist DTW: untrained {:?} <= trained {:?}",
+        u.wrist_dtw_mm,
+        t.wrist_dtw_mm
+    );
+}
+
+#[test]
+fn two_demonstrations_run_without_the_baseline_and_one_is_refused() {
+    let f = fixture();
+    let h = leave_one_out(&f.arm, &f.config, &f.demos[..2], Transition::Linear).unwrap();
+    assert_eq!(h.folds.len(), 2);
+    assert!(h.gmr.is_none());
+    for fold in &h.folds {
+        let e = fold.gmr_error.as_deref().unwrap();
+        assert!(e.contains("at least 2"), "{e}");
+    }
+    let e = leave_one_out(&f.arm, &f.config, &f.demos[..1], Transition::Linear)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("at least 2") && e.contains("got 1"), "{e}");
+}
+
+fn sine(periods: f64, amplitude: f64, n: usize) -> Vec<f64> {
+    (0..=n)
+        .map(|k| amplitude * (std::f64::consts::TAU * periods * k as f64 / n as f64).sin())
+        .collect()
+}
+
+#[test]
+fn swings_of_a_sine_are_two_per_period() {
+    let s = sine(3.0, 0.5, 360);
+    assert_eq!(large_swings(&s, 0.3).unwrap(), 6);
+    // a smaller amplitude than half the threshold: nothing
+    assert_eq!(large_swings(&sine(3.0, 0.1, 360), 0.3).unwrap(), 0);
+}
+
+#[test]
+fn noise_below_the_amplitude_adds_no_swings() {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    // +-0.1 rad of noise at every sample: many velocity sign changes, no large swing
+    let noisy: Vec<f64> = sine(3.0, 0.5, 360)
+        .into_iter()
+        .map(|v| v + rng.gen_range(-0.1..0.1))
+        .collect();
+    let sign_changes = noisy
+        .windows(3)
+        .filter(|w| (w[1] - w[0]) * (w[2] - w[1]) < 0.0)
+        .count();
+    assert!(sign_changes > 50, "{sign_changes}");
+    assert_eq!(large_swings(&noisy, 0.3).unwrap(), 6);
+    let still: Vec<f64> = (0..400).map(|_| rng.gen_range(-0.12..0.12)).collect();
+    assert_eq!(large_swings(&still, 0.3).unwrap(), 0);
+}
