@@ -44,6 +44,9 @@ struct Args {
     /// Also learn from all demonstrations and score against all (the in-sample result).
     #[arg(long)]
     in_sample: bool,
+    /// Also run every configuration at height 1 (its bottom level alone).
+    #[arg(long)]
+    height_1: bool,
     /// Write every number to this JSON file.
     #[arg(long)]
     json: Option<PathBuf>,
@@ -62,6 +65,17 @@ fn run(a: Args) -> Result<()> {
         .iter()
         .map(|p| load_config(p).with_context(|| format!("loading {}", p.display())))
         .collect::<Result<Vec<_>>>()?;
+    let configs = if a.height_1 {
+        let mut all = Vec::new();
+        for c in configs {
+            let h1 = cosco_hsom::experiment::variants::at_height_1(&c)?;
+            all.push(c);
+            all.push(h1);
+        }
+        all
+    } else {
+        configs
+    };
     let settings = StudySettings {
         count: a.count,
         noise: a.noise,

@@ -22,13 +22,6 @@ fn recommended() -> HsomConfig {
     .unwrap()
 }
 
-fn at_height_1(c: &HsomConfig) -> HsomConfig {
-    let mut p = c.params().clone();
-    p.levels.truncate(1);
-    p.height = 1;
-    p.check("height 1").unwrap()
-}
-
 fn demos(arm: &NaoArm, name: &str) -> Vec<Demonstration> {
     let g = Gesture::by_name(name).unwrap();
     let settings = DemoSettings {
@@ -87,7 +80,7 @@ fn failures(s: &HeldOutSummary) -> Vec<String> {
 fn the_hierarchy_beats_height_one_held_out_and_the_controls_fail() {
     let arm = NaoArm::load_default().unwrap();
     let cfg = recommended();
-    let h1 = at_height_1(&cfg);
+    let h1 = cosco_hsom::experiment::variants::at_height_1(&cfg).unwrap();
     let mut wins = 0;
     for g in GESTURES {
         let d = demos(&arm, g);

@@ -143,6 +143,16 @@ pub fn variants(
     Ok(out)
 }
 
+/// `config` with its bottom level alone (`levels` truncated to the first, `height = 1`, no
+/// `maxLevel`): the baseline the hierarchy must beat.
+pub fn at_height_1(config: &HsomConfig) -> Result<HsomConfig, crate::config::ConfigError> {
+    let mut p = config.params().clone();
+    p.levels.truncate(1);
+    p.height = 1;
+    p.reproduction.max_level = None;
+    p.check(&format!("{} (at height 1)", config.source()))
+}
+
 /// Reference rows of the before/after table, each executed with `transition`: the paper
 /// literal (`configs/table1.xml`), the successor-table settings
 /// (`tests/configs/successor-table.xml`), and `config` at height 1 (the bottom level alone:
@@ -160,10 +170,6 @@ pub fn reference_variants(
             })
             .map_err(|e| ExperimentError::Invalid(format!("variant '{name}': {e}")))
     };
-    let mut p = config.params().clone();
-    p.levels.truncate(1);
-    p.height = 1;
-    p.reproduction.max_level = None;
     Ok(vec![
         named(
             "paper literal (configs/table1.xml)",
@@ -173,10 +179,7 @@ pub fn reference_variants(
             "successor-table settings (tests/configs/successor-table.xml)",
             parse_config(SUCCESSOR_TABLE_XML, SUCCESSOR_TABLE_SOURCE),
         )?,
-        named(
-            "this configuration at height 1",
-            p.check(&format!("{} (at height 1)", config.source())),
-        )?,
+        named("this configuration at height 1", at_height_1(config))?,
     ])
 }
 
