@@ -61,7 +61,7 @@ fn failures(s: &HeldOutSummary) -> Vec<String> {
     if s.joint_dtw_rad_per_step > 0.25 {
         out.push(format!("joint DTW {:.3} > 0.25", s.joint_dtw_rad_per_step));
     }
-    if s.wrist_dtw_mm.is_none_or(|w| w > 15.0) {
+    if !s.wrist_dtw_mm.is_some_and(|w| w <= 15.0) {
         out.push(format!("wrist DTW {:?} > 15 mm", s.wrist_dtw_mm));
     }
     if !(0.7..=1.4).contains(&s.duration_ratio) {

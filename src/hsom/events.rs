@@ -205,14 +205,30 @@ fn chunk_input(
     lay.ctx() + slots.len() * lay.slot()
 }
 
-/// The chunks of one item sequence at the level above: for each, (context prev, begin,
-/// phase, slot contents padded with the end).
-fn chunks(
-    lay: Layout,
-    items: &[Item],
-    per_item: f64,
-    mean_events: f64,
-) -> Vec<(Vec<f64>, bool, f64, Vec<Vec<f64>>)> {
+/// One chunk of entries as the level above sees it.
+#[derive(Debug, Clone, PartialEq)]
+struct Chunk {
+    /// The last posture before the chunk (the first posture for the first chunk).
+    prev: Vec<f64>,
+    /// The first chunk of a demonstration.
+    begin: bool,
+    /// Bottom events before the chunk / the mean number of events per demonstration.
+    phase: f64,
+    /// The entries' contents, padded with the end.
+    slots: Vec<Vec<f64>>,
+}
+
+impl Chunk {
+    /// Its input with the first `known` slots known (the rest masked out); returns the
+    /// number of known values.
+    fn input(&self, lay: Layout, known: usize, x: &mut [f64], mask: &mut [bool]) -> usize {
+        let refs: Vec<&[f64]> = self.slots[..known].iter().map(|v| v.as_slice()).collect();
+        chunk_input(lay, &self.prev, self.begin, self.phase, &refs, x, mask)
+    }
+}
+
+/// The chunks of one item sequence at the level above.
+fn chunks(lay: Layout, items: &[Item], per_item: f64, mean_events: f64) -> Vec<Chunk> {
     let mut out = Vec::new();
     if items.is_empty() {
         return out;
@@ -233,7 +249,12 @@ fn chunks(
             })
             .collect();
         let phase = start as f64 * per_item / mean_events.max(1.0);
-        out.push((prev, k == 0, phase, slots));
+        out.push(Chunk {
+            prev,
+            begin: k == 0,
+            phase,
+            slots,
+        });
         k += 1;
     }
     out
@@ -302,60 +323,70 @@ fn entry_content(
 /// `events_before` (bottom events so far) has reached the shortest demonstration's count:
 /// where a gesture starts and ends in the same posture, content alone cannot tell "end here"
 /// from "start again" (the paper's replication).
-fn decode(
-    model: &Hsom,
+/// What decoding needs: the model and its encoding.
+struct Decoder<'a> {
+    model: &'a Hsom,
     lay: Layout,
-    level: usize,
-    c: &[f64],
     code: DurationCode,
-    used_below: &[usize],
-    prev: u32,
-    events_before: f64,
-) -> u32 {
-    let s = lay.s;
-    let below = level - 1;
-    let n = model.maps[below].len();
-    let row = if prev == u32::MAX || prev == END {
-        n
-    } else {
-        prev as usize
-    };
-    let table = &model.followers[below];
-    let cands: Vec<u32> = table[row * FOLLOWERS..(row + 1) * FOLLOWERS]
-        .iter()
-        .copied()
-        .filter(|&f| f != u32::MAX)
-        .collect();
-    if level == 1
-        && (c[2 * s + 1] > 0.5 || (cands.contains(&END) && events_before >= model.demo_runs[0]))
-    {
-        return END;
-    }
-    let all: Vec<u32>;
-    let cands = if cands.is_empty() {
-        all = used_below.iter().map(|&m| m as u32).collect();
-        &all
-    } else {
-        &cands
-    };
-    let prev_b: Vec<f64> = if (prev as usize) < n {
-        b_part(lay, &entry_content(model, lay, below, prev as usize, code)).to_vec()
-    } else {
-        c[s..2 * s].to_vec()
-    };
-    let mut best = (END, f64::INFINITY);
-    for &m in cands {
-        let d = if m == END {
-            dist2(&prev_b, &c[..s]) + dist2(&prev_b, &c[s..2 * s]) + (c[2 * s + 1] - 1.0).powi(2)
+}
+
+impl Decoder<'_> {
+    fn decode(
+        &self,
+        level: usize,
+        c: &[f64],
+        used_below: &[usize],
+        prev: u32,
+        events_before: f64,
+    ) -> u32 {
+        let (model, lay, code) = (self.model, self.lay, self.code);
+        let s = lay.s;
+        let below = level - 1;
+        let n = model.maps[below].len();
+        let row = if prev == u32::MAX || prev == END {
+            n
         } else {
-            let e = entry_content(model, lay, below, m as usize, code);
-            dist2(&e[..2 * s], &c[..2 * s]) + (c[2 * s + 1] - e[2 * s + 1]).powi(2)
+            prev as usize
         };
-        if d < best.1 {
-            best = (m, d);
+        let table = &model.followers[below];
+        let cands: Vec<u32> = table[row * FOLLOWERS..(row + 1) * FOLLOWERS]
+            .iter()
+            .copied()
+            .filter(|&f| f != u32::MAX)
+            .collect();
+        if level == 1
+            && (c[2 * s + 1] > 0.5 || (cands.contains(&END) && events_before >= model.demo_runs[0]))
+        {
+            return END;
         }
+        let all: Vec<u32>;
+        let cands = if cands.is_empty() {
+            all = used_below.iter().map(|&m| m as u32).collect();
+            &all
+        } else {
+            &cands
+        };
+        let prev_b: Vec<f64> = if (prev as usize) < n {
+            b_part(lay, &entry_content(model, lay, below, prev as usize, code)).to_vec()
+        } else {
+            c[s..2 * s].to_vec()
+        };
+        let mut best = (END, f64::INFINITY);
+        for &m in cands {
+            let d = if m == END {
+                dist2(&prev_b, &c[..s])
+                    + dist2(&prev_b, &c[s..2 * s])
+                    + (c[2 * s + 1] - 1.0).powi(2)
+            } else {
+                let e = entry_content(model, lay, below, m as usize, code);
+                dist2(&e[..2 * s], &c[..2 * s]) + (c[2 * s + 1] - e[2 * s + 1]).powi(2)
+            };
+            if d < best.1 {
+                best = (m, d);
+            }
+        }
+        best.0
     }
-    best.0
 }
 
 /// The table of up to [`FOLLOWERS`] most frequent followers of every entry of a level (row
@@ -471,9 +502,8 @@ impl Hsom {
             let inputs: Vec<Vec<f64>> = demo_chunks
                 .iter()
                 .flatten()
-                .map(|(prev, begin, phase, slots)| {
-                    let refs: Vec<&[f64]> = slots.iter().map(|v| v.as_slice()).collect();
-                    chunk_input(lay, prev, *begin, *phase, &refs, &mut x, &mut mask);
+                .map(|ch| {
+                    ch.input(lay, lay.k, &mut x, &mut mask);
                     x.clone()
                 })
                 .collect();
@@ -518,11 +548,9 @@ impl Hsom {
             let (mut pn, mut pok) = (0u32, 0u32);
             for (di, dc) in demo_chunks.iter().enumerate() {
                 let mut v = Vec::with_capacity(dc.len());
-                for (ci, (prev, begin, phase, slots)) in dc.iter().enumerate() {
-                    let refs: Vec<&[f64]> = slots.iter().map(|v| v.as_slice()).collect();
+                for (ci, ch) in dc.iter().enumerate() {
                     for j in 0..lay.k {
-                        let known =
-                            chunk_input(lay, prev, *begin, *phase, &refs[..j], &mut x, &mut mask);
+                        let known = ch.input(lay, j, &mut x, &mut mask);
                         let (b, d2) = self.maps[l].bmu_masked(&x, &mask);
                         thr = thr.max((d2 / known as f64).sqrt());
                         let at = ci * lay.k + j;
@@ -534,13 +562,16 @@ impl Hsom {
                             };
                             let c = &self.maps[l].weights(b)[lay.slot_range(j)];
                             pn += 1;
-                            pok += u32::from(
-                                decode(self, lay, l, c, code, &used_below, prev, at as f64)
-                                    == actual,
-                            );
+                            let dec = Decoder {
+                                model: self,
+                                lay,
+                                code,
+                            };
+                            pok +=
+                                u32::from(dec.decode(l, c, &used_below, prev, at as f64) == actual);
                         }
                     }
-                    chunk_input(lay, prev, *begin, *phase, &refs, &mut x, &mut mask);
+                    ch.input(lay, lay.k, &mut x, &mut mask);
                     let (b, b2) = self.maps[l].best_two(&x);
                     qe += dist2(self.maps[l].weights(b), &x).sqrt();
                     te +=
@@ -756,7 +787,9 @@ impl Hsom {
             let c = &w[lay.slot_range(j)];
             if level == 1 {
                 let before = (ctx.executed + plan.len()) as f64;
-                let e = decode(self, lay, 1, c, ctx.code, &ctx.used[0], tail[0], before);
+                let e = ctx
+                    .decoder(self)
+                    .decode(1, c, &ctx.used[0], tail[0], before);
                 tail[0] = e;
                 if e == END {
                     plan.push_back((END, 0.0, ctx.by));
@@ -768,17 +801,9 @@ impl Hsom {
                     (ctx.matched[level - 1] as u32, ctx.done[level - 1], true)
                 } else {
                     let prev = tail[level - 1];
+                    let dec = ctx.decoder(self);
                     (
-                        decode(
-                            self,
-                            lay,
-                            level,
-                            c,
-                            ctx.code,
-                            &ctx.used[level - 1],
-                            prev,
-                            0.0,
-                        ),
+                        dec.decode(level, c, &ctx.used[level - 1], prev, 0.0),
                         0,
                         false,
                     )
@@ -919,6 +944,16 @@ fn hermite(t0: f64, t1: f64, v0: f64, v1: f64, m0: f64, m1: f64, t: f64) -> f64 
         + (u3 - u2) * h * m1
 }
 
+impl Planner<'_> {
+    fn decoder<'m>(&self, model: &'m Hsom) -> Decoder<'m> {
+        Decoder {
+            model,
+            lay: self.lay,
+            code: self.code,
+        }
+    }
+}
+
 /// What a plan is made from.
 struct Planner<'a> {
     lay: Layout,
@@ -1026,20 +1061,16 @@ mod tests {
         let c = chunks(lay, &items, 1.0, 9.0);
         assert_eq!(c.len(), 3);
         assert!(
-            c[0].1 && !c[1].1 && !c[2].1,
+            c[0].begin && !c[1].begin && !c[2].begin,
             "only the first chunk is the begin"
         );
-        assert_eq!(
-            c[1].0,
-            vec![3.5],
-            "context: last posture of the chunk before"
-        );
-        assert_eq!(c[2].3[0], items[8].content);
+        assert_eq!(c[1].prev, vec![3.5], "context: the last posture before");
+        assert_eq!(c[2].slots[0], items[8].content);
         // slots after the last entry are the end, holding the last posture
         for j in 1..4 {
-            assert_eq!(c[2].3[j], vec![8.5, 8.5, 0.0, 1.0]);
+            assert_eq!(c[2].slots[j], vec![8.5, 8.5, 0.0, 1.0]);
         }
-        let phases: Vec<f64> = c.iter().map(|x| x.2).collect();
+        let phases: Vec<f64> = c.iter().map(|x| x.phase).collect();
         assert_eq!(phases, vec![0.0, 4.0 / 9.0, 8.0 / 9.0]);
     }
 
@@ -1067,11 +1098,16 @@ mod tests {
         let first = m.followers[0][m.maps[0].len() * FOLLOWERS];
         assert_ne!(first, u32::MAX);
         let c = entry_content(&m, lay, 0, first as usize, code);
-        assert_eq!(decode(&m, lay, 1, &c, code, &[], u32::MAX, 0.0), first);
+        let dec = Decoder {
+            model: &m,
+            lay,
+            code,
+        };
+        assert_eq!(dec.decode(1, &c, &[], u32::MAX, 0.0), first);
         // a slot whose end flag is set decodes to the end
         let mut e = c.clone();
         e[2 * lay.s + 1] = 1.0;
-        assert_eq!(decode(&m, lay, 1, &e, code, &[], u32::MAX, 0.0), END);
+        assert_eq!(dec.decode(1, &e, &[], u32::MAX, 0.0), END);
     }
 
     #[test]
