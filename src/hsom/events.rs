@@ -428,11 +428,6 @@ impl Hsom {
         let n0 = self.maps[0].len();
         // 1. bottom events, their durations and the bottom's own lookup table
         let events: Vec<Vec<(usize, f64)>> = norm.iter().map(|d| bottom_events(self, d)).collect();
-        if std::env::var_os("COSCO_DEBUG_EVENTS").is_some() {
-            for e in &events {
-                eprintln!("demo events: {e:?}");
-            }
-        }
         let mut dsum = vec![0.0; n0];
         let mut dn = vec![0u32; n0];
         for ev in &events {
@@ -621,12 +616,7 @@ impl Hsom {
         // the initial event: the bottom node nearest to the initial posture (state half)
         let (n_init, _) = self.maps[0].bmu_range(y0, 0..s);
         let init_content = event_content(&self.maps[0], n_init, 0.0, code);
-        // per level l >= 1: the entries of level l-1 completed in its current chunk, the
-        // chunk's context and index
-        let mut chunk: Vec<Vec<Item>> = vec![Vec::new(); h];
-        let mut prev: Vec<Vec<f64>> = vec![a_part(lay, &init_content).to_vec(); h];
-        let mut index: Vec<usize> = vec![0; h];
-        let mut expected: Vec<VecDeque<u32>> = vec![VecDeque::new(); h];
+        let mut lists = Lists::new(h, a_part(lay, &init_content));
         let mut plan: VecDeque<(u32, f64, usize)> = VecDeque::new();
         let mut executed: Vec<(usize, f64, usize)> = Vec::new();
         let mut x = vec![0.0; lay.dim()];
@@ -634,26 +624,14 @@ impl Hsom {
         let mut total = 0.0;
         let mut stop = StopReason::LearnedLength;
         let mut first = true;
-        // per level: its last completed entry (u32::MAX: the begin)
-        let mut tail_exec: Vec<u32> = vec![u32::MAX; h];
         'run: loop {
             if plan.is_empty() {
-                expected.iter_mut().for_each(|e| e.clear());
+                lists.expected.iter_mut().for_each(|e| e.clear());
                 // climb while the match lies within what the level saw in training
                 let mut matched: Vec<usize> = vec![0; h];
                 let mut level = 0;
                 for l in 1..=top {
-                    let refs: Vec<&[f64]> = chunk[l].iter().map(|i| i.content.as_slice()).collect();
-                    let phase = (index[l] * lay.k.pow(l as u32)) as f64 / mean_events;
-                    let known = chunk_input(
-                        lay,
-                        &prev[l],
-                        index[l] == 0,
-                        phase,
-                        &refs,
-                        &mut x,
-                        &mut mask,
-                    );
+                    let known = lists.input(lay, l, mean_events, &mut x, &mut mask);
                     let (b, d2) = self.maps[l].bmu_masked(&x, &mask);
                     // level 1 always predicts (the lowest level with a sequence and a
                     // context); higher levels only while they are not confused
@@ -679,7 +657,7 @@ impl Hsom {
                     }
                     plan.push_back((next, self.dwell[next as usize].max(1.0), 0));
                 } else {
-                    let done: Vec<usize> = chunk.iter().map(|c| c.len()).collect();
+                    let done: Vec<usize> = lists.chunk.iter().map(|c| c.len()).collect();
                     let ctx = Planner {
                         lay,
                         code,
@@ -690,7 +668,7 @@ impl Hsom {
                         executed: executed.len(),
                     };
                     // the chunk in progress at the top level used is its own match
-                    let mut tail = tail_exec.clone();
+                    let mut tail = lists.tail.clone();
                     self.expand(
                         &ctx,
                         level,
@@ -698,7 +676,7 @@ impl Hsom {
                         done[level],
                         true,
                         &mut plan,
-                        &mut expected,
+                        &mut lists.expected,
                         &mut tail,
                     );
                 }
@@ -712,55 +690,17 @@ impl Hsom {
                 break;
             }
             let node = node as usize;
-            tail_exec[0] = node as u32;
             executed.push((node, dur, by));
             total += dur;
             if total >= cap as f64 {
                 stop = StopReason::LearnedLength;
                 break;
             }
-            // push the executed event up the lists, as in training
-            let mut item = Item {
-                node: node as u32,
-                content: event_content(&self.maps[0], node, dur, code),
-            };
-            let mut surprise = false;
-            for l in 1..h {
-                chunk[l].push(item);
-                if chunk[l].len() < lay.k {
-                    break;
-                }
-                let refs: Vec<&[f64]> = chunk[l].iter().map(|i| i.content.as_slice()).collect();
-                let phase = (index[l] * lay.k.pow(l as u32)) as f64 / mean_events;
-                chunk_input(
-                    lay,
-                    &prev[l],
-                    index[l] == 0,
-                    phase,
-                    &refs,
-                    &mut x,
-                    &mut mask,
-                );
-                let (b, _) = self.maps[l].bmu(&x);
-                let last_b = b_part(lay, &chunk[l][lay.k - 1].content).to_vec();
-                chunk[l].clear();
-                prev[l] = last_b;
-                index[l] += 1;
-                tail_exec[l] = b as u32;
-                if let Some(e) = expected[l].pop_front() {
-                    surprise |= e != b as u32;
-                }
-                item = Item {
-                    node: b as u32,
-                    content: summary(lay, self.maps[l].weights(b), code),
-                };
-            }
+            // push the executed event up the lists, as in training; re-plan on surprise
+            let surprise = lists.push_event(self, lay, code, mean_events, node, dur);
             if surprise {
                 plan.clear();
             }
-        }
-        if std::env::var_os("COSCO_DEBUG_EVENTS").is_some() {
-            eprintln!("executed: {executed:?} stop {stop:?}");
         }
         self.timed_postures(y0, &executed, stop)
     }
@@ -942,6 +882,95 @@ fn hermite(t0: f64, t1: f64, v0: f64, v1: f64, m0: f64, m1: f64, t: f64) -> f64 
         + (u3 - 2.0 * u2 + u) * h * m0
         + (-2.0 * u3 + 3.0 * u2) * v1
         + (u3 - u2) * h * m1
+}
+
+/// The reproduction's short-term memory, as in training: per level l >= 1 the entries of
+/// level l-1 completed in its current chunk, the chunk's context and index; per level its
+/// last completed entry; and the entries the current plan expects each level to complete.
+#[derive(Debug, Clone)]
+struct Lists {
+    chunk: Vec<Vec<Item>>,
+    prev: Vec<Vec<f64>>,
+    index: Vec<usize>,
+    /// Last completed entry per level (`u32::MAX`: the begin).
+    tail: Vec<u32>,
+    expected: Vec<VecDeque<u32>>,
+}
+
+impl Lists {
+    fn new(height: usize, start: &[f64]) -> Self {
+        Lists {
+            chunk: vec![Vec::new(); height],
+            prev: vec![start.to_vec(); height],
+            index: vec![0; height],
+            tail: vec![u32::MAX; height],
+            expected: vec![VecDeque::new(); height],
+        }
+    }
+
+    /// The input of level `l`'s current chunk (completed slots known); the known count.
+    fn input(
+        &self,
+        lay: Layout,
+        l: usize,
+        mean_events: f64,
+        x: &mut [f64],
+        mask: &mut [bool],
+    ) -> usize {
+        let refs: Vec<&[f64]> = self.chunk[l].iter().map(|i| i.content.as_slice()).collect();
+        let phase = (self.index[l] * lay.k.pow(l as u32)) as f64 / mean_events;
+        chunk_input(
+            lay,
+            &self.prev[l],
+            self.index[l] == 0,
+            phase,
+            &refs,
+            x,
+            mask,
+        )
+    }
+
+    /// Push an executed bottom event up the lists exactly as in training: every chunk it
+    /// completes is matched by its level and pushed one level up. True when a completed
+    /// chunk's node is not the one the plan expected there (a surprise).
+    fn push_event(
+        &mut self,
+        model: &Hsom,
+        lay: Layout,
+        code: DurationCode,
+        mean_events: f64,
+        node: usize,
+        dur: f64,
+    ) -> bool {
+        let mut x = vec![0.0; lay.dim()];
+        let mut mask = vec![true; lay.dim()];
+        self.tail[0] = node as u32;
+        let mut item = Item {
+            node: node as u32,
+            content: event_content(&model.maps[0], node, dur, code),
+        };
+        let mut surprise = false;
+        for l in 1..self.chunk.len() {
+            self.chunk[l].push(item);
+            if self.chunk[l].len() < lay.k {
+                break;
+            }
+            self.input(lay, l, mean_events, &mut x, &mut mask);
+            let (b, _) = model.maps[l].bmu(&x);
+            self.prev[l] = b_part(lay, &self.chunk[l][lay.k - 1].content).to_vec();
+            self.chunk[l].clear();
+            self.index[l] += 1;
+            self.tail[l] = b as u32;
+            if let Some(e) = self.expected[l].pop_front() {
+                surprise |= e != b as u32;
+            }
+            item = Item {
+                node: b as u32,
+                content: summary(lay, model.maps[l].weights(b), code),
+            };
+        }
+        surprise
+    }
 }
 
 impl Planner<'_> {
@@ -1142,6 +1171,56 @@ mod tests {
             !(top > 0.85 && (20..=60).contains(&held) && xs.last().unwrap().abs() < 0.15),
             "untrained: top {top}, held {held}"
         );
+    }
+
+    /// The events of a training demonstration, pushed up the lists, complete chunks whose
+    /// nodes are the training replay's; a plan that expected another node there is surprised.
+    #[test]
+    fn executed_events_climb_the_lists_and_a_wrong_expectation_is_a_surprise() {
+        let m = trained(3);
+        let lay = Layout::of(&m.config);
+        let code = DurationCode::from_dwell(&m.dwell);
+        let mean = m.demo_runs[1];
+        let demo = gesture(35, 1);
+        let y: Vec<Vec<f64>> = demo
+            .iter()
+            .map(|r| {
+                r.iter()
+                    .enumerate()
+                    .map(|(d, v)| (v - m.offset[d]) / m.scale[d])
+                    .collect()
+            })
+            .collect();
+        let ev = bottom_events(&m, &y);
+        assert!(ev.len() >= 2 * lay.k);
+        let start = m.maps[0].weights(ev[0].0)[..lay.s].to_vec();
+        // expecting exactly what the lists will find: no surprise
+        let mut probe = Lists::new(m.height(), &start);
+        for &(n, d) in &ev[..lay.k] {
+            probe.push_event(&m, lay, code, mean, n, d);
+        }
+        let first_chunk = probe.tail[1];
+        assert_ne!(first_chunk, u32::MAX, "a full chunk reaches level 1");
+        let mut lists = Lists::new(m.height(), &start);
+        lists.expected[1].push_back(first_chunk);
+        let mut surprised = false;
+        for &(n, d) in &ev[..lay.k] {
+            surprised |= lists.push_event(&m, lay, code, mean, n, d);
+        }
+        assert!(!surprised);
+        assert_eq!(lists.index[1], 1, "one chunk completed at level 1");
+        assert!(lists.chunk[1].is_empty());
+        assert!(lists.expected[1].is_empty(), "the expectation was consumed");
+        // expecting another node: surprise, at the event that completes the chunk only
+        let mut lists = Lists::new(m.height(), &start);
+        let other = (first_chunk + 1) % m.maps[1].len() as u32;
+        lists.expected[1].push_back(other);
+        let flags: Vec<bool> = ev[..lay.k]
+            .iter()
+            .map(|&(n, d)| lists.push_event(&m, lay, code, mean, n, d))
+            .collect();
+        assert_eq!(flags.iter().filter(|&&f| f).count(), 1);
+        assert!(flags[lay.k - 1], "{flags:?}");
     }
 
     #[test]
