@@ -630,7 +630,7 @@ impl Hsom {
                 // climb while the match lies within what the level saw in training
                 let mut matched: Vec<usize> = vec![0; h];
                 let mut level = 0;
-                for l in 1..=top {
+                for (l, slot) in matched.iter_mut().enumerate().take(top + 1).skip(1) {
                     let known = lists.input(lay, l, mean_events, &mut x, &mut mask);
                     let (b, d2) = self.maps[l].bmu_masked(&x, &mask);
                     // level 1 always predicts (the lowest level with a sequence and a
@@ -640,7 +640,7 @@ impl Hsom {
                     {
                         break;
                     }
-                    matched[l] = b;
+                    *slot = b;
                     level = l;
                 }
                 if level == 0 {
