@@ -862,6 +862,22 @@ impl Hsom {
         }
     }
 
+    /// A posture in the data's units as the bottom level sees it: (x - offset) / scale.
+    pub(crate) fn normalise(&self, x: &[f64]) -> Vec<f64> {
+        x.iter()
+            .enumerate()
+            .map(|(d, v)| (v - self.offset[d]) / self.scale[d])
+            .collect()
+    }
+
+    /// Back to the data's units: y * scale + offset.
+    pub(crate) fn denormalise(&self, y: &[f64]) -> Vec<f64> {
+        y.iter()
+            .enumerate()
+            .map(|(d, v)| v * self.scale[d] + self.offset[d])
+            .collect()
+    }
+
     /// The validated configuration the model was trained with.
     pub fn config(&self) -> &HsomConfig {
         &self.config

@@ -830,15 +830,7 @@ impl Hsom {
                 }
             }
         }
-        let postures: Vec<Vec<f64>> = out
-            .iter()
-            .map(|y| {
-                y.iter()
-                    .enumerate()
-                    .map(|(d, v)| v * self.scale[d] + self.offset[d])
-                    .collect()
-            })
-            .collect();
+        let postures: Vec<Vec<f64>> = out.iter().map(|y| self.denormalise(y)).collect();
         Reproduction {
             steps: (0..postures.len()).collect(),
             postures,
@@ -1057,15 +1049,7 @@ mod tests {
     fn events_tile_the_demonstration_and_hold_their_durations() {
         let m = trained(3);
         let demo = gesture(30, 9);
-        let y: Vec<Vec<f64>> = demo
-            .iter()
-            .map(|r| {
-                r.iter()
-                    .enumerate()
-                    .map(|(d, v)| (v - m.offset[d]) / m.scale[d])
-                    .collect()
-            })
-            .collect();
+        let y: Vec<Vec<f64>> = demo.iter().map(|r| m.normalise(r)).collect();
         let ev = bottom_events(&m, &y);
         // every sample but the last belongs to exactly one event
         let total: f64 = ev.iter().map(|e| e.1).sum();
@@ -1182,15 +1166,7 @@ mod tests {
         let code = DurationCode::from_dwell(&m.dwell);
         let mean = m.demo_runs[1];
         let demo = gesture(35, 1);
-        let y: Vec<Vec<f64>> = demo
-            .iter()
-            .map(|r| {
-                r.iter()
-                    .enumerate()
-                    .map(|(d, v)| (v - m.offset[d]) / m.scale[d])
-                    .collect()
-            })
-            .collect();
+        let y: Vec<Vec<f64>> = demo.iter().map(|r| m.normalise(r)).collect();
         let ev = bottom_events(&m, &y);
         assert!(ev.len() >= 2 * lay.k);
         let start = m.maps[0].weights(ev[0].0)[..lay.s].to_vec();

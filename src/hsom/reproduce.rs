@@ -500,11 +500,7 @@ impl Hsom {
         let mut r = r.clone();
         r.offset = r.offset.clamp(1, p.memory);
         r.max_length = r.max_length.max(1);
-        let y0: Vec<f64> = initial
-            .iter()
-            .enumerate()
-            .map(|(d, v)| (v - self.offset[d]) / self.scale[d])
-            .collect();
+        let y0 = self.normalise(initial);
         if p.algorithm == crate::config::Algorithm::Events {
             let mut rep = self.reproduce_events(&y0, &r);
             rep.postures.truncate(r.max_length);
@@ -659,16 +655,7 @@ impl Hsom {
         };
         g.out.truncate(r.max_length);
         g.by.truncate(r.max_length);
-        let postures: Vec<Vec<f64>> = g
-            .out
-            .iter()
-            .map(|y| {
-                y.iter()
-                    .enumerate()
-                    .map(|(d, v)| v * self.scale[d] + self.offset[d])
-                    .collect()
-            })
-            .collect();
+        let postures: Vec<Vec<f64>> = g.out.iter().map(|y| self.denormalise(y)).collect();
         Ok(Reproduction {
             steps: (0..postures.len()).collect(),
             postures,
