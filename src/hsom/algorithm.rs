@@ -679,8 +679,20 @@ impl Hsom {
         let (mut acc_n, mut acc_ok) = (vec![0u32; p.height], vec![0u32; p.height]);
         let mut pbuf = vec![0.0; 2 * p.memory];
         let mut pmask = vec![true; 2 * p.memory];
+        // per level: the entries pushed in each demonstration, and the (previous, actual)
+        // entries the level above predicted, to score the lookup table on the same entries
+        let mut seqs: Vec<Vec<Vec<u32>>> = vec![Vec::new(); p.height];
+        let mut scored: Vec<Vec<(u32, u32)>> = vec![Vec::new(); p.height];
         for demo in norm {
             stm.clear();
+            seqs.iter_mut().for_each(|s| s.push(Vec::new()));
+            let last = |seqs: &[Vec<Vec<u32>>], l: usize| {
+                seqs[l]
+                    .last()
+                    .and_then(|s| s.last())
+                    .copied()
+                    .unwrap_or(u32::MAX)
+            };
             let mut sc = 0u64;
             // runs of the same bottom BMU: (node, length)
             let mut runs: Vec<(usize, usize, f64)> = Vec::new();
@@ -718,6 +730,10 @@ impl Hsom {
                     if let Some(g) = guess {
                         acc_n[1] += 1;
                         acc_ok[1] += u32::from(g == a);
+                        scored[1].push((last(&seqs, 0), a as u32));
+                    }
+                    if let Some(s0) = seqs[0].last_mut() {
+                        s0.push(a as u32);
                     }
                 }
                 // runs: steps between pushes, on the pushed node (= runs of the same BMU
@@ -762,7 +778,11 @@ impl Hsom {
                         {
                             acc_n[l + 1] += 1;
                             acc_ok[l + 1] += u32::from(g == b);
+                            scored[l + 1].push((last(&seqs, l), b as u32));
                         }
+                    }
+                    if let Some(sl) = seqs[l].last_mut() {
+                        sl.push(b as u32);
                     }
                     stm.push(l, b, &self.maps[l]);
                 }
@@ -837,6 +857,20 @@ impl Hsom {
             .enumerate()
             .map(|(i, (_, _, t))| if !revisited[i] { self.successor[i] } else { t })
             .collect();
+        if !events {
+            for l in 1..p.height {
+                let (table, _) = super::events::lookup_table(&seqs[l - 1]);
+                let ok = scored[l]
+                    .iter()
+                    .filter(|(prev, actual)| table.get(prev) == Some(actual))
+                    .count();
+                self.lookup[l] = if scored[l].is_empty() {
+                    0.0
+                } else {
+                    ok as f64 / scored[l].len() as f64
+                };
+            }
+        }
         self.accuracy = (0..p.height)
             .map(|l| {
                 if acc_n[l] > 0 {

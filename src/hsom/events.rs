@@ -262,7 +262,7 @@ fn chunks(lay: Layout, items: &[Item], per_item: f64, mean_events: f64) -> Vec<C
 
 /// Most frequent follower of each item (END included), counted on item sequences that start
 /// with a begin marker (`u32::MAX`), and how often the table predicted the next item.
-fn lookup_table(seqs: &[Vec<u32>]) -> (BTreeMap<u32, u32>, f64) {
+pub(crate) fn lookup_table(seqs: &[Vec<u32>]) -> (BTreeMap<u32, u32>, f64) {
     let mut counts: BTreeMap<(u32, u32), u32> = BTreeMap::new();
     for s in seqs {
         let mut prev = u32::MAX;
