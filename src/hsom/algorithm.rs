@@ -859,10 +859,13 @@ impl Hsom {
             .collect();
         if !events {
             for l in 1..p.height {
-                let (table, _) = super::events::lookup_table(&seqs[l - 1]);
+                let nodes = self.maps[l - 1].len();
+                let table = super::events::followers_table(nodes, &seqs[l - 1]);
                 let ok = scored[l]
                     .iter()
-                    .filter(|(prev, actual)| table.get(prev) == Some(actual))
+                    .filter(|&&(prev, actual)| {
+                        super::events::most_frequent(&table, nodes, prev) == actual
+                    })
                     .count();
                 self.lookup[l] = if scored[l].is_empty() {
                     0.0

@@ -260,35 +260,39 @@ fn chunks(lay: Layout, items: &[Item], per_item: f64, mean_events: f64) -> Vec<C
     out
 }
 
-/// Most frequent follower of each item (END included), counted on item sequences that start
-/// with a begin marker (`u32::MAX`), and how often the table predicted the next item.
-pub(crate) fn lookup_table(seqs: &[Vec<u32>]) -> (BTreeMap<u32, u32>, f64) {
-    let mut counts: BTreeMap<(u32, u32), u32> = BTreeMap::new();
-    for s in seqs {
-        let mut prev = u32::MAX;
-        for &n in s {
-            *counts.entry((prev, n)).or_insert(0) += 1;
-            prev = n;
-        }
+/// The row of the follower table for the entry `prev` (`u32::MAX` or [`END`]: the begin row,
+/// `nodes`).
+fn follower_row(nodes: usize, prev: u32) -> usize {
+    if prev == u32::MAX || prev == END {
+        nodes
+    } else {
+        prev as usize
     }
-    let mut best: BTreeMap<u32, (u32, u32)> = BTreeMap::new();
-    for (&(a, b), &c) in &counts {
-        let e = best.entry(a).or_insert((0, b));
-        if c > e.0 {
-            *e = (c, b);
-        }
-    }
-    let table: BTreeMap<u32, u32> = best.into_iter().map(|(a, (_, b))| (a, b)).collect();
+}
+
+/// The lookup table's prediction: the most frequent follower of `prev` in a follower table of
+/// a level with `nodes` nodes (`u32::MAX`: none recorded).
+pub(crate) fn most_frequent(table: &[u32], nodes: usize, prev: u32) -> u32 {
+    table[follower_row(nodes, prev) * FOLLOWERS]
+}
+
+/// The fraction of the entries of `seqs` (each sequence starting after the begin) that the
+/// lookup table of "next entry given the last one" of `table` predicts.
+pub(crate) fn lookup_accuracy(table: &[u32], nodes: usize, seqs: &[Vec<u32>]) -> f64 {
     let (mut n, mut ok) = (0u32, 0u32);
-    for s in seqs {
+    for sq in seqs {
         let mut prev = u32::MAX;
-        for &x in s {
+        for &x in sq {
             n += 1;
-            ok += u32::from(table.get(&prev) == Some(&x));
+            ok += u32::from(most_frequent(table, nodes, prev) == x);
             prev = x;
         }
     }
-    (table, if n > 0 { ok as f64 / n as f64 } else { 0.0 })
+    if n > 0 {
+        ok as f64 / n as f64
+    } else {
+        0.0
+    }
 }
 
 /// Nodes of a level that some training entry selected.
@@ -322,7 +326,6 @@ fn entry_content(
 /// taken when a demonstration ended after `prev` and either the slot is mostly the end or
 /// `events_before` (bottom events so far) has reached the shortest demonstration's count:
 /// where a gesture starts and ends in the same posture, content alone cannot tell "end here"
-/// from "start again" (the paper's replication).
 /// What decoding needs: the model and its encoding.
 struct Decoder<'a> {
     model: &'a Hsom,
@@ -331,6 +334,13 @@ struct Decoder<'a> {
 }
 
 impl Decoder<'_> {
+    /// Decode a predicted slot of level `level`'s input into an entry of the level below:
+    /// among the entries that followed `prev` in training (the end included; all used entries
+    /// when `prev` has no recorded follower), the one whose content is nearest. At level 1
+    /// the end is taken when a demonstration ended after `prev` and either the slot is mostly
+    /// the end or `events_before` (bottom events so far) has reached the shortest
+    /// demonstration's count: where a gesture starts and ends in the same posture, content
+    /// alone cannot tell "end here" from "start again" (the paper's replication).
     fn decode(
         &self,
         level: usize,
@@ -343,11 +353,7 @@ impl Decoder<'_> {
         let s = lay.s;
         let below = level - 1;
         let n = model.maps[below].len();
-        let row = if prev == u32::MAX || prev == END {
-            n
-        } else {
-            prev as usize
-        };
+        let row = follower_row(n, prev);
         let table = &model.followers[below];
         let cands: Vec<u32> = table[row * FOLLOWERS..(row + 1) * FOLLOWERS]
             .iter()
@@ -390,8 +396,9 @@ impl Decoder<'_> {
 }
 
 /// The table of up to [`FOLLOWERS`] most frequent followers of every entry of a level (row
-/// `nodes` is the begin of a demonstration), from its entry sequences.
-fn followers_table(nodes: usize, seqs: &[Vec<u32>]) -> Vec<u32> {
+/// `nodes` is the begin of a demonstration; ties to the smaller index), from its entry
+/// sequences. Its first column is the lookup table every level must beat.
+pub(crate) fn followers_table(nodes: usize, seqs: &[Vec<u32>]) -> Vec<u32> {
     let mut counts: BTreeMap<(u32, u32), u32> = BTreeMap::new();
     for sq in seqs {
         let mut prev = nodes as u32;
@@ -454,12 +461,9 @@ impl Hsom {
             .iter()
             .map(|e| e.iter().map(|&(n, _)| n as u32).chain([END]).collect())
             .collect();
-        let (table, _) = lookup_table(&seqs0);
-        for i in 0..n0 {
-            self.successor[i] = table.get(&(i as u32)).copied().unwrap_or(u32::MAX);
-            self.first_successor[i] = self.successor[i];
-            self.last_successor[i] = self.successor[i];
-        }
+        // the bottom's followers: its lookup table (the reflex at height 1) and the candidates
+        // level 1 decodes among
+        self.followers[0] = followers_table(n0, &seqs0);
         let code = DurationCode::from_dwell(&self.dwell);
         let mean_events = self.demo_runs[1];
         // 2. level by level
@@ -488,7 +492,10 @@ impl Hsom {
                 .iter()
                 .map(|it| it.iter().map(|i| i.node).collect())
                 .collect();
-            self.followers[l - 1] = followers_table(self.maps[l - 1].len(), &seqs);
+            let nodes_below = self.maps[l - 1].len();
+            if l > 1 {
+                self.followers[l - 1] = followers_table(nodes_below, &seqs);
+            }
             let per_item = (lay.k as f64).powi(l as i32 - 1);
             let demo_chunks: Vec<_> = items
                 .iter()
@@ -580,7 +587,7 @@ impl Hsom {
                 }
                 next_items.push(v);
             }
-            let (_, lookup_acc) = lookup_table(&seqs);
+            let lookup_acc = lookup_accuracy(&self.followers[l - 1], nodes_below, &seqs);
             self.qe[l] = qe / cnt.max(1) as f64;
             self.te[l] = te as f64 / cnt.max(1) as f64;
             self.threshold[l] = thr;
@@ -649,7 +656,7 @@ impl Hsom {
                     let next = if first {
                         n_init as u32
                     } else {
-                        self.successor[last]
+                        most_frequent(&self.followers[0], self.maps[0].len(), last as u32)
                     };
                     if next == u32::MAX || next == END {
                         stop = StopReason::EndEvent;
