@@ -25,6 +25,45 @@ fn recommended_configuration_uses_the_events_extension() {
 }
 
 #[test]
+fn events_configurations_are_checked_with_their_own_input_sizes() {
+    let rec = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/nao-gestures.xml"),
+    )
+    .unwrap();
+    // 64 slots of 2 x 4096 values on a 32x32 level: far beyond the weight limit for events,
+    // although the paper's ID lists (2 x memory values) would fit
+    let big = rec
+        .replacen("<memory>4</memory>", "<memory>64</memory>", 1)
+        .replacen(
+            "<stateLength>6</stateLength>",
+            "<stateLength>4096</stateLength>",
+            1,
+        )
+        .replacen(
+            "<actionLength>6</actionLength>",
+            "<actionLength>4096</actionLength>",
+            1,
+        )
+        .replacen(
+            "<rows>8</rows>\n      <cols>8</cols>",
+            "<rows>32</rows>\n      <cols>32</cols>",
+            1,
+        );
+    let e = parse_config(&big, "bad.xml").unwrap_err();
+    assert!(e.to_string().contains("100 million weights"), "{e}");
+    let levels = rec.replacen(
+        "<algorithm>events</algorithm>",
+        "<algorithm>events</algorithm><memoryMode>levels</memoryMode>",
+        1,
+    );
+    assert_invalid(
+        parse_config(&levels, "bad.xml").unwrap_err(),
+        "memoryMode",
+        "levels",
+    );
+}
+
+#[test]
 fn unknown_algorithm_is_refused() {
     let t = table1_text().replacen(
         "<seed>1</seed>",

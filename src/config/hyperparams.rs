@@ -405,10 +405,20 @@ impl HsomParams {
                 }
             }
         }
+        if self.algorithm == Algorithm::Events && self.memory_mode == MemoryMode::Levels {
+            return Err(bad(
+                "memoryMode",
+                "levels".into(),
+                "algorithm events keeps activity lists of events; use memoryMode lists (or algorithm paper)",
+            ));
+        }
         let mut weights: u64 = 0;
         for (i, l) in self.levels.iter().enumerate() {
             let dim = if i == 0 {
                 (2 * self.state_length) as u64
+            } else if self.algorithm == Algorithm::Events {
+                // context (posture, begin, phase) + memory slots (two postures, duration, end)
+                (self.state_length + 2 + self.memory * (2 * self.state_length + 2)) as u64
             } else {
                 match self.memory_mode {
                     MemoryMode::Lists => 2 * self.memory as u64,
