@@ -697,6 +697,8 @@ impl Hsom {
                 break;
             }
             let node = node as usize;
+            // never past the cap, whatever a (loaded, untrusted) duration says
+            let dur = dur.min(cap as f64 - total).max(1.0);
             executed.push((node, dur, by));
             total += dur;
             if total >= cap as f64 {
@@ -1204,6 +1206,25 @@ mod tests {
             .collect();
         assert_eq!(flags.iter().filter(|&&f| f).count(), 1);
         assert!(flags[lay.k - 1], "{flags:?}");
+    }
+
+    /// A model file's durations are untrusted: an absurd learned duration cannot make the
+    /// reproduction longer than its cap (nor allocate without bound).
+    #[test]
+    fn absurd_durations_are_capped_by_the_length_cap() {
+        let mut m = trained(3);
+        m.dwell.iter_mut().for_each(|d| {
+            if *d > 0.0 {
+                *d = 1e300
+            }
+        });
+        let rep = m.reproduce(&[0.0, 0.0]).unwrap();
+        let cap = (m.demo_len[2] * m.config.params().reproduction.length_factor).ceil();
+        assert!(
+            rep.postures.len() as f64 <= cap + 1.0,
+            "{}",
+            rep.postures.len()
+        );
     }
 
     #[test]
