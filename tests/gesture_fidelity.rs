@@ -10,6 +10,8 @@
 //! docs/METRICS.md, "Fidelity thresholds") and sit between the trained results and the
 //! controls.
 
+mod hsom_common;
+
 use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::experiment::{
@@ -18,6 +20,7 @@ use cosco_hsom::experiment::{
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::metrics::{FidelityReport, MetricsParams};
 use cosco_hsom::sim::NaoArm;
+use hsom_common::shuffle_blocks;
 
 /// Mean apex (key-pose) error over the demonstrations, rad: the reproduction gets close to
 /// the pose the gesture is about (trained, seeds 1-5: 0.05-0.18).
@@ -109,19 +112,6 @@ fn demos(arm: &NaoArm, g: &Gesture, seed: u64) -> Vec<Demonstration> {
         .enumerate()
         .map(|(i, r)| r.to_demonstration(format!("{} #{i}", g.name)))
         .collect()
-}
-
-/// The demonstration cut into blocks of 20 samples put in a seeded random order (its first
-/// block stays first, so the initial posture is unchanged).
-fn shuffle_blocks(d: &Demonstration, seed: u64) -> Demonstration {
-    use rand::seq::SliceRandom;
-    use rand::SeedableRng;
-    let mut blocks: Vec<Vec<Vec<f64>>> = d.rows.chunks(20).map(|c| c.to_vec()).collect();
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    blocks[1..].shuffle(&mut rng);
-    let mut out = d.clone();
-    out.rows = blocks.concat();
-    out
 }
 
 fn check_gesture(name: &str, other: &str) {

@@ -4,10 +4,14 @@
 //! demonstrations with their event order shuffled) that must fail the same gates.
 //! Demonstration seed 21 (no setting was chosen on it). Figures: docs/ALGORITHM.md.
 
+mod hsom_common;
+
 use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::experiment::heldout::{hsom_folds, HeldOutSummary};
-use cosco_hsom::experiment::{record_demonstrations, DemoSettings, Training, Transition};
+use cosco_hsom::experiment::{
+    learn_and_score, record_demonstrations, DemoSettings, Split, Training, Transition,
+};
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::sim::NaoArm;
 
@@ -34,18 +38,6 @@ fn demos(arm: &NaoArm, name: &str) -> Vec<Demonstration> {
         .enumerate()
         .map(|(i, r)| r.to_demonstration(format!("{name} #{i}")))
         .collect()
-}
-
-/// Blocks of 20 samples in a seeded random order (the first block stays first).
-fn shuffled(d: &Demonstration) -> Demonstration {
-    use rand::seq::SliceRandom;
-    use rand::SeedableRng;
-    let mut blocks: Vec<Vec<Vec<f64>>> = d.rows.chunks(20).map(|c| c.to_vec()).collect();
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(SEED);
-    blocks[1..].shuffle(&mut rng);
-    let mut out = d.clone();
-    out.rows = blocks.concat();
-    out
 }
 
 fn held_out(arm: &NaoArm, cfg: &HsomConfig, d: &[Demonstration], t: Training) -> HeldOutSummary {
@@ -106,7 +98,10 @@ fn the_hierarchy_beats_height_one_held_out_and_the_controls_fail() {
             !failures(&untrained).is_empty(),
             "{g}: an untrained hierarchy passes the gates"
         );
-        let sh: Vec<Demonstration> = d.iter().map(shuffled).collect();
+        let sh: Vec<Demonstration> = d
+            .iter()
+            .map(|x| hsom_common::shuffle_blocks(x, SEED))
+            .collect();
         // trained on shuffled demonstrations, scored against the real held-out ones
         let folds: Vec<_> = (0..d.len())
             .map(|i| {
@@ -116,17 +111,20 @@ fn the_hierarchy_beats_height_one_held_out_and_the_controls_fail() {
                     .filter(|(j, _)| *j != i)
                     .map(|(_, x)| x.clone())
                     .collect();
-                let m = cfg.fit(&train).unwrap();
-                let rep = m.reproduce(&d[i].rows[0]).unwrap();
-                let (p, _) = cosco_hsom::experiment::clamp_to_ranges(&rep.postures).unwrap();
-                let ex = cosco_hsom::experiment::execute_postures(&arm, &p, 40.0).unwrap();
-                cosco_hsom::experiment::evaluate(
-                    Some(&arm),
-                    std::slice::from_ref(&d[i]),
-                    &ex.qpos,
-                    &cosco_hsom::metrics::MetricsParams::default(),
+                let split = Split {
+                    train: &train,
+                    test: std::slice::from_ref(&d[i]),
+                };
+                learn_and_score(
+                    &arm,
+                    &cfg,
+                    split,
+                    Training::Trained,
+                    Transition::Linear,
+                    None,
                 )
                 .unwrap()
+                .fidelity
             })
             .collect();
         let joint = folds

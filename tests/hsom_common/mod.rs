@@ -199,6 +199,19 @@ pub fn recommended_for(dims: usize) -> HsomConfig {
     p.check("nao-gestures.xml").unwrap()
 }
 
+/// The demonstration cut into blocks of 20 samples (about half a second at 40 Hz) put in a
+/// seeded random order, its first block kept first so the initial posture is unchanged: the
+/// same postures with their event order shuffled (the negative control of sequence tests).
+pub fn shuffle_blocks(d: &Demonstration, seed: u64) -> Demonstration {
+    use rand::seq::SliceRandom;
+    let mut blocks: Vec<Vec<Vec<f64>>> = d.rows.chunks(20).map(|c| c.to_vec()).collect();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    blocks[1..].shuffle(&mut rng);
+    let mut out = d.clone();
+    out.rows = blocks.concat();
+    out
+}
+
 /// Table I with the state length of the data.
 pub fn table1_for(dims: usize) -> HsomConfig {
     let mut p = HsomParams::table1();
