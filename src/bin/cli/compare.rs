@@ -18,9 +18,7 @@ use cosco_hsom::metrics::MetricsParams;
 use cosco_hsom::plot::BLACK;
 use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
 
-use super::{
-    file_size, hsom_config, levels_note, load_arm, progress, read_demos, Stopwatch, FIG4_JOINTS,
-};
+use super::{file_size, hsom_config, load_arm, progress, read_demos, Stopwatch, FIG4_JOINTS};
 
 pub use cosco_hsom::experiment::baseline::DEFAULT_COMPONENTS;
 
@@ -195,23 +193,12 @@ fn hsom_method(
         Some(&|done, _| pb.set_position(done as u64)),
     )?;
     pb.finish_and_clear();
-    let model_path = out.join("model.bin");
-    run.model.save(&model_path)?;
-    files.push("model.bin".into());
-    write_csv(
-        &out.join("reproduction.csv"),
-        &run.executed.to_demonstration("CoSCo-HSOM reproduction"),
+    let result = super::write_hsom_run(
+        out,
+        &run,
+        vec![format!("transition: {transition:?}")],
+        files,
     )?;
-    files.push("reproduction.csv".into());
-    let result = run.method_result(
-        "CoSCo-HSOM",
-        file_size(&model_path),
-        vec![
-            format!("stopped: {:?}", run.reproduction.stop),
-            levels_note(&run.reproduction.predicted_by),
-            format!("transition: {transition:?}"),
-        ],
-    );
     Ok((result, run.executed))
 }
 

@@ -279,23 +279,8 @@ pub fn main_job(job: &Job) -> Result<Report> {
         seconds: (clock.t.elapsed().as_secs_f64() - run.train_s).max(0.0),
     });
     clock.t = Instant::now();
-    let model_path = out.join("model.bin");
-    run.model.save(&model_path)?;
-    files.push("model.bin".into());
+    let hsom_result = write_hsom_run(out, &run, Vec::new(), &mut files)?;
     let executed = &run.executed;
-    write_csv(
-        &out.join("reproduction.csv"),
-        &executed.to_demonstration("CoSCo-HSOM reproduction"),
-    )?;
-    files.push("reproduction.csv".into());
-    let hsom_result = run.method_result(
-        "CoSCo-HSOM",
-        file_size(&model_path),
-        vec![
-            format!("stopped: {:?}", run.reproduction.stop),
-            levels_note(&run.reproduction.predicted_by),
-        ],
-    );
     clock.lap("writing the model and reproduction.csv");
 
     // 5. Plots.
@@ -453,6 +438,31 @@ pub fn main_job(job: &Job) -> Result<Report> {
         .write(out)
         .with_context(|| format!("writing the report into {}", out.display()))?;
     Ok(report)
+}
+
+/// Save a CoSCo-HSOM run's model (`model.bin`) and executed trajectory (`reproduction.csv`)
+/// into `out`, list them in `files`, and return its column of the report (notes: why it
+/// stopped, postures per level, then `notes`).
+pub fn write_hsom_run(
+    out: &Path,
+    run: &cosco_hsom::experiment::Outcome,
+    notes: Vec<String>,
+    files: &mut Vec<String>,
+) -> Result<cosco_hsom::experiment::report::MethodResult> {
+    let model_path = out.join("model.bin");
+    run.model.save(&model_path)?;
+    files.push("model.bin".into());
+    write_csv(
+        &out.join("reproduction.csv"),
+        &run.executed.to_demonstration("CoSCo-HSOM reproduction"),
+    )?;
+    files.push("reproduction.csv".into());
+    let mut all = vec![
+        format!("stopped: {:?}", run.reproduction.stop),
+        levels_note(&run.reproduction.predicted_by),
+    ];
+    all.extend(notes);
+    Ok(run.method_result("CoSCo-HSOM", file_size(&model_path), all))
 }
 
 /// "predicted by level": how many postures each level produced.
