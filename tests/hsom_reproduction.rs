@@ -180,7 +180,7 @@ fn corrupted_truncated_and_other_version_files_are_refused() {
             e,
             PersistError::Version {
                 found: 1,
-                expected: 4,
+                expected: cosco_hsom::hsom::FORMAT_VERSION,
                 ..
             }
         ),
@@ -224,7 +224,15 @@ fn corrupted_truncated_and_other_version_text_files_are_refused() {
         Hsom::load(&p),
         Err(PersistError::Truncated { .. })
     ));
-    std::fs::write(&p, text.replacen("version 4", "version 7", 1)).unwrap();
+    std::fs::write(
+        &p,
+        text.replacen(
+            &format!("version {}", cosco_hsom::hsom::FORMAT_VERSION),
+            "version 7",
+            1,
+        ),
+    )
+    .unwrap();
     assert!(matches!(
         Hsom::load(&p),
         Err(PersistError::Version { found: 7, .. })

@@ -67,6 +67,8 @@ pub struct Hsom {
     /// each node (and, in the last row, the begin) in training; `u32::MAX` pads. Decoding
     /// by content chooses among them.
     pub(crate) followers: Vec<Vec<u32>>,
+    /// Per level >= 1, per node, the lower entries of its exemplar (`memory` each).
+    pub(crate) exemplars: Vec<Vec<u32>>,
 }
 
 /// Quality of one level, as reported by [`Hsom::summary`].
@@ -635,6 +637,11 @@ impl HsomConfig {
                 .levels
                 .iter()
                 .map(|l| vec![u32::MAX; (l.rows * l.cols + 1) * super::events::FOLLOWERS])
+                .collect(),
+            exemplars: p
+                .levels
+                .iter()
+                .map(|l| vec![u32::MAX; l.rows * l.cols * p.memory])
                 .collect(),
         };
         model.replay(&norm);

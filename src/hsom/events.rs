@@ -320,12 +320,6 @@ fn entry_content(
     }
 }
 
-/// Decode a predicted slot of level `level`'s input into an entry of the level below: among
-/// the entries that followed `prev` in training (the end included; all used entries when
-/// `prev` has no recorded follower), the one whose content is nearest. At level 1 the end is
-/// taken when a demonstration ended after `prev` and either the slot is mostly the end or
-/// `events_before` (bottom events so far) has reached the shortest demonstration's count:
-/// where a gesture starts and ends in the same posture, content alone cannot tell "end here"
 /// What decoding needs: the model and its encoding.
 struct Decoder<'a> {
     model: &'a Hsom,
@@ -335,8 +329,10 @@ struct Decoder<'a> {
 
 impl Decoder<'_> {
     /// Decode a predicted slot of level `level`'s input into an entry of the level below:
-    /// among the entries that followed `prev` in training (the end included; all used entries
-    /// when `prev` has no recorded follower), the one whose content is nearest. At level 1
+    /// the predicting node's exemplar entry `hint` (what its nearest training chunk held in
+    /// this slot) when it followed `prev` in training; otherwise, among the entries that
+    /// followed `prev` (the end included; all used entries when `prev` has no recorded
+    /// follower), the one whose content is nearest. At level 1
     /// the end is taken when a demonstration ended after `prev` and either the slot is mostly
     /// the end or `events_before` (bottom events so far) has reached the shortest
     /// demonstration's count: where a gesture starts and ends in the same posture, content
@@ -348,6 +344,7 @@ impl Decoder<'_> {
         used_below: &[usize],
         prev: u32,
         events_before: f64,
+        hint: u32,
     ) -> u32 {
         let (model, lay, code) = (self.model, self.lay, self.code);
         let s = lay.s;
@@ -364,6 +361,9 @@ impl Decoder<'_> {
             && (c[2 * s + 1] > 0.5 || (cands.contains(&END) && events_before >= model.demo_runs[0]))
         {
             return END;
+        }
+        if hint != u32::MAX && hint != END && (cands.is_empty() || cands.contains(&hint)) {
+            return hint;
         }
         let all: Vec<u32>;
         let cands = if cands.is_empty() {
@@ -538,6 +538,22 @@ impl Hsom {
                 );
             }
             self.trained[l] = steps as u64;
+            // every node's exemplar: the entries of its nearest training chunk among those
+            // it is the BMU of
+            let mut best = vec![f64::INFINITY; self.maps[l].len()];
+            for (di, dc) in demo_chunks.iter().enumerate() {
+                for (ci, ch) in dc.iter().enumerate() {
+                    ch.input(lay, lay.k, &mut x, &mut mask);
+                    let (b, d2) = self.maps[l].bmu(&x);
+                    if d2 < best[b] {
+                        best[b] = d2;
+                        for j in 0..lay.k {
+                            self.exemplars[l][b * lay.k + j] =
+                                items[di].get(ci * lay.k + j).map_or(END, |i| i.node);
+                        }
+                    }
+                }
+            }
             // 3. replay: BMUs (the next level's entries), QE/TE, the match threshold, and the
             // prediction accuracy of this level against the lookup table of the level below
             let used_below: Vec<usize> = if l == 1 {
@@ -569,8 +585,10 @@ impl Hsom {
                                 lay,
                                 code,
                             };
-                            pok +=
-                                u32::from(dec.decode(l, c, &used_below, prev, at as f64) == actual);
+                            let hint = self.exemplar(l, b, j);
+                            pok += u32::from(
+                                dec.decode(l, c, &used_below, prev, at as f64, hint) == actual,
+                            );
                         }
                     }
                     ch.input(lay, lay.k, &mut x, &mut mask);
@@ -595,6 +613,15 @@ impl Hsom {
             self.lookup[l] = lookup_acc;
             items = next_items;
         }
+    }
+
+    /// Entry `j` of the exemplar of node `n` of `level` (`u32::MAX`: none).
+    fn exemplar(&self, level: usize, n: usize, j: usize) -> u32 {
+        let k = self.config.params().memory;
+        self.exemplars[level]
+            .get(n * k + j)
+            .copied()
+            .unwrap_or(u32::MAX)
     }
 
     /// Reproduce with the events extension from the normalised initial posture `y0`.
@@ -736,9 +763,14 @@ impl Hsom {
             let c = &w[lay.slot_range(j)];
             if level == 1 {
                 let before = (ctx.executed + plan.len()) as f64;
-                let e = ctx
-                    .decoder(self)
-                    .decode(1, c, &ctx.used[0], tail[0], before);
+                let e = ctx.decoder(self).decode(
+                    1,
+                    c,
+                    &ctx.used[0],
+                    tail[0],
+                    before,
+                    self.exemplar(1, n, j),
+                );
                 tail[0] = e;
                 if e == END {
                     plan.push_back((END, 0.0, ctx.by));
@@ -752,7 +784,14 @@ impl Hsom {
                     let prev = tail[level - 1];
                     let dec = ctx.decoder(self);
                     (
-                        dec.decode(level, c, &ctx.used[level - 1], prev, 0.0),
+                        dec.decode(
+                            level,
+                            c,
+                            &ctx.used[level - 1],
+                            prev,
+                            0.0,
+                            self.exemplar(level, n, j),
+                        ),
                         0,
                         false,
                     )
@@ -1125,11 +1164,72 @@ mod tests {
             lay,
             code,
         };
-        assert_eq!(dec.decode(1, &c, &[], u32::MAX, 0.0), first);
+        assert_eq!(dec.decode(1, &c, &[], u32::MAX, 0.0, u32::MAX), first);
         // a slot whose end flag is set decodes to the end
         let mut e = c.clone();
         e[2 * lay.s + 1] = 1.0;
-        assert_eq!(dec.decode(1, &e, &[], u32::MAX, 0.0), END);
+        assert_eq!(dec.decode(1, &e, &[], u32::MAX, 0.0, u32::MAX), END);
+        // an exemplar entry that followed the previous one wins over content; one that never
+        // followed it is ignored
+        let row = &m.followers[0][m.maps[0].len() * FOLLOWERS..][..FOLLOWERS];
+        let never = (0..m.maps[0].len() as u32)
+            .find(|n| !row.contains(n))
+            .unwrap();
+        assert_eq!(dec.decode(1, &c, &[], u32::MAX, 0.0, never), first);
+        if let Some(&other) = row
+            .iter()
+            .find(|&&f| f != first && f != u32::MAX && f != END)
+        {
+            assert_eq!(dec.decode(1, &c, &[], u32::MAX, 0.0, other), other);
+        }
+    }
+
+    /// Every used node of a level above the bottom has an exemplar: the entries below of a
+    /// training chunk it is the BMU of, so expanding it replays a demonstrated sequence.
+    #[test]
+    fn exemplars_are_training_chunks_of_their_node() {
+        let m = trained(3);
+        let k = m.config.params().memory;
+        let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
+        let norm: Vec<Vec<Vec<f64>>> = series
+            .iter()
+            .map(|d| d.iter().map(|r| m.normalise(r)).collect())
+            .collect();
+        let seqs: Vec<Vec<u32>> = norm
+            .iter()
+            .map(|d| {
+                bottom_events(&m, d)
+                    .iter()
+                    .map(|e| e.0 as u32)
+                    .chain([END])
+                    .collect()
+            })
+            .collect();
+        let windows: Vec<Vec<u32>> = seqs
+            .iter()
+            .flat_map(|s| {
+                s.chunks(k)
+                    .map(|c| {
+                        let mut c = c.to_vec();
+                        c.resize(k, END);
+                        c
+                    })
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        let used1 = used(&m, 1);
+        assert!(!used1.is_empty());
+        for &n in &used1 {
+            let ex: Vec<u32> = (0..k).map(|j| m.exemplar(1, n, j)).collect();
+            assert!(
+                windows.contains(&ex),
+                "node {n}: {ex:?} is no training chunk"
+            );
+        }
+        // unused nodes have none
+        for n in (0..m.maps[1].len()).filter(|n| !used1.contains(n)) {
+            assert_eq!(m.exemplar(1, n, 0), u32::MAX);
+        }
     }
 
     #[test]

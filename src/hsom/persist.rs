@@ -17,7 +17,7 @@ const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of both formats.
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 /// Largest embedded configuration accepted (bytes).
 const MAX_CONFIG: u64 = 1 << 20;
 
@@ -120,6 +120,7 @@ impl Hsom {
             .chain(&self.first_successor)
             .chain(&self.last_successor)
             .chain(self.followers.iter().flatten())
+            .chain(self.exemplars.iter().flatten())
         {
             b.extend_from_slice(&v.to_le_bytes());
         }
@@ -240,6 +241,13 @@ impl Hsom {
             r.need(n * 4, "followers")?;
             followers.push(r.u32s(n, "followers")?);
         }
+        let k = config.params().memory;
+        let mut exemplars = Vec::with_capacity(shapes.len());
+        for &(rows, cols, _) in &shapes {
+            let n = rows * cols * k;
+            r.need(n * 4, "exemplars")?;
+            exemplars.push(r.u32s(n, "exemplars")?);
+        }
         let mut columns = Vec::with_capacity(state.min(r.remaining() / 4));
         for _ in 0..state {
             let n = r.u32("column name length")? as usize;
@@ -283,6 +291,7 @@ impl Hsom {
                 lookup,
                 threshold,
                 followers,
+                exemplars,
             },
             path,
         )
@@ -319,6 +328,9 @@ impl Hsom {
         line(&mut s, "last-successors", &self.last_successor);
         for (l, f) in self.followers.iter().enumerate() {
             line(&mut s, &format!("followers-{l}"), f);
+        }
+        for (l, e) in self.exemplars.iter().enumerate() {
+            line(&mut s, &format!("exemplars-{l}"), e);
         }
         let _ = writeln!(s, "columns {}", self.columns.len());
         for c in &self.columns {
@@ -474,6 +486,13 @@ impl Hsom {
             )?;
             followers.push(f);
         }
+        let k = config.params().memory;
+        let mut exemplars = Vec::with_capacity(shapes.len());
+        for (l, &(rows, cols, _)) in shapes.iter().enumerate() {
+            let key = format!("exemplars-{l}");
+            let e: Vec<u32> = values(next(&key)?, &format!("{key} "), rows * cols * k, &corrupted)?;
+            exemplars.push(e);
+        }
         let nc: Vec<usize> = values(next("columns")?, "columns ", 1, &corrupted)?;
         if nc[0] != state {
             return Err(corrupted(format!(
@@ -584,6 +603,7 @@ impl Hsom {
                 lookup,
                 threshold,
                 followers,
+                exemplars,
             },
             path,
         )
@@ -619,6 +639,13 @@ fn build(
             f.iter()
                 .all(|&v| (v as usize) < m.len() || v == u32::MAX || v == super::events::END)
         })
+        && extra.exemplars.len() == maps.len()
+        && extra.exemplars.iter().enumerate().all(|(l, e)| {
+            // level l's exemplars are entries of level l - 1 (none at the bottom)
+            let below = if l == 0 { 0 } else { maps[l - 1].len() };
+            e.iter()
+                .all(|&v| (v as usize) < below || v == u32::MAX || v == super::events::END)
+        })
         && extra
             .successor
             .iter()
@@ -628,7 +655,7 @@ fn build(
     if !stats_ok {
         return Err(PersistError::Corrupted {
             path: path.to_path_buf(),
-            what: "bad run statistics (negative or non-finite dwell, or a successor outside the bottom map)".into(),
+            what: "bad run statistics (negative or non-finite dwell, or a successor, follower or exemplar outside its map)".into(),
         });
     }
     let finite = maps
@@ -669,6 +696,7 @@ fn build(
         lookup: extra.lookup,
         threshold: extra.threshold,
         followers: extra.followers,
+        exemplars: extra.exemplars,
     })
 }
 
@@ -685,6 +713,7 @@ struct Extra {
     lookup: Vec<f64>,
     threshold: Vec<f64>,
     followers: Vec<Vec<u32>>,
+    exemplars: Vec<Vec<u32>>,
 }
 
 enum Format {
