@@ -16,7 +16,7 @@ use crate::plot::{boxplots_png, quantile, BoxPanel};
 
 use super::run::RunRecord;
 use super::runner::{run_files, Manifest};
-use super::spec::{AxisValues, Method, AXES};
+use super::spec::{AxisValues, Method};
 use super::SweepError;
 
 /// Which way a metric is better.
@@ -275,11 +275,22 @@ fn methods_of(samples: &[Sample]) -> Vec<Method> {
     m
 }
 
-/// The rows of a table: `("all", "all")`, then each value of each axis (but `method`) that
-/// has more than one value among the runs, in grid order.
+/// The axes of the tables' rows, in order (`method` is the columns).
+const ROW_AXES: [&str; 7] = [
+    "gesture",
+    "seed",
+    "config",
+    "noise",
+    "count",
+    "height",
+    "evaluation",
+];
+
+/// The rows of a table: `("all", "all")`, then each value of each of [`ROW_AXES`] that has
+/// more than one value among the runs, in the order of the runs.
 fn rows_of(runs: &[RunRecord]) -> Vec<(&'static str, String)> {
     let mut rows = vec![("all", "all".to_string())];
-    for axis in AXES.iter().filter(|a| **a != "method") {
+    for axis in &ROW_AXES {
         let mut values: Vec<String> = Vec::new();
         for r in runs {
             let v = r.axes.value(axis);
@@ -322,8 +333,8 @@ struct Wins {
 }
 
 fn pair_key(a: &AxisValues) -> String {
-    AXES.iter()
-        .filter(|x| **x != "method")
+    ROW_AXES
+        .iter()
         .map(|x| a.value(x))
         .collect::<Vec<_>>()
         .join("\u{1f}")
@@ -394,9 +405,9 @@ fn tables_md(
         },
         manifest.spec_hash
     );
-    let fixed: Vec<String> = AXES
+    let fixed: Vec<String> = ROW_AXES
         .iter()
-        .filter(|a| **a != "method" && !rows.iter().any(|r| r.0 == **a))
+        .filter(|a| !rows.iter().any(|r| r.0 == **a))
         .filter_map(|a| runs.first().map(|r| format!("{a} = {}", r.axes.value(a))))
         .collect();
     if !fixed.is_empty() {

@@ -18,17 +18,18 @@ use crate::sim::NaoArm;
 
 use super::SweepError;
 
-/// The axes in grid order: the first varies slowest, `method` fastest (so the methods of one
-/// setting are neighbours).
+/// The axes in grid order: the first varies slowest, `seed` fastest. The replicates (seeds)
+/// of one setting are neighbours, so `index % N` deals every setting, cheap or costly,
+/// evenly over N shards.
 pub const AXES: [&str; 8] = [
+    "method",
+    "evaluation",
+    "config",
+    "height",
+    "count",
+    "noise",
     "gesture",
     "seed",
-    "config",
-    "noise",
-    "count",
-    "height",
-    "evaluation",
-    "method",
 ];
 
 /// Which method(s) a run executes.
@@ -497,14 +498,14 @@ impl SweepSpec {
         let total: usize = AXES.iter().map(|x| a.len(x)).product();
         let width = total.saturating_sub(1).to_string().len().max(4);
         let mut out = Vec::with_capacity(total);
-        for gesture in &a.gesture {
-            for &seed in &a.seed {
+        for &method in &a.method {
+            for &evaluation in &a.evaluation {
                 for (ci, config) in a.config.iter().enumerate() {
-                    for &noise in &a.noise {
+                    for &height in &a.height {
                         for &count in &a.count {
-                            for &height in &a.height {
-                                for &evaluation in &a.evaluation {
-                                    for &method in &a.method {
+                            for &noise in &a.noise {
+                                for gesture in &a.gesture {
+                                    for &seed in &a.seed {
                                         let index = out.len();
                                         let axes = AxisValues {
                                             gesture: gesture.clone(),
@@ -673,7 +674,7 @@ mod tests {
     }
 
     #[test]
-    fn grid_runs_in_axis_order_method_fastest() {
+    fn grid_runs_in_axis_order_seed_fastest() {
         let text = r#"
             [axes]
             gesture = ["wave", "salute"]
@@ -682,24 +683,21 @@ mod tests {
             "#;
         let s = spec(text).unwrap();
         let runs = s.runs();
-        let got: Vec<(String, u64, &str)> = runs
+        let got: Vec<(&str, &str, u64)> = runs
             .iter()
-            .map(|r| (r.axes.gesture.clone(), r.axes.seed, r.axes.method.name()))
+            .map(|r| (r.axes.method.name(), r.axes.gesture.as_str(), r.axes.seed))
             .collect();
         let want = [
-            ("wave", 3, "cosco-hsom"),
-            ("wave", 3, "gmr"),
-            ("wave", 4, "cosco-hsom"),
-            ("wave", 4, "gmr"),
-            ("salute", 3, "cosco-hsom"),
-            ("salute", 3, "gmr"),
-            ("salute", 4, "cosco-hsom"),
-            ("salute", 4, "gmr"),
+            ("cosco-hsom", "wave", 3),
+            ("cosco-hsom", "wave", 4),
+            ("cosco-hsom", "salute", 3),
+            ("cosco-hsom", "salute", 4),
+            ("gmr", "wave", 3),
+            ("gmr", "wave", 4),
+            ("gmr", "salute", 3),
+            ("gmr", "salute", 4),
         ];
-        assert_eq!(got.len(), want.len());
-        for (g, w) in got.iter().zip(want) {
-            assert_eq!((g.0.as_str(), g.1, g.2), w);
-        }
+        assert_eq!(got, want);
         assert_eq!(
             runs[0].id,
             "0000-wave-s3-nao-gestures-n0.001-c4-hconfig-in-sample-cosco-hsom"
