@@ -697,12 +697,19 @@ fn box_plot(
             }
         })
         .collect();
+    let panels: Vec<BoxPanel> = panels
+        .into_iter()
+        .map(|p| BoxPanel {
+            title: format!("{name}: {}", p.title),
+            ..p
+        })
+        .collect();
     boxplots_png(
         path,
-        &format!("{name}: {} by gesture and method", metric.label),
+        &format!("{} by gesture and method", metric.label),
         &panels,
         2,
-        (760, 420),
+        (900, 440),
     )?;
     Ok(true)
 }
