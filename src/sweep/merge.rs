@@ -74,11 +74,13 @@ pub const METRICS: [Metric; 10] = [
         Better::Lower,
     ),
     metric("duration_ratio", "duration ratio", 3, Better::TowardOne),
+    // the demonstrations' jerk includes their encoder noise: a smoother reproduction (ratio
+    // below 1) is not worse, so no direction and no wins
     metric(
         "jerk_ratio",
         "normalized jerk, reproduction / demonstrations",
         2,
-        Better::TowardOne,
+        Better::Neither,
     ),
     metric(
         "velocity_reversals",

@@ -309,8 +309,9 @@ struct RawAxes {
     method: Option<Vec<String>>,
 }
 
-/// The defaults of an axis the spec leaves out: those of `simulate`.
-pub const DEFAULT_CONFIG: &str = "configs/nao-gestures.xml";
+/// The configuration when the spec has no `config` axis: `simulate`'s default, the shipped
+/// `configs/nao-gestures.xml` (absolute, so wherever the spec file is).
+pub const DEFAULT_CONFIG: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/configs/nao-gestures.xml");
 
 /// Hex of SHA-256.
 pub fn sha256_hex(bytes: &[u8]) -> String {
