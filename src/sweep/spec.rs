@@ -252,7 +252,8 @@ pub struct SweepSpec {
     pub model: Option<PathBuf>,
 }
 
-/// What identifies a sweep: its settings, axes and the contents of its configuration files.
+/// What identifies a sweep: its settings (but its name), axes and the contents of its
+/// configuration files.
 /// Two specs with the same identity have the same runs (`DIR/sweep.json` keeps it).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Identity {
@@ -549,7 +550,11 @@ impl SweepSpec {
     /// What identifies this sweep.
     pub fn identity(&self) -> Identity {
         Identity {
-            settings: serde_json::to_value(&self.settings).unwrap_or_default(),
+            // the name only labels tables: renaming the spec file is the same sweep
+            settings: serde_json::json!({
+                "transition": self.settings.transition,
+                "model": self.settings.model,
+            }),
             axes: serde_json::to_value(&self.axes).unwrap_or_default(),
             config_sha256: self
                 .configs
@@ -718,9 +723,9 @@ mod tests {
     }
 
     #[test]
-    fn identity_changes_with_an_axis_and_not_with_comments() {
+    fn identity_changes_with_an_axis_and_not_with_comments_or_the_name() {
         let a = spec("[axes]\nseed = [1, 2]\n").unwrap();
-        let b = spec("# a comment\n[axes]\nseed = \"1-2\"\n").unwrap();
+        let b = spec("# a comment\n[sweep]\nname = \"b\"\n[axes]\nseed = \"1-2\"\n").unwrap();
         let c = spec("[axes]\nseed = [1, 3]\n").unwrap();
         assert_eq!(a.hash(), b.hash());
         assert_ne!(a.hash(), c.hash());
