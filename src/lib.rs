@@ -16,6 +16,8 @@
 //! - [`metrics`]: fidelity metrics.
 //! - [`plot`]: PNG plots.
 //! - [`experiment`]: the paper's experiment end to end: demonstrate, execute, evaluate, report.
+//! - [`sweep`]: grids of runs from a TOML spec, on a thread pool or a cluster's job arrays,
+//!   merged into tables and box plots.
 //! - [`fsutil`]: atomic file writes.
 #![warn(missing_docs)]
 
@@ -33,3 +35,4 @@ pub mod plot;
 pub mod render;
 pub mod sim;
 pub mod som;
+pub mod sweep;

@@ -133,6 +133,39 @@ enum Command {
         #[arg(long)]
         model: Option<PathBuf>,
     },
+    /// Run a sweep: every combination of the axes of a TOML spec (docs/SWEEPS.md), one JSON
+    /// file per run in DIR/runs, finished runs skipped; `merge` makes the tables and plots.
+    #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+    Sweep {
+        #[command(subcommand)]
+        action: Option<SweepAction>,
+        /// The spec file (TOML).
+        #[arg(long, required = true)]
+        spec: Option<PathBuf>,
+        /// Output directory: DIR/runs/<run-id>.json, then the merged tables and plots.
+        #[arg(long, required = true)]
+        out: Option<PathBuf>,
+        /// Run only the runs whose grid index is I modulo N (default: SLURM_ARRAY_TASK_ID /
+        /// SLURM_ARRAY_TASK_COUNT when set, else all).
+        #[arg(long, value_name = "I/N")]
+        shard: Option<String>,
+        /// Worker threads (default: every core).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Run again the runs whose file records a failure.
+        #[arg(long)]
+        retry_failed: bool,
+    },
+}
+
+#[derive(Subcommand)]
+enum SweepAction {
+    /// Merge the run files of DIR (all shards) into tables.md, tables.csv, wins.csv,
+    /// timing.md and plots/*.png there.
+    Merge {
+        /// The sweep's output directory.
+        dir: PathBuf,
+    },
 }
 
 fn run(cli: Cli) -> Result<()> {
@@ -204,6 +237,25 @@ fn run(cli: Cli) -> Result<()> {
                 outln!("{line}");
             }
             outln!("report: {}", job.out.join("report.md").display());
+        }
+        Command::Sweep {
+            action,
+            spec,
+            out,
+            shard,
+            threads,
+            retry_failed,
+        } => {
+            let lines = match (action, spec, out) {
+                (Some(SweepAction::Merge { dir }), _, _) => cli::sweep::merge_lines(&dir)?,
+                (None, Some(spec), Some(out)) => {
+                    cli::sweep::sweep(&spec, &out, shard.as_deref(), threads, retry_failed)?
+                }
+                _ => anyhow::bail!("give --spec FILE and --out DIR, or `merge DIR`"),
+            };
+            for line in lines {
+                outln!("{line}");
+            }
         }
     }
     Ok(())

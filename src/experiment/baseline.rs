@@ -185,6 +185,17 @@ pub fn run_baseline(
     run_baseline_split(arm, Split::in_sample(demos), params, metrics)
 }
 
+/// The baseline as the experiment runs it in-sample: [`DEFAULT_COMPONENTS`], learned from all
+/// `demos` (sampled at `demos[0]`'s period) and scored against all of them.
+pub fn run_baseline_in_sample(
+    arm: &NaoArm,
+    demos: &[Demonstration],
+) -> Result<BaselineRun, BaselineError> {
+    let metrics = Split::in_sample(demos).metrics()?;
+    let params = gmr_params(DEFAULT_COMPONENTS, metrics.sample_period)?;
+    run_baseline(arm, demos, &params, &metrics)
+}
+
 /// Fit the baseline to `split.train` (the arm's joints, sampled every
 /// `metrics.sample_period` seconds), execute its plan on the simulated arm from the first
 /// posture of `split.test[0]`, and score the executed trajectory against `split.test` with

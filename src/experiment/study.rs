@@ -19,9 +19,9 @@ use crate::gesture::Gesture;
 use crate::metrics::FidelityReport;
 use crate::sim::NaoArm;
 
-use super::baseline::{gmr_params, run_baseline, DEFAULT_COMPONENTS};
+use super::baseline::run_baseline_in_sample;
 use super::heldout::{gmr_folds, hsom_folds, HeldOut, HeldOutSummary};
-use super::pipeline::{learn_and_reproduce, Split, Training};
+use super::pipeline::{learn_and_reproduce, Training};
 use super::report::{level_rows, LevelRow};
 use super::{synthetic_demonstrations, DemoSettings, ExperimentError, Transition};
 
@@ -201,12 +201,9 @@ fn run_job(
 
 /// GMM/GMR learned from all `demos`, scored against all (the reason when it cannot run).
 fn gmr_in_sample(arm: &NaoArm, demos: &[Demonstration]) -> Result<FidelityReport, String> {
-    let run = || {
-        let metrics = Split::in_sample(demos).metrics()?;
-        let params = gmr_params(DEFAULT_COMPONENTS, metrics.sample_period)?;
-        run_baseline(arm, demos, &params, &metrics)
-    };
-    run().map(|r| r.fidelity).map_err(|e| e.to_string())
+    run_baseline_in_sample(arm, demos)
+        .map(|r| r.fidelity)
+        .map_err(|e| e.to_string())
 }
 
 /// Run the study: every (gesture, seed) of `jobs` on `settings.threads` worker threads, each

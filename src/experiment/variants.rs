@@ -146,11 +146,34 @@ pub fn variants(
 /// `config` with its bottom level alone (`levels` truncated to the first, `height = 1`, no
 /// `maxLevel`): the baseline the hierarchy must beat.
 pub fn at_height_1(config: &HsomConfig) -> Result<HsomConfig, crate::config::ConfigError> {
+    at_height(config, 1)
+}
+
+/// `config` with its lowest `height` levels (`levels` truncated, a `maxLevel` at or above
+/// the new top level dropped: the top is the limit anyway). A height above the
+/// configuration's own, or 0, is an error naming both: levels cannot be made up.
+pub fn at_height(
+    config: &HsomConfig,
+    height: usize,
+) -> Result<HsomConfig, crate::config::ConfigError> {
     let mut p = config.params().clone();
-    p.levels.truncate(1);
-    p.height = 1;
-    p.reproduction.max_level = None;
-    p.check(&format!("{} (at height 1)", config.source()))
+    if height == 0 || height > p.levels.len() {
+        return Err(crate::config::ConfigError::Invalid {
+            file: config.source().to_string(),
+            field: "height".into(),
+            value: height.to_string(),
+            reason: format!(
+                "a height override from 1 to the configuration's own {} levels",
+                p.levels.len()
+            ),
+        });
+    }
+    p.levels.truncate(height);
+    p.height = height;
+    if p.reproduction.max_level.is_some_and(|m| m + 1 >= height) {
+        p.reproduction.max_level = None;
+    }
+    p.check(&format!("{} (at height {height})", config.source()))
 }
 
 /// Reference rows of the before/after table, each executed with `transition`: the paper

@@ -1,6 +1,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::RGBColor;
 
@@ -231,14 +232,33 @@ pub fn panels_png(
     cols: usize,
     panel_size: (u32, u32),
 ) -> Result<(), PlotError> {
-    if panels.is_empty() {
+    grid_png(path, title, panels.len(), cols, panel_size, |i, area| {
+        draw_panel(path, &panels[i], area)
+    })
+}
+
+/// A drawing area of one panel of a figure.
+pub(crate) type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+
+/// The frame shared by every figure: `n` panels on a grid of `cols` columns, each
+/// `panel_size` pixels, drawn by `draw(i, area)`, a title on top, encoded to PNG and written
+/// atomically to `path`.
+pub(crate) fn grid_png(
+    path: &Path,
+    title: &str,
+    n: usize,
+    cols: usize,
+    panel_size: (u32, u32),
+    draw: impl Fn(usize, &Area<'_>) -> Result<(), PlotError>,
+) -> Result<(), PlotError> {
+    if n == 0 {
         return Err(PlotError::NoPanels {
             path: path.to_path_buf(),
         });
     }
     register_font();
-    let cols = cols.clamp(1, panels.len());
-    let rows = panels.len().div_ceil(cols);
+    let cols = cols.clamp(1, n);
+    let rows = n.div_ceil(cols);
     let title_h = 40u32;
     let (w, h) = (
         panel_size.0 * cols as u32,
@@ -256,8 +276,8 @@ pub fn panels_png(
         top.titled(title, ("sans-serif", 24))
             .map_err(|e| draw_err(&e))?;
         let areas = body.split_evenly((rows, cols));
-        for (panel, area) in panels.iter().zip(areas.iter()) {
-            draw_panel(path, panel, area)?;
+        for (i, area) in areas.iter().enumerate().take(n) {
+            draw(i, area)?;
         }
         root.present().map_err(|e| draw_err(&e))?;
     }
@@ -277,11 +297,7 @@ pub fn panels_png(
     })
 }
 
-fn draw_panel(
-    path: &Path,
-    panel: &Panel,
-    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
-) -> Result<(), PlotError> {
+fn draw_panel(path: &Path, panel: &Panel, area: &Area<'_>) -> Result<(), PlotError> {
     let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
         path: path.to_path_buf(),
         message: format!("panel '{}': {e}", panel.title),
@@ -384,16 +400,28 @@ fn draw_panel(
         }
     }
     if legend {
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(180, 180, 180))
-            .label_font(("sans-serif", 13))
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(|e| draw_err(&e))?;
+        draw_legend(&mut chart, &draw_err)?;
     }
     Ok(())
+}
+
+/// The chart of a panel: f64 against f64.
+pub(crate) type Chart<'a, 'b> =
+    ChartContext<'a, BitMapBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// The legend box of every figure (upper right, translucent white).
+pub(crate) fn draw_legend<'b>(
+    chart: &mut Chart<'b, 'b>,
+    draw_err: &dyn Fn(&dyn std::fmt::Display) -> PlotError,
+) -> Result<(), PlotError> {
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(180, 180, 180))
+        .label_font(("sans-serif", 13))
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(|e| draw_err(&e))
 }
 
 #[cfg(test)]

@@ -1,13 +1,15 @@
 //! PNG plots: panels of time series (the paper's Figs. 3 and 4), 2-D paths (the wrist path),
 //! and the GMM/GMR figure (Fig. 5: Gaussians as ellipses, the regression mean, a +-2 sigma
-//! envelope, the training points).
+//! envelope, the training points), and box plots (the merged tables of a sweep).
 //!
 //! Drawing goes to an in-memory RGB buffer that is encoded to PNG and written atomically, so
 //! a failed plot never leaves a half-written file. Text uses the DejaVu Sans font shipped in
 //! `assets/` (no fontconfig needed on the machine).
 
+mod boxplot;
 mod figure;
 
+pub use boxplot::{boxplots_png, quantile, BoxPanel};
 pub use figure::{panels_png, Band, Ellipse, Panel, PlotError, Scatter, Series};
 
 use plotters::style::RGBColor;

@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod compare;
+pub mod sweep;
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;

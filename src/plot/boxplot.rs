@@ -1,0 +1,244 @@
+//! Box plots: for each category (a gesture) one box per series (a method), side by side.
+//! A box spans the first to the third quartile with a line at the median; whiskers reach the
+//! farthest values within 1.5 interquartile ranges of the box; values beyond are dots.
+//! Quartiles interpolate linearly between order statistics ([`quantile`]).
+
+use std::path::Path;
+
+use plotters::prelude::*;
+use plotters::style::RGBColor;
+
+use super::figure::{draw_legend, grid_png, Area, PlotError};
+
+/// One panel of box plots.
+#[derive(Debug, Clone)]
+pub struct BoxPanel {
+    /// Panel title.
+    pub title: String,
+    /// Label of the value axis.
+    pub y_label: String,
+    /// Groups along the x axis.
+    pub categories: Vec<String>,
+    /// Series (legend name, colour): one box per category and series.
+    pub series: Vec<(String, RGBColor)>,
+    /// `values[category][series]`: the values of one box (non-finite values are left out).
+    pub values: Vec<Vec<Vec<f64>>>,
+}
+
+/// The `p`-quantile (0 <= p <= 1) of `sorted` (ascending, finite), interpolating linearly
+/// between order statistics (Hyndman & Fan's type 7, the default of R and numpy); `None` when
+/// empty.
+pub fn quantile(sorted: &[f64], p: f64) -> Option<f64> {
+    let n = sorted.len();
+    if n == 0 {
+        return None;
+    }
+    let h = (n - 1) as f64 * p.clamp(0.0, 1.0);
+    let (lo, hi) = (h.floor() as usize, h.ceil() as usize);
+    Some(sorted[lo] + (h - lo as f64) * (sorted[hi] - sorted[lo]))
+}
+
+/// Five numbers of a box: whisker ends, quartiles, median; and the outliers.
+struct Boxed {
+    low: f64,
+    q1: f64,
+    median: f64,
+    q3: f64,
+    high: f64,
+    outliers: Vec<f64>,
+}
+
+fn boxed(values: &[f64]) -> Option<Boxed> {
+    let mut v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
+    v.sort_by(f64::total_cmp);
+    let (q1, median, q3) = (quantile(&v, 0.25)?, quantile(&v, 0.5)?, quantile(&v, 0.75)?);
+    let reach = 1.5 * (q3 - q1);
+    let inside = |x: &&f64| **x >= q1 - reach && **x <= q3 + reach;
+    let low = v.iter().find(inside).copied().unwrap_or(q1);
+    let high = v.iter().rev().find(inside).copied().unwrap_or(q3);
+    let outliers = v.iter().copied().filter(|x| !inside(&x)).collect();
+    Some(Boxed {
+        low,
+        q1,
+        median,
+        q3,
+        high,
+        outliers,
+    })
+}
+
+/// Draw `panels` of box plots on a grid of `cols` columns, each `panel_size` pixels, with a
+/// figure title, and write the PNG atomically to `path`.
+pub fn boxplots_png(
+    path: &Path,
+    title: &str,
+    panels: &[BoxPanel],
+    cols: usize,
+    panel_size: (u32, u32),
+) -> Result<(), PlotError> {
+    grid_png(path, title, panels.len(), cols, panel_size, |i, area| {
+        draw_boxes(path, &panels[i], area)
+    })
+}
+
+fn draw_boxes(path: &Path, panel: &BoxPanel, area: &Area<'_>) -> Result<(), PlotError> {
+    let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
+        path: path.to_path_buf(),
+        message: format!("panel '{}': {e}", panel.title),
+    };
+    let finite = || {
+        panel
+            .values
+            .iter()
+            .flatten()
+            .flatten()
+            .copied()
+            .filter(|v| v.is_finite())
+    };
+    let (lo, hi) = finite().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+        (l.min(v), h.max(v))
+    });
+    if !(lo.is_finite() && hi.is_finite()) {
+        return Err(PlotError::Empty {
+            path: path.to_path_buf(),
+            panel: panel.title.clone(),
+        });
+    }
+    let pad = if hi > lo {
+        (hi - lo) * 0.08
+    } else {
+        lo.abs().max(1.0) * 0.1
+    };
+    let n_cat = panel.categories.len().max(1);
+    let n_ser = panel.series.len().max(1);
+    let categories = panel.categories.clone();
+    let mut chart = ChartBuilder::on(area)
+        .caption(&panel.title, ("sans-serif", 18))
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(-0.5..(n_cat as f64 - 0.5), (lo - pad)..(hi + pad))
+        .map_err(|e| draw_err(&e))?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_labels(n_cat * 2 + 1)
+        .x_label_formatter(&|x| {
+            let k = x.round();
+            if (x - k).abs() < 1e-6 && k >= 0.0 {
+                categories.get(k as usize).cloned().unwrap_or_default()
+            } else {
+                String::new()
+            }
+        })
+        .y_desc(panel.y_label.as_str())
+        .max_light_lines(1)
+        .label_style(("sans-serif", 13))
+        .axis_desc_style(("sans-serif", 14))
+        .light_line_style(RGBColor(240, 240, 240))
+        .draw()
+        .map_err(|e| draw_err(&e))?;
+    // boxes of one category share 0.8 of the unit slot
+    let slot = 0.8 / n_ser as f64;
+    let half = slot * 0.35;
+    for (s, (name, color)) in panel.series.iter().enumerate() {
+        let color = *color;
+        let mut shapes: Vec<DynElement<'static, BitMapBackend<'_>, (f64, f64)>> = Vec::new();
+        for (c, per_series) in panel.values.iter().enumerate() {
+            let Some(b) = per_series.get(s).and_then(|v| boxed(v)) else {
+                continue;
+            };
+            let x = c as f64 - 0.4 + slot * (s as f64 + 0.5);
+            shapes.push(
+                Rectangle::new(
+                    [(x - half, b.q1), (x + half, b.q3)],
+                    color.mix(0.3).filled(),
+                )
+                .into_dyn(),
+            );
+            shapes.push(
+                Rectangle::new([(x - half, b.q1), (x + half, b.q3)], color.stroke_width(2))
+                    .into_dyn(),
+            );
+            shapes.push(
+                PathElement::new(
+                    vec![(x - half, b.median), (x + half, b.median)],
+                    color.stroke_width(3),
+                )
+                .into_dyn(),
+            );
+            for (from, to) in [(b.q3, b.high), (b.q1, b.low)] {
+                shapes.push(
+                    PathElement::new(vec![(x, from), (x, to)], color.stroke_width(1)).into_dyn(),
+                );
+                shapes.push(
+                    PathElement::new(
+                        vec![(x - half / 2.0, to), (x + half / 2.0, to)],
+                        color.stroke_width(1),
+                    )
+                    .into_dyn(),
+                );
+            }
+            for o in b.outliers {
+                shapes.push(Circle::new((x, o), 3, color.filled()).into_dyn());
+            }
+        }
+        chart
+            .draw_series(shapes)
+            .map_err(|e| draw_err(&e))?
+            .label(name.as_str())
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 20, y + 5)], color.filled()));
+    }
+    draw_legend(&mut chart, &draw_err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quantiles_interpolate_between_order_statistics() {
+        let v = [1.0, 2.0, 3.0, 4.0];
+        assert_eq!(quantile(&v, 0.5), Some(2.5));
+        assert_eq!(quantile(&v, 0.25), Some(1.75));
+        assert_eq!(quantile(&v, 0.75), Some(3.25));
+        assert_eq!(quantile(&v, 0.0), Some(1.0));
+        assert_eq!(quantile(&v, 1.0), Some(4.0));
+        assert_eq!(quantile(&[7.0], 0.25), Some(7.0));
+        assert_eq!(quantile(&[], 0.5), None);
+    }
+
+    #[test]
+    fn whiskers_stop_at_one_and_a_half_iqr_and_outliers_are_kept() {
+        let b = boxed(&[1.0, 2.0, 3.0, 4.0, 100.0]).unwrap();
+        assert_eq!((b.q1, b.median, b.q3), (2.0, 3.0, 4.0));
+        assert_eq!((b.low, b.high), (1.0, 4.0));
+        assert_eq!(b.outliers, vec![100.0]);
+    }
+
+    #[test]
+    fn boxplots_png_writes_a_png_and_refuses_an_empty_panel() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("b.png");
+        let mut panel = BoxPanel {
+            title: "t".into(),
+            y_label: "rad".into(),
+            categories: vec!["a".into(), "b".into()],
+            series: vec![
+                ("x".into(), RGBColor(0, 0, 200)),
+                ("y".into(), RGBColor(200, 0, 0)),
+            ],
+            values: vec![
+                vec![vec![1.0, 2.0, 3.0], vec![2.0, 2.5]],
+                vec![vec![0.5], vec![]],
+            ],
+        };
+        boxplots_png(&p, "title", std::slice::from_ref(&panel), 1, (400, 300)).unwrap();
+        let img = image::open(&p).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (400, 340));
+        assert!(img.pixels().any(|px| px.0 == [0, 0, 200]), "no box drawn");
+        panel.values = vec![vec![vec![], vec![f64::NAN]]];
+        let e = boxplots_png(&p, "title", &[panel], 1, (400, 300)).unwrap_err();
+        assert!(matches!(e, PlotError::Empty { .. }), "{e}");
+    }
+}

@@ -1,0 +1,730 @@
+//! Merging a sweep's run files (from one machine or many shards) into tables and plots:
+//! median, mean and interquartile range of every metric per method and axis value, paired
+//! wins (CoSCo-HSOM against GMM/GMR on the same demonstrations), box plots by method and
+//! gesture, and the list of failed runs. The tables depend on the run files' metrics only
+//! (not on wall times, shards or file order), so N shards merged give the unsharded tables.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use plotters::style::RGBColor;
+
+use crate::experiment::baseline::GMR_COLOR;
+use crate::fsutil::write_atomic;
+use crate::plot::{boxplots_png, quantile, BoxPanel};
+
+use super::run::RunRecord;
+use super::runner::{run_files, Manifest};
+use super::spec::{AxisValues, Method};
+use super::SweepError;
+
+/// Which way a metric is better.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Better {
+    /// Smaller is better (distances, errors).
+    Lower,
+    /// Closer to 1 is better, in ratio (`|ln x|` smaller).
+    TowardOne,
+    /// No direction (counts to compare with the demonstrations'); no wins are counted.
+    Neither,
+}
+
+/// A metric of the tables.
+#[derive(Debug, Clone, Copy)]
+pub struct Metric {
+    /// Key in the run files.
+    pub key: &'static str,
+    /// Heading.
+    pub label: &'static str,
+    /// Decimals shown in Markdown.
+    pub digits: usize,
+    /// Which way is better.
+    pub better: Better,
+}
+
+const fn metric(key: &'static str, label: &'static str, digits: usize, better: Better) -> Metric {
+    Metric {
+        key,
+        label,
+        digits,
+        better,
+    }
+}
+
+/// The metrics of the tables and plots, in order (docs/METRICS.md defines them).
+pub const METRICS: [Metric; 10] = [
+    metric(
+        "joint_dtw_rad_per_step",
+        "joint DTW (rad/step)",
+        4,
+        Better::Lower,
+    ),
+    metric(
+        "wrist_dtw_mm_per_step",
+        "wrist DTW (mm/step)",
+        2,
+        Better::Lower,
+    ),
+    metric("apex_error_rad", "apex error (rad)", 3, Better::Lower),
+    metric(
+        "final_error_rad",
+        "final-posture error (rad)",
+        3,
+        Better::Lower,
+    ),
+    metric("duration_ratio", "duration ratio", 3, Better::TowardOne),
+    // the demonstrations' jerk includes their encoder noise: a smoother reproduction (ratio
+    // below 1) is not worse, so no direction and no wins
+    metric(
+        "jerk_ratio",
+        "normalized jerk, reproduction / demonstrations",
+        2,
+        Better::Neither,
+    ),
+    metric(
+        "velocity_reversals",
+        "velocity reversals",
+        1,
+        Better::Neither,
+    ),
+    metric(
+        "demo_velocity_reversals",
+        "velocity reversals of the demonstrations",
+        1,
+        Better::Neither,
+    ),
+    metric("swings", "LElbowRoll swings", 1, Better::Neither),
+    metric(
+        "demo_swings",
+        "LElbowRoll swings of the demonstrations",
+        1,
+        Better::Neither,
+    ),
+];
+
+/// Files `merge` writes into the sweep directory.
+pub const TABLES_MD: &str = "tables.md";
+/// Long CSV of the statistics.
+pub const TABLES_CSV: &str = "tables.csv";
+/// CSV of the paired wins.
+pub const WINS_CSV: &str = "wins.csv";
+/// Wall and training times (they differ between machines and shards).
+pub const TIMING_MD: &str = "timing.md";
+/// Folder of the box plots.
+pub const PLOTS_DIR: &str = "plots";
+
+/// Median, mean and quartiles of some values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stats {
+    /// How many values.
+    pub n: usize,
+    /// Median.
+    pub median: f64,
+    /// Mean.
+    pub mean: f64,
+    /// First quartile.
+    pub q1: f64,
+    /// Third quartile.
+    pub q3: f64,
+}
+
+impl Stats {
+    /// Of the finite `values`; `None` when there are none. Quartiles: [`quantile`].
+    pub fn of(values: impl IntoIterator<Item = f64>) -> Option<Stats> {
+        let mut v: Vec<f64> = values.into_iter().filter(|x| x.is_finite()).collect();
+        v.sort_by(f64::total_cmp);
+        Some(Stats {
+            n: v.len(),
+            median: quantile(&v, 0.5)?,
+            mean: v.iter().sum::<f64>() / v.len() as f64,
+            q1: quantile(&v, 0.25)?,
+            q3: quantile(&v, 0.75)?,
+        })
+    }
+}
+
+/// One method's metrics in one run.
+struct Sample<'a> {
+    axes: &'a AxisValues,
+    method: Method,
+    metrics: &'a BTreeMap<String, f64>,
+}
+
+/// What `merge` found and wrote.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MergeSummary {
+    /// Runs in the grid.
+    pub grid: usize,
+    /// Run files found.
+    pub recorded: usize,
+    /// Runs with a failure, `id: error` (a failed method counts).
+    pub failed: Vec<String>,
+    /// Runs of the grid without a file.
+    pub missing: Vec<String>,
+    /// Files written.
+    pub files: Vec<PathBuf>,
+}
+
+/// Read every run file of `dir` (checked against `dir/sweep.json`), sorted by grid index.
+pub fn read_runs(dir: &Path) -> Result<(Manifest, Vec<RunRecord>), SweepError> {
+    let manifest = Manifest::read(dir)?;
+    let mut runs = Vec::new();
+    for f in run_files(dir)? {
+        let r = RunRecord::read(&f)?;
+        if r.spec_hash != manifest.spec_hash {
+            return Err(SweepError::OutDir {
+                path: dir.to_path_buf(),
+                message: format!(
+                    "{} is a run of another spec (hash {}, the directory's sweep.json {})",
+                    f.display(),
+                    r.spec_hash,
+                    manifest.spec_hash
+                ),
+            });
+        }
+        runs.push(r);
+    }
+    runs.sort_by_key(|r| r.index);
+    Ok((manifest, runs))
+}
+
+/// Merge the runs recorded in `dir` into `tables.md`, `tables.csv`, `wins.csv`, `timing.md`
+/// and `plots/<metric>.png` there (all written atomically).
+pub fn merge(dir: &Path) -> Result<MergeSummary, SweepError> {
+    let (manifest, runs) = read_runs(dir)?;
+    let samples: Vec<Sample> = runs
+        .iter()
+        .filter(|r| r.error.is_none())
+        .flat_map(|r| {
+            r.methods
+                .iter()
+                .filter(|m| m.error.is_none())
+                .map(move |m| Sample {
+                    axes: &r.axes,
+                    method: m.method,
+                    metrics: &m.metrics,
+                })
+        })
+        .collect();
+    let failed: Vec<String> = runs
+        .iter()
+        .flat_map(|r| {
+            let whole = r.error.iter().map(move |e| format!("{}: {e}", r.run_id));
+            let methods = r.methods.iter().filter_map(move |m| {
+                m.error
+                    .as_ref()
+                    .map(|e| format!("{} ({}): {e}", r.run_id, m.method.name()))
+            });
+            whole.chain(methods)
+        })
+        .collect();
+    let have: std::collections::HashSet<&str> = runs.iter().map(|r| r.run_id.as_str()).collect();
+    let missing: Vec<String> = manifest
+        .run_ids
+        .iter()
+        .filter(|id| !have.contains(id.as_str()))
+        .cloned()
+        .collect();
+    let methods = methods_of(&samples);
+    let rows = rows_of(&runs);
+
+    let mut files = Vec::new();
+    let mut write = |name: &str, bytes: Vec<u8>| -> Result<(), SweepError> {
+        let p = dir.join(name);
+        write_atomic(&p, &bytes).map_err(|source| SweepError::Io {
+            action: "write",
+            path: p.clone(),
+            source,
+        })?;
+        files.push(p);
+        Ok(())
+    };
+    let md = tables_md(
+        &manifest, &runs, &samples, &methods, &rows, &failed, &missing,
+    );
+    write(TABLES_MD, md.into_bytes())?;
+    write(TABLES_CSV, tables_csv(&samples, &methods, &rows)?)?;
+    write(WINS_CSV, wins_csv(&samples, &rows)?)?;
+    write(TIMING_MD, timing_md(&manifest, &runs).into_bytes())?;
+    let plots = dir.join(PLOTS_DIR);
+    std::fs::create_dir_all(&plots).map_err(|source| SweepError::Io {
+        action: "create",
+        path: plots.clone(),
+        source,
+    })?;
+    if !samples.is_empty() {
+        for m in &METRICS {
+            let p = plots.join(format!("{}.png", m.key));
+            if box_plot(&p, &manifest.name, m, &samples, &methods)? {
+                files.push(p);
+            }
+        }
+    }
+    Ok(MergeSummary {
+        grid: manifest.runs,
+        recorded: runs.len(),
+        failed,
+        missing,
+        files,
+    })
+}
+
+fn methods_of(samples: &[Sample]) -> Vec<Method> {
+    let mut m: Vec<Method> = samples.iter().map(|s| s.method).collect();
+    m.sort();
+    m.dedup();
+    m
+}
+
+/// The axes of the tables' rows, in order (`method` is the columns).
+const ROW_AXES: [&str; 7] = [
+    "gesture",
+    "seed",
+    "config",
+    "noise",
+    "count",
+    "height",
+    "evaluation",
+];
+
+/// The rows of a table: `("all", "all")`, then each value of each of [`ROW_AXES`] that has
+/// more than one value among the runs, in the order of the runs.
+fn rows_of(runs: &[RunRecord]) -> Vec<(&'static str, String)> {
+    let mut rows = vec![("all", "all".to_string())];
+    for axis in &ROW_AXES {
+        let mut values: Vec<String> = Vec::new();
+        for r in runs {
+            let v = r.axes.value(axis);
+            if !values.contains(&v) {
+                values.push(v);
+            }
+        }
+        if values.len() > 1 {
+            rows.extend(values.into_iter().map(|v| (*axis, v)));
+        }
+    }
+    rows
+}
+
+fn in_row(s: &AxisValues, row: &(&str, String)) -> bool {
+    row.0 == "all" || s.value(row.0) == row.1
+}
+
+fn stats_of(
+    samples: &[Sample],
+    metric: &str,
+    method: Method,
+    row: &(&str, String),
+) -> Option<Stats> {
+    Stats::of(
+        samples
+            .iter()
+            .filter(|s| s.method == method && in_row(s.axes, row))
+            .filter_map(|s| s.metrics.get(metric).copied()),
+    )
+}
+
+/// Wins of CoSCo-HSOM and GMM/GMR on `metric`, and ties, over the pairs in `row`: the two
+/// methods on the same demonstrations (every axis equal but `method`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+struct Wins {
+    hsom: usize,
+    gmr: usize,
+    ties: usize,
+}
+
+fn pair_key(a: &AxisValues) -> String {
+    ROW_AXES
+        .iter()
+        .map(|x| a.value(x))
+        .collect::<Vec<_>>()
+        .join("\u{1f}")
+}
+
+fn wins(samples: &[Sample], metric: &Metric, row: &(&str, String)) -> Option<Wins> {
+    if metric.better == Better::Neither {
+        return None;
+    }
+    let mut pairs: BTreeMap<String, [Option<f64>; 2]> = BTreeMap::new();
+    for s in samples.iter().filter(|s| in_row(s.axes, row)) {
+        let slot = match s.method {
+            Method::CoscoHsom => 0,
+            Method::Gmr => 1,
+            Method::Both => continue,
+        };
+        pairs.entry(pair_key(s.axes)).or_default()[slot] = s.metrics.get(metric.key).copied();
+    }
+    let score = |x: f64| match metric.better {
+        Better::TowardOne => x.ln().abs(),
+        _ => x,
+    };
+    let mut w = Wins::default();
+    let mut any = false;
+    for [h, g] in pairs.into_values() {
+        let (Some(h), Some(g)) = (h, g) else { continue };
+        any = true;
+        let (h, g) = (score(h), score(g));
+        if h < g {
+            w.hsom += 1;
+        } else if g < h {
+            w.gmr += 1;
+        } else {
+            w.ties += 1;
+        }
+    }
+    any.then_some(w)
+}
+
+fn fmt(v: f64, digits: usize) -> String {
+    format!("{v:.digits$}")
+}
+
+#[allow(clippy::too_many_arguments)]
+fn tables_md(
+    manifest: &Manifest,
+    runs: &[RunRecord],
+    samples: &[Sample],
+    methods: &[Method],
+    rows: &[(&'static str, String)],
+    failed: &[String],
+    missing: &[String],
+) -> String {
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "# Sweep `{}`: merged tables\n\n{} of {} runs recorded, {} with a failure{}. Spec \
+         hash `{}`. Made by `cosco sweep merge` from the run files (`runs/*.json`); wall \
+         times are in `{TIMING_MD}`.\n",
+        manifest.name,
+        runs.len(),
+        manifest.runs,
+        failed.len(),
+        if missing.is_empty() {
+            ""
+        } else {
+            " (incomplete: see the end)"
+        },
+        manifest.spec_hash
+    );
+    let fixed: Vec<String> = ROW_AXES
+        .iter()
+        .filter(|a| !rows.iter().any(|r| r.0 == **a))
+        .filter_map(|a| runs.first().map(|r| format!("{a} = {}", r.axes.value(a))))
+        .collect();
+    if !fixed.is_empty() {
+        let _ = writeln!(md, "Same in every run: {}.\n", fixed.join(", "));
+    }
+    let _ = writeln!(
+        md,
+        "Each cell: median / mean / interquartile range (first to third quartile) over the \
+         runs of the row, `n` runs. Paired wins: the two methods on the same demonstrations \
+         (every axis equal), CoSCo-HSOM wins - GMM/GMR wins - ties.\n"
+    );
+    let has_pairs = methods.contains(&Method::CoscoHsom) && methods.contains(&Method::Gmr);
+    for m in &METRICS {
+        let better = match m.better {
+            Better::Lower => ", lower is better",
+            Better::TowardOne => ", closer to 1 is better",
+            Better::Neither => "",
+        };
+        let _ = writeln!(md, "## {}{better}\n", m.label);
+        md.push_str("| axis | value |");
+        for me in methods {
+            let _ = write!(md, " {} (n) |", me.name());
+        }
+        let pairs = has_pairs && m.better != Better::Neither;
+        if pairs {
+            md.push_str(" paired wins |");
+        }
+        md.push_str("\n|---|---|");
+        for _ in methods {
+            md.push_str("---|");
+        }
+        if pairs {
+            md.push_str("---|");
+        }
+        md.push('\n');
+        for row in rows {
+            let _ = write!(md, "| {} | {} |", row.0, row.1);
+            for &me in methods {
+                let cell = match stats_of(samples, m.key, me, row) {
+                    Some(s) => format!(
+                        "{} / {} / {}-{} ({})",
+                        fmt(s.median, m.digits),
+                        fmt(s.mean, m.digits),
+                        fmt(s.q1, m.digits),
+                        fmt(s.q3, m.digits),
+                        s.n
+                    ),
+                    None => "n/a".into(),
+                };
+                let _ = write!(md, " {cell} |");
+            }
+            if pairs {
+                let cell = wins(samples, m, row)
+                    .map_or("n/a".into(), |w| format!("{}-{}-{}", w.hsom, w.gmr, w.ties));
+                let _ = write!(md, " {cell} |");
+            }
+            md.push('\n');
+        }
+        md.push('\n');
+    }
+    md.push_str("## Failed runs\n\n");
+    if failed.is_empty() {
+        md.push_str("None.\n");
+    } else {
+        for f in failed {
+            let _ = writeln!(md, "- {}", f.replace('\n', " "));
+        }
+    }
+    if !missing.is_empty() {
+        let _ = writeln!(
+            md,
+            "\n## Missing runs\n\n{} runs of the grid have no file yet (a shard not run or \
+             not finished):\n",
+            missing.len()
+        );
+        for id in missing {
+            let _ = writeln!(md, "- {id}");
+        }
+    }
+    md
+}
+
+fn csv_bytes(
+    header: &[&str],
+    rows: impl IntoIterator<Item = Vec<String>>,
+) -> Result<Vec<u8>, SweepError> {
+    let err = |e: &dyn std::fmt::Display| SweepError::Invalid(format!("CSV: {e}"));
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(header).map_err(|e| err(&e))?;
+    for r in rows {
+        w.write_record(&r).map_err(|e| err(&e))?;
+    }
+    w.into_inner().map_err(|e| err(&e))
+}
+
+fn tables_csv(
+    samples: &[Sample],
+    methods: &[Method],
+    rows: &[(&'static str, String)],
+) -> Result<Vec<u8>, SweepError> {
+    let mut out = Vec::new();
+    for m in &METRICS {
+        for row in rows {
+            for &me in methods {
+                if let Some(s) = stats_of(samples, m.key, me, row) {
+                    out.push(vec![
+                        m.key.to_string(),
+                        row.0.to_string(),
+                        row.1.clone(),
+                        me.name().to_string(),
+                        s.n.to_string(),
+                        s.median.to_string(),
+                        s.mean.to_string(),
+                        s.q1.to_string(),
+                        s.q3.to_string(),
+                        (s.q3 - s.q1).to_string(),
+                    ]);
+                }
+            }
+        }
+    }
+    csv_bytes(
+        &[
+            "metric", "axis", "value", "method", "n", "median", "mean", "q1", "q3", "iqr",
+        ],
+        out,
+    )
+}
+
+fn wins_csv(samples: &[Sample], rows: &[(&'static str, String)]) -> Result<Vec<u8>, SweepError> {
+    let mut out = Vec::new();
+    for m in &METRICS {
+        for row in rows {
+            if let Some(w) = wins(samples, m, row) {
+                out.push(vec![
+                    m.key.to_string(),
+                    row.0.to_string(),
+                    row.1.clone(),
+                    w.hsom.to_string(),
+                    w.gmr.to_string(),
+                    w.ties.to_string(),
+                ]);
+            }
+        }
+    }
+    csv_bytes(
+        &[
+            "metric",
+            "axis",
+            "value",
+            "cosco_hsom_wins",
+            "gmr_wins",
+            "ties",
+        ],
+        out,
+    )
+}
+
+fn timing_md(manifest: &Manifest, runs: &[RunRecord]) -> String {
+    let total: f64 = runs.iter().map(|r| r.wall_s).sum();
+    let mut md = format!(
+        "# Sweep `{}`: times\n\nThese differ between machines, loads and shards; the tables \
+         in `{TABLES_MD}` do not.\n\nSum of the {} runs' wall times: {total:.1} s (median per \
+         run {:.2} s).\n\n| shard | runs | sum of wall times (s) |\n|---|---|---|\n",
+        manifest.name,
+        runs.len(),
+        Stats::of(runs.iter().map(|r| r.wall_s)).map_or(0.0, |s| s.median),
+    );
+    let mut shards: BTreeMap<&str, (usize, f64)> = BTreeMap::new();
+    for r in runs {
+        let e = shards.entry(r.shard.as_str()).or_default();
+        e.0 += 1;
+        e.1 += r.wall_s;
+    }
+    for (s, (n, t)) in shards {
+        let _ = writeln!(md, "| {s} | {n} | {t:.1} |");
+    }
+    md.push_str("\n| method | fits timed | training, median (s) | reproduction, median (ms) |\n|---|---|---|---|\n");
+    for method in [Method::CoscoHsom, Method::Gmr] {
+        let of = |key: &str| {
+            Stats::of(runs.iter().flat_map(|r| {
+                r.methods
+                    .iter()
+                    .filter(|m| m.method == method)
+                    .filter_map(|m| m.timing.get(key).copied())
+                    .collect::<Vec<_>>()
+            }))
+        };
+        if let (Some(t), Some(r)) = (of("train_s"), of("reproduce_s")) {
+            let _ = writeln!(
+                md,
+                "| {} | {} | {:.3} | {:.2} |",
+                method.name(),
+                t.n,
+                t.median,
+                r.median * 1e3
+            );
+        }
+    }
+    md
+}
+
+/// One PNG for `metric`: a panel per combination of the axes other than gesture, seed and
+/// method; in each, a box per gesture and method over the seeds. `false` when no run has the
+/// metric.
+fn box_plot(
+    path: &Path,
+    name: &str,
+    metric: &Metric,
+    samples: &[Sample],
+    methods: &[Method],
+) -> Result<bool, SweepError> {
+    const PANEL_AXES: [&str; 5] = ["config", "noise", "count", "height", "evaluation"];
+    let with: Vec<&Sample> = samples
+        .iter()
+        .filter(|s| s.metrics.contains_key(metric.key))
+        .collect();
+    if with.is_empty() {
+        return Ok(false);
+    }
+    let mut combos: Vec<Vec<String>> = Vec::new();
+    let mut gestures: Vec<String> = Vec::new();
+    for s in &with {
+        let c: Vec<String> = PANEL_AXES.iter().map(|a| s.axes.value(a)).collect();
+        if !combos.contains(&c) {
+            combos.push(c);
+        }
+        if !gestures.contains(&s.axes.gesture) {
+            gestures.push(s.axes.gesture.clone());
+        }
+    }
+    let varies: Vec<usize> = (0..PANEL_AXES.len())
+        .filter(|&i| combos.iter().any(|c| c[i] != combos[0][i]))
+        .collect();
+    let color = |m: Method| match m {
+        Method::Gmr => GMR_COLOR,
+        _ => RGBColor(31, 119, 180),
+    };
+    let panels: Vec<BoxPanel> = combos
+        .iter()
+        .map(|c| {
+            let title = if varies.is_empty() {
+                PANEL_AXES
+                    .iter()
+                    .zip(c)
+                    .filter(|(a, _)| ["evaluation", "config"].contains(a))
+                    .map(|(a, v)| format!("{a} {v}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            } else {
+                varies
+                    .iter()
+                    .map(|&i| format!("{} {}", PANEL_AXES[i], c[i]))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            let values = gestures
+                .iter()
+                .map(|g| {
+                    methods
+                        .iter()
+                        .map(|&m| {
+                            with.iter()
+                                .filter(|s| {
+                                    s.method == m
+                                        && &s.axes.gesture == g
+                                        && PANEL_AXES
+                                            .iter()
+                                            .zip(c)
+                                            .all(|(a, v)| &s.axes.value(a) == v)
+                                })
+                                .filter_map(|s| s.metrics.get(metric.key).copied())
+                                .collect()
+                        })
+                        .collect()
+                })
+                .collect();
+            BoxPanel {
+                title,
+                y_label: metric.label.to_string(),
+                categories: gestures.clone(),
+                series: methods
+                    .iter()
+                    .map(|&m| (m.name().to_string(), color(m)))
+                    .collect(),
+                values,
+            }
+        })
+        .collect();
+    let panels: Vec<BoxPanel> = panels
+        .into_iter()
+        .map(|p| BoxPanel {
+            title: format!("{name}: {}", p.title),
+            ..p
+        })
+        .collect();
+    boxplots_png(
+        path,
+        &format!("{} by gesture and method", metric.label),
+        &panels,
+        2,
+        (900, 440),
+    )?;
+    Ok(true)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stats_median_mean_and_quartiles() {
+        let s = Stats::of([4.0, 1.0, 3.0, 2.0, f64::NAN]).unwrap();
+        assert_eq!(s.n, 4);
+        assert_eq!((s.median, s.mean, s.q1, s.q3), (2.5, 2.5, 1.75, 3.25));
+        assert!(Stats::of([f64::NAN]).is_none());
+    }
+}

@@ -1,0 +1,71 @@
+//! Sweeps (`cosco sweep`, docs/SWEEPS.md): every combination of gestures, seeds,
+//! configurations, noise levels, numbers of demonstrations, height overrides, evaluations and
+//! methods from one TOML spec, run on a thread pool or split into shards for a cluster's job
+//! arrays, one JSON file per run, merged into tables and box plots.
+//!
+//! - [`spec`]: the spec file, checked up front; the grid in a fixed order.
+//! - [`shard`]: `--shard I/N` and SLURM's job-array variables.
+//! - [`run`]: one run (the `simulate --no-render` pipeline) and its file.
+//! - [`runner`]: the sweep: output-directory checks, resume, the thread pool.
+//! - [`merge`]: tables (Markdown, CSV), paired wins, box plots, failed runs.
+
+pub mod merge;
+pub mod run;
+pub mod runner;
+pub mod shard;
+pub mod spec;
+
+use std::path::PathBuf;
+
+pub use merge::{merge, MergeSummary, Stats, METRICS};
+pub use run::{execute_run, MethodRecord, RunRecord};
+pub use runner::{run_sweep, Manifest, Progress, SweepOptions, SweepSummary};
+pub use shard::Shard;
+pub use spec::{AxisValues, Evaluation, Height, Method, RunPlan, SweepSpec, AXES};
+
+/// Why a sweep or a merge refused to start or stopped. Every message names the file, field
+/// or value and what is allowed.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SweepError {
+    /// The spec file is invalid.
+    #[error("spec {file}: {message}")]
+    Spec {
+        /// The spec file.
+        file: PathBuf,
+        /// What is wrong and what is allowed.
+        message: String,
+    },
+    /// An option (shard, threads) is invalid.
+    #[error("{0}")]
+    Invalid(String),
+    /// The output directory cannot be used for this spec.
+    #[error("output directory {path}: {message}")]
+    OutDir {
+        /// The directory.
+        path: PathBuf,
+        /// Why.
+        message: String,
+    },
+    /// A file of the sweep directory is unreadable or not what it should be.
+    #[error("{path}: {message}")]
+    Record {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        message: String,
+    },
+    /// Reading or writing failed.
+    #[error("cannot {action} {path}: {source}")]
+    Io {
+        /// What was being done.
+        action: &'static str,
+        /// The file or directory.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// A plot could not be drawn or written.
+    #[error(transparent)]
+    Plot(#[from] crate::plot::PlotError),
+}

@@ -1,0 +1,340 @@
+//! One run of a sweep: the `simulate --no-render` pipeline for one point of the grid
+//! (synthetic demonstrations, training, reproduction on the simulated arm, metrics; in-sample
+//! or leave-one-out; CoSCo-HSOM, GMM/GMR or both), and the record it leaves in
+//! `DIR/runs/<run-id>.json`.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+
+use crate::demos::Demonstration;
+use crate::experiment::baseline::run_baseline_in_sample;
+use crate::experiment::heldout::{gmr_folds, hsom_folds, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
+use crate::experiment::{
+    learn_and_reproduce, synthetic_demonstrations, DemoSettings, FoldScores, HeldOutSummary,
+    Training,
+};
+use crate::fsutil::write_atomic;
+use crate::gesture::Gesture;
+use crate::metrics::{column_swings, FidelityReport};
+use crate::sim::{NaoArm, Recording};
+
+use super::spec::{AxisValues, Evaluation, Method, RunPlan, SweepSpec};
+use super::SweepError;
+
+/// Version of the run-file format.
+pub const RUN_FORMAT: u32 = 1;
+
+/// One method's result in a run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MethodRecord {
+    /// `cosco-hsom` or `gmr`.
+    pub method: Method,
+    /// Fidelity metrics (names in [`super::merge::METRICS`]); a metric that is undefined for
+    /// this run is absent.
+    pub metrics: BTreeMap<String, f64>,
+    /// Seconds: `train_s` and `reproduce_s` (means over folds for leave-one-out).
+    pub timing: BTreeMap<String, f64>,
+    /// Why the method could not run (then `metrics` is empty).
+    pub error: Option<String>,
+    /// Every number behind the metrics: the fidelity report (in-sample) or every fold
+    /// (leave-one-out).
+    pub detail: serde_json::Value,
+}
+
+/// What `DIR/runs/<run-id>.json` holds.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunRecord {
+    /// [`RUN_FORMAT`].
+    pub format: u32,
+    /// The run's id (its file name's stem).
+    pub run_id: String,
+    /// Position in the grid.
+    pub index: usize,
+    /// The sweep's identity hash (`SweepSpec::hash`).
+    pub spec_hash: String,
+    /// This crate's version.
+    pub crate_version: String,
+    /// The axes' values.
+    pub axes: AxisValues,
+    /// SHA-256 of the configuration file (as `sha256sum` prints it).
+    pub config_sha256: String,
+    /// Transition of CoSCo-HSOM's postures.
+    pub transition: String,
+    /// The shard that ran it, `I/N`.
+    pub shard: String,
+    /// Wall time of the run, seconds.
+    pub wall_s: f64,
+    /// Why the run failed as a whole (then `methods` is empty).
+    pub error: Option<String>,
+    /// One entry per method run.
+    pub methods: Vec<MethodRecord>,
+}
+
+impl RunRecord {
+    /// Whether the run or one of its methods failed.
+    pub fn failed(&self) -> bool {
+        self.error.is_some() || self.methods.iter().any(|m| m.error.is_some())
+    }
+
+    /// Read a run file.
+    pub fn read(path: &Path) -> Result<RunRecord, SweepError> {
+        let bytes = std::fs::read(path).map_err(|source| SweepError::Io {
+            action: "read the run file",
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let r: RunRecord = serde_json::from_slice(&bytes).map_err(|e| SweepError::Record {
+            path: path.to_path_buf(),
+            message: format!("not a run file of this version ({e}); delete it to run it again"),
+        })?;
+        if r.format != RUN_FORMAT {
+            return Err(SweepError::Record {
+                path: path.to_path_buf(),
+                message: format!(
+                    "run-file format {}, this version reads {RUN_FORMAT}; delete it to run it again",
+                    r.format
+                ),
+            });
+        }
+        Ok(r)
+    }
+
+    /// Write atomically (a killed sweep leaves the old file or none, never half a file).
+    pub fn write(&self, path: &Path) -> Result<(), SweepError> {
+        let json = serde_json::to_vec_pretty(self).map_err(|e| SweepError::Record {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        write_atomic(path, &json).map_err(|source| SweepError::Io {
+            action: "write the run file",
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+}
+
+/// Run `plan` of `spec` (in shard `shard`) and record it. Never fails: an error, or a panic,
+/// of the run is recorded in it.
+pub fn execute_run(spec: &SweepSpec, plan: &RunPlan, spec_hash: &str, shard: &str) -> RunRecord {
+    let t = Instant::now();
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run_methods(spec, plan)))
+        .unwrap_or_else(|panic| {
+            let what = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_else(|| "unknown panic".into());
+            Err(format!("the run panicked: {what}"))
+        });
+    let (methods, error) = match result {
+        Ok(m) => (m, None),
+        Err(e) => (Vec::new(), Some(e)),
+    };
+    RunRecord {
+        format: RUN_FORMAT,
+        run_id: plan.id.clone(),
+        index: plan.index,
+        spec_hash: spec_hash.to_string(),
+        crate_version: env!("CARGO_PKG_VERSION").to_string(),
+        axes: plan.axes.clone(),
+        config_sha256: spec
+            .config_sha256(&plan.axes)
+            .unwrap_or_default()
+            .to_string(),
+        transition: spec.transition.name(),
+        shard: shard.to_string(),
+        wall_s: t.elapsed().as_secs_f64(),
+        error,
+        methods,
+    }
+}
+
+fn run_methods(spec: &SweepSpec, plan: &RunPlan) -> Result<Vec<MethodRecord>, String> {
+    let a = &plan.axes;
+    // one simulator per run: nothing MuJoCo is shared between the pool's threads
+    let arm = match &spec.model {
+        Some(p) => NaoArm::load(p),
+        None => NaoArm::load_default(),
+    }
+    .map_err(|e| format!("loading the arm model: {e}"))?;
+    let gesture =
+        Gesture::by_name(&a.gesture).ok_or_else(|| format!("unknown gesture '{}'", a.gesture))?;
+    let config = spec.config_of(a).ok_or_else(|| {
+        format!(
+            "no configuration '{}' at height {}",
+            a.config,
+            a.height.name()
+        )
+    })?;
+    let settings = DemoSettings {
+        encoder_noise: a.noise,
+        ..DemoSettings::default()
+    };
+    let demos = synthetic_demonstrations(&arm, &gesture, a.count, a.seed, &settings, |_| {})
+        .map_err(|e| format!("recording the demonstrations: {e}"))?;
+    Ok(a.method
+        .singles()
+        .iter()
+        .map(|&method| {
+            let r = match (method, a.evaluation) {
+                (Method::Gmr, Evaluation::InSample) => run_baseline_in_sample(&arm, &demos)
+                    .map_err(|e| e.to_string())
+                    .and_then(|r| {
+                        in_sample(&r.fidelity, &r.executed, &demos, r.train_s, r.reproduce_s)
+                    }),
+                (_, Evaluation::InSample) => learn_and_reproduce(
+                    &arm,
+                    config,
+                    &demos,
+                    Training::Trained,
+                    spec.transition,
+                    None,
+                )
+                .map_err(|e| e.to_string())
+                .and_then(|r| {
+                    in_sample(&r.fidelity, &r.executed, &demos, r.train_s, r.reproduce_s)
+                }),
+                (Method::Gmr, Evaluation::LeaveOneOut) => gmr_folds(&arm, &demos)
+                    .map_err(|e| e.to_string())
+                    .and_then(|folds| {
+                        let (ran, failed): (Vec<_>, Vec<_>) =
+                            folds.into_iter().partition(Result::is_ok);
+                        let ran: Vec<FoldScores> = ran.into_iter().flatten().collect();
+                        let failed: Vec<String> =
+                            failed.into_iter().filter_map(Result::err).collect();
+                        if ran.is_empty() {
+                            return Err(format!("GMM/GMR ran on no fold: {}", failed.join("; ")));
+                        }
+                        held_out(&ran, failed)
+                    }),
+                (_, Evaluation::LeaveOneOut) => {
+                    hsom_folds(&arm, config, &demos, Training::Trained, spec.transition)
+                        .map_err(|e| e.to_string())
+                        .and_then(|folds| held_out(&folds, Vec::new()))
+                }
+            };
+            match r {
+                Ok((metrics, timing, detail)) => MethodRecord {
+                    method,
+                    metrics,
+                    timing,
+                    error: None,
+                    detail,
+                },
+                Err(e) => MethodRecord {
+                    method,
+                    metrics: BTreeMap::new(),
+                    timing: BTreeMap::new(),
+                    error: Some(e),
+                    detail: serde_json::Value::Null,
+                },
+            }
+        })
+        .collect())
+}
+
+type Scored = (
+    BTreeMap<String, f64>,
+    BTreeMap<String, f64>,
+    serde_json::Value,
+);
+
+/// Insert the finite values of `pairs` (JSON has no NaN).
+fn finite(pairs: impl IntoIterator<Item = (&'static str, Option<f64>)>) -> BTreeMap<String, f64> {
+    pairs
+        .into_iter()
+        .filter_map(|(k, v)| v.filter(|v| v.is_finite()).map(|v| (k.to_string(), v)))
+        .collect()
+}
+
+fn ratio(a: Option<f64>, b: Option<f64>) -> Option<f64> {
+    match (a, b) {
+        (Some(a), Some(b)) if b != 0.0 => Some(a / b),
+        _ => None,
+    }
+}
+
+fn mean(v: impl Iterator<Item = f64>) -> Option<f64> {
+    let (s, n) = v.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
+    (n > 0).then(|| s / n as f64)
+}
+
+/// The metrics of a run learned from all and scored against all.
+fn in_sample(
+    f: &FidelityReport,
+    executed: &Recording,
+    demos: &[Demonstration],
+    train_s: f64,
+    reproduce_s: f64,
+) -> Result<Scored, String> {
+    let swings = column_swings(&executed.qpos, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD)
+        .map_err(|e| e.to_string())?;
+    let demo_swings = demos
+        .iter()
+        .map(|d| column_swings(&d.rows, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD).map(|s| s as f64))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| e.to_string())?;
+    let demo_jerk = mean(f.demo_smoothness.iter().filter_map(|s| s.normalized_jerk));
+    let metrics = finite([
+        (
+            "joint_dtw_rad_per_step",
+            Some(f.joint_dtw_rad_per_step.mean),
+        ),
+        ("wrist_dtw_mm_per_step", f.wrist_dtw_mm.map(|w| w.mean)),
+        ("apex_error_rad", Some(f.apex_error_rad.mean)),
+        ("final_error_rad", Some(f.final_error_rad.mean)),
+        ("duration_ratio", Some(f.duration_ratio.mean)),
+        (
+            "velocity_reversals",
+            Some(f.reproduction_smoothness.total_reversals as f64),
+        ),
+        (
+            "demo_velocity_reversals",
+            mean(f.demo_smoothness.iter().map(|s| s.total_reversals as f64)),
+        ),
+        (
+            "jerk_ratio",
+            ratio(f.reproduction_smoothness.normalized_jerk, demo_jerk),
+        ),
+        ("swings", Some(swings as f64)),
+        ("demo_swings", mean(demo_swings.into_iter())),
+    ]);
+    let timing = finite([
+        ("train_s", Some(train_s)),
+        ("reproduce_s", Some(reproduce_s)),
+    ]);
+    let detail = serde_json::to_value(f).map_err(|e| e.to_string())?;
+    Ok((metrics, timing, detail))
+}
+
+/// The metrics of a leave-one-out run: means over `folds` (those that ran); `failed` lists
+/// the folds that did not.
+fn held_out(folds: &[FoldScores], failed: Vec<String>) -> Result<Scored, String> {
+    let s = HeldOutSummary::of(&folds.iter().collect::<Vec<_>>())
+        .ok_or_else(|| "no folds".to_string())?;
+    let metrics = finite([
+        ("joint_dtw_rad_per_step", Some(s.joint_dtw_rad_per_step)),
+        ("wrist_dtw_mm_per_step", s.wrist_dtw_mm),
+        ("apex_error_rad", Some(s.apex_error_rad)),
+        ("final_error_rad", Some(s.final_error_rad)),
+        ("duration_ratio", Some(s.duration_ratio)),
+        ("velocity_reversals", Some(s.velocity_reversals)),
+        ("demo_velocity_reversals", Some(s.demo_velocity_reversals)),
+        (
+            "jerk_ratio",
+            ratio(s.normalized_jerk, s.demo_normalized_jerk),
+        ),
+        ("swings", Some(s.swings)),
+        ("demo_swings", Some(s.demo_swings)),
+        ("folds", Some(s.folds as f64)),
+    ]);
+    let timing = finite([
+        ("train_s", mean(folds.iter().map(|f| f.train_s))),
+        ("reproduce_s", mean(folds.iter().map(|f| f.reproduce_s))),
+    ]);
+    let detail = serde_json::json!({ "folds": folds, "failed_folds": failed });
+    Ok((metrics, timing, detail))
+}

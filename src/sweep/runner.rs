@@ -1,0 +1,311 @@
+//! Running a sweep: check the output directory (it holds this spec's runs or none), skip the
+//! runs already recorded (resume), run the others of the shard on a thread pool, each
+//! written to `DIR/runs/<run-id>.json` as it finishes.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+use std::time::Instant;
+
+use rayon::iter::{ParallelBridge, ParallelIterator};
+use serde::{Deserialize, Serialize};
+
+use crate::fsutil::write_atomic;
+
+use super::run::{execute_run, RunRecord};
+use super::shard::Shard;
+use super::spec::{identity_hash, Identity, RunPlan, SweepSpec};
+use super::SweepError;
+
+/// Name of the manifest in the output directory.
+pub const MANIFEST: &str = "sweep.json";
+/// Folder of the run files in the output directory.
+pub const RUNS_DIR: &str = "runs";
+
+/// `DIR/sweep.json`: which spec the directory's runs belong to.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Manifest {
+    /// `SweepSpec::hash`.
+    pub spec_hash: String,
+    /// What the hash is of.
+    pub identity: Identity,
+    /// The spec file the sweep was started with.
+    pub spec_file: String,
+    /// The sweep's name.
+    pub name: String,
+    /// Runs in the whole grid.
+    pub runs: usize,
+    /// Every run id of the grid, in order.
+    pub run_ids: Vec<String>,
+}
+
+impl Manifest {
+    /// Read `DIR/sweep.json`.
+    pub fn read(dir: &Path) -> Result<Manifest, SweepError> {
+        let path = dir.join(MANIFEST);
+        let bytes = std::fs::read(&path).map_err(|source| SweepError::Io {
+            action: "read the sweep manifest",
+            path: path.clone(),
+            source,
+        })?;
+        serde_json::from_slice(&bytes).map_err(|e| SweepError::Record {
+            path,
+            message: format!("not a sweep manifest: {e}"),
+        })
+    }
+}
+
+/// How to run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepOptions {
+    /// Which runs.
+    pub shard: Shard,
+    /// Worker threads; `None`: every core.
+    pub threads: Option<usize>,
+    /// Run again the runs whose file records a failure.
+    pub retry_failed: bool,
+}
+
+/// What the progress callback hears.
+#[derive(Debug)]
+pub enum Progress<'a> {
+    /// Before the first run: runs to do now, runs of the shard already recorded.
+    Start {
+        /// Runs that will run.
+        to_run: usize,
+        /// Runs of the shard skipped because their file exists.
+        skipped: usize,
+        /// Worker threads.
+        threads: usize,
+    },
+    /// A run finished and its file is written.
+    Done(&'a RunRecord),
+}
+
+/// What a sweep did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepSummary {
+    /// Runs in the grid.
+    pub grid: usize,
+    /// Runs in this shard.
+    pub in_shard: usize,
+    /// Runs skipped (already recorded).
+    pub skipped: usize,
+    /// Runs run now.
+    pub ran: usize,
+    /// Of those, runs that recorded a failure.
+    pub failed: usize,
+    /// Wall time of the sweep, seconds.
+    pub wall_s: f64,
+    /// Sum of the wall times of the runs run now, seconds.
+    pub runs_s: f64,
+    /// Worker threads.
+    pub threads: usize,
+}
+
+/// The run file of run `id` in `dir`.
+pub fn run_path(dir: &Path, id: &str) -> PathBuf {
+    dir.join(RUNS_DIR).join(format!("{id}.json"))
+}
+
+/// The run files in `dir/runs` (not the temporary files of writes in progress), sorted.
+pub fn run_files(dir: &Path) -> Result<Vec<PathBuf>, SweepError> {
+    let runs = dir.join(RUNS_DIR);
+    let entries = match std::fs::read_dir(&runs) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(source) => {
+            return Err(SweepError::Io {
+                action: "list",
+                path: runs,
+                source,
+            })
+        }
+    };
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.extension().is_some_and(|x| x == "json")
+                && !p
+                    .file_name()
+                    .is_some_and(|n| n.to_string_lossy().starts_with('.'))
+        })
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+/// Check that `dir` holds this spec's runs or none, write its manifest, and return the runs
+/// of `shard` still to do (every check before any run starts).
+fn prepare(
+    spec: &SweepSpec,
+    dir: &Path,
+    plans: &[RunPlan],
+    options: &SweepOptions,
+) -> Result<(Vec<RunPlan>, usize), SweepError> {
+    let hash = spec.hash();
+    let identity = spec.identity();
+    let manifest_path = dir.join(MANIFEST);
+    if manifest_path.exists() {
+        let m = Manifest::read(dir)?;
+        if m.spec_hash != hash || identity_hash(&m.identity) != hash {
+            return Err(SweepError::OutDir {
+                path: dir.to_path_buf(),
+                message: format!(
+                    "holds the runs of another spec ({}, {}: {}); give a new --out, or delete \
+                     the directory to start again",
+                    m.spec_file,
+                    m.name,
+                    identity_difference(&m.identity, &identity)
+                ),
+            });
+        }
+    }
+    std::fs::create_dir_all(dir.join(RUNS_DIR)).map_err(|source| SweepError::Io {
+        action: "create",
+        path: dir.join(RUNS_DIR),
+        source,
+    })?;
+    let manifest = Manifest {
+        spec_hash: hash.clone(),
+        identity,
+        spec_file: spec.source.display().to_string(),
+        name: spec.settings.name.clone(),
+        runs: plans.len(),
+        run_ids: plans.iter().map(|p| p.id.clone()).collect(),
+    };
+    if !manifest_path.exists() {
+        let json = serde_json::to_vec_pretty(&manifest).map_err(|e| SweepError::Record {
+            path: manifest_path.clone(),
+            message: e.to_string(),
+        })?;
+        write_atomic(&manifest_path, &json).map_err(|source| SweepError::Io {
+            action: "write",
+            path: manifest_path.clone(),
+            source,
+        })?;
+    }
+    // every run file must be this spec's; finished runs of the shard are skipped
+    let mut done = std::collections::HashSet::new();
+    for f in run_files(dir)? {
+        let r = RunRecord::read(&f)?;
+        if r.spec_hash != hash {
+            return Err(SweepError::OutDir {
+                path: dir.to_path_buf(),
+                message: format!(
+                    "{} is a run of another spec (hash {}, this spec {}); give a new --out",
+                    f.display(),
+                    r.spec_hash,
+                    hash
+                ),
+            });
+        }
+        if !(options.retry_failed && r.failed()) {
+            done.insert(r.run_id);
+        }
+    }
+    let shard: Vec<&RunPlan> = plans
+        .iter()
+        .filter(|p| options.shard.contains(p.index))
+        .collect();
+    let todo: Vec<RunPlan> = shard
+        .iter()
+        .filter(|p| !done.contains(&p.id))
+        .map(|p| (*p).clone())
+        .collect();
+    Ok((todo, shard.len()))
+}
+
+/// Which part of two identities differs, for the message.
+fn identity_difference(old: &Identity, new: &Identity) -> String {
+    if old.settings != new.settings {
+        format!("settings {} there, {} now", old.settings, new.settings)
+    } else if old.axes != new.axes {
+        format!("axes {} there, {} now", old.axes, new.axes)
+    } else {
+        let changed: Vec<&str> = new
+            .config_sha256
+            .iter()
+            .filter(|(k, v)| old.config_sha256.get(*k) != Some(v))
+            .map(|(k, _)| k.as_str())
+            .collect();
+        format!(
+            "configuration file(s) changed since: {}",
+            changed.join(", ")
+        )
+    }
+}
+
+/// Run the runs of `options.shard` not yet recorded in `dir`, on a pool of
+/// `options.threads` threads, in grid order as threads free up. Every check (spec, output
+/// directory, existing run files) is done before the first run; a run that fails is recorded
+/// and the sweep goes on. `progress` hears the start and every finished run.
+pub fn run_sweep(
+    spec: &SweepSpec,
+    dir: &Path,
+    options: &SweepOptions,
+    progress: &(dyn Fn(Progress<'_>) + Sync),
+) -> Result<SweepSummary, SweepError> {
+    let t = Instant::now();
+    if options.threads == Some(0) {
+        return Err(SweepError::Invalid(
+            "--threads 0: need at least 1 worker thread".into(),
+        ));
+    }
+    let plans = spec.runs();
+    let (todo, in_shard) = prepare(spec, dir, &plans, options)?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(options.threads.unwrap_or(0))
+        .build()
+        .map_err(|e| SweepError::Invalid(format!("cannot start the thread pool: {e}")))?;
+    let threads = pool.current_num_threads();
+    progress(Progress::Start {
+        to_run: todo.len(),
+        skipped: in_shard - todo.len(),
+        threads,
+    });
+    let hash = spec.hash();
+    let shard = options.shard.label();
+    let failed = AtomicUsize::new(0);
+    let runs_s = Mutex::new(0.0f64);
+    let write_errors: Mutex<Vec<SweepError>> = Mutex::new(Vec::new());
+    pool.install(|| {
+        // par_bridge hands the runs out in grid order as threads free up
+        todo.iter().par_bridge().for_each(|plan| {
+            let record = execute_run(spec, plan, &hash, &shard);
+            if record.failed() {
+                failed.fetch_add(1, Ordering::Relaxed);
+            }
+            if let Ok(mut s) = runs_s.lock() {
+                *s += record.wall_s;
+            }
+            match record.write(&run_path(dir, &plan.id)) {
+                Ok(()) => progress(Progress::Done(&record)),
+                Err(e) => {
+                    if let Ok(mut w) = write_errors.lock() {
+                        w.push(e);
+                    }
+                }
+            }
+        })
+    });
+    let mut write_errors = write_errors.into_inner().unwrap_or_default();
+    if !write_errors.is_empty() {
+        let n = write_errors.len();
+        let first = write_errors.remove(0);
+        return Err(SweepError::Record {
+            path: dir.join(RUNS_DIR),
+            message: format!("{n} run file(s) could not be written; the first: {first}"),
+        });
+    }
+    Ok(SweepSummary {
+        grid: plans.len(),
+        in_shard,
+        skipped: in_shard - todo.len(),
+        ran: todo.len(),
+        failed: failed.into_inner(),
+        wall_s: t.elapsed().as_secs_f64(),
+        runs_s: runs_s.into_inner().unwrap_or(0.0),
+        threads,
+    })
+}

@@ -1,0 +1,779 @@
+//! The sweep's spec file (TOML, `docs/SWEEPS.md`): axes of values, read and checked once,
+//! up front, into a [`SweepSpec`] whose grid ([`SweepSpec::runs`]) is in a fixed order.
+//! Every configuration file is read, hashed and checked with every height override before
+//! any run starts.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+
+use crate::config::{load_config, HsomConfig};
+use crate::experiment::study::parse_seeds;
+use crate::experiment::variants::at_height;
+use crate::experiment::Transition;
+use crate::gesture::Gesture;
+use crate::sim::NaoArm;
+
+use super::SweepError;
+
+/// The axes in grid order: the first varies slowest, `seed` fastest. The replicates (seeds)
+/// of one setting are neighbours, so `index % N` deals every setting, cheap or costly,
+/// evenly over N shards.
+pub const AXES: [&str; 8] = [
+    "method",
+    "evaluation",
+    "config",
+    "height",
+    "count",
+    "noise",
+    "gesture",
+    "seed",
+];
+
+/// Which method(s) a run executes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// CoSCo-HSOM alone.
+    CoscoHsom,
+    /// The GMM/GMR baseline alone.
+    Gmr,
+    /// Both, on the same demonstrations.
+    Both,
+}
+
+impl Method {
+    /// The name in spec files and tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::CoscoHsom => "cosco-hsom",
+            Method::Gmr => "gmr",
+            Method::Both => "both",
+        }
+    }
+
+    /// The single methods this value runs, in order.
+    pub fn singles(self) -> &'static [Method] {
+        match self {
+            Method::CoscoHsom => &[Method::CoscoHsom],
+            Method::Gmr => &[Method::Gmr],
+            Method::Both => &[Method::CoscoHsom, Method::Gmr],
+        }
+    }
+
+    fn parse(s: &str) -> Option<Method> {
+        [Method::CoscoHsom, Method::Gmr, Method::Both]
+            .into_iter()
+            .find(|m| m.name() == s)
+    }
+}
+
+/// How a run is scored.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Evaluation {
+    /// Learn from all demonstrations, score against all.
+    InSample,
+    /// Each demonstration held out in turn (`experiment::heldout`), means over the folds.
+    LeaveOneOut,
+}
+
+impl Evaluation {
+    /// The name in spec files and tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Evaluation::InSample => "in-sample",
+            Evaluation::LeaveOneOut => "leave-one-out",
+        }
+    }
+
+    fn parse(s: &str) -> Option<Evaluation> {
+        [Evaluation::InSample, Evaluation::LeaveOneOut]
+            .into_iter()
+            .find(|e| e.name() == s)
+    }
+}
+
+/// The height override of a run: the configuration's own height, or its lowest levels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Height {
+    /// The configuration as written (`"config"` in the spec).
+    Config(ConfigHeight),
+    /// The configuration's lowest `n` levels (`experiment::variants::at_height`).
+    Levels(usize),
+}
+
+/// The word `config` (the configuration's own height).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ConfigHeight {
+    /// The configuration's own height.
+    Config,
+}
+
+impl Height {
+    /// `config` or the number of levels.
+    pub fn name(self) -> String {
+        match self {
+            Height::Config(_) => "config".into(),
+            Height::Levels(n) => n.to_string(),
+        }
+    }
+}
+
+/// One point of the grid: a value of every axis.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AxisValues {
+    /// Gesture of the synthetic demonstrations.
+    pub gesture: String,
+    /// Seed of the demonstrations.
+    pub seed: u64,
+    /// The configuration file as written in the spec.
+    pub config: String,
+    /// Encoder noise, rad.
+    pub noise: f64,
+    /// Number of demonstrations.
+    pub count: usize,
+    /// Height override.
+    pub height: Height,
+    /// In-sample or leave-one-out.
+    pub evaluation: Evaluation,
+    /// Method(s).
+    pub method: Method,
+}
+
+impl AxisValues {
+    /// The value of axis `axis` (one of [`AXES`]) as text, as tables show it.
+    pub fn value(&self, axis: &str) -> String {
+        match axis {
+            "gesture" => self.gesture.clone(),
+            "seed" => self.seed.to_string(),
+            "config" => self.config.clone(),
+            "noise" => self.noise.to_string(),
+            "count" => self.count.to_string(),
+            "height" => self.height.name(),
+            "evaluation" => self.evaluation.name().into(),
+            "method" => self.method.name().into(),
+            _ => String::new(),
+        }
+    }
+}
+
+/// One run of the sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunPlan {
+    /// Position in the grid (0-based).
+    pub index: usize,
+    /// File name stem: the index, then every axis value (`DIR/runs/<id>.json`).
+    pub id: String,
+    /// The axes' values.
+    pub axes: AxisValues,
+}
+
+/// A configuration file of the spec, read and hashed.
+#[derive(Debug, Clone)]
+pub struct ConfigEntry {
+    /// As written in the spec.
+    pub written: String,
+    /// Resolved against the spec file's directory.
+    pub path: PathBuf,
+    /// SHA-256 of the file's bytes, hex (`sha256sum FILE` prints the same).
+    pub sha256: String,
+    /// The checked configuration at each height of the `height` axis (same order).
+    pub at_heights: Vec<HsomConfig>,
+}
+
+/// The settings that are not axes.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Settings {
+    /// A name for tables and plots (default: the spec file's stem).
+    pub name: String,
+    /// How CoSCo-HSOM's postures become servo targets.
+    pub transition: String,
+    /// The arm's MJCF model as written (default: the crate's `models/nao_left_arm.xml`).
+    pub model: Option<String>,
+}
+
+/// The axes' values, checked.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Axes {
+    /// Gesture names.
+    pub gesture: Vec<String>,
+    /// Seeds of the demonstrations.
+    pub seed: Vec<u64>,
+    /// Configuration files as written.
+    pub config: Vec<String>,
+    /// Encoder noise, rad.
+    pub noise: Vec<f64>,
+    /// Numbers of demonstrations.
+    pub count: Vec<usize>,
+    /// Height overrides.
+    pub height: Vec<Height>,
+    /// Evaluations.
+    pub evaluation: Vec<Evaluation>,
+    /// Methods.
+    pub method: Vec<Method>,
+}
+
+impl Axes {
+    /// How many values axis `axis` has.
+    pub fn len(&self, axis: &str) -> usize {
+        match axis {
+            "gesture" => self.gesture.len(),
+            "seed" => self.seed.len(),
+            "config" => self.config.len(),
+            "noise" => self.noise.len(),
+            "count" => self.count.len(),
+            "height" => self.height.len(),
+            "evaluation" => self.evaluation.len(),
+            "method" => self.method.len(),
+            _ => 0,
+        }
+    }
+}
+
+/// A checked sweep: every value valid, every configuration read, the grid fixed.
+#[derive(Debug, Clone)]
+pub struct SweepSpec {
+    /// The spec file.
+    pub source: PathBuf,
+    /// Settings that are not axes.
+    pub settings: Settings,
+    /// The axes.
+    pub axes: Axes,
+    /// The configuration files, in the order of the `config` axis.
+    pub configs: Vec<ConfigEntry>,
+    /// The transition, parsed.
+    pub transition: Transition,
+    /// The arm model, resolved (None: the crate's model).
+    pub model: Option<PathBuf>,
+}
+
+/// What identifies a sweep: its settings (but its name), axes and the contents of its
+/// configuration files.
+/// Two specs with the same identity have the same runs (`DIR/sweep.json` keeps it).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Identity {
+    /// Settings that are not axes (as JSON).
+    pub settings: serde_json::Value,
+    /// The axes' values (as JSON).
+    pub axes: serde_json::Value,
+    /// SHA-256 of each configuration file, by the name written in the spec.
+    pub config_sha256: BTreeMap<String, String>,
+}
+
+// ---- the file as written ----
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSpec {
+    #[serde(default)]
+    sweep: RawSettings,
+    axes: RawAxes,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSettings {
+    name: Option<String>,
+    transition: Option<String>,
+    model: Option<String>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+enum RawSeeds {
+    List(Vec<u64>),
+    Text(String),
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+enum RawHeight {
+    Levels(i64),
+    Word(String),
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawAxes {
+    gesture: Option<Vec<String>>,
+    seed: Option<RawSeeds>,
+    config: Option<Vec<String>>,
+    noise: Option<Vec<f64>>,
+    count: Option<Vec<i64>>,
+    height: Option<Vec<RawHeight>>,
+    evaluation: Option<Vec<String>>,
+    method: Option<Vec<String>>,
+}
+
+/// The configuration when the spec has no `config` axis: `simulate`'s default, the shipped
+/// `configs/nao-gestures.xml` (absolute, so wherever the spec file is).
+pub const DEFAULT_CONFIG: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/configs/nao-gestures.xml");
+
+/// Hex of SHA-256.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+impl SweepSpec {
+    /// Read and check the spec file `path`.
+    pub fn load(path: &Path) -> Result<SweepSpec, SweepError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SweepError::Io {
+            action: "read the spec",
+            path: path.to_path_buf(),
+            source,
+        })?;
+        SweepSpec::parse(&text, path)
+    }
+
+    /// Check the spec text `text` read from `path` (relative file names in it are resolved
+    /// against `path`'s directory).
+    pub fn parse(text: &str, path: &Path) -> Result<SweepSpec, SweepError> {
+        let bad = |message: String| SweepError::Spec {
+            file: path.to_path_buf(),
+            message,
+        };
+        let raw: RawSpec = toml::from_str(text).map_err(|e| {
+            bad(format!(
+                "{}(allowed tables: [sweep] with name, transition, model; [axes] with {})",
+                e,
+                AXES.join(", ")
+            ))
+        })?;
+        let dir = path.parent().unwrap_or(Path::new(""));
+        let a = raw.axes;
+        let axis = |name: &str, n: usize| -> Result<(), SweepError> {
+            if n == 0 {
+                return Err(bad(format!(
+                    "axis `{name}` is empty: give at least one value, or leave the axis out \
+                     for its default"
+                )));
+            }
+            Ok(())
+        };
+        let gesture = a.gesture.unwrap_or_else(|| vec!["reading-watch".into()]);
+        axis("gesture", gesture.len())?;
+        for g in &gesture {
+            if Gesture::by_name(g).is_none() {
+                return Err(bad(format!(
+                    "axis `gesture`: unknown gesture '{g}': allowed {}",
+                    Gesture::names().join(", ")
+                )));
+            }
+        }
+        let seed = match a.seed {
+            None => vec![1],
+            Some(RawSeeds::List(v)) => v,
+            Some(RawSeeds::Text(t)) => {
+                parse_seeds(&t).map_err(|e| bad(format!("axis `seed`: {e}")))?
+            }
+        };
+        axis("seed", seed.len())?;
+        let config = a.config.unwrap_or_else(|| vec![DEFAULT_CONFIG.into()]);
+        axis("config", config.len())?;
+        let noise = a.noise.unwrap_or_else(|| vec![0.001]);
+        axis("noise", noise.len())?;
+        if let Some(n) = noise.iter().find(|n| !(n.is_finite() && **n >= 0.0)) {
+            return Err(bad(format!(
+                "axis `noise`: {n} rad: allowed a finite encoder noise >= 0"
+            )));
+        }
+        let count = a.count.unwrap_or_else(|| vec![4]);
+        axis("count", count.len())?;
+        let count = count
+            .into_iter()
+            .map(|c| match usize::try_from(c) {
+                Ok(c) if (1..=100).contains(&c) => Ok(c),
+                _ => Err(bad(format!(
+                    "axis `count`: {c} demonstrations: allowed 1 to 100"
+                ))),
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let height = a
+            .height
+            .unwrap_or_else(|| vec![RawHeight::Word("config".into())]);
+        axis("height", height.len())?;
+        let height = height
+            .into_iter()
+            .map(|h| match h {
+                RawHeight::Word(w) if w == "config" => Ok(Height::Config(ConfigHeight::Config)),
+                RawHeight::Levels(n) if n >= 1 => Ok(Height::Levels(n as usize)),
+                RawHeight::Word(w) => Err(bad(format!(
+                    "axis `height`: '{w}': allowed \"config\" (the configuration's own) or a \
+                     number of levels >= 1"
+                ))),
+                RawHeight::Levels(n) => Err(bad(format!(
+                    "axis `height`: {n}: allowed \"config\" (the configuration's own) or a \
+                     number of levels >= 1"
+                ))),
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let evaluation = a.evaluation.unwrap_or_else(|| vec!["in-sample".into()]);
+        axis("evaluation", evaluation.len())?;
+        let evaluation = words(
+            "evaluation",
+            &evaluation,
+            Evaluation::parse,
+            "in-sample, leave-one-out",
+        )
+        .map_err(bad)?;
+        let method = a.method.unwrap_or_else(|| vec!["both".into()]);
+        axis("method", method.len())?;
+        let method =
+            words("method", &method, Method::parse, "cosco-hsom, gmr, both").map_err(bad)?;
+        if method.contains(&Method::Both) && method.len() > 1 {
+            return Err(bad(
+                "axis `method`: `both` already runs cosco-hsom and gmr; give either `both` or \
+                 the single methods"
+                    .into(),
+            ));
+        }
+        let axes = Axes {
+            gesture,
+            seed,
+            config,
+            noise,
+            count,
+            height,
+            evaluation,
+            method,
+        };
+        check_distinct(&axes).map_err(bad)?;
+        if axes.evaluation.contains(&Evaluation::LeaveOneOut) {
+            if let Some(c) = axes.count.iter().find(|&&c| c < 2) {
+                return Err(bad(format!(
+                    "axes `count` and `evaluation`: leave-one-out needs at least 2 \
+                     demonstrations, `count` has {c}"
+                )));
+            }
+        }
+
+        let s = raw.sweep;
+        let transition_text = s.transition.unwrap_or_else(|| "linear".into());
+        let transition = Transition::parse(&transition_text)
+            .map_err(|e| bad(format!("[sweep] transition: {e}")))?;
+        let model = s.model.as_ref().map(|m| dir.join(m));
+        if let Some(m) = &model {
+            NaoArm::load(m).map_err(|e| {
+                bad(format!(
+                    "[sweep] model '{}': cannot load {}: {e}",
+                    s.model.as_deref().unwrap_or_default(),
+                    m.display()
+                ))
+            })?;
+        }
+        let name = s.name.unwrap_or_else(|| {
+            path.file_stem()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "sweep".into())
+        });
+        let configs = axes
+            .config
+            .iter()
+            .map(|written| load_entry(written, dir, &axes.height))
+            .collect::<Result<Vec<_>, String>>()
+            .map_err(bad)?;
+        Ok(SweepSpec {
+            source: path.to_path_buf(),
+            settings: Settings {
+                name,
+                transition: transition.name(),
+                model: s.model,
+            },
+            axes,
+            configs,
+            transition,
+            model,
+        })
+    }
+
+    /// Every run of the grid, in order: nested loops over [`AXES`], the first outermost.
+    pub fn runs(&self) -> Vec<RunPlan> {
+        let a = &self.axes;
+        let total: usize = AXES.iter().map(|x| a.len(x)).product();
+        let width = total.saturating_sub(1).to_string().len().max(4);
+        let mut out = Vec::with_capacity(total);
+        for &method in &a.method {
+            for &evaluation in &a.evaluation {
+                for (ci, config) in a.config.iter().enumerate() {
+                    for &height in &a.height {
+                        for &count in &a.count {
+                            for &noise in &a.noise {
+                                for gesture in &a.gesture {
+                                    for &seed in &a.seed {
+                                        let index = out.len();
+                                        let axes = AxisValues {
+                                            gesture: gesture.clone(),
+                                            seed,
+                                            config: config.clone(),
+                                            noise,
+                                            count,
+                                            height,
+                                            evaluation,
+                                            method,
+                                        };
+                                        let id = run_id(index, width, &axes, &self.configs[ci]);
+                                        out.push(RunPlan { index, id, axes });
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// The configuration of a run: its config file at its height.
+    pub fn config_of(&self, axes: &AxisValues) -> Option<&HsomConfig> {
+        let c = self.configs.iter().find(|c| c.written == axes.config)?;
+        let h = self.axes.height.iter().position(|h| *h == axes.height)?;
+        c.at_heights.get(h)
+    }
+
+    /// The SHA-256 of a run's configuration file.
+    pub fn config_sha256(&self, axes: &AxisValues) -> Option<&str> {
+        self.configs
+            .iter()
+            .find(|c| c.written == axes.config)
+            .map(|c| c.sha256.as_str())
+    }
+
+    /// What identifies this sweep.
+    pub fn identity(&self) -> Identity {
+        Identity {
+            // the name only labels tables: renaming the spec file is the same sweep
+            settings: serde_json::json!({
+                "transition": self.settings.transition,
+                "model": self.settings.model,
+            }),
+            axes: serde_json::to_value(&self.axes).unwrap_or_default(),
+            config_sha256: self
+                .configs
+                .iter()
+                .map(|c| (c.written.clone(), c.sha256.clone()))
+                .collect(),
+        }
+    }
+
+    /// SHA-256 of [`SweepSpec::identity`] as JSON: every run file carries it.
+    pub fn hash(&self) -> String {
+        identity_hash(&self.identity())
+    }
+}
+
+/// SHA-256 of an identity's JSON.
+pub fn identity_hash(id: &Identity) -> String {
+    sha256_hex(&serde_json::to_vec(id).unwrap_or_default())
+}
+
+/// Parse the words of an axis with `parse`; an unknown one is an error listing `allowed`.
+fn words<T>(
+    axis: &str,
+    values: &[String],
+    parse: fn(&str) -> Option<T>,
+    allowed: &str,
+) -> Result<Vec<T>, String> {
+    values
+        .iter()
+        .map(|v| {
+            parse(v).ok_or_else(|| format!("axis `{axis}`: unknown value '{v}': allowed {allowed}"))
+        })
+        .collect()
+}
+
+fn check_distinct(a: &Axes) -> Result<(), String> {
+    fn dup<T: PartialEq + std::fmt::Debug>(name: &str, v: &[T]) -> Result<(), String> {
+        for (i, x) in v.iter().enumerate() {
+            if v[..i].contains(x) {
+                return Err(format!(
+                    "axis `{name}`: {x:?} is given twice (every run would be run twice)"
+                ));
+            }
+        }
+        Ok(())
+    }
+    dup("gesture", &a.gesture)?;
+    dup("seed", &a.seed)?;
+    dup("config", &a.config)?;
+    dup("noise", &a.noise)?;
+    dup("count", &a.count)?;
+    dup("height", &a.height)?;
+    dup("evaluation", &a.evaluation)?;
+    dup("method", &a.method)
+}
+
+fn load_entry(written: &str, dir: &Path, heights: &[Height]) -> Result<ConfigEntry, String> {
+    let path = dir.join(written);
+    let bytes = std::fs::read(&path).map_err(|e| {
+        format!(
+            "axis `config`: cannot read '{written}' ({}, relative to the spec file's \
+             directory): {e}",
+            path.display()
+        )
+    })?;
+    let config = load_config(&path).map_err(|e| format!("axis `config`: '{written}': {e}"))?;
+    let at_heights = heights
+        .iter()
+        .map(|h| match h {
+            Height::Config(_) => Ok(config.clone()),
+            Height::Levels(n) => at_height(&config, *n)
+                .map_err(|e| format!("axes `config` and `height`: '{written}' at height {n}: {e}")),
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(ConfigEntry {
+        written: written.to_string(),
+        path,
+        sha256: sha256_hex(&bytes),
+        at_heights,
+    })
+}
+
+/// `0007-wave-s11-nao-gestures-n0.001-c4-hconfig-leave-one-out-both`: the index (unique),
+/// then every value, readable in a directory listing.
+fn run_id(index: usize, width: usize, a: &AxisValues, config: &ConfigEntry) -> String {
+    let stem = config
+        .path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "config".into());
+    let clean = |s: &str| -> String {
+        s.chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '.' || c == '-' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect()
+    };
+    format!(
+        "{index:0width$}-{}-s{}-{}-n{}-c{}-h{}-{}-{}",
+        clean(&a.gesture),
+        a.seed,
+        clean(&stem),
+        a.noise,
+        a.count,
+        a.height.name(),
+        a.evaluation.name(),
+        a.method.name()
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec(text: &str) -> Result<SweepSpec, SweepError> {
+        // relative config names resolve against the crate root
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("test.toml");
+        SweepSpec::parse(text, &path)
+    }
+
+    #[test]
+    fn grid_runs_in_axis_order_seed_fastest() {
+        let text = r#"
+            [axes]
+            gesture = ["wave", "salute"]
+            seed = "3-4"
+            method = ["cosco-hsom", "gmr"]
+            "#;
+        let s = spec(text).unwrap();
+        let runs = s.runs();
+        let got: Vec<(&str, &str, u64)> = runs
+            .iter()
+            .map(|r| (r.axes.method.name(), r.axes.gesture.as_str(), r.axes.seed))
+            .collect();
+        let want = [
+            ("cosco-hsom", "wave", 3),
+            ("cosco-hsom", "wave", 4),
+            ("cosco-hsom", "salute", 3),
+            ("cosco-hsom", "salute", 4),
+            ("gmr", "wave", 3),
+            ("gmr", "wave", 4),
+            ("gmr", "salute", 3),
+            ("gmr", "salute", 4),
+        ];
+        assert_eq!(got, want);
+        assert_eq!(
+            runs[0].id,
+            "0000-wave-s3-nao-gestures-n0.001-c4-hconfig-in-sample-cosco-hsom"
+        );
+        assert!(runs.iter().enumerate().all(|(i, r)| r.index == i));
+        // the same spec gives the same grid
+        assert_eq!(spec(text).unwrap().runs(), runs);
+    }
+
+    #[test]
+    fn height_override_builds_the_truncated_configuration() {
+        let s = spec("[axes]\nheight = [\"config\", 1]\n").unwrap();
+        let runs = s.runs();
+        assert_eq!(runs.len(), 2);
+        assert_eq!(s.config_of(&runs[1].axes).unwrap().params().height, 1);
+        assert!(s.config_of(&runs[0].axes).unwrap().params().height > 1);
+    }
+
+    #[test]
+    fn identity_changes_with_an_axis_and_not_with_comments_or_the_name() {
+        let a = spec("[axes]\nseed = [1, 2]\n").unwrap();
+        let b = spec("# a comment\n[sweep]\nname = \"b\"\n[axes]\nseed = \"1-2\"\n").unwrap();
+        let c = spec("[axes]\nseed = [1, 3]\n").unwrap();
+        assert_eq!(a.hash(), b.hash());
+        assert_ne!(a.hash(), c.hash());
+    }
+
+    #[test]
+    fn bad_specs_name_the_axis_and_what_is_allowed() {
+        for (text, needles) in [
+            ("[axes]\ncolour = [\"red\"]\n", vec!["colour", "gesture"]),
+            ("[axes]\nseed = []\n", vec!["`seed` is empty"]),
+            (
+                "[axes]\ngesture = [\"dance\"]\n",
+                vec!["'dance'", "reading-watch"],
+            ),
+            (
+                "[axes]\nconfig = [\"nope.xml\"]\n",
+                vec!["'nope.xml'", "cannot read"],
+            ),
+            ("[axes]\nmethod = [\"both\", \"gmr\"]\n", vec!["`both`"]),
+            (
+                "[axes]\nmethod = [\"svm\"]\n",
+                vec!["'svm'", "cosco-hsom, gmr, both"],
+            ),
+            (
+                "[axes]\nevaluation = [\"k-fold\"]\n",
+                vec!["'k-fold'", "leave-one-out"],
+            ),
+            ("[axes]\nnoise = [-1.0]\n", vec!["`noise`", "-1"]),
+            ("[axes]\ncount = [0]\n", vec!["`count`", "1 to 100"]),
+            ("[axes]\nseed = [1, 1]\n", vec!["twice"]),
+            ("[axes]\nheight = [99]\n", vec!["height 99", "levels"]),
+            ("[axes]\nheight = [\"tall\"]\n", vec!["'tall'", "config"]),
+            (
+                "[axes]\ncount = [1]\nevaluation = [\"leave-one-out\"]\n",
+                vec!["at least 2"],
+            ),
+            (
+                "[sweep]\ntransition = \"cubic\"\n[axes]\n",
+                vec!["transition", "cubic"],
+            ),
+            ("[sweep]\nthreads = 4\n[axes]\n", vec!["threads"]),
+            ("[axes\n", vec!["TOML parse error"]),
+        ] {
+            let e = spec(text).unwrap_err().to_string();
+            assert!(e.contains("test.toml"), "{text}: {e}");
+            for n in needles {
+                assert!(e.contains(n), "{text}: '{n}' not in: {e}");
+            }
+        }
+    }
+}
