@@ -1,0 +1,80 @@
+//! The simplest baseline of the held-out study: no model at all, a training demonstration
+//! replayed. For every leave-one-out fold of 4 demonstrations, each of the 3 training
+//! demonstrations' recorded joint trajectory is scored against the held-out one (the same
+//! metrics as `examples/heldout.rs`); prints the mean over the 3 and the 4 folds, per
+//! (gesture, seed), and the medians.
+//!
+//! ```sh
+//! cargo run --release --example replay_baseline -- --seeds 11-15
+//! ```
+
+use anyhow::Result;
+use clap::Parser;
+
+use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};
+use cosco_hsom::experiment::{evaluate, record_demonstrations, DemoSettings};
+use cosco_hsom::metrics::MetricsParams;
+use cosco_hsom::sim::NaoArm;
+
+/// Held-out score of replaying a training demonstration.
+#[derive(Parser, Debug)]
+struct Args {
+    /// Gestures, comma-separated.
+    #[arg(long, default_value = "reading-watch,wave,reach-point,salute")]
+    gestures: String,
+    /// Seeds of the demonstrations: numbers and ranges, e.g. `11-15`.
+    #[arg(long, default_value = "11-15")]
+    seeds: String,
+    /// Demonstrations per (gesture, seed), at least 2.
+    #[arg(long, default_value_t = 4)]
+    count: usize,
+    /// Encoder noise of the synthetic demonstrations, rad.
+    #[arg(long, default_value_t = 0.001)]
+    noise: f64,
+}
+
+fn main() -> Result<()> {
+    let a = Args::parse();
+    anyhow::ensure!(a.count >= 2, "--count must be at least 2, got {}", a.count);
+    let arm = NaoArm::load_default()?;
+    let settings = DemoSettings {
+        encoder_noise: a.noise,
+        ..DemoSettings::default()
+    };
+    let params = MetricsParams::default();
+    println!("| gesture | seed | joint DTW (rad/step) | wrist DTW (mm/step) |\n|---|---|---|---|");
+    let (mut all_j, mut all_w) = (Vec::new(), Vec::new());
+    for g in parse_gestures(&a.gestures)? {
+        for seed in parse_seeds(&a.seeds)? {
+            let demos: Vec<_> = record_demonstrations(&arm, &g, a.count, seed, &settings, |_| {})?
+                .iter()
+                .enumerate()
+                .map(|(i, r)| r.to_demonstration(format!("{} #{i}", g.name)))
+                .collect();
+            let (mut j, mut w, mut n) = (0.0, 0.0, 0.0);
+            for (i, held_out) in demos.iter().enumerate() {
+                for (k, replayed) in demos.iter().enumerate().filter(|&(k, _)| k != i) {
+                    let f = evaluate(
+                        Some(&arm),
+                        std::slice::from_ref(held_out),
+                        &replayed.rows,
+                        &params,
+                    )
+                    .map_err(|e| anyhow::anyhow!("fold {i}, demonstration {k}: {e}"))?;
+                    j += f.joint_dtw_rad_per_step.mean;
+                    w += f.wrist_dtw_mm.map_or(f64::NAN, |s| s.mean);
+                    n += 1.0;
+                }
+            }
+            println!("| {} | {seed} | {:.4} | {:.2} |", g.name, j / n, w / n);
+            all_j.push(j / n);
+            all_w.push(w / n);
+        }
+    }
+    println!(
+        "| **all** | median | {:.4} | {:.2} |",
+        median(all_j).unwrap_or(f64::NAN),
+        median(all_w).unwrap_or(f64::NAN)
+    );
+    Ok(())
+}
