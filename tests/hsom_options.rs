@@ -302,6 +302,15 @@ fn new_options_in_small_configurations_never_panic_and_round_trip() {
                         p.reproduction.offset = memory.min(p.reproduction.offset).max(1);
                         p.reproduction.max_length = 200;
                         let cfg = p.check("t").unwrap();
+                        if demos.iter().any(|d| d.len() <= horizon) {
+                            // a horizon longer than a demonstration is refused, naming it
+                            let e = cfg.fit(&demos).unwrap_err();
+                            assert!(
+                                matches!(e, cosco_hsom::hsom::HsomError::TooShort { needed, .. } if needed == horizon + 1),
+                                "{e}"
+                            );
+                            continue;
+                        }
                         let m = cfg.fit(&demos).unwrap();
                         let rep = m.reproduce(&demos[0].rows[0]).unwrap();
                         assert!(!rep.postures.is_empty() && rep.postures.len() <= 200);

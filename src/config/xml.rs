@@ -146,15 +146,17 @@ fn check_well_formed(text: &str, file: &str) -> Result<(), ConfigError> {
     loop {
         match reader.read_event() {
             Ok(Event::Eof) => break,
-            Ok(Event::Start(_)) => {
+            Ok(Event::Start(e)) => {
                 if depth == 0 {
                     roots += 1;
+                    check_root(text, file, e.name().as_ref(), &reader)?;
                 }
                 depth += 1;
             }
-            Ok(Event::Empty(_)) => {
+            Ok(Event::Empty(e)) => {
                 if depth == 0 {
                     roots += 1;
+                    check_root(text, file, e.name().as_ref(), &reader)?;
                 }
             }
             Ok(Event::End(_)) => depth -= 1,
@@ -186,6 +188,29 @@ fn check_well_formed(text: &str, file: &str) -> Result<(), ConfigError> {
         });
     }
     Ok(())
+}
+
+/// The root element must be `<hsom>` (another XML document, an MJCF model say, is not a
+/// configuration even when some of its element names match).
+fn check_root(
+    text: &str,
+    file: &str,
+    name: &[u8],
+    reader: &quick_xml::Reader<&[u8]>,
+) -> Result<(), ConfigError> {
+    if name == b"hsom" {
+        return Ok(());
+    }
+    let (line, column) = line_col(text, reader.buffer_position() as usize);
+    Err(ConfigError::Malformed {
+        file: file.to_string(),
+        line,
+        column,
+        message: format!(
+            "the root element is <{}>, a CoSCo-HSOM configuration's is <hsom>",
+            String::from_utf8_lossy(name)
+        ),
+    })
 }
 
 struct Fields<'a> {

@@ -305,15 +305,21 @@ pub(crate) struct Series<'a> {
     pub(crate) rows: &'a [Vec<f64>],
 }
 
-fn check_series(series: &[Series<'_>], state: usize) -> Result<(), HsomError> {
+/// The largest magnitude of a normalised training value: squared distances over thousands
+/// of inputs stay far from overflowing.
+const MAX_NORMALISED: f64 = 1e100;
+
+fn check_series(series: &[Series<'_>], state: usize, horizon: usize) -> Result<(), HsomError> {
     if series.is_empty() {
         return Err(HsomError::NoDemonstrations);
     }
+    let needed = (horizon + 1).max(2);
     for s in series {
-        if s.rows.len() < 2 {
+        if s.rows.len() < needed {
             return Err(HsomError::TooShort {
                 demo: s.source.to_string(),
                 rows: s.rows.len(),
+                needed,
             });
         }
         for (i, r) in s.rows.iter().enumerate() {
@@ -423,7 +429,7 @@ impl HsomConfig {
     ) -> Result<Hsom, HsomError> {
         let p = self.params();
         let state = p.state_length;
-        check_series(series, state)?;
+        check_series(series, state, p.action_horizon)?;
         let columns = if columns.len() == state {
             columns
         } else {
@@ -441,6 +447,21 @@ impl HsomConfig {
             }
         }
         let range: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| b - a).collect();
+        // a column whose range overflows cannot be normalised
+        if let Some(d) = range.iter().position(|r| !r.is_finite()) {
+            let (s, i) = series
+                .iter()
+                .flat_map(|s| (0..s.rows.len()).map(move |i| (s, i)))
+                .find(|(s, i)| s.rows[*i][d] == hi[d])
+                .expect("the maximum is a sample");
+            return Err(HsomError::OutOfScale {
+                demo: s.source.to_string(),
+                row: i,
+                column: d,
+                value: hi[d],
+                normalised: f64::INFINITY,
+            });
+        }
         let (offset, scale) = match p.normalisation {
             Normalisation::None => (vec![0.0; state], vec![1.0; state]),
             Normalisation::Global => {
@@ -469,6 +490,23 @@ impl HsomConfig {
                     .collect()
             })
             .collect();
+        // what training cannot represent: squared distances of such values overflow
+        for (s, rows) in series.iter().zip(&norm) {
+            for (i, r) in rows.iter().enumerate() {
+                if let Some(c) = r
+                    .iter()
+                    .position(|v| !v.is_finite() || v.abs() > MAX_NORMALISED)
+                {
+                    return Err(HsomError::OutOfScale {
+                        demo: s.source.to_string(),
+                        row: i,
+                        column: c,
+                        value: s.rows[i][c],
+                        normalised: r[c],
+                    });
+                }
+            }
+        }
         // initial weights: inside the (normalised) data's bounding box, from the seed
         let mut rng = ChaCha8Rng::seed_from_u64(p.seed);
         let mut maps = Vec::with_capacity(p.height);

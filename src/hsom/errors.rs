@@ -9,13 +9,16 @@ pub enum HsomError {
     /// No demonstration was given.
     #[error("no demonstrations to train on")]
     NoDemonstrations,
-    /// A demonstration has fewer than two samples (no state-action pair).
-    #[error("demonstration {demo} has {rows} sample(s); at least 2 are needed")]
+    /// A demonstration is too short for one state-action pair at the configuration's
+    /// action horizon.
+    #[error("demonstration {demo} has {rows} sample(s); at least {needed} are needed (actionHorizon + 1, and never fewer than 2)")]
     TooShort {
         /// The demonstration's source.
         demo: String,
         /// Its number of samples.
         rows: usize,
+        /// The fewest samples accepted.
+        needed: usize,
     },
     /// A sample has another number of values than the configuration's stateLength.
     #[error("demonstration {demo}, sample {row}: {found} values, but the configuration's stateLength is {expected}")]
@@ -38,6 +41,20 @@ pub enum HsomError {
         row: usize,
         /// Column index.
         column: usize,
+    },
+    /// A value too large to train on once normalised (distances would overflow).
+    #[error("demonstration {demo}, sample {row}, column {column}: {value:e} is {normalised:e} once normalised; training needs magnitudes of at most 1e100 (use normalisation global or perDimension, or rescale the data)")]
+    OutOfScale {
+        /// The demonstration's source.
+        demo: String,
+        /// Sample index.
+        row: usize,
+        /// Column index.
+        column: usize,
+        /// The value in the data.
+        value: f64,
+        /// The value after normalisation (may be infinite when the data's range overflows).
+        normalised: f64,
     },
 }
 

@@ -18,6 +18,10 @@ const MAGIC: &[u8; 8] = b"COSCOHSM";
 const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of both formats.
 pub const FORMAT_VERSION: u32 = 5;
+
+/// The longest demonstration a model file may record, samples (a day at 1 kHz): the
+/// reproduction's length cap derives from it.
+const MAX_DEMO_SAMPLES: f64 = 1e8;
 /// Largest embedded configuration accepted (bytes).
 const MAX_CONFIG: u64 = 1 << 20;
 
@@ -42,11 +46,21 @@ fn shapes(config: &HsomConfig) -> Vec<(usize, usize, usize)> {
 }
 
 impl Hsom {
-    /// Save to `path`: binary for `.bin`, plain text for `.txt` (atomic write).
+    /// Save to `path`: binary for `.bin`, plain text for `.txt` (atomic write). The bytes are
+    /// read back with every check of [`Hsom::load`] first: a model that could not be loaded
+    /// is refused here, and nothing is written.
     pub fn save(&self, path: &Path) -> Result<(), PersistError> {
         let bytes = match ext(path)? {
-            Format::Bin => self.to_bytes(),
-            Format::Txt => self.to_text().into_bytes(),
+            Format::Bin => {
+                let b = self.to_bytes();
+                Hsom::from_bytes(&b, path)?;
+                b
+            }
+            Format::Txt => {
+                let t = self.to_text();
+                Hsom::from_text(&t, path)?;
+                t.into_bytes()
+            }
         };
         write_atomic(path, &bytes).map_err(|source| PersistError::Io {
             path: path.to_path_buf(),
@@ -626,8 +640,31 @@ fn build(
     path: &Path,
 ) -> Result<Hsom, PersistError> {
     let n0 = maps.first().map_or(0, |m| m.len()) as u32;
-    let stats_ok = extra.runs.iter().all(|v| v.is_finite() && *v >= 0.0)
-        && extra.dwell.iter().all(|v| v.is_finite() && *v >= 0.0)
+    // values that size the reproduction: no demonstration is longer than the longest, no
+    // event longer than a demonstration
+    let longest = demo_len[2];
+    let lengths_ok = demo_len
+        .iter()
+        .all(|v| v.is_finite() && *v >= 0.0 && *v <= MAX_DEMO_SAMPLES)
+        && demo_len[0] <= demo_len[1] + 1e-9
+        && demo_len[1] <= demo_len[2] + 1e-9;
+    if !lengths_ok {
+        return Err(PersistError::Corrupted {
+            path: path.to_path_buf(),
+            what: format!(
+                "demonstration lengths {demo_len:?} (shortest, mean, longest) must be ordered and \
+                 at most {MAX_DEMO_SAMPLES:e} samples"
+            ),
+        });
+    }
+    let stats_ok = extra
+        .runs
+        .iter()
+        .all(|v| v.is_finite() && *v >= 0.0 && *v <= longest)
+        && extra
+            .dwell
+            .iter()
+            .all(|v| v.is_finite() && *v >= 0.0 && *v <= longest)
         && extra.speed.iter().all(|v| v.is_finite() && *v >= 0.0)
         && extra
             .accuracy
@@ -655,7 +692,7 @@ fn build(
     if !stats_ok {
         return Err(PersistError::Corrupted {
             path: path.to_path_buf(),
-            what: "bad run statistics (negative or non-finite dwell, or a successor, follower or exemplar outside its map)".into(),
+            what: "bad run statistics (a dwell or event count negative, non-finite or longer than the longest demonstration, or a successor, follower or exemplar outside its map)".into(),
         });
     }
     let finite = maps
@@ -794,5 +831,34 @@ impl<'a> Reader<'a> {
     /// `n` u32 values; the caller has checked with [`Reader::need`] that they are there.
     fn u32s(&mut self, n: usize, what: &str) -> Result<Vec<u32>, PersistError> {
         (0..n).map(|_| self.u32(what)).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Saving runs the loader's checks first: a model whose statistics a file could not hold
+    /// is refused and no file appears.
+    #[test]
+    fn saving_refuses_what_loading_would_refuse_and_writes_nothing() {
+        let mut p = crate::config::HsomParams::table1();
+        p.state_length = 1;
+        p.action_length = 1;
+        let series: Vec<Vec<Vec<f64>>> = (0..2)
+            .map(|k| (0..30 + k).map(|i| vec![(i as f64 / 10.0).sin()]).collect())
+            .collect();
+        let mut m = p.check("t").unwrap().fit_series(&series).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        for name in ["m.bin", "m.txt"] {
+            m.save(&dir.path().join(name)).unwrap();
+        }
+        m.dwell[0] = 1e300;
+        for name in ["bad.bin", "bad.txt"] {
+            let path = dir.path().join(name);
+            let e = m.save(&path).unwrap_err();
+            assert!(matches!(e, PersistError::Corrupted { .. }), "{e}");
+            assert!(!path.exists(), "{name} was written");
+        }
     }
 }

@@ -15,6 +15,59 @@ pub const WRIST_SITE: &str = "l_wrist";
 /// Name of the site at the hand point (HandOffsetX/Z beyond the wrist).
 pub const GRIPPER_SITE: &str = "l_gripper";
 
+/// Smallest physics time step accepted, s (bounds the steps of a simulated second).
+pub const MIN_TIMESTEP_S: f64 = 1e-5;
+/// Largest physics time step accepted, s: several steps per 40 Hz sample, and inside the
+/// servos' stability margin (docs in models/nao_left_arm.xml).
+pub const MAX_TIMESTEP_S: f64 = 0.005;
+
+/// When MuJoCo refused an MJCF document: the arm's first joint that no actuator element of
+/// the document drives, as [`SimError::Missing`] (None when every joint has one, or the
+/// document is not XML we can read: MuJoCo's own message stands then).
+fn missing_actuator(xml: &str) -> Option<SimError> {
+    use quick_xml::events::Event;
+    let mut reader = quick_xml::Reader::from_str(xml);
+    let mut in_actuator = 0usize;
+    let mut driven: Vec<String> = Vec::new();
+    let mut saw_actuator_block = false;
+    loop {
+        match reader.read_event() {
+            Ok(Event::Start(e)) => {
+                if e.name().as_ref() == b"actuator" {
+                    in_actuator += 1;
+                    saw_actuator_block = true;
+                } else if in_actuator > 0 {
+                    driven.extend(joint_attr(&e));
+                }
+            }
+            Ok(Event::Empty(e)) if in_actuator > 0 => driven.extend(joint_attr(&e)),
+            Ok(Event::End(e)) if e.name().as_ref() == b"actuator" => {
+                in_actuator = in_actuator.saturating_sub(1)
+            }
+            Ok(Event::Eof) => break,
+            Err(_) => return None,
+            _ => {}
+        }
+    }
+    if !saw_actuator_block {
+        return None;
+    }
+    JOINT_NAMES
+        .iter()
+        .find(|j| !driven.iter().any(|d| d == *j))
+        .map(|j| SimError::Missing {
+            kind: "actuator",
+            name: j.to_string(),
+        })
+}
+
+fn joint_attr(e: &quick_xml::events::BytesStart<'_>) -> Option<String> {
+    e.attributes()
+        .flatten()
+        .find(|a| a.key.as_ref() == b"joint")
+        .and_then(|a| a.unescape_value().ok().map(|v| v.into_owned()))
+}
+
 /// Servo gains of one joint, as identified from the model: the actuator force is
 /// `kp (ctrl - q) - kv qdot`, clipped to the joint's maximum torque.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -58,9 +111,18 @@ impl std::fmt::Debug for NaoArm {
 }
 
 impl NaoArm {
-    /// Load and check an MJCF file.
+    /// Load and check an MJCF file. When MuJoCo refuses it, a file that lacks one of the arm's
+    /// actuators is reported as such (MuJoCo's own message is then about the keyframes'
+    /// control vectors).
     pub fn load(path: impl AsRef<Path>) -> Result<NaoArm> {
-        Self::from_model(Model::from_xml_path(path.as_ref())?)
+        let path = path.as_ref();
+        match Model::from_xml_path(path) {
+            Ok(model) => Self::from_model(model),
+            Err(e) => Err(std::fs::read_to_string(path)
+                .ok()
+                .and_then(|text| missing_actuator(&text))
+                .unwrap_or(SimError::Mujoco(e))),
+        }
     }
 
     /// Load the shipped model ([`DEFAULT_MODEL_PATH`]).
@@ -73,15 +135,28 @@ impl NaoArm {
         PathBuf::from(DEFAULT_MODEL_PATH)
     }
 
-    /// Load and check an MJCF document given as a string.
+    /// Load and check an MJCF document given as a string (a missing actuator reported as in
+    /// [`NaoArm::load`]).
     pub fn from_xml_str(xml: &str) -> Result<NaoArm> {
-        Self::from_model(Model::from_xml_str(xml)?)
+        match Model::from_xml_str(xml) {
+            Ok(model) => Self::from_model(model),
+            Err(e) => Err(missing_actuator(xml).unwrap_or(SimError::Mujoco(e))),
+        }
     }
 
     /// Check a loaded model: six named joints with the documented ranges, one actuator per joint
     /// (named after it, driving it, with the joint's range as control range and the documented
     /// torque limit), the two sites; then identify each servo's gains.
     pub fn from_model(model: Model) -> Result<NaoArm> {
+        let dt = model.timestep();
+        if !(dt.is_finite() && (MIN_TIMESTEP_S..=MAX_TIMESTEP_S).contains(&dt)) {
+            return Err(SimError::BadOption {
+                name: "option/@timestep",
+                value: dt,
+                allowed: "a time step from 1e-5 to 0.005 s (the controller records at 40 Hz and \
+                          runs the servos at every physics step; the shipped model uses 0.002)",
+            });
+        }
         let mut joints = [JointIndex {
             qpos: 0,
             dof: 0,

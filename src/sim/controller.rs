@@ -14,6 +14,11 @@ use super::spec::{check_posture, clamp_posture, Posture, JOINT_SPECS, NJ};
 /// The paper's recording rate, Hz.
 pub const DEFAULT_RECORD_RATE_HZ: f64 = 40.0;
 
+/// The longest motion one controller call simulates, s.
+pub const MAX_DURATION_S: f64 = 3600.0;
+/// The most physics steps one controller call runs (a bound no input can exceed).
+pub const MAX_STEPS_PER_CALL: u64 = 100_000_000;
+
 /// A key pose of a motion: where to go, at least how long the transition takes, how long to
 /// stay there afterwards.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -374,6 +379,21 @@ impl Controller {
                 reason: "expected a finite number >= 0",
             }
         })?;
+        // a hard bound on the work of one call, whatever the model or the trajectory says
+        if !(duration.is_finite() && (0.0..=MAX_DURATION_S).contains(&duration)) {
+            return Err(SimError::InvalidParameter {
+                name: "duration",
+                value: duration,
+                reason: "a motion of 0 to 3600 s can be simulated in one call",
+            });
+        }
+        if !(dt.is_finite() && dt > 0.0 && duration / dt <= MAX_STEPS_PER_CALL as f64) {
+            return Err(SimError::InvalidParameter {
+                name: "timestep",
+                value: dt,
+                reason: "a positive time step with at most 1e8 physics steps per call",
+            });
+        }
         let n_samples = ((duration * rate) - 1e-9).ceil().max(0.0) as usize;
         let n_steps = ((duration / dt) - 1e-9).ceil().max(0.0) as usize;
         let mut rec = Recording::new(rate);

@@ -67,6 +67,16 @@ pub enum SimError {
         /// What is expected instead.
         reason: &'static str,
     },
+    /// A simulation option of the model is outside what the controller can run.
+    #[error("the arm model's {name} = {value} is not allowed: {allowed}")]
+    BadOption {
+        /// The MJCF option (e.g. `option/@timestep`).
+        name: &'static str,
+        /// The value found.
+        value: f64,
+        /// What is allowed.
+        allowed: &'static str,
+    },
     /// A target trajectory is malformed (empty, times not increasing, lengths differ).
     #[error("invalid target trajectory: {0}")]
     InvalidTrajectory(String),

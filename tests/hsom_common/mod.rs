@@ -219,3 +219,28 @@ pub fn table1_for(dims: usize) -> HsomConfig {
     p.action_length = dims;
     p.check("table1").unwrap()
 }
+
+/// A plain-text model file with its checksum line recomputed (FNV-1a over everything before
+/// it), as anyone can: a valid checksum is no validation.
+pub fn with_checksum(text: &str) -> String {
+    let body_end = text.trim_end_matches('\n').rfind('\n').map_or(0, |i| i + 1);
+    let body = &text[..body_end];
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for &b in body.as_bytes() {
+        h ^= b as u64;
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    format!("{body}checksum {h:016x}\n")
+}
+
+/// The proptest configuration of the fuzz targets: `cases` cases (or `PROPTEST_CASES`) from
+/// the fixed seed 1 (or `PROPTEST_RNG_SEED`): CI runs the same cases every time; the long
+/// campaign (scripts/fuzz-campaign.sh) varies the seed.
+pub fn fuzz_config(cases: u32) -> proptest::test_runner::Config {
+    let env = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<u64>().ok());
+    proptest::test_runner::Config {
+        cases: env("PROPTEST_CASES").map_or(cases, |c| c.min(u32::MAX as u64) as u32),
+        rng_seed: proptest::test_runner::RngSeed::Fixed(env("PROPTEST_RNG_SEED").unwrap_or(1)),
+        ..proptest::test_runner::Config::default()
+    }
+}

@@ -1,0 +1,175 @@
+//! Bad input never crashes, hangs or is silently "fixed" (the classes of issue 11 answered in
+//! the library; docs/RELIABILITY.md): an MJCF model whose time step the controller cannot run,
+//! a model lacking an actuator, a configuration whose root is not `<hsom>`, demonstrations
+//! too short for the action horizon or too large to train on, and model files whose
+//! statistics would size the reproduction without bound.
+
+mod hsom_common;
+
+use cosco_hsom::config::{parse_config, ConfigError, HsomParams};
+use cosco_hsom::hsom::{Hsom, HsomError, PersistError};
+use cosco_hsom::sim::{NaoArm, SimError};
+
+const ARM: &str = include_str!("../models/nao_left_arm.xml");
+
+#[test]
+fn mjcf_time_steps_the_controller_cannot_run_are_refused_before_simulating() {
+    for bad in ["0", "-0.002", "0.05", "1e-7"] {
+        let xml = ARM.replacen("timestep=\"0.002\"", &format!("timestep=\"{bad}\""), 1);
+        assert_ne!(xml, ARM, "the shipped model sets timestep=\"0.002\"");
+        match NaoArm::from_xml_str(&xml) {
+            Err(SimError::BadOption { name, value, .. }) => {
+                assert_eq!(name, "option/@timestep");
+                assert_eq!(value, bad.parse::<f64>().unwrap());
+            }
+            // MuJoCo itself may refuse a non-positive step: an error either way, never a hang
+            Err(SimError::Mujoco(_)) if bad.starts_with('-') || bad == "0" => {}
+            other => panic!("timestep {bad}: {other:?}"),
+        }
+    }
+    // the shipped step loads
+    assert!(NaoArm::from_xml_str(ARM).is_ok());
+}
+
+#[test]
+fn a_model_without_one_of_the_arms_actuators_names_it() {
+    let start = ARM.find("<general name=\"LElbowYaw\"").unwrap();
+    let end = start + ARM[start..].find("/>").unwrap() + 2;
+    let xml = format!("{}{}", &ARM[..start], &ARM[end..]);
+    let e = NaoArm::from_xml_str(&xml).unwrap_err();
+    assert!(
+        matches!(&e, SimError::Missing { kind: "actuator", name } if name == "LElbowYaw"),
+        "{e}"
+    );
+    assert!(e.to_string().contains("LElbowYaw"), "{e}");
+}
+
+#[test]
+fn a_configuration_whose_root_is_not_hsom_is_refused_with_its_line() {
+    let good = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/configs/nao-gestures.xml"
+    ))
+    .unwrap();
+    assert!(parse_config(&good, "good.xml").is_ok());
+    let bad = good
+        .replace("<hsom version=\"1\">", "<mujoco version=\"1\">")
+        .replace("</hsom>", "</mujoco>");
+    let e = parse_config(&bad, "bad.xml").unwrap_err();
+    assert!(matches!(e, ConfigError::Malformed { .. }), "{e}");
+    let m = e.to_string();
+    assert!(
+        m.contains("bad.xml") && m.contains("<mujoco>") && m.contains("<hsom>"),
+        "{m}"
+    );
+}
+
+fn config(horizon: usize, normalisation: &str) -> cosco_hsom::config::HsomConfig {
+    let mut p = HsomParams::table1();
+    p.state_length = 2;
+    p.action_length = 2;
+    p.action_horizon = horizon;
+    p.normalisation = match normalisation {
+        "none" => cosco_hsom::config::Normalisation::None,
+        _ => cosco_hsom::config::Normalisation::Global,
+    };
+    p.check("test").unwrap()
+}
+
+fn line(n: usize, scale: f64) -> Vec<Vec<f64>> {
+    (0..n)
+        .map(|i| {
+            let f = i as f64 / n as f64;
+            vec![scale * (2.0 * f - 1.0), -scale * f]
+        })
+        .collect()
+}
+
+#[test]
+fn demonstrations_shorter_than_the_action_horizon_are_refused() {
+    let e = config(10, "global")
+        .fit_series(&[line(3, 1.0), line(40, 1.0)])
+        .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            HsomError::TooShort {
+                rows: 3,
+                needed: 11,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("series #0"), "{e}");
+    // long enough: trains
+    assert!(config(10, "global")
+        .fit_series(&[line(11, 1.0), line(40, 1.0)])
+        .is_ok());
+}
+
+#[test]
+fn data_too_large_to_train_on_is_refused_instead_of_saving_an_unloadable_model() {
+    // 1e200 raw (normalisation none) and +-1e308 (the range overflows: no normalisation)
+    for (scale, norm) in [(1e200, "none"), (1e308, "global")] {
+        let e = config(1, norm)
+            .fit_series(&[line(40, scale), line(40, scale)])
+            .unwrap_err();
+        assert!(matches!(e, HsomError::OutOfScale { .. }), "{scale}: {e}");
+        assert!(e.to_string().contains("series #"), "{e}");
+    }
+    // large but representable: trains, saves and loads
+    let m = config(1, "none")
+        .fit_series(&[line(40, 1e6), line(40, 1e6)])
+        .unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("m.bin");
+    m.save(&p).unwrap();
+    assert!(Hsom::load(&p).is_ok());
+}
+
+#[test]
+fn model_statistics_that_would_size_the_reproduction_without_bound_are_refused() {
+    let m = config(1, "global")
+        .fit_series(&[line(40, 1.0), line(50, 1.0)])
+        .unwrap();
+    let text = m.to_text();
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("m.txt");
+    // a node held longer than the longest demonstration
+    let bad = replace_line(&text, "dwell ", |v| {
+        let mut v = v;
+        v[0] = 1e300;
+        v
+    });
+    std::fs::write(&p, hsom_common::with_checksum(&bad)).unwrap();
+    let e = Hsom::load(&p).unwrap_err();
+    assert!(matches!(e, PersistError::Corrupted { .. }), "{e}");
+    assert!(
+        e.to_string()
+            .contains("longer than the longest demonstration"),
+        "{e}"
+    );
+    // the model as trained loads (saving refuses what loading would: src/hsom/persist.rs)
+    std::fs::write(&p, &text).unwrap();
+    assert_eq!(Hsom::load(&p).unwrap().to_text(), text);
+}
+
+/// `text` with the values of the line starting with `key` replaced by `f` of them.
+fn replace_line(text: &str, key: &str, f: impl Fn(Vec<f64>) -> Vec<f64>) -> String {
+    text.lines()
+        .map(|l| match l.strip_prefix(key) {
+            Some(rest) => {
+                let v: Vec<f64> = rest
+                    .split_whitespace()
+                    .map(|t| t.parse().unwrap())
+                    .collect();
+                let v: Vec<String> = f(v).iter().map(|x| format!("{x:e}")).collect();
+                format!("{key}{}", v.join(" "))
+            }
+            None => l.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+        + "\n"
+}
