@@ -214,6 +214,19 @@ pub enum DemoError {
         /// This demonstration's columns.
         found: Vec<String>,
     },
+    /// Two demonstrations of one set are sampled at different rates (their `time` columns'
+    /// median sample periods differ by more than 1 %), or only some have a `time` column.
+    #[error("{path}: sampled every {found} s, but {reference} every {expected} s; all demonstrations of a set must share one sampling rate (resample them, or drop every `time` column to declare them equal)")]
+    RateMismatch {
+        /// The differing demonstration.
+        path: String,
+        /// The first demonstration of the set.
+        reference: String,
+        /// The reference's median sample period, s ("none" without a time column).
+        expected: String,
+        /// This demonstration's, s.
+        found: String,
+    },
     /// The number of state columns differs from the configured state length.
     #[error("{path}: {found} state columns but the configured state length is {expected}")]
     WidthMismatch {
@@ -539,8 +552,36 @@ pub fn validate_set(
                 found: d.columns.clone(),
             });
         }
+        let (a, b) = (sample_period(first), sample_period(d));
+        let same = match (a, b) {
+            (None, None) => true,
+            (Some(x), Some(y)) => (x - y).abs() <= 0.01 * x.max(y),
+            _ => false,
+        };
+        if !same {
+            let show =
+                |p: Option<f64>| p.map_or("none (no time column)".to_string(), |v| format!("{v}"));
+            return Err(DemoError::RateMismatch {
+                path: d.source.clone(),
+                reference: first.source.clone(),
+                expected: show(a),
+                found: show(b),
+            });
+        }
     }
     Ok(())
+}
+
+/// The median interval of a demonstration's `time` column, s (None without one or with a
+/// single sample).
+pub fn sample_period(d: &Demonstration) -> Option<f64> {
+    let t = d.time.as_ref()?;
+    let mut dt: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+    if dt.is_empty() {
+        return None;
+    }
+    dt.sort_by(f64::total_cmp);
+    Some(dt[dt.len() / 2])
 }
 
 #[cfg(test)]

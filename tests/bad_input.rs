@@ -173,3 +173,100 @@ fn replace_line(text: &str, key: &str, f: impl Fn(Vec<f64>) -> Vec<f64>) -> Stri
         .join("\n")
         + "\n"
 }
+
+const NAO: &str = include_str!("../configs/nao-gestures.xml");
+
+#[test]
+fn a_missing_level_is_named_by_its_index() {
+    // height 4 with level 1 left out
+    let start = NAO.find("<level index=\"1\">").unwrap();
+    let end = start + NAO[start..].find("</level>").unwrap() + "</level>".len();
+    let bad = format!("{}{}", &NAO[..start], &NAO[end..]);
+    let e = parse_config(&bad, "bad.xml").unwrap_err();
+    assert!(
+        matches!(
+            e,
+            ConfigError::MissingLevel {
+                index: 1,
+                height: 4,
+                listed: 3,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("<level index=\"1\">"), "{e}");
+}
+
+#[test]
+fn mixed_content_names_the_element_and_its_line() {
+    let bad = NAO.replace("<seed>1</seed>", "<seed>1 <b>2</b></seed>");
+    let e = parse_config(&bad, "bad.xml").unwrap_err();
+    let line = NAO[..NAO.find("<seed>").unwrap()].matches('\n').count() + 1;
+    match &e {
+        ConfigError::Malformed {
+            line: l, message, ..
+        } => {
+            assert_eq!(*l, line, "{e}");
+            assert!(message.contains("<seed>"), "{e}");
+        }
+        other => panic!("{other}"),
+    }
+}
+
+#[test]
+fn demonstrations_sampled_at_different_rates_are_refused() {
+    use cosco_hsom::demos::{parse_csv, validate_set, DemoError};
+    let csv = |period: f64| {
+        let mut s = String::from("time,a\n");
+        for i in 0..20 {
+            s.push_str(&format!("{},{}\n", i as f64 * period, i));
+        }
+        parse_csv(&format!("d{period}.csv"), s.as_bytes()).unwrap()
+    };
+    assert!(validate_set(&[csv(0.025), csv(0.025)], None).is_ok());
+    let e = validate_set(&[csv(0.025), csv(0.01)], None).unwrap_err();
+    assert!(matches!(e, DemoError::RateMismatch { .. }), "{e}");
+    assert!(
+        e.to_string().contains("d0.01.csv") && e.to_string().contains("d0.025.csv"),
+        "{e}"
+    );
+    // one with a time column, one without
+    let plain = parse_csv("plain.csv", b"a\n1\n2\n3\n").unwrap();
+    let e = validate_set(&[csv(0.025), plain], None).unwrap_err();
+    assert!(matches!(e, DemoError::RateMismatch { .. }), "{e}");
+}
+
+#[test]
+fn evaluating_a_one_row_or_impossible_reproduction_is_refused() {
+    use cosco_hsom::experiment::evaluate;
+    use cosco_hsom::metrics::MetricsParams;
+    use cosco_hsom::sim::JOINT_NAMES;
+    let arm = NaoArm::load_default().unwrap();
+    let demo = cosco_hsom::demos::Demonstration {
+        source: "demo.csv".into(),
+        columns: JOINT_NAMES.iter().map(|s| s.to_string()).collect(),
+        time: None,
+        rows: (0..40)
+            .map(|i| {
+                let t = i as f64 / 40.0;
+                vec![1.4 - t, 0.3, -1.39, -1.01, 0.0, 0.25]
+            })
+            .collect(),
+    };
+    let params = MetricsParams::default();
+    let one = vec![demo.rows[0].clone()];
+    let e = evaluate(Some(&arm), std::slice::from_ref(&demo), &one, &params).unwrap_err();
+    assert!(e.to_string().contains("1 sample"), "{e}");
+    let mut far = demo.rows.clone();
+    far[5][3] = 10.0;
+    let e = evaluate(Some(&arm), std::slice::from_ref(&demo), &far, &params).unwrap_err();
+    assert!(
+        e.to_string().contains("LElbowRoll") && e.to_string().contains("sample 5"),
+        "{e}"
+    );
+    // a little beyond a limit (encoder noise, a soft joint limit) is scored
+    let mut hair = demo.rows.clone();
+    hair[5][3] = -0.0349066 + 0.1;
+    assert!(evaluate(Some(&arm), std::slice::from_ref(&demo), &hair, &params).is_ok());
+}

@@ -43,6 +43,18 @@ pub enum ConfigError {
         /// Path of the element, e.g. `levels/level[2]/rows`.
         field: String,
     },
+    /// A level of the hierarchy is not listed.
+    #[error("{file}: missing <level index=\"{index}\"> in <levels>: height {height} needs levels 0 to {}, {listed} listed", height - 1)]
+    MissingLevel {
+        /// The file.
+        file: String,
+        /// The first missing index.
+        index: usize,
+        /// The configured height.
+        height: usize,
+        /// The number of `<level>` elements.
+        listed: usize,
+    },
     /// A value is unparsable or out of range.
     #[error("{file}: invalid value {value:?} for <{field}>: {reason}")]
     Invalid {

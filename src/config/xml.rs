@@ -143,6 +143,23 @@ fn check_well_formed(text: &str, file: &str) -> Result<(), ConfigError> {
     reader.config_mut().check_end_names = true;
     let mut depth: i64 = 0;
     let mut roots = 0;
+    // per open element: its name, whether it holds text, whether it holds elements (no
+    // element of the schema holds both: such mixed content is an error naming the element)
+    let mut open: Vec<(Vec<u8>, bool, bool)> = Vec::new();
+    let mixed =
+        |open: &[(Vec<u8>, bool, bool)], reader: &quick_xml::Reader<&[u8]>| match open.last() {
+            Some((name, true, true)) => Err(malformed_here(
+                text,
+                file,
+                reader,
+                format!(
+                    "<{}> holds both text and elements; a value element holds only its value, \
+                     a group only elements",
+                    String::from_utf8_lossy(name)
+                ),
+            )),
+            _ => Ok(()),
+        };
     loop {
         match reader.read_event() {
             Ok(Event::Eof) => break,
@@ -151,6 +168,11 @@ fn check_well_formed(text: &str, file: &str) -> Result<(), ConfigError> {
                     roots += 1;
                     check_root(text, file, e.name().as_ref(), &reader)?;
                 }
+                if let Some(top) = open.last_mut() {
+                    top.2 = true;
+                }
+                mixed(&open, &reader)?;
+                open.push((e.name().as_ref().to_vec(), false, false));
                 depth += 1;
             }
             Ok(Event::Empty(e)) => {
@@ -158,8 +180,23 @@ fn check_well_formed(text: &str, file: &str) -> Result<(), ConfigError> {
                     roots += 1;
                     check_root(text, file, e.name().as_ref(), &reader)?;
                 }
+                if let Some(top) = open.last_mut() {
+                    top.2 = true;
+                }
+                mixed(&open, &reader)?;
             }
-            Ok(Event::End(_)) => depth -= 1,
+            Ok(Event::Text(t)) => {
+                if !t.iter().all(|b| b.is_ascii_whitespace()) {
+                    if let Some(top) = open.last_mut() {
+                        top.1 = true;
+                    }
+                    mixed(&open, &reader)?;
+                }
+            }
+            Ok(Event::End(_)) => {
+                open.pop();
+                depth -= 1
+            }
             Ok(_) => {}
             Err(e) => {
                 let (line, column) = line_col(text, reader.error_position() as usize);
@@ -201,16 +238,31 @@ fn check_root(
     if name == b"hsom" {
         return Ok(());
     }
-    let (line, column) = line_col(text, reader.buffer_position() as usize);
-    Err(ConfigError::Malformed {
-        file: file.to_string(),
-        line,
-        column,
-        message: format!(
+    Err(malformed_here(
+        text,
+        file,
+        reader,
+        format!(
             "the root element is <{}>, a CoSCo-HSOM configuration's is <hsom>",
             String::from_utf8_lossy(name)
         ),
-    })
+    ))
+}
+
+/// A [`ConfigError::Malformed`] at the reader's position.
+fn malformed_here(
+    text: &str,
+    file: &str,
+    reader: &quick_xml::Reader<&[u8]>,
+    message: String,
+) -> ConfigError {
+    let (line, column) = line_col(text, reader.buffer_position() as usize);
+    ConfigError::Malformed {
+        file: file.to_string(),
+        line,
+        column,
+        message,
+    }
 }
 
 struct Fields<'a> {
@@ -306,6 +358,31 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
     let memory: usize = f.req("memory", &raw.memory)?;
     let raw_levels = raw.levels.as_ref().ok_or_else(|| f.missing("levels"))?;
     let n = raw_levels.level.len();
+    // every index 0..height-1 once: which one is missing, or which one is out of range
+    let given: Vec<Option<usize>> = raw_levels
+        .level
+        .iter()
+        .enumerate()
+        .map(|(pos, rl)| {
+            rl.index
+                .as_ref()
+                .map_or(Some(pos), |s| s.trim().parse().ok())
+        })
+        .collect();
+    if let Some(missing) = (0..height.min(1 << 16)).find(|i| !given.contains(&Some(*i))) {
+        let mut distinct = given.clone();
+        distinct.sort();
+        distinct.dedup();
+        // a duplicate or unparsable index is reported below, more precisely
+        if given.iter().all(|g| g.is_some()) && distinct.len() == n && n <= height {
+            return Err(ConfigError::MissingLevel {
+                file: file.to_string(),
+                index: missing,
+                height,
+                listed: n,
+            });
+        }
+    }
     let mut levels: Vec<Option<LevelParams>> = vec![None; n];
     for (pos, rl) in raw_levels.level.iter().enumerate() {
         let idx: usize = match &rl.index {

@@ -51,6 +51,32 @@ pub fn trajectory(
     })
 }
 
+/// How far beyond a joint's range a recorded or reproduced value may lie and still be scored,
+/// rad: encoders read a hair beyond a limit, and the simulated joints' soft limits let a
+/// motion driven into a limit pass it by up to 0.07 rad (measured on the shuffled controls of
+/// tests/gesture_fidelity.rs).
+pub const RANGE_TOLERANCE_RAD: f64 = 0.25;
+
+/// Every posture of `rows` within the arm's joint ranges give or take
+/// [`RANGE_TOLERANCE_RAD`]: a posture farther out is none the arm can take, and scoring it
+/// (with kinematics that clamp it) would hide that.
+fn check_reachable(rows: &[Vec<f64>], which: &str) -> Result<(), ExperimentError> {
+    for (i, r) in rows.iter().enumerate() {
+        for (v, spec) in r.iter().zip(crate::sim::JOINT_SPECS.iter()) {
+            let (lo, hi) = spec.range;
+            if !(v.is_finite() && *v >= lo - RANGE_TOLERANCE_RAD && *v <= hi + RANGE_TOLERANCE_RAD)
+            {
+                return Err(ExperimentError::Invalid(format!(
+                    "{which}, sample {i}: {} = {v} is outside its range [{lo}, {hi}] by more \
+                     than {RANGE_TOLERANCE_RAD} rad: not a posture the arm can take",
+                    spec.name
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Score the reproduction `rows` (columns as in the demonstrations, sampled at the
 /// demonstrations' rate) against each demonstration.
 pub fn evaluate(
@@ -64,6 +90,19 @@ pub fn evaluate(
             "no demonstrations to evaluate against".into(),
         ));
     };
+    if rows.len() < 2 {
+        return Err(ExperimentError::Invalid(format!(
+            "the reproduction has {} sample(s); at least 2 are needed to compare it with \
+             demonstrations",
+            rows.len()
+        )));
+    }
+    if arm.is_some() && are_arm_joints(&first.columns) {
+        check_reachable(rows, "reproduction")?;
+        for d in demos {
+            check_reachable(&d.rows, &d.source)?;
+        }
+    }
     let demo_trajs = demos
         .iter()
         .map(|d| trajectory(arm, &d.columns, &d.rows))
