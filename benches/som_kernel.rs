@@ -1,0 +1,358 @@
+//! The SOM kernel against this CPU's limits and against MiniSom (issue 13).
+//!
+//! ```sh
+//! benches/minisom.sh                          # sets up MiniSom in a venv, then runs this
+//! cargo bench --bench som_kernel              # without MiniSom
+//! cargo bench --bench som_kernel -- --plot docs/figures/som-step-vs-size.png
+//! ```
+//!
+//! Prints, in one run: a roofline estimate for the best-matching-unit scan (flops and bytes per
+//! node, with this CPU's L1 read bandwidth and add throughput measured here), the scan and the
+//! training step of a 16x16 map on 12-D input (blocked kernels, and the node-major loops they
+//! replaced, kept here as the reference), the step against map size (8x8 to 64x64), Table I
+//! trained for 5,000 steps on 3 demonstrations, and, when `MINISOM_PYTHON` names a Python
+//! with MiniSom, MiniSom's training step on the same map and data and the ratio.
+//! Timings are medians of repeated batches (`Instant`), in ns per operation.
+
+mod common;
+
+use std::hint::black_box;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use common::gestures;
+use cosco_hsom::som::reference::NodeMajorMap;
+use cosco_hsom::som::{Neighbourhood, Reach, SelfOrganizingMap, Topology};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+/// Median over `batches` of the mean time per call of `f` (ns), `per_batch` calls a batch.
+fn time_ns(batches: usize, per_batch: usize, mut f: impl FnMut()) -> f64 {
+    for _ in 0..per_batch {
+        f();
+    }
+    let mut v: Vec<f64> = (0..batches)
+        .map(|_| {
+            let t = Instant::now();
+            for _ in 0..per_batch {
+                f();
+            }
+            t.elapsed().as_nanos() as f64 / per_batch as f64
+        })
+        .collect();
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Roofline probes: L1 read bandwidth (bytes/ns) and add throughput (adds/ns), both on
+/// 8-lane f64 loops run under `pulp`'s dispatch, like the kernels.
+fn probes() -> (f64, f64, &'static str) {
+    struct Sum<'a>(&'a [[f64; 8]]);
+    impl pulp::WithSimd for Sum<'_> {
+        type Output = f64;
+        #[inline(always)]
+        fn with_simd<S: pulp::Simd>(self, _: S) -> f64 {
+            let mut acc = [[0.0f64; 8]; 4];
+            for c in self.0.chunks_exact(4) {
+                for (a, v) in acc.iter_mut().zip(c) {
+                    for l in 0..8 {
+                        a[l] += v[l];
+                    }
+                }
+            }
+            acc.iter().flatten().sum()
+        }
+    }
+    struct Adds(f64, usize);
+    impl pulp::WithSimd for Adds {
+        type Output = f64;
+        #[inline(always)]
+        fn with_simd<S: pulp::Simd>(self, _: S) -> f64 {
+            // 8 independent 8-lane accumulators: adds limited by throughput, not latency
+            let mut acc = [[0.0f64; 8]; 8];
+            let mut inc = [[0.0f64; 8]; 8];
+            for (k, a) in inc.iter_mut().enumerate() {
+                for (l, v) in a.iter_mut().enumerate() {
+                    *v = self.0 * (1 + k * 8 + l) as f64;
+                }
+            }
+            for _ in 0..self.1 {
+                for (a, v) in acc.iter_mut().zip(&inc) {
+                    for l in 0..8 {
+                        a[l] += v[l];
+                    }
+                }
+            }
+            acc.iter().flatten().sum()
+        }
+    }
+    let arch = pulp::Arch::new();
+    let name = match arch {
+        pulp::Arch::V4(_) => "AVX-512 (pulp x86-v4)",
+        pulp::Arch::V3(_) => "AVX2+FMA (pulp x86-v3)",
+        _ => "x86-64 baseline (SSE2)",
+    };
+    // 24 KiB: the 16x16x12 map's weights, resident in L1
+    let buf = vec![[1.0f64; 8]; 384];
+    let t = time_ns(31, 2000, || {
+        black_box(arch.dispatch(Sum(black_box(&buf))));
+    });
+    let bw = (384 * 64) as f64 / t;
+    let iters = 10_000;
+    let t = time_ns(31, 20, || {
+        black_box(arch.dispatch(Adds(black_box(1e-9), iters)));
+    });
+    let adds = (iters * 64) as f64 / t;
+    (bw, adds, name)
+}
+
+/// A side x side map on 12-D input and 64 inputs, from seed 1 (the map of benches/hsom.rs).
+fn map_and_data(side: usize) -> (SelfOrganizingMap, Vec<Vec<f64>>) {
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let map = SelfOrganizingMap::new_random(
+        side,
+        side,
+        12,
+        Topology::Orthogonal,
+        &[0.0; 12],
+        &[1.0; 12],
+        &mut rng,
+    );
+    let xs = (0..64)
+        .map(|_| (0..12).map(|_| rng.gen()).collect())
+        .collect();
+    (map, xs)
+}
+
+/// Scan and step (cut, exact) of a side x side map, ns per call.
+fn scan_and_step(side: usize, radius: f64) -> (f64, f64, f64) {
+    let (mut map, xs) = map_and_data(side);
+    let mut i = 0;
+    let scan = time_ns(31, 20_000 / side, || {
+        i = (i + 1) % xs.len();
+        black_box(map.bmu(black_box(&xs[i])));
+    });
+    let mut step = |reach: Reach, map: &mut SelfOrganizingMap| {
+        time_ns(31, 20_000 / side, || {
+            i = (i + 1) % xs.len();
+            let (b, _) = map.bmu(&xs[i]);
+            map.update_reach(&xs[i], None, b, 0.1, radius, Neighbourhood::Gaussian, reach);
+        })
+    };
+    let cut = step(Reach::Cut { h_min: 1e-4 }, &mut map.clone());
+    let exact = step(Reach::Exact, &mut map);
+    (scan, cut, exact)
+}
+
+fn minisom(python: &Path, dir: &Path, steps_per_batch: usize) -> anyhow::Result<(f64, f64)> {
+    let (map, xs) = map_and_data(16);
+    let csv = |rows: &mut dyn Iterator<Item = Vec<f64>>| -> String {
+        rows.map(|r| {
+            r.iter()
+                .map(|v| format!("{v:e}"))
+                .collect::<Vec<_>>()
+                .join(",")
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+    };
+    std::fs::create_dir_all(dir)?;
+    let w = map.all_weights();
+    std::fs::write(
+        dir.join("weights.csv"),
+        csv(&mut w.chunks(12).map(|c| c.to_vec())),
+    )?;
+    std::fs::write(dir.join("inputs.csv"), csv(&mut xs.iter().cloned()))?;
+    // MiniSom has no cut: the reference for the check is the exact update
+    let mut exact = map.clone();
+    for x in xs.iter().cycle().take(200) {
+        let (b, _) = exact.bmu(x);
+        exact.update_reach(x, None, b, 0.1, 2.0, Neighbourhood::Gaussian, Reach::Exact);
+    }
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/minisom_step.py");
+    let out = std::process::Command::new(python)
+        .arg(script)
+        .arg(dir)
+        .arg(steps_per_batch.to_string())
+        .output()?;
+    anyhow::ensure!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout)?;
+    let mut us = f64::NAN;
+    for line in text.lines() {
+        if let Some(v) = line.strip_prefix("step_us ") {
+            us = v.trim().parse()?;
+        }
+    }
+    let theirs: Vec<f64> = std::fs::read_to_string(dir.join("after200.csv"))?
+        .split([',', '\n'])
+        .filter(|s| !s.trim().is_empty())
+        .map(|s| s.trim().parse())
+        .collect::<Result<_, _>>()?;
+    let ours = exact.all_weights();
+    anyhow::ensure!(
+        theirs.len() == ours.len(),
+        "MiniSom weights of another size"
+    );
+    let diff = ours
+        .iter()
+        .zip(&theirs)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    Ok((us * 1000.0, diff))
+}
+
+fn plot(path: &Path, rows: &[(usize, f64, f64, f64)]) -> anyhow::Result<()> {
+    use plotters::prelude::*;
+    let root = BitMapBackend::new(path, (800, 500)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let ymax = rows.iter().map(|r| r.3).fold(0.0, f64::max) * 1.3;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            "SOM training step and BMU scan against map size (12-D input, radius 2)",
+            ("sans-serif", 20),
+        )
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(
+            (32f64..8192f64).log_scale(),
+            (0.01f64..ymax / 1000.0).log_scale(),
+        )?;
+    chart
+        .configure_mesh()
+        .x_desc("nodes (8x8, 16x16, 32x32, 64x64)")
+        .y_desc("time per call (us)")
+        .draw()?;
+    let series: [(&str, RGBColor, fn(&(usize, f64, f64, f64)) -> f64); 3] = [
+        ("BMU scan", BLUE, |r| r.1),
+        ("training step (cut h < 1e-4, default)", RED, |r| r.2),
+        ("training step (exact, every node)", GREEN, |r| r.3),
+    ];
+    for (name, color, f) in series {
+        let pts: Vec<(f64, f64)> = rows
+            .iter()
+            .map(|r| ((r.0 * r.0) as f64, f(r) / 1000.0))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?
+            .label(name)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+        chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))?;
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
+fn main() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().collect();
+    let plot_path = args
+        .iter()
+        .position(|a| a == "--plot")
+        .and_then(|i| args.get(i + 1))
+        .map(PathBuf::from);
+
+    let (bw, adds, isa) = probes();
+    // per node of the 12-D scan: 12 loads of 8 bytes; 12 subtractions, 12 multiplications,
+    // 12 additions (no fused multiply-add: the plain summation order is kept bit for bit)
+    let (bytes, flops, add_ops) = (96.0, 36.0, 24.0);
+    // multiplications go to other pipes than additions on this CPU: adds bound the compute
+    let roof = (bytes / bw).max(add_ops / adds);
+    println!("instruction set in use: {isa}");
+    println!("L1 read bandwidth (measured): {bw:.0} bytes/ns; f64 add throughput (measured): {adds:.1}/ns");
+    println!(
+        "roofline per node (12-D): {bytes} bytes, {flops} flops ({add_ops} adds): \
+         max({:.3}, {:.3}) = {roof:.3} ns/node, {:.0} ns for 256 nodes",
+        bytes / bw,
+        add_ops / adds,
+        roof * 256.0
+    );
+
+    let (map, xs) = map_and_data(16);
+    let mut old = NodeMajorMap::of(&map);
+    let mut i = 0;
+    let old_scan = time_ns(31, 2000, || {
+        i = (i + 1) % xs.len();
+        black_box(old.bmu(black_box(&xs[i])));
+    });
+    let old_step = time_ns(31, 2000, || {
+        i = (i + 1) % xs.len();
+        let (b, _) = old.bmu(&xs[i]);
+        old.update(&xs[i], None, b, 0.1, 2.0, Neighbourhood::Gaussian, 1e-4);
+    });
+    let (scan, cut, exact) = scan_and_step(16, 2.0);
+    println!("\n16x16 map, 12-D input, radius 2 (ns per call):");
+    println!("| kernel | BMU scan | training step | step / scan | scan / roofline |");
+    println!("|---|---|---|---|---|");
+    println!(
+        "| node-major loops (before) | {old_scan:.0} | {old_step:.0} | {:.2} | {:.1} |",
+        old_step / old_scan,
+        old_scan / (roof * 256.0)
+    );
+    println!(
+        "| blocked, cut h < 1e-4 (default) | {scan:.0} | {cut:.0} | {:.2} | {:.1} |",
+        cut / scan,
+        scan / (roof * 256.0)
+    );
+    println!(
+        "| blocked, exact (every node) | {scan:.0} | {exact:.0} | {:.2} | |",
+        exact / scan
+    );
+
+    println!("\nstep against map size (radius 2; ns per call):");
+    println!("| map | BMU scan | ns/node | step, cut | step / scan | step, exact |");
+    println!("|---|---|---|---|---|---|");
+    let mut rows = Vec::new();
+    for side in [8, 16, 32, 64] {
+        let (s, c, e) = scan_and_step(side, 2.0);
+        println!(
+            "| {side}x{side} | {s:.0} | {:.2} | {c:.0} | {:.2} | {e:.0} |",
+            s / (side * side) as f64,
+            c / s
+        );
+        rows.push((side, s, c, e));
+    }
+    if let Some(p) = &plot_path {
+        plot(p, &rows)?;
+        println!("plot: {}", p.display());
+    }
+
+    let demos = gestures(3, 300);
+    let cfg = cosco_hsom::config::load_config(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/table1.xml"),
+    )?;
+    let fit = time_ns(11, 3, || {
+        black_box(cfg.fit(&demos).unwrap());
+    });
+    println!(
+        "\nTable I (configs/table1.xml: 6 levels, 16x16 bottom), 5,000 steps on 3 demonstrations x 300 samples: {:.2} ms",
+        fit / 1e6
+    );
+
+    if let Some(py) = std::env::var_os("MINISOM_PYTHON") {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/minisom");
+        let (theirs, diff) = minisom(Path::new(&py), &dir, 2000)?;
+        println!("\nMiniSom, same 16x16 map and 64 inputs, winner + update (sigma 2, learning rate 0.1):");
+        println!("| | training step (ns) |");
+        println!("|---|---|");
+        println!("| MiniSom | {theirs:.0} |");
+        println!("| cosco-hsom, cut (default) | {cut:.0} |");
+        println!("| cosco-hsom, exact | {exact:.0} |");
+        println!(
+            "ratio MiniSom / cosco-hsom: {:.0}x (cut), {:.0}x (exact)",
+            theirs / cut,
+            theirs / exact
+        );
+        println!("largest weight difference to MiniSom after the same 200 exact steps: {diff:.1e}");
+    }
+    Ok(())
+}
