@@ -84,6 +84,12 @@ struct Scratch {
     /// Gaussian values by half grid step (x) and by row step (y).
     gx: Vec<f64>,
     gy: Vec<f64>,
+    /// Column factors for rows of the BMU's parity and of the other.
+    hx: [Vec<f64>; 2],
+    /// alpha h of the columns of the row being updated.
+    krow: Vec<f64>,
+    /// The blocks to move.
+    plan: kernel::Plan,
 }
 
 impl PartialEq for Scratch {
@@ -429,96 +435,95 @@ impl SelfOrganizingMap {
         I: Iterator<Item = (usize, f64)>,
         F: Fn() -> I,
     {
-        let (rows, cols, dim, n) = (self.rows, self.cols, self.dim, self.len());
+        let (rows, cols, n) = (self.rows, self.cols, self.len());
+        let mut plan = std::mem::take(&mut self.scratch.plan);
+        plan.clear();
         match (reach, neighbourhood) {
             (Reach::Exact, _) | (Reach::Cut { .. }, Neighbourhood::Bubble) => {
                 let h_min = match reach {
                     Reach::Exact => 0.0,
                     Reach::Cut { h_min } => h_min,
                 };
-                let (pos, w) = (&self.pos, &mut self.w);
-                let h = |i: usize| {
-                    let ((ax, ay), (bx, by)) = (pos[bmu], pos[i]);
-                    let d2 = (ax - bx) * (ax - bx) + (ay - by) * (ay - by);
-                    neighbourhood.weight(d2, radius)
-                };
-                kernel::vectorized(
-                    #[inline(always)]
-                    || {
-                        for (b, block) in w.chunks_exact_mut(dim).enumerate() {
-                            let mut k = [0.0; LANES];
-                            for (l, kl) in k.iter_mut().enumerate() {
-                                let i = b * LANES + l;
-                                if i < n {
-                                    let hi = h(i);
-                                    if hi >= h_min {
-                                        *kl = alpha * hi;
-                                    }
-                                }
-                            }
-                            if k.iter().any(|&v| v != 0.0) {
-                                kernel::block_update(block, &k, dims());
+                for b in 0..n.div_ceil(LANES) {
+                    let mut k = [0.0; LANES];
+                    for (l, kl) in k.iter_mut().enumerate() {
+                        let i = b * LANES + l;
+                        if i < n {
+                            let h = neighbourhood.weight(self.grid_distance2(bmu, i), radius);
+                            if h >= h_min {
+                                *kl = alpha * h;
                             }
                         }
-                    },
-                )
+                    }
+                    if k.iter().any(|&v| v != 0.0) {
+                        plan.push((b, k));
+                    }
+                }
             }
             (Reach::Cut { h_min }, Neighbourhood::Gaussian) => {
                 let hex = self.topology == Topology::Hexagonal;
                 let (bx, by) = (bmu % cols, bmu / cols);
-                // column factors by half steps (hexagonal rows are shifted by half a node),
-                // row factors by row steps
-                let (gx, gy) = (&mut self.scratch.gx, &mut self.scratch.gy);
-                kernel::gaussian_table(0.5, radius, 2 * cols + 2, gx);
+                let Scratch {
+                    gx, gy, hx, krow, ..
+                } = &mut self.scratch;
+                // row factors by row steps; column factors by half steps (hexagonal rows are
+                // shifted by half a node), then per column for rows of the BMU's parity (hx[0])
+                // and of the other (hx[1])
                 let row_step = if hex { (3f64).sqrt() / 2.0 } else { 1.0 };
                 kernel::gaussian_table(row_step, radius, rows, gy);
-                let w = &mut self.w;
-                kernel::vectorized(
-                    #[inline(always)]
-                    || {
-                        for y in 0..rows {
-                            let hy = gy[y.abs_diff(by)];
-                            if hy < h_min {
-                                continue;
-                            }
-                            // half steps between the BMU's column and column c of row y
-                            let shift = if hex {
-                                (y % 2) as isize - (by % 2) as isize
-                            } else {
-                                0
-                            };
-                            let half = |c: usize| {
-                                (2 * c as isize + shift - 2 * bx as isize).unsigned_abs()
-                            };
-                            // columns whose factor can reach h_min: a contiguous range around bx
-                            let reach_x = |c: usize| hy * gx[half(c)] >= h_min;
-                            let mut c0 = bx.min(cols - 1);
-                            while c0 > 0 && reach_x(c0 - 1) {
-                                c0 -= 1;
-                            }
-                            let mut c1 = bx.min(cols - 1);
-                            while c1 + 1 < cols && reach_x(c1 + 1) {
-                                c1 += 1;
-                            }
-                            let (i0, i1) = (y * cols + c0, y * cols + c1);
-                            for b in i0 / LANES..=i1 / LANES {
-                                let mut k = [0.0; LANES];
-                                for (l, kl) in k.iter_mut().enumerate() {
-                                    let i = b * LANES + l;
-                                    if (i0..=i1).contains(&i) {
-                                        let h = hy * gx[half(i - y * cols)];
-                                        if h >= h_min {
-                                            *kl = alpha * h;
-                                        }
-                                    }
+                kernel::gaussian_table(0.5, radius, 2 * cols + 2, gx);
+                for (p, hxp) in hx.iter_mut().enumerate().take(1 + usize::from(hex)) {
+                    // half steps from the BMU to column c: 2 (c - bx), +-1 on the other parity
+                    let shift = if by % 2 == 0 {
+                        p as isize
+                    } else {
+                        -(p as isize)
+                    };
+                    hxp.clear();
+                    hxp.extend(
+                        (0..cols)
+                            .map(|c| gx[(2 * c as isize - 2 * bx as isize + shift).unsigned_abs()]),
+                    );
+                }
+                krow.resize(cols, 0.0);
+                for y in 0..rows {
+                    let hy = gy[y.abs_diff(by)];
+                    if hy < h_min {
+                        continue;
+                    }
+                    let hxy = &hx[usize::from(hex && (y % 2 != by % 2))];
+                    // the columns reaching h_min: a contiguous range around bx
+                    let (mut c0, mut c1) = (bx, bx);
+                    while c0 > 0 && hy * hxy[c0 - 1] >= h_min {
+                        c0 -= 1;
+                    }
+                    while c1 + 1 < cols && hy * hxy[c1 + 1] >= h_min {
+                        c1 += 1;
+                    }
+                    for (k, &h) in krow[c0..=c1].iter_mut().zip(&hxy[c0..=c1]) {
+                        let h = hy * h;
+                        *k = if h >= h_min { alpha * h } else { 0.0 };
+                    }
+                    let (row0, i0, i1) = (y * cols, y * cols + c0, y * cols + c1);
+                    for b in i0 / LANES..=i1 / LANES {
+                        let mut k = [0.0; LANES];
+                        let first = b * LANES;
+                        if first >= i0 && first + LANES - 1 <= i1 {
+                            k.copy_from_slice(&krow[first - row0..first - row0 + LANES]);
+                        } else {
+                            for (l, kl) in k.iter_mut().enumerate() {
+                                if (i0..=i1).contains(&(first + l)) {
+                                    *kl = krow[first + l - row0];
                                 }
-                                kernel::block_update(&mut w[b * dim..(b + 1) * dim], &k, dims());
                             }
                         }
-                    },
-                )
+                        plan.push((b, k));
+                    }
+                }
             }
         }
+        kernel::apply_plan(&mut self.w, self.dim, &plan, dims);
+        self.scratch.plan = plan;
     }
 
     /// Mean Euclidean distance from each sample to its best-matching unit (0 for no data).

@@ -41,29 +41,72 @@ pub(crate) fn vectorized<R>(f: impl FnOnce() -> R) -> R {
     arch().dispatch(Run(f))
 }
 
-/// Squared distances of the nodes of one block (`dim` lanes) to `x`, over the dimensions
-/// `dims` yields as `(dimension, x value)`, in that order.
+/// Squared distances of the nodes of `G` consecutive blocks (`G * dim` lanes) to `x`, over
+/// the dimensions `dims` yields as `(dimension, x value)`, in that order. The blocks' sums
+/// are independent chains the CPU runs side by side (one block alone would wait on the
+/// latency of each addition).
 #[inline(always)]
-fn block_dist2(block: &[Lane], dims: impl Iterator<Item = (usize, f64)>) -> Lane {
-    let mut acc = [0.0; LANES];
+fn blocks_dist2<const G: usize>(
+    blocks: &[Lane],
+    dim: usize,
+    dims: impl Iterator<Item = (usize, f64)>,
+) -> [Lane; G] {
+    let mut acc = [[0.0; LANES]; G];
     for (d, xd) in dims {
-        let w = &block[d];
-        for l in 0..LANES {
-            let t = w[l] - xd;
-            acc[l] += t * t;
+        for (g, a) in acc.iter_mut().enumerate() {
+            let w = &blocks[g * dim + d];
+            for l in 0..LANES {
+                let t = w[l] - xd;
+                a[l] += t * t;
+            }
         }
     }
     acc
 }
 
-/// Distances of the padding lanes of the last block set to infinity (never a match).
+/// Blocks whose distances are computed together.
+const GROUP: usize = 4;
+
+/// Call `visit(block index, distances of its nodes)` for every block of `w` in order; the
+/// padding lanes of the last block get infinity (never a match).
 #[inline(always)]
-fn mask_tail(acc: &mut Lane, block: usize, nodes: usize) {
-    let first_pad = nodes.saturating_sub(block * LANES);
-    for (l, a) in acc.iter_mut().enumerate() {
-        if l >= first_pad {
-            *a = f64::INFINITY;
+fn for_each_block<I, F>(
+    w: &[Lane],
+    dim: usize,
+    nodes: usize,
+    dims: F,
+    mut visit: impl FnMut(usize, &Lane),
+) where
+    I: Iterator<Item = (usize, f64)>,
+    F: Fn() -> I,
+{
+    let full = nodes / LANES;
+    let mut emit = |b: usize, a: &Lane| {
+        if b >= full {
+            let first_pad = nodes - b * LANES;
+            let mut a = *a;
+            for (l, v) in a.iter_mut().enumerate() {
+                if l >= first_pad {
+                    *v = f64::INFINITY;
+                }
+            }
+            visit(b, &a);
+        } else {
+            visit(b, a);
         }
+    };
+    let groups = w.chunks_exact(GROUP * dim);
+    let rest = groups.remainder();
+    let mut b = 0;
+    for group in groups {
+        for a in &blocks_dist2::<GROUP>(group, dim, dims()) {
+            emit(b, a);
+            b += 1;
+        }
+    }
+    for block in rest.chunks_exact(dim) {
+        emit(b, &blocks_dist2::<1>(block, dim, dims())[0]);
+        b += 1;
     }
 }
 
@@ -80,18 +123,13 @@ where
         || {
             let mut best_d = [f64::INFINITY; LANES];
             let mut best_b = [0usize; LANES];
-            let full = nodes / LANES;
-            for (b, block) in w.chunks_exact(dim).enumerate() {
-                let mut acc = block_dist2(block, dims());
-                if b >= full {
-                    mask_tail(&mut acc, b, nodes);
-                }
+            for_each_block(w, dim, nodes, dims, |b, acc| {
                 for l in 0..LANES {
                     let closer = acc[l] < best_d[l];
                     best_d[l] = if closer { acc[l] } else { best_d[l] };
                     best_b[l] = if closer { b } else { best_b[l] };
                 }
-            }
+            });
             let mut best = (0, f64::INFINITY);
             for l in 0..LANES {
                 let i = best_b[l] * LANES + l;
@@ -117,12 +155,8 @@ pub(crate) fn best_two(w: &[Lane], dim: usize, nodes: usize, x: &[f64]) -> (usiz
             let inf = f64::INFINITY;
             let (mut d1, mut d2) = ([inf; LANES], [inf; LANES]);
             let (mut b1, mut b2) = ([0usize; LANES], [0usize; LANES]);
-            let full = nodes / LANES;
-            for (b, block) in w.chunks_exact(dim).enumerate() {
-                let mut acc = block_dist2(block, x.iter().copied().take(dim).enumerate());
-                if b >= full {
-                    mask_tail(&mut acc, b, nodes);
-                }
+            let dims = || x.iter().copied().take(dim).enumerate();
+            for_each_block(w, dim, nodes, dims, |b, acc| {
                 for l in 0..LANES {
                     let a = acc[l];
                     let first = a < d1[l];
@@ -144,7 +178,7 @@ pub(crate) fn best_two(w: &[Lane], dim: usize, nodes: usize, x: &[f64]) -> (usiz
                     d1[l] = if first { a } else { d1[l] };
                     b1[l] = if first { b } else { b1[l] };
                 }
-            }
+            });
             // the two smallest (distance, index) pairs among the lanes' two best
             let mut top = [(inf, usize::MAX); 2];
             for l in 0..LANES {
@@ -166,20 +200,54 @@ pub(crate) fn best_two(w: &[Lane], dim: usize, nodes: usize, x: &[f64]) -> (usiz
     )
 }
 
-/// `w += k (x - w)` on one block, lane by lane (a lane with k = 0 keeps its value), over
-/// the dimensions `dims` yields as `(dimension, x value)`.
-#[inline(always)]
-pub(crate) fn block_update(block: &mut [Lane], k: &Lane, dims: impl Iterator<Item = (usize, f64)>) {
-    for (d, xd) in dims {
-        let w = &mut block[d];
-        for l in 0..LANES {
-            w[l] += k[l] * (xd - w[l]);
+/// The blocks an update moves and the factor `alpha h` of each of their nodes (0: the node
+/// keeps its weights).
+pub(crate) type Plan = Vec<(usize, Lane)>;
+
+struct ApplyPlan<'a, F> {
+    w: &'a mut [Lane],
+    dim: usize,
+    plan: &'a [(usize, Lane)],
+    dims: F,
+}
+
+impl<I, F> pulp::WithSimd for ApplyPlan<'_, F>
+where
+    I: Iterator<Item = (usize, f64)>,
+    F: Fn() -> I,
+{
+    type Output = ();
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, simd: S) {
+        // explicit vectors: left to itself, the compiler vectorises the loop over the
+        // dimensions instead, with gathers and scatters
+        for (b, k) in self.plan {
+            let block = &mut self.w[b * self.dim..(b + 1) * self.dim];
+            let (kv, _) = S::as_simd_f64s(k);
+            for (d, xd) in (self.dims)() {
+                let xs = simd.splat_f64s(xd);
+                let (wv, _) = S::as_mut_simd_f64s(&mut block[d]);
+                for (w, &k) in wv.iter_mut().zip(kv) {
+                    // w + k (x - w), the scalar rule's operations in its order
+                    *w = simd.add_f64s(*w, simd.mul_f64s(k, simd.sub_f64s(xs, *w)));
+                }
+            }
         }
     }
 }
 
-/// `v[j] = exp(-(j step)^2 / (2 r^2))` for `j = 0..n`, by a recurrence of products (three
-/// exponentials whatever `n`): `v[j + 1] = v[j] q^(2j + 1)` with `q = exp(-step^2 / (2 r^2))`.
+/// `w += k (x - w)` on every block of `plan`, lane by lane, over the dimensions `dims()`
+/// yields as `(dimension, x value)`.
+pub(crate) fn apply_plan<I, F>(w: &mut [Lane], dim: usize, plan: &[(usize, Lane)], dims: F)
+where
+    I: Iterator<Item = (usize, f64)>,
+    F: Fn() -> I,
+{
+    arch().dispatch(ApplyPlan { w, dim, plan, dims })
+}
+
+/// `v[j] = exp(-(j step)^2 / (2 r^2))` for `j = 0..n`, by a recurrence of products (one
+/// exponential whatever `n`): `v[j + 1] = v[j] q^(2j + 1)` with `q = exp(-step^2 / (2 r^2))`.
 /// Each product adds at most one rounding, so `v[j]` is within about `2j` ulps of the
 /// exponential (`j <= 2 * 64` for a 64x64 map: under 3e-14 relative).
 pub(crate) fn gaussian_table(step: f64, radius: f64, n: usize, out: &mut Vec<f64>) {
