@@ -219,50 +219,42 @@ fn minisom(python: &Path, dir: &Path, steps_per_batch: usize) -> anyhow::Result<
 }
 
 fn plot(path: &Path, rows: &[(usize, f64, f64, f64)]) -> anyhow::Result<()> {
-    use plotters::prelude::*;
-    let root = BitMapBackend::new(path, (800, 500)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let ymax = rows.iter().map(|r| r.3).fold(0.0, f64::max) * 1.3;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "SOM training step and BMU scan against map size (12-D input, radius 2)",
-            ("sans-serif", 20),
-        )
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d(
-            (32f64..8192f64).log_scale(),
-            (0.01f64..ymax / 1000.0).log_scale(),
-        )?;
-    chart
-        .configure_mesh()
-        .x_desc("nodes (8x8, 16x16, 32x32, 64x64)")
-        .y_desc("time per call (us)")
-        .draw()?;
-    let series: [(&str, RGBColor, fn(&(usize, f64, f64, f64)) -> f64); 3] = [
-        ("BMU scan", BLUE, |r| r.1),
-        ("training step (cut h < 1e-4, default)", RED, |r| r.2),
-        ("training step (exact, every node)", GREEN, |r| r.3),
-    ];
-    for (name, color, f) in series {
-        let pts: Vec<(f64, f64)> = rows
-            .iter()
-            .map(|r| ((r.0 * r.0) as f64, f(r) / 1000.0))
-            .collect();
-        chart
-            .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?
-            .label(name)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
-        chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled())))?;
+    use cosco_hsom::plot::{panels_png, Panel, Series, PALETTE};
+    let line =
+        |label: &str, color: usize, per_node: bool, f: fn(&(usize, f64, f64, f64)) -> f64| {
+            let points = rows
+                .iter()
+                .map(|r| {
+                    let n = (r.0 * r.0) as f64;
+                    (n, if per_node { f(r) / n } else { f(r) / 1000.0 })
+                })
+                .collect();
+            Series::new(label, PALETTE[color], points)
+        };
+    let mut per_call = Panel::new(
+        "time per call (radius 2)",
+        "nodes (8x8, 16x16, 32x32, 64x64)",
+        "us",
+    );
+    let mut per_node = Panel::new(
+        "time per node",
+        "nodes (8x8, 16x16, 32x32, 64x64)",
+        "ns / node",
+    );
+    for (panel, pn) in [(&mut per_call, false), (&mut per_node, true)] {
+        panel.series = vec![
+            line("BMU scan", 0, pn, |r| r.1),
+            line("training step, cut h < 1e-4 (default)", 3, pn, |r| r.2),
+            line("training step, exact (every node)", 2, pn, |r| r.3),
+        ];
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()?;
-    root.present()?;
+    panels_png(
+        path,
+        "SOM kernel: 12-D input, AVX-512 through pulp (benches/som_kernel.rs)",
+        &[per_call, per_node],
+        2,
+        (560, 420),
+    )?;
     Ok(())
 }
 
