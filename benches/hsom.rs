@@ -2,32 +2,15 @@
 //!
 //! cargo bench --bench hsom -- --warm-up-time 1 --measurement-time 2
 
+mod common;
+
+use common::gestures;
 use cosco_hsom::config::{HsomParams, MemoryMode};
-use cosco_hsom::demos::Demonstration;
 use cosco_hsom::hsom::{ActivityLevels, ActivityList};
 use cosco_hsom::som::{Neighbourhood, SelfOrganizingMap, Topology};
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-
-fn gestures(k: usize, n: usize) -> Vec<Demonstration> {
-    let mut rng = ChaCha8Rng::seed_from_u64(3);
-    (0..k)
-        .map(|i| Demonstration {
-            source: format!("g{i}"),
-            columns: (0..6).map(|d| format!("j{d}")).collect(),
-            time: None,
-            rows: (0..n)
-                .map(|j| {
-                    let u = j as f64 / n as f64 * std::f64::consts::PI;
-                    (0..6)
-                        .map(|d| (u + 0.2 * d as f64).sin() + rng.gen_range(-0.01..0.01))
-                        .collect()
-                })
-                .collect(),
-        })
-        .collect()
-}
 
 fn step_vs_bmu(c: &mut Criterion) {
     let mut rng = ChaCha8Rng::seed_from_u64(1);

@@ -250,12 +250,7 @@ impl Stm {
             }
             if let Some((x, d2)) = obs {
                 if self.change_ratio < 1.0 {
-                    let dl2: f64 = map
-                        .weights(last)
-                        .iter()
-                        .zip(x)
-                        .map(|(w, v)| (w - v) * (w - v))
-                        .sum();
+                    let dl2 = map.distance2(last, x, 0..map.dim());
                     if d2 > self.change_ratio * self.change_ratio * dl2 {
                         return false;
                     }

@@ -109,7 +109,7 @@ pub(crate) fn bottom_events(model: &Hsom, demo: &[Vec<f64>]) -> Vec<(usize, f64)
             None => true,
             Some(c) if c == b => false,
             Some(c) => {
-                let dc = dist2(map.weights(c), &x);
+                let dc = dist2(&map.weights(c), &x);
                 d2.sqrt() < p.change_ratio * dc.sqrt()
             }
         };
@@ -316,7 +316,7 @@ fn entry_content(
     if level == 0 {
         event_content(&model.maps[0], m, model.dwell[m], code)
     } else {
-        summary(lay, model.maps[level].weights(m), code)
+        summary(lay, &model.maps[level].weights(m), code)
     }
 }
 
@@ -593,14 +593,14 @@ impl Hsom {
                     }
                     ch.input(lay, lay.k, &mut x, &mut mask);
                     let (b, b2) = self.maps[l].best_two(&x);
-                    qe += dist2(self.maps[l].weights(b), &x).sqrt();
+                    qe += dist2(&self.maps[l].weights(b), &x).sqrt();
                     te +=
                         usize::from(self.maps[l].len() > 1 && !self.maps[l].are_neighbours(b, b2));
                     cnt += 1;
                     self.hits[l][b] = self.hits[l][b].saturating_add(1);
                     v.push(Item {
                         node: b as u32,
-                        content: summary(lay, self.maps[l].weights(b), code),
+                        content: summary(lay, &self.maps[l].weights(b), code),
                     });
                 }
                 next_items.push(v);
@@ -1006,7 +1006,7 @@ impl Lists {
             }
             item = Item {
                 node: b as u32,
-                content: summary(lay, model.maps[l].weights(b), code),
+                content: summary(lay, &model.maps[l].weights(b), code),
             };
         }
         surprise

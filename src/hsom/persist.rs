@@ -104,7 +104,7 @@ impl Hsom {
             b.extend_from_slice(&self.trained[l].to_le_bytes());
             f(&mut b, self.qe[l]);
             f(&mut b, self.te[l]);
-            for &w in m.all_weights() {
+            for w in m.all_weights() {
                 f(&mut b, w);
             }
             for &h in &self.hits[l] {
@@ -363,7 +363,7 @@ impl Hsom {
             );
             line(&mut s, "hits", &self.hits[l]);
             for i in 0..m.len() {
-                line(&mut s, "node", m.weights(i));
+                line(&mut s, "node", &m.weights(i));
             }
         }
         let sum = fnv1a(s.as_bytes());

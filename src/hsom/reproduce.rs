@@ -229,11 +229,7 @@ impl Gen<'_> {
             if i == except || self.m.successor[i] == u32::MAX {
                 continue;
             }
-            let d: f64 = map.weights(i)[..state]
-                .iter()
-                .zip(y)
-                .map(|(w, v)| (w - v) * (w - v))
-                .sum();
+            let d = map.distance2(i, y, 0..state);
             if best.map_or(true, |(_, bd)| d < bd) {
                 best = Some((i, d));
             }
@@ -426,10 +422,8 @@ impl Gen<'_> {
             let tol = self.r.end_tolerance * self.qe0;
             let close = tol > 0.0
                 && self.m.end_hits.iter().enumerate().any(|(i, &h)| {
-                    h > 0 && {
-                        let w = &self.m.maps[0].weights(i)[state..];
-                        w.iter().zip(y).map(|(a, b)| (a - b) * (a - b)).sum::<f64>() <= tol * tol
-                    }
+                    h > 0
+                        && self.m.maps[0].distance2(i, y, state..self.m.maps[0].dim()) <= tol * tol
                 });
             if close || self.m.end_hits[self.last_node] > 0 || self.m.end_hits[near] > 0 {
                 return Some(StopReason::EndNode);

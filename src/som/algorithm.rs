@@ -3,6 +3,7 @@
 use rand::Rng;
 
 use super::hyperparams::{Neighbourhood, Topology};
+use super::kernel::{self, Lane, LANES};
 
 /// A node's ID: its `(x, y)` grid position (`x` the column, `y` the row).
 pub type NodeId = (u16, u16);
@@ -58,20 +59,89 @@ pub enum SomError {
     },
 }
 
+/// How far from the best-matching unit [`SelfOrganizingMap::update_reach`] moves nodes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Reach {
+    /// Only nodes whose neighbourhood value h is at least `h_min` (0 < `h_min` < 1). For the
+    /// gaussian that is a disc of radius `r sqrt(2 ln(1 / h_min))` around the BMU, and the
+    /// update visits only the rows and columns that can reach it: with [`DEFAULT_H_MIN`] =
+    /// 1e-4, 4.29 r. A node left out would have moved by less than `alpha h_min |x - w|`.
+    Cut {
+        /// Smallest neighbourhood value applied.
+        h_min: f64,
+    },
+    /// Every node, with h however small (the textbook update; one exponential per node).
+    Exact,
+}
+
+/// The cut of [`SelfOrganizingMap::update`]: nodes with h < 1e-4 are left untouched, the
+/// rule of this map since its first version (for the gaussian, beyond 4.29 learning radii).
+pub const DEFAULT_H_MIN: f64 = 1e-4;
+
+/// Per-update scratch space (not part of a map's value).
+#[derive(Debug, Clone, Default)]
+struct Scratch {
+    /// Gaussian values by half grid step (x) and by row step (y).
+    gx: Vec<f64>,
+    gy: Vec<f64>,
+    /// Column factors for rows of the BMU's parity and of the other.
+    hx: [Vec<f64>; 2],
+    /// alpha h of the columns of the row being updated.
+    krow: Vec<f64>,
+    /// The blocks to move.
+    plan: kernel::Plan,
+}
+
+impl PartialEq for Scratch {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+/// The weights of one node, copied out of the blocked layout; derefs to `&[f64]`.
+#[derive(Debug, Clone)]
+pub struct NodeWeights {
+    inline: [f64; NodeWeights::INLINE],
+    heap: Vec<f64>,
+    len: usize,
+}
+
+impl NodeWeights {
+    const INLINE: usize = 32;
+}
+
+impl std::ops::Deref for NodeWeights {
+    type Target = [f64];
+    #[inline]
+    fn deref(&self) -> &[f64] {
+        if self.len <= Self::INLINE {
+            &self.inline[..self.len]
+        } else {
+            &self.heap
+        }
+    }
+}
+
 /// A 2-D Kohonen map of `rows` x `cols` nodes, each with a weight vector of length `dim`.
 /// Node index `i = y * cols + x` has ID `(x, y)`.
+///
+/// The weights are stored in blocks of [`LANES`] = 8 nodes, dimension by dimension (value
+/// `d` of node `i` at `((i / 8) * dim + d) * 8 + i % 8`): a scan over the nodes reads one
+/// contiguous array and computes 8 nodes at a time in vector registers.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SelfOrganizingMap {
     rows: usize,
     cols: usize,
     dim: usize,
     topology: Topology,
-    weights: Vec<f64>,
+    /// `ceil(rows cols / LANES) * dim` lanes; padding lanes hold 0.
+    w: Vec<Lane>,
     /// Grid position of every node (for neighbourhood distances).
     pos: Vec<(f64, f64)>,
+    scratch: Scratch,
 }
 
-fn positions(rows: usize, cols: usize, topology: Topology) -> Vec<(f64, f64)> {
+pub(crate) fn positions(rows: usize, cols: usize, topology: Topology) -> Vec<(f64, f64)> {
     let mut pos = Vec::with_capacity(rows * cols);
     for y in 0..rows {
         for x in 0..cols {
@@ -88,6 +158,19 @@ fn positions(rows: usize, cols: usize, topology: Topology) -> Vec<(f64, f64)> {
 }
 
 impl SelfOrganizingMap {
+    fn blank(rows: usize, cols: usize, dim: usize, topology: Topology) -> Self {
+        let blocks = (rows * cols).div_ceil(LANES);
+        SelfOrganizingMap {
+            rows,
+            cols,
+            dim,
+            topology,
+            w: vec![[0.0; LANES]; blocks * dim],
+            pos: positions(rows, cols, topology),
+            scratch: Scratch::default(),
+        }
+    }
+
     /// A map whose weights are drawn uniformly from `rng`, dimension `d` inside `[lo[d], hi[d]]`.
     /// `lo` and `hi` must have length `dim`, `rows` and `cols` must be >= 1 (checked by callers).
     pub fn new_random<R: Rng>(
@@ -99,21 +182,14 @@ impl SelfOrganizingMap {
         hi: &[f64],
         rng: &mut R,
     ) -> Self {
-        let mut weights = Vec::with_capacity(rows * cols * dim);
-        for _ in 0..rows * cols {
+        let mut m = Self::blank(rows, cols, dim, topology);
+        for i in 0..rows * cols {
             for d in 0..dim {
                 let u: f64 = rng.gen();
-                weights.push(lo[d] + (hi[d] - lo[d]) * u);
+                m.w[(i / LANES) * dim + d][i % LANES] = lo[d] + (hi[d] - lo[d]) * u;
             }
         }
-        SelfOrganizingMap {
-            rows,
-            cols,
-            dim,
-            topology,
-            weights,
-            pos: positions(rows, cols, topology),
-        }
+        m
     }
 
     /// A map with the given weights (node-major, `rows * cols * dim` values).
@@ -134,22 +210,21 @@ impl SelfOrganizingMap {
                 found: weights.len(),
             });
         }
-        Ok(SelfOrganizingMap {
-            rows,
-            cols,
-            dim,
-            topology,
-            weights,
-            pos: positions(rows, cols, topology),
-        })
+        let mut m = Self::blank(rows, cols, dim, topology);
+        if dim > 0 {
+            for (i, w) in weights.chunks_exact(dim).enumerate() {
+                m.set_weights(i, w);
+            }
+        }
+        Ok(m)
     }
 
     /// Set node `i`'s weights (`dim` values; shorter or longer slices are cut or padded by
     /// what is there already).
     pub fn set_weights(&mut self, i: usize, w: &[f64]) {
-        let d = self.dim;
-        for (dst, src) in self.weights[i * d..(i + 1) * d].iter_mut().zip(w) {
-            *dst = *src;
+        let base = (i / LANES) * self.dim;
+        for (d, &v) in w.iter().take(self.dim).enumerate() {
+            self.w[base + d][i % LANES] = v;
         }
     }
 
@@ -177,14 +252,44 @@ impl SelfOrganizingMap {
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
-    /// All weights, node-major.
-    pub fn all_weights(&self) -> &[f64] {
-        &self.weights
+    /// All weights, node-major (`rows * cols * dim` values, node 0 first): a copy.
+    pub fn all_weights(&self) -> Vec<f64> {
+        let mut v = Vec::with_capacity(self.len() * self.dim);
+        for i in 0..self.len() {
+            v.extend_from_slice(&self.weights(i));
+        }
+        v
     }
-    /// Weight vector of node index `i`.
+    /// Weight vector of node index `i` (a copy out of the blocked layout).
     #[inline]
-    pub fn weights(&self, i: usize) -> &[f64] {
-        &self.weights[i * self.dim..(i + 1) * self.dim]
+    pub fn weights(&self, i: usize) -> NodeWeights {
+        let base = (i / LANES) * self.dim;
+        let lanes = &self.w[base..base + self.dim];
+        let mut out = NodeWeights {
+            inline: [0.0; NodeWeights::INLINE],
+            heap: Vec::new(),
+            len: self.dim,
+        };
+        if self.dim <= NodeWeights::INLINE {
+            for (o, lane) in out.inline.iter_mut().zip(lanes) {
+                *o = lane[i % LANES];
+            }
+        } else {
+            out.heap = lanes.iter().map(|lane| lane[i % LANES]).collect();
+        }
+        out
+    }
+    /// Squared distance from node `i`'s weights, dimensions `range`, to `x` (summed over
+    /// `range` in order, as far as `x` goes).
+    #[inline]
+    pub fn distance2(&self, i: usize, x: &[f64], range: std::ops::Range<usize>) -> f64 {
+        let base = (i / LANES) * self.dim;
+        let mut d = 0.0;
+        for (lane, &v) in self.w[base + range.start..base + range.end].iter().zip(x) {
+            let t = lane[i % LANES] - v;
+            d += t * t;
+        }
+        d
     }
     /// ID `(x, y)` of node index `i`.
     #[inline]
@@ -217,74 +322,55 @@ impl SelfOrganizingMap {
     /// the lowest index.
     #[inline]
     pub fn bmu(&self, x: &[f64]) -> (usize, f64) {
-        let mut best = (0, f64::INFINITY);
-        for (i, w) in self.weights.chunks_exact(self.dim).enumerate() {
-            let mut d = 0.0;
-            for (a, b) in w.iter().zip(x) {
-                let t = a - b;
-                d += t * t;
-            }
-            if d < best.1 {
-                best = (i, d);
-            }
+        if self.dim == 0 {
+            return (0, 0.0);
         }
-        best
+        let dim = self.dim;
+        kernel::argmin(&self.w, dim, self.len(), || {
+            x.iter().copied().take(dim).enumerate()
+        })
     }
 
     /// Best-matching unit of `x` using only the dimensions where `mask` is true (the unknown
     /// dimensions are ignored): its index and squared distance over the known dimensions.
     pub fn bmu_masked(&self, x: &[f64], mask: &[bool]) -> (usize, f64) {
-        let mut best = (0, f64::INFINITY);
-        for (i, w) in self.weights.chunks_exact(self.dim).enumerate() {
-            let mut d = 0.0;
-            for ((a, b), &m) in w.iter().zip(x).zip(mask) {
-                if m {
-                    let t = a - b;
-                    d += t * t;
-                }
-            }
-            if d < best.1 {
-                best = (i, d);
-            }
+        if self.dim == 0 {
+            return (0, 0.0);
         }
-        best
+        let dim = self.dim;
+        kernel::argmin(&self.w, dim, self.len(), || {
+            x.iter()
+                .zip(mask)
+                .take(dim)
+                .enumerate()
+                .filter_map(|(d, (&v, &m))| m.then_some((d, v)))
+        })
     }
 
     /// Best-matching unit of `x` over the dimension range `range` only (e.g. the state half).
     pub fn bmu_range(&self, x: &[f64], range: std::ops::Range<usize>) -> (usize, f64) {
-        let mut best = (0, f64::INFINITY);
-        for (i, w) in self.weights.chunks_exact(self.dim).enumerate() {
-            let mut d = 0.0;
-            for (a, b) in w[range.clone()].iter().zip(x) {
-                let t = a - b;
-                d += t * t;
-            }
-            if d < best.1 {
-                best = (i, d);
-            }
+        if self.dim == 0 {
+            return (0, 0.0);
         }
-        best
+        let range = range.start..range.end.min(self.dim);
+        kernel::argmin(&self.w, self.dim, self.len(), || {
+            range.clone().zip(x.iter().copied())
+        })
     }
 
     /// Indices of the best and second-best matching units of `x`.
     pub fn best_two(&self, x: &[f64]) -> (usize, usize) {
-        let mut b1 = (0, f64::INFINITY);
-        let mut b2 = (0, f64::INFINITY);
-        for (i, w) in self.weights.chunks_exact(self.dim).enumerate() {
-            let d: f64 = w.iter().zip(x).map(|(a, b)| (a - b) * (a - b)).sum();
-            if d < b1.1 {
-                b2 = b1;
-                b1 = (i, d);
-            } else if d < b2.1 {
-                b2 = (i, d);
-            }
+        if self.dim == 0 {
+            return (0, 1.min(self.len().saturating_sub(1)));
         }
-        (b1.0, b2.0)
+        kernel::best_two(&self.w, self.dim, self.len(), x)
     }
 
     /// Kohonen update towards `x` around node `bmu`: every node moves by
     /// `alpha * h(grid distance, radius) * (x - w)`, on the dimensions where `mask` is true
-    /// (all of them when `mask` is `None`). Nodes with h < 1e-4 are left untouched.
+    /// (all of them when `mask` is `None`). Nodes with h < [`DEFAULT_H_MIN`] = 1e-4 are left
+    /// untouched, and only the rows and columns where h can reach 1e-4 are visited (for the
+    /// gaussian, 4.29 radii around the BMU).
     pub fn update(
         &mut self,
         x: &[f64],
@@ -294,29 +380,150 @@ impl SelfOrganizingMap {
         radius: f64,
         neighbourhood: Neighbourhood,
     ) {
+        let reach = Reach::Cut {
+            h_min: DEFAULT_H_MIN,
+        };
+        self.update_reach(x, mask, bmu, alpha, radius, neighbourhood, reach);
+    }
+
+    /// [`SelfOrganizingMap::update`] with a chosen reach: [`Reach::Exact`] moves every node
+    /// (the textbook rule), [`Reach::Cut`] only those with h >= `h_min`. The gaussian's h
+    /// is the product of a row and a column factor (tabulated once per update), equal to
+    /// `exp(-d^2 / (2 r^2))` up to the last bits.
+    #[allow(clippy::too_many_arguments)]
+    pub fn update_reach(
+        &mut self,
+        x: &[f64],
+        mask: Option<&[bool]>,
+        bmu: usize,
+        alpha: f64,
+        radius: f64,
+        neighbourhood: Neighbourhood,
+        reach: Reach,
+    ) {
         let dim = self.dim;
-        for i in 0..self.rows * self.cols {
-            let h = neighbourhood.weight(self.grid_distance2(bmu, i), radius);
-            if h < 1e-4 {
-                continue;
+        if dim == 0 {
+            return;
+        }
+        match mask {
+            None => {
+                let dims = || x.iter().copied().take(dim).enumerate();
+                self.update_with(dims, bmu, alpha, radius, neighbourhood, reach)
             }
-            let k = alpha * h;
-            let w = &mut self.weights[i * dim..(i + 1) * dim];
-            match mask {
-                None => {
-                    for (wv, xv) in w.iter_mut().zip(x) {
-                        *wv += k * (xv - *wv);
+            Some(m) => {
+                let dims = || {
+                    x.iter()
+                        .zip(m)
+                        .take(dim)
+                        .enumerate()
+                        .filter_map(|(d, (&v, &m))| m.then_some((d, v)))
+                };
+                self.update_with(dims, bmu, alpha, radius, neighbourhood, reach)
+            }
+        }
+    }
+
+    fn update_with<I, F>(
+        &mut self,
+        dims: F,
+        bmu: usize,
+        alpha: f64,
+        radius: f64,
+        neighbourhood: Neighbourhood,
+        reach: Reach,
+    ) where
+        I: Iterator<Item = (usize, f64)>,
+        F: Fn() -> I,
+    {
+        let (rows, cols, n) = (self.rows, self.cols, self.len());
+        let mut plan = std::mem::take(&mut self.scratch.plan);
+        plan.clear();
+        match (reach, neighbourhood) {
+            (Reach::Exact, _) | (Reach::Cut { .. }, Neighbourhood::Bubble) => {
+                let h_min = match reach {
+                    Reach::Exact => 0.0,
+                    Reach::Cut { h_min } => h_min,
+                };
+                for b in 0..n.div_ceil(LANES) {
+                    let mut k = [0.0; LANES];
+                    for (l, kl) in k.iter_mut().enumerate() {
+                        let i = b * LANES + l;
+                        if i < n {
+                            let h = neighbourhood.weight(self.grid_distance2(bmu, i), radius);
+                            if h >= h_min {
+                                *kl = alpha * h;
+                            }
+                        }
+                    }
+                    if k.iter().any(|&v| v != 0.0) {
+                        plan.push((b, k));
                     }
                 }
-                Some(m) => {
-                    for ((wv, xv), &mv) in w.iter_mut().zip(x).zip(m) {
-                        if mv {
-                            *wv += k * (xv - *wv);
+            }
+            (Reach::Cut { h_min }, Neighbourhood::Gaussian) => {
+                let hex = self.topology == Topology::Hexagonal;
+                let (bx, by) = (bmu % cols, bmu / cols);
+                let Scratch {
+                    gx, gy, hx, krow, ..
+                } = &mut self.scratch;
+                // row factors by row steps; column factors by half steps (hexagonal rows are
+                // shifted by half a node), then per column for rows of the BMU's parity (hx[0])
+                // and of the other (hx[1])
+                let row_step = if hex { (3f64).sqrt() / 2.0 } else { 1.0 };
+                kernel::gaussian_table(row_step, radius, rows, gy);
+                kernel::gaussian_table(0.5, radius, 2 * cols + 2, gx);
+                for (p, hxp) in hx.iter_mut().enumerate().take(1 + usize::from(hex)) {
+                    // half steps from the BMU to column c: 2 (c - bx), +-1 on the other parity
+                    let shift = if by % 2 == 0 {
+                        p as isize
+                    } else {
+                        -(p as isize)
+                    };
+                    hxp.clear();
+                    hxp.extend(
+                        (0..cols)
+                            .map(|c| gx[(2 * c as isize - 2 * bx as isize + shift).unsigned_abs()]),
+                    );
+                }
+                krow.resize(cols, 0.0);
+                for y in 0..rows {
+                    let hy = gy[y.abs_diff(by)];
+                    if hy < h_min {
+                        continue;
+                    }
+                    let hxy = &hx[usize::from(hex && (y % 2 != by % 2))];
+                    // the columns reaching h_min: a contiguous range around bx
+                    let (mut c0, mut c1) = (bx, bx);
+                    while c0 > 0 && hy * hxy[c0 - 1] >= h_min {
+                        c0 -= 1;
+                    }
+                    while c1 + 1 < cols && hy * hxy[c1 + 1] >= h_min {
+                        c1 += 1;
+                    }
+                    for (k, &h) in krow[c0..=c1].iter_mut().zip(&hxy[c0..=c1]) {
+                        let h = hy * h;
+                        *k = if h >= h_min { alpha * h } else { 0.0 };
+                    }
+                    let (row0, i0, i1) = (y * cols, y * cols + c0, y * cols + c1);
+                    for b in i0 / LANES..=i1 / LANES {
+                        let mut k = [0.0; LANES];
+                        let first = b * LANES;
+                        if first >= i0 && first + LANES - 1 <= i1 {
+                            k.copy_from_slice(&krow[first - row0..first - row0 + LANES]);
+                        } else {
+                            for (l, kl) in k.iter_mut().enumerate() {
+                                if (i0..=i1).contains(&(first + l)) {
+                                    *kl = krow[first + l - row0];
+                                }
+                            }
                         }
+                        plan.push((b, k));
                     }
                 }
             }
         }
+        kernel::apply_plan(&mut self.w, self.dim, &plan, dims);
+        self.scratch.plan = plan;
     }
 
     /// Mean Euclidean distance from each sample to its best-matching unit (0 for no data).
@@ -346,9 +553,10 @@ impl SelfOrganizingMap {
 
 #[cfg(test)]
 mod tests {
+    use super::super::reference::NodeMajorMap;
     use super::super::{Decay, Schedule, SomParams};
     use super::*;
-    use rand::SeedableRng;
+    use rand::{Rng, SeedableRng};
 
     #[test]
     fn ids_round_trip_through_indices() {
@@ -461,6 +669,227 @@ mod tests {
         let inc = w.windows(2).all(|p| p[0] < p[1]);
         let dec = w.windows(2).all(|p| p[0] > p[1]);
         assert!(inc || dec, "{w:?}");
+    }
+
+    /// Largest |a - b| / max(1, |b|) over all weights.
+    fn max_rel_diff(a: &[f64], b: &[f64]) -> f64 {
+        assert_eq!(a.len(), b.len());
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs() / y.abs().max(1.0))
+            .fold(0.0, f64::max)
+    }
+
+    fn random_map(
+        rows: usize,
+        cols: usize,
+        dim: usize,
+        t: Topology,
+        seed: u64,
+    ) -> SelfOrganizingMap {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        SelfOrganizingMap::new_random(
+            rows,
+            cols,
+            dim,
+            t,
+            &vec![-1.0; dim],
+            &vec![1.0; dim],
+            &mut rng,
+        )
+    }
+
+    /// Map shapes with a partial last block (node counts not multiples of 8), a single node,
+    /// a wide dimension, both topologies.
+    const SHAPES: [(usize, usize, usize); 7] = [
+        (1, 1, 3),
+        (3, 5, 2),
+        (7, 9, 12),
+        (16, 16, 12),
+        (5, 13, 7),
+        (4, 4, 40),
+        (1, 10, 1),
+    ];
+
+    #[test]
+    fn searches_match_the_node_by_node_reference_exactly() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        for (s, &(rows, cols, dim)) in SHAPES.iter().enumerate() {
+            for t in [Topology::Orthogonal, Topology::Hexagonal] {
+                let mut m = random_map(rows, cols, dim, t, s as u64);
+                // duplicated nodes: ties must go to the lowest index
+                if m.len() > 3 {
+                    let w = m.weights(1).to_vec();
+                    m.set_weights(m.len() - 1, &w);
+                }
+                let r = NodeMajorMap::of(&m);
+                for q in 0..50 {
+                    let x: Vec<f64> = if q % 5 == 0 {
+                        m.weights(1.min(m.len() - 1)).to_vec()
+                    } else {
+                        (0..dim).map(|_| rng.gen_range(-1.5..1.5)).collect()
+                    };
+                    let mask: Vec<bool> = (0..dim).map(|_| rng.gen_bool(0.6)).collect();
+                    assert_eq!(m.bmu(&x), r.bmu(&x));
+                    assert_eq!(m.bmu_masked(&x, &mask), r.bmu_masked(&x, &mask));
+                    assert_eq!(m.best_two(&x), r.best_two(&x));
+                    let half = dim / 2;
+                    assert_eq!(
+                        m.bmu_range(&x[half..], half..dim),
+                        r.bmu_range(&x[half..], half..dim)
+                    );
+                    assert_eq!(m.bmu_range(&x, 0..half), r.bmu_range(&x, 0..half));
+                    for i in [0, m.len() - 1] {
+                        let d = m.distance2(i, &x, 0..dim);
+                        let w = m.weights(i);
+                        let e: f64 = w.iter().zip(&x).map(|(a, b)| (a - b) * (a - b)).sum();
+                        assert_eq!(d, e);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn search_finds_a_node_in_the_partial_last_block_and_never_a_padding_lane() {
+        // 10 nodes: the second block has 2 real nodes and 6 padding lanes holding 0
+        let mut m = random_map(2, 5, 3, Topology::Orthogonal, 1);
+        m.set_weights(9, &[0.5, 0.5, 0.5]);
+        assert_eq!(m.bmu(&[0.5, 0.5, 0.5]), (9, 0.0));
+        // the padding lanes hold 0: a query at 0 must still get a real node
+        let (b, _) = m.bmu(&[0.0, 0.0, 0.0]);
+        assert!(b < 10);
+        let (a, b) = m.best_two(&[0.5, 0.5, 0.5]);
+        assert!(a == 9 && b < 10);
+    }
+
+    /// Train a map and its reference side by side with the same inputs and schedules.
+    fn train_both(
+        m: &mut SelfOrganizingMap,
+        r: &mut NodeMajorMap,
+        nb: Neighbourhood,
+        reach: Reach,
+        h_min_ref: f64,
+        seed: u64,
+    ) {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let dim = m.dim();
+        let steps = 400;
+        for t in 0..steps {
+            let p = t as f64 / steps as f64;
+            let x: Vec<f64> = (0..dim).map(|_| rng.gen_range(-1.0..1.0)).collect();
+            let mask: Vec<bool> = (0..dim).map(|d| d % 3 != 1 || t % 2 == 0).collect();
+            let mask = (t % 3 == 0).then_some(&mask[..]);
+            let (b, _) = r.bmu(&x);
+            let radius = 4.0 * (0.1f64 / 4.0).powf(p);
+            let alpha = 0.5 * (0.01f64 / 0.5).powf(p);
+            r.update(&x, mask, b, alpha, radius, nb, h_min_ref);
+            m.update_reach(&x, mask, b, alpha, radius, nb, reach);
+        }
+    }
+
+    #[test]
+    fn training_matches_the_reference_within_1e_12() {
+        for (s, &(rows, cols, dim)) in SHAPES.iter().enumerate() {
+            for t in [Topology::Orthogonal, Topology::Hexagonal] {
+                for nb in [Neighbourhood::Gaussian, Neighbourhood::Bubble] {
+                    let cut = Reach::Cut {
+                        h_min: DEFAULT_H_MIN,
+                    };
+                    for (reach, h_ref) in [(cut, DEFAULT_H_MIN), (Reach::Exact, 0.0)] {
+                        let mut m = random_map(rows, cols, dim, t, 10 + s as u64);
+                        let mut r = NodeMajorMap::of(&m);
+                        train_both(&mut m, &mut r, nb, reach, h_ref, s as u64);
+                        let e = max_rel_diff(&m.all_weights(), r.weights());
+                        assert!(
+                            e <= 1e-12,
+                            "{rows}x{cols}x{dim} {t:?} {nb:?} {reach:?}: {e:e}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_comparison_with_the_reference_can_fail() {
+        // negative control: a 0.1 % larger radius is far beyond the 1e-12 tolerance
+        let mut m = random_map(16, 16, 12, Topology::Orthogonal, 3);
+        let mut r = NodeMajorMap::of(&m);
+        let x = vec![0.3; 12];
+        let (b, _) = r.bmu(&x);
+        r.update(
+            &x,
+            None,
+            b,
+            0.2,
+            2.0,
+            Neighbourhood::Gaussian,
+            DEFAULT_H_MIN,
+        );
+        m.update(&x, None, b, 0.2, 2.002, Neighbourhood::Gaussian);
+        assert!(max_rel_diff(&m.all_weights(), r.weights()) > 1e-6);
+    }
+
+    #[test]
+    fn a_tighter_cut_moves_no_node_by_more_than_its_bound() {
+        // h_min = exp(-4.5) cuts the gaussian at 3 radii; a node left out would have moved by
+        // alpha h |x - w| < alpha h_min |x - w|; the nodes inside move exactly
+        let h_min = (-4.5f64).exp();
+        for t in [Topology::Orthogonal, Topology::Hexagonal] {
+            let before = random_map(20, 20, 6, t, 4);
+            let x = vec![0.25; 6];
+            let (b, _) = before.bmu(&x);
+            let (alpha, radius) = (0.3, 2.5);
+            let mut exact = before.clone();
+            exact.update_reach(
+                &x,
+                None,
+                b,
+                alpha,
+                radius,
+                Neighbourhood::Gaussian,
+                Reach::Exact,
+            );
+            let mut cut = before.clone();
+            cut.update_reach(
+                &x,
+                None,
+                b,
+                alpha,
+                radius,
+                Neighbourhood::Gaussian,
+                Reach::Cut { h_min },
+            );
+            let mut left_out = 0;
+            for i in 0..before.len() {
+                let (w0, we, wc) = (before.weights(i), exact.weights(i), cut.weights(i));
+                let inside = before.grid_distance2(b, i) < 9.0 * radius * radius * (1.0 - 1e-9);
+                for d in 0..6 {
+                    if inside {
+                        assert!((wc[d] - we[d]).abs() <= 1e-12 * we[d].abs().max(1.0));
+                    } else {
+                        assert_eq!(wc[d], w0[d]);
+                        assert!((we[d] - wc[d]).abs() <= alpha * h_min * (x[d] - w0[d]).abs());
+                    }
+                }
+                left_out += usize::from(!inside);
+            }
+            assert!(left_out > 100, "{left_out}");
+        }
+    }
+
+    #[test]
+    fn weights_round_trip_through_the_node_major_layout() {
+        let mut m = random_map(5, 13, 7, Topology::Hexagonal, 8);
+        m.update(&[0.1; 7], None, 17, 0.4, 3.0, Neighbourhood::Gaussian);
+        let back = SelfOrganizingMap::from_weights(5, 13, 7, Topology::Hexagonal, m.all_weights())
+            .unwrap();
+        assert_eq!(back, m);
+        assert_eq!(m.weights(17).len(), 7);
+        let wide = random_map(3, 3, 70, Topology::Orthogonal, 2);
+        assert_eq!(wide.weights(8).len(), 70);
+        assert_eq!(&wide.weights(8)[..], &wide.all_weights()[8 * 70..]);
     }
 
     #[test]

@@ -7,6 +7,8 @@
 
 mod algorithm;
 mod hyperparams;
+mod kernel;
+pub mod reference;
 
-pub use algorithm::{NodeId, SelfOrganizingMap, SomError};
+pub use algorithm::{NodeId, NodeWeights, Reach, SelfOrganizingMap, SomError, DEFAULT_H_MIN};
 pub use hyperparams::{Decay, Neighbourhood, Schedule, SomParams, Topology};
