@@ -22,10 +22,13 @@ demo: deps
 	$(CARGO) build --release --bins
 	$(CARGO) run --release --bin simulate -- --out out
 
-## test: the whole test suite, headless
+## test: the whole test suite, headless: with the simulator (default), then without it
+## (the algorithm alone: `--no-default-features`)
 test: deps
 	$(CARGO) test --all-targets
 	$(CARGO) test --doc
+	$(CARGO) test --no-default-features --all-targets
+	$(CARGO) test --no-default-features --doc
 
 ## bench: criterion benchmarks (figures go to docs/BENCHMARKS.md by hand)
 bench: deps
