@@ -87,3 +87,38 @@ def test_dtw_identities(demos):
     assert cosco_hsom.dtw(a, b) == cosco_hsom.dtw(b, a) > 0.0
     assert cosco_hsom.dtw(a.tolist(), b) == cosco_hsom.dtw(a, b)
     assert cosco_hsom.dtw(a, b, per_step=True) < cosco_hsom.dtw(a, b)
+
+
+def test_fits_in_threads_match_the_serial_fit(demos, tmp_path):
+    # Training releases the GIL: fits running in threads at once must still be the seeded,
+    # deterministic fit.
+    import threading
+
+    cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
+    cosco_hsom.Hsom.fit(cfg, demos).save(tmp_path / "serial.bin")
+    models = [None] * 4
+
+    def work(i):
+        models[i] = cosco_hsom.Hsom.fit(cfg, demos)
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(len(models))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for i, m in enumerate(models):
+        m.save(tmp_path / f"t{i}.bin")
+        assert (tmp_path / f"t{i}.bin").read_bytes() == (tmp_path / "serial.bin").read_bytes()
+
+
+def test_native_module_links_no_simulator():
+    import shutil
+    import subprocess
+    import sys
+
+    ldd = shutil.which("ldd")
+    if not sys.platform.startswith("linux") or ldd is None:
+        pytest.skip("ldd (Linux) is needed to list the linked libraries")
+    out = subprocess.run([ldd, cosco_hsom._native.__file__], capture_output=True, text=True).stdout
+    assert "libc" in out  # the listing worked
+    assert "mujoco" not in out.lower() and "osmesa" not in out.lower(), out
