@@ -298,7 +298,11 @@ pub fn evaluate_rows(
 ) -> Result<FidelityReport, StepError> {
     let trajs: Vec<Trajectory> = demos.iter().map(Trajectory::from).collect();
 
-    Ok(fidelity(&trajs, &Trajectory::from_joints(rows.to_vec()), params)?)
+    Ok(fidelity(
+        &trajs,
+        &Trajectory::from_joints(rows.to_vec()),
+        params,
+    )?)
 }
 
 /// An error and its causes on one line, leaving out causes whose text the message above

@@ -169,9 +169,18 @@ fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
     write_strokes(&d.join("demos"));
     let xml = std::fs::read_to_string("configs/nao-gestures.xml")
         .unwrap()
-        .replace("<stateLength>6</stateLength>", "<stateLength>2</stateLength>")
-        .replace("<actionLength>6</actionLength>", "<actionLength>2</actionLength>")
-        .replace("<trainingSteps>5000</trainingSteps>", "<trainingSteps>1500</trainingSteps>");
+        .replace(
+            "<stateLength>6</stateLength>",
+            "<stateLength>2</stateLength>",
+        )
+        .replace(
+            "<actionLength>6</actionLength>",
+            "<actionLength>2</actionLength>",
+        )
+        .replace(
+            "<trainingSteps>5000</trainingSteps>",
+            "<trainingSteps>1500</trainingSteps>",
+        );
     std::fs::write(d.join("c.xml"), xml).unwrap();
     let model = d.join("m.txt");
     cosco()
@@ -201,7 +210,9 @@ fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
         .arg(&rep)
         .assert()
         .success();
-    assert!(std::fs::read_to_string(&rep).unwrap().starts_with("step,x,y\n"));
+    assert!(std::fs::read_to_string(&rep)
+        .unwrap()
+        .starts_with("step,x,y\n"));
     let eval = cosco()
         .arg("evaluate")
         .arg("--reproduction")

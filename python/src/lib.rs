@@ -9,7 +9,7 @@ use std::io::ErrorKind;
 use std::path::PathBuf;
 
 use numpy::ndarray::Array2;
-use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArray, PyUntypedArrayMethods};
+use numpy::{PyArray2, PyReadonlyArray2, PyUntypedArray, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyPermissionError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -51,9 +51,9 @@ fn rows_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<f64>>> {
     if let Ok(a) = obj.downcast::<PyUntypedArray>() {
         if a.ndim() != 2 {
             return Err(PyValueError::new_err(format!(
-                "{what}: a 2-D array (samples x variables) is needed; got a {}-D array of shape {:?}",
+                "{what}: a 2-D array (samples x variables) is needed; got a {}-D array of shape {}",
                 a.ndim(),
-                a.shape()
+                py_shape(a.shape())
             )));
         }
         let cast;
@@ -106,9 +106,9 @@ fn posture_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
     if let Ok(a) = obj.downcast::<PyUntypedArray>() {
         if a.ndim() != 1 {
             return Err(PyValueError::new_err(format!(
-                "{what}: a 1-D array (one value per variable) is needed; got a {}-D array of shape {:?}",
+                "{what}: a 1-D array (one value per variable) is needed; got a {}-D array of shape {}",
                 a.ndim(),
-                a.shape()
+                py_shape(a.shape())
             )));
         }
     }
@@ -117,6 +117,21 @@ fn posture_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
             "{what}: a sequence of numbers (one value per variable) is needed"
         ))
     })
+}
+
+/// A shape as Python writes it: `(5,)`, `(3, 4, 2)`.
+fn py_shape(shape: &[usize]) -> String {
+    match shape {
+        [n] => format!("({n},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(|n| n.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
 }
 
 fn array2<'py>(py: Python<'py>, rows: &[Vec<f64>], width: usize) -> Bound<'py, PyArray2<f64>> {

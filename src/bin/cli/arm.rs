@@ -24,7 +24,6 @@ use super::{compare, hsom_config, progress, read_demos, DEFAULT_CONFIG_NAME};
 /// Default encoder noise of synthetic demonstrations, rad (about Nao's encoder resolution).
 pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
 
-
 /// Load the arm model from `path` or the default model.
 pub fn load_arm(path: Option<&Path>) -> Result<NaoArm> {
     match path {
@@ -90,7 +89,6 @@ pub fn demos(
     let demos = record(&arm, &g, count, seed, noise)?;
     write_demos(out, &demos)
 }
-
 
 /// Everything the main job needs to know.
 #[derive(Debug, Clone)]

@@ -22,9 +22,9 @@ use cosco_hsom::config::HsomConfig;
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::hsom::Hsom;
 use cosco_hsom::metrics::{FidelityReport, MetricsParams};
-use cosco_hsom::steps::{self, sample_period};
 #[cfg(feature = "sim")]
 pub use cosco_hsom::steps::DEFAULT_CONFIG_NAME;
+use cosco_hsom::steps::{self, sample_period};
 
 /// A progress bar on stderr (hidden when stderr is not a terminal).
 pub fn progress(len: u64, what: &str) -> ProgressBar {
