@@ -5,7 +5,11 @@ APT_PACKAGES := libmujoco-dev libosmesa6-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 CARGO ?= cargo
 
-.PHONY: deps demo test bench bindings fmt clippy clean
+PYTHON ?= python3
+# The Python package's virtual environment (git-ignored, under target/).
+PY_VENV := target/py-venv
+
+.PHONY: deps demo test test-python bench bindings fmt clippy clean
 
 ## deps: install the Debian packages (MuJoCo 2.2.2, OSMesa) when any is missing
 deps:
@@ -22,10 +26,27 @@ demo: deps
 	$(CARGO) build --release --bins
 	$(CARGO) run --release --bin simulate -- --out out
 
-## test: the whole test suite, headless
+## test: the whole test suite, headless: with the simulator (default), without it (the
+## algorithm alone, as the Python package builds it), then the Python package's tests
 test: deps
 	$(CARGO) test --all-targets
 	$(CARGO) test --doc
+	$(CARGO) test --no-default-features --all-targets
+	$(CARGO) test --no-default-features --doc
+	$(MAKE) test-python
+
+## test-python: build the Python package (python/) into a local virtual environment and run
+## its tests against the `cosco` binary; skipped when python3 is absent
+test-python:
+	@if ! command -v $(PYTHON) >/dev/null 2>&1; then echo "$(PYTHON) not found: Python tests skipped"; exit 0; fi; \
+	set -e; \
+	if [ ! -x $(PY_VENV)/bin/python ]; then \
+	  $(PYTHON) -m venv $(PY_VENV) || { $(SUDO) apt-get install -y --no-install-recommends python3-venv && $(PYTHON) -m venv $(PY_VENV); }; \
+	fi; \
+	$(PY_VENV)/bin/pip install -q --disable-pip-version-check "maturin>=1.5,<2" pytest numpy; \
+	$(CARGO) build --no-default-features --bin cosco; \
+	PATH="$(CURDIR)/$(PY_VENV)/bin:$$PATH" CARGO_TARGET_DIR=$(CURDIR)/target $(PY_VENV)/bin/pip install -q --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python; \
+	COSCO_BIN=$(CURDIR)/target/debug/cosco $(PY_VENV)/bin/python -m pytest -q python/tests
 
 ## bench: criterion benchmarks (figures go to docs/BENCHMARKS.md by hand)
 bench: deps

@@ -1,5 +1,6 @@
-//! Build script: checks that Debian's MuJoCo 2.2.2 and OSMesa are installed, emits the link
-//! lines, and (feature `regen-bindings` only) regenerates `src/mujoco/ffi.rs` with bindgen.
+//! Build script: with the feature `sim` (the default), checks that Debian's MuJoCo 2.2.2 and
+//! OSMesa are installed, emits the link lines, and (feature `regen-bindings` only) regenerates
+//! `src/mujoco/ffi.rs` with bindgen. Without `sim` it does nothing: the algorithm links neither.
 //!
 //! The generated bindings are committed, so a normal build needs neither libclang nor bindgen
 //! and never re-runs this script unless this file or the wrapper header changes.
@@ -49,6 +50,10 @@ const REQUIREMENTS: &[Requirement] = &[
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=src/mujoco/wrapper.h");
+    // Cargo sets CARGO_FEATURE_<NAME> for each enabled feature of the package being built.
+    if std::env::var_os("CARGO_FEATURE_SIM").is_none() {
+        return;
+    }
 
     let missing: Vec<&Requirement> = REQUIREMENTS
         .iter()

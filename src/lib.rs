@@ -18,21 +18,34 @@
 //! - [`experiment`]: the paper's experiment end to end: demonstrate, execute, evaluate, report.
 //! - [`sweep`]: grids of runs from a TOML spec, on a thread pool or a cluster's job arrays,
 //!   merged into tables and box plots.
+//! - [`steps`]: the steps of `cosco train/reproduce/inspect/evaluate`, shared with the Python
+//!   package (same checks, same messages).
 //! - [`fsutil`]: atomic file writes.
+//!
+//! Feature `sim` (on by default) holds everything that needs MuJoCo or OSMesa: [`mujoco`],
+//! [`render`], [`sim`], [`experiment`] and [`sweep`]. Without it (`--no-default-features`) the
+//! crate is the algorithm, configuration, persistence, GMM/GMR, DTW and metrics (with no
+//! wrist paths: those need the arm's kinematics), and builds without libmujoco-dev.
 #![warn(missing_docs)]
 
 pub mod config;
 pub mod demos;
 pub mod dtw;
+#[cfg(feature = "sim")]
 pub mod experiment;
 pub mod fsutil;
 pub mod gesture;
 pub mod gmr;
 pub mod hsom;
 pub mod metrics;
+#[cfg(feature = "sim")]
 pub mod mujoco;
 pub mod plot;
+#[cfg(feature = "sim")]
 pub mod render;
+#[cfg(feature = "sim")]
 pub mod sim;
 pub mod som;
+pub mod steps;
+#[cfg(feature = "sim")]
 pub mod sweep;

@@ -8,11 +8,14 @@ mod hsom_common;
 
 use cosco_hsom::config::{parse_config, ConfigError, HsomParams};
 use cosco_hsom::hsom::{Hsom, HsomError, PersistError};
+#[cfg(feature = "sim")]
 use cosco_hsom::sim::{NaoArm, SimError};
 
+#[cfg(feature = "sim")]
 const ARM: &str = include_str!("../models/nao_left_arm.xml");
 
 #[test]
+#[cfg(feature = "sim")] // needs the simulated arm
 fn mjcf_time_steps_the_controller_cannot_run_are_refused_before_simulating() {
     for bad in ["0", "-0.002", "0.05", "1e-7"] {
         let xml = ARM.replacen("timestep=\"0.002\"", &format!("timestep=\"{bad}\""), 1);
@@ -32,6 +35,7 @@ fn mjcf_time_steps_the_controller_cannot_run_are_refused_before_simulating() {
 }
 
 #[test]
+#[cfg(feature = "sim")] // needs the simulated arm
 fn a_model_without_one_of_the_arms_actuators_names_it() {
     let start = ARM.find("<general name=\"LElbowYaw\"").unwrap();
     let end = start + ARM[start..].find("/>").unwrap() + 2;
@@ -238,6 +242,7 @@ fn demonstrations_sampled_at_different_rates_are_refused() {
 }
 
 #[test]
+#[cfg(feature = "sim")] // needs the simulated arm
 fn evaluating_a_one_row_or_impossible_reproduction_is_refused() {
     use cosco_hsom::experiment::evaluate;
     use cosco_hsom::metrics::MetricsParams;

@@ -1,5 +1,7 @@
 //! The `cosco` tool end to end: demos -> train -> inspect -> reproduce -> evaluate, and the
 //! errors a user sees for bad input (named file, field or value; exit code 1, no panic).
+//! Recording demonstrations needs the simulator (feature `sim`); training, reproducing,
+//! inspecting and evaluating 2-D data does not, and is tested in both builds.
 
 use assert_cmd::Command;
 use predicates::prelude::*;
@@ -8,6 +10,7 @@ fn cosco() -> Command {
     Command::cargo_bin("cosco").unwrap()
 }
 
+#[cfg(feature = "sim")]
 #[test]
 fn demos_train_inspect_reproduce_evaluate() {
     let dir = tempfile::tempdir().unwrap();
@@ -122,6 +125,7 @@ fn bad_input_is_a_named_error_not_a_panic() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("m.bin"));
+    #[cfg(feature = "sim")]
     cosco()
         .args(["demos", "--gesture", "moonwalk", "--out"])
         .arg(d.join("x"))
@@ -140,4 +144,89 @@ fn bad_input_is_a_named_error_not_a_panic() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("bad.xml"));
+}
+
+/// Three noisy strokes of a 2-D "S" (columns x, y), 60 samples each, no `time` column.
+fn write_strokes(dir: &std::path::Path) {
+    std::fs::create_dir_all(dir).unwrap();
+    for k in 0..3 {
+        let mut text = String::from("x,y\n");
+        for i in 0..60 {
+            let s = i as f64 / 59.0;
+            let a = std::f64::consts::PI * (2.0 * s - 0.5);
+            let x = a.cos() * (1.0 - 2.0 * s) + 0.01 * k as f64;
+            let y = 2.0 * s + 0.02 * (k as f64 * s).sin();
+            text += &format!("{x},{y}\n");
+        }
+        std::fs::write(dir.join(format!("s{k}.csv")), text).unwrap();
+    }
+}
+
+#[test]
+fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    write_strokes(&d.join("demos"));
+    let xml = std::fs::read_to_string("configs/nao-gestures.xml")
+        .unwrap()
+        .replace(
+            "<stateLength>6</stateLength>",
+            "<stateLength>2</stateLength>",
+        )
+        .replace(
+            "<actionLength>6</actionLength>",
+            "<actionLength>2</actionLength>",
+        )
+        .replace(
+            "<trainingSteps>5000</trainingSteps>",
+            "<trainingSteps>1500</trainingSteps>",
+        );
+    std::fs::write(d.join("c.xml"), xml).unwrap();
+    let model = d.join("m.txt");
+    cosco()
+        .arg("train")
+        .arg("--config")
+        .arg(d.join("c.xml"))
+        .arg("--demos")
+        .arg(d.join("demos"))
+        .arg("--out")
+        .arg(&model)
+        .assert()
+        .success();
+    cosco()
+        .arg("inspect")
+        .arg(&model)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("stateLength 2"));
+    let rep = d.join("rep.csv");
+    cosco()
+        .arg("reproduce")
+        .arg("--model")
+        .arg(&model)
+        .arg("--initial-from")
+        .arg(d.join("demos/s0.csv"))
+        .arg("--out")
+        .arg(&rep)
+        .assert()
+        .success();
+    assert!(std::fs::read_to_string(&rep)
+        .unwrap()
+        .starts_with("step,x,y\n"));
+    let eval = cosco()
+        .arg("evaluate")
+        .arg("--reproduction")
+        .arg(&rep)
+        .arg("--demos")
+        .arg(d.join("demos"))
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("joint DTW (data units/step):"));
+    let out = String::from_utf8_lossy(&eval.get_output().stdout).to_string();
+    // Without the arm's kinematics the wrist path is said to be missing, not silently dropped.
+    assert_eq!(
+        out.contains("wrist-path DTW (mm/step):"),
+        cfg!(not(feature = "sim")),
+        "{out}"
+    );
 }

@@ -1,5 +1,6 @@
 //! The rendered clip shows the motion: frames change while the arm moves and stop changing
 //! while it holds (off-screen OSMesa, no display needed).
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use cosco_hsom::experiment::{film, record_demonstrations, DemoSettings};
 use cosco_hsom::gesture::{library::reading_watch, Variation};

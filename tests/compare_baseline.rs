@@ -1,5 +1,6 @@
 //! The GMM/GMR baseline as the comparison runs it: idle trimming that ignores encoder noise,
 //! and the baseline executed on the simulated arm from the initial posture.
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use cosco_hsom::experiment::baseline::{run_baseline, BaselineError, LEAD_IN_PEAK_SPEED};
 use cosco_hsom::experiment::{record_demonstrations, DemoSettings};

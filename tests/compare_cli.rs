@@ -1,6 +1,7 @@
 //! `cosco compare` end to end: demonstrations made by `cosco demos`, both methods executed on
 //! the simulated arm, the report with both columns and every metric, the csvs, the models and
 //! the plots.
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use assert_cmd::Command;
 use cosco_hsom::gmr::load_model;

@@ -7,6 +7,7 @@
 //!
 //! `PROPTEST_CASES` sets the cases (CI: the default below); the long campaign:
 //! docs/RELIABILITY.md.
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 mod hsom_common;
 

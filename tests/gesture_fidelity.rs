@@ -9,6 +9,7 @@
 //! trained on demonstrations of another gesture. The thresholds were measured (see
 //! docs/METRICS.md, "Fidelity thresholds") and sit between the trained results and the
 //! controls.
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 mod hsom_common;
 

@@ -1,6 +1,7 @@
 //! Held-out (leave-one-out) evaluation: one fold per demonstration, each scored against the
 //! held-out demonstration only, for CoSCo-HSOM and GMM/GMR; an untrained hierarchy (the
 //! negative control) scores worse held-out than a trained one; the large-swing counter.
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use std::sync::OnceLock;
 

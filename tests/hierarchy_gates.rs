@@ -3,6 +3,7 @@
 //! configuration at height 1, with negative controls (an untrained hierarchy; the same
 //! demonstrations with their event order shuffled) that must fail the same gates.
 //! Demonstration seed 21 (no setting was chosen on it). Figures: docs/ALGORITHM.md.
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 mod hsom_common;
 

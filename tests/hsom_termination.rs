@@ -1,6 +1,7 @@
 //! Regression: a reproduction always ends. With `timing = speed` and lists updated every step,
 //! the reflex could keep re-executing a node whose output equals the current posture: zero
 //! distance, zero postures, forever (found by the before/after variants of `simulate`).
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use cosco_hsom::config::{load_config, ListUpdate};
 use cosco_hsom::experiment::{record_demonstrations, DemoSettings};

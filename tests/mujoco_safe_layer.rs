@@ -1,4 +1,5 @@
 //! Behaviour of the safe MuJoCo layer through its public API.
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use cosco_hsom::mujoco::{self, Data, MjError, Model};
 use std::path::Path;

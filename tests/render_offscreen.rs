@@ -1,4 +1,5 @@
 //! Off-screen rendering through the public API: real pixels, no display.
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use cosco_hsom::mujoco::{Data, Model};
 use cosco_hsom::render::{Clip, RenderError, RenderOptions, Renderer};

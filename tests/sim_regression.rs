@@ -10,6 +10,7 @@
 //! - holding StandInit for 5 s drifts less than 1e-4 rad (gravity compensation on) and sags less
 //!   than 0.01 rad without it;
 //! - recording: 40 samples per simulated second at 40 Hz, 100 at 100 Hz.
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use cosco_hsom::sim::{
     check_posture, ArmSim, Controller, ControllerConfig, Interpolation, KeyPose, NamedPosture,

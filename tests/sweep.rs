@@ -3,6 +3,7 @@
 //! tables; a restarted sweep skips what is recorded, also after being killed; merge computes
 //! the statistics of the run files and lists failed runs; bad specs and output directories
 //! are refused before any run.
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -1,4 +1,5 @@
-//! `cosco`: the steps of the main job one at a time, for scripting.
+//! `cosco`: the steps of the main job one at a time, for scripting. Without the feature `sim`
+//! only `train`, `reproduce`, `inspect` and `evaluate` (which need no simulator).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -37,6 +38,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    #[cfg(feature = "sim")]
     /// Record synthetic, human-like demonstrations of a gesture on the simulated arm (40 Hz encoders).
     Demos {
         /// Gesture name (reading-watch, wave, reach-point, salute).
@@ -110,6 +112,7 @@ enum Command {
         #[arg(long)]
         model: Option<PathBuf>,
     },
+    #[cfg(feature = "sim")]
     /// Compare CoSCo-HSOM with the paper's GMM/GMR baseline on the same demonstrations, both
     /// executed on the simulated arm from the same initial posture (report, csvs, plots).
     Compare {
@@ -133,6 +136,7 @@ enum Command {
         #[arg(long)]
         model: Option<PathBuf>,
     },
+    #[cfg(feature = "sim")]
     /// Run a sweep: every combination of the axes of a TOML spec (docs/SWEEPS.md), one JSON
     /// file per run in DIR/runs, finished runs skipped; `merge` makes the tables and plots.
     #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
@@ -158,6 +162,7 @@ enum Command {
     },
 }
 
+#[cfg(feature = "sim")]
 #[derive(Subcommand)]
 enum SweepAction {
     /// Merge the run files of DIR (all shards) into tables.md, tables.csv, wins.csv,
@@ -170,6 +175,7 @@ enum SweepAction {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
+        #[cfg(feature = "sim")]
         Command::Demos {
             gesture,
             count,
@@ -216,6 +222,7 @@ fn run(cli: Cli) -> Result<()> {
                     .with_context(|| format!("writing {}", p.display()))?;
             }
         }
+        #[cfg(feature = "sim")]
         Command::Compare {
             demos,
             config,
@@ -238,6 +245,7 @@ fn run(cli: Cli) -> Result<()> {
             }
             outln!("report: {}", job.out.join("report.md").display());
         }
+        #[cfg(feature = "sim")]
         Command::Sweep {
             action,
             spec,

@@ -112,13 +112,7 @@ impl Outcome {
     }
 }
 
-/// Seconds between samples of a demonstration: from its `time` column, else 1/40 s.
-pub fn sample_period(d: &Demonstration) -> f64 {
-    match &d.time {
-        Some(t) if t.len() >= 2 => (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64,
-        _ => 0.025,
-    }
-}
+pub use crate::steps::sample_period;
 
 /// An executed and scored posture sequence.
 #[derive(Debug, Clone)]

@@ -1,0 +1,19 @@
+"""CoSCo-HSOM: learn a gesture from raw demonstrations and reproduce it from the initial
+posture, with hierarchical self-organizing maps (Pierris & Dahl).
+
+The algorithm of the Rust crate ``cosco-hsom``, built without its simulator:
+
+- :class:`Config`: a validated configuration (``Config.from_xml(path)``, ``Config.table1()``).
+- :class:`Hsom`: ``Hsom.fit(config, demos, columns=None)``, ``.reproduce(initial)``,
+  ``.save(path)`` / ``Hsom.load(path)`` (the files of ``cosco train``), ``.summary()``.
+- :mod:`cosco_hsom.gmr`: the paper's GMM/GMR baseline.
+- :func:`dtw`: dynamic time warping.
+
+Demonstrations are 2-D numpy arrays (samples x variables). Bad input raises ``ValueError``
+(``FileNotFoundError`` / ``OSError`` for files) with the message the ``cosco`` CLI prints.
+"""
+
+from ._native import Config, Hsom, dtw
+from . import gmr
+
+__all__ = ["Config", "Hsom", "dtw", "gmr"]

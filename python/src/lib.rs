@@ -1,0 +1,495 @@
+//! `cosco_hsom._native`: the Python binding of the CoSCo-HSOM crate, built without the
+//! simulator. Every step goes through `cosco_hsom::steps`, as `cosco` does, so the checks and
+//! messages are the CLI's. Errors become Python exceptions: `FileNotFoundError` /
+//! `PermissionError` / `OSError` when a file could not be read or written, `ValueError` for
+//! every other refusal; never a panic across the boundary.
+
+use std::error::Error;
+use std::io::ErrorKind;
+use std::path::PathBuf;
+
+use numpy::ndarray::Array2;
+use numpy::{PyArray2, PyReadonlyArray2, PyUntypedArray, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyPermissionError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use cosco_hsom::config::{HsomConfig, HsomParams};
+use cosco_hsom::dtw::{dtw_distance, Band};
+use cosco_hsom::gmr::{self, ComponentChoice, GmrParams};
+use cosco_hsom::steps;
+
+/// The exception for an error: its one-line message (the CLI's), as an `OSError` subclass when
+/// an I/O error is at its root, else `ValueError`.
+fn py_err(e: &(dyn Error + 'static)) -> PyErr {
+    let msg = steps::error_line(e);
+    let mut cause = Some(e);
+    while let Some(c) = cause {
+        if let Some(io) = c.downcast_ref::<std::io::Error>() {
+            return match io.kind() {
+                ErrorKind::NotFound => PyFileNotFoundError::new_err(msg),
+                ErrorKind::PermissionDenied => PyPermissionError::new_err(msg),
+                _ => PyOSError::new_err(msg),
+            };
+        }
+        cause = c.source();
+    }
+    PyValueError::new_err(msg)
+}
+
+fn step_err(e: steps::StepError) -> PyErr {
+    py_err(&e)
+}
+
+fn gmr_err(e: gmr::GmrError) -> PyErr {
+    py_err(&e)
+}
+
+/// Rows of one 2-D input: a numpy array (any numeric dtype, any layout) or a list of rows.
+/// Ragged rows are kept ragged: the library's check names the sample and the widths.
+fn rows_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<f64>>> {
+    if let Ok(a) = obj.downcast::<PyUntypedArray>() {
+        if a.ndim() != 2 {
+            return Err(PyValueError::new_err(format!(
+                "{what}: a 2-D array (samples x variables) is needed; got a {}-D array of shape {}",
+                a.ndim(),
+                py_shape(a.shape())
+            )));
+        }
+        let cast;
+        let a = match obj.extract::<PyReadonlyArray2<'_, f64>>() {
+            Ok(a) => a,
+            Err(_) => {
+                cast = obj.call_method1("astype", ("float64",)).map_err(|e| {
+                    PyValueError::new_err(format!("{what}: the values must be numbers ({e})"))
+                })?;
+                cast.extract::<PyReadonlyArray2<'_, f64>>()?
+            }
+        };
+        return Ok(a.as_array().outer_iter().map(|r| r.to_vec()).collect());
+    }
+    if let Ok(rows) = obj.extract::<Vec<Vec<f64>>>() {
+        return Ok(rows);
+    }
+    let got = match obj.extract::<Vec<f64>>() {
+        Ok(v) => format!(
+            "a 1-D sequence of {} numbers (for one variable, give shape ({}, 1))",
+            v.len(),
+            v.len()
+        ),
+        Err(_) => format!("an object of type {}", obj.get_type().name()?),
+    };
+    Err(PyValueError::new_err(format!(
+        "{what}: a 2-D array or a list of rows of numbers (samples x variables) is needed; got {got}"
+    )))
+}
+
+/// The demonstrations: a list (or other sequence) of 2-D inputs, `demos[i]` in messages.
+fn series_of(demos: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<Vec<f64>>>> {
+    if demos.downcast::<PyUntypedArray>().is_ok() {
+        return Err(PyValueError::new_err(
+            "demos: a list of 2-D arrays is needed, one per demonstration; got one array (wrap it in a list)",
+        ));
+    }
+    let items: Vec<Bound<'_, PyAny>> = demos.extract().map_err(|_| {
+        PyValueError::new_err("demos: a list of 2-D arrays is needed, one per demonstration")
+    })?;
+    items
+        .iter()
+        .enumerate()
+        .map(|(i, d)| rows_of(d, &format!("demos[{i}]")))
+        .collect()
+}
+
+/// A posture: one number per variable.
+fn posture_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
+    if let Ok(a) = obj.downcast::<PyUntypedArray>() {
+        if a.ndim() != 1 {
+            return Err(PyValueError::new_err(format!(
+                "{what}: a 1-D array (one value per variable) is needed; got a {}-D array of shape {}",
+                a.ndim(),
+                py_shape(a.shape())
+            )));
+        }
+    }
+    obj.extract::<Vec<f64>>().map_err(|_| {
+        PyValueError::new_err(format!(
+            "{what}: a sequence of numbers (one value per variable) is needed"
+        ))
+    })
+}
+
+/// A shape as Python writes it: `(5,)`, `(3, 4, 2)`.
+fn py_shape(shape: &[usize]) -> String {
+    match shape {
+        [n] => format!("({n},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(|n| n.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+fn array2<'py>(py: Python<'py>, rows: &[Vec<f64>], width: usize) -> Bound<'py, PyArray2<f64>> {
+    let flat: Vec<f64> = rows.iter().flatten().copied().collect();
+    let a = Array2::from_shape_vec((rows.len(), width), flat)
+        .expect("rows of the library's output all have `width` values");
+    PyArray2::from_owned_array(py, a)
+}
+
+/// A validated CoSCo-HSOM configuration (the XML schema of docs/CONFIG.md).
+#[pyclass(module = "cosco_hsom", name = "Config", frozen)]
+#[derive(Clone)]
+struct Config {
+    inner: HsomConfig,
+}
+
+#[pymethods]
+impl Config {
+    /// Read and validate an XML configuration file.
+    #[staticmethod]
+    fn from_xml(path: PathBuf) -> PyResult<Self> {
+        Ok(Config {
+            inner: steps::config(Some(&path)).map_err(step_err)?,
+        })
+    }
+
+    /// Parse and validate an XML configuration given as text (`name` is used in messages).
+    #[staticmethod]
+    #[pyo3(signature = (text, name = "<string>"))]
+    fn from_xml_string(text: &str, name: &str) -> PyResult<Self> {
+        Ok(Config {
+            inner: cosco_hsom::config::parse_config(text, name).map_err(|e| py_err(&e))?,
+        })
+    }
+
+    /// The paper's Table I (height 6, memory 4, updatePeriod 2, 5000 steps, 6 variables).
+    #[staticmethod]
+    fn table1() -> PyResult<Self> {
+        Ok(Config {
+            inner: HsomParams::table1()
+                .check("Table I")
+                .map_err(|e| py_err(&e))?,
+        })
+    }
+
+    /// The recommended configuration for the simulated Nao arm (configs/nao-gestures.xml).
+    #[staticmethod]
+    fn nao_gestures() -> PyResult<Self> {
+        Ok(Config {
+            inner: steps::config(None).map_err(step_err)?,
+        })
+    }
+
+    /// A copy with some settings changed, validated again.
+    #[pyo3(signature = (*, seed = None, state_length = None, training_steps = None))]
+    fn replace(
+        &self,
+        seed: Option<u64>,
+        state_length: Option<usize>,
+        training_steps: Option<usize>,
+    ) -> PyResult<Self> {
+        let mut p = self.inner.params().clone();
+        if let Some(s) = seed {
+            p.seed = s;
+        }
+        if let Some(n) = state_length {
+            p.state_length = n;
+            p.action_length = n;
+        }
+        if let Some(t) = training_steps {
+            p.training_steps = t;
+        }
+        Ok(Config {
+            inner: p.check(self.inner.source()).map_err(|e| py_err(&e))?,
+        })
+    }
+
+    /// The configuration as XML (every optional value written out).
+    fn to_xml(&self) -> String {
+        self.inner.to_xml()
+    }
+
+    /// Seed of every random draw.
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.inner.params().seed
+    }
+
+    /// Number of variables of a demonstration (stateLength).
+    #[getter]
+    fn state_length(&self) -> usize {
+        self.inner.params().state_length
+    }
+
+    /// Number of training steps.
+    #[getter]
+    fn training_steps(&self) -> usize {
+        self.inner.params().training_steps
+    }
+
+    /// Number of levels.
+    #[getter]
+    fn height(&self) -> usize {
+        self.inner.params().height
+    }
+
+    /// Where the configuration came from (a file name).
+    #[getter]
+    fn source(&self) -> String {
+        self.inner.source().to_string()
+    }
+
+    fn __repr__(&self) -> String {
+        let p = self.inner.params();
+        format!(
+            "Config(source={:?}, seed={}, state_length={}, height={}, training_steps={})",
+            self.inner.source(),
+            p.seed,
+            p.state_length,
+            p.height,
+            p.training_steps
+        )
+    }
+}
+
+/// A trained CoSCo-HSOM hierarchy.
+#[pyclass(module = "cosco_hsom", name = "Hsom", frozen)]
+struct Hsom {
+    inner: cosco_hsom::hsom::Hsom,
+    /// The model in messages: its file, or `in memory`.
+    name: String,
+}
+
+#[pymethods]
+impl Hsom {
+    /// Train on demonstrations (a list of 2-D arrays, samples x variables), with optional
+    /// column names (default x0, x1, ...). The GIL is released while training.
+    #[staticmethod]
+    #[pyo3(signature = (config, demos, columns = None))]
+    fn fit(
+        py: Python<'_>,
+        config: &Config,
+        demos: &Bound<'_, PyAny>,
+        columns: Option<Vec<String>>,
+    ) -> PyResult<Self> {
+        let series = series_of(demos)?;
+        let demos = steps::demonstrations_from_rows(series, columns).map_err(step_err)?;
+        let cfg = config.inner.clone();
+        let model = py
+            .allow_threads(move || steps::train(&cfg, &demos, None))
+            .map_err(step_err)?;
+        Ok(Hsom {
+            inner: model,
+            name: "in memory".into(),
+        })
+    }
+
+    /// Load a model saved by `Hsom.save` or `cosco train` (.bin or .txt).
+    #[staticmethod]
+    fn load(path: PathBuf) -> PyResult<Self> {
+        Ok(Hsom {
+            inner: steps::load_model(&path).map_err(step_err)?,
+            name: path.display().to_string(),
+        })
+    }
+
+    /// Save the model (.bin binary, .txt plain text; written atomically).
+    fn save(&self, path: PathBuf) -> PyResult<()> {
+        steps::save_model(&self.inner, &path).map_err(step_err)
+    }
+
+    /// Reproduce the gesture from an initial posture: a 2-D array, one row per step (the first
+    /// row is the initial posture).
+    fn reproduce<'py>(
+        &self,
+        py: Python<'py>,
+        initial: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let initial = posture_of(initial, "initial")?;
+        let rep = py
+            .allow_threads(|| steps::reproduce(&self.inner, &self.name, &initial))
+            .map_err(step_err)?;
+        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+    }
+
+    /// The names of the variables the model learned.
+    #[getter]
+    fn columns(&self) -> Vec<String> {
+        self.inner.columns().to_vec()
+    }
+
+    /// The configuration the model was trained with.
+    #[getter]
+    fn config(&self) -> Config {
+        Config {
+            inner: self.inner.config().clone(),
+        }
+    }
+
+    /// The model's levels, sizes and quality measures (what `cosco inspect` prints).
+    fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let s = self.inner.summary();
+        let d = PyDict::new(py);
+        d.set_item("memory_mode", format!("{:?}", s.memory_mode))?;
+        d.set_item("memory", s.memory)?;
+        d.set_item("update_period", s.update_period)?;
+        d.set_item("state_length", s.state_length)?;
+        d.set_item("weights", s.weights)?;
+        d.set_item("demo_lengths", s.demo_lengths.to_vec())?;
+        d.set_item("demo_events", s.demo_events.to_vec())?;
+        let levels = PyList::empty(py);
+        for l in &s.levels {
+            let ld = PyDict::new(py);
+            ld.set_item("level", l.level)?;
+            ld.set_item("rows", l.rows)?;
+            ld.set_item("cols", l.cols)?;
+            ld.set_item("topology", format!("{:?}", l.topology))?;
+            ld.set_item("input_dim", l.input_dim)?;
+            ld.set_item("period", l.period)?;
+            ld.set_item("trained", l.trained)?;
+            ld.set_item("nodes_used", l.nodes_used)?;
+            ld.set_item("quantization_error", l.quantization_error)?;
+            ld.set_item("topographic_error", l.topographic_error)?;
+            ld.set_item("prediction_accuracy", l.prediction_accuracy)?;
+            ld.set_item("lookup_accuracy", l.lookup_accuracy)?;
+            levels.append(ld)?;
+        }
+        d.set_item("levels", levels)?;
+        Ok(d)
+    }
+
+    fn __str__(&self) -> String {
+        self.inner.summary().to_string()
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Hsom(model={:?}, columns={:?}, height={})",
+            self.name,
+            self.inner.columns(),
+            self.inner.height()
+        )
+    }
+}
+
+/// The paper's baseline: a Gaussian mixture over (time, variables), regressed on time.
+#[pyclass(module = "cosco_hsom.gmr", name = "GmrModel", frozen)]
+struct GmrModel {
+    inner: gmr::GmrModel,
+    sample_period: f64,
+}
+
+#[pymethods]
+impl GmrModel {
+    /// Fit the baseline (idle trimming, DTW alignment, resampling, EM; components fixed or
+    /// chosen by BIC over 1..=8 when `components` is None).
+    #[staticmethod]
+    #[pyo3(signature = (demos, columns = None, components = None, seed = 0, sample_period = 0.025))]
+    fn fit(
+        py: Python<'_>,
+        demos: &Bound<'_, PyAny>,
+        columns: Option<Vec<String>>,
+        components: Option<usize>,
+        seed: u64,
+        sample_period: f64,
+    ) -> PyResult<Self> {
+        let series = series_of(demos)?;
+        let demos = steps::demonstrations_from_rows(series, columns).map_err(step_err)?;
+        let mut params = GmrParams::new().seed(seed).sample_period(sample_period);
+        if let Some(k) = components {
+            params = params.components(ComponentChoice::Fixed(k));
+        }
+        let params = params.check().map_err(gmr_err)?;
+        let model = py
+            .allow_threads(move || {
+                cosco_hsom::demos::validate_set(&demos, None)?;
+                Ok::<_, steps::StepError>(params.fit(&demos))
+            })
+            .map_err(step_err)?
+            .map_err(gmr_err)?;
+        Ok(GmrModel {
+            inner: model,
+            sample_period,
+        })
+    }
+
+    /// Load a model saved by `save` (or `cosco compare`).
+    #[staticmethod]
+    #[pyo3(signature = (path, sample_period = 0.025))]
+    fn load(path: PathBuf, sample_period: f64) -> PyResult<Self> {
+        Ok(GmrModel {
+            inner: gmr::load_model(&path).map_err(gmr_err)?,
+            sample_period,
+        })
+    }
+
+    /// Save the model (JSON, written atomically).
+    fn save(&self, path: PathBuf) -> PyResult<()> {
+        gmr::save_model(&path, &self.inner).map_err(gmr_err)
+    }
+
+    /// The regressed gesture: the conditional mean at every sample period over the learned
+    /// duration, one row per step.
+    #[pyo3(signature = (period = None))]
+    fn reproduce<'py>(
+        &self,
+        py: Python<'py>,
+        period: Option<f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let preds = self
+            .inner
+            .reproduce(period.unwrap_or(self.sample_period))
+            .map_err(gmr_err)?;
+        let rows: Vec<Vec<f64>> = preds.into_iter().map(|p| p.mean).collect();
+        Ok(array2(py, &rows, self.inner.columns().len()))
+    }
+
+    /// Learned duration of the gesture, seconds.
+    #[getter]
+    fn duration(&self) -> f64 {
+        self.inner.duration()
+    }
+
+    /// Number of mixture components.
+    #[getter]
+    fn n_components(&self) -> usize {
+        self.inner.gmm().n_components()
+    }
+
+    /// The names of the variables.
+    #[getter]
+    fn columns(&self) -> Vec<String> {
+        self.inner.columns().to_vec()
+    }
+}
+
+/// Dynamic time warping between two sequences (2-D: samples x variables, same width), with
+/// Euclidean local cost and no band: the summed cost of the cheapest warping path, or the
+/// mean cost per path step with `per_step=True`.
+#[pyfunction]
+#[pyo3(signature = (a, b, per_step = false))]
+fn dtw(a: &Bound<'_, PyAny>, b: &Bound<'_, PyAny>, per_step: bool) -> PyResult<f64> {
+    let a = rows_of(a, "a")?;
+    let b = rows_of(b, "b")?;
+    let cost = dtw_distance(&a, &b, Band::None).map_err(|e| py_err(&e))?;
+    Ok(if per_step {
+        cost.per_step()
+    } else {
+        cost.distance
+    })
+}
+
+/// The native part of the `cosco_hsom` package.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Config>()?;
+    m.add_class::<Hsom>()?;
+    m.add_class::<GmrModel>()?;
+    m.add_function(wrap_pyfunction!(dtw, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,38 @@
+"""Shared data and paths of the Python tests."""
+
+import os
+import pathlib
+import shutil
+import sys
+
+import numpy as np
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "python" / "examples"
+SHAPE_XML = EXAMPLES / "shape2d.xml"
+sys.path.insert(0, str(EXAMPLES))
+from shape2d import figure_eight  # noqa: E402  (the example's data: one generator)
+
+
+@pytest.fixture
+def demos():
+    rng = np.random.default_rng(7)
+    return [figure_eight(rng) for _ in range(7)]
+
+
+def write_csv(path, columns, rows):
+    """A demonstration file as `cosco` reads it; repr() round-trips every float exactly."""
+    with open(path, "w") as f:
+        f.write(",".join(columns) + "\n")
+        for r in rows:
+            f.write(",".join(repr(float(v)) for v in r) + "\n")
+
+
+@pytest.fixture
+def cosco_bin():
+    """The `cosco` binary (COSCO_BIN, set by `make test-python`, or on PATH)."""
+    b = os.environ.get("COSCO_BIN") or shutil.which("cosco")
+    if not b or not os.path.exists(b):
+        pytest.skip("no `cosco` binary: set COSCO_BIN (make test-python does)")
+    return b

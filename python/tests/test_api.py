@@ -1,0 +1,124 @@
+"""The Python API on its own: fitting and reproducing a 2-D shape, the summary, save/load,
+GMM/GMR and DTW."""
+
+import numpy as np
+import pytest
+
+import cosco_hsom
+from conftest import SHAPE_XML
+
+
+def mean_dtw(path, demos):
+    return np.mean([cosco_hsom.dtw(path, d, per_step=True) for d in demos])
+
+
+def test_reproduction_follows_the_demonstrations(demos):
+    cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
+    model = cosco_hsom.Hsom.fit(cfg, demos, columns=["x", "y"])
+    path = model.reproduce(demos[0][0])
+    assert isinstance(path, np.ndarray) and path.dtype == np.float64
+    assert path.ndim == 2 and path.shape[1] == 2 and len(path) > 20
+    np.testing.assert_allclose(path[0], demos[0][0], rtol=0, atol=1e-12)
+    # Negative control: the same shape traversed backwards has the same points but not the
+    # gesture; a faithful reproduction is much closer to the demonstrations than it is.
+    backwards = demos[0][::-1]
+    assert mean_dtw(path, demos) < 0.5 * mean_dtw(backwards, demos[1:])
+
+
+def test_same_seed_same_model_other_seed_other_model(demos, tmp_path):
+    cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
+    a = cosco_hsom.Hsom.fit(cfg, demos)
+    b = cosco_hsom.Hsom.fit(cfg, demos)
+    c = cosco_hsom.Hsom.fit(cfg.replace(seed=cfg.seed + 1), demos)
+    for m, name in [(a, "a"), (b, "b"), (c, "c")]:
+        m.save(tmp_path / f"{name}.bin")
+    assert (tmp_path / "a.bin").read_bytes() == (tmp_path / "b.bin").read_bytes()
+    assert (tmp_path / "a.bin").read_bytes() != (tmp_path / "c.bin").read_bytes()
+    assert a.columns == ["x0", "x1"]
+
+
+@pytest.mark.parametrize("ext", ["bin", "txt"])
+def test_save_load_round_trip(demos, tmp_path, ext):
+    model = cosco_hsom.Hsom.fit(cosco_hsom.Config.from_xml(SHAPE_XML), demos, columns=["x", "y"])
+    p = tmp_path / f"m.{ext}"
+    model.save(p)
+    back = cosco_hsom.Hsom.load(str(p))
+    assert back.columns == ["x", "y"]
+    np.testing.assert_array_equal(back.reproduce(demos[2][0]), model.reproduce(demos[2][0]))
+    back.save(tmp_path / f"again.{ext}")
+    assert (tmp_path / f"again.{ext}").read_bytes() == p.read_bytes()
+
+
+def test_summary(demos):
+    cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
+    s = cosco_hsom.Hsom.fit(cfg, demos).summary()
+    assert s["state_length"] == 2
+    assert [l["level"] for l in s["levels"]] == list(range(cfg.height))
+    assert s["demo_lengths"] == [100.0, 100.0, 100.0]
+    assert s["levels"][0]["rows"] == 16 and s["levels"][0]["nodes_used"] > 0
+
+
+def test_config_table1_and_replace():
+    t = cosco_hsom.Config.table1()
+    assert (t.height, t.state_length, t.training_steps, t.seed) == (6, 6, 5000, 1)
+    r = t.replace(state_length=2, training_steps=300)
+    assert (r.state_length, r.training_steps) == (2, 300)
+    back = cosco_hsom.Config.from_xml_string(r.to_xml())
+    assert back.to_xml() == r.to_xml()
+    with pytest.raises(ValueError, match="trainingSteps"):
+        t.replace(training_steps=0)
+
+
+def test_gmr_baseline(demos, tmp_path):
+    g = cosco_hsom.gmr.fit(demos, columns=["x", "y"], components=6, seed=1)
+    assert g.n_components == 6 and g.columns == ["x", "y"]
+    path = g.reproduce()
+    assert path.shape[1] == 2 and len(path) > 20
+    assert mean_dtw(path, demos) < 0.5 * mean_dtw(demos[0][::-1], demos[1:])
+    g.save(tmp_path / "g.json")
+    np.testing.assert_allclose(cosco_hsom.gmr.load(tmp_path / "g.json").reproduce(), path)
+    with pytest.raises(ValueError, match="demonstrations"):
+        cosco_hsom.gmr.fit(demos[:1])
+
+
+def test_dtw_identities(demos):
+    a, b = demos[0], demos[1]
+    assert cosco_hsom.dtw(a, a) == 0.0
+    assert cosco_hsom.dtw(a, b) == cosco_hsom.dtw(b, a) > 0.0
+    assert cosco_hsom.dtw(a.tolist(), b) == cosco_hsom.dtw(a, b)
+    assert cosco_hsom.dtw(a, b, per_step=True) < cosco_hsom.dtw(a, b)
+
+
+def test_fits_in_threads_match_the_serial_fit(demos, tmp_path):
+    # Training releases the GIL: fits running in threads at once must still be the seeded,
+    # deterministic fit.
+    import threading
+
+    cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
+    cosco_hsom.Hsom.fit(cfg, demos).save(tmp_path / "serial.bin")
+    models = [None] * 4
+
+    def work(i):
+        models[i] = cosco_hsom.Hsom.fit(cfg, demos)
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(len(models))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for i, m in enumerate(models):
+        m.save(tmp_path / f"t{i}.bin")
+        assert (tmp_path / f"t{i}.bin").read_bytes() == (tmp_path / "serial.bin").read_bytes()
+
+
+def test_native_module_links_no_simulator():
+    import shutil
+    import subprocess
+    import sys
+
+    ldd = shutil.which("ldd")
+    if not sys.platform.startswith("linux") or ldd is None:
+        pytest.skip("ldd (Linux) is needed to list the linked libraries")
+    out = subprocess.run([ldd, cosco_hsom._native.__file__], capture_output=True, text=True).stdout
+    assert "libc" in out  # the listing worked
+    assert "mujoco" not in out.lower() and "osmesa" not in out.lower(), out

@@ -1,0 +1,417 @@
+//! The steps that need the simulated arm (feature `sim`): recording demonstrations, and the
+//! main job of `simulate` (train, execute, score, plot, film, report).
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+
+use cosco_hsom::demos::{self, write_csv, Demonstration};
+use cosco_hsom::experiment::baseline::GMR_NAME;
+use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
+use cosco_hsom::experiment::report::{level_rows, DemoInfo, Report, Stage};
+use cosco_hsom::experiment::variants::{reference_variants, run_variant, variants};
+use cosco_hsom::experiment::{
+    are_arm_joints, demo_wrist_paths, film, hsom_folds, learn_and_reproduce, leave_one_out,
+    sample_period, synthetic_demonstrations, DemoSettings, HeldOutSummary, Training, Transition,
+};
+use cosco_hsom::gesture::Gesture;
+use cosco_hsom::plot::BLACK;
+use cosco_hsom::render::RenderOptions;
+use cosco_hsom::sim::{NaoArm, JOINT_NAMES};
+
+use super::{compare, hsom_config, progress, read_demos, DEFAULT_CONFIG_NAME};
+/// Default encoder noise of synthetic demonstrations, rad (about Nao's encoder resolution).
+pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
+
+/// Load the arm model from `path` or the default model.
+pub fn load_arm(path: Option<&Path>) -> Result<NaoArm> {
+    match path {
+        Some(p) => {
+            NaoArm::load(p).with_context(|| format!("loading the arm model {}", p.display()))
+        }
+        None => NaoArm::load_default().context("loading the default arm model"),
+    }
+}
+
+/// Look a gesture up by name, with the list of known names on failure.
+pub fn gesture(name: &str) -> Result<Gesture> {
+    match Gesture::by_name(name) {
+        Some(g) => Ok(g),
+        None => bail!(
+            "unknown gesture '{name}': allowed {}",
+            Gesture::names().join(", ")
+        ),
+    }
+}
+
+/// Record synthetic demonstrations in the simulator, with a progress bar.
+pub fn record(
+    arm: &NaoArm,
+    gesture: &Gesture,
+    count: usize,
+    seed: u64,
+    noise: f64,
+) -> Result<Vec<Demonstration>> {
+    let settings = DemoSettings {
+        encoder_noise: noise,
+        ..DemoSettings::default()
+    };
+    let pb = progress(count as u64, "demonstrating");
+    let demos = synthetic_demonstrations(arm, gesture, count, seed, &settings, |_| pb.inc(1))?;
+    pb.finish_and_clear();
+    Ok(demos)
+}
+
+/// Write demonstrations as `demo_01.csv`, ... in `dir` (created if missing).
+pub fn write_demos(dir: &Path, demos: &[Demonstration]) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let mut files = Vec::new();
+    for (i, d) in demos.iter().enumerate() {
+        let p = dir.join(format!("demo_{:02}.csv", i + 1));
+        demos::write_csv(&p, d)?;
+        files.push(p);
+    }
+    Ok(files)
+}
+
+/// `cosco demos`: record and write demonstrations.
+pub fn demos(
+    gesture_name: &str,
+    count: usize,
+    seed: u64,
+    out: &Path,
+    noise: f64,
+    model: Option<&Path>,
+) -> Result<Vec<PathBuf>> {
+    let g = gesture(gesture_name)?;
+    let arm = load_arm(model)?;
+    let demos = record(&arm, &g, count, seed, noise)?;
+    write_demos(out, &demos)
+}
+
+/// Everything the main job needs to know.
+#[derive(Debug, Clone)]
+pub struct Job {
+    /// Gesture of the synthetic demonstrations.
+    pub gesture: String,
+    /// Configuration file (None: built-in Table I).
+    pub config: Option<PathBuf>,
+    /// Directory of recorded demonstrations (None: synthetic).
+    pub demos: Option<PathBuf>,
+    /// Seed of the job.
+    pub seed: u64,
+    /// Number of synthetic demonstrations.
+    pub count: usize,
+    /// Encoder noise of synthetic demonstrations, rad.
+    pub noise: f64,
+    /// Render the clip and contact sheet.
+    pub render: bool,
+    /// Output directory.
+    pub out: PathBuf,
+    /// Arm model file.
+    pub model: Option<PathBuf>,
+    /// How the learned postures become servo targets.
+    pub transition: Transition,
+    /// Also run the before/after variants.
+    pub variants: bool,
+    /// Also run the held-out (leave-one-out) evaluation of both methods.
+    pub heldout: bool,
+}
+
+/// Wall time of the main job's stages.
+pub struct Stopwatch {
+    /// The stages timed so far.
+    pub stages: Vec<Stage>,
+    /// Start of the current stage.
+    pub t: Instant,
+}
+
+impl Stopwatch {
+    pub fn new() -> Self {
+        Stopwatch {
+            stages: Vec::new(),
+            t: Instant::now(),
+        }
+    }
+    pub fn lap(&mut self, stage: &str) -> f64 {
+        let s = self.t.elapsed().as_secs_f64();
+        self.stages.push(Stage {
+            stage: stage.to_string(),
+            seconds: s,
+        });
+        self.t = Instant::now();
+        s
+    }
+}
+
+/// File size in bytes (0 when it cannot be read).
+pub fn file_size(p: &Path) -> u64 {
+    std::fs::metadata(p).map(|m| m.len()).unwrap_or(0)
+}
+
+/// The four joints of the paper's Fig. 4.
+pub const FIG4_JOINTS: [(usize, &str); 4] = [
+    (0, "LShoulderPitch"),
+    (1, "LShoulderRoll"),
+    (2, "LElbowYaw"),
+    (3, "LElbowRoll"),
+];
+
+/// The main job: demonstrations -> training -> reproduction in the simulator -> report,
+/// plots and clip, all written into `job.out`.
+pub fn main_job(job: &Job) -> Result<Report> {
+    let mut clock = Stopwatch::new();
+    let out = &job.out;
+    std::fs::create_dir_all(out.join("demos"))
+        .with_context(|| format!("creating {}", out.display()))?;
+    let cfg = hsom_config(job.config.as_deref())?;
+    let arm = load_arm(job.model.as_deref())?;
+    let mut files = Vec::new();
+
+    // 1. Demonstrations.
+    let (demos, gesture) = match &job.demos {
+        Some(dir) => (
+            read_demos(std::slice::from_ref(dir), Some(cfg.params().state_length))?,
+            None,
+        ),
+        None => {
+            let g = gesture(&job.gesture)?;
+            let demos = record(&arm, &g, job.count, job.seed, job.noise)?;
+            (demos, Some(g.name.to_string()))
+        }
+    };
+    if !are_arm_joints(&demos[0].columns) {
+        bail!(
+            "the demonstrations' columns are {:?}; the simulated arm needs exactly {:?} (use `cosco train` / `cosco reproduce` for other data)",
+            demos[0].columns,
+            JOINT_NAMES
+        );
+    }
+    let demo_files = write_demos(&out.join("demos"), &demos)?;
+    let demo_info: Vec<DemoInfo> = demos
+        .iter()
+        .zip(&demo_files)
+        .map(|(d, f)| DemoInfo {
+            file: f.strip_prefix(out).unwrap_or(f).display().to_string(),
+            samples: d.rows.len(),
+            duration_s: (d.rows.len().saturating_sub(1)) as f64 * sample_period(d),
+        })
+        .collect();
+    files.extend(demo_info.iter().map(|d| d.file.clone()));
+    clock.lap("demonstrations (simulate + record)");
+
+    // 2-4. Training, reproduction from the initial posture on the simulated arm, metrics.
+    let pb = progress(cfg.params().training_steps as u64, "training");
+    let run = learn_and_reproduce(
+        &arm,
+        &cfg,
+        &demos,
+        Training::Trained,
+        job.transition,
+        Some(&|done, _| pb.set_position(done as u64)),
+    )?;
+    pb.finish_and_clear();
+    clock.stages.push(Stage {
+        stage: "training".into(),
+        seconds: run.train_s,
+    });
+    clock.stages.push(Stage {
+        stage: "reproduction (predict + execute) and metrics".into(),
+        seconds: (clock.t.elapsed().as_secs_f64() - run.train_s).max(0.0),
+    });
+    clock.t = Instant::now();
+    let hsom_result = write_hsom_run(out, &run, Vec::new(), &mut files)?;
+    let executed = &run.executed;
+    clock.lap("writing the model and reproduction.csv");
+
+    // 5. Plots.
+    let demo_curves: Vec<Curve> = demos
+        .iter()
+        .enumerate()
+        .map(|(i, d)| Curve::demo(i, d.time.as_deref().unwrap_or(&[]), &d.rows))
+        .collect();
+    let mut curves = demo_curves.clone();
+    curves.push(Curve::reproduction(
+        "CoSCo-HSOM reproduction",
+        &executed.time,
+        &executed.qpos,
+    ));
+    joint_panels_png(
+        &out.join("joints.png"),
+        "Training demonstrations (colour) and the reproduced gesture (black)",
+        &FIG4_JOINTS,
+        &curves,
+        "rad",
+    )?;
+    files.push("joints.png".into());
+    let demo_wrists = demo_wrist_paths(&arm, &demos)?;
+    let mut paths = demo_paths(&demo_wrists);
+    paths.push(Path3::reproduction(
+        "CoSCo-HSOM reproduction",
+        BLACK,
+        &executed.wrist,
+    ));
+    wrist_png(
+        &out.join("wrist.png"),
+        "Wrist path (l_wrist), torso frame",
+        &paths,
+    )?;
+    files.push("wrist.png".into());
+    clock.lap("plots");
+
+    // 5b. The paper's baseline (GMM/GMR) on the same demonstrations, executed and scored the
+    // same way (cli/compare.rs). It needs at least two demonstrations: otherwise noted, skipped.
+    let mut methods = vec![hsom_result];
+    match compare::baseline_section(
+        &arm,
+        &demos,
+        &demo_wrists,
+        executed,
+        out,
+        compare::DEFAULT_COMPONENTS,
+        &mut files,
+    ) {
+        Ok(gmr_result) => methods.push(gmr_result),
+        Err(e) => {
+            eprintln!("warning: GMM/GMR baseline skipped: {e:#}");
+            methods[0]
+                .notes
+                .push(format!("GMM/GMR baseline not run: {e:#}"));
+        }
+    }
+    clock.lap("GMM/GMR baseline (fit + execute + metrics + plots)");
+
+    // 5c. Held-out: each demonstration in turn left out, both methods (experiment::heldout).
+    let (heldout, heldout_note) = if !job.heldout {
+        (None, Some("--no-heldout was given".to_string()))
+    } else if demos.len() < 2 {
+        let note = format!(
+            "{} demonstration(s); leave-one-out needs at least 2",
+            demos.len()
+        );
+        methods[0]
+            .notes
+            .push(format!("held-out evaluation not run: {note}"));
+        (None, Some(note))
+    } else {
+        let h = leave_one_out(&arm, &cfg, &demos, job.transition)?;
+        methods[0].heldout = Some(h.hsom.clone());
+        if let Some(g) = methods.iter_mut().find(|m| m.name == GMR_NAME) {
+            g.heldout = h.gmr.clone();
+        }
+        clock.lap("held-out (leave-one-out, both methods, every fold)");
+        (Some(h), None)
+    };
+
+    // 5d. Before / after: the beyond-the-paper options switched off (docs/ALGORITHM.md).
+    let mut variant_results = Vec::new();
+    if job.variants {
+        let mut vs = reference_variants(&cfg, job.transition)?;
+        vs.extend(variants(&cfg, job.transition)?);
+        let pb = progress(vs.len() as u64, "variants");
+        let mut main = methods[0].clone();
+        main.name = format!("{} ({})", cfg.source(), job.transition.name());
+        if job.heldout && main.heldout.is_none() && demos.len() >= 2 {
+            let folds = hsom_folds(&arm, &cfg, &demos, Training::Trained, job.transition)?;
+            main.heldout = HeldOutSummary::of(&folds.iter().collect::<Vec<_>>());
+        }
+        variant_results.push(main);
+        for v in &vs {
+            variant_results.push(run_variant(&arm, v, &demos, job.heldout)?);
+            pb.inc(1);
+        }
+        pb.finish_and_clear();
+        clock.lap(if job.heldout {
+            "before/after variants (train + reproduce + execute + metrics each, in-sample and held-out)"
+        } else {
+            "before/after variants (train + reproduce + execute + metrics each)"
+        });
+    }
+
+    // 6. Clip.
+    if job.render {
+        let opts = RenderOptions {
+            width: 480,
+            height: 360,
+            shadows: true,
+            multisample: false,
+            camera: Some("front".into()),
+        };
+        let stride = 2;
+        let pb = progress(executed.len().div_ceil(stride) as u64, "rendering");
+        let clip = film(&arm, executed, &opts, stride, |n, _| {
+            pb.set_position(n as u64)
+        })?;
+        pb.finish_and_clear();
+        clip.write_gif(&out.join("clip.gif"))?;
+        clip.write_contact_sheet(&out.join("contact_sheet.png"), 8, 4, true)?;
+        files.push("clip.gif".into());
+        files.push("contact_sheet.png".into());
+        clock.lap("rendering (clip + contact sheet)");
+    }
+
+    files.push("report.md".into());
+    files.push("report.json".into());
+    let report = Report {
+        title: format!(
+            "CoSCo-HSOM on the simulated Nao left arm{}",
+            gesture
+                .as_deref()
+                .map(|g| format!(": {g}"))
+                .unwrap_or_default()
+        ),
+        gesture,
+        seed: job.seed,
+        config: job
+            .config
+            .as_ref()
+            .map_or(DEFAULT_CONFIG_NAME.into(), |p| p.display().to_string()),
+        demos: demo_info,
+        methods,
+        variants: variant_results,
+        heldout,
+        heldout_note,
+        levels: level_rows(&run.model),
+        stages: clock.stages,
+        files,
+    };
+    report
+        .write(out)
+        .with_context(|| format!("writing the report into {}", out.display()))?;
+    Ok(report)
+}
+
+/// Save a CoSCo-HSOM run's model (`model.bin`) and executed trajectory (`reproduction.csv`)
+/// into `out`, list them in `files`, and return its column of the report (notes: why it
+/// stopped, postures per level, then `notes`).
+pub fn write_hsom_run(
+    out: &Path,
+    run: &cosco_hsom::experiment::Outcome,
+    notes: Vec<String>,
+    files: &mut Vec<String>,
+) -> Result<cosco_hsom::experiment::report::MethodResult> {
+    let model_path = out.join("model.bin");
+    run.model.save(&model_path)?;
+    files.push("model.bin".into());
+    write_csv(
+        &out.join("reproduction.csv"),
+        &run.executed.to_demonstration("CoSCo-HSOM reproduction"),
+    )?;
+    files.push("reproduction.csv".into());
+    let mut all = vec![
+        format!("stopped: {:?}", run.reproduction.stop),
+        levels_note(&run.reproduction.predicted_by),
+    ];
+    all.extend(notes);
+    Ok(run.method_result("CoSCo-HSOM", file_size(&model_path), all))
+}
+
+/// "predicted by level": how many postures each level produced.
+fn levels_note(by: &[usize]) -> String {
+    let top = by.iter().copied().max().unwrap_or(0);
+    let counts: Vec<String> = (0..=top)
+        .map(|l| format!("L{l}: {}", by.iter().filter(|&&b| b == l).count()))
+        .collect();
+    format!("postures predicted per level: {}", counts.join(", "))
+}
