@@ -23,7 +23,8 @@
 //! - [`fsutil`]: atomic file writes.
 //!
 //! Feature `sim` (on by default) holds everything that needs MuJoCo or OSMesa: [`mujoco`],
-//! [`render`], [`sim`], [`experiment`] and [`sweep`]. Without it (`--no-default-features`) the
+//! [`render`], [`sim`], [`experiment`] and [`sweep`], and turns on `plot` ([`plot`]: PNG
+//! plots, whose only users are the simulator's reports). Without it (`--no-default-features`) the
 //! crate is the algorithm, configuration, persistence, GMM/GMR, DTW and metrics (with no
 //! wrist paths: those need the arm's kinematics), and builds without libmujoco-dev.
 #![warn(missing_docs)]
@@ -40,6 +41,7 @@ pub mod hsom;
 pub mod metrics;
 #[cfg(feature = "sim")]
 pub mod mujoco;
+#[cfg(feature = "plot")]
 pub mod plot;
 #[cfg(feature = "sim")]
 pub mod render;

@@ -173,16 +173,14 @@ pub fn demonstrations_from_rows(
         .collect())
 }
 
-/// Check the demonstrations as a set against the configuration, then train, calling
+/// Check the demonstrations as a set against the configuration (at least one; see
+/// [`demos::validate_set`]), then train, calling
 /// `progress(done, total)` now and then when given.
 pub fn train(
     cfg: &HsomConfig,
     demos: &[Demonstration],
     progress: Option<&dyn Fn(usize, usize)>,
 ) -> Result<Hsom, StepError> {
-    if demos.is_empty() {
-        return Err(DemoError::NoDemonstrations.into());
-    }
     demos::validate_set(demos, Some(cfg.params().state_length))?;
     Ok(cfg.fit_with_progress(demos, progress)?)
 }

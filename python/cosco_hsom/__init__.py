@@ -10,10 +10,21 @@ The algorithm of the Rust crate ``cosco-hsom``, built without its simulator:
 - :func:`dtw`: dynamic time warping.
 
 Demonstrations are 2-D numpy arrays (samples x variables). Bad input raises ``ValueError``
-(``FileNotFoundError`` / ``OSError`` for files) with the message the ``cosco`` CLI prints.
+with the message the ``cosco`` CLI prints; for files that cannot be read or written it is
+also a ``FileNotFoundError`` / ``PermissionError`` / ``OSError`` (:class:`MissingFileError`,
+:class:`FileAccessError`, :class:`FileError`).
 """
 
+from ._errors import FileAccessError, FileError, MissingFileError
 from ._native import Config, Hsom, dtw
 from . import gmr
 
-__all__ = ["Config", "Hsom", "dtw", "gmr"]
+__all__ = [
+    "Config",
+    "Hsom",
+    "dtw",
+    "gmr",
+    "MissingFileError",
+    "FileAccessError",
+    "FileError",
+]

@@ -1,4 +1,7 @@
 from . import gmr as gmr
+from ._errors import FileAccessError as FileAccessError
+from ._errors import FileError as FileError
+from ._errors import MissingFileError as MissingFileError
 from ._native import Config as Config, Hsom as Hsom, dtw as dtw
 
-__all__ = ["Config", "Hsom", "dtw", "gmr"]
+__all__ = ["Config", "Hsom", "dtw", "gmr", "MissingFileError", "FileAccessError", "FileError"]

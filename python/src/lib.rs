@@ -1,8 +1,8 @@
 //! `cosco_hsom._native`: the Python binding of the CoSCo-HSOM crate, built without the
 //! simulator. Every step goes through `cosco_hsom::steps`, as `cosco` does, so the checks and
-//! messages are the CLI's. Errors become Python exceptions: `FileNotFoundError` /
-//! `PermissionError` / `OSError` when a file could not be read or written, `ValueError` for
-//! every other refusal; never a panic across the boundary.
+//! messages are the CLI's. Errors become Python exceptions: `ValueError` for every refusal,
+//! which is also a `FileNotFoundError` / `PermissionError` / `OSError` when a file could not be
+//! read or written (`cosco_hsom._errors`); never a panic across the boundary.
 
 use std::error::Error;
 use std::io::ErrorKind;
@@ -10,27 +10,39 @@ use std::path::PathBuf;
 
 use numpy::ndarray::Array2;
 use numpy::{PyArray2, PyReadonlyArray2, PyUntypedArray, PyUntypedArrayMethods};
-use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyPermissionError, PyValueError};
+use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyType};
 
 use cosco_hsom::config::{HsomConfig, HsomParams};
 use cosco_hsom::dtw::{dtw_distance, Band};
 use cosco_hsom::gmr::{self, ComponentChoice, GmrParams};
 use cosco_hsom::steps;
 
-/// The exception for an error: its one-line message (the CLI's), as an `OSError` subclass when
-/// an I/O error is at its root, else `ValueError`.
+/// The exception for an error: its one-line message (the CLI's); when an I/O error is at its
+/// root, one of `cosco_hsom._errors` (each both the matching `OSError` subclass and a
+/// `ValueError`), else `ValueError`.
 fn py_err(e: &(dyn Error + 'static)) -> PyErr {
     let msg = steps::error_line(e);
     let mut cause = Some(e);
     while let Some(c) = cause {
         if let Some(io) = c.downcast_ref::<std::io::Error>() {
-            return match io.kind() {
-                ErrorKind::NotFound => PyFileNotFoundError::new_err(msg),
-                ErrorKind::PermissionDenied => PyPermissionError::new_err(msg),
-                _ => PyOSError::new_err(msg),
+            let name = match io.kind() {
+                ErrorKind::NotFound => "MissingFileError",
+                ErrorKind::PermissionDenied => "FileAccessError",
+                _ => "FileError",
             };
+            return Python::with_gil(|py| {
+                match py
+                    .import("cosco_hsom._errors")
+                    .and_then(|m| m.getattr(name))
+                    .and_then(|t| t.downcast_into::<PyType>().map_err(PyErr::from))
+                {
+                    Ok(t) => PyErr::from_type(t, msg),
+                    // The package is incomplete (no _errors.py): the plain OSError.
+                    Err(_) => PyOSError::new_err(msg),
+                }
+            });
         }
         cause = c.source();
     }

@@ -68,6 +68,14 @@ def test_no_demonstrations_and_non_numbers(cfg, demos):
 def test_files(tmp_path, cfg, demos):
     with pytest.raises(FileNotFoundError, match="cannot read configuration .*nope.xml"):
         cosco_hsom.Config.from_xml(tmp_path / "nope.xml")
+    # A missing file is bad input too: the same exception is a ValueError.
+    with pytest.raises(ValueError, match="nope.xml") as e:
+        cosco_hsom.Config.from_xml(tmp_path / "nope.xml")
+    assert isinstance(e.value, cosco_hsom.MissingFileError)
+    with pytest.raises(ValueError, match="nope.bin"):
+        cosco_hsom.Hsom.load(tmp_path / "nope.bin")
+    with pytest.raises(OSError, match="no-such-dir"):
+        cosco_hsom.Hsom.fit(cfg, demos).save(tmp_path / "no-such-dir" / "m.bin")
     (tmp_path / "bad.xml").write_text("<hsom version='1'><seed>x</seed></hsom>")
     with pytest.raises(ValueError, match="bad.xml"):
         cosco_hsom.Config.from_xml(tmp_path / "bad.xml")

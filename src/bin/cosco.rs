@@ -109,6 +109,7 @@ enum Command {
         #[arg(long)]
         json: Option<PathBuf>,
         /// MJCF model of the arm, for wrist paths (default: the crate's model).
+        #[cfg(feature = "sim")]
         #[arg(long)]
         model: Option<PathBuf>,
     },
@@ -212,8 +213,11 @@ fn run(cli: Cli) -> Result<()> {
             reproduction,
             demos,
             json,
+            #[cfg(feature = "sim")]
             model,
         } => {
+            #[cfg(not(feature = "sim"))]
+            let model: Option<PathBuf> = None;
             let (report, unit) = cli::evaluate_files(&reproduction, &demos, model.as_deref())?;
             out!("{}", cli::fidelity_lines(&report, unit));
             if let Some(p) = json {
