@@ -470,8 +470,8 @@ impl SelfOrganizingMap {
                 // shifted by half a node), then per column for rows of the BMU's parity (hx[0])
                 // and of the other (hx[1])
                 let row_step = if hex { (3f64).sqrt() / 2.0 } else { 1.0 };
-                kernel::gaussian_table(row_step, radius, rows, gy);
-                kernel::gaussian_table(0.5, radius, 2 * cols + 2, gx);
+                kernel::gaussian_table(row_step, radius, rows, h_min, gy);
+                kernel::gaussian_table(0.5, radius, 2 * cols + 2, h_min, gx);
                 for (p, hxp) in hx.iter_mut().enumerate().take(1 + usize::from(hex)) {
                     // half steps from the BMU to column c: 2 (c - bx), +-1 on the other parity
                     let shift = if by % 2 == 0 {
@@ -492,32 +492,33 @@ impl SelfOrganizingMap {
                         continue;
                     }
                     let hxy = &hx[usize::from(hex && (y % 2 != by % 2))];
-                    // the columns reaching h_min: a contiguous range around bx
-                    let (mut c0, mut c1) = (bx, bx);
-                    while c0 > 0 && hy * hxy[c0 - 1] >= h_min {
-                        c0 -= 1;
-                    }
-                    while c1 + 1 < cols && hy * hxy[c1 + 1] >= h_min {
-                        c1 += 1;
-                    }
-                    for (k, &h) in krow[c0..=c1].iter_mut().zip(&hxy[c0..=c1]) {
+                    for (k, &h) in krow.iter_mut().zip(hxy) {
                         let h = hy * h;
                         *k = if h >= h_min { alpha * h } else { 0.0 };
                     }
-                    let (row0, i0, i1) = (y * cols, y * cols + c0, y * cols + c1);
-                    for b in i0 / LANES..=i1 / LANES {
-                        let mut k = [0.0; LANES];
-                        let first = b * LANES;
-                        if first >= i0 && first + LANES - 1 <= i1 {
-                            k.copy_from_slice(&krow[first - row0..first - row0 + LANES]);
-                        } else {
-                            for (l, kl) in k.iter_mut().enumerate() {
-                                if (i0..=i1).contains(&(first + l)) {
-                                    *kl = krow[first + l - row0];
-                                }
+                    let row0 = y * cols;
+                    if cols % LANES == 0 {
+                        // blocks never straddle two rows
+                        for (j, k) in krow.chunks_exact(LANES).enumerate() {
+                            if k.iter().any(|&v| v != 0.0) {
+                                let mut lane = [0.0; LANES];
+                                lane.copy_from_slice(k);
+                                plan.push((row0 / LANES + j, lane));
                             }
                         }
-                        plan.push((b, k));
+                    } else {
+                        for b in row0 / LANES..=(row0 + cols - 1) / LANES {
+                            let mut k = [0.0; LANES];
+                            for (l, kl) in k.iter_mut().enumerate() {
+                                let i = b * LANES + l;
+                                if (row0..row0 + cols).contains(&i) {
+                                    *kl = krow[i - row0];
+                                }
+                            }
+                            if k.iter().any(|&v| v != 0.0) {
+                                plan.push((b, k));
+                            }
+                        }
                     }
                 }
             }
