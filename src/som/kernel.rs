@@ -44,11 +44,12 @@ fn blocks_dist2<S: Simd, const G: usize>(
     let nv = LANES / S::F64_LANES;
     let zero = simd.splat_f64s(0.0);
     let mut acc = [[zero; LANES]; G];
+    let (wv, _) = S::as_simd_f64s(blocks[..G * dim].as_flattened());
     for (d, xd) in dims {
         let xs = simd.splat_f64s(xd);
         for (g, a) in acc.iter_mut().enumerate() {
-            let (wv, _) = S::as_simd_f64s(&blocks[g * dim + d]);
-            for (a, &w) in a[..nv].iter_mut().zip(wv) {
+            let at = (g * dim + d) * nv;
+            for (a, &w) in a[..nv].iter_mut().zip(&wv[at..at + nv]) {
                 let t = simd.sub_f64s(w, xs);
                 *a = simd.add_f64s(*a, simd.mul_f64s(t, t));
             }
@@ -252,13 +253,14 @@ where
     fn with_simd<S: Simd>(self, simd: S) {
         // explicit vectors: left to itself, the compiler vectorises the loop over the
         // dimensions instead, with gathers and scatters
+        let nv = LANES / S::F64_LANES;
+        let (wv, _) = S::as_mut_simd_f64s(self.w.as_flattened_mut());
         for (b, k) in self.plan {
-            let block = &mut self.w[b * self.dim..(b + 1) * self.dim];
             let (kv, _) = S::as_simd_f64s(k);
+            let block = &mut wv[b * self.dim * nv..(b + 1) * self.dim * nv];
             for (d, xd) in (self.dims)() {
                 let xs = simd.splat_f64s(xd);
-                let (wv, _) = S::as_mut_simd_f64s(&mut block[d]);
-                for (w, &k) in wv.iter_mut().zip(kv) {
+                for (w, &k) in block[d * nv..(d + 1) * nv].iter_mut().zip(kv) {
                     // w + k (x - w), the scalar rule's operations in its order
                     *w = simd.add_f64s(*w, simd.mul_f64s(k, simd.sub_f64s(xs, *w)));
                 }
