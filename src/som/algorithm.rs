@@ -713,6 +713,34 @@ mod tests {
     ];
 
     #[test]
+    fn every_instruction_set_matches_the_reference() {
+        // the baseline (scalar lanes), AVX2 and AVX-512 kernels, whichever this CPU runs
+        assert!(!kernel::tests::available().is_empty());
+        kernel::tests::on_every_arch(|arch| {
+            let m = random_map(7, 9, 12, Topology::Hexagonal, 3);
+            let r = NodeMajorMap::of(&m);
+            let x: Vec<f64> = (0..12).map(|d| (d as f64 * 0.37).sin()).collect();
+            let mask: Vec<bool> = (0..12).map(|d| d % 3 != 0).collect();
+            assert_eq!(m.bmu(&x), r.bmu(&x), "{arch}");
+            assert_eq!(m.bmu_masked(&x, &mask), r.bmu_masked(&x, &mask), "{arch}");
+            assert_eq!(m.best_two(&x), r.best_two(&x), "{arch}");
+            let (mut m, mut r) = (m, r);
+            train_both(
+                &mut m,
+                &mut r,
+                Neighbourhood::Gaussian,
+                Reach::Cut {
+                    h_min: DEFAULT_H_MIN,
+                },
+                DEFAULT_H_MIN,
+                9,
+            );
+            let e = max_rel_diff(&m.all_weights(), r.weights());
+            assert!(e <= 1e-12, "{arch}: {e:e}");
+        });
+    }
+
+    #[test]
     fn searches_match_the_node_by_node_reference_exactly() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
         for (s, &(rows, cols, dim)) in SHAPES.iter().enumerate() {

@@ -25,6 +25,10 @@ pub(crate) const LANES: usize = 8;
 pub(crate) type Lane = [f64; LANES];
 
 fn arch() -> pulp::Arch {
+    #[cfg(test)]
+    if let Some(a) = tests::FORCED.with(|f| f.get()) {
+        return a;
+    }
     static ARCH: OnceLock<pulp::Arch> = OnceLock::new();
     *ARCH.get_or_init(pulp::Arch::new)
 }
@@ -296,4 +300,34 @@ pub(crate) fn gaussian_table(step: f64, radius: f64, n: usize, h_min: f64, out: 
         ratio *= q2;
     }
     out.resize(n, 0.0);
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use std::cell::Cell;
+
+    thread_local! {
+        /// The instruction set the kernels use on this thread (tests only).
+        pub(crate) static FORCED: Cell<Option<pulp::Arch>> = const { Cell::new(None) };
+    }
+
+    /// Every instruction set this CPU can run: the x86-64 baseline (scalar lanes), AVX2, AVX-512.
+    pub(crate) fn available() -> Vec<pulp::Arch> {
+        let mut v = vec![pulp::Arch::Scalar];
+        #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+        {
+            v.extend(pulp::x86::V3::try_new().map(pulp::Arch::V3));
+            v.extend(pulp::x86::V4::try_new().map(pulp::Arch::V4));
+        }
+        v
+    }
+
+    /// Run `f` with the kernels on each available instruction set in turn.
+    pub(crate) fn on_every_arch(mut f: impl FnMut(&str)) {
+        for a in available() {
+            FORCED.with(|c| c.set(Some(a)));
+            f(&format!("{a:?}"));
+        }
+        FORCED.with(|c| c.set(None));
+    }
 }
