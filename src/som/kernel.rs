@@ -288,18 +288,29 @@ where
 /// Each product adds at most one rounding, so `v[j]` is within about `2j` ulps of the
 /// exponential (`j <= 2 * 64` for a 64x64 map: under 3e-14 relative). Once the values fall
 /// below `h_min / 1000` the rest (smaller still) are 0: the cut leaves them out either way.
-pub(crate) fn gaussian_table(step: f64, radius: f64, n: usize, h_min: f64, out: &mut Vec<f64>) {
+/// Returns how many entries are not 0.
+pub(crate) fn gaussian_table(
+    step: f64,
+    radius: f64,
+    n: usize,
+    h_min: f64,
+    out: &mut Vec<f64>,
+) -> usize {
     out.clear();
+    out.resize(n, 0.0);
     let c = 1.0 / (2.0 * radius * radius);
     let q = (-step * step * c).exp();
     let q2 = q * q;
     let (mut v, mut ratio) = (1.0, q);
-    while out.len() < n && v >= h_min * 1e-3 {
-        out.push(v);
+    for (j, o) in out.iter_mut().enumerate() {
+        if v < h_min * 1e-3 {
+            return j;
+        }
+        *o = v;
         v *= ratio;
         ratio *= q2;
     }
-    out.resize(n, 0.0);
+    n
 }
 
 #[cfg(test)]
