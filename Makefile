@@ -5,7 +5,7 @@ APT_PACKAGES := libmujoco-dev libosmesa6-dev
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 CARGO ?= cargo
 
-.PHONY: deps demo test bench bindings fmt clippy clean
+.PHONY: deps demo test bench bench-som bindings fmt clippy clean
 
 ## deps: install the Debian packages (MuJoCo 2.2.2, OSMesa) when any is missing
 deps:
@@ -30,6 +30,10 @@ test: deps
 ## bench: criterion benchmarks (figures go to docs/BENCHMARKS.md by hand)
 bench: deps
 	$(CARGO) bench
+
+## bench-som: the SOM kernel against its roofline and MiniSom (venv in target/minisom-venv)
+bench-som: deps
+	CARGO=$(CARGO) benches/minisom.sh --plot docs/figures/som-step-vs-size.png
 
 ## bindings: regenerate src/mujoco/ffi.rs with bindgen (needs libclang-dev)
 bindings:
