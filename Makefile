@@ -9,7 +9,7 @@ PYTHON ?= python3
 # The Python package's virtual environment (git-ignored, under target/).
 PY_VENV := target/py-venv
 
-.PHONY: deps demo test test-python bench bindings fmt clippy clean
+.PHONY: deps demo test test-python bench bench-som bindings fmt clippy clean
 
 ## deps: install the Debian packages (MuJoCo 2.2.2, OSMesa) when any is missing
 deps:
@@ -51,6 +51,10 @@ test-python:
 ## bench: criterion benchmarks (figures go to docs/BENCHMARKS.md by hand)
 bench: deps
 	$(CARGO) bench
+
+## bench-som: the SOM kernel against its roofline and MiniSom (venv in target/minisom-venv)
+bench-som: deps
+	CARGO=$(CARGO) benches/minisom.sh --plot docs/figures/som-step-vs-size.png
 
 ## bindings: regenerate src/mujoco/ffi.rs with bindgen (needs libclang-dev)
 bindings:

@@ -333,6 +333,19 @@ fn main() -> anyhow::Result<()> {
         exact / scan
     );
 
+    println!("\n16x16 step against the learning radius (cut h < 1e-4; ns per call):");
+    println!("| radius | nodes within the cut (4.29 r) | step | step / scan |");
+    println!("|---|---|---|---|");
+    for r in [0.5, 1.0, 2.0, 4.0] {
+        let (s, c, _) = scan_and_step(16, r);
+        let reach = (r * (2.0 * 1e4f64.ln()).sqrt()).min(16.0);
+        println!(
+            "| {r} | about {:.0} | {c:.0} | {:.2} |",
+            (std::f64::consts::PI * reach * reach).min(256.0),
+            c / s
+        );
+    }
+
     println!("\nstep against map size (radius 2; ns per call):");
     println!("| map | BMU scan | ns/node | step, cut | step / scan | step, exact |");
     println!("|---|---|---|---|---|---|");

@@ -84,10 +84,6 @@ struct Scratch {
     /// Gaussian values by half grid step (x) and by row step (y).
     gx: Vec<f64>,
     gy: Vec<f64>,
-    /// Column factors for rows of the BMU's parity and of the other.
-    hx: [Vec<f64>; 2],
-    /// alpha h of the columns of the row being updated.
-    krow: Vec<f64>,
     /// The blocks to move.
     plan: kernel::Plan,
 }
@@ -463,61 +459,44 @@ impl SelfOrganizingMap {
             (Reach::Cut { h_min }, Neighbourhood::Gaussian) => {
                 let hex = self.topology == Topology::Hexagonal;
                 let (bx, by) = (bmu % cols, bmu / cols);
-                let Scratch {
-                    gx, gy, hx, krow, ..
-                } = &mut self.scratch;
-                // row factors by row steps; column factors by half steps (hexagonal rows are
-                // shifted by half a node), then per column for rows of the BMU's parity (hx[0])
-                // and of the other (hx[1])
+                let Scratch { gx, gy, .. } = &mut self.scratch;
+                // row factors by row steps, column factors by half steps (hexagonal rows are
+                // shifted by half a node); each table is non-zero on its first entries only
                 let row_step = if hex { (3f64).sqrt() / 2.0 } else { 1.0 };
-                kernel::gaussian_table(row_step, radius, rows, gy);
-                kernel::gaussian_table(0.5, radius, 2 * cols + 2, gx);
-                for (p, hxp) in hx.iter_mut().enumerate().take(1 + usize::from(hex)) {
-                    // half steps from the BMU to column c: 2 (c - bx), +-1 on the other parity
-                    let shift = if by % 2 == 0 {
-                        p as isize
-                    } else {
-                        -(p as isize)
-                    };
-                    hxp.clear();
-                    hxp.extend(
-                        (0..cols)
-                            .map(|c| gx[(2 * c as isize - 2 * bx as isize + shift).unsigned_abs()]),
-                    );
-                }
-                krow.resize(cols, 0.0);
-                for y in 0..rows {
+                let ny = kernel::gaussian_table(row_step, radius, rows, h_min, gy);
+                let nx = kernel::gaussian_table(0.5, radius, 2 * cols + 2, h_min, gx);
+                let (y0, y1) = (by.saturating_sub(ny), (by + ny).min(rows - 1));
+                let reach = nx / 2 + 1;
+                let (c0, c1) = (bx.saturating_sub(reach), (bx + reach).min(cols - 1));
+                for y in y0..=y1 {
                     let hy = gy[y.abs_diff(by)];
                     if hy < h_min {
                         continue;
                     }
-                    let hxy = &hx[usize::from(hex && (y % 2 != by % 2))];
-                    // the columns reaching h_min: a contiguous range around bx
-                    let (mut c0, mut c1) = (bx, bx);
-                    while c0 > 0 && hy * hxy[c0 - 1] >= h_min {
-                        c0 -= 1;
-                    }
-                    while c1 + 1 < cols && hy * hxy[c1 + 1] >= h_min {
-                        c1 += 1;
-                    }
-                    for (k, &h) in krow[c0..=c1].iter_mut().zip(&hxy[c0..=c1]) {
-                        let h = hy * h;
-                        *k = if h >= h_min { alpha * h } else { 0.0 };
-                    }
-                    let (row0, i0, i1) = (y * cols, y * cols + c0, y * cols + c1);
+                    // half steps from the BMU to column c: 2 (c - bx), +-1 on hexagonal rows
+                    // of the other parity
+                    let shift: isize = match (hex && y % 2 != by % 2, by % 2) {
+                        (false, _) => 0,
+                        (true, 0) => 1,
+                        (true, _) => -1,
+                    };
+                    let row0 = y * cols;
+                    let (i0, i1) = (row0 + c0, row0 + c1);
                     for b in i0 / LANES..=i1 / LANES {
                         let mut k = [0.0; LANES];
-                        let first = b * LANES;
-                        if first >= i0 && first + LANES - 1 <= i1 {
-                            k.copy_from_slice(&krow[first - row0..first - row0 + LANES]);
-                        } else {
-                            for (l, kl) in k.iter_mut().enumerate() {
-                                if (i0..=i1).contains(&(first + l)) {
-                                    *kl = krow[first + l - row0];
+                        for (l, kl) in k.iter_mut().enumerate() {
+                            let i = b * LANES + l;
+                            if (i0..=i1).contains(&i) {
+                                let half = 2 * (i - row0) as isize - 2 * bx as isize + shift;
+                                let h = hy * gx[half.unsigned_abs()];
+                                if h >= h_min {
+                                    *kl = alpha * h;
                                 }
                             }
                         }
-                        plan.push((b, k));
+                        if k.iter().any(|&v| v != 0.0) {
+                            plan.push((b, k));
+                        }
                     }
                 }
             }
@@ -710,6 +689,34 @@ mod tests {
         (4, 4, 40),
         (1, 10, 1),
     ];
+
+    #[test]
+    fn every_instruction_set_matches_the_reference() {
+        // the baseline (scalar lanes), AVX2 and AVX-512 kernels, whichever this CPU runs
+        assert!(!kernel::tests::available().is_empty());
+        kernel::tests::on_every_arch(|arch| {
+            let m = random_map(7, 9, 12, Topology::Hexagonal, 3);
+            let r = NodeMajorMap::of(&m);
+            let x: Vec<f64> = (0..12).map(|d| (d as f64 * 0.37).sin()).collect();
+            let mask: Vec<bool> = (0..12).map(|d| d % 3 != 0).collect();
+            assert_eq!(m.bmu(&x), r.bmu(&x), "{arch}");
+            assert_eq!(m.bmu_masked(&x, &mask), r.bmu_masked(&x, &mask), "{arch}");
+            assert_eq!(m.best_two(&x), r.best_two(&x), "{arch}");
+            let (mut m, mut r) = (m, r);
+            train_both(
+                &mut m,
+                &mut r,
+                Neighbourhood::Gaussian,
+                Reach::Cut {
+                    h_min: DEFAULT_H_MIN,
+                },
+                DEFAULT_H_MIN,
+                9,
+            );
+            let e = max_rel_diff(&m.all_weights(), r.weights());
+            assert!(e <= 1e-12, "{arch}: {e:e}");
+        });
+    }
 
     #[test]
     fn searches_match_the_node_by_node_reference_exactly() {

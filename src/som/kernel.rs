@@ -1,15 +1,19 @@
 //! The map's inner loops, on the blocked weight layout (see [`LANES`]).
 //!
-//! Each loop is written over the `LANES` nodes of a block, one weight dimension at a time, so
-//! the compiler turns it into vector instructions, one lane per node. The summation order of
-//! every node's distance is the plain one (dimension 0, 1, 2, ...), without fused
-//! multiply-adds, so the results are bit for bit those of a node-by-node loop. The loops run
-//! under [`vectorized`], which compiles them a second and third time with AVX2 and AVX-512
-//! enabled and picks, at run time, the widest the CPU has (through `pulp`: the run-time
-//! feature detection and the `unsafe` it needs live in that crate, none here); a build for the
-//! x86-64 baseline stays runnable on any x86-64 machine.
+//! Each loop works on the `LANES` nodes of a block, one weight dimension at a time, one
+//! vector lane per node, with `pulp`'s portable vector operations: each kernel is compiled for
+//! the x86-64 baseline, AVX2 and AVX-512, and the widest the CPU has is picked at run time
+//! (the feature detection and the `unsafe` it needs live in `pulp`, none here), so a build for
+//! the x86-64 baseline stays runnable on any x86-64 machine. (Plain loops over the lanes were
+//! tried first: the compiler vectorised the update over the dimensions, with gathers and
+//! scatters, and split the scan into a mix of 128-, 256- and 512-bit pieces.) Every node's
+//! distance is summed in the plain order (dimension 0, 1, 2, ...) with a subtraction, a
+//! multiplication and an addition per dimension, no fused multiply-add, so the results are
+//! bit for bit those of a node-by-node loop.
 
 use std::sync::OnceLock;
+
+use pulp::{Simd, WithSimd};
 
 /// Nodes per block of the weight layout: the weights of nodes `b * LANES .. (b + 1) * LANES`
 /// are stored dimension by dimension, `LANES` values (one per node) each, so block `b`,
@@ -21,24 +25,12 @@ pub(crate) const LANES: usize = 8;
 pub(crate) type Lane = [f64; LANES];
 
 fn arch() -> pulp::Arch {
+    #[cfg(test)]
+    if let Some(a) = tests::FORCED.with(|f| f.get()) {
+        return a;
+    }
     static ARCH: OnceLock<pulp::Arch> = OnceLock::new();
     *ARCH.get_or_init(pulp::Arch::new)
-}
-
-struct Run<F>(F);
-
-impl<R, F: FnOnce() -> R> pulp::WithSimd for Run<F> {
-    type Output = R;
-    #[inline(always)]
-    fn with_simd<S: pulp::Simd>(self, _simd: S) -> R {
-        (self.0)()
-    }
-}
-
-/// Run `f` compiled for the widest vector instruction set this CPU has.
-#[inline(always)]
-pub(crate) fn vectorized<R>(f: impl FnOnce() -> R) -> R {
-    arch().dispatch(Run(f))
 }
 
 /// Squared distances of the nodes of `G` consecutive blocks (`G * dim` lanes) to `x`, over
@@ -46,22 +38,33 @@ pub(crate) fn vectorized<R>(f: impl FnOnce() -> R) -> R {
 /// are independent chains the CPU runs side by side (one block alone would wait on the
 /// latency of each addition).
 #[inline(always)]
-fn blocks_dist2<const G: usize>(
+fn blocks_dist2<S: Simd, const G: usize>(
+    simd: S,
     blocks: &[Lane],
     dim: usize,
     dims: impl Iterator<Item = (usize, f64)>,
 ) -> [Lane; G] {
-    let mut acc = [[0.0; LANES]; G];
+    // vectors per lane: 1 (AVX-512), 2 (AVX2), 8 (scalar)
+    let nv = LANES / S::F64_LANES;
+    let zero = simd.splat_f64s(0.0);
+    let mut acc = [[zero; LANES]; G];
+    let (wv, _) = S::as_simd_f64s(blocks[..G * dim].as_flattened());
     for (d, xd) in dims {
+        let xs = simd.splat_f64s(xd);
         for (g, a) in acc.iter_mut().enumerate() {
-            let w = &blocks[g * dim + d];
-            for l in 0..LANES {
-                let t = w[l] - xd;
-                a[l] += t * t;
+            let at = (g * dim + d) * nv;
+            for (a, &w) in a[..nv].iter_mut().zip(&wv[at..at + nv]) {
+                let t = simd.sub_f64s(w, xs);
+                *a = simd.add_f64s(*a, simd.mul_f64s(t, t));
             }
         }
     }
-    acc
+    let mut out = [[0.0; LANES]; G];
+    for (o, a) in out.iter_mut().zip(&acc) {
+        let (ov, _) = S::as_mut_simd_f64s(o);
+        ov.copy_from_slice(&a[..nv]);
+    }
+    out
 }
 
 /// Blocks whose distances are computed together.
@@ -70,134 +73,167 @@ const GROUP: usize = 4;
 /// Call `visit(block index, distances of its nodes)` for every block of `w` in order; the
 /// padding lanes of the last block get infinity (never a match).
 #[inline(always)]
-fn for_each_block<I, F>(
+fn for_each_block<S, I, F>(
+    simd: S,
     w: &[Lane],
     dim: usize,
     nodes: usize,
-    dims: F,
+    dims: &F,
     mut visit: impl FnMut(usize, &Lane),
 ) where
+    S: Simd,
     I: Iterator<Item = (usize, f64)>,
     F: Fn() -> I,
 {
     let full = nodes / LANES;
-    let mut emit = |b: usize, a: &Lane| {
-        if b >= full {
-            let first_pad = nodes - b * LANES;
-            let mut a = *a;
-            for (l, v) in a.iter_mut().enumerate() {
-                if l >= first_pad {
-                    *v = f64::INFINITY;
-                }
-            }
-            visit(b, &a);
-        } else {
-            visit(b, a);
-        }
-    };
     let groups = w.chunks_exact(GROUP * dim);
     let rest = groups.remainder();
     let mut b = 0;
     for group in groups {
-        for a in &blocks_dist2::<GROUP>(group, dim, dims()) {
-            emit(b, a);
+        for a in &blocks_dist2::<S, GROUP>(simd, group, dim, dims()) {
+            visit(b, &padded(a, b, full, nodes));
             b += 1;
         }
     }
     for block in rest.chunks_exact(dim) {
-        emit(b, &blocks_dist2::<1>(block, dim, dims())[0]);
+        let [a] = blocks_dist2::<S, 1>(simd, block, dim, dims());
+        visit(b, &padded(&a, b, full, nodes));
         b += 1;
+    }
+}
+
+/// The distances of block `b`, with infinity in its padding lanes if it is the last one.
+#[inline(always)]
+fn padded(a: &Lane, b: usize, full: usize, nodes: usize) -> Lane {
+    let mut a = *a;
+    if b >= full {
+        let first_pad = nodes - b * LANES;
+        for (l, v) in a.iter_mut().enumerate() {
+            if l >= first_pad {
+                *v = f64::INFINITY;
+            }
+        }
+    }
+    a
+}
+
+struct ArgMin<'a, F> {
+    w: &'a [Lane],
+    dim: usize,
+    nodes: usize,
+    dims: F,
+}
+
+impl<I, F> WithSimd for ArgMin<'_, F>
+where
+    I: Iterator<Item = (usize, f64)>,
+    F: Fn() -> I,
+{
+    type Output = (usize, f64);
+    #[inline(always)]
+    fn with_simd<S: Simd>(self, simd: S) -> (usize, f64) {
+        let mut best_d = [f64::INFINITY; LANES];
+        let mut best_b = [0usize; LANES];
+        let visit = |b: usize, acc: &Lane| {
+            for l in 0..LANES {
+                let closer = acc[l] < best_d[l];
+                best_d[l] = if closer { acc[l] } else { best_d[l] };
+                best_b[l] = if closer { b } else { best_b[l] };
+            }
+        };
+        for_each_block(simd, self.w, self.dim, self.nodes, &self.dims, visit);
+        let mut best = (0, f64::INFINITY);
+        for l in 0..LANES {
+            let i = best_b[l] * LANES + l;
+            if best_d[l] < best.1
+                || (best_d[l] == best.1 && best_d[l] < f64::INFINITY && i < best.0)
+            {
+                best = (i, best_d[l]);
+            }
+        }
+        best
     }
 }
 
 /// The node nearest to `x` and its squared distance, over the dimensions `dims()` yields;
 /// ties go to the lowest index; `(0, inf)` when no distance is below infinity.
-#[inline(always)]
 pub(crate) fn argmin<I, F>(w: &[Lane], dim: usize, nodes: usize, dims: F) -> (usize, f64)
 where
     I: Iterator<Item = (usize, f64)>,
     F: Fn() -> I,
 {
-    vectorized(
-        #[inline(always)]
-        || {
-            let mut best_d = [f64::INFINITY; LANES];
-            let mut best_b = [0usize; LANES];
-            for_each_block(w, dim, nodes, dims, |b, acc| {
-                for l in 0..LANES {
-                    let closer = acc[l] < best_d[l];
-                    best_d[l] = if closer { acc[l] } else { best_d[l] };
-                    best_b[l] = if closer { b } else { best_b[l] };
-                }
-            });
-            let mut best = (0, f64::INFINITY);
+    arch().dispatch(ArgMin {
+        w,
+        dim,
+        nodes,
+        dims,
+    })
+}
+
+struct BestTwo<'a> {
+    w: &'a [Lane],
+    dim: usize,
+    nodes: usize,
+    x: &'a [f64],
+}
+
+impl WithSimd for BestTwo<'_> {
+    type Output = (usize, usize);
+    #[inline(always)]
+    fn with_simd<S: Simd>(self, simd: S) -> (usize, usize) {
+        let inf = f64::INFINITY;
+        let (mut d1, mut d2) = ([inf; LANES], [inf; LANES]);
+        let (mut b1, mut b2) = ([0usize; LANES], [0usize; LANES]);
+        let dims = || self.x.iter().copied().take(self.dim).enumerate();
+        let visit = |b: usize, acc: &Lane| {
             for l in 0..LANES {
-                let i = best_b[l] * LANES + l;
-                if best_d[l] < best.1
-                    || (best_d[l] == best.1 && best_d[l] < f64::INFINITY && i < best.0)
-                {
-                    best = (i, best_d[l]);
+                let a = acc[l];
+                let first = a < d1[l];
+                let second = a < d2[l];
+                d2[l] = if first {
+                    d1[l]
+                } else if second {
+                    a
+                } else {
+                    d2[l]
+                };
+                b2[l] = if first {
+                    b1[l]
+                } else if second {
+                    b
+                } else {
+                    b2[l]
+                };
+                d1[l] = if first { a } else { d1[l] };
+                b1[l] = if first { b } else { b1[l] };
+            }
+        };
+        for_each_block(simd, self.w, self.dim, self.nodes, &dims, visit);
+        // the two smallest (distance, index) pairs among the lanes' two best
+        let mut top = [(inf, usize::MAX); 2];
+        for l in 0..LANES {
+            for (d, b) in [(d1[l], b1[l]), (d2[l], b2[l])] {
+                if d < inf {
+                    let c = (d, b * LANES + l);
+                    if c < top[0] {
+                        top[1] = top[0];
+                        top[0] = c;
+                    } else if c < top[1] {
+                        top[1] = c;
+                    }
                 }
             }
-            best
-        },
-    )
+        }
+        let pick = |c: (f64, usize)| if c.0 < inf { c.1 } else { 0 };
+        (pick(top[0]), pick(top[1]))
+    }
 }
 
 /// The best and second-best matching nodes of `x` over all dimensions, as the sequential
 /// scan with strict comparisons finds them: ties go to the lower index, a slot that found
 /// nothing below infinity is node 0.
-#[inline(always)]
 pub(crate) fn best_two(w: &[Lane], dim: usize, nodes: usize, x: &[f64]) -> (usize, usize) {
-    vectorized(
-        #[inline(always)]
-        || {
-            let inf = f64::INFINITY;
-            let (mut d1, mut d2) = ([inf; LANES], [inf; LANES]);
-            let (mut b1, mut b2) = ([0usize; LANES], [0usize; LANES]);
-            let dims = || x.iter().copied().take(dim).enumerate();
-            for_each_block(w, dim, nodes, dims, |b, acc| {
-                for l in 0..LANES {
-                    let a = acc[l];
-                    let first = a < d1[l];
-                    let second = a < d2[l];
-                    d2[l] = if first {
-                        d1[l]
-                    } else if second {
-                        a
-                    } else {
-                        d2[l]
-                    };
-                    b2[l] = if first {
-                        b1[l]
-                    } else if second {
-                        b
-                    } else {
-                        b2[l]
-                    };
-                    d1[l] = if first { a } else { d1[l] };
-                    b1[l] = if first { b } else { b1[l] };
-                }
-            });
-            // the two smallest (distance, index) pairs among the lanes' two best
-            let mut top = [(inf, usize::MAX); 2];
-            for l in 0..LANES {
-                for (d, b) in [(d1[l], b1[l]), (d2[l], b2[l])] {
-                    if d < inf {
-                        let c = (d, b * LANES + l);
-                        if c < top[0] {
-                            top[1] = top[0];
-                            top[0] = c;
-                        } else if c < top[1] {
-                            top[1] = c;
-                        }
-                    }
-                }
-            }
-            let pick = |c: (f64, usize)| if c.0 < inf { c.1 } else { 0 };
-            (pick(top[0]), pick(top[1]))
-        },
-    )
+    arch().dispatch(BestTwo { w, dim, nodes, x })
 }
 
 /// The blocks an update moves and the factor `alpha h` of each of their nodes (0: the node
@@ -211,23 +247,24 @@ struct ApplyPlan<'a, F> {
     dims: F,
 }
 
-impl<I, F> pulp::WithSimd for ApplyPlan<'_, F>
+impl<I, F> WithSimd for ApplyPlan<'_, F>
 where
     I: Iterator<Item = (usize, f64)>,
     F: Fn() -> I,
 {
     type Output = ();
     #[inline(always)]
-    fn with_simd<S: pulp::Simd>(self, simd: S) {
+    fn with_simd<S: Simd>(self, simd: S) {
         // explicit vectors: left to itself, the compiler vectorises the loop over the
         // dimensions instead, with gathers and scatters
+        let nv = LANES / S::F64_LANES;
+        let (wv, _) = S::as_mut_simd_f64s(self.w.as_flattened_mut());
         for (b, k) in self.plan {
-            let block = &mut self.w[b * self.dim..(b + 1) * self.dim];
             let (kv, _) = S::as_simd_f64s(k);
+            let block = &mut wv[b * self.dim * nv..(b + 1) * self.dim * nv];
             for (d, xd) in (self.dims)() {
                 let xs = simd.splat_f64s(xd);
-                let (wv, _) = S::as_mut_simd_f64s(&mut block[d]);
-                for (w, &k) in wv.iter_mut().zip(kv) {
+                for (w, &k) in block[d * nv..(d + 1) * nv].iter_mut().zip(kv) {
                     // w + k (x - w), the scalar rule's operations in its order
                     *w = simd.add_f64s(*w, simd.mul_f64s(k, simd.sub_f64s(xs, *w)));
                 }
@@ -249,16 +286,59 @@ where
 /// `v[j] = exp(-(j step)^2 / (2 r^2))` for `j = 0..n`, by a recurrence of products (one
 /// exponential whatever `n`): `v[j + 1] = v[j] q^(2j + 1)` with `q = exp(-step^2 / (2 r^2))`.
 /// Each product adds at most one rounding, so `v[j]` is within about `2j` ulps of the
-/// exponential (`j <= 2 * 64` for a 64x64 map: under 3e-14 relative).
-pub(crate) fn gaussian_table(step: f64, radius: f64, n: usize, out: &mut Vec<f64>) {
+/// exponential (`j <= 2 * 64` for a 64x64 map: under 3e-14 relative). Once the values fall
+/// below `h_min / 1000` the rest (smaller still) are 0: the cut leaves them out either way.
+/// Returns how many entries are not 0.
+pub(crate) fn gaussian_table(
+    step: f64,
+    radius: f64,
+    n: usize,
+    h_min: f64,
+    out: &mut Vec<f64>,
+) -> usize {
     out.clear();
+    out.resize(n, 0.0);
     let c = 1.0 / (2.0 * radius * radius);
     let q = (-step * step * c).exp();
     let q2 = q * q;
     let (mut v, mut ratio) = (1.0, q);
-    for _ in 0..n {
-        out.push(v);
+    for (j, o) in out.iter_mut().enumerate() {
+        if v < h_min * 1e-3 {
+            return j;
+        }
+        *o = v;
         v *= ratio;
         ratio *= q2;
+    }
+    n
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use std::cell::Cell;
+
+    thread_local! {
+        /// The instruction set the kernels use on this thread (tests only).
+        pub(crate) static FORCED: Cell<Option<pulp::Arch>> = const { Cell::new(None) };
+    }
+
+    /// Every instruction set this CPU can run: the x86-64 baseline (scalar lanes), AVX2, AVX-512.
+    pub(crate) fn available() -> Vec<pulp::Arch> {
+        let mut v = vec![pulp::Arch::Scalar];
+        #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+        {
+            v.extend(pulp::x86::V3::try_new().map(pulp::Arch::V3));
+            v.extend(pulp::x86::V4::try_new().map(pulp::Arch::V4));
+        }
+        v
+    }
+
+    /// Run `f` with the kernels on each available instruction set in turn.
+    pub(crate) fn on_every_arch(mut f: impl FnMut(&str)) {
+        for a in available() {
+            FORCED.with(|c| c.set(Some(a)));
+            f(&format!("{a:?}"));
+        }
+        FORCED.with(|c| c.set(None));
     }
 }
