@@ -230,3 +230,30 @@ fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
         "{out}"
     );
 }
+
+/// Negative or impossible numbers for `--count`, `--noise`, `--seed` are answered with what is
+/// allowed (they used to get clap's "unexpected argument '-1'"); nothing is recorded.
+#[cfg(feature = "sim")]
+#[test]
+fn negative_numbers_are_named_with_what_is_allowed() {
+    let dir = tempfile::tempdir().unwrap();
+    for (flag, value, allowed) in [
+        ("--count", "-1", "at least 1"),
+        ("--count", "0", "at least 1"),
+        ("--noise", "-0.1", ">= 0"),
+        ("--noise", "nan", ">= 0"),
+        ("--seed", "-1", "whole number from 0"),
+    ] {
+        cosco()
+            .args(["demos", flag, value, "--out"])
+            .arg(dir.path().join("d"))
+            .assert()
+            .failure()
+            .stderr(
+                predicate::str::contains(flag)
+                    .and(predicate::str::contains(allowed))
+                    .and(predicate::str::contains("unexpected argument").not()),
+            );
+    }
+    assert!(!dir.path().join("d").exists());
+}

@@ -45,16 +45,16 @@ enum Command {
         #[arg(long, default_value = "reading-watch")]
         gesture: String,
         /// Number of demonstrations.
-        #[arg(long, default_value_t = 3)]
+        #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = cli::parse_count)]
         count: usize,
         /// Seed of every random choice.
-        #[arg(long, default_value_t = 1)]
+        #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = cli::parse_seed)]
         seed: u64,
         /// Output directory (created if missing); files demo_01.csv, demo_02.csv, ...
         #[arg(long)]
         out: PathBuf,
         /// Standard deviation of the encoder noise, rad.
-        #[arg(long, default_value_t = cli::DEFAULT_ENCODER_NOISE)]
+        #[arg(long, default_value_t = cli::DEFAULT_ENCODER_NOISE, allow_negative_numbers = true, value_parser = cli::parse_noise)]
         noise: f64,
         /// MJCF model of the arm.
         #[arg(long)]

@@ -32,14 +32,14 @@ struct Args {
     #[arg(long)]
     demos: Option<PathBuf>,
     /// Seed of every random choice of the job (demonstrations; the model's seed is in the config).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = cli::parse_seed)]
     seed: u64,
     /// Number of synthetic demonstrations (in-sample: learn from all, score against all;
     /// held-out: each left out in turn).
-    #[arg(long, default_value_t = 4)]
+    #[arg(long, default_value_t = 4, allow_negative_numbers = true, value_parser = cli::parse_count)]
     count: usize,
     /// Standard deviation of the synthetic encoder noise, rad.
-    #[arg(long, default_value_t = cli::DEFAULT_ENCODER_NOISE)]
+    #[arg(long, default_value_t = cli::DEFAULT_ENCODER_NOISE, allow_negative_numbers = true, value_parser = cli::parse_noise)]
     noise: f64,
     /// Skip the off-screen rendering of the clip and contact sheet.
     #[arg(long)]

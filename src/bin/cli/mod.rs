@@ -178,3 +178,34 @@ pub fn reproduce_file(
         .with_context(|| format!("writing {}", out.display()))?;
     Ok(rep.postures.len())
 }
+
+/// `--count`: a whole number of demonstrations, at least 1 (negative numbers reach this
+/// parser, so that `--count -1` is answered with what is allowed, not "unexpected argument").
+#[cfg(feature = "sim")]
+pub fn parse_count(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!(
+            "expected a whole number of demonstrations, at least 1; got {s:?}"
+        )),
+    }
+}
+
+/// `--seed`: a whole number from 0 to 2^64 - 1.
+#[cfg(feature = "sim")]
+pub fn parse_seed(s: &str) -> Result<u64, String> {
+    s.trim()
+        .parse::<u64>()
+        .map_err(|_| format!("expected a whole number from 0 to {}; got {s:?}", u64::MAX))
+}
+
+/// `--noise`: a standard deviation in rad, finite and at least 0.
+#[cfg(feature = "sim")]
+pub fn parse_noise(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        _ => Err(format!(
+            "expected a standard deviation in rad: a finite number >= 0; got {s:?}"
+        )),
+    }
+}
