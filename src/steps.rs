@@ -56,6 +56,14 @@ pub enum StepError {
         /// The path.
         path: String,
     },
+    /// The directory a model is to be written to does not exist or cannot be written.
+    #[error("{path}: cannot write the model there: {reason}")]
+    OutputDir {
+        /// The model file's path.
+        path: String,
+        /// Why (the directory is missing, not a directory, or not writable).
+        reason: String,
+    },
     /// Directories or lists that hold no demonstration.
     #[error("no demonstration files found in {paths}")]
     NoDemonstrations {
@@ -112,6 +120,35 @@ pub fn check_model_extension(path: &Path) -> Result<(), StepError> {
             path: path.display().to_string(),
         }),
     }
+}
+
+/// Check, before any work, that a model can be written to `path`: a `.bin` or `.txt` name in
+/// an existing directory where a file can be created (a temporary file is made and removed).
+pub fn check_model_output(path: &Path) -> Result<(), StepError> {
+    check_model_extension(path)?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let err = |reason: String| StepError::OutputDir {
+        path: path.display().to_string(),
+        reason,
+    };
+    if !dir.exists() {
+        return Err(err(format!(
+            "the directory {} does not exist",
+            dir.display()
+        )));
+    }
+    if !dir.is_dir() {
+        return Err(err(format!("{} is not a directory", dir.display())));
+    }
+    tempfile::NamedTempFile::new_in(dir).map(drop).map_err(|e| {
+        err(format!(
+            "the directory {} is not writable ({e})",
+            dir.display()
+        ))
+    })
 }
 
 /// Load a CoSCo-HSOM configuration file, or the built-in recommended configuration.

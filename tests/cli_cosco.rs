@@ -257,3 +257,25 @@ fn negative_numbers_are_named_with_what_is_allowed() {
     }
     assert!(!dir.path().join("d").exists());
 }
+
+/// `train` checks where the model goes before reading or training: a missing directory is
+/// named at once (it used to be found only after training).
+#[test]
+fn train_refuses_a_missing_output_directory_before_training() {
+    let dir = tempfile::tempdir().unwrap();
+    write_strokes(dir.path());
+    let out = dir.path().join("no/such/dir/m.bin");
+    cosco()
+        .args(["train", "--demos"])
+        .arg(dir.path())
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .failure()
+        .stderr(
+            predicate::str::contains("no/such/dir")
+                .and(predicate::str::contains("does not exist"))
+                .and(predicate::str::contains("saved").not()),
+        );
+    assert!(!out.exists());
+}

@@ -125,7 +125,8 @@ pub fn fidelity_lines(f: &FidelityReport, unit: &str) -> String {
 
 /// `cosco train`: read, train with a progress bar, save atomically.
 pub fn train_files(config: Option<&Path>, demo_paths: &[PathBuf], out: &Path) -> Result<Hsom> {
-    steps::check_model_extension(out)?;
+    // where the model goes is checked before any reading or training
+    steps::check_model_output(out)?;
     let cfg = hsom_config(config)?;
     let demos = read_demos(demo_paths, Some(cfg.params().state_length))?;
     let model = train(&cfg, &demos)?;
