@@ -56,6 +56,20 @@ pub enum StepError {
         /// The path.
         path: String,
     },
+    /// An initial posture of the arm far outside a joint's range.
+    #[error("the initial posture's {joint} = {value} is outside its range [{lo}, {hi}] by more than {tolerance} rad: not a posture the arm can start from")]
+    InitialOutOfRange {
+        /// The joint.
+        joint: String,
+        /// The value given.
+        value: f64,
+        /// The joint's range.
+        lo: f64,
+        /// The joint's range.
+        hi: f64,
+        /// How far beyond the range a value is still accepted (encoder noise, soft limits).
+        tolerance: f64,
+    },
     /// The directory a model is to be written to does not exist or cannot be written.
     #[error("{path}: cannot write the model there: {reason}")]
     OutputDir {
@@ -249,6 +263,22 @@ pub fn reproduce(
             expected: columns.len(),
             columns: columns.join(", "),
         });
+    }
+    #[cfg(feature = "sim")]
+    if crate::experiment::are_arm_joints(columns) {
+        use crate::experiment::RANGE_TOLERANCE_RAD;
+        for (v, spec) in initial.iter().zip(crate::sim::JOINT_SPECS.iter()) {
+            let (lo, hi) = spec.range;
+            if v.is_finite() && !(lo - RANGE_TOLERANCE_RAD..=hi + RANGE_TOLERANCE_RAD).contains(v) {
+                return Err(StepError::InitialOutOfRange {
+                    joint: spec.name.to_string(),
+                    value: *v,
+                    lo,
+                    hi,
+                    tolerance: RANGE_TOLERANCE_RAD,
+                });
+            }
+        }
     }
     Ok(model.reproduce(initial)?)
 }

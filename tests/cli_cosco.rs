@@ -279,3 +279,38 @@ fn train_refuses_a_missing_output_directory_before_training() {
         );
     assert!(!out.exists());
 }
+
+/// `reproduce --initial` with an arm posture far outside a joint's range is refused, naming
+/// the joint and its range (it used to run).
+#[cfg(feature = "sim")]
+#[test]
+fn reproduce_refuses_an_initial_posture_far_outside_the_joint_ranges() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    cosco()
+        .args(["demos", "--count", "2", "--out"])
+        .arg(d.join("demos"))
+        .assert()
+        .success();
+    cosco()
+        .args(["train", "--demos"])
+        .arg(d.join("demos"))
+        .arg("--out")
+        .arg(d.join("m.bin"))
+        .assert()
+        .success();
+    let run = |initial: &str| {
+        let mut c = cosco();
+        c.args(["reproduce", "--model"])
+            .arg(d.join("m.bin"))
+            .args(["--initial", initial, "--out"])
+            .arg(d.join("r.csv"));
+        c.assert()
+    };
+    run("1.4,0.3,-1.39,8.0,0,0.25").failure().stderr(
+        predicate::str::contains("LElbowRoll")
+            .and(predicate::str::contains("8"))
+            .and(predicate::str::contains("range")),
+    );
+    run("1.4,0.3,-1.39,-1.01,0,0.25").success();
+}

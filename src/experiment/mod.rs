@@ -17,7 +17,9 @@ pub mod variants;
 pub use demonstrate::{
     joint_limits, record_demonstrations, synthetic_demonstrations, DemoSettings,
 };
-pub use evaluate::{are_arm_joints, demo_wrist_paths, evaluate, trajectory, wrist_path};
+pub use evaluate::{
+    are_arm_joints, demo_wrist_paths, evaluate, trajectory, wrist_path, RANGE_TOLERANCE_RAD,
+};
 pub use execute::{clamp_to_ranges, execute_postures, Transition};
 pub use film::film;
 pub use heldout::{
