@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 use crate::config::{load_config, parse_config, ConfigError, HsomConfig};
 use crate::demos::{self, DemoError, Demonstration};
 use crate::hsom::{Hsom, HsomError, PersistError, Reproduction};
-use crate::metrics::{fidelity, FidelityReport, MetricsError, MetricsParams, Trajectory};
+use crate::metrics::{fidelity_named, FidelityReport, MetricsError, MetricsParams, Trajectory};
 
 /// The recommended configuration for the simulated Nao (the events extension), built in so
 /// that the binaries run from any directory; the default of `simulate` and `cosco`.
@@ -362,9 +362,10 @@ pub fn evaluate_rows(
     params: &MetricsParams,
 ) -> Result<FidelityReport, StepError> {
     let trajs: Vec<Trajectory> = demos.iter().map(Trajectory::from).collect();
-
-    Ok(fidelity(
+    let names: Vec<String> = demos.iter().map(|d| d.source.clone()).collect();
+    Ok(fidelity_named(
         &trajs,
+        &names,
         &Trajectory::from_joints(rows.to_vec()),
         params,
     )?)

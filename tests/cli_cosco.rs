@@ -314,3 +314,33 @@ fn reproduce_refuses_an_initial_posture_far_outside_the_joint_ranges() {
     );
     run("1.4,0.3,-1.39,-1.01,0,0.25").success();
 }
+
+/// A demonstration that never moves is named by its file in `evaluate`'s error (it was
+/// "demonstration 1").
+#[test]
+fn a_motionless_demonstration_is_named_by_its_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    write_strokes(&d.join("demos"));
+    let mut still = String::from("x,y\n");
+    for _ in 0..60 {
+        still += "0.5,0.5\n";
+    }
+    std::fs::write(d.join("demos/still.csv"), still).unwrap();
+    let mut rep = String::from("step,x,y\n");
+    for i in 0..60 {
+        rep += &format!("{i},{},{}\n", i as f64 / 59.0, 1.0 - i as f64 / 59.0);
+    }
+    std::fs::write(d.join("rep.csv"), rep).unwrap();
+    cosco()
+        .args(["evaluate", "--reproduction"])
+        .arg(d.join("rep.csv"))
+        .arg("--demos")
+        .arg(d.join("demos"))
+        .assert()
+        .failure()
+        .stderr(
+            predicate::str::contains("still.csv")
+                .and(predicate::str::contains("never moves")),
+        );
+}

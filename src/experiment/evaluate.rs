@@ -2,7 +2,7 @@
 //! kinematics (see docs/METRICS.md for every definition).
 
 use crate::demos::Demonstration;
-use crate::metrics::{fidelity, FidelityReport, MetricsParams, Trajectory};
+use crate::metrics::{fidelity_named, FidelityReport, MetricsParams, Trajectory};
 use crate::sim::{NaoArm, JOINT_NAMES};
 
 use super::ExperimentError;
@@ -108,5 +108,6 @@ pub fn evaluate(
         .map(|d| trajectory(arm, &d.columns, &d.rows))
         .collect::<Result<Vec<_>, _>>()?;
     let rep = trajectory(arm, &first.columns, rows)?;
-    Ok(fidelity(&demo_trajs, &rep, params)?)
+    let names: Vec<String> = demos.iter().map(|d| d.source.clone()).collect();
+    Ok(fidelity_named(&demo_trajs, &names, &rep, params)?)
 }

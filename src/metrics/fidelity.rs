@@ -234,6 +234,19 @@ pub fn fidelity(
     reproduction: &Trajectory,
     params: &MetricsParams,
 ) -> Result<FidelityReport, MetricsError> {
+    let names: Vec<String> = (0..demos.len())
+        .map(|i| format!("demonstration {i}"))
+        .collect();
+    fidelity_named(demos, &names, reproduction, params)
+}
+
+/// [`fidelity`] with the demonstrations' names (their files) for the error messages.
+pub fn fidelity_named(
+    demos: &[Trajectory],
+    names: &[String],
+    reproduction: &Trajectory,
+    params: &MetricsParams,
+) -> Result<FidelityReport, MetricsError> {
     params.check()?;
     if demos.is_empty() {
         return Err(MetricsError::NoDemonstrations);
@@ -242,7 +255,12 @@ pub fn fidelity(
     check_trajectory(reproduction, "reproduction", width)?;
     let dt = params.sample_period;
     let names: Vec<String> = (0..demos.len())
-        .map(|i| format!("demonstration {i}"))
+        .map(|i| {
+            names
+                .get(i)
+                .cloned()
+                .unwrap_or_else(|| format!("demonstration {i}"))
+        })
         .collect();
     let mut demo_ranges: Vec<Range<usize>> = Vec::with_capacity(demos.len());
     for (d, name) in demos.iter().zip(&names) {

@@ -8,7 +8,9 @@ mod fidelity;
 mod smoothness;
 
 pub use errors::MetricsError;
-pub use fidelity::{fidelity, DemoScores, FidelityReport, MetricsParams, Stat, Trajectory};
+pub use fidelity::{
+    fidelity, fidelity_named, DemoScores, FidelityReport, MetricsParams, Stat, Trajectory,
+};
 pub use smoothness::{
     column_swings, key_pose, large_swings, normalized_jerk, smoothness, velocity_reversals,
     Smoothness,
