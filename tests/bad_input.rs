@@ -10,6 +10,8 @@ use cosco_hsom::config::{parse_config, ConfigError, HsomParams};
 use cosco_hsom::hsom::{Hsom, HsomError, PersistError};
 #[cfg(feature = "sim")]
 use cosco_hsom::sim::{NaoArm, SimError};
+#[cfg(feature = "sim")]
+use predicates::prelude::*;
 
 #[cfg(feature = "sim")]
 const ARM: &str = include_str!("../models/nao_left_arm.xml");
@@ -274,4 +276,69 @@ fn evaluating_a_one_row_or_impossible_reproduction_is_refused() {
     let mut hair = demo.rows.clone();
     hair[5][3] = -0.0349066 + 0.1;
     assert!(evaluate(Some(&arm), std::slice::from_ref(&demo), &hair, &params).is_ok());
+}
+
+/// `simulate --demos`: a demonstration far outside a joint's range is refused, naming the file,
+/// sample and joint; values a little outside are clamped before execution with a warning on
+/// stderr (and counted in report.md), and `--strict` turns the warning into an error.
+#[test]
+#[cfg(feature = "sim")] // needs the simulated arm
+fn simulate_refuses_far_out_demonstrations_and_warns_on_clamping() {
+    use assert_cmd::Command;
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    Command::cargo_bin("cosco")
+        .unwrap()
+        .args(["demos", "--gesture", "wave", "--count", "3", "--out"])
+        .arg(d.join("demos"))
+        .assert()
+        .success();
+    // LElbowRoll (column 4 after time) of every sample set to `v`
+    let rewrite = |to: &std::path::Path, v: &str| {
+        std::fs::create_dir_all(to).unwrap();
+        for k in 1..=3 {
+            let name = format!("demo_{k:02}.csv");
+            let text = std::fs::read_to_string(d.join("demos").join(&name)).unwrap();
+            let out: Vec<String> = text
+                .lines()
+                .enumerate()
+                .map(|(i, l)| {
+                    if i == 0 {
+                        return l.to_string();
+                    }
+                    let mut f: Vec<&str> = l.split(',').collect();
+                    f[4] = v;
+                    f.join(",")
+                })
+                .collect();
+            std::fs::write(to.join(&name), out.join("\n") + "\n").unwrap();
+        }
+    };
+    let simulate = |demos: &std::path::Path, strict: bool| {
+        let mut c = Command::cargo_bin("simulate").unwrap();
+        c.args(["--no-render", "--no-variants", "--no-heldout", "--demos"])
+            .arg(demos)
+            .arg("--out")
+            .arg(d.join("out"));
+        if strict {
+            c.arg("--strict");
+        }
+        c.assert()
+    };
+    rewrite(&d.join("far"), "3.5");
+    simulate(&d.join("far"), false).failure().stderr(
+        predicates::str::contains("demo_01.csv")
+            .and(predicates::str::contains("LElbowRoll"))
+            .and(predicates::str::contains("sample")),
+    );
+    // 0.1 rad: 0.135 above LElbowRoll's maximum, within the 0.25 rad tolerance
+    rewrite(&d.join("near"), "0.1");
+    simulate(&d.join("near"), false)
+        .success()
+        .stderr(predicates::str::contains(
+            "warning: posture values outside the joint ranges",
+        ));
+    simulate(&d.join("near"), true)
+        .failure()
+        .stderr(predicates::str::contains("--strict"));
 }

@@ -339,8 +339,5 @@ fn a_motionless_demonstration_is_named_by_its_file() {
         .arg(d.join("demos"))
         .assert()
         .failure()
-        .stderr(
-            predicate::str::contains("still.csv")
-                .and(predicate::str::contains("never moves")),
-        );
+        .stderr(predicate::str::contains("still.csv").and(predicate::str::contains("never moves")));
 }

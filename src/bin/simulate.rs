@@ -60,9 +60,14 @@ struct Args {
     /// MJCF model of the arm (default: models/nao_left_arm.xml of this crate).
     #[arg(long)]
     model: Option<PathBuf>,
+    /// Turn warnings into errors (posture values clamped into the joint ranges before
+    /// execution): the outputs are written, the exit status is 1.
+    #[arg(long)]
+    strict: bool,
 }
 
 fn run(a: Args) -> Result<()> {
+    let strict = a.strict;
     let job = cli::Job {
         gesture: a.gesture,
         config: a.config,
@@ -78,6 +83,24 @@ fn run(a: Args) -> Result<()> {
         heldout: !a.no_heldout,
     };
     let report = cli::main_job(&job)?;
+    // values moved into the joint ranges before execution: said on stderr, an error with --strict
+    let clamped: Vec<String> = report
+        .methods
+        .iter()
+        .filter(|m| m.clamped_values > 0)
+        .map(|m| format!("{} {}", m.name, m.clamped_values))
+        .collect();
+    if !clamped.is_empty() {
+        let msg = format!(
+            "posture values outside the joint ranges were clamped to the nearest limit before \
+             execution ({}; counted in report.md)",
+            clamped.join(", ")
+        );
+        if strict {
+            anyhow::bail!("{msg}; --strict makes this an error");
+        }
+        eprintln!("warning: {msg}; --strict makes this an error");
+    }
     // one line per method (CoSCo-HSOM, then the baseline when it ran)
     for line in cli::compare::summary_lines(&report) {
         outln!("{line}");

@@ -60,7 +60,7 @@ pub const RANGE_TOLERANCE_RAD: f64 = 0.25;
 /// Every posture of `rows` within the arm's joint ranges give or take
 /// [`RANGE_TOLERANCE_RAD`]: a posture farther out is none the arm can take, and scoring it
 /// (with kinematics that clamp it) would hide that.
-fn check_reachable(rows: &[Vec<f64>], which: &str) -> Result<(), ExperimentError> {
+pub fn check_reachable(rows: &[Vec<f64>], which: &str) -> Result<(), ExperimentError> {
     for (i, r) in rows.iter().enumerate() {
         for (v, spec) in r.iter().zip(crate::sim::JOINT_SPECS.iter()) {
             let (lo, hi) = spec.range;

@@ -18,7 +18,8 @@ pub use demonstrate::{
     joint_limits, record_demonstrations, synthetic_demonstrations, DemoSettings,
 };
 pub use evaluate::{
-    are_arm_joints, demo_wrist_paths, evaluate, trajectory, wrist_path, RANGE_TOLERANCE_RAD,
+    are_arm_joints, check_reachable, demo_wrist_paths, evaluate, trajectory, wrist_path,
+    RANGE_TOLERANCE_RAD,
 };
 pub use execute::{clamp_to_ranges, execute_postures, Transition};
 pub use film::film;

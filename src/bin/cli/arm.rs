@@ -12,8 +12,9 @@ use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, C
 use cosco_hsom::experiment::report::{level_rows, DemoInfo, Report, Stage};
 use cosco_hsom::experiment::variants::{reference_variants, run_variant, variants};
 use cosco_hsom::experiment::{
-    are_arm_joints, demo_wrist_paths, film, hsom_folds, learn_and_reproduce, leave_one_out,
-    sample_period, synthetic_demonstrations, DemoSettings, HeldOutSummary, Training, Transition,
+    are_arm_joints, check_reachable, demo_wrist_paths, film, hsom_folds, learn_and_reproduce,
+    leave_one_out, sample_period, synthetic_demonstrations, DemoSettings, HeldOutSummary, Training,
+    Transition,
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::plot::BLACK;
@@ -187,6 +188,10 @@ pub fn main_job(job: &Job) -> Result<Report> {
             demos[0].columns,
             JOINT_NAMES
         );
+    }
+    // recorded demonstrations far outside the joint ranges are no gesture the arm can make
+    for d in &demos {
+        check_reachable(&d.rows, &d.source)?;
     }
     let demo_files = write_demos(&out.join("demos"), &demos)?;
     let demo_info: Vec<DemoInfo> = demos
