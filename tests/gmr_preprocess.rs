@@ -37,6 +37,50 @@ fn trim_finds_the_motion_between_idle_parts() {
     assert!(r.end >= 155 && r.end <= 162, "{r:?}");
 }
 
+/// `rows` with white gaussian noise of deviation `sigma` on every value (seeded).
+fn noisy(rows: &[Vec<f64>], sigma: f64, seed: u64) -> Vec<Vec<f64>> {
+    use rand::SeedableRng;
+    use rand_distr::{Distribution, Normal};
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, sigma).unwrap();
+    rows.iter()
+        .map(|r| r.iter().map(|x| x + normal.sample(&mut rng)).collect())
+        .collect()
+}
+
+/// Six joints: the 2-D gesture's two columns three times.
+fn six_joints(rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    rows.iter().map(|r| [r.as_slice(); 3].concat()).collect()
+}
+
+#[test]
+fn trim_ignores_encoder_noise_at_rest() {
+    // 3 mrad of noise on six joints: the noise alone moves the smoothed speed above the
+    // relative threshold in the idle parts (the control below), yet the motion is found
+    // where the clean recording has it
+    let clean = six_joints(&gesture(80, 120, 60));
+    let trim = IdleTrim::default();
+    let want = active_range(&clean, None, 0.025, &trim).unwrap();
+    for seed in 1..=5 {
+        let rows = noisy(&clean, 0.003, seed);
+        let speeds = cosco_hsom::gmr::preprocess::smoothed_speeds(&rows, None, 0.025, 2);
+        let peak = speeds.iter().cloned().fold(0.0, f64::max);
+        let theta = trim.min_speed.max(trim.relative * peak);
+        assert!(
+            speeds[..70].iter().any(|&s| s > theta),
+            "control: the noise should cross the speed threshold at rest (seed {seed})"
+        );
+        let got = active_range(&rows, None, 0.025, &trim).unwrap();
+        assert!(
+            got.start.abs_diff(want.start) <= 4 && got.end.abs_diff(want.end) <= 4,
+            "seed {seed}: {got:?} vs clean {want:?}"
+        );
+    }
+    // the floor scales with the noise: none without it
+    assert!(cosco_hsom::gmr::preprocess::noise_displacement(&clean) < 1e-3);
+    assert!(cosco_hsom::gmr::preprocess::noise_displacement(&noisy(&clean, 0.003, 9)) > 0.01);
+}
+
 #[test]
 fn trim_uses_time_stamps_when_given() {
     let rows = gesture(10, 60, 10);

@@ -128,9 +128,60 @@ pub fn active_range<R: AsRef<[f64]>>(
         return None;
     }
     let theta = trim.min_speed.max(trim.relative * peak);
-    let first = s.iter().position(|&x| x > theta)?;
-    let last = s.iter().rposition(|&x| x > theta)?;
+    // a step also needs a displacement across its window that encoder noise alone would
+    // not reach anywhere in the sequence (see `noise_displacement`)
+    let floor = noise_displacement(rows);
+    let n = s.len();
+    let moving = |k: usize| {
+        let a = k.saturating_sub(trim.half_window);
+        let b = (k + trim.half_window + 1).min(n);
+        s[k] > theta && crate::dtw::euclidean(rows[b].as_ref(), rows[a].as_ref()) > floor
+    };
+    let first = (0..n).find(|&k| moving(k))?;
+    let last = (0..n).rev().find(|&k| moving(k))?;
     Some(first..last + 2)
+}
+
+/// Probability that encoder noise alone moves a sequence across one smoothing window by
+/// more than [`noise_displacement`] anywhere in it.
+pub const NOISE_FALSE_ALARM: f64 = 1e-3;
+
+/// The displacement between two samples that white encoder noise alone exceeds somewhere in
+/// the sequence with probability at most [`NOISE_FALSE_ALARM`]. Each column's noise `σ_j` is
+/// estimated from the sequence itself, robustly, as the median absolute second difference /
+/// (0.6745 √6) (white noise of deviation σ has second differences of deviation √6 σ; the
+/// smooth motion adds little at 40 Hz, and only raises the estimate). The difference of two
+/// noisy samples is then `Σ_j a_j Z_j²` in squared norm with `a_j = 2 σ_j²`, bounded with
+/// the Laurent-Massart inequality: `P(X ≥ Σa + 2 √(Σa² t) + 2 max(a) t) ≤ e^(-t)`, with
+/// `t = ln(steps / NOISE_FALSE_ALARM)`. 0 for fewer than 3 samples.
+pub fn noise_displacement<R: AsRef<[f64]>>(rows: &[R]) -> f64 {
+    if rows.len() < 3 {
+        return 0.0;
+    }
+    let width = rows[0].as_ref().len();
+    let mut a = Vec::with_capacity(width);
+    let mut d2: Vec<f64> = Vec::with_capacity(rows.len() - 2);
+    for j in 0..width {
+        d2.clear();
+        d2.extend(
+            rows.windows(3)
+                .map(|w| (w[2].as_ref()[j] - 2.0 * w[1].as_ref()[j] + w[0].as_ref()[j]).abs()),
+        );
+        let mid = d2.len() / 2;
+        let (_, m, _) = d2.select_nth_unstable_by(mid, f64::total_cmp);
+        let sigma = *m / (0.6745 * 6f64.sqrt());
+        a.push(2.0 * sigma * sigma);
+    }
+    let t = ((rows.len() - 1) as f64 / NOISE_FALSE_ALARM).ln();
+    let sum: f64 = a.iter().sum();
+    let sum2: f64 = a.iter().map(|x| x * x).sum();
+    let max = a.iter().cloned().fold(0.0, f64::max);
+    let bound = sum + 2.0 * (sum2 * t).sqrt() + 2.0 * max * t;
+    if bound.is_finite() {
+        bound.sqrt()
+    } else {
+        f64::INFINITY
+    }
 }
 
 /// The baseline's training data: every demonstration trimmed, aligned and resampled to the
