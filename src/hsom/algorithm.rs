@@ -304,7 +304,11 @@ pub(crate) struct Series<'a> {
 /// of inputs stay far from overflowing.
 const MAX_NORMALISED: f64 = 1e100;
 
-fn check_series(series: &[Series<'_>], state: usize, horizon: usize) -> Result<(), HsomError> {
+pub(crate) fn check_series(
+    series: &[Series<'_>],
+    state: usize,
+    horizon: usize,
+) -> Result<(), HsomError> {
     if series.is_empty() {
         return Err(HsomError::NoDemonstrations);
     }
@@ -339,7 +343,7 @@ fn check_series(series: &[Series<'_>], state: usize, horizon: usize) -> Result<(
 }
 
 /// The demonstrations as borrowed series for training.
-fn demo_series(demos: &[Demonstration]) -> Vec<Series<'_>> {
+pub(crate) fn demo_series(demos: &[Demonstration]) -> Vec<Series<'_>> {
     demos
         .iter()
         .map(|d| Series {

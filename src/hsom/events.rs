@@ -17,9 +17,11 @@ use std::collections::{BTreeMap, VecDeque};
 use rand::Rng;
 
 use crate::config::{HsomConfig, ReproductionParams};
+use crate::demos::Demonstration;
 use crate::som::SelfOrganizingMap;
 
-use super::algorithm::Hsom;
+use super::algorithm::{check_series, demo_series, Hsom};
+use super::errors::HsomError;
 use super::reproduce::{Reproduction, StopReason};
 
 /// A node index that stands for the end of the gesture in item sequences and successors.
@@ -1039,6 +1041,29 @@ struct Planner<'a> {
     executed: usize,
 }
 
+impl Hsom {
+    /// The demonstration through the bottom level's own code and back: its events (the
+    /// bottom node of each run of samples and the run's length, as in training) turned into
+    /// postures exactly as a reproduction's planned events are. No upper level is involved,
+    /// so this is the ceiling of what the hierarchy can reproduce of that demonstration:
+    /// whatever is lost here (a swing's amplitude, a short hold) the levels above cannot
+    /// bring back. `predicted_by` is 0 throughout.
+    pub fn reencode(&self, demo: &Demonstration) -> Result<Reproduction, HsomError> {
+        let p = self.config.params();
+        check_series(
+            &demo_series(std::slice::from_ref(demo)),
+            p.state_length,
+            p.action_horizon,
+        )?;
+        let norm: Vec<Vec<f64>> = demo.rows.iter().map(|r| self.normalise(r)).collect();
+        let executed: Vec<(usize, f64, usize)> = bottom_events(self, &norm)
+            .into_iter()
+            .map(|(n, d)| (n, d, 0))
+            .collect();
+        Ok(self.timed_postures(&norm[0], &executed, StopReason::EndEvent))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1250,6 +1275,38 @@ mod tests {
         assert!(rep.predicted_by.iter().any(|&l| l >= 2));
         // deterministic
         assert_eq!(rep, m.reproduce(&[0.0, 0.0]).unwrap());
+    }
+
+    #[test]
+    fn reencoding_keeps_what_the_bottom_code_keeps_and_an_untrained_code_loses_it() {
+        let rows = gesture(30, 0);
+        let demo = Demonstration {
+            source: "g".into(),
+            columns: vec!["x".into(), "y".into()],
+            time: None,
+            rows: rows.clone(),
+        };
+        let err = |m: &Hsom| {
+            let r = m.reencode(&demo).unwrap();
+            assert!(r.predicted_by.iter().all(|&l| l == 0));
+            crate::dtw::dtw_distance(&r.postures, &rows, crate::dtw::Band::None)
+                .unwrap()
+                .per_step()
+        };
+        let model = trained(3);
+        let good = err(&model);
+        assert!(good < 0.05, "trained: {good}");
+        // negative control: the initial (random) bottom map
+        let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
+        let untrained = err(&config(3).initialise_series(&series).unwrap());
+        assert!(untrained > 0.1, "untrained: {untrained}");
+        // a demonstration of another width is refused, not re-encoded
+        let mut bad = demo.clone();
+        bad.rows[3] = vec![0.0];
+        assert!(matches!(
+            model.reencode(&bad),
+            Err(HsomError::DimensionMismatch { row: 3, .. })
+        ));
     }
 
     #[test]

@@ -1,0 +1,124 @@
+//! The ceiling of the bottom level's code: each demonstration re-encoded through the
+//! bottom level's own events and back to postures ([`Hsom::reencode`]), with no upper level
+//! involved. What is lost here the hierarchy cannot reproduce. For each (gesture, seed):
+//! a model trained on all demonstrations, then per demonstration the joint DTW between
+//! the re-encoded and the original trajectory, the large swings of `LElbowRoll` and the
+//! ratio of its range (re-encoded / original).
+//!
+//! ```sh
+//! cargo run --release --example encoding_ceiling -- --gestures wave --seeds 11-15
+//! ```
+//!
+//! [`Hsom::reencode`]: cosco_hsom::hsom::Hsom::reencode
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+use clap::Parser;
+
+use cosco_hsom::config::load_config;
+use cosco_hsom::dtw::{dtw_distance, Band};
+use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
+use cosco_hsom::experiment::heldout::{SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
+use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};
+use cosco_hsom::metrics::column_swings;
+use cosco_hsom::sim::NaoArm;
+
+/// Re-encode demonstrations through the bottom level and score what survives.
+#[derive(Parser, Debug)]
+#[command(name = "encoding_ceiling")]
+struct Args {
+    /// Gestures, comma-separated.
+    #[arg(long, default_value = "reading-watch,wave,reach-point,salute")]
+    gestures: String,
+    /// Seeds of the demonstrations: numbers and ranges, e.g. `1-5`.
+    #[arg(long, default_value = "1-5")]
+    seeds: String,
+    /// Demonstrations per (gesture, seed).
+    #[arg(long, default_value_t = 4)]
+    count: usize,
+    /// Encoder noise of the synthetic demonstrations, rad.
+    #[arg(long, default_value_t = 0.001)]
+    noise: f64,
+    /// CoSCo-HSOM configuration (XML).
+    #[arg(long, default_value = "configs/nao-gestures.xml")]
+    config: PathBuf,
+}
+
+/// (gesture, joint DTW, swings, demonstration swings, range ratio) of one set.
+type Row = (String, f64, f64, f64, f64);
+
+fn range(rows: &[Vec<f64>], c: usize) -> f64 {
+    let (lo, hi) = rows
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), r| {
+            (lo.min(r[c]), hi.max(r[c]))
+        });
+    hi - lo
+}
+
+fn run(a: Args) -> Result<()> {
+    let arm = NaoArm::load_default()?;
+    let config = load_config(&a.config).with_context(|| a.config.display().to_string())?;
+    let settings = DemoSettings {
+        encoder_noise: a.noise,
+        ..DemoSettings::default()
+    };
+    println!("Each demonstration through the bottom level's events and back ({}, trained on all {} demonstrations of the set): means over the demonstrations.\n", a.config.display(), a.count);
+    println!("| gesture | seed | joint DTW (rad/step) | LElbowRoll swings (re-encoded / demo) | LElbowRoll range ratio | events per demo |");
+    println!("|---|---|---|---|---|---|");
+    let mut all: Vec<Row> = Vec::new();
+    for g in parse_gestures(&a.gestures)? {
+        for &seed in &parse_seeds(&a.seeds)? {
+            let demos = synthetic_demonstrations(&arm, &g, a.count, seed, &settings, |_| {})?;
+            let model = config.fit(&demos)?;
+            let (mut dtw, mut sw, mut dsw, mut rr) = (0.0, 0.0, 0.0, 0.0);
+            for d in &demos {
+                let r = model.reencode(d)?;
+                dtw += dtw_distance(&r.postures, &d.rows, Band::None)?.per_step();
+                sw += column_swings(&r.postures, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD)? as f64;
+                dsw += column_swings(&d.rows, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD)? as f64;
+                rr += range(&r.postures, SWING_JOINT) / range(&d.rows, SWING_JOINT).max(1e-12);
+            }
+            let n = demos.len() as f64;
+            let events = model.summary().demo_events[1];
+            println!(
+                "| {} | {seed} | {:.4} | {:.1} / {:.1} | {:.2} | {events:.1} |",
+                g.name,
+                dtw / n,
+                sw / n,
+                dsw / n,
+                rr / n
+            );
+            all.push((g.name.to_string(), dtw / n, sw / n, dsw / n, rr / n));
+        }
+    }
+    let names: Vec<String> = {
+        let mut v: Vec<String> = all.iter().map(|r| r.0.clone()).collect();
+        v.dedup();
+        v
+    };
+    for name in names {
+        let rows: Vec<_> = all.iter().filter(|r| r.0 == name).collect();
+        let m = |f: &dyn Fn(&Row) -> f64| median(rows.iter().map(|r| f(r))).unwrap_or(f64::NAN);
+        println!(
+            "| **{name}** | median | {:.4} | {:.1} / {:.1} | {:.2} | |",
+            m(&|r| r.1),
+            m(&|r| r.2),
+            m(&|r| r.3),
+            m(&|r| r.4)
+        );
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    match run(Args::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
