@@ -1,0 +1,155 @@
+//! Generality, held out first: the synthetic families of `tests/hsom_measure.rs` (figure
+//! eight, open stroke, handwriting-like 2-D, six joints), leave-one-out. For each
+//! demonstration: train on the others, reproduce from its first posture, score against it
+//! (held out) and against the training demonstrations (in-sample, the figure
+//! `tests/hsom_measure.rs` prints). Side by side: the recommended configuration
+//! (configs/nao-gestures.xml, stateLength adapted), the successor-table options
+//! (tests/configs/successor-table.xml), the paper's Table I (literal), a replay of the
+//! training demonstration whose first posture is nearest (no model), and the recommended
+//! configuration's encoding ceiling (each training demonstration through the bottom level's
+//! own code and back, `Hsom::reencode`). Relative DTW: mean Euclidean distance along the DTW
+//! path / the diagonal of the family's bounding box.
+//!
+//! ```sh
+//! cargo run --release --example families -- --seeds 1-6
+//! ```
+
+#[path = "../tests/hsom_common/mod.rs"]
+mod hsom_common;
+
+use std::process::ExitCode;
+
+use anyhow::Result;
+use clap::Parser;
+
+use cosco_hsom::config::{load_config, HsomConfig, HsomParams};
+use cosco_hsom::demos::Demonstration;
+use cosco_hsom::experiment::study::{median, parse_seeds};
+use hsom_common::{diagonal, dtw, figure_eight, handwriting, joints6, recommended_for, stroke};
+
+/// Leave-one-out on the synthetic families.
+#[derive(Parser, Debug)]
+#[command(name = "families")]
+struct Args {
+    /// CoSCo-HSOM seeds (the families' data are fixed).
+    #[arg(long, default_value = "1-6")]
+    seeds: String,
+    /// Training steps of the recommended configuration (default: the file's).
+    #[arg(long)]
+    training_steps: Option<usize>,
+}
+
+/// Held-out and in-sample relative DTW of one configuration, means over the folds.
+fn loo(cfg: &HsomConfig, demos: &[Demonstration], diag: f64) -> Result<(f64, f64)> {
+    let (mut held, mut ins) = (0.0, 0.0);
+    for i in 0..demos.len() {
+        let train: Vec<Demonstration> = others(demos, i).cloned().collect();
+        let rep = cfg.fit(&train)?.reproduce(&demos[i].rows[0])?;
+        held += dtw(&rep.postures, &demos[i].rows) / diag;
+        ins += train
+            .iter()
+            .map(|d| dtw(&rep.postures, &d.rows))
+            .sum::<f64>()
+            / train.len() as f64
+            / diag;
+    }
+    let n = demos.len() as f64;
+    Ok((held / n, ins / n))
+}
+
+fn others(demos: &[Demonstration], i: usize) -> impl Iterator<Item = &Demonstration> {
+    demos
+        .iter()
+        .enumerate()
+        .filter(move |&(j, _)| j != i)
+        .map(|(_, d)| d)
+}
+
+/// Held-out score of replaying the training demonstration whose first posture is nearest.
+fn replay(demos: &[Demonstration], diag: f64) -> f64 {
+    let mut sum = 0.0;
+    for (i, d) in demos.iter().enumerate() {
+        let start = |x: &Demonstration| cosco_hsom::dtw::euclidean(&x.rows[0], &d.rows[0]);
+        let near = others(demos, i)
+            .min_by(|a, b| start(a).total_cmp(&start(b)))
+            .expect("at least two demonstrations");
+        sum += dtw(&near.rows, &d.rows) / diag;
+    }
+    sum / demos.len() as f64
+}
+
+/// Mean relative DTW of each demonstration re-encoded by a model trained on all of them.
+fn ceiling(cfg: &HsomConfig, demos: &[Demonstration], diag: f64) -> Result<f64> {
+    let model = cfg.fit(demos)?;
+    let mut sum = 0.0;
+    for d in demos {
+        sum += dtw(&model.reencode(d)?.postures, &d.rows) / diag;
+    }
+    Ok(sum / demos.len() as f64)
+}
+
+fn adapted(mut p: HsomParams, dims: usize, seed: u64) -> Result<HsomConfig> {
+    p.state_length = dims;
+    p.action_length = dims;
+    p.seed = seed;
+    Ok(p.check("adapted")?)
+}
+
+fn run(a: Args) -> Result<()> {
+    let seeds = parse_seeds(&a.seeds)?;
+    let succ_path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/configs/successor-table.xml");
+    let succ = load_config(&succ_path)?.into_params();
+    println!("Leave-one-out relative DTW (held out | in-sample), CoSCo-HSOM seeds {}; medians over the seeds in the last rows.\n", a.seeds);
+    println!("| family | seed | recommended held out | successor-table held out | Table I held out | replay held out | recommended in-sample | successor-table in-sample | encoding ceiling |");
+    println!("|---|---|---|---|---|---|---|---|---|");
+    let families = [
+        ("eight", figure_eight(6, 7)),
+        ("stroke", stroke(6, 8)),
+        ("handwriting", handwriting(8, 9)),
+        ("joints6", joints6(6, 9)),
+    ];
+    for (name, demos) in &families {
+        let dims = demos[0].rows[0].len();
+        let diag = diagonal(demos);
+        let rp = replay(demos, diag);
+        let mut rows: Vec<[f64; 7]> = Vec::new();
+        for &seed in &seeds {
+            let mut rec = recommended_for(dims).into_params();
+            if let Some(s) = a.training_steps {
+                rec.training_steps = s;
+            }
+            let rec = adapted(rec, dims, seed)?;
+            let (rh, ri) = loo(&rec, demos, diag)?;
+            let (sh, si) = loo(&adapted(succ.clone(), dims, seed)?, demos, diag)?;
+            let (th, _) = loo(&adapted(HsomParams::table1(), dims, seed)?, demos, diag)?;
+            let c = ceiling(&rec, demos, diag)?;
+            let r = [rh, sh, th, rp, ri, si, c];
+            println!(
+                "| {name} | {seed} | {} |",
+                r.map(|v| format!("{v:.4}")).join(" | ")
+            );
+            rows.push(r);
+        }
+        let m: Vec<String> = (0..7)
+            .map(|k| {
+                format!(
+                    "{:.4}",
+                    median(rows.iter().map(|r| r[k])).unwrap_or(f64::NAN)
+                )
+            })
+            .collect();
+        println!("| **{name}** | median | {} |", m.join(" | "));
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    match run(Args::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
