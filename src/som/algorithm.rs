@@ -84,6 +84,8 @@ struct Scratch {
     /// Gaussian values by half grid step (x) and by row step (y).
     gx: Vec<f64>,
     gy: Vec<f64>,
+    /// Gaussian column factors of one update, per column and shift.
+    colf: Vec<f64>,
     /// The blocks to move.
     plan: kernel::Plan,
 }
@@ -459,7 +461,7 @@ impl SelfOrganizingMap {
             (Reach::Cut { h_min }, Neighbourhood::Gaussian) => {
                 let hex = self.topology == Topology::Hexagonal;
                 let (bx, by) = (bmu % cols, bmu / cols);
-                let Scratch { gx, gy, .. } = &mut self.scratch;
+                let Scratch { gx, gy, colf, .. } = &mut self.scratch;
                 // row factors by row steps, column factors by half steps (hexagonal rows are
                 // shifted by half a node); each table is non-zero on its first entries only
                 let row_step = if hex { (3f64).sqrt() / 2.0 } else { 1.0 };
@@ -468,6 +470,17 @@ impl SelfOrganizingMap {
                 let (y0, y1) = (by.saturating_sub(ny), (by + ny).min(rows - 1));
                 let reach = nx / 2 + 1;
                 let (c0, c1) = (bx.saturating_sub(reach), (bx + reach).min(cols - 1));
+                // the column factor of every column, per shift of half steps (0, and +-1 on
+                // hexagonal rows of the other parity): 0 outside the reach
+                let shifts: &[isize] = if hex { &[0, 1, -1] } else { &[0] };
+                colf.clear();
+                colf.resize(shifts.len() * cols, 0.0);
+                for (si, &shift) in shifts.iter().enumerate() {
+                    for c in c0..=c1 {
+                        let half = 2 * c as isize - 2 * bx as isize + shift;
+                        colf[si * cols + c] = gx[half.unsigned_abs()];
+                    }
+                }
                 for y in y0..=y1 {
                     let hy = gy[y.abs_diff(by)];
                     if hy < h_min {
@@ -475,22 +488,30 @@ impl SelfOrganizingMap {
                     }
                     // half steps from the BMU to column c: 2 (c - bx), +-1 on hexagonal rows
                     // of the other parity
-                    let shift: isize = match (hex && y % 2 != by % 2, by % 2) {
+                    let si = match (hex && y % 2 != by % 2, by % 2) {
                         (false, _) => 0,
                         (true, 0) => 1,
-                        (true, _) => -1,
+                        (true, _) => 2,
                     };
+                    let cf = &colf[si * cols..(si + 1) * cols];
                     let row0 = y * cols;
                     let (i0, i1) = (row0 + c0, row0 + c1);
                     for b in i0 / LANES..=i1 / LANES {
                         let mut k = [0.0; LANES];
-                        for (l, kl) in k.iter_mut().enumerate() {
-                            let i = b * LANES + l;
-                            if (i0..=i1).contains(&i) {
-                                let half = 2 * (i - row0) as isize - 2 * bx as isize + shift;
-                                let h = hy * gx[half.unsigned_abs()];
-                                if h >= h_min {
-                                    *kl = alpha * h;
+                        let first = b * LANES;
+                        if first >= row0 && first + LANES <= row0 + cols {
+                            // the whole block lies in this row
+                            let f = &cf[first - row0..first - row0 + LANES];
+                            for (kl, &fc) in k.iter_mut().zip(f) {
+                                let h = hy * fc;
+                                *kl = if h >= h_min { alpha * h } else { 0.0 };
+                            }
+                        } else {
+                            for (l, kl) in k.iter_mut().enumerate() {
+                                let c = (first + l).wrapping_sub(row0);
+                                if c < cols {
+                                    let h = hy * cf[c];
+                                    *kl = if h >= h_min { alpha * h } else { 0.0 };
                                 }
                             }
                         }
