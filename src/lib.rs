@@ -38,7 +38,9 @@ pub mod fsutil;
 pub mod gesture;
 pub mod gmr;
 pub mod hsom;
+pub mod labelled;
 pub mod metrics;
+pub mod nearest;
 #[cfg(feature = "sim")]
 pub mod mujoco;
 #[cfg(feature = "plot")]
