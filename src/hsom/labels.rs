@@ -198,10 +198,23 @@ impl HsomConfig {
             }
         }
         let all: Vec<Demonstration> = sets.iter().flat_map(|(_, d)| d.clone()).collect();
-        let shared = if learn {
-            self.fit_with_progress(&all, progress)?
+        // the shared bottom sees every gesture as often as a gesture learned alone does:
+        // trainingSteps per label
+        let cfg = if sets.len() > 1 {
+            let mut p = self.params().clone();
+            p.training_steps = p.training_steps.saturating_mul(sets.len());
+            p.check(self.source())
+                .map_err(|e| GestureError::Persist(PersistError::Corrupted {
+                    path: PathBuf::from(self.source()),
+                    what: e.to_string(),
+                }))?
         } else {
-            self.initialise(&all)?
+            self.clone()
+        };
+        let shared = if learn {
+            cfg.fit_with_progress(&all, progress)?
+        } else {
+            cfg.initialise(&all)?
         };
         let norm: Vec<Vec<Vec<Vec<f64>>>> = sets
             .iter()

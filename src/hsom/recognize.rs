@@ -47,13 +47,48 @@ impl Calibration {
     }
 }
 
+/// Per sample of `norm` (normalised rows; its bottom inputs: the posture and the posture
+/// `actionHorizon` later), the RMS distance to the nearest bottom node `model`'s gesture used
+/// (the bottom is shared; the branch's event durations say which nodes its gesture visited).
+pub(crate) fn posture_distances(model: &Hsom, norm: &[Vec<f64>]) -> Vec<f64> {
+    let map = &model.maps[0];
+    let used: Vec<usize> = (0..map.len()).filter(|&n| model.dwell[n] > 0.0).collect();
+    let s = model.config.params().state_length;
+    let h = model.config.params().action_horizon.max(1);
+    let mut x = vec![0.0; 2 * s];
+    (0..norm.len().saturating_sub(1))
+        .map(|pos| {
+            x[..s].copy_from_slice(&norm[pos]);
+            x[s..].copy_from_slice(&norm[(pos + h).min(norm.len() - 1)]);
+            let d2 = used
+                .iter()
+                .map(|&n| map.distance2(n, &x, 0..2 * s))
+                .fold(f64::INFINITY, f64::min);
+            (d2 / (2 * s) as f64).sqrt()
+        })
+        .collect()
+}
+
+/// The mean of the first `n` values (`None` when there are none).
+fn mean_of(v: &[f64], n: usize) -> Option<f64> {
+    let n = n.min(v.len());
+    (n > 0).then(|| v[..n].iter().sum::<f64>() / n as f64)
+}
+
+/// Level distances of a whole normalised sequence: the postures' at level 0, then the
+/// levels' chunks ([`level_distances`]).
+fn all_distances(model: &Hsom, norm: &[Vec<f64>], events: &[(usize, f64)]) -> Vec<Option<f64>> {
+    let mut d = level_distances(model, events, true);
+    let p = posture_distances(model, norm);
+    d[0] = mean_of(&p, p.len());
+    d
+}
+
 /// Per level, the mean RMS distance per known coordinate between the
 /// chunks of `events` (bottom events: node, samples) and their best nodes in `model`'s maps.
 /// With `complete`, the sequence ends after its events (the end is appended, as in training);
 /// otherwise it is a prefix: only the chunks it completes count, plus the chunk in progress
-/// at level 1, matched on what it holds. At level 0, the mean distance of the events' nodes
-/// to the nearest bottom node `model`'s gesture used (the bottom is shared; the branch's
-/// durations say which nodes its gesture visited).
+/// at level 1, matched on what it holds. Level 0 is left to [`posture_distances`].
 pub(crate) fn level_distances(
     model: &Hsom,
     events: &[(usize, f64)],
@@ -64,23 +99,6 @@ pub(crate) fn level_distances(
     let code = DurationCode::from_dwell(&model.dwell);
     let mean_events = model.demo_runs[1];
     let mut out = vec![None; h];
-    // level 0: how far the events' postures are from the postures this gesture used
-    let used: Vec<usize> = (0..model.maps[0].len())
-        .filter(|&n| model.dwell[n] > 0.0)
-        .collect();
-    if !events.is_empty() && !used.is_empty() {
-        let dim0 = model.maps[0].dim() as f64;
-        let mut sum = 0.0;
-        for &(e, _) in events {
-            let w = model.maps[0].weights(e);
-            let d2 = used
-                .iter()
-                .map(|&n| model.maps[0].distance2(n, &w, 0..w.len()))
-                .fold(f64::INFINITY, f64::min);
-            sum += (d2 / dim0).sqrt();
-        }
-        out[0] = Some(sum / events.len() as f64);
-    }
     let mut items: Vec<Item> = events
         .iter()
         .map(|&(n, d)| Item {
@@ -239,11 +257,11 @@ pub(crate) fn calibrate(
                             .map(|(_, d)| d.clone())
                             .collect();
                         let loo = shared.branch(&rest, learn, branch_seed(seed, g, Some(i)));
-                        level_distances(&loo, &events[g][i], true)
+                        all_distances(&loo, &norm[g][i], &events[g][i])
                     })
                     .collect()
             } else {
-                vec![level_distances(&branches[g], &events[g][0], true)]
+                vec![all_distances(&branches[g], &norm[g][0], &events[g][0])]
             };
             let reference = level_means(&own, h);
             let scoring = Scoring::default();
@@ -254,8 +272,8 @@ pub(crate) fn calibrate(
                 .fold(0.0, f64::max);
             let best_other = (0..branches.len())
                 .filter(|&o| o != g)
-                .flat_map(|o| events[o].iter())
-                .map(|ev| scoring.score(&level_distances(&branches[g], ev, true), &reference))
+                .flat_map(|o| norm[o].iter().zip(&events[o]))
+                .map(|(n, ev)| scoring.score(&all_distances(&branches[g], n, ev), &reference))
                 .fold(f64::INFINITY, f64::min);
             let threshold = if branches.len() == 1 {
                 2.0 * worst_own
@@ -299,7 +317,12 @@ impl Recognition {
 }
 
 impl GestureModel {
-    fn checked_events(&self, rows: &[Vec<f64>]) -> Result<Vec<(usize, f64)>, GestureError> {
+    /// The normalised rows and their bottom events, after checking the rows.
+    #[allow(clippy::type_complexity)]
+    fn checked_events(
+        &self,
+        rows: &[Vec<f64>],
+    ) -> Result<(Vec<Vec<f64>>, Vec<(usize, f64)>), GestureError> {
         if self.labels.is_empty() {
             return Err(GestureError::NoLabels);
         }
@@ -332,16 +355,40 @@ impl GestureModel {
                 .into());
             }
         }
-        Ok(bottom_events(shared, &shared.normalise_rows(rows)))
+        let norm = shared.normalise_rows(rows);
+        let ev = bottom_events(shared, &norm);
+        Ok((norm, ev))
     }
 
-    fn scores_of(&self, events: &[(usize, f64)], complete: bool) -> Vec<f64> {
+    /// Per label, the per-sample posture distances of a normalised sequence.
+    fn postures_of(&self, norm: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        self.branches
+            .iter()
+            .map(|b| posture_distances(b, norm))
+            .collect()
+    }
+
+    /// Per label, the score of the first `samples` samples (their posture distances
+    /// `postures`) and the bottom events `events`; `complete`: the sequence ends there.
+    fn scores_of(
+        &self,
+        postures: &[Vec<f64>],
+        samples: usize,
+        events: &[(usize, f64)],
+        complete: bool,
+    ) -> Vec<f64> {
         self.branches
             .iter()
             .zip(&self.calibration)
-            .map(|(b, c)| {
-                self.scoring
-                    .score(&level_distances(b, events, complete), &c.reference)
+            .zip(postures)
+            .map(|((b, c), p)| {
+                let mut d = if self.scoring == Scoring::Postures {
+                    vec![None; b.maps.len()]
+                } else {
+                    level_distances(b, events, complete)
+                };
+                d[0] = mean_of(p, samples);
+                self.scoring.score(&d, &c.reference)
             })
             .collect()
     }
@@ -349,16 +396,18 @@ impl GestureModel {
     /// Per label (in the model's order), the score of a whole sequence (rows in the data's
     /// units): 1 is as close as the label's training data, larger is farther.
     pub fn scores(&self, rows: &[Vec<f64>]) -> Result<Vec<f64>, GestureError> {
-        let ev = self.checked_events(rows)?;
-        Ok(self.scores_of(&ev, true))
+        let (norm, ev) = self.checked_events(rows)?;
+        let p = self.postures_of(&norm);
+        Ok(self.scores_of(&p, rows.len(), &ev, true))
     }
 
     /// Recognise a whole sequence: the best label or unknown, every score, and the earliest
     /// sample from which the best label stayed the same (each prefix scored on the bottom
     /// events it has completed, available `actionHorizon` samples after they end).
     pub fn recognize(&self, rows: &[Vec<f64>]) -> Result<Recognition, GestureError> {
-        let ev = self.checked_events(rows)?;
-        let fin = self.scores_of(&ev, true);
+        let (norm, ev) = self.checked_events(rows)?;
+        let post = self.postures_of(&norm);
+        let fin = self.scores_of(&post, rows.len(), &ev, true);
         let best = argmin(&fin);
         let horizon = self.branches[0].config.params().action_horizon;
         let mut decided_at = rows.len();
@@ -369,10 +418,11 @@ impl GestureModel {
             ends.push(done);
         }
         for p in (1..=ev.len()).rev() {
-            if argmin(&self.scores_of(&ev[..p], false)) != best {
+            let at = ((ends[p - 1] as usize) + horizon).min(rows.len());
+            if argmin(&self.scores_of(&post, ends[p - 1] as usize, &ev[..p], false)) != best {
                 break;
             }
-            decided_at = ((ends[p - 1] as usize) + horizon).min(rows.len());
+            decided_at = at;
         }
         let threshold = self.calibration[best].threshold;
         Ok(Recognition {
@@ -395,8 +445,9 @@ impl GestureModel {
         &self,
         prefix: &[Vec<f64>],
     ) -> Result<(String, Reproduction), GestureError> {
-        let ev = self.checked_events(prefix)?;
-        let g = argmin(&self.scores_of(&ev, false));
+        let (norm, ev) = self.checked_events(prefix)?;
+        let post = self.postures_of(&norm);
+        let g = argmin(&self.scores_of(&post, prefix.len(), &ev, false));
         let rep = self.branches[g].reproduce(&prefix[0])?;
         let j = open_end(prefix, &rep.postures);
         let last = &prefix[prefix.len() - 1];
