@@ -291,10 +291,12 @@ pub fn recognize_paths(
         .into_iter()
         .map(|(f, expected)| {
             let d = read_for_model(model, &f)?;
-            let recognition = model.recognize(&d.rows).map_err(|e| LabelledError::Layout {
-                path: f.display().to_string(),
-                reason: steps::error_line(&e),
-            })?;
+            let recognition = model
+                .recognize(&d.rows)
+                .map_err(|e| LabelledError::Layout {
+                    path: f.display().to_string(),
+                    reason: steps::error_line(&e),
+                })?;
             Ok(RecognisedFile {
                 file: f.display().to_string(),
                 expected,

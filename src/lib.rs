@@ -40,9 +40,9 @@ pub mod gmr;
 pub mod hsom;
 pub mod labelled;
 pub mod metrics;
-pub mod nearest;
 #[cfg(feature = "sim")]
 pub mod mujoco;
+pub mod nearest;
 #[cfg(feature = "plot")]
 pub mod plot;
 #[cfg(feature = "sim")]

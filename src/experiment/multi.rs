@@ -128,13 +128,16 @@ pub struct SeedResult {
     pub train_s: f64,
 }
 
+/// A gesture's demonstrations: (label, to learn from, held out).
+pub type GestureSplit = (String, Vec<Demonstration>, Vec<Demonstration>);
+
 /// Record the demonstrations of every gesture for `seed`: (label, training, held out).
 pub fn record_sets(
     arm: &NaoArm,
     gestures: &[Gesture],
     seed: u64,
     settings: &MultiSettings,
-) -> Result<Vec<(String, Vec<Demonstration>, Vec<Demonstration>)>, ExperimentError> {
+) -> Result<Vec<GestureSplit>, ExperimentError> {
     let demo_settings = DemoSettings {
         encoder_noise: settings.noise,
         ..DemoSettings::default()
@@ -156,10 +159,15 @@ pub fn record_sets(
         .collect()
 }
 
-fn answers(model: &GestureModel, tests: &[(String, &Demonstration)]) -> Result<Answers, ExperimentError> {
+fn answers(
+    model: &GestureModel,
+    tests: &[(String, &Demonstration)],
+) -> Result<Answers, ExperimentError> {
     let mut a = Answers::default();
     for (label, d) in tests {
-        let r = model.recognize(&d.rows).map_err(|e| ExperimentError::Invalid(e.to_string()))?;
+        let r = model
+            .recognize(&d.rows)
+            .map_err(|e| ExperimentError::Invalid(e.to_string()))?;
         a.pairs.push((label.clone(), r.label));
     }
     Ok(a)
@@ -201,7 +209,8 @@ pub fn run_seed(
         let hsom_s = t.elapsed().as_secs_f64();
         let r = model.recognize(&d.rows).map_err(gerr)?;
         let t = Instant::now();
-        nn.classify(&d.rows).map_err(|e| ExperimentError::Invalid(e.to_string()))?;
+        nn.classify(&d.rows)
+            .map_err(|e| ExperimentError::Invalid(e.to_string()))?;
         let nn_s = t.elapsed().as_secs_f64();
         let alt = |sc: Scoring| -> Result<String, ExperimentError> {
             let m = model.clone().with_scoring(sc);
@@ -241,7 +250,7 @@ pub fn run_seed(
                         arm,
                         postures,
                         settings.transition,
-                        std::slice::from_ref(*&d),
+                        std::slice::from_ref(d),
                         &metrics,
                     )?;
                     Ok(e.fidelity.joint_dtw_rad_per_step.mean)
@@ -321,10 +330,14 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
     let mut s = String::new();
     let q: Vec<&Query> = results.iter().flat_map(|r| &r.queries).collect();
     let n = q.len();
-    let hsom_acc = frac(q.iter().filter(|x| x.hsom.as_deref() == Some(&x.expected)), n);
+    let hsom_acc = frac(
+        q.iter().filter(|x| x.hsom.as_deref() == Some(&x.expected)),
+        n,
+    );
     let best_acc = frac(q.iter().filter(|x| x.hsom_best == x.expected), n);
     let nn_acc = frac(q.iter().filter(|x| x.nn == x.expected), n);
-    let med = |f: &dyn Fn(&Query) -> f64| median(q.iter().map(|x| f(x)).collect()).unwrap_or(f64::NAN);
+    let med =
+        |f: &dyn Fn(&Query) -> f64| median(q.iter().map(|x| f(x)).collect()).unwrap_or(f64::NAN);
     let _ = writeln!(s, "### Recognition, held out ({n} queries)\n");
     let _ = writeln!(s, "| method | accuracy | lowest score right (no unknown) | median early fraction | median time per query |");
     let _ = writeln!(s, "|---|---|---|---|---|");
@@ -351,16 +364,32 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
         100.0 * frac(q.iter().filter(|x| x.relative_best == x.expected), n),
         100.0 * frac(q.iter().filter(|x| x.postures_best == x.expected), n)
     );
-    let _ = writeln!(s, "Confusion (rows: gesture, columns: CoSCo-HSOM's answer):\n");
+    let _ = writeln!(
+        s,
+        "Confusion (rows: gesture, columns: CoSCo-HSOM's answer):\n"
+    );
     let _ = write!(s, "{}", confusion_markdown(&confusion(&q, labels), labels));
     let fid: Vec<&FidelityPair> = results.iter().flat_map(|r| &r.fidelity).collect();
     if !fid.is_empty() {
-        let _ = writeln!(s, "\n### Fidelity held out, joint DTW rad/step (median over held-out demonstrations)\n");
+        let _ = writeln!(
+            s,
+            "\n### Fidelity held out, joint DTW rad/step (median over held-out demonstrations)\n"
+        );
         let _ = writeln!(s, "| gesture | shared hierarchy | learned alone | ratio |");
         let _ = writeln!(s, "|---|---|---|---|");
         for l in labels {
-            let sh = median(fid.iter().filter(|f| &f.gesture == l).map(|f| f.shared).collect());
-            let al = median(fid.iter().filter(|f| &f.gesture == l).map(|f| f.alone).collect());
+            let sh = median(
+                fid.iter()
+                    .filter(|f| &f.gesture == l)
+                    .map(|f| f.shared)
+                    .collect(),
+            );
+            let al = median(
+                fid.iter()
+                    .filter(|f| &f.gesture == l)
+                    .map(|f| f.alone)
+                    .collect(),
+            );
             if let (Some(a), Some(b)) = (sh, al) {
                 let _ = writeln!(s, "| {l} | {a:.4} | {b:.4} | {:.2} |", a / b);
             }
@@ -374,17 +403,38 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
         let kn = cat(&|r| &r.unknown_known);
         let _ = writeln!(s, "\n### Unknown: taught three, shown the fourth\n");
         let _ = writeln!(s, "| | answered right | cases |\n|---|---|---|");
-        let _ = writeln!(s, "| left-out gesture: `unknown` | {:.1} % | {} |", 100.0 * lo.accuracy(), lo.pairs.len());
-        let _ = writeln!(s, "| taught gestures: their label | {:.1} % | {} |", 100.0 * kn.accuracy(), kn.pairs.len());
+        let _ = writeln!(
+            s,
+            "| left-out gesture: `unknown` | {:.1} % | {} |",
+            100.0 * lo.accuracy(),
+            lo.pairs.len()
+        );
+        let _ = writeln!(
+            s,
+            "| taught gestures: their label | {:.1} % | {} |",
+            100.0 * kn.accuracy(),
+            kn.pairs.len()
+        );
     }
     let un = cat(&|r| &r.untrained);
     if !un.pairs.is_empty() {
         let sh = cat(&|r| &r.shuffled);
-        let _ = writeln!(s, "\n### Negative controls (held-out accuracy, must fail the 95 % gate)\n");
+        let _ = writeln!(
+            s,
+            "\n### Negative controls (held-out accuracy, must fail the 95 % gate)\n"
+        );
         let _ = writeln!(s, "| control | accuracy | chance |\n|---|---|---|");
         let chance = 100.0 / labels.len().max(1) as f64;
-        let _ = writeln!(s, "| untrained hierarchy | {:.1} % | {chance:.1} % |", 100.0 * un.accuracy());
-        let _ = writeln!(s, "| shuffled labels | {:.1} % | {chance:.1} % |", 100.0 * sh.accuracy());
+        let _ = writeln!(
+            s,
+            "| untrained hierarchy | {:.1} % | {chance:.1} % |",
+            100.0 * un.accuracy()
+        );
+        let _ = writeln!(
+            s,
+            "| shuffled labels | {:.1} % | {chance:.1} % |",
+            100.0 * sh.accuracy()
+        );
     }
     let bytes: Vec<usize> = results.iter().map(|r| r.model_bytes).collect();
     let _ = writeln!(

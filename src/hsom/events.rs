@@ -221,7 +221,13 @@ pub(super) struct Chunk {
 impl Chunk {
     /// Its input with the first `known` slots known (the rest masked out); returns the
     /// number of known values.
-    pub(super) fn input(&self, lay: Layout, known: usize, x: &mut [f64], mask: &mut [bool]) -> usize {
+    pub(super) fn input(
+        &self,
+        lay: Layout,
+        known: usize,
+        x: &mut [f64],
+        mask: &mut [bool],
+    ) -> usize {
         let refs: Vec<&[f64]> = self.slots[..known].iter().map(|v| v.as_slice()).collect();
         chunk_input(lay, &self.prev, self.begin, self.phase, &refs, x, mask)
     }

@@ -203,11 +203,12 @@ impl HsomConfig {
         let cfg = if sets.len() > 1 {
             let mut p = self.params().clone();
             p.training_steps = p.training_steps.saturating_mul(sets.len());
-            p.check(self.source())
-                .map_err(|e| GestureError::Persist(PersistError::Corrupted {
+            p.check(self.source()).map_err(|e| {
+                GestureError::Persist(PersistError::Corrupted {
                     path: PathBuf::from(self.source()),
                     what: e.to_string(),
-                }))?
+                })
+            })?
         } else {
             self.clone()
         };
@@ -218,7 +219,12 @@ impl HsomConfig {
         };
         let norm: Vec<Vec<Vec<Vec<f64>>>> = sets
             .iter()
-            .map(|(_, demos)| demos.iter().map(|d| shared.normalise_rows(&d.rows)).collect())
+            .map(|(_, demos)| {
+                demos
+                    .iter()
+                    .map(|d| shared.normalise_rows(&d.rows))
+                    .collect()
+            })
             .collect();
         let seed = self.params().seed;
         let branches: Vec<Hsom> = norm
@@ -404,7 +410,11 @@ impl GestureModel {
         b.extend_from_slice(MAGIC);
         b.extend_from_slice(&GESTURES_FORMAT_VERSION.to_le_bytes());
         b.extend_from_slice(&(self.labels.len() as u32).to_le_bytes());
-        for ((label, cal), branch) in self.labels.iter().zip(&self.calibration).zip(&self.branches)
+        for ((label, cal), branch) in self
+            .labels
+            .iter()
+            .zip(&self.calibration)
+            .zip(&self.branches)
         {
             b.extend_from_slice(&(label.len() as u32).to_le_bytes());
             b.extend_from_slice(label.as_bytes());
@@ -483,7 +493,11 @@ impl GestureModel {
         let _ = writeln!(s, "{TEXT_MAGIC}");
         let _ = writeln!(s, "version {GESTURES_FORMAT_VERSION}");
         let _ = writeln!(s, "gestures {}", self.labels.len());
-        for ((label, cal), branch) in self.labels.iter().zip(&self.calibration).zip(&self.branches)
+        for ((label, cal), branch) in self
+            .labels
+            .iter()
+            .zip(&self.calibration)
+            .zip(&self.branches)
         {
             let _ = writeln!(s, "gesture {label}");
             let vals: Vec<String> = cal.values().iter().map(|v| format!("{v:e}")).collect();
@@ -550,7 +564,9 @@ impl GestureModel {
             let cl = next("calibration")?;
             let values: Vec<f64> = cl
                 .strip_prefix("calibration")
-                .ok_or_else(|| corrupted(&p, format!("expected a calibration line, found {cl:.40?}")))?
+                .ok_or_else(|| {
+                    corrupted(&p, format!("expected a calibration line, found {cl:.40?}"))
+                })?
                 .split_whitespace()
                 .map(|t| t.parse::<f64>())
                 .collect::<Result<_, _>>()

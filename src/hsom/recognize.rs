@@ -451,7 +451,11 @@ impl GestureModel {
         let rep = self.branches[g].reproduce(&prefix[0])?;
         let j = open_end(prefix, &rep.postures);
         let last = &prefix[prefix.len() - 1];
-        let gap: Vec<f64> = last.iter().zip(&rep.postures[j]).map(|(a, b)| a - b).collect();
+        let gap: Vec<f64> = last
+            .iter()
+            .zip(&rep.postures[j])
+            .map(|(a, b)| a - b)
+            .collect();
         let mut postures = prefix.to_vec();
         let mut by = vec![0; prefix.len()];
         for (t, (row, &l)) in rep.postures[j + 1..]
@@ -502,7 +506,11 @@ fn open_end(a: &[Vec<f64>], b: &[Vec<f64>]) -> usize {
             let best = if i == 0 && j == 0 {
                 0.0
             } else {
-                let diag = if i > 0 && j > 0 { prev[j - 1] } else { f64::INFINITY };
+                let diag = if i > 0 && j > 0 {
+                    prev[j - 1]
+                } else {
+                    f64::INFINITY
+                };
                 let up = if i > 0 { prev[j] } else { f64::INFINITY };
                 let left = if j > 0 { cur[j - 1] } else { f64::INFINITY };
                 diag.min(up).min(left)
