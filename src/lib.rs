@@ -38,9 +38,11 @@ pub mod fsutil;
 pub mod gesture;
 pub mod gmr;
 pub mod hsom;
+pub mod labelled;
 pub mod metrics;
 #[cfg(feature = "sim")]
 pub mod mujoco;
+pub mod nearest;
 #[cfg(feature = "plot")]
 pub mod plot;
 #[cfg(feature = "sim")]

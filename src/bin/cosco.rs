@@ -1,5 +1,5 @@
 //! `cosco`: the steps of the main job one at a time, for scripting. Without the feature `sim`
-//! only `train`, `reproduce`, `inspect` and `evaluate` (which need no simulator).
+//! only `train`, `reproduce`, `recognize`, `inspect` and `evaluate` (which need no simulator).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -41,7 +41,8 @@ enum Command {
     #[cfg(feature = "sim")]
     /// Record synthetic, human-like demonstrations of a gesture on the simulated arm (40 Hz encoders).
     Demos {
-        /// Gesture name (reading-watch, wave, reach-point, salute).
+        /// Gesture name (reading-watch, wave, reach-point, salute), or `all`: every gesture,
+        /// each in its own labelled subdirectory of --out (OUT/<gesture>/demo_01.csv, ...).
         #[arg(long, default_value = "reading-watch")]
         gesture: String,
         /// Number of demonstrations.
@@ -65,7 +66,9 @@ enum Command {
         /// XML configuration (default: the built-in configs/nao-gestures.xml, the recommended events extension).
         #[arg(long)]
         config: Option<PathBuf>,
-        /// Demonstrations: a directory of *.csv files, or files.
+        /// Demonstrations: a directory of *.csv files, or files (one gesture); or directories
+        /// whose subdirectories are gesture labels (DIR/<label>/*.csv: several gestures in one
+        /// hierarchy).
         #[arg(long, num_args = 1.., required = true)]
         demos: Vec<PathBuf>,
         /// Where to save the model: `.bin` (binary) or `.txt` (plain text).
@@ -81,16 +84,39 @@ enum Command {
         /// The initial posture, comma-separated, one value per state variable.
         #[arg(
             long,
-            conflicts_with = "initial_from",
-            required_unless_present = "initial_from"
+            conflicts_with_all = ["initial_from", "prefix_from"],
+            required_unless_present_any = ["initial_from", "prefix_from"]
         )]
         initial: Option<String>,
         /// Take the initial posture from the first row of this demonstration CSV.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "prefix_from")]
         initial_from: Option<PathBuf>,
+        /// The gesture to reproduce (required with a model of several gestures).
+        #[arg(long, conflicts_with = "prefix_from")]
+        gesture: Option<String>,
+        /// Continue the gesture begun in this demonstration CSV's first --prefix samples; the
+        /// hierarchy decides which gesture it is.
+        #[arg(long, requires = "prefix")]
+        prefix_from: Option<PathBuf>,
+        /// Samples of --prefix-from to continue from.
+        #[arg(long, requires = "prefix_from")]
+        prefix: Option<usize>,
         /// Output CSV.
         #[arg(long)]
         out: PathBuf,
+    },
+    /// Recognise demonstrations with a model of several gestures: per file the label (or
+    /// `unknown`), a score per label and the earliest sample from which the decision held.
+    Recognize {
+        /// A model trained on labelled directories (`cosco train --demos DIR`, DIR/<label>/*.csv).
+        #[arg(long)]
+        model: PathBuf,
+        /// A demonstration CSV, a directory of them, or a directory of label subdirectories.
+        #[arg(long)]
+        demos: PathBuf,
+        /// Also write every answer as JSON here.
+        #[arg(long)]
+        json: Option<PathBuf>,
     },
     /// Print a saved model's levels, sizes and quality measures.
     Inspect {
@@ -192,22 +218,56 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Train { config, demos, out } => {
             let model = cli::train_files(config.as_deref(), &demos, &out)?;
-            out!("{}", model.summary());
+            if model.labels().is_empty() {
+                out!("{}", model.branches()[0].summary());
+            } else {
+                outln!(
+                    "{} gestures in one hierarchy: {}",
+                    model.labels().len(),
+                    model.labels().join(", ")
+                );
+            }
             outln!("saved {}", out.display());
         }
         Command::Reproduce {
             model,
             initial,
             initial_from,
+            gesture,
+            prefix_from,
+            prefix,
             out,
         } => {
-            let n = cli::reproduce_file(&model, initial.as_deref(), initial_from.as_deref(), &out)?;
-            outln!("{n} postures written to {}", out.display());
+            let (n, label) = match (prefix_from, prefix) {
+                (Some(p), Some(k)) => cli::continue_file(&model, &p, k, &out)?,
+                _ => cli::reproduce_gesture_file(
+                    &model,
+                    gesture.as_deref(),
+                    initial.as_deref(),
+                    initial_from.as_deref(),
+                    &out,
+                )?,
+            };
+            match label {
+                Some(l) => outln!("{n} postures of {l} written to {}", out.display()),
+                None => outln!("{n} postures written to {}", out.display()),
+            }
+        }
+        Command::Recognize { model, demos, json } => {
+            for line in cli::recognize_lines(&model, &demos, json.as_deref())? {
+                outln!("{line}");
+            }
         }
         Command::Inspect { model } => {
-            let m = cli::load_model(&model)?;
+            let m = cli::load_gesture_model(&model)?;
             outln!("{}", model.display());
-            out!("{}", m.summary());
+            if m.labels().is_empty() {
+                out!("{}", m.branches()[0].summary());
+            }
+            for (l, b) in m.labels().iter().zip(m.branches()) {
+                outln!("gesture {l}:");
+                out!("{}", b.summary());
+            }
         }
         Command::Evaluate {
             reproduction,

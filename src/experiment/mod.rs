@@ -9,6 +9,7 @@ pub mod execute;
 pub mod figures;
 pub mod film;
 pub mod heldout;
+pub mod multi;
 pub mod pipeline;
 pub mod report;
 pub mod study;

@@ -692,7 +692,7 @@ impl HsomConfig {
 impl Hsom {
     /// Replay the (normalised) training data through the trained maps, without learning, with
     /// the training schedule restarted at every demonstration: node usage, end nodes, QE, TE.
-    fn replay(&mut self, norm: &[Vec<Vec<f64>>]) {
+    pub(super) fn replay(&mut self, norm: &[Vec<Vec<f64>>]) {
         let cfg = self.config.clone();
         let p = cfg.params();
         let state = p.state_length;

@@ -88,9 +88,9 @@ impl DurationCode {
 
 /// One entry of an activity list: the node (or [`END`]) and its content (a slot).
 #[derive(Debug, Clone)]
-struct Item {
-    node: u32,
-    content: Vec<f64>,
+pub(super) struct Item {
+    pub(super) node: u32,
+    pub(super) content: Vec<f64>,
 }
 
 /// The events of one demonstration: runs of the bottom BMU with hysteresis (`changeRatio`),
@@ -130,7 +130,7 @@ fn dist2(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// Content of a bottom event.
-fn event_content(
+pub(super) fn event_content(
     map: &SelfOrganizingMap,
     node: usize,
     samples: f64,
@@ -143,7 +143,7 @@ fn event_content(
 }
 
 /// Content of the end of the gesture after an item whose last posture is `b`.
-fn end_content(lay: Layout, b: &[f64]) -> Vec<f64> {
+pub(super) fn end_content(lay: Layout, b: &[f64]) -> Vec<f64> {
     let mut c = Vec::with_capacity(lay.slot());
     c.extend_from_slice(b);
     c.extend_from_slice(b);
@@ -153,7 +153,7 @@ fn end_content(lay: Layout, b: &[f64]) -> Vec<f64> {
 }
 
 /// The summary of a node of level >= 1 (its slot form one level up).
-fn summary(lay: Layout, w: &[f64], code: DurationCode) -> Vec<f64> {
+pub(super) fn summary(lay: Layout, w: &[f64], code: DurationCode) -> Vec<f64> {
     let s = lay.s;
     let first = &w[lay.slot_range(0)];
     let last = &w[lay.slot_range(lay.k - 1)];
@@ -172,10 +172,10 @@ fn summary(lay: Layout, w: &[f64], code: DurationCode) -> Vec<f64> {
     c
 }
 
-fn a_part(lay: Layout, c: &[f64]) -> &[f64] {
+pub(super) fn a_part(lay: Layout, c: &[f64]) -> &[f64] {
     &c[..lay.s]
 }
-fn b_part(lay: Layout, c: &[f64]) -> &[f64] {
+pub(super) fn b_part(lay: Layout, c: &[f64]) -> &[f64] {
     &c[lay.s..2 * lay.s]
 }
 
@@ -188,7 +188,7 @@ fn write_ctx(lay: Layout, prev: &[f64], begin: bool, phase: f64, x: &mut [f64], 
 }
 
 /// Build the input of a chunk with `known` slots (the rest masked out).
-fn chunk_input(
+pub(super) fn chunk_input(
     lay: Layout,
     prev: &[f64],
     begin: bool,
@@ -209,7 +209,7 @@ fn chunk_input(
 
 /// One chunk of entries as the level above sees it.
 #[derive(Debug, Clone, PartialEq)]
-struct Chunk {
+pub(super) struct Chunk {
     /// The last posture before the chunk (the first posture for the first chunk).
     prev: Vec<f64>,
     /// The first chunk of a demonstration.
@@ -223,14 +223,20 @@ struct Chunk {
 impl Chunk {
     /// Its input with the first `known` slots known (the rest masked out); returns the
     /// number of known values.
-    fn input(&self, lay: Layout, known: usize, x: &mut [f64], mask: &mut [bool]) -> usize {
+    pub(super) fn input(
+        &self,
+        lay: Layout,
+        known: usize,
+        x: &mut [f64],
+        mask: &mut [bool],
+    ) -> usize {
         let refs: Vec<&[f64]> = self.slots[..known].iter().map(|v| v.as_slice()).collect();
         chunk_input(lay, &self.prev, self.begin, self.phase, &refs, x, mask)
     }
 }
 
 /// The chunks of one item sequence at the level above.
-fn chunks(lay: Layout, items: &[Item], per_item: f64, mean_events: f64) -> Vec<Chunk> {
+pub(super) fn chunks(lay: Layout, items: &[Item], per_item: f64, mean_events: f64) -> Vec<Chunk> {
     let mut out = Vec::new();
     if items.is_empty() {
         return out;

@@ -16,12 +16,16 @@
 mod algorithm;
 mod errors;
 mod events;
+mod labels;
 mod memory;
 mod persist;
+mod recognize;
 mod reproduce;
 
 pub use algorithm::{Hsom, LevelSummary, ModelSummary};
 pub use errors::{HsomError, PersistError};
+pub use labels::{is_plain_label, GestureError, GestureModel, GESTURES_FORMAT_VERSION, MAX_LABELS};
 pub use memory::{ActivityLevels, ActivityList};
 pub use persist::FORMAT_VERSION;
+pub use recognize::{Recognition, Scoring, PREFIX_BLEND};
 pub use reproduce::{Reproduction, StopReason};

@@ -13,9 +13,9 @@ use super::errors::PersistError;
 use super::events::FOLLOWERS;
 
 /// Magic bytes opening a binary model file.
-const MAGIC: &[u8; 8] = b"COSCOHSM";
+pub(super) const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
-const TEXT_MAGIC: &str = "cosco-hsom model";
+pub(super) const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of both formats.
 pub const FORMAT_VERSION: u32 = 5;
 
@@ -25,7 +25,7 @@ const MAX_DEMO_SAMPLES: f64 = 1e8;
 /// Largest embedded configuration accepted (bytes).
 const MAX_CONFIG: u64 = 1 << 20;
 
-fn fnv1a(bytes: &[u8]) -> u64 {
+pub(super) fn fnv1a(bytes: &[u8]) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for &b in bytes {
         h ^= b as u64;
@@ -753,12 +753,12 @@ struct Extra {
     exemplars: Vec<Vec<u32>>,
 }
 
-enum Format {
+pub(super) enum Format {
     Bin,
     Txt,
 }
 
-fn ext(path: &Path) -> Result<Format, PersistError> {
+pub(super) fn ext(path: &Path) -> Result<Format, PersistError> {
     match path
         .extension()
         .and_then(|e| e.to_str())

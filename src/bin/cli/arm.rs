@@ -85,8 +85,17 @@ pub fn demos(
     noise: f64,
     model: Option<&Path>,
 ) -> Result<Vec<PathBuf>> {
-    let g = gesture(gesture_name)?;
     let arm = load_arm(model)?;
+    if gesture_name == "all" {
+        // every gesture into its labelled subdirectory: OUT/<gesture>/demo_NN.csv
+        let mut files = Vec::new();
+        for g in cosco_hsom::gesture::Gesture::all() {
+            let demos = record(&arm, &g, count, seed, noise)?;
+            files.extend(write_demos(&out.join(g.name), &demos)?);
+        }
+        return Ok(files);
+    }
+    let g = gesture(gesture_name)?;
     let demos = record(&arm, &g, count, seed, noise)?;
     write_demos(out, &demos)
 }

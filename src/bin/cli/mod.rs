@@ -20,7 +20,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use cosco_hsom::config::HsomConfig;
 use cosco_hsom::demos::Demonstration;
-use cosco_hsom::hsom::Hsom;
+use cosco_hsom::hsom::{GestureModel, Hsom, Reproduction};
+use cosco_hsom::labelled;
 use cosco_hsom::metrics::{FidelityReport, MetricsParams};
 #[cfg(feature = "sim")]
 pub use cosco_hsom::steps::DEFAULT_CONFIG_NAME;
@@ -123,15 +124,120 @@ pub fn fidelity_lines(f: &FidelityReport, unit: &str) -> String {
     out
 }
 
-/// `cosco train`: read, train with a progress bar, save atomically.
-pub fn train_files(config: Option<&Path>, demo_paths: &[PathBuf], out: &Path) -> Result<Hsom> {
+/// `cosco train`: read (one gesture, or labelled directories of several), train with a
+/// progress bar, save atomically.
+pub fn train_files(
+    config: Option<&Path>,
+    demo_paths: &[PathBuf],
+    out: &Path,
+) -> Result<GestureModel> {
     // where the model goes is checked before any reading or training
     steps::check_model_output(out)?;
     let cfg = hsom_config(config)?;
-    let demos = read_demos(demo_paths, Some(cfg.params().state_length))?;
-    let model = train(&cfg, &demos)?;
-    steps::save_model(&model, out)?;
+    let sets = labelled::read_demo_sets(demo_paths, Some(cfg.params().state_length))?;
+    let pb = progress(cfg.params().training_steps as u64, "training");
+    let model = labelled::train_sets(
+        &cfg,
+        &sets,
+        Some(&|done, _total| pb.set_position(done as u64)),
+    )?;
+    pb.finish_and_clear();
+    labelled::save_gesture_model(&model, out)?;
     Ok(model)
+}
+
+/// Load a model of one or several gestures (.bin or .txt).
+pub fn load_gesture_model(path: &Path) -> Result<GestureModel> {
+    Ok(labelled::load_gesture_model(path)?)
+}
+
+/// Write a reproduction CSV atomically (`step`, then the model's columns).
+fn write_reproduction(model: &GestureModel, rep: &Reproduction, out: &Path) -> Result<()> {
+    let bytes = steps::reproduction_csv(&model.branches()[0], rep)?;
+    cosco_hsom::fsutil::write_atomic(out, &bytes)
+        .with_context(|| format!("writing {}", out.display()))
+}
+
+/// `cosco reproduce` with a model of one or several gestures: gesture `label` (required with
+/// several) from the command line's initial posture or a demonstration's first row. Returns
+/// the number of postures and the gesture.
+pub fn reproduce_gesture_file(
+    model: &Path,
+    label: Option<&str>,
+    initial: Option<&str>,
+    initial_from: Option<&Path>,
+    out: &Path,
+) -> Result<(usize, Option<String>)> {
+    let m = load_gesture_model(model)?;
+    // the gesture is checked before the initial posture is read
+    let branch = m.branch(label)?;
+    let initial = match (initial, initial_from) {
+        (Some(text), None) => parse_posture(text)?,
+        (None, Some(p)) => steps::initial_from_file(branch, p)?,
+        _ => bail!("give exactly one of --initial and --initial-from"),
+    };
+    let rep = labelled::reproduce_gesture(&m, &model.display().to_string(), label, &initial)?;
+    write_reproduction(&m, &rep, out)?;
+    Ok((rep.postures.len(), label.map(str::to_string)))
+}
+
+/// `cosco reproduce --prefix-from CSV --prefix N`: continue the gesture the hierarchy
+/// recognises in the file's first N samples.
+pub fn continue_file(
+    model: &Path,
+    prefix_from: &Path,
+    prefix: usize,
+    out: &Path,
+) -> Result<(usize, Option<String>)> {
+    let m = load_gesture_model(model)?;
+    let (label, rep) = labelled::continue_file(&m, prefix_from, prefix)?;
+    write_reproduction(&m, &rep, out)?;
+    Ok((rep.postures.len(), Some(label)))
+}
+
+/// `cosco recognize`: one line per file (label, scores, early decision), an accuracy line
+/// when the files came from label subdirectories; every answer as JSON when asked.
+pub fn recognize_lines(model: &Path, demos: &Path, json: Option<&Path>) -> Result<Vec<String>> {
+    let m = load_gesture_model(model)?;
+    let answers = labelled::recognize_paths(&m, demos)?;
+    let mut lines = Vec::new();
+    for a in &answers {
+        let r = &a.recognition;
+        let scores: Vec<String> = r
+            .scores
+            .iter()
+            .zip(&r.thresholds)
+            .map(|((l, s), t)| format!("{l} {s:.4} (threshold {t:.4})"))
+            .collect();
+        lines.push(format!(
+            "{}: {}{} | decided at sample {} of {} | scores: {}",
+            a.file,
+            r.label.as_deref().unwrap_or("unknown"),
+            a.expected
+                .as_ref()
+                .map_or(String::new(), |e| format!(" (expected {e})")),
+            r.decided_at,
+            r.samples,
+            scores.join(", ")
+        ));
+    }
+    let labelled_files: Vec<_> = answers.iter().filter(|a| a.expected.is_some()).collect();
+    if !labelled_files.is_empty() {
+        let right = labelled_files
+            .iter()
+            .filter(|a| a.expected == a.recognition.label)
+            .count();
+        lines.push(format!(
+            "{right} of {} recognised as their directory's label",
+            labelled_files.len()
+        ));
+    }
+    if let Some(p) = json {
+        let bytes = serde_json::to_vec_pretty(&answers)?;
+        cosco_hsom::fsutil::write_atomic(p, &bytes)
+            .with_context(|| format!("writing {}", p.display()))?;
+    }
+    Ok(lines)
 }
 
 /// Load a saved model (.bin or .txt).

@@ -1,0 +1,57 @@
+//! Recognising one gesture (issue 9): a hierarchy of four gestures (the built-in
+//! configs/nao-gestures.xml, 300-sample 6-D demonstrations generated here) against 1-NN DTW
+//! over the same 12 training sequences.
+//!
+//! cargo bench --bench recognize -- --warm-up-time 1 --measurement-time 3
+
+mod common;
+
+use common::gestures;
+use cosco_hsom::dtw::Band;
+use cosco_hsom::nearest::NearestNeighbour;
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+
+fn recognize(c: &mut Criterion) {
+    let cfg = cosco_hsom::steps::config(None).unwrap();
+    let base = gestures(4, 300);
+    // four gestures: the same shapes, each label's joints scaled and shifted its own way
+    let sets: Vec<(String, Vec<cosco_hsom::demos::Demonstration>)> = (0..4)
+        .map(|g| {
+            let demos = base[..3]
+                .iter()
+                .map(|d| {
+                    let mut d = d.clone();
+                    for r in &mut d.rows {
+                        for (j, v) in r.iter_mut().enumerate() {
+                            *v = *v * (1.0 + 0.2 * g as f64) + 0.1 * ((g + j) % 4) as f64;
+                        }
+                    }
+                    d
+                })
+                .collect();
+            (format!("g{g}"), demos)
+        })
+        .collect();
+    let model = cfg.fit_gestures(&sets, None).unwrap();
+    let nn = NearestNeighbour::new(
+        sets.iter()
+            .flat_map(|(l, ds)| ds.iter().map(move |d| (l.clone(), d.rows.clone())))
+            .collect(),
+        Band::None,
+    );
+    let query = sets[2].1[0].rows.clone();
+    let mut g = c.benchmark_group("recognize_one_gesture_300_samples");
+    g.bench_function("hsom_scores", |b| {
+        b.iter(|| model.scores(black_box(&query)).unwrap())
+    });
+    g.bench_function("hsom_with_early_decision", |b| {
+        b.iter(|| model.recognize(black_box(&query)).unwrap())
+    });
+    g.bench_function("nn_dtw", |b| {
+        b.iter(|| nn.classify(black_box(&query)).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, recognize);
+criterion_main!(benches);

@@ -1,0 +1,523 @@
+//! Recognition with a multi-gesture hierarchy (docs/ALGORITHM.md "Several gestures in one
+//! hierarchy"): a sequence's bottom events are pushed up every label's branch exactly as in
+//! training; at each level above the bottom, each chunk is matched by the branch's map and
+//! its RMS distance (per coordinate) taken. A label's score is the mean over levels of the
+//! level's mean distance divided by the same mean on the branch's own training data: 1 is
+//! "as close as what it learned", larger is farther. The lowest score wins; above the
+//! label's threshold, calibrated on the training data alone (leave-one-out), the answer is
+//! `unknown`.
+
+use serde::Serialize;
+
+use super::algorithm::Hsom;
+use super::errors::HsomError;
+use super::events::{
+    a_part, b_part, bottom_events, chunk_input, chunks, end_content, event_content, summary,
+    DurationCode, Item, Layout, END,
+};
+use super::labels::{branch_seed, GestureError, GestureModel};
+use super::reproduce::Reproduction;
+
+/// What recognition compares a label's matches with: per level, the branch's mean chunk
+/// distance on its training data (index 0, the bottom, unused), and the score above which a
+/// sequence is not this gesture.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Calibration {
+    pub(crate) reference: Vec<f64>,
+    pub(crate) threshold: f64,
+}
+
+impl Calibration {
+    /// Flat form for the model file: the references, then the threshold.
+    pub(crate) fn values(&self) -> Vec<f64> {
+        let mut v = self.reference.clone();
+        v.push(self.threshold);
+        v
+    }
+
+    /// From the flat form of a model of `height` levels; `None` when it does not fit.
+    pub(crate) fn from_values(v: &[f64], height: usize) -> Option<Calibration> {
+        if v.len() != height + 1 || v.iter().any(|x| !x.is_finite() || *x < 0.0) {
+            return None;
+        }
+        Some(Calibration {
+            reference: v[..height].to_vec(),
+            threshold: v[height],
+        })
+    }
+}
+
+/// Per sample of `norm` (normalised rows; its bottom inputs: the posture and the posture
+/// `actionHorizon` later), the RMS distance to the nearest bottom node `model`'s gesture used
+/// (the bottom is shared; the branch's event durations say which nodes its gesture visited).
+pub(crate) fn posture_distances(model: &Hsom, norm: &[Vec<f64>]) -> Vec<f64> {
+    let map = &model.maps[0];
+    let used: Vec<usize> = (0..map.len()).filter(|&n| model.dwell[n] > 0.0).collect();
+    let s = model.config.params().state_length;
+    let h = model.config.params().action_horizon.max(1);
+    let mut x = vec![0.0; 2 * s];
+    (0..norm.len().saturating_sub(1))
+        .map(|pos| {
+            x[..s].copy_from_slice(&norm[pos]);
+            x[s..].copy_from_slice(&norm[(pos + h).min(norm.len() - 1)]);
+            let d2 = used
+                .iter()
+                .map(|&n| map.distance2(n, &x, 0..2 * s))
+                .fold(f64::INFINITY, f64::min);
+            (d2 / (2 * s) as f64).sqrt()
+        })
+        .collect()
+}
+
+/// The mean of the first `n` values (`None` when there are none).
+fn mean_of(v: &[f64], n: usize) -> Option<f64> {
+    let n = n.min(v.len());
+    (n > 0).then(|| v[..n].iter().sum::<f64>() / n as f64)
+}
+
+/// Level distances of a whole normalised sequence: the postures' at level 0, then the
+/// levels' chunks ([`level_distances`]).
+fn all_distances(model: &Hsom, norm: &[Vec<f64>], events: &[(usize, f64)]) -> Vec<Option<f64>> {
+    let mut d = level_distances(model, events, true);
+    let p = posture_distances(model, norm);
+    d[0] = mean_of(&p, p.len());
+    d
+}
+
+/// Per level, the mean RMS distance per known coordinate between the
+/// chunks of `events` (bottom events: node, samples) and their best nodes in `model`'s maps.
+/// With `complete`, the sequence ends after its events (the end is appended, as in training);
+/// otherwise it is a prefix: only the chunks it completes count, plus the chunk in progress
+/// at level 1, matched on what it holds. Level 0 is left to [`posture_distances`].
+pub(crate) fn level_distances(
+    model: &Hsom,
+    events: &[(usize, f64)],
+    complete: bool,
+) -> Vec<Option<f64>> {
+    let lay = Layout::of(&model.config);
+    let h = model.maps.len();
+    let code = DurationCode::from_dwell(&model.dwell);
+    let mean_events = model.demo_runs[1];
+    let mut out = vec![None; h];
+    let mut items: Vec<Item> = events
+        .iter()
+        .map(|&(n, d)| Item {
+            node: n as u32,
+            content: event_content(&model.maps[0], n, d, code),
+        })
+        .collect();
+    if complete {
+        if let Some(last) = items.last() {
+            let b = b_part(lay, &last.content).to_vec();
+            items.push(Item {
+                node: END,
+                content: end_content(lay, &b),
+            });
+        }
+    }
+    let mut x = vec![0.0; lay.dim()];
+    let mut mask = vec![true; lay.dim()];
+    for (l, slot) in out.iter_mut().enumerate().skip(1) {
+        if items.is_empty() {
+            break;
+        }
+        let per_item = (lay.k as f64).powi(l as i32 - 1);
+        let full = if complete {
+            items.len()
+        } else {
+            items.len() / lay.k * lay.k
+        };
+        let (mut sum, mut n) = (0.0, 0usize);
+        let mut next = Vec::new();
+        for ch in chunks(lay, &items[..full], per_item, mean_events) {
+            ch.input(lay, lay.k, &mut x, &mut mask);
+            let (b, d2) = model.maps[l].bmu(&x);
+            sum += (d2 / lay.dim() as f64).sqrt();
+            n += 1;
+            next.push(Item {
+                node: b as u32,
+                content: summary(lay, &model.maps[l].weights(b), code),
+            });
+        }
+        if l == 1 && full < items.len() {
+            let rest: Vec<&[f64]> = items[full..].iter().map(|i| i.content.as_slice()).collect();
+            let prev = if full == 0 {
+                a_part(lay, &items[0].content).to_vec()
+            } else {
+                b_part(lay, &items[full - 1].content).to_vec()
+            };
+            let phase = full as f64 * per_item / mean_events.max(1.0);
+            let known = chunk_input(lay, &prev, full == 0, phase, &rest, &mut x, &mut mask);
+            let (_, d2) = model.maps[l].bmu_masked(&x, &mask);
+            sum += (d2 / known as f64).sqrt();
+            n += 1;
+        }
+        if n > 0 {
+            *slot = Some(sum / n as f64);
+        }
+        items = next;
+    }
+    out
+}
+
+/// How a label's matches become its score (lower is better).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub enum Scoring {
+    /// The mean over every level of its mean distance (the bottom's postures and the levels'
+    /// chunks), in the shared normalised units of every branch.
+    Raw,
+    /// Level 1's mean chunk distance alone.
+    Level1,
+    /// The bottom alone: the mean distance of the events' postures to the nearest posture
+    /// the gesture used (its branch's statistics). The default: measured best on the
+    /// development seeds (docs/ALGORITHM.md "Several gestures in one hierarchy").
+    #[default]
+    Postures,
+    /// The mean over levels of distance / the label's held-out reference (the same mean on
+    /// its own demonstrations held out, leave-one-out).
+    Relative,
+}
+
+impl Scoring {
+    /// The score of per-level distances against per-level references (levels without either
+    /// left out; infinite when none is left).
+    fn score(self, dist: &[Option<f64>], reference: &[f64]) -> f64 {
+        let (mut s, mut n) = (0.0, 0usize);
+        for (l, (d, r)) in dist.iter().zip(reference).enumerate() {
+            let counted = match self {
+                Scoring::Level1 => l == 1,
+                Scoring::Postures => l == 0,
+                _ => true,
+            };
+            if !counted {
+                continue;
+            }
+            if let Some(d) = d {
+                match self {
+                    Scoring::Relative if *r > 0.0 => s += d / r,
+                    Scoring::Relative => continue,
+                    _ => s += d,
+                }
+                n += 1;
+            }
+        }
+        if n > 0 {
+            s / n as f64
+        } else {
+            f64::INFINITY
+        }
+    }
+}
+
+/// Per level, the mean of distance vectors (0 where none).
+fn level_means(dists: &[Vec<Option<f64>>], h: usize) -> Vec<f64> {
+    let (mut sum, mut n) = (vec![0.0; h], vec![0usize; h]);
+    for d in dists {
+        for (l, v) in d.iter().enumerate() {
+            if let Some(v) = v {
+                sum[l] += v;
+                n[l] += 1;
+            }
+        }
+    }
+    sum.iter()
+        .zip(&n)
+        .map(|(s, &n)| if n > 0 { s / n as f64 } else { 0.0 })
+        .collect()
+}
+
+/// The calibration of every label: its held-out references (each own demonstration scored
+/// by a branch trained without it: leave-one-out; in-sample for a label with one
+/// demonstration), and its threshold between those own held-out scores and the scores the
+/// other labels' training demonstrations get from it. When every own score is below every
+/// other one, the threshold is their geometric midpoint (the widest margin in log score);
+/// when they overlap, the worst own score; with a single label (nothing to tell it from),
+/// twice the worst own score.
+pub(crate) fn calibrate(
+    shared: &Hsom,
+    branches: &[Hsom],
+    norm: &[Vec<Vec<Vec<f64>>>],
+    learn: bool,
+    seed: u64,
+) -> Vec<Calibration> {
+    let h = shared.maps.len();
+    let events: Vec<Vec<Vec<(usize, f64)>>> = norm
+        .iter()
+        .map(|n| n.iter().map(|d| bottom_events(shared, d)).collect())
+        .collect();
+    (0..branches.len())
+        .map(|g| {
+            let own: Vec<Vec<Option<f64>>> = if norm[g].len() >= 2 {
+                (0..norm[g].len())
+                    .map(|i| {
+                        let rest: Vec<Vec<Vec<f64>>> = norm[g]
+                            .iter()
+                            .enumerate()
+                            .filter(|&(j, _)| j != i)
+                            .map(|(_, d)| d.clone())
+                            .collect();
+                        let loo = shared.branch(&rest, learn, branch_seed(seed, g, Some(i)));
+                        all_distances(&loo, &norm[g][i], &events[g][i])
+                    })
+                    .collect()
+            } else {
+                vec![all_distances(&branches[g], &norm[g][0], &events[g][0])]
+            };
+            let reference = level_means(&own, h);
+            let scoring = Scoring::default();
+            let worst_own = own
+                .iter()
+                .map(|d| scoring.score(d, &reference))
+                .filter(|v| v.is_finite())
+                .fold(0.0, f64::max);
+            let best_other = (0..branches.len())
+                .filter(|&o| o != g)
+                .flat_map(|o| norm[o].iter().zip(&events[o]))
+                .map(|(n, ev)| scoring.score(&all_distances(&branches[g], n, ev), &reference))
+                .fold(f64::INFINITY, f64::min);
+            let threshold = if branches.len() == 1 {
+                2.0 * worst_own
+            } else if best_other > worst_own && best_other.is_finite() {
+                (worst_own * best_other).sqrt()
+            } else {
+                worst_own
+            };
+            Calibration {
+                reference,
+                threshold,
+            }
+        })
+        .collect()
+}
+
+/// The answer of recognition for one sequence.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Recognition {
+    /// The recognised label, or `None` (unknown) when the best score is above its threshold.
+    pub label: Option<String>,
+    /// The label with the lowest score (whether or not it is below its threshold).
+    pub best: String,
+    /// Per label (in the model's order): its score (1 = as close as its training data).
+    pub scores: Vec<(String, f64)>,
+    /// Per label: its threshold.
+    pub thresholds: Vec<f64>,
+    /// The earliest sample from which the best label stayed the same to the end (early
+    /// recognition).
+    pub decided_at: usize,
+    /// Samples in the sequence.
+    pub samples: usize,
+}
+
+impl Recognition {
+    /// `decided_at / samples`: the fraction of the gesture seen before the decision was
+    /// final.
+    pub fn decided_fraction(&self) -> f64 {
+        self.decided_at as f64 / self.samples.max(1) as f64
+    }
+}
+
+impl GestureModel {
+    /// The normalised rows and their bottom events, after checking the rows.
+    #[allow(clippy::type_complexity)]
+    fn checked_events(
+        &self,
+        rows: &[Vec<f64>],
+    ) -> Result<(Vec<Vec<f64>>, Vec<(usize, f64)>), GestureError> {
+        if self.labels.is_empty() {
+            return Err(GestureError::NoLabels);
+        }
+        let shared = &self.branches[0];
+        let width = shared.columns.len();
+        if rows.len() < 2 {
+            return Err(HsomError::TooShort {
+                demo: "the sequence".into(),
+                rows: rows.len(),
+                needed: 2,
+            }
+            .into());
+        }
+        for (i, r) in rows.iter().enumerate() {
+            if r.len() != width {
+                return Err(HsomError::DimensionMismatch {
+                    demo: "the sequence".into(),
+                    row: i,
+                    expected: width,
+                    found: r.len(),
+                }
+                .into());
+            }
+            if let Some(c) = r.iter().position(|v| !v.is_finite()) {
+                return Err(HsomError::NonFinite {
+                    demo: "the sequence".into(),
+                    row: i,
+                    column: c,
+                }
+                .into());
+            }
+        }
+        let norm = shared.normalise_rows(rows);
+        let ev = bottom_events(shared, &norm);
+        Ok((norm, ev))
+    }
+
+    /// Per label, the per-sample posture distances of a normalised sequence.
+    fn postures_of(&self, norm: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        self.branches
+            .iter()
+            .map(|b| posture_distances(b, norm))
+            .collect()
+    }
+
+    /// Per label, the score of the first `samples` samples (their posture distances
+    /// `postures`) and the bottom events `events`; `complete`: the sequence ends there.
+    fn scores_of(
+        &self,
+        postures: &[Vec<f64>],
+        samples: usize,
+        events: &[(usize, f64)],
+        complete: bool,
+    ) -> Vec<f64> {
+        self.branches
+            .iter()
+            .zip(&self.calibration)
+            .zip(postures)
+            .map(|((b, c), p)| {
+                let mut d = if self.scoring == Scoring::Postures {
+                    vec![None; b.maps.len()]
+                } else {
+                    level_distances(b, events, complete)
+                };
+                d[0] = mean_of(p, samples);
+                self.scoring.score(&d, &c.reference)
+            })
+            .collect()
+    }
+
+    /// Per label (in the model's order), the score of a whole sequence (rows in the data's
+    /// units): 1 is as close as the label's training data, larger is farther.
+    pub fn scores(&self, rows: &[Vec<f64>]) -> Result<Vec<f64>, GestureError> {
+        let (norm, ev) = self.checked_events(rows)?;
+        let p = self.postures_of(&norm);
+        Ok(self.scores_of(&p, rows.len(), &ev, true))
+    }
+
+    /// Recognise a whole sequence: the best label or unknown, every score, and the earliest
+    /// sample from which the best label stayed the same (each prefix scored on the bottom
+    /// events it has completed, available `actionHorizon` samples after they end).
+    pub fn recognize(&self, rows: &[Vec<f64>]) -> Result<Recognition, GestureError> {
+        let (norm, ev) = self.checked_events(rows)?;
+        let post = self.postures_of(&norm);
+        let fin = self.scores_of(&post, rows.len(), &ev, true);
+        let best = argmin(&fin);
+        let horizon = self.branches[0].config.params().action_horizon;
+        let mut decided_at = rows.len();
+        let mut done = 0.0;
+        let mut ends = Vec::with_capacity(ev.len());
+        for &(_, d) in &ev {
+            done += d;
+            ends.push(done);
+        }
+        for p in (1..=ev.len()).rev() {
+            let at = ((ends[p - 1] as usize) + horizon).min(rows.len());
+            if argmin(&self.scores_of(&post, ends[p - 1] as usize, &ev[..p], false)) != best {
+                break;
+            }
+            decided_at = at;
+        }
+        let threshold = self.calibration[best].threshold;
+        Ok(Recognition {
+            label: (fin[best] <= threshold).then(|| self.labels[best].clone()),
+            best: self.labels[best].clone(),
+            scores: self.labels.iter().cloned().zip(fin).collect(),
+            thresholds: self.calibration.iter().map(|c| c.threshold).collect(),
+            decided_at,
+            samples: rows.len(),
+        })
+    }
+
+    /// Continue a gesture from its first samples (`prefix`, in the data's units): the
+    /// hierarchy decides which gesture it is (the lowest prefix score), reproduces it from
+    /// the prefix's first posture, finds where the prefix ends along that reproduction (DTW
+    /// with an open end) and continues from there, the gap between the prefix's last posture
+    /// and the reproduction closed over [`PREFIX_BLEND`] samples. Returns the label and the
+    /// postures (the prefix first).
+    pub fn continue_prefix(
+        &self,
+        prefix: &[Vec<f64>],
+    ) -> Result<(String, Reproduction), GestureError> {
+        let (norm, ev) = self.checked_events(prefix)?;
+        let post = self.postures_of(&norm);
+        let g = argmin(&self.scores_of(&post, prefix.len(), &ev, false));
+        let rep = self.branches[g].reproduce(&prefix[0])?;
+        let j = open_end(prefix, &rep.postures);
+        let last = &prefix[prefix.len() - 1];
+        let gap: Vec<f64> = last
+            .iter()
+            .zip(&rep.postures[j])
+            .map(|(a, b)| a - b)
+            .collect();
+        let mut postures = prefix.to_vec();
+        let mut by = vec![0; prefix.len()];
+        for (t, (row, &l)) in rep.postures[j + 1..]
+            .iter()
+            .zip(&rep.predicted_by[j + 1..])
+            .enumerate()
+        {
+            let w = (1.0 - (t + 1) as f64 / PREFIX_BLEND as f64).max(0.0);
+            postures.push(row.iter().zip(&gap).map(|(v, d)| v + w * d).collect());
+            by.push(l);
+        }
+        Ok((
+            self.labels[g].clone(),
+            Reproduction {
+                steps: (0..postures.len()).collect(),
+                postures,
+                predicted_by: by,
+                stop: rep.stop,
+            },
+        ))
+    }
+}
+
+/// Samples over which a continued prefix closes the gap to the reproduction (0.25 s at the
+/// recordings' 40 Hz).
+pub const PREFIX_BLEND: usize = 10;
+
+/// The index of the lowest value (the first among equals; NaN never wins).
+fn argmin(v: &[f64]) -> usize {
+    let mut best = 0;
+    for (i, x) in v.iter().enumerate() {
+        if *x < v[best] || v[best].is_nan() {
+            best = i;
+        }
+    }
+    best
+}
+
+/// Where along `b` the sequence `a` ends: the column of the cheapest warping path that
+/// starts at both starts and covers all of `a` (open end in `b`).
+fn open_end(a: &[Vec<f64>], b: &[Vec<f64>]) -> usize {
+    let m = b.len();
+    let mut prev = vec![f64::INFINITY; m];
+    let mut cur = vec![f64::INFINITY; m];
+    for (i, ai) in a.iter().enumerate() {
+        for j in 0..m {
+            let c = crate::dtw::euclidean(ai, &b[j]);
+            let best = if i == 0 && j == 0 {
+                0.0
+            } else {
+                let diag = if i > 0 && j > 0 {
+                    prev[j - 1]
+                } else {
+                    f64::INFINITY
+                };
+                let up = if i > 0 { prev[j] } else { f64::INFINITY };
+                let left = if j > 0 { cur[j - 1] } else { f64::INFINITY };
+                diag.min(up).min(left)
+            };
+            cur[j] = best + c;
+        }
+        std::mem::swap(&mut prev, &mut cur);
+    }
+    argmin(&prev)
+}

@@ -1,0 +1,320 @@
+//! Several gestures in one hierarchy (issue 9), on small 2-D gestures that train in well
+//! under a second: recognition held out beside its negative controls (shuffled labels, an
+//! unknown gesture), reproduction on cue, save and load (format 6; format 5 still loads as
+//! one gesture), and bad input through `cosco` with errors naming the directory or label.
+
+use std::path::Path;
+
+use assert_cmd::Command;
+use predicates::prelude::*;
+use rand::{Rng, SeedableRng};
+
+use cosco_hsom::config::{Algorithm, HsomConfig, HsomParams, LevelParams};
+use cosco_hsom::demos::{write_csv, Demonstration};
+use cosco_hsom::hsom::{GestureError, GestureModel, GESTURES_FORMAT_VERSION};
+use cosco_hsom::som::Topology;
+
+/// A gesture: hold at the origin, go to `apex` and back, hold; `seed` varies the holds, the
+/// amplitude and the encoder noise.
+fn gesture(apex: [f64; 2], seed: u64) -> Vec<Vec<f64>> {
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let hold = 20 + rng.gen_range(0..10);
+    let amp = 1.0 + rng.gen_range(-0.05..0.05);
+    let mut rows = Vec::new();
+    let mut push = |t: f64, rng: &mut rand_chacha::ChaCha8Rng| {
+        rows.push(vec![
+            amp * apex[0] * t + 0.002 * rng.gen::<f64>(),
+            amp * apex[1] * t + 0.002 * rng.gen::<f64>(),
+        ]);
+    };
+    for _ in 0..hold {
+        push(0.0, &mut rng);
+    }
+    for i in 0..40 {
+        push(i as f64 / 40.0, &mut rng);
+    }
+    for _ in 0..hold {
+        push(1.0, &mut rng);
+    }
+    for i in 0..40 {
+        push(1.0 - i as f64 / 40.0, &mut rng);
+    }
+    for _ in 0..hold {
+        push(0.0, &mut rng);
+    }
+    rows
+}
+
+const APEXES: [(&str, [f64; 2]); 3] = [
+    ("up", [0.0, 1.0]),
+    ("right", [1.0, 0.0]),
+    ("diag", [-0.7, 0.7]),
+];
+
+fn config() -> HsomConfig {
+    let mut p = HsomParams::table1();
+    p.algorithm = Algorithm::Events;
+    p.state_length = 2;
+    p.action_length = 2;
+    p.height = 3;
+    p.levels.truncate(3);
+    p.levels[0] = LevelParams::new(10, 10, Topology::Orthogonal, 0.1);
+    for l in 1..3 {
+        p.levels[l] = LevelParams::new(6, 6, Topology::Orthogonal, 0.5);
+    }
+    p.change_ratio = 0.6;
+    p.action_horizon = 5;
+    p.training_steps = 3000;
+    p.check("test").unwrap()
+}
+
+fn demo(name: &str, rows: Vec<Vec<f64>>) -> Demonstration {
+    Demonstration {
+        source: name.to_string(),
+        columns: vec!["x0".into(), "x1".into()],
+        time: None,
+        rows,
+    }
+}
+
+fn sets(labels: &[(&str, [f64; 2])]) -> Vec<(String, Vec<Demonstration>)> {
+    labels
+        .iter()
+        .map(|(l, a)| {
+            (
+                l.to_string(),
+                (0..3).map(|i| demo(l, gesture(*a, i))).collect(),
+            )
+        })
+        .collect()
+}
+
+/// Held-out accuracy of `model` over 4 new demonstrations of each of `labels`.
+fn accuracy(model: &GestureModel, labels: &[(&str, [f64; 2])]) -> f64 {
+    let mut ok = 0;
+    for (l, a) in labels {
+        for s in 100..104 {
+            let r = model.recognize(&gesture(*a, s)).unwrap();
+            ok += usize::from(r.label.as_deref() == Some(*l));
+        }
+    }
+    ok as f64 / (4 * labels.len()) as f64
+}
+
+#[test]
+fn held_out_gestures_are_recognised_and_shuffled_labels_are_not() {
+    let m = config().fit_gestures(&sets(&APEXES), None).unwrap();
+    assert_eq!(m.labels(), ["up", "right", "diag"]);
+    let acc = accuracy(&m, &APEXES);
+    assert!(acc >= 0.95, "held-out accuracy {acc}");
+    // early: the decision is final before the end of the gesture
+    let r = m.recognize(&gesture(APEXES[1].1, 200)).unwrap();
+    assert!(r.decided_fraction() < 0.9, "{r:?}");
+    // negative control: the same demonstrations with their labels shuffled
+    // (each label gets one demonstration of every gesture)
+    let all: Vec<Demonstration> = sets(&APEXES).into_iter().flat_map(|(_, d)| d).collect();
+    let shuffled: Vec<(String, Vec<Demonstration>)> = APEXES
+        .iter()
+        .enumerate()
+        .map(|(i, (l, _))| {
+            (
+                l.to_string(),
+                (0..3).map(|j| all[j * 3 + i].clone()).collect(),
+            )
+        })
+        .collect();
+    let ms = config().fit_gestures(&shuffled, None).unwrap();
+    let acc = accuracy(&ms, &APEXES);
+    assert!(acc < 0.95, "shuffled labels: {acc}");
+}
+
+#[test]
+fn a_gesture_never_taught_is_unknown_and_the_taught_ones_are_not() {
+    let taught = &APEXES[..2];
+    let m = config().fit_gestures(&sets(taught), None).unwrap();
+    for s in 100..104 {
+        let r = m.recognize(&gesture(APEXES[2].1, s)).unwrap();
+        assert_eq!(r.label, None, "{r:?}");
+    }
+    assert!(accuracy(&m, taught) >= 0.95);
+}
+
+#[test]
+fn the_label_chooses_the_gesture_reproduced_and_is_required() {
+    let m = config().fit_gestures(&sets(&APEXES), None).unwrap();
+    for (l, a) in APEXES {
+        let rep = m.reproduce(Some(l), &[0.0, 0.0]).unwrap();
+        let far = rep
+            .postures
+            .iter()
+            .max_by(|p, q| (p[0].hypot(p[1])).total_cmp(&q[0].hypot(q[1])))
+            .unwrap();
+        let d = (far[0] - a[0]).hypot(far[1] - a[1]);
+        assert!(d < 0.25, "{l}: apex {far:?} vs {a:?}");
+    }
+    match m.reproduce(None, &[0.0, 0.0]) {
+        Err(e @ GestureError::LabelNeeded { .. }) => {
+            let t = e.to_string();
+            assert!(t.contains("up, right, diag"), "{t}");
+        }
+        other => panic!("{other:?}"),
+    }
+    match m.reproduce(Some("wave"), &[0.0, 0.0]) {
+        Err(e @ GestureError::UnknownLabel { .. }) => assert!(e.to_string().contains("\"wave\"")),
+        other => panic!("{other:?}"),
+    }
+    // continuing a prefix: the hierarchy tells which gesture it is
+    let g = gesture(APEXES[1].1, 300);
+    let (label, rep) = m.continue_prefix(&g[..60]).unwrap();
+    assert_eq!(label, "right");
+    assert_eq!(rep.postures[..60], g[..60]);
+    assert!(rep.postures.len() > 80);
+}
+
+#[test]
+fn save_and_load_keep_the_model_and_its_size_does_not_grow_with_the_demonstrations() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = config().fit_gestures(&sets(&APEXES), None).unwrap();
+    for ext in ["bin", "txt"] {
+        let p = dir.path().join(format!("m.{ext}"));
+        m.save(&p).unwrap();
+        assert_eq!(GestureModel::load(&p).unwrap(), m, "{ext}");
+    }
+    let bytes = std::fs::read(dir.path().join("m.bin")).unwrap();
+    assert_eq!(bytes[8..12], GESTURES_FORMAT_VERSION.to_le_bytes());
+    // a corrupted byte is refused
+    let mut bad = bytes.clone();
+    let mid = bad.len() / 2;
+    bad[mid] ^= 1;
+    assert!(GestureModel::from_bytes(&bad, Path::new("x.bin")).is_err());
+    // demonstrations twice as long: the same size
+    let long: Vec<(String, Vec<Demonstration>)> = sets(&APEXES)
+        .into_iter()
+        .map(|(l, ds)| {
+            let ds = ds
+                .into_iter()
+                .map(|d| {
+                    let rows = d.rows.iter().flat_map(|r| [r.clone(), r.clone()]).collect();
+                    demo(&d.source, rows)
+                })
+                .collect();
+            (l, ds)
+        })
+        .collect();
+    let ml = config().fit_gestures(&long, None).unwrap();
+    assert_eq!(ml.to_bytes().len(), m.to_bytes().len());
+    // a single-gesture model (format 5) loads as one unlabelled gesture, byte for byte
+    let single = config().fit_series(&[gesture([1.0, 0.0], 1)]).unwrap();
+    let p = dir.path().join("single.bin");
+    single.save(&p).unwrap();
+    let g = GestureModel::load(&p).unwrap();
+    assert!(g.labels().is_empty());
+    assert_eq!(g.branches()[0], single);
+    g.save(&dir.path().join("again.bin")).unwrap();
+    assert_eq!(
+        std::fs::read(&p).unwrap(),
+        std::fs::read(dir.path().join("again.bin")).unwrap()
+    );
+}
+
+fn write_label(root: &Path, label: &str, apex: [f64; 2], width3: bool) {
+    let d = root.join(label);
+    std::fs::create_dir_all(&d).unwrap();
+    for i in 0..2 {
+        let mut rows = gesture(apex, i);
+        let mut columns = vec!["x0".to_string(), "x1".to_string()];
+        if width3 {
+            rows.iter_mut().for_each(|r| r.push(0.0));
+            columns.push("x2".into());
+        }
+        let demo = Demonstration {
+            source: String::new(),
+            columns,
+            time: None,
+            rows,
+        };
+        write_csv(&d.join(format!("demo_{i}.csv")), &demo).unwrap();
+    }
+}
+
+fn cosco() -> Command {
+    Command::cargo_bin("cosco").unwrap()
+}
+
+#[test]
+fn bad_labelled_directories_are_refused_naming_the_directory_or_label() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = dir.path().join("c.xml");
+    std::fs::write(&cfg, config().to_xml()).unwrap();
+    let out = dir.path().join("m.bin");
+    let train = |demos: &Path| {
+        let mut c = cosco();
+        c.args(["train", "--config"])
+            .arg(&cfg)
+            .arg("--demos")
+            .arg(demos)
+            .arg("--out")
+            .arg(&out);
+        c
+    };
+    // a label directory with no CSV
+    let empty = dir.path().join("empty");
+    write_label(&empty, "up", [0.0, 1.0], false);
+    std::fs::create_dir_all(empty.join("nothing")).unwrap();
+    train(&empty)
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("nothing"));
+    // a label that is not a plain word
+    let badname = dir.path().join("badname");
+    write_label(&badname, "up", [0.0, 1.0], false);
+    write_label(&badname, "two words", [1.0, 0.0], false);
+    train(&badname).assert().failure().stderr(
+        predicate::str::contains("\"two words\"").and(predicate::str::contains("plain word")),
+    );
+    // mixed widths across labels
+    let mixed = dir.path().join("mixed");
+    write_label(&mixed, "up", [0.0, 1.0], false);
+    write_label(&mixed, "wide", [1.0, 0.0], true);
+    train(&mixed)
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("wide"));
+    // a good set trains; an unknown label, or none, is refused listing the labels
+    let good = dir.path().join("good");
+    write_label(&good, "up", [0.0, 1.0], false);
+    write_label(&good, "right", [1.0, 0.0], false);
+    train(&good)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("2 gestures"));
+    let rep = dir.path().join("rep.csv");
+    let reproduce = |extra: &[&str]| {
+        let mut c = cosco();
+        c.arg("reproduce")
+            .arg("--model")
+            .arg(&out)
+            .args(["--initial", "0,0"])
+            .arg("--out")
+            .arg(&rep)
+            .args(extra);
+        c
+    };
+    reproduce(&["--gesture", "wave"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("\"wave\"").and(predicate::str::contains("right, up")));
+    reproduce(&[])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("right, up"));
+    reproduce(&["--gesture", "up"]).assert().success();
+    cosco()
+        .args(["recognize", "--model"])
+        .arg(&out)
+        .arg("--demos")
+        .arg(&good)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("4 of 4 recognised"));
+}
