@@ -22,7 +22,9 @@ macro_rules! outln {
 #[derive(Parser, Debug)]
 #[command(name = "simulate", version)]
 struct Args {
-    /// Gesture of the synthetic demonstrations (reading-watch, wave, reach-point, salute).
+    /// Gesture of the synthetic demonstrations (reading-watch, wave, reach-point, salute), or
+    /// `all`: one hierarchy learns every gesture (`--count` demonstrations each, one held out in
+    /// turn), reproduces each on cue, and recognises the held-out ones.
     #[arg(long, default_value = "reading-watch")]
     gesture: String,
     /// CoSCo-HSOM configuration (XML); default: the shipped configs/nao-gestures.xml (the recommended events extension; configs/table1.xml is the paper taken literally).
@@ -82,6 +84,13 @@ fn run(a: Args) -> Result<()> {
         variants: !a.no_variants,
         heldout: !a.no_heldout,
     };
+    if job.gesture == "all" {
+        for line in cli::all_gestures_job(&job)? {
+            outln!("{line}");
+        }
+        outln!("report: {}", job.out.join("report.md").display());
+        return Ok(());
+    }
     let report = cli::main_job(&job)?;
     // values moved into the joint ranges before execution: said on stderr, an error with --strict
     let clamped: Vec<String> = report

@@ -2,6 +2,7 @@
 //! demonstrations recorded at 40 Hz, reproduce it from the initial posture alone on the
 //! simulated arm, and measure how faithful the reproduction is.
 
+pub mod all_gestures;
 pub mod baseline;
 pub mod demonstrate;
 pub mod evaluate;

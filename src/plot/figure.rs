@@ -215,7 +215,7 @@ fn ellipse_outline(e: &Ellipse, n: usize) -> Vec<(f64, f64)> {
         .collect()
 }
 
-fn register_font() {
+pub(crate) fn register_font() {
     REGISTER.call_once(|| {
         // The shipped font is a valid TTF; if a future replacement were not, text would be
         // missing but plots would still be drawn, so the error is deliberately not fatal.

@@ -7,9 +7,13 @@
 //! `assets/` (no fontconfig needed on the machine).
 
 mod boxplot;
+mod caption;
+mod confusion;
 mod figure;
 
 pub use boxplot::{boxplots_png, quantile, BoxPanel};
+pub use caption::caption;
+pub use confusion::{confusion_png, ConfusionPanel};
 pub use figure::{panels_png, Band, Ellipse, Panel, PlotError, Scatter, Series};
 
 use plotters::style::RGBColor;

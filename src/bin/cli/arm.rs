@@ -40,7 +40,7 @@ pub fn gesture(name: &str) -> Result<Gesture> {
     match Gesture::by_name(name) {
         Some(g) => Ok(g),
         None => bail!(
-            "unknown gesture '{name}': allowed {}",
+            "unknown gesture '{name}': allowed {}, or all (every gesture)",
             Gesture::names().join(", ")
         ),
     }
@@ -428,4 +428,75 @@ fn levels_note(by: &[usize]) -> String {
         .map(|l| format!("L{l}: {}", by.iter().filter(|&&b| b == l).count()))
         .collect();
     format!("postures predicted per level: {}", counts.join(", "))
+}
+
+/// `simulate --gesture all`: one hierarchy for every gesture (experiment::all_gestures), with
+/// a progress bar per stage; returns the report's summary lines.
+pub fn all_gestures_job(job: &Job) -> Result<Vec<String>> {
+    use cosco_hsom::experiment::all_gestures::{run_all_gestures, AllSettings};
+    if job.demos.is_some() {
+        bail!(
+            "--gesture all records synthetic demonstrations of every gesture; to learn several gestures from recorded files use `cosco train --demos DIR` with one subdirectory per gesture (DIR/<gesture>/*.csv)"
+        );
+    }
+    let out = &job.out;
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let cfg = hsom_config(job.config.as_deref())?;
+    let arm = load_arm(job.model.as_deref())?;
+    let config_name = job
+        .config
+        .as_ref()
+        .map_or(DEFAULT_CONFIG_NAME.into(), |p| p.display().to_string());
+    let settings = AllSettings {
+        count: job.count,
+        seed: job.seed,
+        noise: job.noise,
+        transition: job.transition,
+        render: job.render,
+    };
+    let bar: std::cell::RefCell<Option<(String, indicatif::ProgressBar)>> = Default::default();
+    let on_progress = |stage: &str, done: usize, total: usize| {
+        let mut b = bar.borrow_mut();
+        if b.as_ref().map_or(true, |(s, _)| s != stage) {
+            if let Some((_, old)) = b.take() {
+                old.finish_and_clear();
+            }
+            *b = Some((stage.to_string(), progress(total as u64, stage)));
+        }
+        if let Some((_, pb)) = b.as_ref() {
+            pb.set_position(done as u64);
+        }
+    };
+    let report = run_all_gestures(
+        &arm,
+        &cfg,
+        &config_name,
+        &Gesture::all(),
+        &settings,
+        out,
+        &on_progress,
+    )?;
+    if let Some((_, pb)) = bar.borrow_mut().take() {
+        pb.finish_and_clear();
+    }
+    let mut lines: Vec<String> = report
+        .fidelity
+        .iter()
+        .map(|f| {
+            format!(
+                "{:<14} held-out joint DTW {:.4} rad/step in the shared hierarchy, {:.4} learned alone ({:.2}x)",
+                f.gesture,
+                f.shared_joint_dtw,
+                f.alone_joint_dtw,
+                f.ratio()
+            )
+        })
+        .collect();
+    lines.push(format!(
+        "recognition of {} held-out demonstrations: CoSCo-HSOM {:.0} %, 1-NN DTW {:.0} %",
+        report.queries.len(),
+        100.0 * report.accuracy(),
+        100.0 * report.nn_accuracy()
+    ));
+    Ok(lines)
 }

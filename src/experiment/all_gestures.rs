@@ -1,0 +1,560 @@
+//! `simulate --gesture all` (issue 9): one hierarchy learns every gesture of the library, each
+//! is reproduced on cue and executed on the simulated arm, and the report sets the shared
+//! hierarchy's per-gesture fidelity beside the same gesture learned alone, with the
+//! recognition of held-out demonstrations (confusion matrices of CoSCo-HSOM and of the 1-NN
+//! DTW baseline) and a clip of the gestures in turn.
+//!
+//! Held out, leave-one-out across the demonstrations of every gesture: with `count`
+//! demonstrations per gesture, fold `k` learns from all but the `k`-th of every gesture and
+//! is scored on the `k`-th ones (`count - 1` = 3 learned per gesture by default, as in the
+//! issue). The model saved, reproduced and filmed is fold `count - 1`'s (learned from the
+//! first `count - 1` demonstrations of each gesture).
+
+use std::path::Path;
+
+use serde::Serialize;
+
+use crate::config::HsomConfig;
+use crate::demos::{write_csv, Demonstration};
+use crate::dtw::Band;
+use crate::gesture::Gesture;
+use crate::hsom::{GestureError, GestureModel};
+use crate::metrics::MetricsParams;
+use crate::nearest::NearestNeighbour;
+use crate::plot::{caption, confusion_png, ConfusionPanel};
+use crate::render::{contact_sheet, save_png, Clip, RenderOptions};
+use crate::sim::{NaoArm, Recording};
+
+use super::demonstrate::{synthetic_demonstrations, DemoSettings};
+use super::film::film;
+use super::pipeline::{execute_and_score, sample_period};
+use super::study::median;
+use super::{ExperimentError, Transition};
+
+/// Frames of each gesture on the contact sheet (one row per gesture).
+const SHEET_COLUMNS: usize = 4;
+
+/// Settings of the job.
+#[derive(Debug, Clone)]
+pub struct AllSettings {
+    /// Demonstrations per gesture (at least 2: one is held out in turn).
+    pub count: usize,
+    /// Seed of the demonstrations.
+    pub seed: u64,
+    /// Encoder noise of the demonstrations, rad.
+    pub noise: f64,
+    /// How postures become servo targets.
+    pub transition: Transition,
+    /// Render the clip and contact sheet.
+    pub render: bool,
+}
+
+/// One gesture's fidelity, held out: the shared hierarchy beside the gesture learned alone
+/// (same configuration, same folds), means over the folds.
+#[derive(Debug, Clone, Serialize)]
+pub struct GestureFidelity {
+    /// The gesture.
+    pub gesture: String,
+    /// Joint DTW of the shared hierarchy's reproductions on cue, rad per step.
+    pub shared_joint_dtw: f64,
+    /// Joint DTW of the gesture learned alone, rad per step.
+    pub alone_joint_dtw: f64,
+    /// Wrist-path DTW, shared, mm per step.
+    pub shared_wrist_dtw_mm: Option<f64>,
+    /// Wrist-path DTW, alone, mm per step.
+    pub alone_wrist_dtw_mm: Option<f64>,
+    /// Duration ratio of the shared hierarchy's reproductions.
+    pub shared_duration_ratio: f64,
+    /// Folds averaged.
+    pub folds: usize,
+}
+
+impl GestureFidelity {
+    /// Shared / alone joint DTW (the issue's gate: at most 1.2).
+    pub fn ratio(&self) -> f64 {
+        self.shared_joint_dtw / self.alone_joint_dtw
+    }
+}
+
+/// One held-out recognition query.
+#[derive(Debug, Clone, Serialize)]
+pub struct AllQuery {
+    /// The gesture shown.
+    pub expected: String,
+    /// CoSCo-HSOM's answer (`None`: unknown).
+    pub hsom: Option<String>,
+    /// Fraction of the sequence after which CoSCo-HSOM's answer stayed the same.
+    pub hsom_decided_fraction: f64,
+    /// Time of CoSCo-HSOM's recognition, ms.
+    pub hsom_ms: f64,
+    /// The 1-NN DTW baseline's answer.
+    pub nn: String,
+    /// Time of the baseline's answer, ms.
+    pub nn_ms: f64,
+}
+
+/// Everything `simulate --gesture all` measured.
+#[derive(Debug, Clone, Serialize)]
+pub struct AllReport {
+    /// Labels, in order.
+    pub labels: Vec<String>,
+    /// Configuration file (or description).
+    pub config: String,
+    /// Settings: demonstrations per gesture, seed, noise.
+    pub count: usize,
+    /// Seed of the demonstrations.
+    pub seed: u64,
+    /// Encoder noise, rad.
+    pub noise: f64,
+    /// Held-out fidelity per gesture.
+    pub fidelity: Vec<GestureFidelity>,
+    /// Held-out recognition queries (every fold).
+    pub queries: Vec<AllQuery>,
+    /// CoSCo-HSOM's confusion counts: rows the labels, columns the labels then `unknown`.
+    pub confusion: Vec<Vec<usize>>,
+    /// The 1-NN DTW baseline's confusion counts (it never answers `unknown`).
+    pub nn_confusion: Vec<Vec<usize>>,
+    /// The saved model's reproductions on cue: (gesture, samples, how it stopped).
+    pub reproductions: Vec<(String, usize, String)>,
+    /// Files written, relative to the output directory.
+    pub files: Vec<String>,
+}
+
+impl AllReport {
+    /// Fraction of queries CoSCo-HSOM answered with the gesture shown.
+    pub fn accuracy(&self) -> f64 {
+        let right = self
+            .queries
+            .iter()
+            .filter(|q| q.hsom.as_deref() == Some(q.expected.as_str()))
+            .count();
+        right as f64 / self.queries.len().max(1) as f64
+    }
+
+    /// Fraction of queries the 1-NN DTW baseline answered with the gesture shown.
+    pub fn nn_accuracy(&self) -> f64 {
+        let right = self.queries.iter().filter(|q| q.nn == q.expected).count();
+        right as f64 / self.queries.len().max(1) as f64
+    }
+
+    /// The report as Markdown.
+    pub fn to_markdown(&self) -> String {
+        use std::fmt::Write as _;
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "# CoSCo-HSOM on the simulated Nao left arm: {} gestures in one hierarchy\n",
+            self.labels.len()
+        );
+        let _ = writeln!(
+            s,
+            "Configuration {}; {} demonstrations per gesture (seed {}, encoder noise {} rad), \
+             leave-one-out: each fold learns from {} of every gesture and is scored on the \
+             remaining one of each. One hierarchy: a shared bottom level (postures) and one \
+             branch of upper levels per gesture (docs/ALGORITHM.md, \"Several gestures in one \
+             hierarchy\").\n",
+            self.config,
+            self.count,
+            self.seed,
+            self.noise,
+            self.count - 1
+        );
+        let _ = writeln!(
+            s,
+            "## Fidelity per gesture, held out: the shared hierarchy beside the gesture learned alone\n"
+        );
+        let _ = writeln!(s, "| gesture | shared joint DTW (rad/step) | alone joint DTW | shared / alone | shared wrist DTW (mm) | alone wrist DTW (mm) | shared duration ratio | folds |");
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+        let mm = |v: Option<f64>| v.map_or("n/a".to_string(), |x| format!("{x:.1}"));
+        for f in &self.fidelity {
+            let _ = writeln!(
+                s,
+                "| {} | {:.4} | {:.4} | {:.2} | {} | {} | {:.2} | {} |",
+                f.gesture,
+                f.shared_joint_dtw,
+                f.alone_joint_dtw,
+                f.ratio(),
+                mm(f.shared_wrist_dtw_mm),
+                mm(f.alone_wrist_dtw_mm),
+                f.shared_duration_ratio,
+                f.folds
+            );
+        }
+        let _ = writeln!(
+            s,
+            "\nThe issue's gate: shared / alone at most 1.2 on every gesture.\n"
+        );
+        let _ = writeln!(s, "## Recognition of the held-out demonstrations\n");
+        let early = |f: &dyn Fn(&AllQuery) -> f64| median(self.queries.iter().map(f));
+        let _ = writeln!(
+            s,
+            "CoSCo-HSOM {:.1} % ({} queries; median fraction of the gesture seen before the \
+             answer stayed the same {:.2}; median {:.2} ms a query); 1-NN DTW on the same \
+             training demonstrations {:.1} % (median {:.2} ms a query). Figure: \
+             `confusion.png`.\n",
+            100.0 * self.accuracy(),
+            self.queries.len(),
+            early(&|q| q.hsom_decided_fraction).unwrap_or(f64::NAN),
+            early(&|q| q.hsom_ms).unwrap_or(f64::NAN),
+            100.0 * self.nn_accuracy(),
+            early(&|q| q.nn_ms).unwrap_or(f64::NAN),
+        );
+        let _ = writeln!(s, "CoSCo-HSOM (rows: gesture shown; columns: answer):\n");
+        s += &confusion_table(&self.confusion, &self.labels, true);
+        let _ = writeln!(s, "\n1-NN DTW:\n");
+        s += &confusion_table(&self.nn_confusion, &self.labels, false);
+        let _ = writeln!(
+            s,
+            "\nThe unknown-gesture study and the negative controls (untrained hierarchy, shuffled \
+             labels) over several seeds: `cargo run --release --example multi_heldout -- --seeds \
+             11-15` (docs/COMPARISON.md).\n"
+        );
+        let _ = writeln!(
+            s,
+            "## The saved model's reproductions on cue\n\n`model.bin` (format 6) learned from \
+             the first {} demonstrations of each gesture; each gesture reproduced from its \
+             held-out demonstration's first posture and executed on the arm \
+             (`reproduction_<gesture>.csv`; `clip.gif` plays them in turn).\n",
+            self.count - 1
+        );
+        let _ = writeln!(s, "| gesture | samples | stopped |");
+        let _ = writeln!(s, "|---|---|---|");
+        for (g, n, stop) in &self.reproductions {
+            let _ = writeln!(s, "| {g} | {n} | {stop} |");
+        }
+        let _ = writeln!(s, "\n## Files\n");
+        for f in &self.files {
+            let _ = writeln!(s, "- `{f}`");
+        }
+        s
+    }
+}
+
+fn confusion_table(m: &[Vec<usize>], labels: &[String], unknown: bool) -> String {
+    let mut s = format!("| gesture shown | {}", labels.join(" | "));
+    s += if unknown { " | unknown |\n" } else { " |\n" };
+    let n = labels.len() + usize::from(unknown);
+    s += &format!("|---|{}\n", "---|".repeat(n));
+    for (l, row) in labels.iter().zip(m) {
+        let cells: Vec<String> = row.iter().take(n).map(|c| c.to_string()).collect();
+        s += &format!("| {l} | {} |\n", cells.join(" | "));
+    }
+    s
+}
+
+fn gerr(e: GestureError) -> ExperimentError {
+    ExperimentError::Invalid(e.to_string())
+}
+
+fn werr(what: &str, e: impl std::fmt::Display) -> ExperimentError {
+    ExperimentError::Invalid(format!("{what}: {e}"))
+}
+
+/// What a stage reports to a progress display: (stage, done, total).
+pub type Progress<'a> = &'a dyn Fn(&str, usize, usize);
+
+/// Run the job and write its files into `out`: `demos/<gesture>/demo_NN.csv`, `model.bin`,
+/// `reproduction_<gesture>.csv`, `confusion.png`, `report.md`, `report.json`, and with
+/// rendering `clip.gif` and `contact_sheet.png`.
+pub fn run_all_gestures(
+    arm: &NaoArm,
+    config: &HsomConfig,
+    config_name: &str,
+    gestures: &[Gesture],
+    settings: &AllSettings,
+    out: &Path,
+    progress: Progress<'_>,
+) -> Result<AllReport, ExperimentError> {
+    let count = settings.count;
+    if count < 2 {
+        return Err(ExperimentError::Invalid(format!(
+            "--count {count} with --gesture all: at least 2 demonstrations per gesture (each is held out in turn)"
+        )));
+    }
+    if gestures.len() < 2 {
+        return Err(ExperimentError::Invalid(
+            "--gesture all needs at least 2 gestures".into(),
+        ));
+    }
+    let labels: Vec<String> = gestures.iter().map(|g| g.name.to_string()).collect();
+    let mut files = Vec::new();
+    // 1. demonstrations, written into labelled subdirectories (`cosco train` reads them back)
+    let demo_settings = DemoSettings {
+        encoder_noise: settings.noise,
+        ..DemoSettings::default()
+    };
+    let mut all: Vec<Vec<Demonstration>> = Vec::new();
+    for (i, g) in gestures.iter().enumerate() {
+        progress("demonstrations", i, gestures.len());
+        let demos = synthetic_demonstrations(arm, g, count, settings.seed, &demo_settings, |_| {})?;
+        let dir = out.join("demos").join(g.name);
+        std::fs::create_dir_all(&dir).map_err(|e| werr(&dir.display().to_string(), e))?;
+        for (k, d) in demos.iter().enumerate() {
+            let rel = format!("demos/{}/demo_{:02}.csv", g.name, k + 1);
+            write_csv(&out.join(&rel), d).map_err(|e| werr(&rel, e))?;
+            files.push(rel);
+        }
+        all.push(demos);
+    }
+    progress("demonstrations", gestures.len(), gestures.len());
+    // 2. leave-one-out folds
+    let mut queries = Vec::new();
+    let mut per_gesture: Vec<Vec<[f64; 5]>> = vec![Vec::new(); labels.len()];
+    let mut wrist_missing = false;
+    let mut last_model = None;
+    for k in 0..count {
+        progress("held-out folds", k, count);
+        let sets: Vec<(String, Vec<Demonstration>)> = labels
+            .iter()
+            .zip(&all)
+            .map(|(l, ds)| {
+                let train = ds
+                    .iter()
+                    .enumerate()
+                    .filter(|&(j, _)| j != k)
+                    .map(|(_, d)| d.clone())
+                    .collect();
+                (l.clone(), train)
+            })
+            .collect();
+        let model = config.fit_gestures(&sets, None).map_err(gerr)?;
+        let nn = NearestNeighbour::new(
+            sets.iter()
+                .flat_map(|(l, ds)| ds.iter().map(move |d| (l.clone(), d.rows.clone())))
+                .collect(),
+            Band::None,
+        );
+        for (gi, (label, train)) in sets.iter().enumerate() {
+            let test = &all[gi][k];
+            // recognition, both classifiers
+            let t = std::time::Instant::now();
+            let r = model.recognize(&test.rows).map_err(gerr)?;
+            let hsom_ms = 1e3 * t.elapsed().as_secs_f64();
+            let t = std::time::Instant::now();
+            let a = nn.classify(&test.rows).map_err(|e| werr("1-NN DTW", e))?;
+            let nn_ms = 1e3 * t.elapsed().as_secs_f64();
+            queries.push(AllQuery {
+                expected: label.clone(),
+                hsom: r.label.clone(),
+                hsom_decided_fraction: r.decided_fraction(),
+                hsom_ms,
+                nn: a.label,
+                nn_ms,
+            });
+            // fidelity on cue, shared and alone, executed on the arm
+            let metrics = MetricsParams {
+                sample_period: sample_period(test),
+                ..MetricsParams::default()
+            };
+            let shared = model.reproduce(Some(label), &test.rows[0]).map_err(gerr)?;
+            let alone = config.fit(train)?.reproduce(&test.rows[0])?;
+            let score = |p: &[Vec<f64>]| {
+                execute_and_score(
+                    arm,
+                    p,
+                    settings.transition,
+                    std::slice::from_ref(test),
+                    &metrics,
+                )
+            };
+            let (s, a) = (score(&shared.postures)?, score(&alone.postures)?);
+            let wrist = |e: &super::Executed| e.fidelity.wrist_dtw_mm.map(|w| w.mean);
+            wrist_missing |= wrist(&s).is_none() || wrist(&a).is_none();
+            per_gesture[gi].push([
+                s.fidelity.joint_dtw_rad_per_step.mean,
+                a.fidelity.joint_dtw_rad_per_step.mean,
+                wrist(&s).unwrap_or(f64::NAN),
+                wrist(&a).unwrap_or(f64::NAN),
+                s.fidelity.duration_ratio.mean,
+            ]);
+        }
+        last_model = Some(model);
+    }
+    progress("held-out folds", count, count);
+    let model: GestureModel = last_model.expect("count >= 2 folds ran");
+    let mean = |v: &[[f64; 5]], i: usize| v.iter().map(|x| x[i]).sum::<f64>() / v.len() as f64;
+    let fidelity: Vec<GestureFidelity> = labels
+        .iter()
+        .zip(&per_gesture)
+        .map(|(l, v)| GestureFidelity {
+            gesture: l.clone(),
+            shared_joint_dtw: mean(v, 0),
+            alone_joint_dtw: mean(v, 1),
+            shared_wrist_dtw_mm: (!wrist_missing).then(|| mean(v, 2)),
+            alone_wrist_dtw_mm: (!wrist_missing).then(|| mean(v, 3)),
+            shared_duration_ratio: mean(v, 4),
+            folds: v.len(),
+        })
+        .collect();
+    let confusion = confusion_counts(
+        &labels,
+        queries.iter().map(|q| (&q.expected, q.hsom.as_ref())),
+    );
+    let nn_confusion =
+        confusion_counts(&labels, queries.iter().map(|q| (&q.expected, Some(&q.nn))));
+    // 3. the last fold's model: saved, each gesture reproduced on cue and executed
+    model
+        .save(&out.join("model.bin"))
+        .map_err(|e| werr("model.bin", e))?;
+    files.push("model.bin".into());
+    let mut executed: Vec<(String, Recording)> = Vec::new();
+    let mut reproductions = Vec::new();
+    for (gi, label) in labels.iter().enumerate() {
+        let test = &all[gi][count - 1];
+        let rep = model.reproduce(Some(label), &test.rows[0]).map_err(gerr)?;
+        let metrics = MetricsParams {
+            sample_period: sample_period(test),
+            ..MetricsParams::default()
+        };
+        let e = execute_and_score(
+            arm,
+            &rep.postures,
+            settings.transition,
+            std::slice::from_ref(test),
+            &metrics,
+        )?;
+        let rel = format!("reproduction_{label}.csv");
+        let name = format!("CoSCo-HSOM reproduction of {label} (shared hierarchy)");
+        write_csv(&out.join(&rel), &e.executed.to_demonstration(&name))
+            .map_err(|err| werr(&rel, err))?;
+        files.push(rel);
+        reproductions.push((label.clone(), rep.postures.len(), format!("{:?}", rep.stop)));
+        executed.push((label.clone(), e.executed));
+    }
+    // 4. the confusion matrices as a figure
+    let panel = |title: String, counts: &[Vec<usize>], unknown: bool| ConfusionPanel {
+        title,
+        rows: labels.clone(),
+        columns: labels
+            .iter()
+            .cloned()
+            .chain(unknown.then(|| "unknown".to_string()))
+            .collect(),
+        counts: counts
+            .iter()
+            .map(|r| r[..labels.len() + usize::from(unknown)].to_vec())
+            .collect(),
+    };
+    let mut report = AllReport {
+        labels: labels.clone(),
+        config: config_name.to_string(),
+        count,
+        seed: settings.seed,
+        noise: settings.noise,
+        fidelity,
+        queries,
+        confusion,
+        nn_confusion,
+        reproductions,
+        files,
+    };
+    confusion_png(
+        &out.join("confusion.png"),
+        "Recognition of held-out demonstrations (leave-one-out)",
+        &[
+            panel(
+                format!("CoSCo-HSOM: {:.0} % right", 100.0 * report.accuracy()),
+                &report.confusion,
+                true,
+            ),
+            panel(
+                format!("1-NN DTW: {:.0} % right", 100.0 * report.nn_accuracy()),
+                &report.nn_confusion,
+                false,
+            ),
+        ],
+    )
+    .map_err(|e| werr("confusion.png", e))?;
+    report.files.push("confusion.png".into());
+    // 5. the clip: the gestures in turn
+    if settings.render {
+        let opts = RenderOptions {
+            width: 480,
+            height: 360,
+            shadows: true,
+            multisample: false,
+            camera: Some("front".into()),
+        };
+        let stride = 3;
+        let total: usize = executed.iter().map(|(_, r)| r.len().div_ceil(stride)).sum();
+        let mut clip: Option<Clip> = None;
+        let mut sheet: Vec<(Option<String>, image::RgbImage)> = Vec::new();
+        let (mut offset, mut done) = (0.0, 0);
+        for (label, rec) in &executed {
+            let part = film(arm, rec, &opts, stride, |n, _| {
+                progress("rendering", done + n, total)
+            })?;
+            done += part.len();
+            // four frames of each gesture, one row of the contact sheet, named
+            for i in sheet_frames(rec, stride, part.len()) {
+                let (t, f) = part.frames().nth(i).expect("a key frame is a frame");
+                let mut f = f.clone();
+                caption(&mut f, &format!("{label}  t = {t:.1} s"), 18);
+                sheet.push((None, f));
+            }
+            let c = match &mut clip {
+                Some(c) => c,
+                None => clip.insert(Clip::new(part.delay_ms())?),
+            };
+            for (t, frame) in part.frames() {
+                c.push(offset + t, frame.clone())?;
+            }
+            offset += rec.time.last().copied().unwrap_or(0.0) + 1.0 / rec.rate_hz;
+        }
+        if let Some(c) = clip {
+            c.write_gif(&out.join("clip.gif"))?;
+            report.files.push("clip.gif".into());
+            let picked: Vec<(Option<String>, &image::RgbImage)> =
+                sheet.iter().map(|(l, f)| (l.clone(), f)).collect();
+            save_png(
+                &contact_sheet(&picked, SHEET_COLUMNS)?,
+                &out.join("contact_sheet.png"),
+            )?;
+            report.files.push("contact_sheet.png".into());
+        }
+    }
+    report.files.push("report.md".into());
+    report.files.push("report.json".into());
+    crate::fsutil::write_atomic(&out.join("report.md"), report.to_markdown().as_bytes())
+        .map_err(|e| werr("report.md", e))?;
+    let json = serde_json::to_vec_pretty(&report).map_err(|e| werr("report.json", e))?;
+    crate::fsutil::write_atomic(&out.join("report.json"), &json)
+        .map_err(|e| werr("report.json", e))?;
+    Ok(report)
+}
+
+/// Frames of `rec` (filmed every `stride` samples into `frames` frames) for its row of the
+/// contact sheet: on the way to the apex (the posture farthest from the first), at the apex,
+/// and on the way back, so that each row shows the gesture rather than its idle start.
+fn sheet_frames(rec: &Recording, stride: usize, frames: usize) -> Vec<usize> {
+    let first = &rec.qpos[0];
+    let apex = (0..rec.qpos.len())
+        .max_by(|&a, &b| {
+            let d = |i: usize| crate::dtw::euclidean(&rec.qpos[i], first);
+            d(a).total_cmp(&d(b))
+        })
+        .unwrap_or(0);
+    let n = rec.qpos.len();
+    [apex / 3, 2 * apex / 3, apex, apex + (n - apex) / 3]
+        .iter()
+        .map(|&i| (i / stride.max(1)).min(frames.saturating_sub(1)))
+        .collect()
+}
+
+/// Confusion counts from (shown, answer) pairs: rows the labels, columns the labels then
+/// `unknown` (an answer of `None` or of no label).
+fn confusion_counts<'a>(
+    labels: &[String],
+    pairs: impl Iterator<Item = (&'a String, Option<&'a String>)>,
+) -> Vec<Vec<usize>> {
+    let mut m = vec![vec![0usize; labels.len() + 1]; labels.len()];
+    for (shown, answer) in pairs {
+        if let Some(r) = labels.iter().position(|l| l == shown) {
+            let c = answer
+                .and_then(|a| labels.iter().position(|l| l == a))
+                .unwrap_or(labels.len());
+            m[r][c] += 1;
+        }
+    }
+    m
+}

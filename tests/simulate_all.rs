@@ -1,0 +1,99 @@
+//! `simulate --gesture all` (issue 9): one hierarchy for every gesture on the simulated arm,
+//! end to end: the files, the report's sections and numbers that agree with each other, the
+//! saved model, and the refusals.
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
+
+use assert_cmd::Command;
+use cosco_hsom::gesture::Gesture;
+use cosco_hsom::hsom::GestureModel;
+
+#[test]
+fn simulate_all_learns_every_gesture_in_one_model_and_reports_fidelity_and_recognition() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let assert = Command::cargo_bin("simulate")
+        .unwrap()
+        .args(["--gesture", "all", "--count", "2", "--no-render"])
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success();
+    let stdout = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
+    let names = Gesture::names();
+    for g in &names {
+        assert!(
+            stdout.contains(&format!("{g:<14} held-out joint DTW")),
+            "{stdout}"
+        );
+        for k in 1..=2 {
+            assert!(out.join(format!("demos/{g}/demo_{k:02}.csv")).is_file());
+        }
+        assert!(out.join(format!("reproduction_{g}.csv")).is_file());
+    }
+    assert!(
+        stdout.contains("recognition of 8 held-out demonstrations"),
+        "{stdout}"
+    );
+    for f in ["model.bin", "confusion.png", "report.md", "report.json"] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    assert!(
+        !out.join("clip.gif").exists(),
+        "--no-render renders nothing"
+    );
+    // the model is one multi-gesture model holding every gesture
+    let model = GestureModel::load(&out.join("model.bin")).unwrap();
+    assert_eq!(
+        model.labels(),
+        names.iter().map(|n| n.to_string()).collect::<Vec<_>>()
+    );
+    // the report: both tables, and confusion counts that add up to the queries
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        md.contains("| gesture | shared joint DTW (rad/step) | alone joint DTW | shared / alone |")
+    );
+    assert!(
+        md.contains("| gesture shown | reading-watch | wave | reach-point | salute | unknown |")
+    );
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap()).unwrap();
+    let total = |key: &str| -> u64 {
+        json[key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|r| r.as_array().unwrap().iter().map(|c| c.as_u64().unwrap()))
+            .sum()
+    };
+    assert_eq!(total("confusion"), 8);
+    assert_eq!(total("nn_confusion"), 8);
+    assert_eq!(json["fidelity"].as_array().unwrap().len(), 4);
+    for f in json["fidelity"].as_array().unwrap() {
+        assert_eq!(f["folds"], 2);
+        assert!(f["shared_joint_dtw"].as_f64().unwrap() > 0.0);
+    }
+}
+
+#[test]
+fn simulate_all_refuses_one_demonstration_per_gesture_and_recorded_files() {
+    let tmp = tempfile::tempdir().unwrap();
+    let err = Command::cargo_bin("simulate")
+        .unwrap()
+        .args(["--gesture", "all", "--count", "1", "--no-render"])
+        .arg("--out")
+        .arg(tmp.path().join("a"))
+        .assert()
+        .failure();
+    let e = String::from_utf8_lossy(&err.get_output().stderr).to_string();
+    assert!(e.contains("at least 2 demonstrations per gesture"), "{e}");
+    let err = Command::cargo_bin("simulate")
+        .unwrap()
+        .args(["--gesture", "all", "--no-render", "--demos"])
+        .arg(tmp.path())
+        .arg("--out")
+        .arg(tmp.path().join("b"))
+        .assert()
+        .failure();
+    let e = String::from_utf8_lossy(&err.get_output().stderr).to_string();
+    assert!(e.contains("cosco train --demos DIR"), "{e}");
+}
