@@ -11,6 +11,7 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "python" / "examples"
 SHAPE_XML = EXAMPLES / "shape2d.xml"
+GESTURES_XML = EXAMPLES / "gestures2d.xml"
 sys.path.insert(0, str(EXAMPLES))
 from shape2d import figure_eight  # noqa: E402  (the example's data: one generator)
 
