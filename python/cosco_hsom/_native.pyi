@@ -57,7 +57,8 @@ class Hsom:
         """Train on demonstrations (2-D arrays, samples x variables); releases the GIL."""
     @staticmethod
     def load(path: _Path) -> "Hsom":
-        """Load a model saved by Hsom.save or `cosco train` (.bin or .txt)."""
+        """Load a model saved by Hsom.save or `cosco train` (.bin or .txt); one of several
+        gestures is refused (GestureModel.load)."""
     def save(self, path: _Path) -> None:
         """Save the model (.bin binary, .txt plain text; written atomically)."""
     def reproduce(self, initial: npt.ArrayLike) -> np.ndarray:

@@ -210,6 +210,18 @@ fn array2<'py>(py: Python<'py>, rows: &[Vec<f64>], width: usize) -> Bound<'py, P
     PyArray2::from_owned_array(py, a)
 }
 
+/// `{label: value}` in the model's order (per-label scores and thresholds).
+fn label_dict<'py, 'a>(
+    py: Python<'py>,
+    pairs: impl IntoIterator<Item = (&'a String, f64)>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for (l, v) in pairs {
+        d.set_item(l, v)?;
+    }
+    Ok(d)
+}
+
 /// A validated CoSCo-HSOM configuration (the XML schema of docs/CONFIG.md).
 #[pyclass(module = "cosco_hsom", name = "Config", frozen)]
 #[derive(Clone)]
@@ -358,11 +370,21 @@ impl Hsom {
         })
     }
 
-    /// Load a model saved by `Hsom.save` or `cosco train` (.bin or .txt).
+    /// Load a model saved by `Hsom.save` or `cosco train` (.bin or .txt). A model of several
+    /// gestures is refused, naming `GestureModel.load`.
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
+        let inner =
+            steps::load_model(&path).map_err(|e| match labelled::load_gesture_model(&path) {
+                Ok(m) if !m.labels().is_empty() => PyValueError::new_err(format!(
+                    "{}: a model of several gestures ({}): load it with GestureModel.load",
+                    path.display(),
+                    m.labels().join(", ")
+                )),
+                _ => step_err(e),
+            })?;
         Ok(Hsom {
-            inner: steps::load_model(&path).map_err(step_err)?,
+            inner,
             name: path.display().to_string(),
         })
     }
@@ -455,13 +477,6 @@ struct GestureModel {
     name: String,
 }
 
-impl GestureModel {
-    /// A sequence to score: rows of one 2-D input, named `what` in messages.
-    fn sequence(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<f64>>> {
-        rows_of(obj, what)
-    }
-}
-
 #[pymethods]
 impl GestureModel {
     /// Train one hierarchy on labelled demonstrations: `gestures` maps each label (a plain
@@ -529,21 +544,17 @@ impl GestureModel {
         py: Python<'py>,
         sequence: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let rows = Self::sequence(sequence, "sequence")?;
+        let rows = rows_of(sequence, "sequence")?;
         let scores = py
             .allow_threads(|| self.inner.scores(&rows))
             .map_err(gesture_err)?;
-        let d = PyDict::new(py);
-        for (l, s) in self.inner.labels().iter().zip(scores) {
-            d.set_item(l, s)?;
-        }
-        Ok(d)
+        label_dict(py, self.inner.labels().iter().zip(scores))
     }
 
     /// Recognise a whole sequence (2-D, samples x variables): the label or unknown (None),
     /// every label's score and threshold, and the sample from which the decision held.
     fn recognize(&self, py: Python<'_>, sequence: &Bound<'_, PyAny>) -> PyResult<Recognition> {
-        let rows = Self::sequence(sequence, "sequence")?;
+        let rows = rows_of(sequence, "sequence")?;
         let r = py
             .allow_threads(|| self.inner.recognize(&rows))
             .map_err(gesture_err)?;
@@ -558,7 +569,7 @@ impl GestureModel {
         py: Python<'py>,
         prefix: &Bound<'py, PyAny>,
     ) -> PyResult<(String, Bound<'py, PyArray2<f64>>)> {
-        let rows = Self::sequence(prefix, "prefix")?;
+        let rows = rows_of(prefix, "prefix")?;
         let (label, rep) = py
             .allow_threads(|| self.inner.continue_prefix(&rows))
             .map_err(gesture_err)?;
@@ -626,22 +637,15 @@ impl Recognition {
     /// Per label (in the model's order), its score: lower is closer.
     #[getter]
     fn scores<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let d = PyDict::new(py);
-        for (l, s) in &self.inner.scores {
-            d.set_item(l, s)?;
-        }
-        Ok(d)
+        label_dict(py, self.inner.scores.iter().map(|(l, s)| (l, *s)))
     }
 
     /// Per label, the score above which it is not recognised (calibrated on its training
     /// data).
     #[getter]
     fn thresholds<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let d = PyDict::new(py);
-        for ((l, _), t) in self.inner.scores.iter().zip(&self.inner.thresholds) {
-            d.set_item(l, t)?;
-        }
-        Ok(d)
+        let labels = self.inner.scores.iter().map(|(l, _)| l);
+        label_dict(py, labels.zip(self.inner.thresholds.iter().copied()))
     }
 
     /// The earliest sample from which the best label stayed the same (early recognition).

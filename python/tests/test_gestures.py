@@ -119,8 +119,8 @@ def test_save_load_round_trip(model, held_out, tmp_path, ext):
     assert back.recognize(d).to_dict() == model.recognize(d).to_dict()
     back.save(tmp_path / f"again.{ext}")
     assert (tmp_path / f"again.{ext}").read_bytes() == p.read_bytes()
-    # a single-gesture model file (Hsom.load) refuses it, naming the file
-    with pytest.raises(ValueError, match=f"m.{ext}"):
+    # Hsom (one gesture) refuses it, saying what to use
+    with pytest.raises(ValueError, match=rf"m\.{ext}: a model of several gestures \(up, right, diag\): load it with GestureModel.load"):
         cosco_hsom.Hsom.load(p)
 
 
@@ -219,3 +219,23 @@ def test_bad_sequences(model, held_out):
         model.continue_prefix(d[:1])
     with pytest.raises(ValueError, match="initial: a 1-D array"):
         model.reproduce("up", d)
+
+
+def test_fits_in_threads_match_the_serial_fit(cfg, taught, tmp_path):
+    # Training releases the GIL: fits running in threads at once are still the seeded fit.
+    import threading
+
+    cosco_hsom.GestureModel.fit(cfg, taught).save(tmp_path / "serial.bin")
+    models = [None] * 3
+
+    def work(i):
+        models[i] = cosco_hsom.GestureModel.fit(cfg, taught)
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(len(models))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for i, m in enumerate(models):
+        m.save(tmp_path / f"t{i}.bin")
+        assert (tmp_path / f"t{i}.bin").read_bytes() == (tmp_path / "serial.bin").read_bytes()
