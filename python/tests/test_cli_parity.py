@@ -2,13 +2,15 @@
 and the same reproduction, and a model saved by one loads in the other."""
 
 import csv
+import json
 import subprocess
 
 import numpy as np
 import pytest
 
 import cosco_hsom
-from conftest import SHAPE_XML, write_csv
+from conftest import GESTURES_XML, SHAPE_XML, write_csv
+from gestures2d import gestures
 
 
 def run(*args):
@@ -99,8 +101,6 @@ def test_same_messages_as_the_cli(cosco_bin, demos, demo_dir, tmp_path):
 
 @pytest.fixture
 def labelled():
-    from gestures2d import gestures
-
     return gestures(count=3, seed=0)
 
 
@@ -115,9 +115,6 @@ def write_labelled(root, sets):
 
 @pytest.mark.parametrize("ext", ["bin", "txt"])
 def test_same_gesture_model_file_reproduction_and_recognition(cosco_bin, labelled, tmp_path, ext):
-    from conftest import GESTURES_XML
-    from gestures2d import gestures
-
     demo_dir = write_labelled(tmp_path / "demos", labelled)
     cli_model = tmp_path / f"cli.{ext}"
     r = run(cosco_bin, "train", "--config", GESTURES_XML, "--demos", demo_dir, "--out", cli_model)
@@ -152,8 +149,6 @@ def test_same_gesture_model_file_reproduction_and_recognition(cosco_bin, labelle
     out = tmp_path / "answers.json"
     r = run(cosco_bin, "recognize", "--model", cli_model, "--demos", held_dir, "--json", out)
     assert r.returncode == 0, r.stderr
-    import json
-
     answers = json.loads(out.read_text())
     assert len(answers) == 6
     for a in answers:
@@ -164,8 +159,6 @@ def test_same_gesture_model_file_reproduction_and_recognition(cosco_bin, labelle
 
 
 def test_same_gesture_messages_as_the_cli(cosco_bin, labelled, tmp_path):
-    from conftest import GESTURES_XML
-
     cfg = cosco_hsom.Config.from_xml(GESTURES_XML)
     py = cosco_hsom.GestureModel.fit(cfg, {l: labelled[l] for l in sorted(labelled)})
     py.save(tmp_path / "m.bin")

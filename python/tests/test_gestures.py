@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import cosco_hsom
-from conftest import GESTURES_XML, SHAPE_XML
+from conftest import GESTURES_XML, assert_threaded_fits_match_serial
 from gestures2d import APEXES, NEVER_TAUGHT, gestures
 
 LABELS = list(APEXES)
@@ -222,20 +222,5 @@ def test_bad_sequences(model, held_out):
 
 
 def test_fits_in_threads_match_the_serial_fit(cfg, taught, tmp_path):
-    # Training releases the GIL: fits running in threads at once are still the seeded fit.
-    import threading
-
-    cosco_hsom.GestureModel.fit(cfg, taught).save(tmp_path / "serial.bin")
-    models = [None] * 3
-
-    def work(i):
-        models[i] = cosco_hsom.GestureModel.fit(cfg, taught)
-
-    threads = [threading.Thread(target=work, args=(i,)) for i in range(len(models))]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
-    for i, m in enumerate(models):
-        m.save(tmp_path / f"t{i}.bin")
-        assert (tmp_path / f"t{i}.bin").read_bytes() == (tmp_path / "serial.bin").read_bytes()
+    fit = lambda: cosco_hsom.GestureModel.fit(cfg, taught)  # noqa: E731
+    assert_threaded_fits_match_serial(fit, tmp_path, threads=3)
