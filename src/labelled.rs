@@ -172,7 +172,14 @@ pub fn train_gestures(
     sets: &[(String, Vec<Demonstration>)],
     progress: Option<&dyn Fn(usize, usize)>,
 ) -> Result<GestureModel, LabelledError> {
-    for (_, demos) in sets {
+    for (label, demos) in sets {
+        // a label without demonstrations is named (validate_set would only say "none")
+        if demos.is_empty() {
+            return Err(GestureError::EmptyLabel {
+                label: label.clone(),
+            }
+            .into());
+        }
         demos::validate_set(demos, Some(cfg.params().state_length))?;
     }
     Ok(cfg.fit_gestures(sets, progress)?)

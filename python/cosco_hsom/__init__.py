@@ -6,6 +6,12 @@ The algorithm of the Rust crate ``cosco-hsom``, built without its simulator:
 - :class:`Config`: a validated configuration (``Config.from_xml(path)``, ``Config.table1()``).
 - :class:`Hsom`: ``Hsom.fit(config, demos, columns=None)``, ``.reproduce(initial)``,
   ``.save(path)`` / ``Hsom.load(path)`` (the files of ``cosco train``), ``.summary()``.
+- :class:`GestureModel`: several gestures in one hierarchy,
+  ``GestureModel.fit(config, {"wave": [...], "salute": [...]})``, ``.reproduce(label, initial)``,
+  ``.recognize(sequence)`` (a :class:`Recognition`: the label or None for unknown, per-label
+  scores, the sample the decision held from), ``.scores(sequence)``,
+  ``.continue_prefix(prefix)``, ``.save(path)`` / ``GestureModel.load(path)`` (format 6, the
+  files of ``cosco train`` on labelled directories).
 - :mod:`cosco_hsom.gmr`: the paper's GMM/GMR baseline.
 - :func:`dtw`: dynamic time warping.
 
@@ -16,12 +22,14 @@ also a ``FileNotFoundError`` / ``PermissionError`` / ``OSError`` (:class:`Missin
 """
 
 from ._errors import FileAccessError, FileError, MissingFileError
-from ._native import Config, Hsom, dtw
+from ._native import Config, GestureModel, Hsom, Recognition, dtw
 from . import gmr
 
 __all__ = [
     "Config",
     "Hsom",
+    "GestureModel",
+    "Recognition",
     "dtw",
     "gmr",
     "MissingFileError",

@@ -3,5 +3,16 @@ from ._errors import FileAccessError as FileAccessError
 from ._errors import FileError as FileError
 from ._errors import MissingFileError as MissingFileError
 from ._native import Config as Config, Hsom as Hsom, dtw as dtw
+from ._native import GestureModel as GestureModel, Recognition as Recognition
 
-__all__ = ["Config", "Hsom", "dtw", "gmr", "MissingFileError", "FileAccessError", "FileError"]
+__all__ = [
+    "Config",
+    "Hsom",
+    "GestureModel",
+    "Recognition",
+    "dtw",
+    "gmr",
+    "MissingFileError",
+    "FileAccessError",
+    "FileError",
+]

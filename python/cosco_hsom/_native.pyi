@@ -1,7 +1,7 @@
 """Type stubs of the native module (see the docstrings in cosco_hsom)."""
 
 from os import PathLike
-from typing import Any, Dict, List, Optional, Sequence, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -57,7 +57,8 @@ class Hsom:
         """Train on demonstrations (2-D arrays, samples x variables); releases the GIL."""
     @staticmethod
     def load(path: _Path) -> "Hsom":
-        """Load a model saved by Hsom.save or `cosco train` (.bin or .txt)."""
+        """Load a model saved by Hsom.save or `cosco train` (.bin or .txt); one of several
+        gestures is refused (GestureModel.load)."""
     def save(self, path: _Path) -> None:
         """Save the model (.bin binary, .txt plain text; written atomically)."""
     def reproduce(self, initial: npt.ArrayLike) -> np.ndarray:
@@ -68,6 +69,66 @@ class Hsom:
     def config(self) -> Config: ...
     def summary(self) -> Dict[str, Any]:
         """Levels, sizes and quality measures (what `cosco inspect` prints)."""
+
+class GestureModel:
+    """Several gestures in one hierarchy: a shared bottom level, a branch per label."""
+
+    @staticmethod
+    def fit(
+        config: Config,
+        gestures: Mapping[str, Sequence[_Array2]],
+        columns: Optional[Sequence[str]] = None,
+    ) -> "GestureModel":
+        """Train on {label: [demonstration, ...]} (labels plain words, in the mapping's order;
+        demonstrations 2-D, samples x variables); needs the events algorithm; releases the GIL."""
+    @staticmethod
+    def load(path: _Path) -> "GestureModel":
+        """Load a model saved by GestureModel.save or `cosco train` (format 6; format 5 loads
+        as one unlabelled gesture)."""
+    def save(self, path: _Path) -> None:
+        """Save the model (.bin or .txt, atomically): the bytes `cosco train` writes."""
+    def reproduce(self, label: Optional[str], initial: npt.ArrayLike) -> np.ndarray:
+        """Reproduce gesture `label` from an initial posture: one row per step, the first the
+        initial posture. None only for a single-gesture model."""
+    def scores(self, sequence: _Array2) -> Dict[str, float]:
+        """Per label, the score of a whole sequence (lower is closer; see Recognition.thresholds)."""
+    def recognize(self, sequence: _Array2) -> "Recognition":
+        """The label (None when unknown), every score, and the sample the decision held from."""
+    def continue_prefix(self, prefix: _Array2) -> Tuple[str, np.ndarray]:
+        """The gesture the hierarchy recognises in the prefix, and the prefix continued by it."""
+    @property
+    def labels(self) -> List[str]:
+        """The gesture labels, in the model's order (empty for a single-gesture model)."""
+    @property
+    def columns(self) -> List[str]: ...
+    @property
+    def config(self) -> Config:
+        """As trained: with several labels, trainingSteps times the number of labels."""
+
+class Recognition:
+    """What GestureModel.recognize answers for one sequence."""
+
+    @property
+    def label(self) -> Optional[str]:
+        """The recognised label, or None (unknown)."""
+    @property
+    def unknown(self) -> bool: ...
+    @property
+    def best(self) -> str:
+        """The label with the lowest score, below its threshold or not."""
+    @property
+    def scores(self) -> Dict[str, float]: ...
+    @property
+    def thresholds(self) -> Dict[str, float]: ...
+    @property
+    def decided_at(self) -> int:
+        """The earliest sample from which the best label stayed the same."""
+    @property
+    def samples(self) -> int: ...
+    @property
+    def decided_fraction(self) -> float: ...
+    def to_dict(self) -> Dict[str, Any]:
+        """As `cosco recognize --json` writes each file's `recognition`."""
 
 class GmrModel:
     """The GMM/GMR baseline."""

@@ -15,8 +15,10 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyType};
 
 use cosco_hsom::config::{HsomConfig, HsomParams};
+use cosco_hsom::demos::Demonstration;
 use cosco_hsom::dtw::{dtw_distance, Band};
 use cosco_hsom::gmr::{self, ComponentChoice, GmrParams};
+use cosco_hsom::labelled::{self, LabelledError};
 use cosco_hsom::steps;
 
 /// The exception for an error: its one-line message (the CLI's); when an I/O error is at its
@@ -54,6 +56,14 @@ fn step_err(e: steps::StepError) -> PyErr {
 }
 
 fn gmr_err(e: gmr::GmrError) -> PyErr {
+    py_err(&e)
+}
+
+fn labelled_err(e: LabelledError) -> PyErr {
+    py_err(&e)
+}
+
+fn gesture_err(e: cosco_hsom::hsom::GestureError) -> PyErr {
     py_err(&e)
 }
 
@@ -96,21 +106,68 @@ fn rows_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<f64>>> {
     )))
 }
 
-/// The demonstrations: a list (or other sequence) of 2-D inputs, `demos[i]` in messages.
-fn series_of(demos: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<Vec<f64>>>> {
+/// The demonstrations: a list (or other sequence) of 2-D inputs, `{what}[i]` in messages
+/// (`demos[i]`, or `gestures['wave'][i]` for a label's).
+fn series_of(demos: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<Vec<f64>>>> {
     if demos.downcast::<PyUntypedArray>().is_ok() {
-        return Err(PyValueError::new_err(
-            "demos: a list of 2-D arrays is needed, one per demonstration; got one array (wrap it in a list)",
-        ));
+        return Err(PyValueError::new_err(format!(
+            "{what}: a list of 2-D arrays is needed, one per demonstration; got one array (wrap it in a list)"
+        )));
     }
     let items: Vec<Bound<'_, PyAny>> = demos.extract().map_err(|_| {
-        PyValueError::new_err("demos: a list of 2-D arrays is needed, one per demonstration")
+        PyValueError::new_err(format!(
+            "{what}: a list of 2-D arrays is needed, one per demonstration"
+        ))
     })?;
     items
         .iter()
         .enumerate()
-        .map(|(i, d)| rows_of(d, &format!("demos[{i}]")))
+        .map(|(i, d)| rows_of(d, &format!("{what}[{i}]")))
         .collect()
+}
+
+/// Labelled demonstration sets from a mapping label -> list of 2-D inputs, in the mapping's
+/// order, each demonstration named `gestures['label'][i]` in messages. `columns` name the
+/// variables of every label whose width they fit (the first label's always, so a wrong
+/// count is the message of `Hsom.fit`); a label of another width keeps generated names and is
+/// refused by the configuration's width check, as `cosco train` refuses its files.
+fn labelled_sets(
+    gestures: &Bound<'_, PyAny>,
+    columns: Option<Vec<String>>,
+) -> PyResult<Vec<(String, Vec<Demonstration>)>> {
+    const NEEDED: &str = "gestures: a mapping label -> list of demonstrations is needed (e.g. {'wave': [array, ...], 'salute': [...]})";
+    if gestures.downcast::<PyUntypedArray>().is_ok() || gestures.extract::<String>().is_ok() {
+        return Err(PyValueError::new_err(NEEDED));
+    }
+    let items = gestures
+        .call_method0("items")
+        .map_err(|_| PyValueError::new_err(NEEDED))?;
+    let mut sets = Vec::new();
+    for item in items.try_iter()? {
+        let (key, value): (Bound<'_, PyAny>, Bound<'_, PyAny>) = item?.extract()?;
+        let label: String = key.extract().map_err(|_| {
+            PyValueError::new_err(format!(
+                "gestures: the labels must be strings (plain words); got {} of type {}",
+                key.repr().map_or_else(|_| "?".into(), |r| r.to_string()),
+                key.get_type()
+                    .name()
+                    .map_or_else(|_| "?".into(), |n| n.to_string())
+            ))
+        })?;
+        let what = format!("gestures[{}]", key.repr()?);
+        let series = series_of(&value, &what)?;
+        let width = series.first().and_then(|s| s.first()).map(Vec::len);
+        let names = match &columns {
+            Some(c) if sets.is_empty() || width == Some(c.len()) => Some(c.clone()),
+            _ => None,
+        };
+        let mut demos = steps::demonstrations_from_rows(series, names).map_err(step_err)?;
+        for (i, d) in demos.iter_mut().enumerate() {
+            d.source = format!("{what}[{i}]");
+        }
+        sets.push((label, demos));
+    }
+    Ok(sets)
 }
 
 /// A posture: one number per variable.
@@ -151,6 +208,18 @@ fn array2<'py>(py: Python<'py>, rows: &[Vec<f64>], width: usize) -> Bound<'py, P
     let a = Array2::from_shape_vec((rows.len(), width), flat)
         .expect("rows of the library's output all have `width` values");
     PyArray2::from_owned_array(py, a)
+}
+
+/// `{label: value}` in the model's order (per-label scores and thresholds).
+fn label_dict<'py, 'a>(
+    py: Python<'py>,
+    pairs: impl IntoIterator<Item = (&'a String, f64)>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for (l, v) in pairs {
+        d.set_item(l, v)?;
+    }
+    Ok(d)
 }
 
 /// A validated CoSCo-HSOM configuration (the XML schema of docs/CONFIG.md).
@@ -289,7 +358,7 @@ impl Hsom {
         demos: &Bound<'_, PyAny>,
         columns: Option<Vec<String>>,
     ) -> PyResult<Self> {
-        let series = series_of(demos)?;
+        let series = series_of(demos, "demos")?;
         let demos = steps::demonstrations_from_rows(series, columns).map_err(step_err)?;
         let cfg = config.inner.clone();
         let model = py
@@ -301,11 +370,21 @@ impl Hsom {
         })
     }
 
-    /// Load a model saved by `Hsom.save` or `cosco train` (.bin or .txt).
+    /// Load a model saved by `Hsom.save` or `cosco train` (.bin or .txt). A model of several
+    /// gestures is refused, naming `GestureModel.load`.
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
+        let inner =
+            steps::load_model(&path).map_err(|e| match labelled::load_gesture_model(&path) {
+                Ok(m) if !m.labels().is_empty() => PyValueError::new_err(format!(
+                    "{}: a model of several gestures ({}): load it with GestureModel.load",
+                    path.display(),
+                    m.labels().join(", ")
+                )),
+                _ => step_err(e),
+            })?;
         Ok(Hsom {
-            inner: steps::load_model(&path).map_err(step_err)?,
+            inner,
             name: path.display().to_string(),
         })
     }
@@ -389,6 +468,244 @@ impl Hsom {
     }
 }
 
+/// Several gestures in one hierarchy (a shared bottom level, a branch of upper levels per
+/// label): reproduction on cue, recognition with `unknown`, continuation of a prefix.
+#[pyclass(module = "cosco_hsom", name = "GestureModel", frozen)]
+struct GestureModel {
+    inner: cosco_hsom::hsom::GestureModel,
+    /// The model in messages: its file, or `in memory`.
+    name: String,
+}
+
+#[pymethods]
+impl GestureModel {
+    /// Train one hierarchy on labelled demonstrations: `gestures` maps each label (a plain
+    /// word) to its demonstrations (2-D arrays, samples x variables), in the mapping's order;
+    /// optional column names (default x0, x1, ...). The configuration must use the events
+    /// algorithm. The GIL is released while training.
+    #[staticmethod]
+    #[pyo3(signature = (config, gestures, columns = None))]
+    fn fit(
+        py: Python<'_>,
+        config: &Config,
+        gestures: &Bound<'_, PyAny>,
+        columns: Option<Vec<String>>,
+    ) -> PyResult<Self> {
+        let sets = labelled_sets(gestures, columns)?;
+        let cfg = config.inner.clone();
+        let model = py
+            .allow_threads(move || labelled::train_gestures(&cfg, &sets, None))
+            .map_err(labelled_err)?;
+        Ok(GestureModel {
+            inner: model,
+            name: "in memory".into(),
+        })
+    }
+
+    /// Load a model saved by `GestureModel.save` or `cosco train` (format 6 with labels;
+    /// a single-gesture file of format 5 loads too, without labels).
+    #[staticmethod]
+    fn load(path: PathBuf) -> PyResult<Self> {
+        Ok(GestureModel {
+            inner: labelled::load_gesture_model(&path).map_err(labelled_err)?,
+            name: path.display().to_string(),
+        })
+    }
+
+    /// Save the model (.bin binary, .txt plain text; written atomically): the bytes
+    /// `cosco train` writes for the same demonstrations and configuration.
+    fn save(&self, path: PathBuf) -> PyResult<()> {
+        labelled::save_gesture_model(&self.inner, &path).map_err(labelled_err)
+    }
+
+    /// Reproduce gesture `label` from an initial posture: a 2-D array, one row per step (the
+    /// first row is the initial posture). `label` is None only for a single-gesture model.
+    #[pyo3(signature = (label, initial))]
+    fn reproduce<'py>(
+        &self,
+        py: Python<'py>,
+        label: Option<&str>,
+        initial: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        // the label is checked before the posture, as `cosco reproduce --gesture` does
+        self.inner.branch(label).map_err(gesture_err)?;
+        let initial = posture_of(initial, "initial")?;
+        let rep = py
+            .allow_threads(|| labelled::reproduce_gesture(&self.inner, &self.name, label, &initial))
+            .map_err(labelled_err)?;
+        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+    }
+
+    /// Per label (in the model's order), the score of a whole sequence (2-D, samples x
+    /// variables, in the data's units): lower is closer; the recognised label is the lowest
+    /// when it is at most that label's threshold (`Recognition.thresholds`).
+    fn scores<'py>(
+        &self,
+        py: Python<'py>,
+        sequence: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let rows = rows_of(sequence, "sequence")?;
+        let scores = py
+            .allow_threads(|| self.inner.scores(&rows))
+            .map_err(gesture_err)?;
+        label_dict(py, self.inner.labels().iter().zip(scores))
+    }
+
+    /// Recognise a whole sequence (2-D, samples x variables): the label or unknown (None),
+    /// every label's score and threshold, and the sample from which the decision held.
+    fn recognize(&self, py: Python<'_>, sequence: &Bound<'_, PyAny>) -> PyResult<Recognition> {
+        let rows = rows_of(sequence, "sequence")?;
+        let r = py
+            .allow_threads(|| self.inner.recognize(&rows))
+            .map_err(gesture_err)?;
+        Ok(Recognition { inner: r })
+    }
+
+    /// Continue a gesture from its first samples (2-D, at least 2 rows): the hierarchy
+    /// decides which gesture it is and continues it. Returns the label and the postures (the
+    /// prefix first).
+    fn continue_prefix<'py>(
+        &self,
+        py: Python<'py>,
+        prefix: &Bound<'py, PyAny>,
+    ) -> PyResult<(String, Bound<'py, PyArray2<f64>>)> {
+        let rows = rows_of(prefix, "prefix")?;
+        let (label, rep) = py
+            .allow_threads(|| self.inner.continue_prefix(&rows))
+            .map_err(gesture_err)?;
+        Ok((label, array2(py, &rep.postures, self.inner.columns().len())))
+    }
+
+    /// The gesture labels, in the model's order (empty for a single-gesture model).
+    #[getter]
+    fn labels(&self) -> Vec<String> {
+        self.inner.labels().to_vec()
+    }
+
+    /// The names of the variables the model learned.
+    #[getter]
+    fn columns(&self) -> Vec<String> {
+        self.inner.columns().to_vec()
+    }
+
+    /// The configuration the model was trained with; with several labels, trainingSteps is
+    /// the configured value times the number of labels (the shared bottom level sees every
+    /// gesture as often as a gesture learned alone).
+    #[getter]
+    fn config(&self) -> Config {
+        Config {
+            inner: self.inner.branches()[0].config().clone(),
+        }
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "GestureModel(model={:?}, labels={:?}, columns={:?})",
+            self.name,
+            self.inner.labels(),
+            self.inner.columns()
+        )
+    }
+}
+
+/// What `GestureModel.recognize` answers for one sequence.
+#[pyclass(module = "cosco_hsom", name = "Recognition", frozen)]
+struct Recognition {
+    inner: cosco_hsom::hsom::Recognition,
+}
+
+#[pymethods]
+impl Recognition {
+    /// The recognised label, or None when no taught gesture matches well enough (unknown).
+    #[getter]
+    fn label(&self) -> Option<String> {
+        self.inner.label.clone()
+    }
+
+    /// True when no taught gesture matches well enough.
+    #[getter]
+    fn unknown(&self) -> bool {
+        self.inner.label.is_none()
+    }
+
+    /// The label with the lowest score, whether or not it is below its threshold.
+    #[getter]
+    fn best(&self) -> String {
+        self.inner.best.clone()
+    }
+
+    /// Per label (in the model's order), its score: lower is closer.
+    #[getter]
+    fn scores<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        label_dict(py, self.inner.scores.iter().map(|(l, s)| (l, *s)))
+    }
+
+    /// Per label, the score above which it is not recognised (calibrated on its training
+    /// data).
+    #[getter]
+    fn thresholds<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let labels = self.inner.scores.iter().map(|(l, _)| l);
+        label_dict(py, labels.zip(self.inner.thresholds.iter().copied()))
+    }
+
+    /// The earliest sample from which the best label stayed the same (early recognition).
+    #[getter]
+    fn decided_at(&self) -> usize {
+        self.inner.decided_at
+    }
+
+    /// Samples in the sequence.
+    #[getter]
+    fn samples(&self) -> usize {
+        self.inner.samples
+    }
+
+    /// `decided_at / samples`: the fraction of the gesture seen before the decision was final.
+    #[getter]
+    fn decided_fraction(&self) -> f64 {
+        self.inner.decided_fraction()
+    }
+
+    /// The answer as `cosco recognize --json` writes each file's `recognition`.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let r = &self.inner;
+        let d = PyDict::new(py);
+        d.set_item("label", r.label.clone())?;
+        d.set_item("best", r.best.clone())?;
+        let scores = PyList::empty(py);
+        for (l, s) in &r.scores {
+            scores.append(PyList::new(
+                py,
+                [
+                    l.into_pyobject(py)?.into_any(),
+                    s.into_pyobject(py)?.into_any(),
+                ],
+            )?)?;
+        }
+        d.set_item("scores", scores)?;
+        d.set_item("thresholds", r.thresholds.clone())?;
+        d.set_item("decided_at", r.decided_at)?;
+        d.set_item("samples", r.samples)?;
+        Ok(d)
+    }
+
+    fn __repr__(&self) -> String {
+        let r = &self.inner;
+        format!(
+            "Recognition(label={}, best={:?}, decided_at={} of {}, scores={{{}}})",
+            r.label.as_ref().map_or("None".into(), |l| format!("{l:?}")),
+            r.best,
+            r.decided_at,
+            r.samples,
+            r.scores
+                .iter()
+                .map(|(l, s)| format!("{l:?}: {s:.4}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    }
+}
+
 /// The paper's baseline: a Gaussian mixture over (time, variables), regressed on time.
 #[pyclass(module = "cosco_hsom.gmr", name = "GmrModel", frozen)]
 struct GmrModel {
@@ -410,7 +727,7 @@ impl GmrModel {
         seed: u64,
         sample_period: f64,
     ) -> PyResult<Self> {
-        let series = series_of(demos)?;
+        let series = series_of(demos, "demos")?;
         let demos = steps::demonstrations_from_rows(series, columns).map_err(step_err)?;
         let mut params = GmrParams::new().seed(seed).sample_period(sample_period);
         if let Some(k) = components {
@@ -501,6 +818,8 @@ fn dtw(a: &Bound<'_, PyAny>, b: &Bound<'_, PyAny>, per_step: bool) -> PyResult<f
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Config>()?;
     m.add_class::<Hsom>()?;
+    m.add_class::<GestureModel>()?;
+    m.add_class::<Recognition>()?;
     m.add_class::<GmrModel>()?;
     m.add_function(wrap_pyfunction!(dtw, m)?)?;
     Ok(())

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import cosco_hsom
-from conftest import SHAPE_XML
+from conftest import SHAPE_XML, assert_threaded_fits_match_serial
 
 
 def mean_dtw(path, demos):
@@ -90,25 +90,8 @@ def test_dtw_identities(demos):
 
 
 def test_fits_in_threads_match_the_serial_fit(demos, tmp_path):
-    # Training releases the GIL: fits running in threads at once must still be the seeded,
-    # deterministic fit.
-    import threading
-
     cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
-    cosco_hsom.Hsom.fit(cfg, demos).save(tmp_path / "serial.bin")
-    models = [None] * 4
-
-    def work(i):
-        models[i] = cosco_hsom.Hsom.fit(cfg, demos)
-
-    threads = [threading.Thread(target=work, args=(i,)) for i in range(len(models))]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
-    for i, m in enumerate(models):
-        m.save(tmp_path / f"t{i}.bin")
-        assert (tmp_path / f"t{i}.bin").read_bytes() == (tmp_path / "serial.bin").read_bytes()
+    assert_threaded_fits_match_serial(lambda: cosco_hsom.Hsom.fit(cfg, demos), tmp_path)
 
 
 def test_native_module_links_no_simulator():

@@ -2,13 +2,15 @@
 and the same reproduction, and a model saved by one loads in the other."""
 
 import csv
+import json
 import subprocess
 
 import numpy as np
 import pytest
 
 import cosco_hsom
-from conftest import SHAPE_XML, write_csv
+from conftest import GESTURES_XML, SHAPE_XML, write_csv
+from gestures2d import gestures
 
 
 def run(*args):
@@ -91,4 +93,85 @@ def test_same_messages_as_the_cli(cosco_bin, demos, demo_dir, tmp_path):
                         "--initial", "1,2,3", "--out", tmp_path / "r.csv"))
     with pytest.raises(ValueError) as e:
         cosco_hsom.Hsom.load(tmp_path / "m.bin").reproduce([1.0, 2.0, 3.0])
+    assert str(e.value) == cli
+
+
+# ---- several gestures: `cosco train` on labelled directories and GestureModel ----
+
+
+@pytest.fixture
+def labelled():
+    return gestures(count=3, seed=0)
+
+
+def write_labelled(root, sets):
+    """demos/<label>/demo_XX.csv, as `cosco demos --gesture all` records them."""
+    for label, demos in sets.items():
+        (root / label).mkdir(parents=True)
+        for i, rows in enumerate(demos):
+            write_csv(root / label / f"demo_{i + 1:02}.csv", ["x", "y"], rows)
+    return root
+
+
+@pytest.mark.parametrize("ext", ["bin", "txt"])
+def test_same_gesture_model_file_reproduction_and_recognition(cosco_bin, labelled, tmp_path, ext):
+    demo_dir = write_labelled(tmp_path / "demos", labelled)
+    cli_model = tmp_path / f"cli.{ext}"
+    r = run(cosco_bin, "train", "--config", GESTURES_XML, "--demos", demo_dir, "--out", cli_model)
+    assert r.returncode == 0, r.stderr
+
+    cfg = cosco_hsom.Config.from_xml(GESTURES_XML)
+    # `cosco train` takes the label directories in sorted order
+    ordered = {label: labelled[label] for label in sorted(labelled)}
+    py = cosco_hsom.GestureModel.fit(cfg, ordered, columns=["x", "y"])
+    py_model = tmp_path / f"py.{ext}"
+    py.save(py_model)
+    assert py_model.read_bytes() == cli_model.read_bytes()
+    assert cosco_hsom.GestureModel.load(cli_model).labels == sorted(labelled)
+    # Negative controls: the labels in another order, or another seed, is another model.
+    for other, name in [
+        (cosco_hsom.GestureModel.fit(cfg, labelled, columns=["x", "y"]), "order"),
+        (cosco_hsom.GestureModel.fit(cfg.replace(seed=2), ordered, columns=["x", "y"]), "seed"),
+    ]:
+        other.save(tmp_path / f"{name}.{ext}")
+        assert (tmp_path / f"{name}.{ext}").read_bytes() != cli_model.read_bytes(), name
+
+    # reproduction on cue: `cosco reproduce --gesture` on the Python model
+    rep = tmp_path / "rep.csv"
+    r = run(cosco_bin, "reproduce", "--model", py_model, "--gesture", "diag",
+            "--initial-from", demo_dir / "diag" / "demo_01.csv", "--out", rep)
+    assert r.returncode == 0, r.stderr
+    np.testing.assert_array_equal(py.reproduce("diag", labelled["diag"][0][0]),
+                                  read_reproduction(rep))
+
+    # recognition: `cosco recognize --json` on held-out files, answer for answer
+    held_dir = write_labelled(tmp_path / "held", gestures(count=2, seed=100))
+    out = tmp_path / "answers.json"
+    r = run(cosco_bin, "recognize", "--model", cli_model, "--demos", held_dir, "--json", out)
+    assert r.returncode == 0, r.stderr
+    answers = json.loads(out.read_text())
+    assert len(answers) == 6
+    for a in answers:
+        rows = np.loadtxt(a["file"], delimiter=",", skiprows=1)
+        got = py.recognize(rows).to_dict()
+        assert got == a["recognition"]
+        assert got["label"] == a["expected"]
+
+
+def test_same_gesture_messages_as_the_cli(cosco_bin, labelled, tmp_path):
+    cfg = cosco_hsom.Config.from_xml(GESTURES_XML)
+    py = cosco_hsom.GestureModel.fit(cfg, {l: labelled[l] for l in sorted(labelled)})
+    py.save(tmp_path / "m.bin")
+    m = cosco_hsom.GestureModel.load(tmp_path / "m.bin")
+    for extra, label in [(["--gesture", "wave"], "wave"), ([], None)]:
+        cli = cli_error(run(cosco_bin, "reproduce", "--model", tmp_path / "m.bin", *extra,
+                            "--initial", "0,0", "--out", tmp_path / "r.csv"))
+        with pytest.raises(ValueError) as e:
+            m.reproduce(label, [0.0, 0.0])
+        assert str(e.value) == cli
+        assert "diag, right, up" in cli
+    cli = cli_error(run(cosco_bin, "reproduce", "--model", tmp_path / "m.bin", "--gesture", "up",
+                        "--initial", "1,2,3", "--out", tmp_path / "r.csv"))
+    with pytest.raises(ValueError) as e:
+        m.reproduce("up", [1.0, 2.0, 3.0])
     assert str(e.value) == cli

@@ -297,7 +297,8 @@ pub struct Recognition {
     pub label: Option<String>,
     /// The label with the lowest score (whether or not it is below its threshold).
     pub best: String,
-    /// Per label (in the model's order): its score (1 = as close as its training data).
+    /// Per label (in the model's order): its score (lower is closer; recognised when at
+    /// most its threshold; 1 is as close as its training data only with [`Scoring::Relative`]).
     pub scores: Vec<(String, f64)>,
     /// Per label: its threshold.
     pub thresholds: Vec<f64>,
@@ -394,7 +395,8 @@ impl GestureModel {
     }
 
     /// Per label (in the model's order), the score of a whole sequence (rows in the data's
-    /// units): 1 is as close as the label's training data, larger is farther.
+    /// units): lower is closer (1 is as close as the label's training data only with
+    /// [`Scoring::Relative`]; the default scores postures' distances).
     pub fn scores(&self, rows: &[Vec<f64>]) -> Result<Vec<f64>, GestureError> {
         let (norm, ev) = self.checked_events(rows)?;
         let p = self.postures_of(&norm);
