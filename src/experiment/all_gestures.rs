@@ -22,11 +22,11 @@ use crate::hsom::{GestureError, GestureModel};
 use crate::metrics::MetricsParams;
 use crate::nearest::NearestNeighbour;
 use crate::plot::{caption, confusion_png, ConfusionPanel};
-use crate::render::{contact_sheet, save_png, Clip, RenderOptions};
+use crate::render::{contact_sheet, save_png, Clip};
 use crate::sim::{NaoArm, Recording};
 
 use super::demonstrate::{synthetic_demonstrations, DemoSettings};
-use super::film::film;
+use super::film::{clip_options, film};
 use super::pipeline::{execute_and_score, sample_period};
 use super::study::median;
 use super::{ExperimentError, Transition};
@@ -468,13 +468,7 @@ pub fn run_all_gestures(
     report.files.push("confusion.png".into());
     // 5. the clip: the gestures in turn
     if settings.render {
-        let opts = RenderOptions {
-            width: 480,
-            height: 360,
-            shadows: true,
-            multisample: false,
-            camera: Some("front".into()),
-        };
+        let opts = clip_options();
         let stride = 3;
         let total: usize = executed.iter().map(|(_, r)| r.len().div_ceil(stride)).sum();
         let mut clip: Option<Clip> = None;

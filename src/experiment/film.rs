@@ -6,6 +6,17 @@ use crate::sim::{NaoArm, Recording};
 
 use super::ExperimentError;
 
+/// The view `simulate` films its clips with: 480x360, shadows, the model's `front` camera.
+pub fn clip_options() -> RenderOptions {
+    RenderOptions {
+        width: 480,
+        height: 360,
+        shadows: true,
+        multisample: false,
+        camera: Some("front".into()),
+    }
+}
+
 /// Render every `stride`-th sample of `recording` (the arm placed at the recorded encoder
 /// values) into a [`Clip`] whose GIF plays in real time.
 pub fn film(

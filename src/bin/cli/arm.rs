@@ -18,7 +18,6 @@ use cosco_hsom::experiment::{
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::plot::BLACK;
-use cosco_hsom::render::RenderOptions;
 use cosco_hsom::sim::{NaoArm, JOINT_NAMES};
 
 use super::{compare, hsom_config, progress, read_demos, DEFAULT_CONFIG_NAME};
@@ -345,13 +344,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
 
     // 6. Clip.
     if job.render {
-        let opts = RenderOptions {
-            width: 480,
-            height: 360,
-            shadows: true,
-            multisample: false,
-            camera: Some("front".into()),
-        };
+        let opts = cosco_hsom::experiment::film::clip_options();
         let stride = 2;
         let pb = progress(executed.len().div_ceil(stride) as u64, "rendering");
         let clip = film(&arm, executed, &opts, stride, |n, _| {
