@@ -52,9 +52,7 @@ fn simulate_all_learns_every_gesture_in_one_model_and_reports_fidelity_and_recog
     assert!(
         md.contains("| gesture | shared joint DTW (rad/step) | alone joint DTW | shared / alone |")
     );
-    assert!(
-        md.contains("| gesture shown | reading-watch | wave | reach-point | salute | unknown |")
-    );
+    assert!(md.contains("| gesture | reading-watch | wave | reach-point | salute | unknown |"));
     let json: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap()).unwrap();
     let total = |key: &str| -> u64 {
@@ -96,4 +94,20 @@ fn simulate_all_refuses_one_demonstration_per_gesture_and_recorded_files() {
         .failure();
     let e = String::from_utf8_lossy(&err.get_output().stderr).to_string();
     assert!(e.contains("cosco train --demos DIR"), "{e}");
+    // the paper's algorithm has no branches to give each gesture: refused before recording
+    let config = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/table1.xml");
+    let err = Command::cargo_bin("simulate")
+        .unwrap()
+        .args(["--gesture", "all", "--no-render", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(tmp.path().join("c"))
+        .assert()
+        .failure();
+    let e = String::from_utf8_lossy(&err.get_output().stderr).to_string();
+    assert!(e.contains("need algorithm = events"), "{e}");
+    assert!(
+        !tmp.path().join("c").join("demos").exists(),
+        "nothing recorded"
+    );
 }

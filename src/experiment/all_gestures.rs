@@ -27,6 +27,7 @@ use crate::sim::{NaoArm, Recording};
 
 use super::demonstrate::{synthetic_demonstrations, DemoSettings};
 use super::film::{clip_options, film};
+use super::multi::{confusion_counts, confusion_markdown};
 use super::pipeline::{execute_and_score, sample_period};
 use super::study::median;
 use super::{ExperimentError, Transition};
@@ -200,9 +201,9 @@ impl AllReport {
             early(&|q| q.nn_ms).unwrap_or(f64::NAN),
         );
         let _ = writeln!(s, "CoSCo-HSOM (rows: gesture shown; columns: answer):\n");
-        s += &confusion_table(&self.confusion, &self.labels, true);
+        s += &confusion_markdown(&self.confusion, &self.labels, true);
         let _ = writeln!(s, "\n1-NN DTW:\n");
-        s += &confusion_table(&self.nn_confusion, &self.labels, false);
+        s += &confusion_markdown(&self.nn_confusion, &self.labels, false);
         let _ = writeln!(
             s,
             "\nThe unknown-gesture study and the negative controls (untrained hierarchy, shuffled \
@@ -228,18 +229,6 @@ impl AllReport {
         }
         s
     }
-}
-
-fn confusion_table(m: &[Vec<usize>], labels: &[String], unknown: bool) -> String {
-    let mut s = format!("| gesture shown | {}", labels.join(" | "));
-    s += if unknown { " | unknown |\n" } else { " |\n" };
-    let n = labels.len() + usize::from(unknown);
-    s += &format!("|---|{}\n", "---|".repeat(n));
-    for (l, row) in labels.iter().zip(m) {
-        let cells: Vec<String> = row.iter().take(n).map(|c| c.to_string()).collect();
-        s += &format!("| {l} | {} |\n", cells.join(" | "));
-    }
-    s
 }
 
 fn gerr(e: GestureError) -> ExperimentError {
@@ -276,6 +265,10 @@ pub fn run_all_gestures(
             "--gesture all needs at least 2 gestures".into(),
         ));
     }
+    if config.params().algorithm != crate::config::Algorithm::Events {
+        // refused before anything is recorded
+        return Err(gerr(GestureError::NeedsEvents));
+    }
     let labels: Vec<String> = gestures.iter().map(|g| g.name.to_string()).collect();
     let mut files = Vec::new();
     // 1. demonstrations, written into labelled subdirectories (`cosco train` reads them back)
@@ -302,6 +295,7 @@ pub fn run_all_gestures(
     let mut per_gesture: Vec<Vec<[f64; 5]>> = vec![Vec::new(); labels.len()];
     let mut wrist_missing = false;
     let mut last_model = None;
+    let mut last_fold: Vec<(String, usize, String, Recording)> = Vec::new();
     for k in 0..count {
         progress("held-out folds", k, count);
         let sets: Vec<(String, Vec<Demonstration>)> = labels
@@ -367,6 +361,11 @@ pub fn run_all_gestures(
                 wrist(&a).unwrap_or(f64::NAN),
                 s.fidelity.duration_ratio.mean,
             ]);
+            if k == count - 1 {
+                // the saved model's: kept for its files and the clip
+                let stop = format!("{:?}", shared.stop);
+                last_fold.push((label.clone(), shared.postures.len(), stop, s.executed));
+            }
         }
         last_model = Some(model);
     }
@@ -392,34 +391,20 @@ pub fn run_all_gestures(
     );
     let nn_confusion =
         confusion_counts(&labels, queries.iter().map(|q| (&q.expected, Some(&q.nn))));
-    // 3. the last fold's model: saved, each gesture reproduced on cue and executed
+    // 3. the last fold's model, its reproductions on cue (executed in that fold) and files
     model
         .save(&out.join("model.bin"))
         .map_err(|e| werr("model.bin", e))?;
     files.push("model.bin".into());
     let mut executed: Vec<(String, Recording)> = Vec::new();
     let mut reproductions = Vec::new();
-    for (gi, label) in labels.iter().enumerate() {
-        let test = &all[gi][count - 1];
-        let rep = model.reproduce(Some(label), &test.rows[0]).map_err(gerr)?;
-        let metrics = MetricsParams {
-            sample_period: sample_period(test),
-            ..MetricsParams::default()
-        };
-        let e = execute_and_score(
-            arm,
-            &rep.postures,
-            settings.transition,
-            std::slice::from_ref(test),
-            &metrics,
-        )?;
+    for (label, samples, stop, rec) in last_fold {
         let rel = format!("reproduction_{label}.csv");
         let name = format!("CoSCo-HSOM reproduction of {label} (shared hierarchy)");
-        write_csv(&out.join(&rel), &e.executed.to_demonstration(&name))
-            .map_err(|err| werr(&rel, err))?;
+        write_csv(&out.join(&rel), &rec.to_demonstration(&name)).map_err(|err| werr(&rel, err))?;
         files.push(rel);
-        reproductions.push((label.clone(), rep.postures.len(), format!("{:?}", rep.stop)));
-        executed.push((label.clone(), e.executed));
+        reproductions.push((label.clone(), samples, stop));
+        executed.push((label, rec));
     }
     // 4. the confusion matrices as a figure
     let panel = |title: String, counts: &[Vec<usize>], unknown: bool| ConfusionPanel {
@@ -533,22 +518,4 @@ fn sheet_frames(rec: &Recording, stride: usize, frames: usize) -> Vec<usize> {
         .iter()
         .map(|&i| (i / stride.max(1)).min(frames.saturating_sub(1)))
         .collect()
-}
-
-/// Confusion counts from (shown, answer) pairs: rows the labels, columns the labels then
-/// `unknown` (an answer of `None` or of no label).
-fn confusion_counts<'a>(
-    labels: &[String],
-    pairs: impl Iterator<Item = (&'a String, Option<&'a String>)>,
-) -> Vec<Vec<usize>> {
-    let mut m = vec![vec![0usize; labels.len() + 1]; labels.len()];
-    for (shown, answer) in pairs {
-        if let Some(r) = labels.iter().position(|l| l == shown) {
-            let c = answer
-                .and_then(|a| labels.iter().position(|l| l == a))
-                .unwrap_or(labels.len());
-            m[r][c] += 1;
-        }
-    }
-    m
 }

@@ -368,7 +368,11 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
         s,
         "Confusion (rows: gesture, columns: CoSCo-HSOM's answer):\n"
     );
-    let _ = write!(s, "{}", confusion_markdown(&confusion(&q, labels), labels));
+    let _ = write!(
+        s,
+        "{}",
+        confusion_markdown(&confusion(&q, labels), labels, true)
+    );
     let fid: Vec<&FidelityPair> = results.iter().flat_map(|r| &r.fidelity).collect();
     if !fid.is_empty() {
         let _ = writeln!(
@@ -448,12 +452,19 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
 
 /// Confusion counts: rows = expected label, columns = the labels then `unknown`.
 pub fn confusion(q: &[&Query], labels: &[String]) -> Vec<Vec<usize>> {
+    confusion_counts(labels, q.iter().map(|x| (&x.expected, x.hsom.as_ref())))
+}
+
+/// Confusion counts from (shown, answer) pairs: rows the labels, columns the labels then
+/// `unknown` (an answer of `None` or of no label).
+pub fn confusion_counts<'a>(
+    labels: &[String],
+    pairs: impl Iterator<Item = (&'a String, Option<&'a String>)>,
+) -> Vec<Vec<usize>> {
     let mut m = vec![vec![0usize; labels.len() + 1]; labels.len()];
-    for x in q {
-        if let Some(r) = labels.iter().position(|l| *l == x.expected) {
-            let c = x
-                .hsom
-                .as_ref()
+    for (shown, answer) in pairs {
+        if let Some(r) = labels.iter().position(|l| l == shown) {
+            let c = answer
                 .and_then(|a| labels.iter().position(|l| l == a))
                 .unwrap_or(labels.len());
             m[r][c] += 1;
@@ -462,12 +473,15 @@ pub fn confusion(q: &[&Query], labels: &[String]) -> Vec<Vec<usize>> {
     m
 }
 
-/// A confusion matrix as a Markdown table.
-pub fn confusion_markdown(m: &[Vec<usize>], labels: &[String]) -> String {
-    let mut s = format!("| gesture | {} | unknown |\n", labels.join(" | "));
-    s += &format!("|---|{}---|\n", "---|".repeat(labels.len()));
+/// A confusion matrix as a Markdown table; with `unknown`, its last column is `unknown`
+/// (a classifier that never answers it, such as 1-NN DTW, leaves it out).
+pub fn confusion_markdown(m: &[Vec<usize>], labels: &[String], unknown: bool) -> String {
+    let n = labels.len() + usize::from(unknown);
+    let mut s = format!("| gesture | {}", labels.join(" | "));
+    s += if unknown { " | unknown |\n" } else { " |\n" };
+    s += &format!("|---|{}\n", "---|".repeat(n));
     for (l, row) in labels.iter().zip(m) {
-        let cells: Vec<String> = row.iter().map(|c| c.to_string()).collect();
+        let cells: Vec<String> = row.iter().take(n).map(|c| c.to_string()).collect();
         s += &format!("| {l} | {} |\n", cells.join(" | "));
     }
     s

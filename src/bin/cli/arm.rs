@@ -20,7 +20,7 @@ use cosco_hsom::gesture::Gesture;
 use cosco_hsom::plot::BLACK;
 use cosco_hsom::sim::{NaoArm, JOINT_NAMES};
 
-use super::{compare, hsom_config, progress, read_demos, DEFAULT_CONFIG_NAME};
+use super::{compare, config_name, hsom_config, progress, read_demos};
 /// Default encoder noise of synthetic demonstrations, rad (about Nao's encoder resolution).
 pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
 
@@ -370,10 +370,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
         ),
         gesture,
         seed: job.seed,
-        config: job
-            .config
-            .as_ref()
-            .map_or(DEFAULT_CONFIG_NAME.into(), |p| p.display().to_string()),
+        config: config_name(job.config.as_deref()),
         demos: demo_info,
         methods,
         variants: variant_results,
@@ -436,10 +433,7 @@ pub fn all_gestures_job(job: &Job) -> Result<Vec<String>> {
     std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
     let cfg = hsom_config(job.config.as_deref())?;
     let arm = load_arm(job.model.as_deref())?;
-    let config_name = job
-        .config
-        .as_ref()
-        .map_or(DEFAULT_CONFIG_NAME.into(), |p| p.display().to_string());
+    let config_name = config_name(job.config.as_deref());
     let settings = AllSettings {
         count: job.count,
         seed: job.seed,

@@ -258,12 +258,7 @@ pub fn compare(job: &CompareJob) -> Result<Report> {
         title: "CoSCo-HSOM and the GMM/GMR baseline on the simulated Nao left arm".into(),
         gesture: None,
         seed: cfg.params().seed,
-        config: job
-            .config
-            .as_ref()
-            .map_or(super::DEFAULT_CONFIG_NAME.into(), |p| {
-                p.display().to_string()
-            }),
+        config: super::config_name(job.config.as_deref()),
         demos: demo_info,
         methods: vec![hsom_result, gmr_result],
         variants: Vec::new(),

@@ -46,6 +46,11 @@ pub fn hsom_config(path: Option<&Path>) -> Result<HsomConfig> {
     Ok(steps::config(path)?)
 }
 
+/// How a report names the configuration: its path, or the built-in default's name.
+pub fn config_name(path: Option<&Path>) -> String {
+    path.map_or(DEFAULT_CONFIG_NAME.into(), |p| p.display().to_string())
+}
+
 /// Read demonstration files (a directory of *.csv or explicit files), checked as a set.
 pub fn read_demos(paths: &[PathBuf], state_length: Option<usize>) -> Result<Vec<Demonstration>> {
     Ok(steps::read_demos(paths, state_length)?)
