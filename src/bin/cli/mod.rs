@@ -47,6 +47,7 @@ pub fn hsom_config(path: Option<&Path>) -> Result<HsomConfig> {
 }
 
 /// How a report names the configuration: its path, or the built-in default's name.
+#[cfg(feature = "sim")]
 pub fn config_name(path: Option<&Path>) -> String {
     path.map_or(DEFAULT_CONFIG_NAME.into(), |p| p.display().to_string())
 }
