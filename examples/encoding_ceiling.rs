@@ -3,10 +3,13 @@
 //! involved. What is lost here the hierarchy cannot reproduce. For each (gesture, seed):
 //! a model trained on all demonstrations, then per demonstration the joint DTW between
 //! the re-encoded and the original trajectory, the large swings of `LElbowRoll` and the
-//! ratio of its range (re-encoded / original).
+//! ratio of its range (re-encoded / original). With `--shared`, each gesture's ceiling
+//! through the bottom level it shares with the other gestures given (one hierarchy, a branch
+//! per gesture) beside the same gesture learned alone.
 //!
 //! ```sh
 //! cargo run --release --example encoding_ceiling -- --gestures wave --seeds 11-15
+//! cargo run --release --example encoding_ceiling -- --shared --seeds 11-15 --count 3
 //! ```
 //!
 //! [`Hsom::reencode`]: cosco_hsom::hsom::Hsom::reencode
@@ -18,10 +21,12 @@ use anyhow::{Context, Result};
 use clap::Parser;
 
 use cosco_hsom::config::load_config;
+use cosco_hsom::demos::Demonstration;
 use cosco_hsom::dtw::{dtw_distance, Band};
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
 use cosco_hsom::experiment::heldout::{SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
 use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};
+use cosco_hsom::hsom::Hsom;
 use cosco_hsom::metrics::column_swings;
 use cosco_hsom::sim::NaoArm;
 
@@ -44,6 +49,10 @@ struct Args {
     /// CoSCo-HSOM configuration (XML).
     #[arg(long, default_value = "configs/nao-gestures.xml")]
     config: PathBuf,
+    /// Also the ceiling through a bottom shared by all the gestures given (issue 9: one
+    /// hierarchy, one branch per gesture), beside the gesture learned alone.
+    #[arg(long)]
+    shared: bool,
 }
 
 /// (gesture, joint DTW, swings, demonstration swings, range ratio) of one set.
@@ -58,7 +67,61 @@ fn range(rows: &[Vec<f64>], c: usize) -> f64 {
     hi - lo
 }
 
+/// Mean joint DTW of the demonstrations re-encoded by `model`, and its events per demonstration.
+fn ceiling(model: &Hsom, demos: &[Demonstration]) -> Result<(f64, f64)> {
+    let mut dtw = 0.0;
+    for d in demos {
+        let r = model.reencode(d)?;
+        dtw += dtw_distance(&r.postures, &d.rows, Band::None)?.per_step();
+    }
+    Ok((dtw / demos.len() as f64, model.summary().demo_events[1]))
+}
+
+/// Each gesture's ceiling through the bottom it shares with the others, beside alone.
+fn shared(a: &Args) -> Result<()> {
+    let arm = NaoArm::load_default()?;
+    let config = load_config(&a.config).with_context(|| a.config.display().to_string())?;
+    let settings = DemoSettings {
+        encoder_noise: a.noise,
+        ..DemoSettings::default()
+    };
+    let gestures = parse_gestures(&a.gestures)?;
+    println!("Each demonstration through the bottom level's events and back: the gesture learned alone, and through the bottom shared by {} gestures ({}, trained on all {} demonstrations of each): means over the demonstrations.\n", gestures.len(), a.config.display(), a.count);
+    println!("| gesture | seed | joint DTW alone | joint DTW shared | shared / alone | events per demo alone | shared |");
+    println!("|---|---|---|---|---|---|---|");
+    let mut all: Vec<(String, f64)> = Vec::new();
+    for &seed in &parse_seeds(&a.seeds)? {
+        let sets: Vec<(String, Vec<Demonstration>)> = gestures
+            .iter()
+            .map(|g| {
+                Ok((
+                    g.name.to_string(),
+                    synthetic_demonstrations(&arm, g, a.count, seed, &settings, |_| {})?,
+                ))
+            })
+            .collect::<Result<_>>()?;
+        let model = config.fit_gestures(&sets, None)?;
+        for (label, demos) in &sets {
+            let (da, ea) = ceiling(&config.fit(demos)?, demos)?;
+            let (ds, es) = ceiling(model.branch(Some(label))?, demos)?;
+            println!(
+                "| {label} | {seed} | {da:.4} | {ds:.4} | {:.2} | {ea:.1} | {es:.1} |",
+                ds / da
+            );
+            all.push((label.to_string(), ds / da));
+        }
+    }
+    for g in &gestures {
+        let m = median(all.iter().filter(|r| r.0 == g.name).map(|r| r.1)).unwrap_or(f64::NAN);
+        println!("| **{}** | median | | | {m:.2} | | |", g.name);
+    }
+    Ok(())
+}
+
 fn run(a: Args) -> Result<()> {
+    if a.shared {
+        return shared(&a);
+    }
     let arm = NaoArm::load_default()?;
     let config = load_config(&a.config).with_context(|| a.config.display().to_string())?;
     let settings = DemoSettings {

@@ -1,6 +1,6 @@
 //! The trained hierarchy ([`Hsom`]), training (paper III-C.1) and its quality summary.
 
-use rand::SeedableRng;
+use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use crate::config::{HsomConfig, ListUpdate, MemoryMode, Normalisation, PartialTraining};
@@ -371,6 +371,21 @@ pub(crate) fn input_dim(config: &HsomConfig, level: usize) -> usize {
     }
 }
 
+/// The order in which the bottom level sees its training samples.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Presentation {
+    /// The demonstrations one after the other, each sample in turn (the paper's, whose upper
+    /// levels learn from the sequence while the bottom does).
+    InOrder,
+    /// Each step one sample drawn uniformly from every demonstration's samples (from the
+    /// configuration's seed). For a bottom shared by several gestures: in order, the map
+    /// follows each gesture's demonstrations in turn and the next gesture pulls away the nodes
+    /// the last one placed; drawn at random, every gesture keeps its share to the end of
+    /// training (docs/ALGORITHM.md, "Several gestures in one hierarchy"). Only with the events
+    /// extension, whose upper levels are trained afterwards on the events.
+    Shuffled,
+}
+
 impl HsomConfig {
     /// Train a hierarchy on demonstrations (each `stateLength` columns wide, at least two
     /// samples), quietly.
@@ -384,15 +399,32 @@ impl HsomConfig {
         demos: &[Demonstration],
         progress: Option<&dyn Fn(usize, usize)>,
     ) -> Result<Hsom, HsomError> {
+        self.fit_presented(demos, progress, Presentation::InOrder)
+    }
+
+    /// Train with the bottom's samples presented as `presentation` says; the bottom level
+    /// shared by several gestures draws them at random (see [`Presentation`]).
+    pub(crate) fn fit_presented(
+        &self,
+        demos: &[Demonstration],
+        progress: Option<&dyn Fn(usize, usize)>,
+        presentation: Presentation,
+    ) -> Result<Hsom, HsomError> {
         let series = demo_series(demos);
-        self.fit_inner(&series, progress, true, demo_columns(demos))
+        self.fit_inner(&series, progress, true, demo_columns(demos), presentation)
     }
 
     /// An untrained hierarchy: the seeded initial weights (inside the data's bounding box)
     /// with the same statistics as a trained one; the negative control of fidelity tests.
     pub fn initialise(&self, demos: &[Demonstration]) -> Result<Hsom, HsomError> {
         let series = demo_series(demos);
-        self.fit_inner(&series, None, false, demo_columns(demos))
+        self.fit_inner(
+            &series,
+            None,
+            false,
+            demo_columns(demos),
+            Presentation::InOrder,
+        )
     }
 
     /// Train on plain time series (rows of `stateLength` values), quietly.
@@ -416,15 +448,16 @@ impl HsomConfig {
         let columns = (0..self.params().state_length)
             .map(|i| format!("x{i}"))
             .collect();
-        self.fit_inner(&s, None, learn, columns)
+        self.fit_inner(&s, None, learn, columns, Presentation::InOrder)
     }
 
-    fn fit_inner(
+    pub(crate) fn fit_inner(
         &self,
         series: &[Series<'_>],
         progress: Option<&dyn Fn(usize, usize)>,
         learn: bool,
         columns: Vec<String>,
+        presentation: Presentation,
     ) -> Result<Hsom, HsomError> {
         let p = self.params();
         let state = p.state_length;
@@ -562,12 +595,27 @@ impl HsomConfig {
         let on_change = stm.on_change;
         let events = p.algorithm == crate::config::Algorithm::Events;
         let mut s = 0u64;
+        // the events extension trains the upper levels afterwards, so only the bottom's
+        // samples are drawn (the paper's levels learn from the sequence as it is presented)
+        let shuffled = events && presentation == Presentation::Shuffled;
+        let samples: usize = norm.iter().map(|r| r.len() - 1).sum();
         loop {
             let done = if on_change { sc } else { s };
             if done >= total as u64 {
                 break;
             }
             s += 1;
+            if shuffled {
+                // one of every demonstration's samples (but the last), uniformly
+                let mut g = rng.gen_range(0..samples);
+                d = 0;
+                while g >= norm[d].len() - 1 {
+                    g -= norm[d].len() - 1;
+                    d += 1;
+                }
+                pos = g;
+                stm.clear();
+            }
             let pushed = {
                 let demo = &norm[d];
                 let x = &mut bufs[0];
@@ -632,7 +680,7 @@ impl HsomConfig {
                 stm.push(l, b, &maps[l]);
             }
             pos += 1;
-            if pos + 1 >= norm[d].len() {
+            if !shuffled && pos + 1 >= norm[d].len() {
                 stm.clear();
                 d = (d + 1) % norm.len();
                 pos = 0;

@@ -18,7 +18,7 @@ use crate::config::{Algorithm, HsomConfig};
 use crate::demos::Demonstration;
 use crate::fsutil::write_atomic;
 
-use super::algorithm::Hsom;
+use super::algorithm::{Hsom, Presentation};
 use super::errors::{HsomError, PersistError};
 use super::persist::{ext, fnv1a, Format, FORMAT_VERSION, MAGIC, TEXT_MAGIC};
 use super::recognize::{Calibration, Scoring};
@@ -213,7 +213,13 @@ impl HsomConfig {
             self.clone()
         };
         let shared = if learn {
-            cfg.fit_with_progress(&all, progress)?
+            // drawn at random when shared (docs/ALGORITHM.md, "Several gestures")
+            let order = if sets.len() > 1 {
+                Presentation::Shuffled
+            } else {
+                Presentation::InOrder
+            };
+            cfg.fit_presented(&all, progress, order)?
         } else {
             cfg.initialise(&all)?
         };
