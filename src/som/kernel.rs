@@ -117,6 +117,56 @@ fn padded(a: &Lane, b: usize, full: usize, nodes: usize) -> Lane {
     a
 }
 
+/// The running minimum of each lane over the blocks visited: its smallest distance and the
+/// first block where it was found, in vector registers (a compare and two selects a block;
+/// written as plain loops over the lanes, the compiler left scalar compares).
+struct LaneMin<S: Simd> {
+    simd: S,
+    d: [S::f64s; LANES],
+    b: [S::u64s; LANES],
+}
+
+impl<S: Simd> LaneMin<S> {
+    #[inline(always)]
+    fn new(simd: S) -> Self {
+        LaneMin {
+            simd,
+            d: [simd.splat_f64s(f64::INFINITY); LANES],
+            b: [simd.splat_u64s(0); LANES],
+        }
+    }
+
+    #[inline(always)]
+    fn visit(&mut self, b: usize, acc: &Lane) {
+        let simd = self.simd;
+        let nv = LANES / S::F64_LANES;
+        let (av, _) = S::as_simd_f64s(acc);
+        let bs = simd.splat_u64s(b as u64);
+        for ((d, bb), &a) in self.d[..nv].iter_mut().zip(&mut self.b[..nv]).zip(av) {
+            let closer = simd.less_than_f64s(a, *d);
+            *d = simd.select_f64s(closer, a, *d);
+            *bb = simd.select_u64s(closer, bs, *bb);
+        }
+    }
+
+    /// The nearest node over all lanes and its distance; ties go to the lowest index.
+    #[inline(always)]
+    fn best(&self) -> (usize, f64) {
+        let nv = LANES / S::F64_LANES;
+        let (mut d, mut b) = ([0.0; LANES], [0u64; LANES]);
+        S::as_mut_simd_f64s(&mut d).0.copy_from_slice(&self.d[..nv]);
+        S::as_mut_simd_u64s(&mut b).0.copy_from_slice(&self.b[..nv]);
+        let mut best = (0, f64::INFINITY);
+        for l in 0..LANES {
+            let (d, i) = (d[l], b[l] as usize * LANES + l);
+            if d < best.1 || (d == best.1 && d < f64::INFINITY && i < best.0) {
+                best = (i, d);
+            }
+        }
+        best
+    }
+}
+
 struct ArgMin<'a, F> {
     w: &'a [Lane],
     dim: usize,
@@ -132,26 +182,10 @@ where
     type Output = (usize, f64);
     #[inline(always)]
     fn with_simd<S: Simd>(self, simd: S) -> (usize, f64) {
-        let mut best_d = [f64::INFINITY; LANES];
-        let mut best_b = [0usize; LANES];
-        let visit = |b: usize, acc: &Lane| {
-            for l in 0..LANES {
-                let closer = acc[l] < best_d[l];
-                best_d[l] = if closer { acc[l] } else { best_d[l] };
-                best_b[l] = if closer { b } else { best_b[l] };
-            }
-        };
+        let mut best = LaneMin::new(simd);
+        let visit = |b: usize, acc: &Lane| best.visit(b, acc);
         for_each_block(simd, self.w, self.dim, self.nodes, &self.dims, visit);
-        let mut best = (0, f64::INFINITY);
-        for l in 0..LANES {
-            let i = best_b[l] * LANES + l;
-            if best_d[l] < best.1
-                || (best_d[l] == best.1 && best_d[l] < f64::INFINITY && i < best.0)
-            {
-                best = (i, best_d[l]);
-            }
-        }
-        best
+        best.best()
     }
 }
 
