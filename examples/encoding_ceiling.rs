@@ -67,14 +67,20 @@ fn range(rows: &[Vec<f64>], c: usize) -> f64 {
     hi - lo
 }
 
-/// Mean joint DTW of the demonstrations re-encoded by `model`, and its events per demonstration.
-fn ceiling(model: &Hsom, demos: &[Demonstration]) -> Result<(f64, f64)> {
+/// Mean joint DTW of the demonstrations re-encoded by `model`, its events per demonstration
+/// and the bottom nodes its demonstrations use.
+fn ceiling(model: &Hsom, demos: &[Demonstration]) -> Result<(f64, f64, usize)> {
     let mut dtw = 0.0;
     for d in demos {
         let r = model.reencode(d)?;
         dtw += dtw_distance(&r.postures, &d.rows, Band::None)?.per_step();
     }
-    Ok((dtw / demos.len() as f64, model.summary().demo_events[1]))
+    let s = model.summary();
+    Ok((
+        dtw / demos.len() as f64,
+        s.demo_events[1],
+        s.levels[0].nodes_used,
+    ))
 }
 
 /// Each gesture's ceiling through the bottom it shares with the others, beside alone.
@@ -87,8 +93,8 @@ fn shared(a: &Args) -> Result<()> {
     };
     let gestures = parse_gestures(&a.gestures)?;
     println!("Each demonstration through the bottom level's events and back: the gesture learned alone, and through the bottom shared by {} gestures ({}, trained on all {} demonstrations of each): means over the demonstrations.\n", gestures.len(), a.config.display(), a.count);
-    println!("| gesture | seed | joint DTW alone | joint DTW shared | shared / alone | events per demo alone | shared |");
-    println!("|---|---|---|---|---|---|---|");
+    println!("| gesture | seed | joint DTW alone | joint DTW shared | shared / alone | events per demo alone | shared | bottom nodes used alone | shared |");
+    println!("|---|---|---|---|---|---|---|---|---|");
     let mut all: Vec<(String, f64)> = Vec::new();
     for &seed in &parse_seeds(&a.seeds)? {
         let sets: Vec<(String, Vec<Demonstration>)> = gestures
@@ -102,10 +108,10 @@ fn shared(a: &Args) -> Result<()> {
             .collect::<Result<_>>()?;
         let model = config.fit_gestures(&sets, None)?;
         for (label, demos) in &sets {
-            let (da, ea) = ceiling(&config.fit(demos)?, demos)?;
-            let (ds, es) = ceiling(model.branch(Some(label))?, demos)?;
+            let (da, ea, ua) = ceiling(&config.fit(demos)?, demos)?;
+            let (ds, es, us) = ceiling(model.branch(Some(label))?, demos)?;
             println!(
-                "| {label} | {seed} | {da:.4} | {ds:.4} | {:.2} | {ea:.1} | {es:.1} |",
+                "| {label} | {seed} | {da:.4} | {ds:.4} | {:.2} | {ea:.1} | {es:.1} | {ua} | {us} |",
                 ds / da
             );
             all.push((label.to_string(), ds / da));
@@ -113,7 +119,7 @@ fn shared(a: &Args) -> Result<()> {
     }
     for g in &gestures {
         let m = median(all.iter().filter(|r| r.0 == g.name).map(|r| r.1)).unwrap_or(f64::NAN);
-        println!("| **{}** | median | | | {m:.2} | | |", g.name);
+        println!("| **{}** | median | | | {m:.2} | | | | |", g.name);
     }
     Ok(())
 }
