@@ -20,7 +20,7 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::Parser;
 
-use cosco_hsom::config::load_config;
+use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::dtw::{dtw_distance, Band};
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
@@ -84,13 +84,7 @@ fn ceiling(model: &Hsom, demos: &[Demonstration]) -> Result<(f64, f64, usize)> {
 }
 
 /// Each gesture's ceiling through the bottom it shares with the others, beside alone.
-fn shared(a: &Args) -> Result<()> {
-    let arm = NaoArm::load_default()?;
-    let config = load_config(&a.config).with_context(|| a.config.display().to_string())?;
-    let settings = DemoSettings {
-        encoder_noise: a.noise,
-        ..DemoSettings::default()
-    };
+fn shared(a: &Args, arm: &NaoArm, config: &HsomConfig, settings: &DemoSettings) -> Result<()> {
     let gestures = parse_gestures(&a.gestures)?;
     println!("Each demonstration through the bottom level's events and back: the gesture learned alone, and through the bottom shared by {} gestures ({}, trained on all {} demonstrations of each): means over the demonstrations.\n", gestures.len(), a.config.display(), a.count);
     println!("| gesture | seed | joint DTW alone | joint DTW shared | shared / alone | events per demo alone | shared | bottom nodes used alone | shared |");
@@ -102,7 +96,7 @@ fn shared(a: &Args) -> Result<()> {
             .map(|g| {
                 Ok((
                     g.name.to_string(),
-                    synthetic_demonstrations(&arm, g, a.count, seed, &settings, |_| {})?,
+                    synthetic_demonstrations(arm, g, a.count, seed, settings, |_| {})?,
                 ))
             })
             .collect::<Result<_>>()?;
@@ -125,15 +119,15 @@ fn shared(a: &Args) -> Result<()> {
 }
 
 fn run(a: Args) -> Result<()> {
-    if a.shared {
-        return shared(&a);
-    }
     let arm = NaoArm::load_default()?;
     let config = load_config(&a.config).with_context(|| a.config.display().to_string())?;
     let settings = DemoSettings {
         encoder_noise: a.noise,
         ..DemoSettings::default()
     };
+    if a.shared {
+        return shared(&a, &arm, &config, &settings);
+    }
     println!("Each demonstration through the bottom level's events and back ({}, trained on all {} demonstrations of the set): means over the demonstrations.\n", a.config.display(), a.count);
     println!("| gesture | seed | joint DTW (rad/step) | LElbowRoll swings (re-encoded / demo) | LElbowRoll range ratio | events per demo |");
     println!("|---|---|---|---|---|---|");

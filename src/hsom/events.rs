@@ -1124,21 +1124,15 @@ mod tests {
         config(height).fit_series(&series).unwrap()
     }
 
-    /// Mean distance of `rows` (with their postures `horizon` samples later) to the bottom.
+    /// Mean distance of `rows` (with their postures `horizon` samples later, as the bottom is
+    /// trained) to the bottom map: its quantization error on them.
     fn bottom_error(m: &Hsom, rows: &[Vec<f64>], horizon: usize) -> f64 {
         let norm = m.normalise_rows(rows);
         let n = norm.len() - 1;
-        (0..n)
-            .map(|i| {
-                let x: Vec<f64> = norm[i]
-                    .iter()
-                    .chain(&norm[(i + horizon).min(n)])
-                    .cloned()
-                    .collect();
-                m.maps[0].bmu(&x).1.sqrt()
-            })
-            .sum::<f64>()
-            / n as f64
+        let inputs: Vec<Vec<f64>> = (0..n)
+            .map(|i| [norm[i].as_slice(), &norm[(i + horizon).min(n)]].concat())
+            .collect();
+        m.maps[0].quantization_error(&inputs)
     }
 
     #[test]
