@@ -1,6 +1,6 @@
 //! Several gestures in one hierarchy (issue 9), on small 2-D gestures that train in well
 //! under a second: recognition held out beside its negative controls (shuffled labels, an
-//! unknown gesture), reproduction on cue, save and load (format 6; format 5 still loads as
+//! unknown gesture), reproduction on cue, save and load (format 7; format 5 still loads as
 //! one gesture), and bad input through `cosco` with errors naming the directory or label.
 
 use std::path::Path;
@@ -182,6 +182,48 @@ fn save_and_load_keep_the_model_and_its_size_does_not_grow_with_the_demonstratio
     }
     let bytes = std::fs::read(dir.path().join("m.bin")).unwrap();
     assert_eq!(bytes[8..12], GESTURES_FORMAT_VERSION.to_le_bytes());
+    // a model of the format before the branches' own postures (6): "retrain", in both forms
+    let fnv1a = |b: &[u8]| {
+        b.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &x| {
+            (h ^ x as u64).wrapping_mul(0x0100_0000_01b3)
+        })
+    };
+    let mut old = bytes[..bytes.len() - 8].to_vec();
+    old[8..12].copy_from_slice(&6u32.to_le_bytes());
+    let sum = fnv1a(&old);
+    old.extend_from_slice(&sum.to_le_bytes());
+    let text = std::fs::read_to_string(dir.path().join("m.txt")).unwrap();
+    // the lines before the final checksum (each branch's text keeps its own)
+    let text = &text[..text.trim_end().rfind('\n').unwrap() + 1];
+    let body: String = text
+        .lines()
+        .filter(|l| !l.starts_with("postures"))
+        .map(|l| format!("{}\n", l.replace("version 7", "version 6")))
+        .collect();
+    let old_text = format!("{body}checksum {:016x}\n", fnv1a(body.as_bytes()));
+    for (ext, content) in [("bin", old), ("txt", old_text.into_bytes())] {
+        let p = dir.path().join(format!("old.{ext}"));
+        std::fs::write(&p, content).unwrap();
+        let e = GestureModel::load(&p).unwrap_err().to_string();
+        assert!(e.contains("version 6") && e.contains("retrain"), "{ext}: {e}");
+    }
+    // stored postures of the wrong size (with a valid checksum): refused, named
+    let mut first = true;
+    let body: String = text
+        .lines()
+        .map(|l| {
+            if first && l.starts_with("postures") {
+                first = false;
+                "postures 1 2 3\n".to_string()
+            } else {
+                format!("{l}\n")
+            }
+        })
+        .collect();
+    let p = dir.path().join("short.txt");
+    std::fs::write(&p, format!("{body}checksum {:016x}\n", fnv1a(body.as_bytes()))).unwrap();
+    let e = GestureModel::load(&p).unwrap_err().to_string();
+    assert!(e.contains("gesture \"up\": 3 posture values"), "{e}");
     // a corrupted byte is refused
     let mut bad = bytes.clone();
     let mid = bad.len() / 2;

@@ -502,7 +502,7 @@ impl GestureModel {
         })
     }
 
-    /// Load a model saved by `GestureModel.save` or `cosco train` (format 6 with labels;
+    /// Load a model saved by `GestureModel.save` or `cosco train` (format 7 with labels;
     /// a single-gesture file of format 5 loads too, without labels).
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {

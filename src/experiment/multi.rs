@@ -80,6 +80,16 @@ pub struct FidelityPair {
     pub shared: f64,
     /// The same for the gesture learned alone.
     pub alone: f64,
+    /// Wrist-path DTW (mm/step), shared (NaN when the arm gives no wrist path).
+    pub shared_wrist_mm: f64,
+    /// Wrist-path DTW (mm/step), alone.
+    pub alone_wrist_mm: f64,
+    /// Velocity reversals of the shared hierarchy's executed reproduction, all joints.
+    pub shared_reversals: f64,
+    /// Velocity reversals of the gesture learned alone, all joints.
+    pub alone_reversals: f64,
+    /// Velocity reversals of the held-out demonstration, all joints.
+    pub demo_reversals: f64,
 }
 
 /// A control or the unknown study: answers as (expected, answer) pairs.
@@ -245,22 +255,36 @@ pub fn run_seed(
                     sample_period: sample_period(d),
                     ..MetricsParams::default()
                 };
-                let score = |postures: &[Vec<f64>]| -> Result<f64, ExperimentError> {
+                let score = |postures: &[Vec<f64>]| -> Result<[f64; 4], ExperimentError> {
                     let e = execute_and_score(
                         arm,
                         postures,
                         settings.transition,
                         std::slice::from_ref(d),
                         &metrics,
-                    )?;
-                    Ok(e.fidelity.joint_dtw_rad_per_step.mean)
+                    )?
+                    .fidelity;
+                    Ok([
+                        e.joint_dtw_rad_per_step.mean,
+                        e.wrist_dtw_mm.map_or(f64::NAN, |w| w.mean),
+                        e.reproduction_smoothness.total_reversals as f64,
+                        e.demo_smoothness
+                            .first()
+                            .map_or(f64::NAN, |d| d.total_reversals as f64),
+                    ])
                 };
                 let shared = model.reproduce(Some(label), &d.rows[0]).map_err(gerr)?;
                 let own = alone.reproduce(&d.rows[0])?;
+                let (sh, al) = (score(&shared.postures)?, score(&own.postures)?);
                 fidelity.push(FidelityPair {
                     gesture: label.clone(),
-                    shared: score(&shared.postures)?,
-                    alone: score(&own.postures)?,
+                    shared: sh[0],
+                    alone: al[0],
+                    shared_wrist_mm: sh[1],
+                    alone_wrist_mm: al[1],
+                    shared_reversals: sh[2],
+                    alone_reversals: al[2],
+                    demo_reversals: sh[3],
                 });
             }
         }
@@ -397,6 +421,33 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
             if let (Some(a), Some(b)) = (sh, al) {
                 let _ = writeln!(s, "| {l} | {a:.4} | {b:.4} | {:.2} |", a / b);
             }
+        }
+        let _ = writeln!(
+            s,
+            "\nWrist-path DTW (mm/step) and velocity reversals (all joints), medians:\n\n\
+             | gesture | wrist shared | wrist alone | ratio | reversals shared | alone | demonstrations |\n\
+             |---|---|---|---|---|---|---|"
+        );
+        for l in labels {
+            let of = |f: &dyn Fn(&FidelityPair) -> f64| {
+                median(
+                    fid.iter()
+                        .filter(|p| &p.gesture == l)
+                        .map(|p| f(p))
+                        .filter(|v| v.is_finite())
+                        .collect(),
+                )
+                .unwrap_or(f64::NAN)
+            };
+            let (ws, wa) = (of(&|p| p.shared_wrist_mm), of(&|p| p.alone_wrist_mm));
+            let _ = writeln!(
+                s,
+                "| {l} | {ws:.2} | {wa:.2} | {:.2} | {:.1} | {:.1} | {:.1} |",
+                ws / wa,
+                of(&|p| p.shared_reversals),
+                of(&|p| p.alone_reversals),
+                of(&|p| p.demo_reversals)
+            );
         }
     }
     let cat = |f: &dyn Fn(&SeedResult) -> &Answers| Answers {

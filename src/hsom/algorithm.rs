@@ -69,6 +69,10 @@ pub struct Hsom {
     pub(crate) followers: Vec<Vec<u32>>,
     /// Per level >= 1, per node, the lower entries of its exemplar (`memory` each).
     pub(crate) exemplars: Vec<Vec<u32>>,
+    /// Per bottom node, where a reproduction places its events (state part, normalised,
+    /// `stateLength` values per node): a branch of a model of several gestures holds its
+    /// own gesture's postures ([`Hsom::own_postures`]); `None`: the nodes' weights.
+    pub(crate) knots: Option<Vec<f64>>,
 }
 
 /// Quality of one level, as reported by [`Hsom::summary`].
@@ -718,6 +722,7 @@ impl HsomConfig {
             accuracy: vec![0.0; p.height],
             lookup: vec![0.0; p.height],
             threshold: vec![0.0; p.height],
+            knots: None,
             followers: p
                 .levels
                 .iter()

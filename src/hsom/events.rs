@@ -829,6 +829,63 @@ impl Hsom {
 }
 
 impl Hsom {
+    /// Where a reproduction places bottom node `n`'s events: the branch's own posture
+    /// ([`Hsom::own_postures`]) when it has them, else the node's weights (state part).
+    fn knot(&self, n: usize, s: usize) -> Vec<f64> {
+        match &self.knots {
+            Some(k) => k[n * s..(n + 1) * s].to_vec(),
+            None => self.maps[0].weights(n)[..s].to_vec(),
+        }
+    }
+
+    /// The posture (state part, normalised) of every bottom node as `norm` (normalised
+    /// demonstrations of one gesture) realises it: the bottom map's last training step done
+    /// in batch on this gesture's samples alone, i.e. per node the mean of the samples of
+    /// the gesture's events, weighted by the map's neighbourhood at its final radius around
+    /// each event's node. A node none of the gesture's events is on keeps its weights.
+    /// Flattened, `stateLength` values per node. (docs/ALGORITHM.md, "Several gestures":
+    /// a node shared by several gestures sits between them; each branch executes its own.)
+    pub(crate) fn own_postures(&self, norm: &[Vec<Vec<f64>>]) -> Vec<f64> {
+        let p = self.config.params();
+        let s = p.state_length;
+        let map = &self.maps[0];
+        let n = map.len();
+        // per node: the gesture's samples on it (count, sum), then the neighbourhood
+        let mut count = vec![0.0; n];
+        let mut sum = vec![0.0; n * s];
+        for demo in norm {
+            let mut pos = 0usize;
+            for (node, d) in bottom_events(self, demo) {
+                for x in demo.iter().skip(pos).take(d as usize) {
+                    count[node] += 1.0;
+                    for (acc, v) in sum[node * s..(node + 1) * s].iter_mut().zip(x) {
+                        *acc += v;
+                    }
+                }
+                pos += d as usize;
+            }
+        }
+        let (h, r) = (p.levels[0].neighbourhood, p.levels[0].learning_radius.last);
+        let mut out = vec![0.0; n * s];
+        for j in 0..n {
+            let row = &mut out[j * s..(j + 1) * s];
+            if count[j] == 0.0 {
+                row.copy_from_slice(&map.weights(j)[..s]);
+                continue;
+            }
+            let mut w_sum = 0.0;
+            for i in (0..n).filter(|&i| count[i] > 0.0) {
+                let w = h.weight(map.grid_distance2(i, j), r);
+                w_sum += w * count[i];
+                for (acc, v) in row.iter_mut().zip(&sum[i * s..(i + 1) * s]) {
+                    *acc += w * v;
+                }
+            }
+            row.iter_mut().for_each(|v| *v /= w_sum);
+        }
+        out
+    }
+
     /// Postures at every sample from the executed events: each event's node posture (its
     /// state half) is reached at the middle of the event, the initial posture is the first
     /// knot and the last event's posture is held to its end; in between a monotone cubic
@@ -847,13 +904,13 @@ impl Hsom {
         let mut now = 0.0;
         for &(n, d, l) in executed {
             t.push(now + d / 2.0);
-            v.push(self.maps[0].weights(n)[..s].to_vec());
+            v.push(self.knot(n, s));
             by.push(l);
             now += d;
         }
         if let Some(&(n, _, l)) = executed.last() {
             t.push(now);
-            v.push(self.maps[0].weights(n)[..s].to_vec());
+            v.push(self.knot(n, s));
             by.push(l);
         }
         let samples = now.floor() as usize + 1;
@@ -1181,6 +1238,77 @@ mod tests {
             ea_order > eb_order,
             "in order, the first gesture is the worse coded"
         );
+    }
+
+    #[test]
+    fn each_branch_executes_its_own_gesture_on_the_shared_nodes() {
+        // two gestures from the same rest posture along nearby paths, on a bottom too small
+        // to give each its own nodes: the nodes they share sit between them (written:
+        // own 0.025, weights 0.061, the other gesture's 0.078)
+        let a: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
+        let b: Vec<Vec<Vec<f64>>> = a
+            .iter()
+            .map(|d| d.iter().map(|r| vec![r[0], 1.6 * r[1]]).collect())
+            .collect();
+        let demos = |set: &[Vec<Vec<f64>>]| -> Vec<Demonstration> {
+            set.iter()
+                .map(|rows| Demonstration {
+                    source: "demo".into(),
+                    columns: vec!["x".into(), "y".into()],
+                    time: None,
+                    rows: rows.clone(),
+                })
+                .collect()
+        };
+        let mut p = config(2).params().clone();
+        p.levels[0] = crate::config::LevelParams::new(4, 4, crate::som::Topology::Orthogonal, 0.1);
+        let cfg = p.check("test").unwrap();
+        let sets = vec![("a".to_string(), demos(&a)), ("b".to_string(), demos(&b))];
+        let m = cfg.fit_gestures(&sets, None).unwrap();
+        // mean distance between a demonstration and its re-encoding by a branch
+        let err = |br: &Hsom, set: &[Demonstration]| {
+            let mut e = 0.0;
+            for d in set {
+                let r = br.reencode(d).unwrap();
+                assert_eq!(r.postures.len(), d.rows.len());
+                e += r
+                    .postures
+                    .iter()
+                    .zip(&d.rows)
+                    .map(|(x, y)| dist2(x, y).sqrt())
+                    .sum::<f64>()
+                    / d.rows.len() as f64;
+            }
+            e / set.len() as f64
+        };
+        let (ba, bb) = (&m.branches[0], &m.branches[1]);
+        assert!(ba.knots.is_some() && bb.knots.is_some());
+        let weights_only = |br: &Hsom| Hsom {
+            knots: None,
+            ..br.clone()
+        };
+        let other = Hsom {
+            knots: bb.knots.clone(),
+            ..ba.clone()
+        };
+        let (own, plain, wrong) = (
+            err(ba, &sets[0].1),
+            err(&weights_only(ba), &sets[0].1),
+            err(&other, &sets[0].1),
+        );
+        // its own postures: closer than the shared nodes' weights; the other gesture's: farther
+        assert!(own < 0.7 * plain, "own {own} vs weights {plain}");
+        assert!(
+            wrong > plain,
+            "the other gesture's postures {wrong} vs weights {plain}"
+        );
+        // a gesture learned alone and an untrained model execute the nodes' weights
+        assert!(cfg.fit_gestures(&sets[..1], None).unwrap().branches[0]
+            .knots
+            .is_none());
+        assert!(cfg.initialise_gestures(&sets).unwrap().branches[0]
+            .knots
+            .is_none());
     }
 
     #[test]

@@ -734,6 +734,7 @@ fn build(
         threshold: extra.threshold,
         followers: extra.followers,
         exemplars: extra.exemplars,
+        knots: None,
     })
 }
 
