@@ -205,7 +205,10 @@ fn save_and_load_keep_the_model_and_its_size_does_not_grow_with_the_demonstratio
         let p = dir.path().join(format!("old.{ext}"));
         std::fs::write(&p, content).unwrap();
         let e = GestureModel::load(&p).unwrap_err().to_string();
-        assert!(e.contains("version 6") && e.contains("retrain"), "{ext}: {e}");
+        assert!(
+            e.contains("version 6") && e.contains("retrain"),
+            "{ext}: {e}"
+        );
     }
     // stored postures of the wrong size (with a valid checksum): refused, named
     let mut first = true;
@@ -221,7 +224,11 @@ fn save_and_load_keep_the_model_and_its_size_does_not_grow_with_the_demonstratio
         })
         .collect();
     let p = dir.path().join("short.txt");
-    std::fs::write(&p, format!("{body}checksum {:016x}\n", fnv1a(body.as_bytes()))).unwrap();
+    std::fs::write(
+        &p,
+        format!("{body}checksum {:016x}\n", fnv1a(body.as_bytes())),
+    )
+    .unwrap();
     let e = GestureModel::load(&p).unwrap_err().to_string();
     assert!(e.contains("gesture \"up\": 3 posture values"), "{e}");
     // a corrupted byte is refused
