@@ -448,6 +448,7 @@ impl Hsom {
             ld.set_item("topographic_error", l.topographic_error)?;
             ld.set_item("prediction_accuracy", l.prediction_accuracy)?;
             ld.set_item("lookup_accuracy", l.lookup_accuracy)?;
+            ld.set_item("used_in_reproduction", l.used_in_reproduction)?;
             levels.append(ld)?;
         }
         d.set_item("levels", levels)?;

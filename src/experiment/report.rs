@@ -63,6 +63,9 @@ pub struct LevelRow {
     pub prediction_accuracy: f64,
     /// The same for a "next entry given the last entry" lookup table.
     pub lookup_accuracy: f64,
+    /// Whether reproduction may plan from this level (levels above 1: only when it beats
+    /// the lookup table; [`Hsom::level_trusted`]).
+    pub used_in_reproduction: bool,
 }
 
 /// The levels of `model`, bottom first.
@@ -77,6 +80,7 @@ pub fn level_rows(model: &Hsom) -> Vec<LevelRow> {
             nodes_used: l.nodes_used,
             prediction_accuracy: l.prediction_accuracy,
             lookup_accuracy: l.lookup_accuracy,
+            used_in_reproduction: l.used_in_reproduction,
         })
         .collect()
 }
@@ -377,14 +381,19 @@ pub fn folds_table(h: &HeldOut) -> String {
 /// accuracy.
 pub fn levels_table(levels: &[LevelRow]) -> String {
     let mut t = String::from(
-        "| level | nodes used / nodes | prediction accuracy | lookup-table accuracy |\n\
-         |---|---|---|---|\n",
+        "| level | nodes used / nodes | prediction accuracy | lookup-table accuracy | plans in reproduction |\n\
+         |---|---|---|---|---|\n",
     );
     for l in levels {
         let _ = writeln!(
             t,
-            "| {} | {} / {} | {:.3} | {:.3} |",
-            l.level, l.nodes_used, l.nodes, l.prediction_accuracy, l.lookup_accuracy
+            "| {} | {} / {} | {:.3} | {:.3} | {} |",
+            l.level,
+            l.nodes_used,
+            l.nodes,
+            l.prediction_accuracy,
+            l.lookup_accuracy,
+            crate::hsom::plans_word(l.level, l.used_in_reproduction)
         );
     }
     t

@@ -511,7 +511,15 @@ impl ConfigStudy {
             let _ = write!(t, "| {} | {} |", r.gesture, r.seed);
             for l in 1..height {
                 let c = r.levels.get(l).map_or("n/a".into(), |l| {
-                    format!("{:.2} / {:.2}", l.prediction_accuracy, l.lookup_accuracy)
+                    let off = if l.used_in_reproduction {
+                        ""
+                    } else {
+                        " (not used)"
+                    };
+                    format!(
+                        "{:.2} / {:.2}{off}",
+                        l.prediction_accuracy, l.lookup_accuracy
+                    )
                 });
                 let _ = write!(t, " {c} |");
             }

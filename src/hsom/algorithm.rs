@@ -105,6 +105,18 @@ pub struct LevelSummary {
     /// The same fraction for a lookup table of "next entry given the last entry" of the level
     /// below, counted on the same training data (the baseline the level must beat).
     pub lookup_accuracy: f64,
+    /// Whether reproduction may plan from this level ([`Hsom::level_trusted`]).
+    pub used_in_reproduction: bool,
+}
+
+/// How `cosco inspect` and the reports say whether reproduction plans from `level`: `-` for
+/// the bottom, `yes` or `no` above it.
+pub fn plans_word(level: usize, used_in_reproduction: bool) -> &'static str {
+    match (level, used_in_reproduction) {
+        (0, _) => "-",
+        (_, true) => "yes",
+        (_, false) => "no",
+    }
 }
 
 /// What `cosco inspect` shows: the levels, their sizes and quality.
@@ -153,12 +165,12 @@ impl std::fmt::Display for ModelSummary {
         )?;
         writeln!(
             f,
-            "level  size     topology    input  period  trained  used    QE        TE       acc    lookup"
+            "level  size     topology    input  period  trained  used    QE        TE       acc    lookup  plans"
         )?;
         for l in self.levels.iter().rev() {
             writeln!(
                 f,
-                "{:<6} {:<8} {:<11} {:<6} {:<7} {:<8} {:<7} {:<9.4} {:<8.4} {:<6.3} {:.3}",
+                "{:<6} {:<8} {:<11} {:<6} {:<7} {:<8} {:<7} {:<9.4} {:<8.4} {:<6.3} {:<7.3} {}",
                 l.level,
                 format!("{}x{}", l.rows, l.cols),
                 l.topology.name(),
@@ -169,7 +181,8 @@ impl std::fmt::Display for ModelSummary {
                 l.quantization_error,
                 l.topographic_error,
                 l.prediction_accuracy,
-                l.lookup_accuracy
+                l.lookup_accuracy,
+                plans_word(l.level, l.used_in_reproduction)
             )?;
         }
         Ok(())
@@ -1108,6 +1121,7 @@ impl Hsom {
                     topographic_error: self.te[l],
                     prediction_accuracy: self.accuracy.get(l).copied().unwrap_or(0.0),
                     lookup_accuracy: self.lookup.get(l).copied().unwrap_or(0.0),
+                    used_in_reproduction: self.level_trusted(l),
                 })
                 .collect(),
         }

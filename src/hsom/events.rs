@@ -633,6 +633,22 @@ impl Hsom {
     }
 
     /// Reproduce with the events extension from the normalised initial posture `y0`.
+    /// Whether reproduction may plan from level `l` (`algorithm = events`): level 1 always
+    /// (the lowest level with a sequence); a level above only if it and every level between
+    /// it and level 1, on their own training data, predicted the next entry of the level
+    /// below more often than the lookup table of "next entry given the last one" counted on
+    /// the same data (docs/ALGORITHM.md, passage 5). Always true with the paper's algorithm
+    /// and for the bottom.
+    pub fn level_trusted(&self, l: usize) -> bool {
+        if self.config.params().algorithm != crate::config::Algorithm::Events {
+            return true;
+        }
+        (2..=l).all(|k| {
+            self.accuracy.get(k).copied().unwrap_or(0.0)
+                > self.lookup.get(k).copied().unwrap_or(0.0)
+        })
+    }
+
     pub(crate) fn reproduce_events(&self, y0: &[f64], r: &ReproductionParams) -> Reproduction {
         let cfg = &self.config;
         let p = cfg.params();
@@ -678,7 +694,9 @@ impl Hsom {
                     // level 1 always predicts (the lowest level with a sequence and a
                     // context); higher levels only while they are not confused
                     if l > 1
-                        && (d2 / known as f64).sqrt() > self.threshold[l] * (1.0 + 1e-9) + 1e-12
+                        && (!self.level_trusted(l)
+                            || (d2 / known as f64).sqrt()
+                                > self.threshold[l] * (1.0 + 1e-9) + 1e-12)
                     {
                         break;
                     }
@@ -1464,10 +1482,41 @@ mod tests {
         assert!((20..=60).contains(&held), "held {held} samples");
         let n = rep.postures.len() as f64;
         assert!((0.7 * 150.0..=1.3 * 200.0).contains(&n), "length {n}");
-        // an upper level carried it
-        assert!(rep.predicted_by.iter().any(|&l| l >= 2));
+        // the levels above the bottom carried it, each only where it beats its lookup table
+        assert!(rep.predicted_by.iter().any(|&l| l >= 1));
+        assert!(rep.predicted_by.iter().all(|&l| m.level_trusted(l)));
         // deterministic
         assert_eq!(rep, m.reproduce(&[0.0, 0.0]).unwrap());
+    }
+
+    #[test]
+    fn a_level_plans_only_where_it_and_the_levels_below_beat_their_lookup_tables() {
+        let mut m = trained(4);
+        m.accuracy = vec![0.0, 0.5, 0.9, 0.9];
+        m.lookup = vec![0.0, 0.9, 0.8, 0.8];
+        // level 1 always (the lowest level with a sequence), whatever its table
+        assert!(m.level_trusted(0) && m.level_trusted(1));
+        assert!(m.level_trusted(2) && m.level_trusted(3));
+        // a tie is not better; a level above an untrusted one is not reached
+        m.accuracy[2] = 0.8;
+        assert!(!m.level_trusted(2) && !m.level_trusted(3));
+        m.accuracy[2] = 0.9;
+        m.accuracy[3] = 0.7;
+        assert!(m.level_trusted(2) && !m.level_trusted(3));
+        let rep = m.reproduce(&[0.0, 0.0]).unwrap();
+        assert!(
+            rep.predicted_by.iter().all(|&l| l <= 2),
+            "{:?}",
+            rep.predicted_by
+        );
+        // the summary says which levels plan
+        let used: Vec<bool> = m
+            .summary()
+            .levels
+            .iter()
+            .map(|l| l.used_in_reproduction)
+            .collect();
+        assert_eq!(used, vec![true, true, true, false]);
     }
 
     #[test]

@@ -22,7 +22,7 @@ mod persist;
 mod recognize;
 mod reproduce;
 
-pub use algorithm::{Hsom, LevelSummary, ModelSummary};
+pub use algorithm::{plans_word, Hsom, LevelSummary, ModelSummary};
 pub use errors::{HsomError, PersistError};
 pub use labels::{is_plain_label, GestureError, GestureModel, GESTURES_FORMAT_VERSION, MAX_LABELS};
 pub use memory::{ActivityLevels, ActivityList};
