@@ -503,8 +503,8 @@ impl GestureModel {
         })
     }
 
-    /// Load a model saved by `GestureModel.save` or `cosco train` (format 7 with labels;
-    /// a single-gesture file of format 5 loads too, without labels).
+    /// Load a model saved by `GestureModel.save` or `cosco train` (format 9 with labels;
+    /// a single-gesture file of format 8 loads too, without labels).
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
         Ok(GestureModel {

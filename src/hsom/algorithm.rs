@@ -750,6 +750,9 @@ impl HsomConfig {
         model.replay(&norm);
         if events {
             model.fit_events(&norm, learn, &mut rng);
+            if learn {
+                model.fit_postures(&norm);
+            }
         }
         Ok(model)
     }

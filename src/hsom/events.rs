@@ -93,6 +93,10 @@ pub(super) struct Item {
     pub(super) content: Vec<f64>,
 }
 
+/// The blends between a bottom node's weights (0) and its own postures (1) that
+/// [`Hsom::fit_postures`] chooses from.
+pub(crate) const POSTURE_BLENDS: [f64; 3] = [0.0, 0.5, 1.0];
+
 /// The events of one demonstration: runs of the bottom BMU with hysteresis (`changeRatio`),
 /// as (node, length in samples). Constant work per sample.
 pub(crate) fn bottom_events(model: &Hsom, demo: &[Vec<f64>]) -> Vec<(usize, f64)> {
@@ -904,6 +908,64 @@ impl Hsom {
         out
     }
 
+    /// Where a reproduction places each bottom node's events, learned from `norm` (the
+    /// normalised demonstrations this model or branch was trained on): the node's weights, its
+    /// own postures ([`Hsom::own_postures`]) or halfway between, whichever re-encodes each
+    /// demonstration best from the postures of the others (leave-one-demonstration-out over
+    /// the bottom level's own events, [`Hsom::reencode`]'s path). The map's weights are
+    /// pulled in by its neighbourhood and shared between gestures; the own postures are the
+    /// training samples' means, which a held-out demonstration may not share: the data
+    /// decide. With one demonstration nothing is held out: the weights (and no stored
+    /// postures).
+    pub(crate) fn fit_postures(&mut self, norm: &[Vec<Vec<f64>>]) {
+        self.knots = None;
+        if norm.len() < 2 {
+            return;
+        }
+        let s = self.config.params().state_length;
+        let n = self.maps[0].len();
+        let w: Vec<f64> = (0..n)
+            .flat_map(|j| self.maps[0].weights(j)[..s].to_vec())
+            .collect();
+        let blend = |own: &[f64], k: f64| -> Vec<f64> {
+            w.iter()
+                .zip(own)
+                .map(|(a, o)| (1.0 - k) * a + k * o)
+                .collect()
+        };
+        let mut err = [0.0; POSTURE_BLENDS.len()];
+        let mut probe = self.clone();
+        for (i, held) in norm.iter().enumerate() {
+            let others: Vec<Vec<Vec<f64>>> = norm
+                .iter()
+                .enumerate()
+                .filter(|&(j, _)| j != i)
+                .map(|(_, d)| d.clone())
+                .collect();
+            let own = self.own_postures(&others);
+            let executed: Vec<(usize, f64, usize)> = bottom_events(self, held)
+                .into_iter()
+                .map(|(n, d)| (n, d, 0))
+                .collect();
+            let truth: Vec<Vec<f64>> = held.iter().map(|r| self.denormalise(r)).collect();
+            for (e, &k) in err.iter_mut().zip(&POSTURE_BLENDS) {
+                probe.knots = Some(blend(&own, k));
+                let r = probe.timed_postures(&held[0], &executed, StopReason::EndEvent);
+                *e += r
+                    .postures
+                    .iter()
+                    .zip(&truth)
+                    .map(|(x, y)| dist2(x, y).sqrt())
+                    .sum::<f64>()
+                    / truth.len().max(1) as f64;
+            }
+        }
+        // the first of equal errors: the weights before any blend; stored whatever the
+        // choice, so that the model's size does not depend on it
+        let best = (0..err.len()).fold(0, |b, i| if err[i] < err[b] { i } else { b });
+        self.knots = Some(blend(&self.own_postures(norm), POSTURE_BLENDS[best]));
+    }
+
     /// Postures at every sample from the executed events: each event's node posture (its
     /// state half) is reached at the middle of the event, the initial posture is the first
     /// knot and the last event's posture is held to its end; in between a monotone cubic
@@ -1320,13 +1382,45 @@ mod tests {
             wrong > plain,
             "the other gesture's postures {wrong} vs weights {plain}"
         );
-        // a gesture learned alone and an untrained model execute the nodes' weights
-        assert!(cfg.fit_gestures(&sets[..1], None).unwrap().branches[0]
-            .knots
-            .is_none());
+        // one gesture through fit_gestures chooses as fit does; an untrained model, or one
+        // demonstration (nothing to hold out), executes the nodes' weights
+        let alone = cfg.fit_gestures(&sets[..1], None).unwrap();
+        assert_eq!(alone.branches[0].knots, cfg.fit(&sets[0].1).unwrap().knots);
         assert!(cfg.initialise_gestures(&sets).unwrap().branches[0]
             .knots
             .is_none());
+        assert!(cfg.fit(&sets[0].1[..1]).unwrap().knots.is_none());
+    }
+
+    #[test]
+    fn postures_are_chosen_by_how_well_they_reencode_a_held_out_demonstration() {
+        // three demonstrations that differ only by tiny noise: each one's own means, taken
+        // from the other two, re-encode it best, so the own postures are chosen whole
+        let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30, 100 + i)).collect();
+        let m = config(2).fit_series(&series).unwrap();
+        let norm: Vec<Vec<Vec<f64>>> = series.iter().map(|d| m.normalise_rows(d)).collect();
+        assert_eq!(m.knots, Some(m.own_postures(&norm)));
+        // and they re-encode a fourth demonstration closer than the weights do
+        let fourth = Demonstration {
+            source: "g".into(),
+            columns: vec!["x".into(), "y".into()],
+            time: None,
+            rows: gesture(30, 200),
+        };
+        let err = |h: &Hsom| {
+            let r = h.reencode(&fourth).unwrap();
+            r.postures
+                .iter()
+                .zip(&fourth.rows)
+                .map(|(a, b)| dist2(a, b).sqrt())
+                .sum::<f64>()
+                / fourth.rows.len() as f64
+        };
+        let weights = Hsom {
+            knots: None,
+            ..m.clone()
+        };
+        assert!(err(&m) < err(&weights), "{} vs {}", err(&m), err(&weights));
     }
 
     #[test]

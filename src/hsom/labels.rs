@@ -5,11 +5,11 @@
 //! events extension's own training, unchanged); the label primes the top of the hierarchy on
 //! reproduction, and recognition ([`super::recognize`]) pushes a sequence up every branch.
 //!
-//! A single-gesture model (format 5, no label) loads as a [`GestureModel`] with one unlabelled
-//! branch, and is saved exactly as before; a multi-gesture model is format 7: the labels,
-//! their recognition calibration, each branch's own postures of the shared bottom nodes
-//! ([`Hsom::own_postures`]) and every branch in format 5. A format-6 file (before the
-//! postures) gets the "retrain" error.
+//! A single-gesture model (format 8, no label) loads as a [`GestureModel`] with one unlabelled
+//! branch, and is saved exactly as before; a multi-gesture model is format 9: the labels,
+//! their recognition calibration and every branch in format 8 (which holds the branch's own
+//! postures of the shared bottom nodes, [`Hsom::fit_postures`]). Older files (formats 5-7)
+//! get the "retrain" error.
 
 use std::path::{Path, PathBuf};
 
@@ -28,7 +28,7 @@ use super::reproduce::Reproduction;
 
 /// Format version of a multi-gesture model file (a single-gesture model stays
 /// [`FORMAT_VERSION`]).
-pub const GESTURES_FORMAT_VERSION: u32 = 7;
+pub const GESTURES_FORMAT_VERSION: u32 = 9;
 
 /// Most gesture labels a model may hold (a bound on what a file may make us allocate).
 pub const MAX_LABELS: usize = 1024;
@@ -241,10 +241,10 @@ impl HsomConfig {
             .map(|(g, n)| shared.branch(n, learn, branch_seed(seed, g, None)))
             .collect();
         let mut branches = branches;
-        if learn && sets.len() > 1 {
-            // each branch executes its own gesture's postures of the shared nodes
+        if learn {
+            // each branch places the shared nodes' events where its own gesture has them
             for (b, n) in branches.iter_mut().zip(&norm) {
-                b.knots = Some(b.own_postures(n));
+                b.fit_postures(n);
             }
         }
         let calibration = super::recognize::calibrate(&shared, &branches, &norm, learn, seed);
@@ -362,8 +362,8 @@ impl GestureModel {
         Ok(self.branch(label)?.reproduce(initial)?)
     }
 
-    /// Save: a single-gesture model exactly as [`Hsom::save`] (format 5); several gestures as
-    /// format 7 (`.bin` or `.txt`), read back with every check first, written atomically.
+    /// Save: a single-gesture model exactly as [`Hsom::save`] (format 8); several gestures as
+    /// format 9 (`.bin` or `.txt`), read back with every check first, written atomically.
     pub fn save(&self, path: &Path) -> Result<(), PersistError> {
         if self.labels.is_empty() {
             return self.branches[0].save(path);
@@ -386,7 +386,7 @@ impl GestureModel {
         })
     }
 
-    /// Load a model saved by [`GestureModel::save`] or [`Hsom::save`] (format 5 or 7).
+    /// Load a model saved by [`GestureModel::save`] or [`Hsom::save`] (format 8 or 9).
     pub fn load(path: &Path) -> Result<GestureModel, PersistError> {
         let fmt = ext(path)?;
         let bytes = std::fs::read(path).map_err(|source| PersistError::Io {
@@ -426,8 +426,8 @@ impl GestureModel {
         }
     }
 
-    /// Format 7, binary: magic, version, label count, per label its name, calibration, postures and
-    /// branch (format 5 bytes), then an FNV-1a checksum of everything before it.
+    /// Format 9, binary: magic, version, label count, per label its name, calibration and
+    /// branch (format 8 bytes), then an FNV-1a checksum of everything before it.
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut b = Vec::new();
         b.extend_from_slice(MAGIC);
@@ -446,11 +446,6 @@ impl GestureModel {
             for v in values {
                 b.extend_from_slice(&v.to_le_bytes());
             }
-            let own = branch.knots.as_deref().unwrap_or(&[]);
-            b.extend_from_slice(&(own.len() as u32).to_le_bytes());
-            for v in own {
-                b.extend_from_slice(&v.to_le_bytes());
-            }
             let inner = branch.to_bytes();
             b.extend_from_slice(&(inner.len() as u64).to_le_bytes());
             b.extend_from_slice(&inner);
@@ -460,7 +455,7 @@ impl GestureModel {
         b
     }
 
-    /// Read format 7, binary; `path` only names the file in errors.
+    /// Read format 9, binary; `path` only names the file in errors.
     pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<GestureModel, PersistError> {
         let p = path.to_path_buf();
         if bytes.len() < 8 + 4 + 4 + 8 || &bytes[..8] != MAGIC {
@@ -499,16 +494,9 @@ impl GestureModel {
                 .chunks_exact(8)
                 .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
                 .collect();
-            let np = r.u32("postures length")? as usize;
-            let own: Vec<f64> = r
-                .take(np.saturating_mul(8), "postures")?
-                .chunks_exact(8)
-                .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
-                .collect();
             let blen = r.u64("branch length")?;
             let inner = r.take(usize::try_from(blen).unwrap_or(usize::MAX), "branch")?;
-            let mut branch = Hsom::from_bytes(inner, &p.join(format!("[gesture {label}]")))?;
-            branch.knots = own_postures(own, &branch, &label, &p)?;
+            let branch = Hsom::from_bytes(inner, &p.join(format!("[gesture {label}]")))?;
             labels.push(label);
             calibration.push(values);
             branches.push(branch);
@@ -519,10 +507,9 @@ impl GestureModel {
         GestureModel::assemble(labels, calibration, branches, &p)
     }
 
-    /// Format 7, text: the format line, `version 7`, `gestures N`, then per label a
-    /// `gesture NAME` line, a `calibration ...` line, a `postures ...` line (nodes x
-    /// stateLength values, or none), a `lines K` line and its branch's text
-    /// (format 5, K lines); a final checksum line.
+    /// Format 9, text: the format line, `version 9`, `gestures N`, then per label a
+    /// `gesture NAME` line, a `calibration ...` line, a `lines K` line and its branch's text
+    /// (format 8, K lines); a final checksum line.
     pub fn to_text(&self) -> String {
         use std::fmt::Write;
         let mut s = String::new();
@@ -538,13 +525,6 @@ impl GestureModel {
             let _ = writeln!(s, "gesture {label}");
             let vals: Vec<String> = cal.values().iter().map(|v| format!("{v:e}")).collect();
             let _ = writeln!(s, "calibration {}", vals.join(" "));
-            let own: Vec<String> = branch
-                .knots
-                .iter()
-                .flatten()
-                .map(|v| format!(" {v:e}"))
-                .collect();
-            let _ = writeln!(s, "postures{}", own.concat());
             let inner = branch.to_text();
             let _ = writeln!(s, "lines {}", inner.lines().count());
             s.push_str(&inner);
@@ -554,7 +534,7 @@ impl GestureModel {
         s
     }
 
-    /// Read format 7, text; `path` only names the file in errors.
+    /// Read format 9, text; `path` only names the file in errors.
     pub fn from_text(text: &str, path: &Path) -> Result<GestureModel, PersistError> {
         let p = path.to_path_buf();
         let body_end = text
@@ -622,14 +602,6 @@ impl GestureModel {
                 .map(|t| t.parse::<f64>())
                 .collect::<Result<_, _>>()
                 .map_err(|_| corrupted(&p, format!("bad number in {cl:.40?}")))?;
-            let pl = next("postures")?;
-            let own: Vec<f64> = pl
-                .strip_prefix("postures")
-                .ok_or_else(|| corrupted(&p, format!("expected a postures line, found {pl:.40?}")))?
-                .split_whitespace()
-                .map(|t| t.parse::<f64>())
-                .collect::<Result<_, _>>()
-                .map_err(|_| corrupted(&p, format!("bad number in {pl:.40?}")))?;
             let ll = next("lines")?;
             let k: usize = ll
                 .strip_prefix("lines ")
@@ -640,8 +612,7 @@ impl GestureModel {
                 inner.push_str(next("branch")?);
                 inner.push('\n');
             }
-            let mut branch = Hsom::from_text(&inner, &p.join(format!("[gesture {label}]")))?;
-            branch.knots = own_postures(own, &branch, &label, &p)?;
+            let branch = Hsom::from_text(&inner, &p.join(format!("[gesture {label}]")))?;
             labels.push(label);
             calibration.push(values);
             branches.push(branch);
@@ -694,36 +665,6 @@ impl GestureModel {
             scoring: Scoring::default(),
         })
     }
-}
-
-/// A branch's stored postures per bottom node: none, or `stateLength` finite values per
-/// node of the bottom level.
-fn own_postures(
-    own: Vec<f64>,
-    branch: &Hsom,
-    label: &str,
-    p: &Path,
-) -> Result<Option<Vec<f64>>, PersistError> {
-    if own.is_empty() {
-        return Ok(None);
-    }
-    let want = branch.maps[0].len() * branch.config.params().state_length;
-    if own.len() != want {
-        return Err(corrupted(
-            p,
-            format!(
-                "gesture {label:?}: {} posture values, the bottom level needs {want} (nodes x stateLength) or none",
-                own.len()
-            ),
-        ));
-    }
-    if !own.iter().all(|v| v.is_finite()) {
-        return Err(corrupted(
-            p,
-            format!("gesture {label:?}: a non-finite posture value"),
-        ));
-    }
-    Ok(Some(own))
 }
 
 fn corrupted(p: &Path, what: String) -> PersistError {

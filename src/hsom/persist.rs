@@ -17,13 +17,16 @@ pub(super) const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 pub(super) const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of both formats.
-pub const FORMAT_VERSION: u32 = 5;
+pub const FORMAT_VERSION: u32 = 8;
 
 /// The longest demonstration a model file may record, samples (a day at 1 kHz): the
 /// reproduction's length cap derives from it.
 const MAX_DEMO_SAMPLES: f64 = 1e8;
 /// Largest embedded configuration accepted (bytes).
 const MAX_CONFIG: u64 = 1 << 20;
+/// More posture values than any stored model can hold (nodes x stateLength); a longer line
+/// is refused before it is parsed whole.
+const MAX_POSTURE_VALUES: usize = 1 << 24;
 
 pub(super) fn fnv1a(bytes: &[u8]) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -137,6 +140,11 @@ impl Hsom {
             .chain(self.exemplars.iter().flatten())
         {
             b.extend_from_slice(&v.to_le_bytes());
+        }
+        let knots = self.knots.as_deref().unwrap_or(&[]);
+        b.extend_from_slice(&(knots.len() as u32).to_le_bytes());
+        for &v in knots {
+            f(&mut b, v);
         }
         for c in &self.columns {
             b.extend_from_slice(&(c.len() as u32).to_le_bytes());
@@ -262,6 +270,9 @@ impl Hsom {
             r.need(n * 4, "exemplars")?;
             exemplars.push(r.u32s(n, "exemplars")?);
         }
+        let nk = r.u32("postures length")? as usize;
+        r.need(nk.saturating_mul(8), "postures")?;
+        let knots = r.f64s(nk, "postures")?;
         let mut columns = Vec::with_capacity(state.min(r.remaining() / 4));
         for _ in 0..state {
             let n = r.u32("column name length")? as usize;
@@ -306,6 +317,7 @@ impl Hsom {
                 threshold,
                 followers,
                 exemplars,
+                knots,
             },
             path,
         )
@@ -346,6 +358,13 @@ impl Hsom {
         for (l, e) in self.exemplars.iter().enumerate() {
             line(&mut s, &format!("exemplars-{l}"), e);
         }
+        let knots: Vec<String> = self
+            .knots
+            .iter()
+            .flatten()
+            .map(|v| format!(" {v}"))
+            .collect();
+        let _ = writeln!(s, "postures{}", knots.concat());
         let _ = writeln!(s, "columns {}", self.columns.len());
         for c in &self.columns {
             let _ = writeln!(s, "column {}", c.replace(['\n', '\r'], " "));
@@ -507,6 +526,17 @@ impl Hsom {
             let e: Vec<u32> = values(next(&key)?, &format!("{key} "), rows * cols * k, &corrupted)?;
             exemplars.push(e);
         }
+        let pl = next("postures")?;
+        let knots: Vec<f64> = pl
+            .strip_prefix("postures")
+            .ok_or_else(|| corrupted(format!("expected a \"postures\" line, found {pl:.40?}")))?
+            .split_whitespace()
+            .take(MAX_POSTURE_VALUES + 1)
+            .map(|t| {
+                t.parse::<f64>()
+                    .map_err(|_| corrupted(format!("bad number {t:?} in \"postures\" line")))
+            })
+            .collect::<Result<_, _>>()?;
         let nc: Vec<usize> = values(next("columns")?, "columns ", 1, &corrupted)?;
         if nc[0] != state {
             return Err(corrupted(format!(
@@ -618,6 +648,7 @@ impl Hsom {
                 threshold,
                 followers,
                 exemplars,
+                knots,
             },
             path,
         )
@@ -711,6 +742,22 @@ fn build(
             what: "non-finite weight or statistic (or a non-positive scale)".into(),
         });
     }
+    let want = n0 as usize * config.params().state_length;
+    if !(extra.knots.is_empty() || extra.knots.len() == want) {
+        return Err(PersistError::Corrupted {
+            path: path.to_path_buf(),
+            what: format!(
+                "{} posture values, the bottom level needs {want} (nodes x stateLength) or none",
+                extra.knots.len()
+            ),
+        });
+    }
+    if !extra.knots.iter().all(|v| v.is_finite()) {
+        return Err(PersistError::Corrupted {
+            path: path.to_path_buf(),
+            what: "a non-finite posture value".into(),
+        });
+    }
     Ok(Hsom {
         config,
         maps,
@@ -734,12 +781,15 @@ fn build(
         threshold: extra.threshold,
         followers: extra.followers,
         exemplars: extra.exemplars,
-        knots: None,
+        knots: (!extra.knots.is_empty()).then_some(extra.knots),
     })
 }
 
 /// The version-2 additions: run statistics and column names.
 struct Extra {
+    /// Per bottom node the posture a reproduction places its events at (empty: the
+    /// weights); `stateLength` values per node.
+    knots: Vec<f64>,
     runs: [f64; 3],
     dwell: Vec<f64>,
     speed: Vec<f64>,
