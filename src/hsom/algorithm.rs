@@ -416,7 +416,9 @@ impl HsomConfig {
         demos: &[Demonstration],
         progress: Option<&dyn Fn(usize, usize)>,
     ) -> Result<Hsom, HsomError> {
-        self.fit_presented(demos, progress, Presentation::InOrder)
+        let mut model = self.fit_presented(demos, progress, Presentation::InOrder)?;
+        model.learn_postures(demos.iter().map(|d| d.rows.as_slice()));
+        Ok(model)
     }
 
     /// Train with the bottom's samples presented as `presentation` says; the bottom level
@@ -465,7 +467,11 @@ impl HsomConfig {
         let columns = (0..self.params().state_length)
             .map(|i| format!("x{i}"))
             .collect();
-        self.fit_inner(&s, None, learn, columns, Presentation::InOrder)
+        let mut model = self.fit_inner(&s, None, learn, columns, Presentation::InOrder)?;
+        if learn {
+            model.learn_postures(series.iter().map(|r| r.as_slice()));
+        }
+        Ok(model)
     }
 
     pub(crate) fn fit_inner(
@@ -750,15 +756,22 @@ impl HsomConfig {
         model.replay(&norm);
         if events {
             model.fit_events(&norm, learn, &mut rng);
-            if learn {
-                model.fit_postures(&norm);
-            }
         }
         Ok(model)
     }
 }
 
 impl Hsom {
+    /// With the events extension, where reproduction places each bottom node's events,
+    /// learned from these (raw) demonstrations ([`Hsom::fit_postures`]). A bottom shared by
+    /// several gestures gets none of its own: each branch learns its own.
+    fn learn_postures<'a>(&mut self, demos: impl Iterator<Item = &'a [Vec<f64>]>) {
+        if self.config.params().algorithm == crate::config::Algorithm::Events {
+            let norm: Vec<Vec<Vec<f64>>> = demos.map(|rows| self.normalise_rows(rows)).collect();
+            self.fit_postures(&norm);
+        }
+    }
+
     /// Replay the (normalised) training data through the trained maps, without learning, with
     /// the training schedule restarted at every demonstration: node usage, end nodes, QE, TE.
     pub(super) fn replay(&mut self, norm: &[Vec<Vec<f64>>]) {
