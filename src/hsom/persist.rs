@@ -24,9 +24,6 @@ pub const FORMAT_VERSION: u32 = 8;
 const MAX_DEMO_SAMPLES: f64 = 1e8;
 /// Largest embedded configuration accepted (bytes).
 const MAX_CONFIG: u64 = 1 << 20;
-/// More posture values than any stored model can hold (nodes x stateLength); a longer line
-/// is refused before it is parsed whole.
-const MAX_POSTURE_VALUES: usize = 1 << 24;
 
 pub(super) fn fnv1a(bytes: &[u8]) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -531,7 +528,8 @@ impl Hsom {
             .strip_prefix("postures")
             .ok_or_else(|| corrupted(format!("expected a \"postures\" line, found {pl:.40?}")))?
             .split_whitespace()
-            .take(MAX_POSTURE_VALUES + 1)
+            // one more than the bottom level can hold: a longer line is refused, not parsed
+            .take(n0 * state + 1)
             .map(|t| {
                 t.parse::<f64>()
                     .map_err(|_| corrupted(format!("bad number {t:?} in \"postures\" line")))
