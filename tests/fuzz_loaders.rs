@@ -67,7 +67,19 @@ const CONFIG: &str = include_str!("../configs/nao-gestures.xml");
 const TABLE1: &str = include_str!("../configs/table1.xml");
 
 fn small_model() -> Hsom {
+    small_model_of(cosco_hsom::config::Algorithm::Paper)
+}
+
+/// The same with the events extension: it stores its postures (a `postures` line).
+fn small_events_model() -> Hsom {
+    let m = small_model_of(cosco_hsom::config::Algorithm::Events);
+    assert!(m.to_text().lines().any(|l| l.starts_with("postures ")));
+    m
+}
+
+fn small_model_of(algorithm: cosco_hsom::config::Algorithm) -> Hsom {
     let mut p = cosco_hsom::config::HsomParams::table1();
+    p.algorithm = algorithm;
     p.state_length = 2;
     p.action_length = 2;
     p.height = 3;
@@ -170,13 +182,13 @@ proptest! {
     }
 
     #[test]
-    fn model_binary_reader(bytes in input(small_model().to_bytes())) {
+    fn model_binary_reader(bytes in prop_oneof![input(small_model().to_bytes()), input(small_events_model().to_bytes())]) {
         let (_, big) = largest_allocation(|| Hsom::from_bytes(&bytes, Path::new("fuzz.bin")));
         prop_assert!(big <= allowance(bytes.len()), "{big} bytes allocated for {} of input", bytes.len());
     }
 
     #[test]
-    fn model_text_reader(bytes in input(small_model().to_text().into_bytes()), fix_checksum in any::<bool>()) {
+    fn model_text_reader(bytes in prop_oneof![input(small_model().to_text().into_bytes()), input(small_events_model().to_text().into_bytes())], fix_checksum in any::<bool>()) {
         let text = String::from_utf8_lossy(&bytes).into_owned();
         // half the cases with a valid checksum, so that the mutation reaches the values
         let text = if fix_checksum { hsom_common::with_checksum(&text) } else { text };
