@@ -861,12 +861,12 @@ impl Hsom {
     }
 
     /// The posture (state part, normalised) of every bottom node as `norm` (normalised
-    /// demonstrations of one gesture) realises it: the bottom map's last training step done
-    /// in batch on this gesture's samples alone, i.e. per node the mean of the samples of
-    /// the gesture's events, weighted by the map's neighbourhood at its final radius around
-    /// each event's node. A node none of the gesture's events is on keeps its weights.
-    /// Flattened, `stateLength` values per node. (docs/ALGORITHM.md, "Several gestures":
-    /// a node shared by several gestures sits between them; each branch executes its own.)
+    /// demonstrations, of one gesture) realises it: the bottom map's last training step done
+    /// in batch on these samples alone, i.e. per node the mean of the samples of the events
+    /// on it, weighted by the map's neighbourhood at its final radius around each event's
+    /// node. A node no event is on keeps its weights. Flattened, `stateLength` values per
+    /// node. What [`Hsom::fit_postures`] chooses from (docs/ALGORITHM.md, passage 6 of the
+    /// events extension, and "Several gestures").
     pub(crate) fn own_postures(&self, norm: &[Vec<Vec<f64>>]) -> Vec<f64> {
         let p = self.config.params();
         let s = p.state_length;
