@@ -123,7 +123,7 @@ impl std::ops::Deref for NodeWeights {
 /// A 2-D Kohonen map of `rows` x `cols` nodes, each with a weight vector of length `dim`.
 /// Node index `i = y * cols + x` has ID `(x, y)`.
 ///
-/// The weights are stored in blocks of [`LANES`] = 8 nodes, dimension by dimension (value
+/// The weights are stored in blocks of `LANES` = 8 nodes, dimension by dimension (value
 /// `d` of node `i` at `((i / 8) * dim + d) * 8 + i % 8`): a scan over the nodes reads one
 /// contiguous array and computes 8 nodes at a time in vector registers.
 #[derive(Debug, Clone, PartialEq)]

@@ -7,7 +7,7 @@
 //! - [`shard`]: `--shard I/N` and SLURM's job-array variables.
 //! - [`run`]: one run (the `simulate --no-render` pipeline) and its file.
 //! - [`runner`]: the sweep: output-directory checks, resume, the thread pool.
-//! - [`merge`]: tables (Markdown, CSV), paired wins, box plots, failed runs.
+//! - [`merge`](mod@merge): tables (Markdown, CSV), paired wins, box plots, failed runs.
 
 pub mod merge;
 pub mod run;
