@@ -71,7 +71,7 @@ pub struct Hsom {
     pub(crate) exemplars: Vec<Vec<u32>>,
     /// Per bottom node, where a reproduction places its events (state part, normalised,
     /// `stateLength` values per node): a branch of a model of several gestures holds its
-    /// own gesture's postures ([`Hsom::own_postures`]); `None`: the nodes' weights.
+    /// own gesture's postures ([`Hsom::fit_postures`]); `None`: the nodes' weights.
     pub(crate) knots: Option<Vec<f64>>,
 }
 

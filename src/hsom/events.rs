@@ -97,6 +97,48 @@ pub(super) struct Item {
 /// [`Hsom::fit_postures`] chooses from.
 pub(crate) const POSTURE_BLENDS: [f64; 3] = [0.0, 0.5, 1.0];
 
+/// Per bottom node, how many samples its events hold and their sum (state part): additive
+/// over demonstrations, so a leave-one-out total is the others' sums added.
+struct NodeSums {
+    count: Vec<f64>,
+    sum: Vec<f64>,
+}
+
+impl NodeSums {
+    fn new(nodes: usize, state: usize) -> Self {
+        NodeSums {
+            count: vec![0.0; nodes],
+            sum: vec![0.0; nodes * state],
+        }
+    }
+
+    /// The samples of `demo` (normalised) on the nodes of its `events`.
+    fn of(model: &Hsom, demo: &[Vec<f64>], events: &[(usize, f64)]) -> Self {
+        let s = model.config.params().state_length;
+        let mut out = NodeSums::new(model.maps[0].len(), s);
+        let mut pos = 0usize;
+        for &(node, d) in events {
+            for x in demo.iter().skip(pos).take(d as usize) {
+                out.count[node] += 1.0;
+                for (acc, v) in out.sum[node * s..(node + 1) * s].iter_mut().zip(x) {
+                    *acc += v;
+                }
+            }
+            pos += d as usize;
+        }
+        out
+    }
+
+    fn add(&mut self, other: &NodeSums) {
+        for (a, b) in self.count.iter_mut().zip(&other.count) {
+            *a += b;
+        }
+        for (a, b) in self.sum.iter_mut().zip(&other.sum) {
+            *a += b;
+        }
+    }
+}
+
 /// The events of one demonstration: runs of the bottom BMU with hysteresis (`changeRatio`),
 /// as (node, length in samples). Constant work per sample.
 pub(crate) fn bottom_events(model: &Hsom, demo: &[Vec<f64>]) -> Vec<(usize, f64)> {
@@ -852,7 +894,7 @@ impl Hsom {
 
 impl Hsom {
     /// Where a reproduction places bottom node `n`'s events: the branch's own posture
-    /// ([`Hsom::own_postures`]) when it has them, else the node's weights (state part).
+    /// ([`Hsom::fit_postures`]) when it has them, else the node's weights (state part).
     fn knot(&self, n: usize, s: usize) -> Vec<f64> {
         match &self.knots {
             Some(k) => k[n * s..(n + 1) * s].to_vec(),
@@ -860,46 +902,41 @@ impl Hsom {
         }
     }
 
-    /// The posture (state part, normalised) of every bottom node as `norm` (normalised
-    /// demonstrations, of one gesture) realises it: the bottom map's last training step done
-    /// in batch on these samples alone, i.e. per node the mean of the samples of the events
-    /// on it, weighted by the map's neighbourhood at its final radius around each event's
-    /// node. A node no event is on keeps its weights. Flattened, `stateLength` values per
-    /// node. What [`Hsom::fit_postures`] chooses from (docs/ALGORITHM.md, passage 6 of the
-    /// events extension, and "Several gestures").
+    /// The own postures of `norm` (normalised demonstrations) in one call.
+    #[cfg(test)]
     pub(crate) fn own_postures(&self, norm: &[Vec<Vec<f64>>]) -> Vec<f64> {
+        let mut total = NodeSums::new(self.maps[0].len(), self.config.params().state_length);
+        for demo in norm {
+            total.add(&NodeSums::of(self, demo, &bottom_events(self, demo)));
+        }
+        self.smoothed_postures(&total)
+    }
+
+    /// The *own postures* (state part, normalised) of every bottom node as the samples in
+    /// `sums` realise it: the bottom map's last training step done in batch on these samples
+    /// alone, i.e. per node the mean of the samples of the events on it, weighted by the map's
+    /// neighbourhood at its final radius around each event's node. A node no event is on
+    /// keeps its weights. Flattened, `stateLength` values per node. What
+    /// [`Hsom::fit_postures`] chooses from (docs/ALGORITHM.md, passage 6 of the events
+    /// extension, and "Several gestures").
+    fn smoothed_postures(&self, sums: &NodeSums) -> Vec<f64> {
         let p = self.config.params();
         let s = p.state_length;
         let map = &self.maps[0];
         let n = map.len();
-        // per node: the gesture's samples on it (count, sum), then the neighbourhood
-        let mut count = vec![0.0; n];
-        let mut sum = vec![0.0; n * s];
-        for demo in norm {
-            let mut pos = 0usize;
-            for (node, d) in bottom_events(self, demo) {
-                for x in demo.iter().skip(pos).take(d as usize) {
-                    count[node] += 1.0;
-                    for (acc, v) in sum[node * s..(node + 1) * s].iter_mut().zip(x) {
-                        *acc += v;
-                    }
-                }
-                pos += d as usize;
-            }
-        }
         let (h, r) = (p.levels[0].neighbourhood, p.levels[0].learning_radius.last);
         let mut out = vec![0.0; n * s];
         for j in 0..n {
             let row = &mut out[j * s..(j + 1) * s];
-            if count[j] == 0.0 {
+            if sums.count[j] == 0.0 {
                 row.copy_from_slice(&map.weights(j)[..s]);
                 continue;
             }
             let mut w_sum = 0.0;
-            for i in (0..n).filter(|&i| count[i] > 0.0) {
+            for i in (0..n).filter(|&i| sums.count[i] > 0.0) {
                 let w = h.weight(map.grid_distance2(i, j), r);
-                w_sum += w * count[i];
-                for (acc, v) in row.iter_mut().zip(&sum[i * s..(i + 1) * s]) {
+                w_sum += w * sums.count[i];
+                for (acc, v) in row.iter_mut().zip(&sums.sum[i * s..(i + 1) * s]) {
                     *acc += w * v;
                 }
             }
@@ -910,7 +947,7 @@ impl Hsom {
 
     /// Where a reproduction places each bottom node's events, learned from `norm` (the
     /// normalised demonstrations this model or branch was trained on): the node's weights, its
-    /// own postures ([`Hsom::own_postures`]) or halfway between, whichever re-encodes each
+    /// own postures (the map's last step in batch on its samples) or halfway between, whichever re-encodes each
     /// demonstration best from the postures of the others (leave-one-demonstration-out over
     /// the bottom level's own events, [`Hsom::reencode`]'s path). The map's weights are
     /// pulled in by its neighbourhood and shared between gestures; the own postures are the
@@ -933,20 +970,23 @@ impl Hsom {
                 .map(|(a, o)| (1.0 - k) * a + k * o)
                 .collect()
         };
+        // each demonstration's events and per-node sums once; the others' by addition
+        let events: Vec<Vec<(usize, f64)>> = norm.iter().map(|d| bottom_events(self, d)).collect();
+        let sums: Vec<NodeSums> = norm
+            .iter()
+            .zip(&events)
+            .map(|(d, e)| NodeSums::of(self, d, e))
+            .collect();
         let mut err = [0.0; POSTURE_BLENDS.len()];
         let mut probe = self.clone();
         for (i, held) in norm.iter().enumerate() {
-            let others: Vec<Vec<Vec<f64>>> = norm
-                .iter()
-                .enumerate()
-                .filter(|&(j, _)| j != i)
-                .map(|(_, d)| d.clone())
-                .collect();
-            let own = self.own_postures(&others);
-            let executed: Vec<(usize, f64, usize)> = bottom_events(self, held)
-                .into_iter()
-                .map(|(n, d)| (n, d, 0))
-                .collect();
+            let mut others = NodeSums::new(n, s);
+            for (_, o) in sums.iter().enumerate().filter(|&(j, _)| j != i) {
+                others.add(o);
+            }
+            let own = self.smoothed_postures(&others);
+            let executed: Vec<(usize, f64, usize)> =
+                events[i].iter().map(|&(n, d)| (n, d, 0)).collect();
             let truth: Vec<Vec<f64>> = held.iter().map(|r| self.denormalise(r)).collect();
             for (e, &k) in err.iter_mut().zip(&POSTURE_BLENDS) {
                 probe.knots = Some(blend(&own, k));
@@ -960,10 +1000,12 @@ impl Hsom {
                     / truth.len().max(1) as f64;
             }
         }
+        let mut all = NodeSums::new(n, s);
+        sums.iter().for_each(|o| all.add(o));
         // the first of equal errors: the weights before any blend; stored whatever the
         // choice, so that the model's size does not depend on it
         let best = (0..err.len()).fold(0, |b, i| if err[i] < err[b] { i } else { b });
-        self.knots = Some(blend(&self.own_postures(norm), POSTURE_BLENDS[best]));
+        self.knots = Some(blend(&self.smoothed_postures(&all), POSTURE_BLENDS[best]));
     }
 
     /// Postures at every sample from the executed events: each event's node posture (its
