@@ -238,15 +238,15 @@ impl HsomConfig {
         let branches: Vec<Hsom> = norm
             .iter()
             .enumerate()
-            .map(|(g, n)| shared.branch(n, learn, branch_seed(seed, g, None)))
+            .map(|(g, n)| {
+                let mut b = shared.branch(n, learn, branch_seed(seed, g, None));
+                if learn {
+                    // each branch places the shared nodes' events where its gesture has them
+                    b.fit_postures(n);
+                }
+                b
+            })
             .collect();
-        let mut branches = branches;
-        if learn {
-            // each branch places the shared nodes' events where its own gesture has them
-            for (b, n) in branches.iter_mut().zip(&norm) {
-                b.fit_postures(n);
-            }
-        }
         let calibration = super::recognize::calibrate(&shared, &branches, &norm, learn, seed);
         Ok(GestureModel {
             labels: sets.iter().map(|(l, _)| l.clone()).collect(),
