@@ -448,6 +448,8 @@ impl Hsom {
             ld.set_item("topographic_error", l.topographic_error)?;
             ld.set_item("prediction_accuracy", l.prediction_accuracy)?;
             ld.set_item("lookup_accuracy", l.lookup_accuracy)?;
+            ld.set_item("heldout_prediction_accuracy", l.heldout_prediction_accuracy)?;
+            ld.set_item("heldout_lookup_accuracy", l.heldout_lookup_accuracy)?;
             ld.set_item("used_in_reproduction", l.used_in_reproduction)?;
             levels.append(ld)?;
         }
@@ -503,8 +505,8 @@ impl GestureModel {
         })
     }
 
-    /// Load a model saved by `GestureModel.save` or `cosco train` (format 9 with labels;
-    /// a single-gesture file of format 8 loads too, without labels).
+    /// Load a model saved by `GestureModel.save` or `cosco train` (format 11 with labels;
+    /// a single-gesture file of format 10 loads too, without labels).
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
         Ok(GestureModel {

@@ -138,6 +138,18 @@ def test_a_single_gesture_file_loads_as_one_unlabelled_gesture(cfg, taught, tmp_
         g.reproduce("up", [0.0, 0.0])
 
 
+def test_levels_report_held_out_accuracy_and_keep_it_when_saved(cfg, taught, tmp_path):
+    single = cosco_hsom.Hsom.fit(cfg, taught["up"], columns=["x", "y"])
+    levels = single.summary()["levels"]
+    for l in levels[1:]:
+        for key in ("heldout_prediction_accuracy", "heldout_lookup_accuracy"):
+            assert 0.0 <= l[key] <= 1.0, (key, l)
+    # held out on level 1 is measured, not a copy of the in-sample figure
+    assert levels[1]["heldout_prediction_accuracy"] != levels[1]["prediction_accuracy"]
+    single.save(tmp_path / "one.txt")
+    assert cosco_hsom.Hsom.load(tmp_path / "one.txt").summary()["levels"] == levels
+
+
 # ---- bad input: the library's messages (the CLI's; test_cli_parity.py compares them) ----
 
 

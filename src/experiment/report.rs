@@ -63,6 +63,11 @@ pub struct LevelRow {
     pub prediction_accuracy: f64,
     /// The same for a "next entry given the last entry" lookup table.
     pub lookup_accuracy: f64,
+    /// `prediction_accuracy` held out: each training demonstration's entries predicted by
+    /// the levels trained on the others ([`crate::hsom::LevelSummary`]).
+    pub heldout_prediction_accuracy: f64,
+    /// `lookup_accuracy` held out the same way.
+    pub heldout_lookup_accuracy: f64,
     /// Whether reproduction may plan from this level (levels above 1: only when it beats
     /// the lookup table; [`Hsom::level_trusted`]).
     pub used_in_reproduction: bool,
@@ -80,6 +85,8 @@ pub fn level_rows(model: &Hsom) -> Vec<LevelRow> {
             nodes_used: l.nodes_used,
             prediction_accuracy: l.prediction_accuracy,
             lookup_accuracy: l.lookup_accuracy,
+            heldout_prediction_accuracy: l.heldout_prediction_accuracy,
+            heldout_lookup_accuracy: l.heldout_lookup_accuracy,
             used_in_reproduction: l.used_in_reproduction,
         })
         .collect()
@@ -378,21 +385,23 @@ pub fn folds_table(h: &HeldOut) -> String {
 }
 
 /// A markdown table of a model's levels: nodes used, prediction accuracy, lookup-table
-/// accuracy.
+/// accuracy, both in-sample and held out.
 pub fn levels_table(levels: &[LevelRow]) -> String {
     let mut t = String::from(
-        "| level | nodes used / nodes | prediction accuracy | lookup-table accuracy | plans in reproduction |\n\
-         |---|---|---|---|---|\n",
+        "| level | nodes used / nodes | prediction accuracy | lookup-table accuracy | held out: prediction | held out: lookup table | plans in reproduction |\n\
+         |---|---|---|---|---|---|---|\n",
     );
     for l in levels {
         let _ = writeln!(
             t,
-            "| {} | {} / {} | {:.3} | {:.3} | {} |",
+            "| {} | {} / {} | {:.3} | {:.3} | {:.3} | {:.3} | {} |",
             l.level,
             l.nodes_used,
             l.nodes,
             l.prediction_accuracy,
             l.lookup_accuracy,
+            l.heldout_prediction_accuracy,
+            l.heldout_lookup_accuracy,
             crate::hsom::plans_word(l.level, l.used_in_reproduction)
         );
     }

@@ -517,8 +517,11 @@ impl ConfigStudy {
                         " (not used)"
                     };
                     format!(
-                        "{:.2} / {:.2}{off}",
-                        l.prediction_accuracy, l.lookup_accuracy
+                        "{:.2} / {:.2} (held out {:.2} / {:.2}){off}",
+                        l.prediction_accuracy,
+                        l.lookup_accuracy,
+                        l.heldout_prediction_accuracy,
+                        l.heldout_lookup_accuracy
                     )
                 });
                 let _ = write!(t, " {c} |");

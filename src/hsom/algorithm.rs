@@ -63,6 +63,12 @@ pub struct Hsom {
     /// coordinate) seen when the training data were replayed; a level whose match in
     /// reproduction is farther is "confused". 0 with the paper's algorithm.
     pub(crate) threshold: Vec<f64>,
+    /// Per level (`algorithm = events`): `accuracy` and `lookup` measured held out, on each
+    /// training demonstration's entries by the levels trained on the others (the bottom
+    /// kept; [`Hsom::level_trusted`]). Equal to the in-sample figures when there is a
+    /// single demonstration; 0 with the paper's algorithm.
+    pub(crate) heldout_accuracy: Vec<f64>,
+    pub(crate) heldout_lookup: Vec<f64>,
     /// Per level (`algorithm = events`): up to `FOLLOWERS` entries that most often followed
     /// each node (and, in the last row, the begin) in training; `u32::MAX` pads. Decoding
     /// by content chooses among them.
@@ -105,6 +111,14 @@ pub struct LevelSummary {
     /// The same fraction for a lookup table of "next entry given the last entry" of the level
     /// below, counted on the same training data (the baseline the level must beat).
     pub lookup_accuracy: f64,
+    /// `prediction_accuracy` held out (`algorithm = events`): on each training
+    /// demonstration's entries, by the levels above the bottom trained on the other
+    /// demonstrations (the in-sample figure with one demonstration; 0 with the paper's
+    /// algorithm).
+    pub heldout_prediction_accuracy: f64,
+    /// `lookup_accuracy` held out the same way: the lookup table counted on the other
+    /// demonstrations, scored on the held-out one.
+    pub heldout_lookup_accuracy: f64,
     /// Whether reproduction may plan from this level ([`Hsom::level_trusted`]).
     pub used_in_reproduction: bool,
 }
@@ -165,12 +179,12 @@ impl std::fmt::Display for ModelSummary {
         )?;
         writeln!(
             f,
-            "level  size     topology    input  period  trained  used    QE        TE       acc    lookup  plans"
+            "level  size     topology    input  period  trained  used    QE        TE       acc    lookup  acc-ho lookup-ho plans"
         )?;
         for l in self.levels.iter().rev() {
             writeln!(
                 f,
-                "{:<6} {:<8} {:<11} {:<6} {:<7} {:<8} {:<7} {:<9.4} {:<8.4} {:<6.3} {:<7.3} {}",
+                "{:<6} {:<8} {:<11} {:<6} {:<7} {:<8} {:<7} {:<9.4} {:<8.4} {:<6.3} {:<7.3} {:<6.3} {:<9.3} {}",
                 l.level,
                 format!("{}x{}", l.rows, l.cols),
                 l.topology.name(),
@@ -182,6 +196,8 @@ impl std::fmt::Display for ModelSummary {
                 l.topographic_error,
                 l.prediction_accuracy,
                 l.lookup_accuracy,
+                l.heldout_prediction_accuracy,
+                l.heldout_lookup_accuracy,
                 plans_word(l.level, l.used_in_reproduction)
             )?;
         }
@@ -741,6 +757,8 @@ impl HsomConfig {
             accuracy: vec![0.0; p.height],
             lookup: vec![0.0; p.height],
             threshold: vec![0.0; p.height],
+            heldout_accuracy: vec![0.0; p.height],
+            heldout_lookup: vec![0.0; p.height],
             knots: None,
             followers: p
                 .levels
@@ -1137,6 +1155,12 @@ impl Hsom {
                     topographic_error: self.te[l],
                     prediction_accuracy: self.accuracy.get(l).copied().unwrap_or(0.0),
                     lookup_accuracy: self.lookup.get(l).copied().unwrap_or(0.0),
+                    heldout_prediction_accuracy: self
+                        .heldout_accuracy
+                        .get(l)
+                        .copied()
+                        .unwrap_or(0.0),
+                    heldout_lookup_accuracy: self.heldout_lookup.get(l).copied().unwrap_or(0.0),
                     used_in_reproduction: self.level_trusted(l),
                 })
                 .collect(),

@@ -28,7 +28,7 @@ use super::reproduce::Reproduction;
 
 /// Format version of a multi-gesture model file (a single-gesture model stays
 /// [`FORMAT_VERSION`]).
-pub const GESTURES_FORMAT_VERSION: u32 = 9;
+pub const GESTURES_FORMAT_VERSION: u32 = 11;
 
 /// Most gesture labels a model may hold (a bound on what a file may make us allocate).
 pub const MAX_LABELS: usize = 1024;
@@ -297,6 +297,8 @@ impl Hsom {
         b.accuracy = vec![0.0; h];
         b.lookup = vec![0.0; h];
         b.threshold = vec![0.0; h];
+        b.heldout_accuracy = vec![0.0; h];
+        b.heldout_lookup = vec![0.0; h];
         b.followers.iter_mut().for_each(|f| f.fill(u32::MAX));
         b.exemplars.iter_mut().for_each(|e| e.fill(u32::MAX));
         b.replay(norm);

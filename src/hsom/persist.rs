@@ -17,7 +17,10 @@ pub(super) const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 pub(super) const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of both formats.
-pub const FORMAT_VERSION: u32 = 8;
+/// (10 added the levels' held-out prediction and lookup accuracies; 9 is the first format
+/// of a model of several gestures, [`super::labels::GESTURES_FORMAT_VERSION`] now 11, so the
+/// single-gesture format skips it.)
+pub const FORMAT_VERSION: u32 = 10;
 
 /// The longest demonstration a model file may record, samples (a day at 1 kHz): the
 /// reproduction's length cap derives from it.
@@ -125,6 +128,8 @@ impl Hsom {
             .chain(&self.accuracy)
             .chain(&self.lookup)
             .chain(&self.threshold)
+            .chain(&self.heldout_accuracy)
+            .chain(&self.heldout_lookup)
         {
             f(&mut b, v);
         }
@@ -244,13 +249,15 @@ impl Hsom {
         let offset = r.f64s(state, "offset")?;
         let scale = r.f64s(state, "scale")?;
         let dl = [r.f64("lengths")?, r.f64("lengths")?, r.f64("lengths")?];
-        r.need((3 + 2 * n0 + 3 * height) * 8 + n0 * 4, "run statistics")?;
+        r.need((3 + 2 * n0 + 5 * height) * 8 + n0 * 4, "run statistics")?;
         let runs = [r.f64("runs")?, r.f64("runs")?, r.f64("runs")?];
         let dwell = r.f64s(n0, "dwell")?;
         let speed = r.f64s(n0, "speed")?;
         let accuracy = r.f64s(height, "accuracy")?;
         let lookup = r.f64s(height, "lookup accuracy")?;
         let threshold = r.f64s(height, "match thresholds")?;
+        let heldout_accuracy = r.f64s(height, "held-out accuracy")?;
+        let heldout_lookup = r.f64s(height, "held-out lookup accuracy")?;
         let successor = r.u32s(n0, "successors")?;
         let first_successor = r.u32s(n0, "first successors")?;
         let last_successor = r.u32s(n0, "last successors")?;
@@ -312,6 +319,8 @@ impl Hsom {
                 accuracy,
                 lookup,
                 threshold,
+                heldout_accuracy,
+                heldout_lookup,
                 followers,
                 exemplars,
                 knots,
@@ -346,6 +355,8 @@ impl Hsom {
         line(&mut s, "accuracy", &self.accuracy);
         line(&mut s, "lookup-accuracy", &self.lookup);
         line(&mut s, "match-thresholds", &self.threshold);
+        line(&mut s, "heldout-accuracy", &self.heldout_accuracy);
+        line(&mut s, "heldout-lookup-accuracy", &self.heldout_lookup);
         line(&mut s, "successors", &self.successor);
         line(&mut s, "first-successors", &self.first_successor);
         line(&mut s, "last-successors", &self.last_successor);
@@ -493,6 +504,18 @@ impl Hsom {
         let threshold: Vec<f64> = values(
             next("match-thresholds")?,
             "match-thresholds ",
+            shapes.len(),
+            &corrupted,
+        )?;
+        let heldout_accuracy: Vec<f64> = values(
+            next("heldout-accuracy")?,
+            "heldout-accuracy ",
+            shapes.len(),
+            &corrupted,
+        )?;
+        let heldout_lookup: Vec<f64> = values(
+            next("heldout-lookup-accuracy")?,
+            "heldout-lookup-accuracy ",
             shapes.len(),
             &corrupted,
         )?;
@@ -644,6 +667,8 @@ impl Hsom {
                 accuracy,
                 lookup,
                 threshold,
+                heldout_accuracy,
+                heldout_lookup,
                 followers,
                 exemplars,
                 knots,
@@ -699,6 +724,8 @@ fn build(
             .accuracy
             .iter()
             .chain(&extra.lookup)
+            .chain(&extra.heldout_accuracy)
+            .chain(&extra.heldout_lookup)
             .all(|v| v.is_finite() && (0.0..=1.0).contains(v))
         && extra.threshold.iter().all(|v| v.is_finite() && *v >= 0.0)
         && extra.followers.iter().zip(&maps).all(|(f, m)| {
@@ -774,6 +801,8 @@ fn build(
         first_successor: extra.first_successor,
         last_successor: extra.last_successor,
         columns: extra.columns,
+        heldout_accuracy: extra.heldout_accuracy,
+        heldout_lookup: extra.heldout_lookup,
         accuracy: extra.accuracy,
         lookup: extra.lookup,
         threshold: extra.threshold,
@@ -798,6 +827,8 @@ struct Extra {
     accuracy: Vec<f64>,
     lookup: Vec<f64>,
     threshold: Vec<f64>,
+    heldout_accuracy: Vec<f64>,
+    heldout_lookup: Vec<f64>,
     followers: Vec<Vec<u32>>,
     exemplars: Vec<Vec<u32>>,
 }
