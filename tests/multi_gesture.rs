@@ -240,6 +240,28 @@ fn save_and_load_keep_the_model_and_its_size_does_not_grow_with_the_demonstratio
     .unwrap();
     let e = GestureModel::load(&p).unwrap_err().to_string();
     assert!(e.contains("3 posture values"), "{e}");
+    // a held-out accuracy above 1 (with a valid checksum): refused
+    let body: String = single_body
+        .lines()
+        .map(|l| match l.strip_prefix("heldout-accuracy ") {
+            Some(v) => {
+                let mut v: Vec<&str> = v.split(' ').collect();
+                v[1] = "1.5";
+                format!("heldout-accuracy {}\n", v.join(" "))
+            }
+            None => format!("{l}\n"),
+        })
+        .collect();
+    assert_ne!(body, single_body);
+    let p = dir.path().join("accuracy.txt");
+    std::fs::write(
+        &p,
+        format!("{body}checksum {:016x}\n", fnv1a(body.as_bytes())),
+    )
+    .unwrap();
+    assert!(GestureModel::load(&p).is_err());
+    let e = cosco_hsom::hsom::Hsom::load(&p).unwrap_err().to_string();
+    assert!(e.contains("accuracy outside [0, 1]"), "{e}");
     // a corrupted byte is refused
     let mut bad = bytes.clone();
     let mid = bad.len() / 2;

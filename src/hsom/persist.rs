@@ -748,7 +748,7 @@ fn build(
     if !stats_ok {
         return Err(PersistError::Corrupted {
             path: path.to_path_buf(),
-            what: "bad run statistics (a dwell or event count negative, non-finite or longer than the longest demonstration, or a successor, follower or exemplar outside its map)".into(),
+            what: "bad run statistics (a dwell or event count negative, non-finite or longer than the longest demonstration, an accuracy outside [0, 1], or a successor, follower or exemplar outside its map)".into(),
         });
     }
     let finite = maps
