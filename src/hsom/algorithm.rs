@@ -73,6 +73,16 @@ pub struct Hsom {
     /// each node (and, in the last row, the begin) in training; `u32::MAX` pads. Decoding
     /// by content chooses among them.
     pub(crate) followers: Vec<Vec<u32>>,
+    /// Per entry of the bottom's follower table (`algorithm = events`): the mean position
+    /// (bottom events before it / the mean number of events per demonstration) at which
+    /// that follower came after its row's entry in training; level 1 decodes among
+    /// followers by content and position.
+    pub(crate) follower_at: Vec<f64>,
+    /// Per level >= 1, per node: the position of its exemplar chunk in its demonstration
+    /// (the phase of the chunk's context: bottom events before it / the mean number per
+    /// demonstration). Expanding a plan, each slot's position follows from its top node's
+    /// exemplar and the tiling, and level 1 decodes by content and that position.
+    pub(crate) exemplar_phase: Vec<Vec<f64>>,
     /// Per level >= 1, per node, the lower entries of its exemplar (`memory` each).
     pub(crate) exemplars: Vec<Vec<u32>>,
     /// Per bottom node, where a reproduction places its events (state part, normalised,
@@ -765,6 +775,15 @@ impl HsomConfig {
                 .iter()
                 .map(|l| vec![u32::MAX; (l.rows * l.cols + 1) * super::events::FOLLOWERS])
                 .collect(),
+            exemplar_phase: p
+                .levels
+                .iter()
+                .map(|l| vec![0.0; l.rows * l.cols])
+                .collect(),
+            follower_at: vec![
+                0.0;
+                (p.levels[0].rows * p.levels[0].cols + 1) * super::events::FOLLOWERS
+            ],
             exemplars: p
                 .levels
                 .iter()

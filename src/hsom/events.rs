@@ -409,7 +409,10 @@ impl Decoder<'_> {
     /// the predicting node's exemplar entry `hint` (what its nearest training chunk held in
     /// this slot) when it followed `prev` in training; otherwise, among the entries that
     /// followed `prev` (the end included; all used entries when `prev` has no recorded
-    /// follower), the one whose content is nearest. At level 1
+    /// follower), the one whose content is nearest; at level 1 with a finite `position`
+    /// (where the plan places this entry, in the units of a chunk's phase), the squared
+    /// distance between it and the position at which each follower came in training is
+    /// added to the content distance (same units as the context). At level 1
     /// the end is taken when a demonstration ended after `prev` and either the slot is mostly
     /// the end or `events_before` (bottom events so far) has reached the shortest
     /// demonstration's count: where a gesture starts and ends in the same posture, content
@@ -421,6 +424,7 @@ impl Decoder<'_> {
         used_below: &[usize],
         prev: u32,
         events_before: f64,
+        position: f64,
         hint: u32,
     ) -> u32 {
         let (model, lay, code) = (self.model, self.lay, self.code);
@@ -454,6 +458,18 @@ impl Decoder<'_> {
         } else {
             c[s..2 * s].to_vec()
         };
+        // at level 1, how far the follower's position in the demonstrations is from where the
+        // plan places this entry: a node every swing passes through leads on to the next swing
+        // early and home late, which content cannot tell apart
+        let position_cost = |m: u32| -> f64 {
+            let row_entries = &table[row * FOLLOWERS..(row + 1) * FOLLOWERS];
+            match row_entries.iter().position(|&f| f == m) {
+                Some(k) if level == 1 && position.is_finite() => {
+                    (position - model.follower_at[row * FOLLOWERS + k]).powi(2)
+                }
+                _ => 0.0,
+            }
+        };
         let mut best = (END, f64::INFINITY);
         for &m in cands {
             let d = if m == END {
@@ -463,13 +479,46 @@ impl Decoder<'_> {
             } else {
                 let e = entry_content(model, lay, below, m as usize, code);
                 dist2(&e[..2 * s], &c[..2 * s]) + (c[2 * s + 1] - e[2 * s + 1]).powi(2)
-            };
+            } + position_cost(m);
             if d < best.1 {
                 best = (m, d);
             }
         }
         best.0
     }
+}
+
+/// Per entry of the follower table `table` of a level with `nodes` nodes, the mean position
+/// at which that follower came after its row's entry in `seqs` (entries before it / `mean`,
+/// the mean number of entries per sequence: the phase of a chunk's context, in its units);
+/// 0 where the table holds none.
+pub(crate) fn follower_positions(
+    nodes: usize,
+    seqs: &[Vec<u32>],
+    table: &[u32],
+    mean: f64,
+) -> Vec<f64> {
+    let mut sums: BTreeMap<(u32, u32), (f64, f64)> = BTreeMap::new();
+    for sq in seqs {
+        let mut prev = nodes as u32;
+        for (i, &x) in sq.iter().enumerate() {
+            let e = sums.entry((prev, x)).or_insert((0.0, 0.0));
+            e.0 += i as f64 / mean.max(1.0);
+            e.1 += 1.0;
+            if x == END {
+                break;
+            }
+            prev = x;
+        }
+    }
+    table
+        .iter()
+        .enumerate()
+        .map(|(k, &f)| {
+            sums.get(&((k / FOLLOWERS) as u32, f))
+                .map_or(0.0, |&(sum, count)| sum / count)
+        })
+        .collect()
 }
 
 /// The table of up to [`FOLLOWERS`] most frequent followers of every entry of a level (row
@@ -578,7 +627,9 @@ impl Hsom {
         // what a previous fit of the levels left (a held-out fold starts from a clone)
         self.hits[1..].iter_mut().for_each(|v| v.fill(0));
         self.exemplars.iter_mut().for_each(|e| e.fill(u32::MAX));
+        self.exemplar_phase.iter_mut().for_each(|e| e.fill(0.0));
         self.followers.iter_mut().for_each(|f| f.fill(u32::MAX));
+        self.follower_at.fill(0.0);
         // 1. bottom events, their durations and the bottom's own lookup table
         let events: Vec<Vec<(usize, f64)>> = norm.iter().map(|d| bottom_events(self, d)).collect();
         let mut dsum = vec![0.0; n0];
@@ -610,6 +661,7 @@ impl Hsom {
         // the bottom's followers: its lookup table (the reflex at height 1) and the candidates
         // level 1 decodes among
         self.followers[0] = followers_table(n0, &seqs0);
+        self.follower_at = follower_positions(n0, &seqs0, &self.followers[0], self.demo_runs[1]);
         let code = DurationCode::from_dwell(&self.dwell);
         let mean_events = self.demo_runs[1];
         // 2. level by level
@@ -681,6 +733,7 @@ impl Hsom {
                             self.exemplars[l][b * lay.k + j] =
                                 items[di].get(ci * lay.k + j).map_or(END, |i| i.node);
                         }
+                        self.exemplar_phase[l][b] = ch.phase;
                     }
                 }
             }
@@ -776,7 +829,8 @@ impl Hsom {
                         r.predicted += 1;
                         let hint = self.exemplar(l, b, j);
                         r.correct += u32::from(
-                            dec.decode(l, c, &used_below, prev, at as f64, hint) == actual,
+                            dec.decode(l, c, &used_below, prev, at as f64, f64::NAN, hint)
+                                == actual,
                         );
                     }
                 }
@@ -901,12 +955,14 @@ impl Hsom {
                     };
                     // the chunk in progress at the top level used is its own match
                     let mut tail = lists.tail.clone();
+                    let pos = self.exemplar_phase[level][matched[level]];
                     self.expand(
                         &ctx,
                         level,
                         matched[level],
                         done[level],
                         true,
+                        pos,
                         &mut plan,
                         &mut lists.expected,
                         &mut tail,
@@ -951,14 +1007,17 @@ impl Hsom {
         n: usize,
         from: usize,
         in_progress: bool,
+        pos: f64,
         plan: &mut VecDeque<(u32, f64, usize)>,
         expected: &mut [VecDeque<u32>],
         tail: &mut [u32],
     ) -> bool {
         let lay = ctx.lay;
         let w = self.maps[level].weights(n);
+        let mean_events = self.demo_runs[1].max(1.0);
         for j in from..lay.k {
             let c = &w[lay.slot_range(j)];
+            let slot_pos = pos + (j * lay.k.pow(level as u32 - 1)) as f64 / mean_events;
             if level == 1 {
                 let before = (ctx.executed + plan.len()) as f64;
                 let e = ctx.decoder(self).decode(
@@ -967,6 +1026,7 @@ impl Hsom {
                     &ctx.used[0],
                     tail[0],
                     before,
+                    slot_pos,
                     self.exemplar(1, n, j),
                 );
                 tail[0] = e;
@@ -988,6 +1048,7 @@ impl Hsom {
                             &ctx.used[level - 1],
                             prev,
                             0.0,
+                            f64::NAN,
                             self.exemplar(level, n, j),
                         ),
                         0,
@@ -1006,6 +1067,7 @@ impl Hsom {
                     m as usize,
                     sub_from,
                     sub_prog,
+                    slot_pos,
                     plan,
                     expected,
                     tail,
@@ -1673,24 +1735,96 @@ mod tests {
             lay,
             code,
         };
-        assert_eq!(dec.decode(1, &c, &[], u32::MAX, 0.0, u32::MAX), first);
+        assert_eq!(
+            dec.decode(1, &c, &[], u32::MAX, 0.0, f64::NAN, u32::MAX),
+            first
+        );
         // a slot whose end flag is set decodes to the end
         let mut e = c.clone();
         e[2 * lay.s + 1] = 1.0;
-        assert_eq!(dec.decode(1, &e, &[], u32::MAX, 0.0, u32::MAX), END);
+        assert_eq!(
+            dec.decode(1, &e, &[], u32::MAX, 0.0, f64::NAN, u32::MAX),
+            END
+        );
         // an exemplar entry that followed the previous one wins over content; one that never
         // followed it is ignored
         let row = &m.followers[0][m.maps[0].len() * FOLLOWERS..][..FOLLOWERS];
         let never = (0..m.maps[0].len() as u32)
             .find(|n| !row.contains(n))
             .unwrap();
-        assert_eq!(dec.decode(1, &c, &[], u32::MAX, 0.0, never), first);
+        assert_eq!(
+            dec.decode(1, &c, &[], u32::MAX, 0.0, f64::NAN, never),
+            first
+        );
         if let Some(&other) = row
             .iter()
             .find(|&&f| f != first && f != u32::MAX && f != END)
         {
-            assert_eq!(dec.decode(1, &c, &[], u32::MAX, 0.0, other), other);
+            assert_eq!(
+                dec.decode(1, &c, &[], u32::MAX, 0.0, f64::NAN, other),
+                other
+            );
         }
+    }
+
+    /// A node passed more than once leads on to different followers at different positions:
+    /// the follower table keeps where each transition came, and level 1 decodes among
+    /// followers equally near by content by where the plan places the entry.
+    #[test]
+    fn decoding_prefers_the_follower_seen_at_the_planned_position() {
+        // node 2 is followed by 3 early and by 4 late
+        let seqs = vec![vec![1, 2, 3, 2, 4, END]];
+        let table = followers_table(5, &seqs);
+        let at = follower_positions(5, &seqs, &table, 6.0);
+        let row = &table[2 * FOLLOWERS..3 * FOLLOWERS];
+        let pos = |f: u32| at[2 * FOLLOWERS + row.iter().position(|&x| x == f).unwrap()];
+        assert!((pos(3) - 2.0 / 6.0).abs() < 1e-12 && (pos(4) - 4.0 / 6.0).abs() < 1e-12);
+        assert_eq!(at[5 * FOLLOWERS], 0.0, "the begin row: node 1 at 0");
+
+        let mut m = trained(3);
+        let lay = Layout::of(&m.config);
+        let code = DurationCode::from_dwell(&m.dwell);
+        let (p, a, b) = (0usize, 1u32, 2u32);
+        m.followers[0][p * FOLLOWERS..(p + 1) * FOLLOWERS].copy_from_slice(&[
+            a,
+            b,
+            u32::MAX,
+            u32::MAX,
+        ]);
+        m.follower_at[p * FOLLOWERS] = 0.1;
+        m.follower_at[p * FOLLOWERS + 1] = 0.9;
+        // a slot halfway between a and b: content alone cannot choose
+        let ca = entry_content(&m, lay, 0, a as usize, code);
+        let cb = entry_content(&m, lay, 0, b as usize, code);
+        let mut c: Vec<f64> = ca.iter().zip(&cb).map(|(x, y)| 0.5 * (x + y)).collect();
+        c[2 * lay.s + 1] = 0.0;
+        let dec = Decoder {
+            model: &m,
+            lay,
+            code,
+        };
+        assert_eq!(dec.decode(1, &c, &[], p as u32, 0.0, 0.1, u32::MAX), a);
+        assert_eq!(dec.decode(1, &c, &[], p as u32, 0.0, 0.9, u32::MAX), b);
+        // no position (the training replay): the first of equals
+        assert_eq!(dec.decode(1, &c, &[], p as u32, 0.0, f64::NAN, u32::MAX), a);
+    }
+
+    /// Every used node of a level above the bottom has an exemplar's position: the phase of
+    /// a training chunk it is the BMU of.
+    #[test]
+    fn exemplar_positions_are_phases_of_training_chunks() {
+        let m = trained(3);
+        for l in 1..m.maps.len() {
+            for n in (0..m.maps[l].len()).filter(|&n| m.hits[l][n] > 0) {
+                let p = m.exemplar_phase[l][n];
+                assert!(
+                    p.is_finite() && (0.0..=2.0).contains(&p),
+                    "level {l} node {n}: {p}"
+                );
+            }
+        }
+        // the begin chunk's node is at 0
+        assert!((1..m.maps.len()).all(|l| m.exemplar_phase[l].iter().any(|&p| p == 0.0)));
     }
 
     /// Every used node of a level above the bottom has an exemplar: the entries below of a

@@ -300,6 +300,7 @@ impl Hsom {
         b.heldout_accuracy = vec![0.0; h];
         b.heldout_lookup = vec![0.0; h];
         b.followers.iter_mut().for_each(|f| f.fill(u32::MAX));
+        b.follower_at.fill(0.0);
         b.exemplars.iter_mut().for_each(|e| e.fill(u32::MAX));
         b.replay(norm);
         let mut rng = ChaCha8Rng::seed_from_u64(seed);

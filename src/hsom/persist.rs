@@ -130,6 +130,7 @@ impl Hsom {
             .chain(&self.threshold)
             .chain(&self.heldout_accuracy)
             .chain(&self.heldout_lookup)
+            .chain(&self.follower_at)
         {
             f(&mut b, v);
         }
@@ -142,6 +143,9 @@ impl Hsom {
             .chain(self.exemplars.iter().flatten())
         {
             b.extend_from_slice(&v.to_le_bytes());
+        }
+        for &v in self.exemplar_phase.iter().flatten() {
+            f(&mut b, v);
         }
         let knots = self.knots.as_deref().unwrap_or(&[]);
         b.extend_from_slice(&(knots.len() as u32).to_le_bytes());
@@ -258,6 +262,9 @@ impl Hsom {
         let threshold = r.f64s(height, "match thresholds")?;
         let heldout_accuracy = r.f64s(height, "held-out accuracy")?;
         let heldout_lookup = r.f64s(height, "held-out lookup accuracy")?;
+        let positions = (n0 + 1) * FOLLOWERS;
+        r.need(positions * 8 + n0 * 4, "follower positions")?;
+        let follower_at = r.f64s(positions, "follower positions")?;
         let successor = r.u32s(n0, "successors")?;
         let first_successor = r.u32s(n0, "first successors")?;
         let last_successor = r.u32s(n0, "last successors")?;
@@ -273,6 +280,11 @@ impl Hsom {
             let n = rows * cols * k;
             r.need(n * 4, "exemplars")?;
             exemplars.push(r.u32s(n, "exemplars")?);
+        }
+        let mut exemplar_phase = Vec::with_capacity(shapes.len());
+        for &(rows, cols, _) in &shapes {
+            r.need(rows * cols * 8, "exemplar positions")?;
+            exemplar_phase.push(r.f64s(rows * cols, "exemplar positions")?);
         }
         let nk = r.u32("postures length")? as usize;
         r.need(nk.saturating_mul(8), "postures")?;
@@ -321,6 +333,8 @@ impl Hsom {
                 threshold,
                 heldout_accuracy,
                 heldout_lookup,
+                follower_at,
+                exemplar_phase,
                 followers,
                 exemplars,
                 knots,
@@ -357,6 +371,7 @@ impl Hsom {
         line(&mut s, "match-thresholds", &self.threshold);
         line(&mut s, "heldout-accuracy", &self.heldout_accuracy);
         line(&mut s, "heldout-lookup-accuracy", &self.heldout_lookup);
+        line(&mut s, "follower-positions", &self.follower_at);
         line(&mut s, "successors", &self.successor);
         line(&mut s, "first-successors", &self.first_successor);
         line(&mut s, "last-successors", &self.last_successor);
@@ -365,6 +380,9 @@ impl Hsom {
         }
         for (l, e) in self.exemplars.iter().enumerate() {
             line(&mut s, &format!("exemplars-{l}"), e);
+        }
+        for (l, e) in self.exemplar_phase.iter().enumerate() {
+            line(&mut s, &format!("exemplar-positions-{l}"), e);
         }
         let knots: Vec<String> = self
             .knots
@@ -519,6 +537,12 @@ impl Hsom {
             shapes.len(),
             &corrupted,
         )?;
+        let follower_at: Vec<f64> = values(
+            next("follower-positions")?,
+            "follower-positions ",
+            (n0 + 1) * FOLLOWERS,
+            &corrupted,
+        )?;
         let successor: Vec<u32> = values(next("successors")?, "successors ", n0, &corrupted)?;
         let first_successor: Vec<u32> = values(
             next("first-successors")?,
@@ -545,6 +569,12 @@ impl Hsom {
             let key = format!("exemplars-{l}");
             let e: Vec<u32> = values(next(&key)?, &format!("{key} "), rows * cols * k, &corrupted)?;
             exemplars.push(e);
+        }
+        let mut exemplar_phase = Vec::with_capacity(shapes.len());
+        for (l, &(rows, cols, _)) in shapes.iter().enumerate() {
+            let key = format!("exemplar-positions-{l}");
+            let e: Vec<f64> = values(next(&key)?, &format!("{key} "), rows * cols, &corrupted)?;
+            exemplar_phase.push(e);
         }
         let pl = next("postures")?;
         let knots: Vec<f64> = pl
@@ -669,6 +699,8 @@ impl Hsom {
                 threshold,
                 heldout_accuracy,
                 heldout_lookup,
+                follower_at,
+                exemplar_phase,
                 followers,
                 exemplars,
                 knots,
@@ -728,6 +760,11 @@ fn build(
             .chain(&extra.heldout_lookup)
             .all(|v| v.is_finite() && (0.0..=1.0).contains(v))
         && extra.threshold.iter().all(|v| v.is_finite() && *v >= 0.0)
+        && extra
+            .follower_at
+            .iter()
+            .chain(extra.exemplar_phase.iter().flatten())
+            .all(|v| v.is_finite() && (0.0..=MAX_DEMO_SAMPLES).contains(v))
         && extra.followers.iter().zip(&maps).all(|(f, m)| {
             f.iter()
                 .all(|&v| (v as usize) < m.len() || v == u32::MAX || v == super::events::END)
@@ -748,7 +785,7 @@ fn build(
     if !stats_ok {
         return Err(PersistError::Corrupted {
             path: path.to_path_buf(),
-            what: "bad run statistics (a dwell or event count negative, non-finite or longer than the longest demonstration, an accuracy outside [0, 1], or a successor, follower or exemplar outside its map)".into(),
+            what: "bad run statistics (a dwell or event count negative, non-finite or longer than the longest demonstration, an accuracy outside [0, 1], a position negative or non-finite, or a successor, follower or exemplar outside its map)".into(),
         });
     }
     let finite = maps
@@ -803,6 +840,8 @@ fn build(
         columns: extra.columns,
         heldout_accuracy: extra.heldout_accuracy,
         heldout_lookup: extra.heldout_lookup,
+        follower_at: extra.follower_at,
+        exemplar_phase: extra.exemplar_phase,
         accuracy: extra.accuracy,
         lookup: extra.lookup,
         threshold: extra.threshold,
@@ -829,6 +868,8 @@ struct Extra {
     threshold: Vec<f64>,
     heldout_accuracy: Vec<f64>,
     heldout_lookup: Vec<f64>,
+    follower_at: Vec<f64>,
+    exemplar_phase: Vec<Vec<f64>>,
     followers: Vec<Vec<u32>>,
     exemplars: Vec<Vec<u32>>,
 }
