@@ -955,7 +955,13 @@ impl Hsom {
                     };
                     // the chunk in progress at the top level used is its own match
                     let mut tail = lists.tail.clone();
-                    let pos = self.exemplar_phase[level][matched[level]];
+                    // where the plan is in the gesture: its top node's exemplar position
+                    // (none for a node no training chunk chose)
+                    let pos = if self.exemplar(level, matched[level], 0) == u32::MAX {
+                        f64::NAN
+                    } else {
+                        self.exemplar_phase[level][matched[level]]
+                    };
                     self.expand(
                         &ctx,
                         level,
