@@ -221,44 +221,35 @@ fn save_and_load_keep_the_model_and_its_size_does_not_grow_with_the_demonstratio
         .unwrap()
         .to_text();
     let single_body = &single_text[..single_text.trim_end().rfind('\n').unwrap() + 1];
-    let body: String = single_body
-        .lines()
-        .map(|l| {
-            if l.starts_with("postures") {
-                "postures 1 2 3\n".to_string()
-            } else {
-                format!("{l}\n")
-            }
-        })
-        .collect();
-    assert_ne!(body, single_body);
-    let p = dir.path().join("short.txt");
-    std::fs::write(
-        &p,
-        format!("{body}checksum {:016x}\n", fnv1a(body.as_bytes())),
-    )
-    .unwrap();
+    // `single_body` with the line starting `key` replaced by `edit` of its values, written
+    // with a valid checksum
+    let tampered = |key: &str, edit: &dyn Fn(&str) -> String, name: &str| {
+        let body: String = single_body
+            .lines()
+            .map(|l| match l.strip_prefix(key) {
+                Some(v) => format!("{key}{}\n", edit(v)),
+                None => format!("{l}\n"),
+            })
+            .collect();
+        assert_ne!(body, single_body, "{key}");
+        let p = dir.path().join(name);
+        std::fs::write(
+            &p,
+            format!("{body}checksum {:016x}\n", fnv1a(body.as_bytes())),
+        )
+        .unwrap();
+        p
+    };
+    let p = tampered("postures", &|_| " 1 2 3".to_string(), "short.txt");
     let e = GestureModel::load(&p).unwrap_err().to_string();
     assert!(e.contains("3 posture values"), "{e}");
     // a held-out accuracy above 1 (with a valid checksum): refused
-    let body: String = single_body
-        .lines()
-        .map(|l| match l.strip_prefix("heldout-accuracy ") {
-            Some(v) => {
-                let mut v: Vec<&str> = v.split(' ').collect();
-                v[1] = "1.5";
-                format!("heldout-accuracy {}\n", v.join(" "))
-            }
-            None => format!("{l}\n"),
-        })
-        .collect();
-    assert_ne!(body, single_body);
-    let p = dir.path().join("accuracy.txt");
-    std::fs::write(
-        &p,
-        format!("{body}checksum {:016x}\n", fnv1a(body.as_bytes())),
-    )
-    .unwrap();
+    let raise = |v: &str| {
+        let mut v: Vec<&str> = v.split(' ').collect();
+        v[1] = "1.5";
+        v.join(" ")
+    };
+    let p = tampered("heldout-accuracy ", &raise, "accuracy.txt");
     assert!(GestureModel::load(&p).is_err());
     let e = cosco_hsom::hsom::Hsom::load(&p).unwrap_err().to_string();
     assert!(e.contains("accuracy outside [0, 1]"), "{e}");

@@ -341,6 +341,21 @@ pub(crate) fn lookup_accuracy(table: &[u32], nodes: usize, seqs: &[Vec<u32>]) ->
     }
 }
 
+/// The entries of `seqs` the lookup table of `table` was asked for and how many it predicted
+/// ([`lookup_accuracy`]).
+fn lookup_counts(table: &[u32], nodes: usize, seqs: &[Vec<u32>]) -> (u32, u32) {
+    let (mut n, mut ok) = (0u32, 0u32);
+    for sq in seqs {
+        let mut prev = u32::MAX;
+        for &x in sq {
+            n += 1;
+            ok += u32::from(most_frequent(table, nodes, prev) == x);
+            prev = x;
+        }
+    }
+    (n, ok)
+}
+
 /// What [`Hsom::replay_level`] measured.
 struct LevelReplay {
     /// Per sequence, the level's BMU of each chunk: the next level's entries.
@@ -355,21 +370,6 @@ struct LevelReplay {
     qe: f64,
     te: usize,
     chunks: usize,
-}
-
-/// The entries of `seqs` the lookup table of `table` was asked for and how many it predicted
-/// ([`lookup_accuracy`]).
-fn lookup_counts(table: &[u32], nodes: usize, seqs: &[Vec<u32>]) -> (u32, u32) {
-    let (mut n, mut ok) = (0u32, 0u32);
-    for sq in seqs {
-        let mut prev = u32::MAX;
-        for &x in sq {
-            n += 1;
-            ok += u32::from(most_frequent(table, nodes, prev) == x);
-            prev = x;
-        }
-    }
-    (n, ok)
 }
 
 /// Nodes of a level that some training entry selected.
@@ -629,7 +629,6 @@ impl Hsom {
         self.exemplars.iter_mut().for_each(|e| e.fill(u32::MAX));
         self.exemplar_phase.iter_mut().for_each(|e| e.fill(0.0));
         self.followers.iter_mut().for_each(|f| f.fill(u32::MAX));
-        self.follower_at.fill(0.0);
         // 1. bottom events, their durations and the bottom's own lookup table
         let events: Vec<Vec<(usize, f64)>> = norm.iter().map(|d| bottom_events(self, d)).collect();
         let mut dsum = vec![0.0; n0];
@@ -743,21 +742,22 @@ impl Hsom {
             for it in r.next_items.iter().flatten() {
                 self.hits[l][it.node as usize] = self.hits[l][it.node as usize].saturating_add(1);
             }
-            let (qe, te, cnt, thr) = (r.qe, r.te, r.chunks, r.threshold);
-            let (pn, pok) = (r.predicted, r.correct);
-            let next_items = r.next_items;
-            let lookup_acc = lookup_accuracy(&self.followers[l - 1], nodes_below, &seqs);
-            self.qe[l] = qe / cnt.max(1) as f64;
-            self.te[l] = te as f64 / cnt.max(1) as f64;
-            self.threshold[l] = thr;
-            self.accuracy[l] = if pn > 0 { pok as f64 / pn as f64 } else { 0.0 };
-            self.lookup[l] = lookup_acc;
-            items = next_items;
+            let chunks = r.chunks.max(1) as f64;
+            self.qe[l] = r.qe / chunks;
+            self.te[l] = r.te as f64 / chunks;
+            self.threshold[l] = r.threshold;
+            self.accuracy[l] = if r.predicted > 0 {
+                r.correct as f64 / r.predicted as f64
+            } else {
+                0.0
+            };
+            self.lookup[l] = lookup_accuracy(&self.followers[l - 1], nodes_below, &seqs);
+            items = r.next_items;
         }
     }
 
     /// A demonstration's bottom events as level 1's entries, ending with the end.
-    fn event_items(&self, events: &[(usize, f64)], code: DurationCode) -> Vec<Item> {
+    pub(super) fn event_items(&self, events: &[(usize, f64)], code: DurationCode) -> Vec<Item> {
         let lay = Layout::of(&self.config);
         let mut v: Vec<Item> = events
             .iter()

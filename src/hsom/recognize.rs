@@ -12,8 +12,7 @@ use serde::Serialize;
 use super::algorithm::Hsom;
 use super::errors::HsomError;
 use super::events::{
-    a_part, b_part, bottom_events, chunk_input, chunks, end_content, event_content, summary,
-    DurationCode, Item, Layout, END,
+    a_part, b_part, bottom_events, chunk_input, chunks, summary, DurationCode, Item, Layout,
 };
 use super::labels::{branch_seed, GestureError, GestureModel};
 use super::reproduce::Reproduction;
@@ -99,21 +98,10 @@ pub(crate) fn level_distances(
     let code = DurationCode::from_dwell(&model.dwell);
     let mean_events = model.demo_runs[1];
     let mut out = vec![None; h];
-    let mut items: Vec<Item> = events
-        .iter()
-        .map(|&(n, d)| Item {
-            node: n as u32,
-            content: event_content(&model.maps[0], n, d, code),
-        })
-        .collect();
-    if complete {
-        if let Some(last) = items.last() {
-            let b = b_part(lay, &last.content).to_vec();
-            items.push(Item {
-                node: END,
-                content: end_content(lay, &b),
-            });
-        }
+    // the events as level 1's entries; the end only once the gesture is complete
+    let mut items: Vec<Item> = model.event_items(events, code);
+    if !complete || events.is_empty() {
+        items.pop();
     }
     let mut x = vec![0.0; lay.dim()];
     let mut mask = vec![true; lay.dim()];
