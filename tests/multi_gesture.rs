@@ -253,6 +253,11 @@ fn save_and_load_keep_the_model_and_its_size_does_not_grow_with_the_demonstratio
     assert!(GestureModel::load(&p).is_err());
     let e = cosco_hsom::hsom::Hsom::load(&p).unwrap_err().to_string();
     assert!(e.contains("accuracy outside [0, 1]"), "{e}");
+    // a follower position that is not a number (valid checksum): refused
+    let nan = |v: &str| format!("NaN{}", &v[v.find(' ').unwrap_or(v.len())..]);
+    let p = tampered("follower-positions ", &nan, "position.txt");
+    let e = cosco_hsom::hsom::Hsom::load(&p).unwrap_err().to_string();
+    assert!(e.contains("position negative or non-finite"), "{e}");
     // a corrupted byte is refused
     let mut bad = bytes.clone();
     let mid = bad.len() / 2;
