@@ -86,8 +86,9 @@ pub struct Hsom {
     /// Per level >= 1, per node, the lower entries of its exemplar (`memory` each).
     pub(crate) exemplars: Vec<Vec<u32>>,
     /// Per bottom node, where a reproduction places its events (state part, normalised,
-    /// `stateLength` values per node): a branch of a model of several gestures holds its
-    /// own gesture's postures ([`Hsom::fit_postures`]); `None`: the nodes' weights.
+    /// `stateLength` values per node): the consensus of the demonstrations it was trained on
+    /// (a branch of a model of several gestures: its own gesture's; [`Hsom::fit_postures`]);
+    /// `None`: the nodes' weights.
     pub(crate) knots: Option<Vec<f64>>,
 }
 

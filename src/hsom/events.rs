@@ -93,12 +93,78 @@ pub(super) struct Item {
     pub(super) content: Vec<f64>,
 }
 
-/// The blends between a bottom node's weights (0) and its own postures (1) that
-/// [`Hsom::fit_postures`] chooses from.
-pub(crate) const POSTURE_BLENDS: [f64; 3] = [0.0, 0.5, 1.0];
+/// Longest sequence [`consensus`] aligns sample by sample: a longer demonstration is aligned
+/// in blocks of consecutive samples (their means), so that an alignment never takes more
+/// than this squared cells whatever the data (64 MB, tens of milliseconds). Demonstrations of
+/// gestures (the Nao's 250-400 samples, handwriting's 100) are aligned sample by sample.
+pub(crate) const MAX_ALIGNED: usize = 2000;
 
-/// Per bottom node, how many samples its events hold and their sum (state part): additive
-/// over demonstrations, so a leave-one-out total is the others' sums added.
+/// The demonstrations' *consensus* (normalised, state part): per demonstration and sample,
+/// the mean over all the demonstrations of the samples aligned to it by DTW (its own sample
+/// for itself; the mean of several aligned samples for another). Where the demonstrations
+/// agree it is each one's own path; where they differ (an apex a little higher in one, a
+/// lane a little to the side) it is their average at that point of the gesture, as
+/// GMM/GMR's regression is, with no time axis: a wave's turning points are aligned with
+/// each other whatever their tempo. Sequences longer than `max_aligned` are aligned in
+/// blocks of `ceil(len / max_aligned)` samples. docs/ALGORITHM.md, passage 6 of the events
+/// extension.
+pub(crate) fn consensus(norm: &[Vec<Vec<f64>>], max_aligned: usize) -> Vec<Vec<Vec<f64>>> {
+    let block = |d: &[Vec<f64>]| d.len().div_ceil(max_aligned.max(1)).max(1);
+    let blocks: Vec<Vec<Vec<f64>>> = norm
+        .iter()
+        .map(|d| {
+            d.chunks(block(d))
+                .map(|c| {
+                    let mut m = vec![0.0; c[0].len()];
+                    for r in c {
+                        m.iter_mut()
+                            .zip(r)
+                            .for_each(|(a, v)| *a += v / c.len() as f64);
+                    }
+                    m
+                })
+                .collect()
+        })
+        .collect();
+    let mut out: Vec<Vec<Vec<f64>>> = norm.to_vec();
+    for j in 0..norm.len() {
+        for k in j + 1..norm.len() {
+            // cannot fail: the training series were checked (rows non-empty, of stateLength
+            // finite values, at magnitudes the normalisation keeps below 1e100)
+            let Ok(al) = crate::dtw::dtw(&blocks[j], &blocks[k], crate::dtw::Band::None) else {
+                continue;
+            };
+            for (a, b) in [(j, k), (k, j)] {
+                // per block of `a`, the mean of the blocks of `b` aligned to it
+                let mut acc = vec![(vec![0.0; norm[a][0].len()], 0.0); blocks[a].len()];
+                for &(x, y) in &al.path {
+                    let (x, y) = if a == j { (x, y) } else { (y, x) };
+                    acc[x]
+                        .0
+                        .iter_mut()
+                        .zip(&blocks[b][y])
+                        .for_each(|(s, v)| *s += v);
+                    acc[x].1 += 1.0;
+                }
+                let size = block(&norm[a]);
+                for (t, row) in out[a].iter_mut().enumerate() {
+                    let (sum, n) = &acc[t / size];
+                    row.iter_mut().zip(sum).for_each(|(r, v)| *r += v / n);
+                }
+            }
+        }
+    }
+    let n = norm.len() as f64;
+    out.iter_mut().for_each(|d| {
+        d.iter_mut()
+            .for_each(|r| r.iter_mut().for_each(|v| *v /= n))
+    });
+    out
+}
+
+/// Per bottom node, how many samples its events hold and the sum of the values given for
+/// those samples (state part; the samples themselves or their [`consensus`]): additive over
+/// demonstrations.
 struct NodeSums {
     count: Vec<f64>,
     sum: Vec<f64>,
@@ -1096,7 +1162,8 @@ impl Hsom {
         }
     }
 
-    /// The own postures of `norm` (normalised demonstrations) in one call.
+    /// The *own postures* of `norm` (normalised demonstrations): each node at its own
+    /// samples' mean, with no consensus between the demonstrations (a test's control).
     #[cfg(test)]
     pub(crate) fn own_postures(&self, norm: &[Vec<Vec<f64>>]) -> Vec<f64> {
         let mut total = NodeSums::new(self.maps[0].len(), self.config.params().state_length);
@@ -1106,12 +1173,12 @@ impl Hsom {
         self.smoothed_postures(&total)
     }
 
-    /// The *own postures* (state part, normalised) of every bottom node as the samples in
-    /// `sums` realise it: the bottom map's last training step done in batch on these samples
-    /// alone, i.e. per node the mean of the samples of the events on it, weighted by the map's
+    /// The postures (state part, normalised) of every bottom node as the values in `sums`
+    /// realise it: the bottom map's last training step done in batch on these values alone,
+    /// i.e. per node the mean of the values of the events on it, weighted by the map's
     /// neighbourhood at its final radius around each event's node. A node no event is on
-    /// keeps its weights. Flattened, `stateLength` values per node. What
-    /// [`Hsom::fit_postures`] chooses from (docs/ALGORITHM.md, passage 6 of the events
+    /// keeps its weights. Flattened, `stateLength` values per node. [`Hsom::fit_postures`]
+    /// gives it the demonstrations' consensus (docs/ALGORITHM.md, passage 6 of the events
     /// extension, and "Several gestures").
     fn smoothed_postures(&self, sums: &NodeSums) -> Vec<f64> {
         let p = self.config.params();
@@ -1140,66 +1207,24 @@ impl Hsom {
     }
 
     /// Where a reproduction places each bottom node's events, learned from `norm` (the
-    /// normalised demonstrations this model or branch was trained on): the node's weights, its
-    /// own postures (the map's last step in batch on its samples) or halfway between, whichever re-encodes each
-    /// demonstration best from the postures of the others (leave-one-demonstration-out over
-    /// the bottom level's own events, [`Hsom::reencode`]'s path). The map's weights are
-    /// pulled in by its neighbourhood and shared between gestures; the own postures are the
-    /// training samples' means, which a held-out demonstration may not share: the data
-    /// decide. With one demonstration nothing is held out: the weights (and no stored
-    /// postures).
+    /// normalised demonstrations this model or branch was trained on): the demonstrations'
+    /// [`consensus`] over the samples of the node's events, smoothed by the map's
+    /// neighbourhood at its final radius as the bottom's last training step would
+    /// ([`Hsom::smoothed_postures`]). A reproduction follows one demonstrated sequence of
+    /// nodes; placed at the consensus, each node's events land where the demonstrations
+    /// agree, not where the one demonstration that visited it went, nor where the map's
+    /// neighbourhood pulled its weights. With one demonstration there is nothing to agree
+    /// on: the weights (and no stored postures).
     pub(crate) fn fit_postures(&mut self, norm: &[Vec<Vec<f64>>]) {
         self.knots = None;
         if norm.len() < 2 {
             return;
         }
-        let s = self.config.params().state_length;
-        let n = self.maps[0].len();
-        let w: Vec<f64> = (0..n)
-            .flat_map(|j| self.maps[0].weights(j)[..s].to_vec())
-            .collect();
-        let blend = |own: &[f64], k: f64| -> Vec<f64> {
-            w.iter()
-                .zip(own)
-                .map(|(a, o)| (1.0 - k) * a + k * o)
-                .collect()
-        };
-        // each demonstration's events and per-node sums once; the others' by addition
-        let events: Vec<Vec<(usize, f64)>> = norm.iter().map(|d| bottom_events(self, d)).collect();
-        let sums: Vec<NodeSums> = norm
-            .iter()
-            .zip(&events)
-            .map(|(d, e)| NodeSums::of(self, d, e))
-            .collect();
-        let mut err = [0.0; POSTURE_BLENDS.len()];
-        let mut probe = self.clone();
-        for (i, held) in norm.iter().enumerate() {
-            let mut others = NodeSums::new(n, s);
-            for (_, o) in sums.iter().enumerate().filter(|&(j, _)| j != i) {
-                others.add(o);
-            }
-            let own = self.smoothed_postures(&others);
-            let executed: Vec<(usize, f64, usize)> =
-                events[i].iter().map(|&(n, d)| (n, d, 0)).collect();
-            let truth: Vec<Vec<f64>> = held.iter().map(|r| self.denormalise(r)).collect();
-            for (e, &k) in err.iter_mut().zip(&POSTURE_BLENDS) {
-                probe.knots = Some(blend(&own, k));
-                let r = probe.timed_postures(&held[0], &executed, StopReason::EndEvent);
-                *e += r
-                    .postures
-                    .iter()
-                    .zip(&truth)
-                    .map(|(x, y)| dist2(x, y).sqrt())
-                    .sum::<f64>()
-                    / truth.len().max(1) as f64;
-            }
+        let mut sums = NodeSums::new(self.maps[0].len(), self.config.params().state_length);
+        for (demo, agreed) in norm.iter().zip(consensus(norm, MAX_ALIGNED)) {
+            sums.add(&NodeSums::of(self, &agreed, &bottom_events(self, demo)));
         }
-        let mut all = NodeSums::new(n, s);
-        sums.iter().for_each(|o| all.add(o));
-        // the first of equal errors: the weights before any blend; stored whatever the
-        // choice, so that the model's size does not depend on it
-        let best = (0..err.len()).fold(0, |b, i| if err[i] < err[b] { i } else { b });
-        self.knots = Some(blend(&self.smoothed_postures(&all), POSTURE_BLENDS[best]));
+        self.knots = Some(self.smoothed_postures(&sums));
     }
 
     /// Postures at every sample from the executed events: each event's node posture (its
@@ -1623,14 +1648,14 @@ mod tests {
             err(&weights_only(ba), &sets[0].1),
             err(&other, &sets[0].1),
         );
-        // its own postures: closer than the shared nodes' weights; the other gesture's: farther
+        // its own gesture's postures: closer than the shared nodes' weights; the other's: farther
         assert!(own < 0.7 * plain, "own {own} vs weights {plain}");
         assert!(
             wrong > plain,
             "the other gesture's postures {wrong} vs weights {plain}"
         );
-        // one gesture through fit_gestures chooses as fit does; an untrained model, or one
-        // demonstration (nothing to hold out), executes the nodes' weights
+        // one gesture through fit_gestures places them as fit does; an untrained model, or one
+        // demonstration (nothing to agree on), executes the nodes' weights
         let alone = cfg.fit_gestures(&sets[..1], None).unwrap();
         assert_eq!(alone.branches[0].knots, cfg.fit(&sets[0].1).unwrap().knots);
         assert!(cfg.initialise_gestures(&sets).unwrap().branches[0]
@@ -1640,34 +1665,97 @@ mod tests {
     }
 
     #[test]
-    fn postures_are_chosen_by_how_well_they_reencode_a_held_out_demonstration() {
-        // three demonstrations that differ only by tiny noise: each one's own means, taken
-        // from the other two, re-encode it best, so the own postures are chosen whole
-        let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30, 100 + i)).collect();
+    fn the_consensus_averages_aligned_samples_whatever_their_tempo() {
+        // two bumps from rest: one to 1 early and quickly, one to 2 late and slowly
+        let bump = |start: usize, rise: usize, peak: f64| -> Vec<Vec<f64>> {
+            let mut d = vec![vec![0.0, 0.0]; start];
+            d.extend((0..=rise).map(|i| vec![peak * i as f64 / rise as f64, 1.0]));
+            d.extend((0..=rise).map(|i| vec![peak * (1.0 - i as f64 / rise as f64), 1.0]));
+            d.extend(vec![vec![0.0, 0.0]; 10]);
+            d
+        };
+        let (a, b) = (bump(5, 10, 1.0), bump(20, 25, 2.0));
+        let top = |d: &[Vec<f64>]| d.iter().map(|r| r[0]).fold(f64::MIN, f64::max);
+        for max_aligned in [MAX_ALIGNED, 16] {
+            let c = consensus(&[a.clone(), b.clone()], max_aligned);
+            assert_eq!((c[0].len(), c[1].len()), (a.len(), b.len()));
+            // each consensus path's apex lies between the two apexes (1 and 2), toward the
+            // other's: the higher apex aligned to the lower one's single top sample gives
+            // their mean, 1.5; the lower one's top, aligned to the higher one's whole crest,
+            // the crest's mean (written: 1.25 and 1.5; in blocks of 3 and 6 samples 1.27 and
+            // 1.48); the rest stays at rest
+            for cd in &c {
+                assert!(
+                    (1.1..=1.55).contains(&top(cd)),
+                    "{max_aligned}: {}",
+                    top(cd)
+                );
+                assert!(cd[0].iter().all(|v| v.abs() < 1e-12), "{:?}", cd[0]);
+            }
+        }
+        // one demonstration is its own consensus
+        assert_eq!(consensus(std::slice::from_ref(&a), MAX_ALIGNED), vec![a]);
+    }
+
+    #[test]
+    fn each_node_is_placed_where_the_demonstrations_agree() {
+        // the same gesture at three amplitudes: each demonstration's apex has its own
+        // nodes, and a reproduction along any of them should reach the mean apex (1.0)
+        let series: Vec<Vec<Vec<f64>>> = [0.8, 1.0, 1.2]
+            .iter()
+            .enumerate()
+            .map(|(i, &k)| {
+                gesture(30 + 5 * i, 100 + i as u64)
+                    .into_iter()
+                    .map(|r| vec![k * r[0], k * r[1]])
+                    .collect()
+            })
+            .collect();
         let m = config(2).fit_series(&series).unwrap();
+        // where each demonstration's apex events are placed, raw units
+        let apex = |h: &Hsom, d: &[Vec<f64>]| {
+            let y = m.normalise_rows(d);
+            let ev = bottom_events(h, &y);
+            let node = ev.iter().max_by(|a, b| a.1.total_cmp(&b.1)).unwrap().0;
+            let node = if node == ev[0].0 {
+                // the longest event is the rest; the apex is the longest other one
+                ev.iter()
+                    .filter(|e| e.0 != ev[0].0)
+                    .max_by(|a, b| a.1.total_cmp(&b.1))
+                    .unwrap()
+                    .0
+            } else {
+                node
+            };
+            let s = m.config.params().state_length;
+            h.denormalise(&h.knot(node, s))[0]
+        };
+        // the control: each node at its own samples' mean, each demonstration its own apex
         let norm: Vec<Vec<Vec<f64>>> = series.iter().map(|d| m.normalise_rows(d)).collect();
-        assert_eq!(m.knots, Some(m.own_postures(&norm)));
-        // and they re-encode a fourth demonstration closer than the weights do
-        let fourth = Demonstration {
-            source: "g".into(),
-            columns: vec!["x".into(), "y".into()],
-            time: None,
-            rows: gesture(30, 200),
-        };
-        let err = |h: &Hsom| {
-            let r = h.reencode(&fourth).unwrap();
-            r.postures
-                .iter()
-                .zip(&fourth.rows)
-                .map(|(a, b)| dist2(a, b).sqrt())
-                .sum::<f64>()
-                / fourth.rows.len() as f64
-        };
-        let weights = Hsom {
-            knots: None,
+        let own = Hsom {
+            knots: Some(m.own_postures(&norm)),
             ..m.clone()
         };
-        assert!(err(&m) < err(&weights), "{} vs {}", err(&m), err(&weights));
+        for d in &series {
+            let amplitude = d.iter().map(|r| r[0]).fold(f64::MIN, f64::max);
+            let toward_mean = |h: &Hsom| (apex(h, d) - 1.0).abs() < 0.7 * (amplitude - 1.0).abs();
+            if (amplitude - 1.0).abs() < 0.1 {
+                assert!((apex(&m, d) - 1.0).abs() < 0.05, "{}", apex(&m, d));
+                continue;
+            }
+            // moved toward the mean apex (written: 0.80 -> 0.87, 1.20 -> 0.99), where the
+            // demonstration's own samples leave it
+            assert!(
+                toward_mean(&m),
+                "{amplitude}: consensus apex {}",
+                apex(&m, d)
+            );
+            assert!(
+                !toward_mean(&own),
+                "{amplitude}: own apex {}",
+                apex(&own, d)
+            );
+        }
     }
 
     #[test]
