@@ -1918,7 +1918,7 @@ mod tests {
             }
         }
         // the begin chunk's node is at 0
-        assert!((1..m.maps.len()).all(|l| m.exemplar_phase[l].iter().any(|&p| p == 0.0)));
+        assert!((1..m.maps.len()).all(|l| m.exemplar_phase[l].contains(&0.0)));
     }
 
     /// Every used node of a level above the bottom has an exemplar: the entries below of a
