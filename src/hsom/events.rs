@@ -1233,8 +1233,9 @@ impl Hsom {
     /// the posture `actionHorizon` samples later, reached in proportion to the event's
     /// second half: a gesture that ends in motion is not cut at the middle of its last
     /// event; one that ends in a hold ends there, action and state being equal); in between a monotone cubic
-    /// (Fritsch-Carlson) per variable, so holds are held, no variable overshoots its knots and
-    /// the motion starts and ends at rest.
+    /// (Fritsch-Carlson) per variable, so holds are held and the motion starts and ends at
+    /// rest; a knot at a turning point is moved so that the event's mean is its node's posture
+    /// ([`turning_points_kept`]), the only place the curve goes beyond its knots.
     fn timed_postures(
         &self,
         y0: &[f64],
@@ -1266,35 +1267,35 @@ impl Hsom {
             by.push(l);
         }
         let samples = now.floor() as usize + 1;
+        // the samples of each event (knot i + 1)
+        let mut spans = Vec::with_capacity(executed.len());
+        let mut start = 0.0;
+        for &(_, d, _) in executed {
+            let (a, b) = (start, start + d);
+            spans.push((
+                (a.ceil() as usize).min(samples),
+                (b.ceil() as usize).min(samples),
+            ));
+            start = b;
+        }
         let mut out = vec![vec![0.0; s]; samples];
-        let mut out_by = vec![0usize; samples];
-        let k = t.len();
         for d in 0..s {
-            let m = monotone_tangents(&t, &v.iter().map(|r| r[d]).collect::<Vec<_>>());
-            let mut seg = 0;
-            for (i, row) in out.iter_mut().enumerate() {
-                let ti = i as f64;
-                while seg + 2 < k && ti > t[seg + 1] {
-                    seg += 1;
-                }
-                row[d] = if k == 1 {
-                    v[0][d]
-                } else {
-                    hermite(
-                        t[seg],
-                        t[seg + 1],
-                        v[seg][d],
-                        v[seg + 1][d],
-                        m[seg],
-                        m[seg + 1],
-                        ti,
-                    )
-                };
-                if d == 0 {
-                    out_by[i] = by[(seg + 1).min(k - 1)];
-                }
+            let target: Vec<f64> = v.iter().map(|r| r[d]).collect();
+            let knots = turning_points_kept(&t, &target, &spans, samples);
+            for (row, y) in out.iter_mut().zip(monotone_cubic(&t, &knots, samples)) {
+                row[d] = y;
             }
         }
+        let k = t.len();
+        let mut seg = 0;
+        let out_by: Vec<usize> = (0..samples)
+            .map(|i| {
+                while seg + 2 < k && i as f64 > t[seg + 1] {
+                    seg += 1;
+                }
+                by[(seg + 1).min(k - 1)]
+            })
+            .collect();
         let postures: Vec<Vec<f64>> = out.iter().map(|y| self.denormalise(y)).collect();
         Reproduction {
             steps: (0..postures.len()).collect(),
@@ -1303,6 +1304,83 @@ impl Hsom {
             stop,
         }
     }
+}
+
+/// The monotone cubic through the knots (t, v) (Fritsch-Carlson tangents, zero at both
+/// ends) at the samples 0..samples.
+fn monotone_cubic(t: &[f64], v: &[f64], samples: usize) -> Vec<f64> {
+    let k = t.len();
+    let m = monotone_tangents(t, v);
+    let mut seg = 0;
+    (0..samples)
+        .map(|i| {
+            let ti = i as f64;
+            while seg + 2 < k && ti > t[seg + 1] {
+                seg += 1;
+            }
+            if k == 1 {
+                v[0]
+            } else {
+                hermite(
+                    t[seg],
+                    t[seg + 1],
+                    v[seg],
+                    v[seg + 1],
+                    m[seg],
+                    m[seg + 1],
+                    ti,
+                )
+            }
+        })
+        .collect()
+}
+
+/// Most corrections [`turning_points_kept`] makes (it converges in 3-4 on gestures; the cap
+/// only bounds the work).
+const TURNING_ITERATIONS: usize = 20;
+
+/// One variable's knots with its *turning points kept*: a knot that is a strict local extremum
+/// of its neighbours (the initial posture and the end are never moved) is moved until the
+/// monotone cubic's mean over its event's samples (`spans[i - 1]` for knot i) equals the
+/// node's posture (`target[i]`). A node's posture is the mean of the samples of its events
+/// (the consensus, passage 6); at a turning point those samples lie on both sides of the
+/// turn, so their mean lies inside it, and a curve that merely passes through the mean turns
+/// short (the wave's troughs 0.05-0.15 rad). Elsewhere the mean of a segment is its middle
+/// value and the knot stays. A fixed point, reached in a few corrections; docs/ALGORITHM.md,
+/// passage 6 of the events extension.
+fn turning_points_kept(
+    t: &[f64],
+    target: &[f64],
+    spans: &[(usize, usize)],
+    samples: usize,
+) -> Vec<f64> {
+    let k = target.len();
+    let turning: Vec<usize> = (1..k.saturating_sub(1))
+        .filter(|&i| {
+            let (p, q, r) = (target[i - 1], target[i], target[i + 1]);
+            (q > p && q > r) || (q < p && q < r)
+        })
+        .filter(|&i| spans.get(i - 1).is_some_and(|&(a, b)| b > a))
+        .collect();
+    let mut v = target.to_vec();
+    for _ in 0..TURNING_ITERATIONS {
+        if turning.is_empty() {
+            break;
+        }
+        let c = monotone_cubic(t, &v, samples);
+        let mut moved = 0.0f64;
+        for &i in &turning {
+            let (a, b) = spans[i - 1];
+            let mean = c[a..b].iter().sum::<f64>() / (b - a) as f64;
+            let step = target[i] - mean;
+            v[i] += step;
+            moved = moved.max(step.abs());
+        }
+        if moved < 1e-9 {
+            break;
+        }
+    }
+    v
 }
 
 /// Fritsch-Carlson tangents of a monotone cubic through (t, v), zero at both ends.
@@ -2129,6 +2207,33 @@ mod tests {
             "{}",
             rep.postures.len()
         );
+    }
+
+    #[test]
+    fn turning_points_are_kept_and_holds_are_not_moved() {
+        // four events of 5 samples: knots at their middles, the initial posture and the end
+        let t = [0.0, 2.5, 7.5, 12.5, 17.5, 20.0];
+        let spans = [(0, 5), (5, 10), (10, 15), (15, 20)];
+        let mean = |c: &[f64], (a, b): (usize, usize)| c[a..b].iter().sum::<f64>() / (b - a) as f64;
+        let peak = [0.0, 0.3, 1.0, 0.3, 0.0, 0.0];
+        let kept = turning_points_kept(&t, &peak, &spans, 21);
+        let c = monotone_cubic(&t, &kept, 21);
+        // the turn's event has the node's posture as its mean, so the curve turns beyond it
+        assert!(
+            (mean(&c, spans[1]) - 1.0).abs() < 1e-6,
+            "{}",
+            mean(&c, spans[1])
+        );
+        assert!(c.iter().cloned().fold(f64::MIN, f64::max) > 1.0);
+        // only the turning point moved
+        assert!(kept[2] > 1.0);
+        assert_eq!((kept[0], kept[1], kept[3], kept[4]), (0.0, 0.3, 0.3, 0.0));
+        // the control: through the knots alone, the turn's mean falls short of the posture
+        let plain = monotone_cubic(&t, &peak, 21);
+        assert!(mean(&plain, spans[1]) < 0.97, "{}", mean(&plain, spans[1]));
+        // a hold (no strict extremum) is held where it is: nothing moves
+        let hold = [0.0, 1.0, 1.0, 1.0, 0.0, 0.0];
+        assert_eq!(turning_points_kept(&t, &hold, &spans, 21), hold.to_vec());
     }
 
     #[test]
