@@ -1281,7 +1281,7 @@ impl Hsom {
         let mut out = vec![vec![0.0; s]; samples];
         for d in 0..s {
             let target: Vec<f64> = v.iter().map(|r| r[d]).collect();
-            let knots = turning_points_kept(&t, &target, &spans, samples);
+            let knots = turning_points_kept(&t, &target, &spans);
             for (row, y) in out.iter_mut().zip(monotone_cubic(&t, &knots, samples)) {
                 row[d] = y;
             }
@@ -1348,12 +1348,7 @@ const TURNING_ITERATIONS: usize = 20;
 /// short (the wave's troughs 0.05-0.15 rad). Elsewhere the mean of a segment is its middle
 /// value and the knot stays. A fixed point, reached in a few corrections; docs/ALGORITHM.md,
 /// passage 6 of the events extension.
-fn turning_points_kept(
-    t: &[f64],
-    target: &[f64],
-    spans: &[(usize, usize)],
-    samples: usize,
-) -> Vec<f64> {
+fn turning_points_kept(t: &[f64], target: &[f64], spans: &[(usize, usize)]) -> Vec<f64> {
     let k = target.len();
     let turning: Vec<usize> = (1..k.saturating_sub(1))
         .filter(|&i| {
@@ -1363,15 +1358,29 @@ fn turning_points_kept(
         .filter(|&i| spans.get(i - 1).is_some_and(|&(a, b)| b > a))
         .collect();
     let mut v = target.to_vec();
+    // the cubic at sample ti from the knots and tangents (only the turning events' samples
+    // are evaluated: the work per correction is the knots plus those events)
+    let at = |v: &[f64], m: &[f64], ti: f64| -> f64 {
+        let seg = t.partition_point(|&x| x < ti).clamp(1, k - 1) - 1;
+        hermite(
+            t[seg],
+            t[seg + 1],
+            v[seg],
+            v[seg + 1],
+            m[seg],
+            m[seg + 1],
+            ti,
+        )
+    };
     for _ in 0..TURNING_ITERATIONS {
         if turning.is_empty() {
             break;
         }
-        let c = monotone_cubic(t, &v, samples);
+        let m = monotone_tangents(t, &v);
         let mut moved = 0.0f64;
         for &i in &turning {
             let (a, b) = spans[i - 1];
-            let mean = c[a..b].iter().sum::<f64>() / (b - a) as f64;
+            let mean = (a..b).map(|j| at(&v, &m, j as f64)).sum::<f64>() / (b - a) as f64;
             let step = target[i] - mean;
             v[i] += step;
             moved = moved.max(step.abs());
@@ -2216,7 +2225,7 @@ mod tests {
         let spans = [(0, 5), (5, 10), (10, 15), (15, 20)];
         let mean = |c: &[f64], (a, b): (usize, usize)| c[a..b].iter().sum::<f64>() / (b - a) as f64;
         let peak = [0.0, 0.3, 1.0, 0.3, 0.0, 0.0];
-        let kept = turning_points_kept(&t, &peak, &spans, 21);
+        let kept = turning_points_kept(&t, &peak, &spans);
         let c = monotone_cubic(&t, &kept, 21);
         // the turn's event has the node's posture as its mean, so the curve turns beyond it
         assert!(
@@ -2233,7 +2242,7 @@ mod tests {
         assert!(mean(&plain, spans[1]) < 0.97, "{}", mean(&plain, spans[1]));
         // a hold (no strict extremum) is held where it is: nothing moves
         let hold = [0.0, 1.0, 1.0, 1.0, 0.0, 0.0];
-        assert_eq!(turning_points_kept(&t, &hold, &spans, 21), hold.to_vec());
+        assert_eq!(turning_points_kept(&t, &hold, &spans), hold.to_vec());
     }
 
     #[test]
