@@ -1315,24 +1315,36 @@ fn monotone_cubic(t: &[f64], v: &[f64], samples: usize) -> Vec<f64> {
     (0..samples)
         .map(|i| {
             let ti = i as f64;
+            // a sweep: the segment only moves forward
             while seg + 2 < k && ti > t[seg + 1] {
                 seg += 1;
             }
-            if k == 1 {
-                v[0]
-            } else {
-                hermite(
-                    t[seg],
-                    t[seg + 1],
-                    v[seg],
-                    v[seg + 1],
-                    m[seg],
-                    m[seg + 1],
-                    ti,
-                )
-            }
+            on_segment(t, v, &m, seg, ti)
         })
         .collect()
+}
+
+/// The cubic through the knots (t, v) with tangents `m` at time `ti`, the segment found by
+/// bisection (before the first knot and after the last: their values).
+fn cubic_at(t: &[f64], v: &[f64], m: &[f64], ti: f64) -> f64 {
+    let seg = t.partition_point(|&x| x < ti).clamp(1, t.len().max(2) - 1) - 1;
+    on_segment(t, v, m, seg, ti)
+}
+
+/// The cubic on segment `seg` (knots seg and seg + 1) at time `ti`; a single knot's value.
+fn on_segment(t: &[f64], v: &[f64], m: &[f64], seg: usize, ti: f64) -> f64 {
+    if t.len() == 1 {
+        return v[0];
+    }
+    hermite(
+        t[seg],
+        t[seg + 1],
+        v[seg],
+        v[seg + 1],
+        m[seg],
+        m[seg + 1],
+        ti,
+    )
 }
 
 /// Most corrections [`turning_points_kept`] makes (it converges in 3-4 on gestures; the cap
@@ -1358,20 +1370,8 @@ fn turning_points_kept(t: &[f64], target: &[f64], spans: &[(usize, usize)]) -> V
         .filter(|&i| spans.get(i - 1).is_some_and(|&(a, b)| b > a))
         .collect();
     let mut v = target.to_vec();
-    // the cubic at sample ti from the knots and tangents (only the turning events' samples
-    // are evaluated: the work per correction is the knots plus those events)
-    let at = |v: &[f64], m: &[f64], ti: f64| -> f64 {
-        let seg = t.partition_point(|&x| x < ti).clamp(1, k - 1) - 1;
-        hermite(
-            t[seg],
-            t[seg + 1],
-            v[seg],
-            v[seg + 1],
-            m[seg],
-            m[seg + 1],
-            ti,
-        )
-    };
+    // only the turning events' samples are evaluated: the work per correction is the knots
+    // plus those events
     for _ in 0..TURNING_ITERATIONS {
         if turning.is_empty() {
             break;
@@ -1380,7 +1380,7 @@ fn turning_points_kept(t: &[f64], target: &[f64], spans: &[(usize, usize)]) -> V
         let mut moved = 0.0f64;
         for &i in &turning {
             let (a, b) = spans[i - 1];
-            let mean = (a..b).map(|j| at(&v, &m, j as f64)).sum::<f64>() / (b - a) as f64;
+            let mean = (a..b).map(|j| cubic_at(t, &v, &m, j as f64)).sum::<f64>() / (b - a) as f64;
             let step = target[i] - mean;
             v[i] += step;
             moved = moved.max(step.abs());
