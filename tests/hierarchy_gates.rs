@@ -157,7 +157,7 @@ fn held_out_fidelity_is_within_a_tenth_of_gmm_gmr_and_an_untrained_hierarchy_is_
     let cfg = recommended();
     let median = |mut v: Vec<f64>| {
         v.sort_by(f64::total_cmp);
-        (v[1] + v[2]) / 2.0
+        (v[(v.len() - 1) / 2] + v[v.len() / 2]) / 2.0
     };
     let (mut joint, mut wrist, mut untrained) = (Vec::new(), Vec::new(), Vec::new());
     for g in GESTURES {

@@ -1246,11 +1246,15 @@ impl Hsom {
         let mut t = vec![0.0];
         let mut v: Vec<Vec<f64>> = vec![y0.to_vec()];
         let mut by = vec![0usize];
+        // the samples of each event (knot i + 1): ceil(start)..ceil(end), within the
+        // floor(total) + 1 samples below
+        let mut spans = Vec::with_capacity(executed.len());
         let mut now = 0.0;
         for &(n, d, l) in executed {
             t.push(now + d / 2.0);
             v.push(self.knot(n, s));
             by.push(l);
+            spans.push((now.ceil() as usize, (now + d).ceil() as usize));
             now += d;
         }
         if let Some(&(n, d, l)) = executed.last() {
@@ -1267,17 +1271,6 @@ impl Hsom {
             by.push(l);
         }
         let samples = now.floor() as usize + 1;
-        // the samples of each event (knot i + 1)
-        let mut spans = Vec::with_capacity(executed.len());
-        let mut start = 0.0;
-        for &(_, d, _) in executed {
-            let (a, b) = (start, start + d);
-            spans.push((
-                (a.ceil() as usize).min(samples),
-                (b.ceil() as usize).min(samples),
-            ));
-            start = b;
-        }
         let mut out = vec![vec![0.0; s]; samples];
         for d in 0..s {
             let target: Vec<f64> = v.iter().map(|r| r[d]).collect();
