@@ -480,9 +480,11 @@ impl Decoder<'_> {
     /// distance between it and the position at which each follower came in training is
     /// added to the content distance (same units as the context). At level 1
     /// the end is taken when a demonstration ended after `prev` and either the slot is mostly
-    /// the end or `events_before` (bottom events so far) has reached the shortest
-    /// demonstration's count: where a gesture starts and ends in the same posture, content
-    /// alone cannot tell "end here" from "start again" (the paper's replication).
+    /// the end, or `events_before` (bottom events so far) has reached the shortest
+    /// demonstration's count, or `position` is nearer where the demonstrations ended after
+    /// `prev` than where any other follower came ([`end_nearest`]): where a gesture starts
+    /// and ends in the same posture, content alone cannot tell "end here" from "start
+    /// again" (the paper's replication).
     fn decode(
         &self,
         level: usize,
@@ -505,7 +507,10 @@ impl Decoder<'_> {
             .filter(|&f| f != u32::MAX)
             .collect();
         if level == 1
-            && (c[2 * s + 1] > 0.5 || (cands.contains(&END) && events_before >= model.demo_runs[0]))
+            && (c[2 * s + 1] > 0.5
+                || (cands.contains(&END)
+                    && (events_before >= model.demo_runs[0]
+                        || end_nearest(model, &table[row * FOLLOWERS..], row, position))))
         {
             return END;
         }
@@ -552,6 +557,28 @@ impl Decoder<'_> {
         }
         best.0
     }
+}
+
+/// Whether the position of a plan (`position`, finite) is nearer the mean position at which
+/// the demonstrations ended after the entry of follower-table row `row` (`followers`, that
+/// row's entries onward; bottom level) than the position of every other follower of it:
+/// where a gesture starts and ends in one posture, the plan says which of "end here" and
+/// "start again" this is, even when the reproduction has come home in fewer events than the
+/// shortest demonstration.
+fn end_nearest(model: &Hsom, followers: &[u32], row: usize, position: f64) -> bool {
+    if !position.is_finite() {
+        return false;
+    }
+    let at = |k: usize| (position - model.follower_at[row * FOLLOWERS + k]).abs();
+    let row_entries = &followers[..FOLLOWERS];
+    let Some(e) = row_entries.iter().position(|&f| f == END) else {
+        return false;
+    };
+    row_entries
+        .iter()
+        .enumerate()
+        .filter(|&(k, &f)| k != e && f != u32::MAX)
+        .all(|(k, _)| at(e) < at(k))
 }
 
 /// Per entry of the follower table `table` of a level with `nodes` nodes, the mean position
@@ -1981,6 +2008,46 @@ mod tests {
         assert_eq!(dec.decode(1, &c, &[], p as u32, 0.0, 0.9, u32::MAX), b);
         // no position (the training replay): the first of equals
         assert_eq!(dec.decode(1, &c, &[], p as u32, 0.0, f64::NAN, u32::MAX), a);
+    }
+
+    /// Home is followed by the start of the gesture (at its begin) and by the end (at its
+    /// end): a plan that comes home early, before the shortest demonstration's number of
+    /// events, ends where its position is nearer the end's, and starts again where it is
+    /// nearer the start's (the paper's replication, which the count alone let through).
+    #[test]
+    fn a_plan_ends_at_home_where_its_position_is_nearer_the_end() {
+        let mut m = trained(3);
+        let lay = Layout::of(&m.config);
+        let code = DurationCode::from_dwell(&m.dwell);
+        let (home, start) = (0usize, 1u32);
+        m.followers[0][home * FOLLOWERS..(home + 1) * FOLLOWERS].copy_from_slice(&[
+            start,
+            END,
+            u32::MAX,
+            u32::MAX,
+        ]);
+        m.follower_at[home * FOLLOWERS] = 0.0;
+        m.follower_at[home * FOLLOWERS + 1] = 1.0;
+        // a slot that reads as the start of the gesture: content says "start again"
+        let mut c = entry_content(&m, lay, 0, start as usize, code);
+        c[2 * lay.s + 1] = 0.0;
+        let dec = Decoder {
+            model: &m,
+            lay,
+            code,
+        };
+        let early = m.demo_runs[0] - 10.0;
+        assert_eq!(dec.decode(1, &c, &[], home as u32, early, 0.7, u32::MAX), END);
+        // the controls: the plan at the begin, and no position (only the count decides)
+        assert_eq!(dec.decode(1, &c, &[], home as u32, early, 0.2, u32::MAX), start);
+        assert_eq!(
+            dec.decode(1, &c, &[], home as u32, early, f64::NAN, u32::MAX),
+            start
+        );
+        assert_eq!(
+            dec.decode(1, &c, &[], home as u32, m.demo_runs[0], f64::NAN, u32::MAX),
+            END
+        );
     }
 
     /// Every used node of a level above the bottom has an exemplar's position: the phase of
