@@ -10,7 +10,9 @@ use rand_chacha::ChaCha8Rng;
 
 use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::Demonstration;
-use cosco_hsom::experiment::heldout::{SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
+use cosco_hsom::experiment::heldout::{
+    swing_folds, swing_folds_png, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD,
+};
 use cosco_hsom::experiment::{
     hsom_folds, leave_one_out, sample_period, synthetic_demonstrations, DemoSettings, HeldOut,
     HeldOutSummary, Training, Transition,
@@ -145,6 +147,36 @@ fn an_untrained_hierarchy_scores_worse_held_out_than_a_trained_one() {
         u.wrist_dtw_mm,
         t.wrist_dtw_mm
     );
+}
+
+/// The drawn folds are the scored folds: the same reproductions, counts and DTW as the
+/// leave-one-out of the fixture, with both traces of the counted joint, and a PNG.
+#[test]
+fn swing_folds_draw_the_scored_folds() {
+    let f = fixture();
+    let folds = swing_folds(&f.arm, &f.config, &f.demos, Transition::Linear).unwrap();
+    assert_eq!(folds.len(), COUNT);
+    for (drawn, scored) in folds.iter().zip(&f.heldout.folds) {
+        assert_eq!(drawn.held_out, scored.held_out);
+        assert_eq!(drawn.swings, scored.hsom.swings);
+        assert_eq!(
+            drawn.joint_dtw,
+            scored.hsom.fidelity.joint_dtw_rad_per_step.mean
+        );
+        let demo = &f.demos[drawn.held_out];
+        assert_eq!(drawn.demo.len(), demo.rows.len());
+        assert!(drawn
+            .demo
+            .iter()
+            .zip(&demo.rows)
+            .all(|(p, r)| p.1 == r[SWING_JOINT]));
+        assert!(drawn.reproduction.windows(2).all(|w| w[1].0 > w[0].0));
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("folds.png");
+    swing_folds_png(&path, "reading-watch", &folds).unwrap();
+    let png = std::fs::read(&path).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
 }
 
 #[test]

@@ -2037,9 +2037,15 @@ mod tests {
             code,
         };
         let early = m.demo_runs[0] - 10.0;
-        assert_eq!(dec.decode(1, &c, &[], home as u32, early, 0.7, u32::MAX), END);
+        assert_eq!(
+            dec.decode(1, &c, &[], home as u32, early, 0.7, u32::MAX),
+            END
+        );
         // the controls: the plan at the begin, and no position (only the count decides)
-        assert_eq!(dec.decode(1, &c, &[], home as u32, early, 0.2, u32::MAX), start);
+        assert_eq!(
+            dec.decode(1, &c, &[], home as u32, early, 0.2, u32::MAX),
+            start
+        );
         assert_eq!(
             dec.decode(1, &c, &[], home as u32, early, f64::NAN, u32::MAX),
             start
