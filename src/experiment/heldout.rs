@@ -390,7 +390,11 @@ pub fn swing_folds(
                     .iter()
                     .enumerate()
                     .map(|(k, r)| {
-                        let t = demo.time.as_ref().map_or(k as f64 * period, |t| t[k]);
+                        let t = demo
+                            .time
+                            .as_ref()
+                            .and_then(|t| t.get(k).copied())
+                            .unwrap_or(k as f64 * period);
                         (t, r[SWING_JOINT])
                     })
                     .collect(),

@@ -510,7 +510,7 @@ impl Decoder<'_> {
             && (c[2 * s + 1] > 0.5
                 || (cands.contains(&END)
                     && (events_before >= model.demo_runs[0]
-                        || end_nearest(model, &table[row * FOLLOWERS..], row, position))))
+                        || end_nearest(model, table, row, position))))
         {
             return END;
         }
@@ -560,21 +560,20 @@ impl Decoder<'_> {
 }
 
 /// Whether the position of a plan (`position`, finite) is nearer the mean position at which
-/// the demonstrations ended after the entry of follower-table row `row` (`followers`, that
-/// row's entries onward; bottom level) than the position of every other follower of it:
-/// where a gesture starts and ends in one posture, the plan says which of "end here" and
-/// "start again" this is, even when the reproduction has come home in fewer events than the
-/// shortest demonstration.
-fn end_nearest(model: &Hsom, followers: &[u32], row: usize, position: f64) -> bool {
+/// the demonstrations ended after the entry of row `row` of the bottom's follower table
+/// (`table`) than the position of every other follower in that row: where a gesture starts
+/// and ends in one posture, the plan says which of "end here" and "start again" this is, even
+/// when the reproduction has come home in fewer events than the shortest demonstration.
+fn end_nearest(model: &Hsom, table: &[u32], row: usize, position: f64) -> bool {
     if !position.is_finite() {
         return false;
     }
+    let entries = &table[row * FOLLOWERS..(row + 1) * FOLLOWERS];
     let at = |k: usize| (position - model.follower_at[row * FOLLOWERS + k]).abs();
-    let row_entries = &followers[..FOLLOWERS];
-    let Some(e) = row_entries.iter().position(|&f| f == END) else {
+    let Some(e) = entries.iter().position(|&f| f == END) else {
         return false;
     };
-    row_entries
+    entries
         .iter()
         .enumerate()
         .filter(|&(k, &f)| k != e && f != u32::MAX)
