@@ -49,10 +49,15 @@ struct Args {
 fn run(a: Args) -> Result<()> {
     let config =
         load_config(&a.config).with_context(|| format!("loading {}", a.config.display()))?;
-    let gesture = parse_gestures(&a.gesture)?
-        .into_iter()
-        .next()
-        .context("--gesture: name one gesture")?;
+    let mut gestures = parse_gestures(&a.gesture)?;
+    if gestures.len() != 1 {
+        anyhow::bail!(
+            "--gesture '{}': name exactly one gesture ({} given)",
+            a.gesture,
+            gestures.len()
+        );
+    }
+    let gesture = gestures.remove(0);
     let seeds = parse_seeds(&a.seeds)?;
     let arm = NaoArm::load_default()?;
     std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;

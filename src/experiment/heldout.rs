@@ -13,7 +13,7 @@ use crate::metrics::{column_swings, FidelityReport};
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
 
 use super::baseline::{gmr_params, run_baseline_split, DEFAULT_COMPONENTS};
-use super::pipeline::{learn_and_score, Split, Training};
+use super::pipeline::{learn_and_score, sample_period, Outcome, Split, Training};
 use super::{are_arm_joints, ExperimentError, Transition};
 
 /// The joint whose large swings are counted (column 3, `LElbowRoll`: the wave's joint).
@@ -259,15 +259,9 @@ pub fn hsom_folds(
     check_demos(demos)?;
     (0..demos.len())
         .map(|i| {
-            let train = all_but(demos, i);
-            let test = std::slice::from_ref(&demos[i]);
-            let split = Split {
-                train: &train,
-                test,
-            };
-            let run = learn_and_score(arm, config, split, training, transition, None)?;
+            let (run, swings) = hsom_fold(arm, config, demos, i, training, transition)?;
             Ok(FoldScores {
-                swings: swings(&run.executed, &demos[i])?,
+                swings,
                 fidelity: run.fidelity,
                 postures: run.reproduction.postures.len(),
                 clamped_values: run.clamped_values,
@@ -276,6 +270,26 @@ pub fn hsom_folds(
             })
         })
         .collect()
+}
+
+/// Fold `i` of [`hsom_folds`]: learned from all demonstrations but `demos[i]`, reproduced
+/// from its first posture, executed, scored against it; with the swings counted.
+fn hsom_fold(
+    arm: &NaoArm,
+    config: &HsomConfig,
+    demos: &[Demonstration],
+    i: usize,
+    training: Training,
+    transition: Transition,
+) -> Result<(Outcome, Swings), ExperimentError> {
+    let train = all_but(demos, i);
+    let split = Split {
+        train: &train,
+        test: std::slice::from_ref(&demos[i]),
+    };
+    let run = learn_and_score(arm, config, split, training, transition, None)?;
+    let swings = swings(&run.executed, &demos[i])?;
+    Ok((run, swings))
 }
 
 /// GMM/GMR ([`DEFAULT_COMPONENTS`]) on every fold, as [`hsom_folds`]; a fold where it cannot
@@ -365,17 +379,12 @@ pub fn swing_folds(
     check_demos(demos)?;
     (0..demos.len())
         .map(|i| {
-            let train = all_but(demos, i);
-            let split = Split {
-                train: &train,
-                test: std::slice::from_ref(&demos[i]),
-            };
-            let period = split.metrics()?.sample_period;
-            let run = learn_and_score(arm, config, split, Training::Trained, transition, None)?;
+            let (run, swings) = hsom_fold(arm, config, demos, i, Training::Trained, transition)?;
             let demo = &demos[i];
+            let period = sample_period(demo);
             Ok(SwingFold {
                 held_out: i,
-                swings: swings(&run.executed, demo)?,
+                swings,
                 joint_dtw: run.fidelity.joint_dtw_rad_per_step.mean,
                 duration_ratio: run.fidelity.duration_ratio.mean,
                 reproduction: run

@@ -482,7 +482,7 @@ impl Decoder<'_> {
     /// the end is taken when a demonstration ended after `prev` and either the slot is mostly
     /// the end, or `events_before` (bottom events so far) has reached the shortest
     /// demonstration's count, or `position` is nearer where the demonstrations ended after
-    /// `prev` than where any other follower came ([`end_nearest`]): where a gesture starts
+    /// `prev` than where any other follower came: where a gesture starts
     /// and ends in the same posture, content alone cannot tell "end here" from "start
     /// again" (the paper's replication).
     fn decode(
@@ -506,11 +506,29 @@ impl Decoder<'_> {
             .copied()
             .filter(|&f| f != u32::MAX)
             .collect();
+        // at level 1, how far each follower's position in the demonstrations is from where
+        // the plan places this entry (`None`: not a follower, or no position)
+        let gap = |m: u32| -> Option<f64> {
+            let k = table[row * FOLLOWERS..(row + 1) * FOLLOWERS]
+                .iter()
+                .position(|&f| f == m)?;
+            (level == 1 && position.is_finite())
+                .then(|| (position - model.follower_at[row * FOLLOWERS + k]).abs())
+        };
+        // the plan nearer where the demonstrations ended after `prev` than where any other
+        // follower came: "end here", not "start again", even when the reproduction came home
+        // in fewer events than the shortest demonstration
+        let end_nearest = || {
+            gap(END).is_some_and(|e| {
+                cands
+                    .iter()
+                    .filter(|&&m| m != END)
+                    .all(|&m| gap(m).is_some_and(|g| e < g))
+            })
+        };
         if level == 1
             && (c[2 * s + 1] > 0.5
-                || (cands.contains(&END)
-                    && (events_before >= model.demo_runs[0]
-                        || end_nearest(model, table, row, position))))
+                || (cands.contains(&END) && (events_before >= model.demo_runs[0] || end_nearest())))
         {
             return END;
         }
@@ -529,18 +547,9 @@ impl Decoder<'_> {
         } else {
             c[s..2 * s].to_vec()
         };
-        // at level 1, how far the follower's position in the demonstrations is from where the
-        // plan places this entry: a node every swing passes through leads on to the next swing
-        // early and home late, which content cannot tell apart
-        let position_cost = |m: u32| -> f64 {
-            let row_entries = &table[row * FOLLOWERS..(row + 1) * FOLLOWERS];
-            match row_entries.iter().position(|&f| f == m) {
-                Some(k) if level == 1 && position.is_finite() => {
-                    (position - model.follower_at[row * FOLLOWERS + k]).powi(2)
-                }
-                _ => 0.0,
-            }
-        };
+        // a node every swing passes through leads on to the next swing early and home late,
+        // which content cannot tell apart: the follower's position gap is added
+        let position_cost = |m: u32| gap(m).map_or(0.0, |g| g * g);
         let mut best = (END, f64::INFINITY);
         for &m in cands {
             let d = if m == END {
@@ -557,27 +566,6 @@ impl Decoder<'_> {
         }
         best.0
     }
-}
-
-/// Whether the position of a plan (`position`, finite) is nearer the mean position at which
-/// the demonstrations ended after the entry of row `row` of the bottom's follower table
-/// (`table`) than the position of every other follower in that row: where a gesture starts
-/// and ends in one posture, the plan says which of "end here" and "start again" this is, even
-/// when the reproduction has come home in fewer events than the shortest demonstration.
-fn end_nearest(model: &Hsom, table: &[u32], row: usize, position: f64) -> bool {
-    if !position.is_finite() {
-        return false;
-    }
-    let entries = &table[row * FOLLOWERS..(row + 1) * FOLLOWERS];
-    let at = |k: usize| (position - model.follower_at[row * FOLLOWERS + k]).abs();
-    let Some(e) = entries.iter().position(|&f| f == END) else {
-        return false;
-    };
-    entries
-        .iter()
-        .enumerate()
-        .filter(|&(k, &f)| k != e && f != u32::MAX)
-        .all(|(k, _)| at(e) < at(k))
 }
 
 /// Per entry of the follower table `table` of a level with `nodes` nodes, the mean position
