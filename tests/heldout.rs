@@ -72,6 +72,7 @@ fn one_fold_per_demonstration_each_scored_against_it_alone() {
     assert_eq!(h.folds.len(), COUNT);
     assert_eq!(h.hsom.folds, COUNT);
     assert_eq!(h.gmr.as_ref().map(|g| g.folds), Some(COUNT));
+    assert_eq!(h.sequence.as_ref().map(|s| s.folds), Some(COUNT));
     let durations: Vec<f64> = f.demos.iter().map(trimmed_duration).collect();
     // the demonstrations differ in tempo, so scoring against the wrong one would show
     for w in durations.windows(2) {
@@ -84,7 +85,15 @@ fn one_fold_per_demonstration_each_scored_against_it_alone() {
             .gmr
             .as_ref()
             .unwrap_or_else(|| panic!("fold {i}: GMM/GMR did not run: {:?}", fold.gmr_error));
-        for (method, s) in [("CoSCo-HSOM", &fold.hsom), ("GMM/GMR", gmr)] {
+        let sequence = fold
+            .sequence
+            .as_ref()
+            .expect("the nearest-sequence baseline ran");
+        for (method, s) in [
+            ("CoSCo-HSOM", &fold.hsom),
+            ("GMM/GMR", gmr),
+            ("nearest-sequence", sequence),
+        ] {
             let r = &s.fidelity;
             assert_eq!(r.per_demo.len(), 1, "{method} fold {i}");
             assert_eq!(r.demo_smoothness.len(), 1, "{method} fold {i}");
@@ -185,6 +194,8 @@ fn two_demonstrations_run_without_the_baseline_and_one_is_refused() {
     let h = leave_one_out(&f.arm, &f.config, &f.demos[..2], Transition::Linear).unwrap();
     assert_eq!(h.folds.len(), 2);
     assert!(h.gmr.is_none());
+    // the nearest-sequence baseline needs one demonstration to follow: it runs
+    assert_eq!(h.sequence.as_ref().map(|s| s.folds), Some(2));
     for fold in &h.folds {
         let e = fold.gmr_error.as_deref().unwrap();
         assert!(e.contains("at least 2"), "{e}");

@@ -4,6 +4,8 @@
 //! in-sample result (learn from all, score against all) says how well a method reproduces
 //! what it saw; this says how well it reproduces the gesture from a start it has not seen.
 
+use std::time::Instant;
+
 use serde::Serialize;
 
 use crate::config::HsomConfig;
@@ -13,7 +15,9 @@ use crate::metrics::{column_swings, FidelityReport};
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
 
 use super::baseline::{gmr_params, run_baseline_split, DEFAULT_COMPONENTS};
-use super::pipeline::{learn_and_score, sample_period, Outcome, Split, Training};
+use super::pipeline::{
+    execute_and_score, learn_and_score, sample_period, Outcome, Split, Training,
+};
 use super::{are_arm_joints, ExperimentError, Transition};
 
 /// The joint whose large swings are counted (column 3, `LElbowRoll`: the wave's joint).
@@ -65,6 +69,8 @@ pub struct Fold {
     pub gmr: Option<FoldScores>,
     /// Why GMM/GMR did not run on this fold.
     pub gmr_error: Option<String>,
+    /// The nearest-sequence baseline on the same fold ([`sequence_folds`]), when it was run.
+    pub sequence: Option<FoldScores>,
 }
 
 /// Means over folds of one method.
@@ -146,6 +152,9 @@ pub struct HeldOut {
     pub hsom: HeldOutSummary,
     /// GMM/GMR: means over the folds where it ran (`None` when it ran on none).
     pub gmr: Option<HeldOutSummary>,
+    /// The nearest-sequence baseline: means over all folds (`None` when it was not run:
+    /// [`HeldOut::with_sequence`]).
+    pub sequence: Option<HeldOutSummary>,
 }
 
 impl HeldOut {
@@ -180,6 +189,7 @@ impl HeldOut {
                     hsom: h,
                     gmr,
                     gmr_error,
+                    sequence: None,
                 }
             })
             .collect();
@@ -192,7 +202,30 @@ impl HeldOut {
             gmr: HeldOutSummary::of(&ran),
             hsom,
             folds,
+            sequence: None,
         })
+    }
+
+    /// Add the nearest-sequence baseline's folds ([`sequence_folds`]): `sequence[i]` is fold
+    /// `i`'s, one per fold.
+    pub fn with_sequence(mut self, sequence: Vec<FoldScores>) -> Result<HeldOut, ExperimentError> {
+        if sequence.len() != self.folds.len() {
+            return Err(ExperimentError::Invalid(format!(
+                "held-out results: {} nearest-sequence folds for {} folds; need one per fold",
+                sequence.len(),
+                self.folds.len()
+            )));
+        }
+        for (f, s) in self.folds.iter_mut().zip(sequence) {
+            f.sequence = Some(s);
+        }
+        let all: Vec<&FoldScores> = self
+            .folds
+            .iter()
+            .filter_map(|f| f.sequence.as_ref())
+            .collect();
+        self.sequence = HeldOutSummary::of(&all);
+        Ok(self)
     }
 
     /// Both methods averaged over the same folds (those where GMM/GMR ran): (CoSCo-HSOM,
@@ -292,6 +325,51 @@ fn hsom_fold(
     Ok((run, swings))
 }
 
+/// The nearest-sequence baseline on every fold, as [`hsom_folds`]: CoSCo-HSOM learned
+/// from all demonstrations but `demos[i]` with `config`, then, instead of the levels' plan,
+/// the bottom events of the training demonstration whose first posture is nearest
+/// `demos[i]`'s ([`Hsom::follow_nearest`](crate::hsom::Hsom::follow_nearest)), executed with
+/// `transition` and scored against `demos[i]` only. What the upper levels add over following
+/// one whole demonstrated sequence through the same bottom code.
+pub fn sequence_folds(
+    arm: &NaoArm,
+    config: &HsomConfig,
+    demos: &[Demonstration],
+    transition: Transition,
+) -> Result<Vec<FoldScores>, ExperimentError> {
+    check_demos(demos)?;
+    (0..demos.len())
+        .map(|i| {
+            let train = all_but(demos, i);
+            let split = Split {
+                train: &train,
+                test: std::slice::from_ref(&demos[i]),
+            };
+            let t = Instant::now();
+            let model = config.fit(&train)?;
+            let train_s = t.elapsed().as_secs_f64();
+            let t = Instant::now();
+            let rep = model.follow_nearest(&train, split.initial()?)?;
+            let reproduce_s = t.elapsed().as_secs_f64();
+            let run = execute_and_score(
+                arm,
+                &rep.postures,
+                transition,
+                split.test,
+                &split.metrics()?,
+            )?;
+            Ok(FoldScores {
+                swings: swings(&run.executed, &demos[i])?,
+                fidelity: run.fidelity,
+                postures: rep.postures.len(),
+                clamped_values: run.clamped_values,
+                train_s,
+                reproduce_s,
+            })
+        })
+        .collect()
+}
+
 /// GMM/GMR ([`DEFAULT_COMPONENTS`]) on every fold, as [`hsom_folds`]; a fold where it cannot
 /// run (fewer than [`MIN_DEMONSTRATIONS`] to learn from, a failed fit) gives the reason.
 /// Errors only when `demos` cannot be used at all.
@@ -333,11 +411,12 @@ pub fn gmr_folds(
         .collect())
 }
 
-/// Leave-one-out for CoSCo-HSOM (trained with `config`, executed with `transition`) and
-/// GMM/GMR: fold `i` learns from every demonstration but `demos[i]`, reproduces from
-/// `demos[i]`'s first posture, executes on `arm` and is scored against `demos[i]` only.
-/// Needs at least 2 demonstrations of the arm's joints; GMM/GMR needs 2 to learn from, so
-/// with 2 demonstrations its folds hold the reason instead.
+/// Leave-one-out for CoSCo-HSOM (trained with `config`, executed with `transition`),
+/// GMM/GMR and the nearest-sequence baseline ([`sequence_folds`]): fold `i` learns from
+/// every demonstration but `demos[i]`, reproduces from `demos[i]`'s first posture, executes
+/// on `arm` and is scored against `demos[i]` only. Needs at least 2 demonstrations of the
+/// arm's joints; GMM/GMR needs 2 to learn from, so with 2 demonstrations its folds hold the
+/// reason instead.
 pub fn leave_one_out(
     arm: &NaoArm,
     config: &HsomConfig,
@@ -346,7 +425,8 @@ pub fn leave_one_out(
 ) -> Result<HeldOut, ExperimentError> {
     let hsom = hsom_folds(arm, config, demos, Training::Trained, transition)?;
     let gmr = gmr_folds(arm, demos)?;
-    HeldOut::new(demos, hsom, gmr)
+    let sequence = sequence_folds(arm, config, demos, transition)?;
+    HeldOut::new(demos, hsom, gmr)?.with_sequence(sequence)
 }
 
 /// One fold of [`swing_folds`]: the large swings of [`SWING_JOINT`] in the executed

@@ -345,12 +345,14 @@ pub fn heldout_table(results: &[MethodResult]) -> String {
 }
 
 /// A markdown table of every fold: the held-out demonstration and both methods' scores
-/// against it.
+/// against it, and the nearest-sequence baseline's joint DTW and swings (`n/a` when it was
+/// not run).
 pub fn folds_table(h: &HeldOut) -> String {
     let mut t = String::from(
         "| fold | held out | CoSCo-HSOM joint DTW | wrist DTW | apex | final | duration ratio \
          | swings (demo) | GMM/GMR joint DTW | wrist DTW | apex | final | duration ratio \
-         | swings |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+         | swings | nearest-sequence joint DTW | swings \
+         |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for f in &h.folds {
         let scores = |s: &super::heldout::FoldScores| {
@@ -371,9 +373,15 @@ pub fn folds_table(h: &HeldOut) -> String {
                 e.as_deref().unwrap_or("no reason given")
             ),
         };
+        let sequence = f.sequence.as_ref().map_or("n/a | n/a".into(), |s| {
+            format!(
+                "{:.4} | {}",
+                s.fidelity.joint_dtw_rad_per_step.mean, s.swings.reproduction
+            )
+        });
         let _ = writeln!(
             t,
-            "| {} | {} | {} | {} ({}) | {gmr} |",
+            "| {} | {} | {} | {} ({}) | {gmr} | {sequence} |",
             f.held_out + 1,
             f.source,
             scores(&f.hsom),
@@ -451,6 +459,23 @@ impl Report {
                      scored against all (the table above). Means; held-out over the folds.\n"
                 );
                 md.push_str(&heldout_table(&self.methods));
+                if let Some(s) = &h.sequence {
+                    let _ = writeln!(
+                        md,
+                        "\nNearest-sequence baseline (the same CoSCo-HSOM model's bottom code \
+                         following the bottom events of the training demonstration that starts \
+                         nearest, no level above; docs/ALGORITHM.md), held out over {} folds: \
+                         joint DTW {} rad/step, wrist-path DTW {} mm/step, duration ratio {}, \
+                         {} swings {} ({}).",
+                        s.folds,
+                        num(Some(s.joint_dtw_rad_per_step), 4),
+                        num(s.wrist_dtw_mm, 1),
+                        num(Some(s.duration_ratio), 2),
+                        JOINT_NAMES[SWING_JOINT],
+                        num(Some(s.swings), 1),
+                        num(Some(s.demo_swings), 1)
+                    );
+                }
                 let _ = writeln!(md);
                 md.push_str(&folds_table(h));
             }

@@ -20,7 +20,7 @@ use crate::metrics::FidelityReport;
 use crate::sim::NaoArm;
 
 use super::baseline::run_baseline_in_sample;
-use super::heldout::{gmr_folds, hsom_folds, HeldOut, HeldOutSummary};
+use super::heldout::{gmr_folds, hsom_folds, sequence_folds, HeldOut, HeldOutSummary};
 use super::pipeline::{learn_and_reproduce, Training};
 use super::report::{level_rows, LevelRow};
 use super::{synthetic_demonstrations, DemoSettings, ExperimentError, Transition};
@@ -167,7 +167,8 @@ fn run_job(
         .iter()
         .map(|config| {
             let hsom = hsom_folds(arm, config, &demos, Training::Trained, settings.transition)?;
-            let heldout = HeldOut::new(&demos, hsom, gmr.clone())?;
+            let sequence = sequence_folds(arm, config, &demos, settings.transition)?;
+            let heldout = HeldOut::new(&demos, hsom, gmr.clone())?.with_sequence(sequence)?;
             let in_sample = match &gmr_in_sample {
                 Some(g) => {
                     let run = learn_and_reproduce(
@@ -363,6 +364,21 @@ fn columns(in_sample: bool) -> Vec<Column> {
             "LElbowRoll swings (rep / demo)",
             1,
             vec![|r| Some(hsom(r).swings), |r| Some(hsom(r).demo_swings)],
+        ),
+        col(
+            "nearest-sequence joint DTW",
+            4,
+            vec![|r| {
+                r.heldout
+                    .sequence
+                    .as_ref()
+                    .map(|s| s.joint_dtw_rad_per_step)
+            }],
+        ),
+        col(
+            "nearest-sequence swings",
+            1,
+            vec![|r| r.heldout.sequence.as_ref().map(|s| s.swings)],
         ),
         col(
             "GMR joint DTW",

@@ -1571,6 +1571,46 @@ impl Hsom {
             .collect();
         Ok(self.timed_postures(&norm[0], &executed, StopReason::EndEvent))
     }
+
+    /// The *nearest-sequence* baseline (docs/ALGORITHM.md, "A simpler thing"): of the
+    /// demonstrations `demos` (a model's training demonstrations), the one whose first
+    /// posture is nearest `initial` (in the model's normalised units), its bottom events
+    /// executed from `initial` exactly as a reproduction's planned events are: each event's
+    /// node at the posture where the model places it, for the node's learned mean duration
+    /// (its own length where the node has none). No level above the bottom is involved:
+    /// this is a reproduction whose plan is one whole demonstrated sequence of bottom nodes,
+    /// the one that starts nearest, where the levels' plan is built chunk by chunk.
+    /// `predicted_by` is 0 throughout.
+    pub fn follow_nearest(
+        &self,
+        demos: &[Demonstration],
+        initial: &[f64],
+    ) -> Result<Reproduction, HsomError> {
+        let p = self.config.params();
+        check_series(&demo_series(demos), p.state_length, p.action_horizon)?;
+        self.check_initial(initial)?;
+        let y0 = self.normalise(initial);
+        let nearest = demos
+            .iter()
+            .map(|d| dist2(&self.normalise(&d.rows[0]), &y0))
+            .enumerate()
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(i, _)| i)
+            .ok_or(HsomError::NoDemonstrations)?;
+        let norm: Vec<Vec<f64>> = demos[nearest]
+            .rows
+            .iter()
+            .map(|r| self.normalise(r))
+            .collect();
+        let executed: Vec<(usize, f64, usize)> = bottom_events(self, &norm)
+            .into_iter()
+            .map(|(n, d)| {
+                let learned = self.dwell.get(n).copied().unwrap_or(0.0);
+                (n, if learned > 0.0 { learned } else { d }, 0)
+            })
+            .collect();
+        Ok(self.timed_postures(&y0, &executed, StopReason::EndEvent))
+    }
 }
 
 #[cfg(test)]
@@ -2001,6 +2041,37 @@ mod tests {
     /// end): a plan that comes home early, before the shortest demonstration's number of
     /// events, ends where its position is nearer the end's, and starts again where it is
     /// nearer the start's (the paper's replication, which the count alone let through).
+    /// The nearest-sequence baseline follows the training demonstration that starts nearest
+    /// the initial posture: from each demonstration's start it makes that one's number of
+    /// excursions (one, or two), where the other has the other number; bad input is refused
+    /// with the error naming it.
+    #[test]
+    fn following_the_nearest_demonstration_keeps_its_number_of_excursions() {
+        use crate::metrics::column_swings;
+        let demo = |source: &str, rows: Vec<Vec<f64>>, y: f64| Demonstration {
+            source: source.into(),
+            columns: vec!["x".into(), "y".into()],
+            time: None,
+            rows: rows.into_iter().map(|r| vec![r[0], r[1] + y]).collect(),
+        };
+        // out along x and back once from (0, 0); twice from (0, 0.3)
+        let once = demo("once", gesture(30, 1), 0.0);
+        let twice = demo("twice", [gesture(30, 2), gesture(30, 3)].concat(), 0.3);
+        let demos = [once, twice];
+        let m = config(2).fit(&demos).unwrap();
+        let count = |rows: &[Vec<f64>]| column_swings(rows, 0, 0.5).unwrap();
+        assert_ne!(count(&demos[0].rows), count(&demos[1].rows));
+        for d in &demos {
+            let r = m.follow_nearest(&demos, &d.rows[0]).unwrap();
+            assert_eq!(count(&r.postures), count(&d.rows), "{}", d.source);
+            assert!(r.predicted_by.iter().all(|&l| l == 0));
+        }
+        let e = m.follow_nearest(&[], &[0.0, 0.0]).unwrap_err();
+        assert!(matches!(e, HsomError::NoDemonstrations), "{e}");
+        let e = m.follow_nearest(&demos, &[0.0]).unwrap_err().to_string();
+        assert!(e.contains("initial posture") && e.contains('2'), "{e}");
+    }
+
     #[test]
     fn a_plan_ends_at_home_where_its_position_is_nearer_the_end() {
         let mut m = trained(3);

@@ -460,22 +460,9 @@ impl Gen<'_> {
 }
 
 impl Hsom {
-    /// Reproduce the learned gesture from `initial` (a posture of `stateLength` values, in the
-    /// data's units) with the configuration's reproduction settings.
-    pub fn reproduce(&self, initial: &[f64]) -> Result<Reproduction, HsomError> {
-        self.reproduce_with(initial, &self.config.params().reproduction)
-    }
-
-    /// Reproduce with other reproduction settings (validate them with
-    /// [`HsomConfig::with_reproduction`](crate::config::HsomConfig::with_reproduction) first;
-    /// out-of-range values are clamped here).
-    pub fn reproduce_with(
-        &self,
-        initial: &[f64],
-        r: &ReproductionParams,
-    ) -> Result<Reproduction, HsomError> {
-        let p = self.config.params();
-        let state = p.state_length;
+    /// An initial posture a reproduction can start from: `stateLength` finite values.
+    pub(crate) fn check_initial(&self, initial: &[f64]) -> Result<(), HsomError> {
+        let state = self.config.params().state_length;
         if initial.len() != state {
             return Err(HsomError::DimensionMismatch {
                 demo: "initial posture".into(),
@@ -491,6 +478,26 @@ impl Hsom {
                 column: c,
             });
         }
+        Ok(())
+    }
+
+    /// Reproduce the learned gesture from `initial` (a posture of `stateLength` values, in the
+    /// data's units) with the configuration's reproduction settings.
+    pub fn reproduce(&self, initial: &[f64]) -> Result<Reproduction, HsomError> {
+        self.reproduce_with(initial, &self.config.params().reproduction)
+    }
+
+    /// Reproduce with other reproduction settings (validate them with
+    /// [`HsomConfig::with_reproduction`](crate::config::HsomConfig::with_reproduction) first;
+    /// out-of-range values are clamped here).
+    pub fn reproduce_with(
+        &self,
+        initial: &[f64],
+        r: &ReproductionParams,
+    ) -> Result<Reproduction, HsomError> {
+        let p = self.config.params();
+        self.check_initial(initial)?;
+        let state = p.state_length;
         let mut r = r.clone();
         r.offset = r.offset.clamp(1, p.memory);
         r.max_length = r.max_length.max(1);
