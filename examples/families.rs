@@ -5,7 +5,9 @@
 //! `tests/hsom_measure.rs` prints). Side by side: the recommended configuration
 //! (configs/nao-gestures.xml, stateLength adapted), the successor-table options
 //! (tests/configs/successor-table.xml), the paper's Table I (literal), a replay of the
-//! training demonstration whose first posture is nearest (no model), and the recommended
+//! training demonstration whose first posture is nearest (no model), the nearest-sequence
+//! baseline (the recommended model's bottom code following that demonstration's bottom
+//! events, no level above: `Hsom::follow_nearest`), and the recommended
 //! configuration's encoding ceiling (each training demonstration through the bottom level's
 //! own code and back, `Hsom::reencode`). Relative DTW: mean Euclidean distance along the DTW
 //! path / the diagonal of the family's bounding box.
@@ -39,13 +41,17 @@ struct Args {
     training_steps: Option<usize>,
 }
 
-/// Held-out and in-sample relative DTW of one configuration, means over the folds.
-fn loo(cfg: &HsomConfig, demos: &[Demonstration], diag: f64) -> Result<(f64, f64)> {
-    let (mut held, mut ins) = (0.0, 0.0);
+/// Held-out and in-sample relative DTW of one configuration, and held out the same models'
+/// nearest-sequence baseline; means over the folds.
+fn loo(cfg: &HsomConfig, demos: &[Demonstration], diag: f64) -> Result<(f64, f64, f64)> {
+    let (mut held, mut ins, mut seq) = (0.0, 0.0, 0.0);
     for i in 0..demos.len() {
         let train: Vec<Demonstration> = others(demos, i).cloned().collect();
-        let rep = cfg.fit(&train)?.reproduce(&demos[i].rows[0])?;
+        let model = cfg.fit(&train)?;
+        let rep = model.reproduce(&demos[i].rows[0])?;
         held += dtw(&rep.postures, &demos[i].rows) / diag;
+        let follow = model.follow_nearest(&train, &demos[i].rows[0])?;
+        seq += dtw(&follow.postures, &demos[i].rows) / diag;
         ins += train
             .iter()
             .map(|d| dtw(&rep.postures, &d.rows))
@@ -54,7 +60,7 @@ fn loo(cfg: &HsomConfig, demos: &[Demonstration], diag: f64) -> Result<(f64, f64
             / diag;
     }
     let n = demos.len() as f64;
-    Ok((held / n, ins / n))
+    Ok((held / n, ins / n, seq / n))
 }
 
 fn others(demos: &[Demonstration], i: usize) -> impl Iterator<Item = &Demonstration> {
@@ -101,8 +107,8 @@ fn run(a: Args) -> Result<()> {
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/configs/successor-table.xml");
     let succ = load_config(&succ_path)?.into_params();
     println!("Leave-one-out relative DTW (held out | in-sample), CoSCo-HSOM seeds {}; medians over the seeds in the last rows.\n", a.seeds);
-    println!("| family | seed | recommended held out | successor-table held out | Table I held out | replay held out | recommended in-sample | successor-table in-sample | encoding ceiling |");
-    println!("|---|---|---|---|---|---|---|---|---|");
+    println!("| family | seed | recommended held out | successor-table held out | Table I held out | replay held out | nearest-sequence held out | recommended in-sample | successor-table in-sample | encoding ceiling |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
     let families = [
         ("eight", figure_eight(6, 7)),
         ("stroke", stroke(6, 8)),
@@ -113,25 +119,25 @@ fn run(a: Args) -> Result<()> {
         let dims = demos[0].rows[0].len();
         let diag = diagonal(demos);
         let rp = replay(demos, diag);
-        let mut rows: Vec<[f64; 7]> = Vec::new();
+        let mut rows: Vec<[f64; 8]> = Vec::new();
         for &seed in &seeds {
             let mut rec = recommended_for(dims).into_params();
             if let Some(s) = a.training_steps {
                 rec.training_steps = s;
             }
             let rec = adapted(rec, dims, seed)?;
-            let (rh, ri) = loo(&rec, demos, diag)?;
-            let (sh, si) = loo(&adapted(succ.clone(), dims, seed)?, demos, diag)?;
-            let (th, _) = loo(&adapted(HsomParams::table1(), dims, seed)?, demos, diag)?;
+            let (rh, ri, rs) = loo(&rec, demos, diag)?;
+            let (sh, si, _) = loo(&adapted(succ.clone(), dims, seed)?, demos, diag)?;
+            let (th, _, _) = loo(&adapted(HsomParams::table1(), dims, seed)?, demos, diag)?;
             let c = ceiling(&rec, demos, diag)?;
-            let r = [rh, sh, th, rp, ri, si, c];
+            let r = [rh, sh, th, rp, rs, ri, si, c];
             println!(
                 "| {name} | {seed} | {} |",
                 r.map(|v| format!("{v:.4}")).join(" | ")
             );
             rows.push(r);
         }
-        let m: Vec<String> = (0..7)
+        let m: Vec<String> = (0..8)
             .map(|k| {
                 format!(
                     "{:.4}",
