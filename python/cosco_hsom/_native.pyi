@@ -63,6 +63,9 @@ class Hsom:
         """Save the model (.bin binary, .txt plain text; written atomically)."""
     def reproduce(self, initial: npt.ArrayLike) -> np.ndarray:
         """Reproduce from an initial posture: one row per step, the first the initial posture."""
+    def follow_nearest(self, demos: Sequence[npt.ArrayLike], initial: npt.ArrayLike) -> np.ndarray:
+        """The nearest-sequence baseline: of `demos`, the one whose first posture is nearest
+        `initial`, its bottom events through this model's bottom code, no level above."""
     @property
     def columns(self) -> List[str]: ...
     @property

@@ -408,6 +408,26 @@ impl Hsom {
         Ok(array2(py, &rep.postures, self.inner.columns().len()))
     }
 
+    /// The nearest-sequence baseline (docs/ALGORITHM.md, "A simpler thing does as well"): of
+    /// `demos` (a list of 2-D arrays as for `fit`, normally the training demonstrations), the
+    /// one whose first posture is nearest `initial`, its bottom events executed through this
+    /// model's bottom code from `initial`, with no level above. A 2-D array as `reproduce`
+    /// gives (the first row is the initial posture).
+    fn follow_nearest<'py>(
+        &self,
+        py: Python<'py>,
+        demos: &Bound<'py, PyAny>,
+        initial: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let initial = posture_of(initial, "initial")?;
+        let series = series_of(demos, "demos")?;
+        let demos = steps::demonstrations_from_rows(series, None).map_err(step_err)?;
+        let rep = py
+            .allow_threads(|| self.inner.follow_nearest(&demos, &initial))
+            .map_err(|e| py_err(&e))?;
+        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+    }
+
     /// The names of the variables the model learned.
     #[getter]
     fn columns(&self) -> Vec<String> {

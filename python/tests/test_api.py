@@ -25,6 +25,21 @@ def test_reproduction_follows_the_demonstrations(demos):
     assert mean_dtw(path, demos) < 0.5 * mean_dtw(backwards, demos[1:])
 
 
+def test_follow_nearest_retraces_the_demonstration_that_starts_nearest(demos):
+    cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
+    model = cosco_hsom.Hsom.fit(cfg, demos)
+    path = model.follow_nearest(demos, demos[1][0])
+    assert isinstance(path, np.ndarray) and path.ndim == 2 and path.shape[1] == 2
+    np.testing.assert_allclose(path[0], demos[1][0], rtol=0, atol=1e-12)
+    # the baseline follows a demonstration of the shape: as close to them as the
+    # reproduction is, and much closer than the shape traversed backwards
+    assert mean_dtw(path, demos) < 0.5 * mean_dtw(demos[0][::-1], demos[1:])
+    with pytest.raises(ValueError, match="initial posture"):
+        model.follow_nearest(demos, [0.0])
+    with pytest.raises(ValueError, match="demos"):
+        model.follow_nearest(demos[0], demos[0][0])
+
+
 def test_same_seed_same_model_other_seed_other_model(demos, tmp_path):
     cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
     a = cosco_hsom.Hsom.fit(cfg, demos)
