@@ -69,7 +69,8 @@ pub struct Fold {
     pub gmr: Option<FoldScores>,
     /// Why GMM/GMR did not run on this fold.
     pub gmr_error: Option<String>,
-    /// The nearest-sequence baseline on the same fold ([`sequence_folds`]), when it was run.
+    /// The nearest-sequence baseline on the same fold ([`hsom_and_sequence_folds`]), when it
+    /// was run.
     pub sequence: Option<FoldScores>,
 }
 
@@ -206,7 +207,7 @@ impl HeldOut {
         })
     }
 
-    /// Add the nearest-sequence baseline's folds ([`sequence_folds`]): `sequence[i]` is fold
+    /// Add the nearest-sequence baseline's folds ([`hsom_and_sequence_folds`]): `sequence[i]` is fold
     /// `i`'s, one per fold.
     pub fn with_sequence(mut self, sequence: Vec<FoldScores>) -> Result<HeldOut, ExperimentError> {
         if sequence.len() != self.folds.len() {
@@ -293,16 +294,21 @@ pub fn hsom_folds(
     (0..demos.len())
         .map(|i| {
             let (run, swings) = hsom_fold(arm, config, demos, i, training, transition)?;
-            Ok(FoldScores {
-                swings,
-                fidelity: run.fidelity,
-                postures: run.reproduction.postures.len(),
-                clamped_values: run.clamped_values,
-                train_s: run.train_s,
-                reproduce_s: run.reproduce_s,
-            })
+            Ok(fold_scores(run, swings))
         })
         .collect()
+}
+
+/// A CoSCo-HSOM fold's scores from its run and swings.
+fn fold_scores(run: Outcome, swings: Swings) -> FoldScores {
+    FoldScores {
+        swings,
+        postures: run.reproduction.postures.len(),
+        clamped_values: run.clamped_values,
+        train_s: run.train_s,
+        reproduce_s: run.reproduce_s,
+        fidelity: run.fidelity,
+    }
 }
 
 /// Fold `i` of [`hsom_folds`]: learned from all demonstrations but `demos[i]`, reproduced
@@ -325,49 +331,51 @@ fn hsom_fold(
     Ok((run, swings))
 }
 
-/// The nearest-sequence baseline on every fold, as [`hsom_folds`]: CoSCo-HSOM learned
-/// from all demonstrations but `demos[i]` with `config`, then, instead of the levels' plan,
-/// the bottom events of the training demonstration whose first posture is nearest
-/// `demos[i]`'s ([`Hsom::follow_nearest`](crate::hsom::Hsom::follow_nearest)), executed with
-/// `transition` and scored against `demos[i]` only. What the upper levels add over following
-/// one whole demonstrated sequence through the same bottom code.
-pub fn sequence_folds(
+/// CoSCo-HSOM's folds as [`hsom_folds`] (trained), and on each fold, from the same trained
+/// model, the *nearest-sequence* baseline: instead of the levels' plan, the bottom events of
+/// the training demonstration whose first posture is nearest `demos[i]`'s
+/// ([`Hsom::follow_nearest`](crate::hsom::Hsom::follow_nearest)), executed with
+/// `transition` and scored against `demos[i]` only: what the upper levels add over following
+/// one whole demonstrated sequence through the same bottom code. Returns (CoSCo-HSOM's
+/// folds, the baseline's), one per demonstration each.
+pub fn hsom_and_sequence_folds(
     arm: &NaoArm,
     config: &HsomConfig,
     demos: &[Demonstration],
     transition: Transition,
-) -> Result<Vec<FoldScores>, ExperimentError> {
+) -> Result<(Vec<FoldScores>, Vec<FoldScores>), ExperimentError> {
     check_demos(demos)?;
     (0..demos.len())
         .map(|i| {
+            let (run, swings_hsom) =
+                hsom_fold(arm, config, demos, i, Training::Trained, transition)?;
             let train = all_but(demos, i);
             let split = Split {
                 train: &train,
                 test: std::slice::from_ref(&demos[i]),
             };
             let t = Instant::now();
-            let model = config.fit(&train)?;
-            let train_s = t.elapsed().as_secs_f64();
-            let t = Instant::now();
-            let rep = model.follow_nearest(&train, split.initial()?)?;
+            let rep = run.model.follow_nearest(&train, split.initial()?)?;
             let reproduce_s = t.elapsed().as_secs_f64();
-            let run = execute_and_score(
+            let seq = execute_and_score(
                 arm,
                 &rep.postures,
                 transition,
                 split.test,
                 &split.metrics()?,
             )?;
-            Ok(FoldScores {
-                swings: swings(&run.executed, &demos[i])?,
-                fidelity: run.fidelity,
+            let sequence = FoldScores {
+                swings: swings(&seq.executed, &demos[i])?,
+                fidelity: seq.fidelity,
                 postures: rep.postures.len(),
-                clamped_values: run.clamped_values,
-                train_s,
+                clamped_values: seq.clamped_values,
+                train_s: run.train_s,
                 reproduce_s,
-            })
+            };
+            Ok((fold_scores(run, swings_hsom), sequence))
         })
-        .collect()
+        .collect::<Result<Vec<_>, ExperimentError>>()
+        .map(|v| v.into_iter().unzip())
 }
 
 /// GMM/GMR ([`DEFAULT_COMPONENTS`]) on every fold, as [`hsom_folds`]; a fold where it cannot
@@ -412,7 +420,7 @@ pub fn gmr_folds(
 }
 
 /// Leave-one-out for CoSCo-HSOM (trained with `config`, executed with `transition`),
-/// GMM/GMR and the nearest-sequence baseline ([`sequence_folds`]): fold `i` learns from
+/// GMM/GMR and the nearest-sequence baseline ([`hsom_and_sequence_folds`]): fold `i` learns from
 /// every demonstration but `demos[i]`, reproduces from `demos[i]`'s first posture, executes
 /// on `arm` and is scored against `demos[i]` only. Needs at least 2 demonstrations of the
 /// arm's joints; GMM/GMR needs 2 to learn from, so with 2 demonstrations its folds hold the
@@ -423,9 +431,8 @@ pub fn leave_one_out(
     demos: &[Demonstration],
     transition: Transition,
 ) -> Result<HeldOut, ExperimentError> {
-    let hsom = hsom_folds(arm, config, demos, Training::Trained, transition)?;
+    let (hsom, sequence) = hsom_and_sequence_folds(arm, config, demos, transition)?;
     let gmr = gmr_folds(arm, demos)?;
-    let sequence = sequence_folds(arm, config, demos, transition)?;
     HeldOut::new(demos, hsom, gmr)?.with_sequence(sequence)
 }
 

@@ -26,7 +26,7 @@ pub use evaluate::{
 pub use execute::{clamp_to_ranges, execute_postures, Transition};
 pub use film::film;
 pub use heldout::{
-    gmr_folds, hsom_folds, leave_one_out, sequence_folds, Fold, FoldScores, HeldOut,
+    gmr_folds, hsom_and_sequence_folds, hsom_folds, leave_one_out, Fold, FoldScores, HeldOut,
     HeldOutSummary, Swings,
 };
 pub use pipeline::{

@@ -20,7 +20,7 @@ use crate::metrics::FidelityReport;
 use crate::sim::NaoArm;
 
 use super::baseline::run_baseline_in_sample;
-use super::heldout::{gmr_folds, hsom_folds, sequence_folds, HeldOut, HeldOutSummary};
+use super::heldout::{gmr_folds, hsom_and_sequence_folds, HeldOut, HeldOutSummary};
 use super::pipeline::{learn_and_reproduce, Training};
 use super::report::{level_rows, LevelRow};
 use super::{synthetic_demonstrations, DemoSettings, ExperimentError, Transition};
@@ -166,8 +166,8 @@ fn run_job(
     configs
         .iter()
         .map(|config| {
-            let hsom = hsom_folds(arm, config, &demos, Training::Trained, settings.transition)?;
-            let sequence = sequence_folds(arm, config, &demos, settings.transition)?;
+            let (hsom, sequence) =
+                hsom_and_sequence_folds(arm, config, &demos, settings.transition)?;
             let heldout = HeldOut::new(&demos, hsom, gmr.clone())?.with_sequence(sequence)?;
             let in_sample = match &gmr_in_sample {
                 Some(g) => {
