@@ -11,7 +11,7 @@ use rand_chacha::ChaCha8Rng;
 use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::experiment::heldout::{
-    swing_folds, swing_folds_png, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD,
+    continuation_folds, swing_folds, swing_folds_png, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD,
 };
 use cosco_hsom::experiment::{
     hsom_folds, leave_one_out, sample_period, synthetic_demonstrations, DemoSettings, HeldOut,
@@ -186,6 +186,38 @@ fn swing_folds_draw_the_scored_folds() {
     swing_folds_png(&path, "reading-watch", &folds).unwrap();
     let png = std::fs::read(&path).unwrap();
     assert_eq!(&png[1..4], b"PNG");
+}
+
+/// Continuing a prefix: one fold per demonstration for the hierarchy and the nearest
+/// sequence, each scored against its held-out demonstration alone, whose first half both
+/// executed as given; a prefix share outside (0, 1) is refused.
+#[test]
+fn continuing_a_prefix_is_scored_against_the_held_out_demonstration() {
+    let f = fixture();
+    let (h, s) = continuation_folds(&f.arm, &f.config, &f.demos, 0.5, Transition::Linear).unwrap();
+    assert_eq!((h.len(), s.len()), (COUNT, COUNT));
+    for (i, (a, b)) in h.iter().zip(&s).enumerate() {
+        let d = trimmed_duration(&f.demos[i]);
+        for (method, fold) in [("hierarchy", a), ("nearest sequence", b)] {
+            let r = &fold.fidelity;
+            assert_eq!(r.per_demo.len(), 1, "{method} fold {i}");
+            assert!(
+                (r.per_demo[0].demo_duration_s - d).abs() < 1e-9,
+                "{method} fold {i}"
+            );
+            // the prefix is half the held-out demonstration, the continuation the rest
+            assert!(
+                fold.postures > f.demos[i].rows.len() / 2,
+                "{method} fold {i}"
+            );
+        }
+    }
+    for bad in [0.0, 1.0, f64::NAN] {
+        let e = continuation_folds(&f.arm, &f.config, &f.demos, bad, Transition::Linear)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("strictly between 0 and 1"), "{bad}: {e}");
+    }
 }
 
 #[test]

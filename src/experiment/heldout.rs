@@ -378,6 +378,75 @@ pub fn hsom_and_sequence_folds(
         .map(|v| v.into_iter().unzip())
 }
 
+/// Continuing a prefix, held out: on fold `i` CoSCo-HSOM learns from every demonstration but
+/// `demos[i]` (with `config`), is shown the first `fraction` of `demos[i]`'s samples (at
+/// least `actionHorizon + 1`, at most all but one) and continues it
+/// ([`Hsom::continue_events`](crate::hsom::Hsom::continue_events): the prefix pushed up the
+/// lists, the levels plan the rest), and the nearest-sequence baseline continues it from the
+/// same model ([`Hsom::follow_nearest_from`](crate::hsom::Hsom::follow_nearest_from): the
+/// training demonstration along which the prefix runs closest, after the prefix's end).
+/// The prefix followed by each continuation is executed with `transition` and scored
+/// against `demos[i]` alone (the prefix is the same for both, so the difference is the
+/// continuation's). Returns (the hierarchy's folds, the baseline's).
+pub fn continuation_folds(
+    arm: &NaoArm,
+    config: &HsomConfig,
+    demos: &[Demonstration],
+    fraction: f64,
+    transition: Transition,
+) -> Result<(Vec<FoldScores>, Vec<FoldScores>), ExperimentError> {
+    check_demos(demos)?;
+    if !(fraction > 0.0 && fraction < 1.0) {
+        return Err(ExperimentError::Invalid(format!(
+            "prefix fraction {fraction}: needs a number strictly between 0 and 1"
+        )));
+    }
+    let needed = config.params().action_horizon + 1;
+    (0..demos.len())
+        .map(|i| {
+            let train = all_but(demos, i);
+            let held = &demos[i];
+            let test = std::slice::from_ref(held);
+            let metrics = Split {
+                train: &train,
+                test,
+            }
+            .metrics()?;
+            let k = ((held.rows.len() as f64 * fraction).round() as usize)
+                .max(needed)
+                .min(held.rows.len() - 1);
+            let prefix = &held.rows[..k];
+            let t = Instant::now();
+            let model = config.fit(&train)?;
+            let train_s = t.elapsed().as_secs_f64();
+            let score = |rep: crate::hsom::Reproduction, reproduce_s: f64| {
+                let postures: Vec<Vec<f64>> = prefix
+                    .iter()
+                    .chain(rep.postures.iter().skip(1))
+                    .cloned()
+                    .collect();
+                let run = execute_and_score(arm, &postures, transition, test, &metrics)?;
+                Ok::<_, ExperimentError>(FoldScores {
+                    swings: swings(&run.executed, held)?,
+                    fidelity: run.fidelity,
+                    postures: postures.len(),
+                    clamped_values: run.clamped_values,
+                    train_s,
+                    reproduce_s,
+                })
+            };
+            let t = Instant::now();
+            let rep = model.continue_events(prefix)?;
+            let hsom = score(rep, t.elapsed().as_secs_f64())?;
+            let t = Instant::now();
+            let rep = model.follow_nearest_from(&train, prefix)?;
+            let sequence = score(rep, t.elapsed().as_secs_f64())?;
+            Ok((hsom, sequence))
+        })
+        .collect::<Result<Vec<_>, ExperimentError>>()
+        .map(|v| v.into_iter().unzip())
+}
+
 /// GMM/GMR ([`DEFAULT_COMPONENTS`]) on every fold, as [`hsom_folds`]; a fold where it cannot
 /// run (fewer than [`MIN_DEMONSTRATIONS`] to learn from, a failed fit) gives the reason.
 /// Errors only when `demos` cannot be used at all.

@@ -26,8 +26,8 @@ pub use evaluate::{
 pub use execute::{clamp_to_ranges, execute_postures, Transition};
 pub use film::film;
 pub use heldout::{
-    gmr_folds, hsom_and_sequence_folds, hsom_folds, leave_one_out, Fold, FoldScores, HeldOut,
-    HeldOutSummary, Swings,
+    continuation_folds, gmr_folds, hsom_and_sequence_folds, hsom_folds, leave_one_out, Fold,
+    FoldScores, HeldOut, HeldOutSummary, Swings,
 };
 pub use pipeline::{
     execute_and_score, learn_and_reproduce, learn_and_score, reproduce_variant, sample_period,

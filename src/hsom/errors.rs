@@ -9,6 +9,14 @@ pub enum HsomError {
     /// No demonstration was given.
     #[error("no demonstrations to train on")]
     NoDemonstrations,
+    /// The operation needs another algorithm than the model's.
+    #[error("{what} needs a model trained with algorithm = events (this one: {algorithm})")]
+    NeedsEvents {
+        /// What was asked.
+        what: String,
+        /// The model's algorithm.
+        algorithm: String,
+    },
     /// A demonstration is too short for one state-action pair at the configuration's
     /// action horizon.
     #[error("demonstration {demo} has {rows} sample(s); at least {needed} are needed (actionHorizon + 1, and never fewer than 2)")]

@@ -956,6 +956,22 @@ impl Hsom {
     }
 
     pub(crate) fn reproduce_events(&self, y0: &[f64], r: &ReproductionParams) -> Reproduction {
+        self.plan_events(y0, y0, &[], r)
+    }
+
+    /// The events reproduction after `prefix`, bottom events already executed from the
+    /// normalised posture `start` (none: a reproduction from `start`): they are pushed up the
+    /// lists exactly as executed events are, so every level's context and completed entries
+    /// are theirs, and the plan continues from there. The postures returned start at `from`
+    /// (the prefix's last posture) and hold only the continuation's events.
+    fn plan_events(
+        &self,
+        start: &[f64],
+        from: &[f64],
+        prefix: &[(usize, f64)],
+        r: &ReproductionParams,
+    ) -> Reproduction {
+        let y0 = start;
         let cfg = &self.config;
         let p = cfg.params();
         let max_len = r.max_length;
@@ -987,7 +1003,12 @@ impl Hsom {
         let mut mask = vec![true; lay.dim()];
         let mut total = 0.0;
         let mut stop = StopReason::LearnedLength;
-        let mut first = true;
+        let mut first = prefix.is_empty();
+        for &(node, dur) in prefix {
+            executed.push((node, dur, 0));
+            total += dur;
+            lists.push_event(self, lay, code, mean_events, node, dur);
+        }
         'run: loop {
             if plan.is_empty() {
                 lists.expected.iter_mut().for_each(|e| e.clear());
@@ -1078,7 +1099,7 @@ impl Hsom {
                 plan.clear();
             }
         }
-        self.timed_postures(y0, &executed, stop)
+        self.timed_postures(from, &executed[prefix.len()..], stop)
     }
 
     /// Expand the prediction of node `n` of `level` from slot `from` into timed bottom
@@ -1611,6 +1632,93 @@ impl Hsom {
             .collect();
         Ok(self.timed_postures(&y0, &executed, StopReason::EndEvent))
     }
+
+    /// The normalised rows of `prefix` (the first samples of a gesture, in the data's units)
+    /// once checked as a demonstration is, and its bottom events.
+    fn prefix_events(
+        &self,
+        prefix: &[Vec<f64>],
+    ) -> Result<(Vec<Vec<f64>>, Vec<(usize, f64)>), HsomError> {
+        let p = self.config.params();
+        check_series(
+            &[super::algorithm::Series {
+                source: "prefix",
+                rows: prefix,
+            }],
+            p.state_length,
+            p.action_horizon,
+        )?;
+        let norm: Vec<Vec<f64>> = prefix.iter().map(|r| self.normalise(r)).collect();
+        let events = bottom_events(self, &norm);
+        Ok((norm, events))
+    }
+
+    /// Continue a gesture from its first samples (`prefix`, in the data's units; at least
+    /// `actionHorizon + 1` of them) with the events extension's own machinery: the prefix's
+    /// bottom events are pushed up the lists exactly as executed events are (each level's
+    /// context, phase and completed entries become the prefix's), and the levels plan the rest
+    /// from there (docs/ALGORITHM.md, "Continuing a prefix"). The postures start at the
+    /// prefix's last posture and hold only the continuation. Needs `algorithm = events`.
+    pub fn continue_events(&self, prefix: &[Vec<f64>]) -> Result<Reproduction, HsomError> {
+        let p = self.config.params();
+        if p.algorithm != crate::config::Algorithm::Events {
+            return Err(HsomError::NeedsEvents {
+                what: "continuing a prefix".into(),
+                algorithm: format!("{:?}", p.algorithm).to_lowercase(),
+            });
+        }
+        let (norm, events) = self.prefix_events(prefix)?;
+        let last = &norm[norm.len() - 1];
+        let r = &p.reproduction;
+        let mut rep = self.plan_events(&norm[0], last, &events, r);
+        rep.postures.truncate(r.max_length.max(1));
+        rep.steps.truncate(r.max_length.max(1));
+        rep.predicted_by.truncate(r.max_length.max(1));
+        Ok(rep)
+    }
+
+    /// The nearest-sequence baseline for a prefix: of `demos`, the one along which `prefix`
+    /// runs closest (open-end DTW in the model's normalised units, per prefix sample), its
+    /// bottom events after the sample where the prefix ends along it, executed from the
+    /// prefix's last posture as [`Hsom::follow_nearest`] executes them. The postures start
+    /// at the prefix's last posture and hold only the continuation.
+    pub fn follow_nearest_from(
+        &self,
+        demos: &[Demonstration],
+        prefix: &[Vec<f64>],
+    ) -> Result<Reproduction, HsomError> {
+        let p = self.config.params();
+        check_series(&demo_series(demos), p.state_length, p.action_horizon)?;
+        let (norm, _) = self.prefix_events(prefix)?;
+        let (d, end) = demos
+            .iter()
+            .enumerate()
+            .map(|(i, d)| {
+                let rows: Vec<Vec<f64>> = d.rows.iter().map(|r| self.normalise(r)).collect();
+                let (end, cost) = super::recognize::open_end_cost(&norm, &rows);
+                (i, end, cost)
+            })
+            .min_by(|a, b| a.2.total_cmp(&b.2))
+            .map(|(i, end, _)| (i, end))
+            .ok_or(HsomError::NoDemonstrations)?;
+        let rows: Vec<Vec<f64>> = demos[d].rows.iter().map(|r| self.normalise(r)).collect();
+        // the events the prefix has reached (begun at or before its end) are skipped, as
+        // `continue_events` takes the prefix's last event as done
+        let mut begun = 0.0;
+        let executed: Vec<(usize, f64, usize)> = bottom_events(self, &rows)
+            .into_iter()
+            .skip_while(|&(_, len)| {
+                let skip = begun <= end as f64;
+                begun += len;
+                skip
+            })
+            .map(|(n, len)| {
+                let learned = self.dwell.get(n).copied().unwrap_or(0.0);
+                (n, if learned > 0.0 { learned } else { len }, 0)
+            })
+            .collect();
+        Ok(self.timed_postures(&norm[norm.len() - 1], &executed, StopReason::EndEvent))
+    }
 }
 
 #[cfg(test)]
@@ -2041,35 +2149,110 @@ mod tests {
     /// end): a plan that comes home early, before the shortest demonstration's number of
     /// events, ends where its position is nearer the end's, and starts again where it is
     /// nearer the start's (the paper's replication, which the count alone let through).
-    /// The nearest-sequence baseline follows the training demonstration that starts nearest
-    /// the initial posture: from each demonstration's start it makes that one's number of
-    /// excursions (one, or two), where the other has the other number; bad input is refused
-    /// with the error naming it.
-    #[test]
-    fn following_the_nearest_demonstration_keeps_its_number_of_excursions() {
-        use crate::metrics::column_swings;
+    /// Two demonstrations of a 2-D gesture from different starts: out along x and back once
+    /// from (0, 0), twice from (0, 0.3); and the model `config(2)` trained on them.
+    fn once_and_twice() -> ([Demonstration; 2], Hsom) {
         let demo = |source: &str, rows: Vec<Vec<f64>>, y: f64| Demonstration {
             source: source.into(),
             columns: vec!["x".into(), "y".into()],
             time: None,
             rows: rows.into_iter().map(|r| vec![r[0], r[1] + y]).collect(),
         };
-        // out along x and back once from (0, 0); twice from (0, 0.3)
-        let once = demo("once", gesture(30, 1), 0.0);
-        let twice = demo("twice", [gesture(30, 2), gesture(30, 3)].concat(), 0.3);
-        let demos = [once, twice];
+        let demos = [
+            demo("once", gesture(30, 1), 0.0),
+            demo("twice", [gesture(30, 2), gesture(30, 3)].concat(), 0.3),
+        ];
         let m = config(2).fit(&demos).unwrap();
-        let count = |rows: &[Vec<f64>]| column_swings(rows, 0, 0.5).unwrap();
-        assert_ne!(count(&demos[0].rows), count(&demos[1].rows));
+        (demos, m)
+    }
+
+    /// Turning points of x larger than 0.5 (out and back once: 1; twice: 3).
+    fn excursions(rows: &[Vec<f64>]) -> usize {
+        crate::metrics::column_swings(rows, 0, 0.5).unwrap()
+    }
+
+    /// The nearest-sequence baseline follows the training demonstration that starts nearest
+    /// the initial posture: from each demonstration's start it makes that one's number of
+    /// excursions (one, or two), where the other has the other number; bad input is refused
+    /// with the error naming it.
+    #[test]
+    fn following_the_nearest_demonstration_keeps_its_number_of_excursions() {
+        let (demos, m) = once_and_twice();
+        assert_ne!(excursions(&demos[0].rows), excursions(&demos[1].rows));
         for d in &demos {
             let r = m.follow_nearest(&demos, &d.rows[0]).unwrap();
-            assert_eq!(count(&r.postures), count(&d.rows), "{}", d.source);
+            assert_eq!(excursions(&r.postures), excursions(&d.rows), "{}", d.source);
             assert!(r.predicted_by.iter().all(|&l| l == 0));
         }
         let e = m.follow_nearest(&[], &[0.0, 0.0]).unwrap_err();
         assert!(matches!(e, HsomError::NoDemonstrations), "{e}");
         let e = m.follow_nearest(&demos, &[0.0]).unwrap_err().to_string();
         assert!(e.contains("initial posture") && e.contains('2'), "{e}");
+    }
+
+    /// Continued after a prefix, the nearest sequence goes on along the demonstration the
+    /// prefix ran along, from where it ended: half of "twice" (its first excursion) is
+    /// completed with the second, the prefix of "once" up to its far hold with the way back
+    /// only.
+    #[test]
+    fn the_nearest_sequence_continues_the_demonstration_the_prefix_ran_along() {
+        let (demos, m) = once_and_twice();
+        for d in &demos {
+            let prefix = &d.rows[..d.rows.len() / 2];
+            let r = m.follow_nearest_from(&demos, prefix).unwrap();
+            assert_eq!(&r.postures[0], prefix.last().unwrap());
+            let whole: Vec<Vec<f64>> = prefix
+                .iter()
+                .chain(r.postures.iter().skip(1))
+                .cloned()
+                .collect();
+            assert_eq!(excursions(&whole), excursions(&d.rows), "{}", d.source);
+        }
+        let e = m
+            .follow_nearest_from(&demos, &demos[0].rows[..1])
+            .unwrap_err();
+        assert!(e.to_string().contains("prefix"), "{e}");
+    }
+
+    /// Continuing a prefix with the hierarchy: the prefix's events are pushed up the lists
+    /// and the levels plan the rest. Shown the way out and part of the far hold, the
+    /// reproduction holds, comes back and ends by itself, without going out again; an
+    /// untrained hierarchy does not. A paper-algorithm model and a too-short prefix are
+    /// refused with named errors.
+    #[test]
+    fn continuing_a_prefix_plans_the_rest_from_the_lists() {
+        let prefix: Vec<Vec<f64>> = gesture(35, 9).into_iter().take(35 + 40 + 15).collect();
+        let goes_home = |m: &Hsom| {
+            let r = m.continue_events(&prefix).unwrap();
+            let xs: Vec<f64> = r.postures.iter().map(|p| p[0]).collect();
+            let back = xs.iter().position(|&x| x < 0.5);
+            let out_again = back.is_some_and(|b| xs[b..].iter().any(|&x| x > 0.6));
+            let held = xs.iter().take_while(|&&x| x > 0.9).count();
+            (
+                r.postures[0] == prefix[prefix.len() - 1]
+                    && r.stop == StopReason::EndEvent
+                    && xs.last().unwrap().abs() < 0.15
+                    && !out_again
+                    && (5..=45).contains(&held),
+                format!("{xs:?}"),
+            )
+        };
+        let (ok, xs) = goes_home(&trained(3));
+        assert!(ok, "trained: {xs}");
+        let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
+        let (ok, xs) = goes_home(&config(3).initialise_series(&series).unwrap());
+        assert!(!ok, "untrained: {xs}");
+        let mut p = HsomParams::table1();
+        p.state_length = 2;
+        p.action_length = 2;
+        let paper = p.check("paper").unwrap().fit_series(&series).unwrap();
+        let e = paper.continue_events(&prefix).unwrap_err().to_string();
+        assert!(e.contains("algorithm = events"), "{e}");
+        let e = trained(3)
+            .continue_events(&prefix[..2])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("prefix") && e.contains("2 sample"), "{e}");
     }
 
     #[test]

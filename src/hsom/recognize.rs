@@ -487,6 +487,11 @@ fn argmin(v: &[f64]) -> usize {
 /// Where along `b` the sequence `a` ends: the column of the cheapest warping path that
 /// starts at both starts and covers all of `a` (open end in `b`).
 fn open_end(a: &[Vec<f64>], b: &[Vec<f64>]) -> usize {
+    open_end_cost(a, b).0
+}
+
+/// [`open_end`] and that path's cost per sample of `a`.
+pub(crate) fn open_end_cost(a: &[Vec<f64>], b: &[Vec<f64>]) -> (usize, f64) {
     let m = b.len();
     let mut prev = vec![f64::INFINITY; m];
     let mut cur = vec![f64::INFINITY; m];
@@ -509,5 +514,6 @@ fn open_end(a: &[Vec<f64>], b: &[Vec<f64>]) -> usize {
         }
         std::mem::swap(&mut prev, &mut cur);
     }
-    argmin(&prev)
+    let end = argmin(&prev);
+    (end, prev[end] / a.len().max(1) as f64)
 }
