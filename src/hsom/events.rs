@@ -1633,12 +1633,9 @@ impl Hsom {
         Ok(self.timed_postures(&y0, &executed, StopReason::EndEvent))
     }
 
-    /// The normalised rows of `prefix` (the first samples of a gesture, in the data's units)
-    /// once checked as a demonstration is, and its bottom events.
-    fn prefix_events(
-        &self,
-        prefix: &[Vec<f64>],
-    ) -> Result<(Vec<Vec<f64>>, Vec<(usize, f64)>), HsomError> {
+    /// The normalised rows of `prefix` (the first samples of a gesture, in the data's units),
+    /// once checked as a demonstration is.
+    fn normalised_prefix(&self, prefix: &[Vec<f64>]) -> Result<Vec<Vec<f64>>, HsomError> {
         let p = self.config.params();
         check_series(
             &[super::algorithm::Series {
@@ -1648,9 +1645,7 @@ impl Hsom {
             p.state_length,
             p.action_horizon,
         )?;
-        let norm: Vec<Vec<f64>> = prefix.iter().map(|r| self.normalise(r)).collect();
-        let events = bottom_events(self, &norm);
-        Ok((norm, events))
+        Ok(prefix.iter().map(|r| self.normalise(r)).collect())
     }
 
     /// Continue a gesture from its first samples (`prefix`, in the data's units; at least
@@ -1667,13 +1662,12 @@ impl Hsom {
                 algorithm: format!("{:?}", p.algorithm).to_lowercase(),
             });
         }
-        let (norm, events) = self.prefix_events(prefix)?;
+        let norm = self.normalised_prefix(prefix)?;
+        let events = bottom_events(self, &norm);
         let last = &norm[norm.len() - 1];
         let r = &p.reproduction;
         let mut rep = self.plan_events(&norm[0], last, &events, r);
-        rep.postures.truncate(r.max_length.max(1));
-        rep.steps.truncate(r.max_length.max(1));
-        rep.predicted_by.truncate(r.max_length.max(1));
+        rep.truncate(r.max_length);
         Ok(rep)
     }
 
@@ -1689,7 +1683,7 @@ impl Hsom {
     ) -> Result<Reproduction, HsomError> {
         let p = self.config.params();
         check_series(&demo_series(demos), p.state_length, p.action_horizon)?;
-        let (norm, _) = self.prefix_events(prefix)?;
+        let norm = self.normalised_prefix(prefix)?;
         let (d, end) = demos
             .iter()
             .enumerate()

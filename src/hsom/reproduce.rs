@@ -37,6 +37,16 @@ pub struct Reproduction {
     pub stop: StopReason,
 }
 
+impl Reproduction {
+    /// Keep the first `n` steps (at least one: the initial posture).
+    pub(crate) fn truncate(&mut self, n: usize) {
+        let n = n.max(1);
+        self.postures.truncate(n);
+        self.steps.truncate(n);
+        self.predicted_by.truncate(n);
+    }
+}
+
 struct Gen<'a> {
     m: &'a Hsom,
     r: &'a ReproductionParams,
@@ -504,9 +514,7 @@ impl Hsom {
         let y0 = self.normalise(initial);
         if p.algorithm == crate::config::Algorithm::Events {
             let mut rep = self.reproduce_events(&y0, &r);
-            rep.postures.truncate(r.max_length);
-            rep.steps.truncate(r.max_length);
-            rep.predicted_by.truncate(r.max_length);
+            rep.truncate(r.max_length);
             return Ok(rep);
         }
         let mut g = Gen {
