@@ -66,6 +66,12 @@ class Hsom:
     def follow_nearest(self, demos: Sequence[npt.ArrayLike], initial: npt.ArrayLike) -> np.ndarray:
         """The nearest-sequence baseline: of `demos`, the one whose first posture is nearest
         `initial`, its bottom events through this model's bottom code, no level above."""
+    def continue_events(self, prefix: npt.ArrayLike) -> np.ndarray:
+        """Continue a gesture from its first samples: the prefix pushed up the lists, the
+        levels plan the rest; the continuation's postures, from the prefix's last."""
+    def follow_nearest_from(self, demos: Sequence[npt.ArrayLike], prefix: npt.ArrayLike) -> np.ndarray:
+        """The nearest-sequence continuation: the demonstration along which the prefix runs
+        closest, continued after the prefix's end; from the prefix's last posture."""
     @property
     def columns(self) -> List[str]: ...
     @property

@@ -428,6 +428,39 @@ impl Hsom {
         Ok(array2(py, &rep.postures, self.inner.columns().len()))
     }
 
+    /// Continue a gesture from its first samples (2-D, at least actionHorizon + 1 rows):
+    /// the prefix's events are pushed up the hierarchy's lists and the levels plan the rest
+    /// (`algorithm = events`). The postures of the continuation, from the prefix's last.
+    fn continue_events<'py>(
+        &self,
+        py: Python<'py>,
+        prefix: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let rows = rows_of(prefix, "prefix")?;
+        let rep = py
+            .allow_threads(|| self.inner.continue_events(&rows))
+            .map_err(|e| py_err(&e))?;
+        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+    }
+
+    /// The nearest-sequence continuation of a prefix: of `demos`, the one along which the
+    /// prefix runs closest, continued after the prefix's end through this model's bottom code.
+    /// The postures of the continuation, from the prefix's last.
+    fn follow_nearest_from<'py>(
+        &self,
+        py: Python<'py>,
+        demos: &Bound<'py, PyAny>,
+        prefix: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let rows = rows_of(prefix, "prefix")?;
+        let series = series_of(demos, "demos")?;
+        let demos = steps::demonstrations_from_rows(series, None).map_err(step_err)?;
+        let rep = py
+            .allow_threads(|| self.inner.follow_nearest_from(&demos, &rows))
+            .map_err(|e| py_err(&e))?;
+        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+    }
+
     /// The names of the variables the model learned.
     #[getter]
     fn columns(&self) -> Vec<String> {

@@ -40,6 +40,23 @@ def test_follow_nearest_retraces_the_demonstration_that_starts_nearest(demos):
         model.follow_nearest(demos[0], demos[0][0])
 
 
+def test_continuing_a_prefix_both_ways(demos):
+    cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
+    model = cosco_hsom.Hsom.fit(cfg, demos[1:])
+    held = demos[0]
+    prefix = held[: len(held) // 2]
+    for rest in (model.continue_events(prefix), model.follow_nearest_from(demos[1:], prefix)):
+        assert rest.ndim == 2 and rest.shape[1] == 2
+        np.testing.assert_allclose(rest[0], prefix[-1], rtol=0, atol=1e-12)
+        whole = np.vstack([prefix, rest[1:]])
+        # the prefix continued is closer to the held-out demonstration than the prefix held
+        # still at its last posture for as long (the control)
+        still = np.vstack([prefix, np.repeat(prefix[-1:], len(rest) - 1, axis=0)])
+        assert mean_dtw(whole, [held]) < mean_dtw(still, [held])
+    with pytest.raises(ValueError, match="prefix"):
+        model.continue_events(prefix[:1])
+
+
 def test_same_seed_same_model_other_seed_other_model(demos, tmp_path):
     cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
     a = cosco_hsom.Hsom.fit(cfg, demos)
