@@ -1618,19 +1618,19 @@ impl Hsom {
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(i, _)| i)
             .ok_or(HsomError::NoDemonstrations)?;
-        let norm: Vec<Vec<f64>> = demos[nearest]
-            .rows
-            .iter()
-            .map(|r| self.normalise(r))
-            .collect();
+        let norm = self.normalise_rows(&demos[nearest].rows);
         let executed: Vec<(usize, f64, usize)> = bottom_events(self, &norm)
             .into_iter()
-            .map(|(n, d)| {
-                let learned = self.dwell.get(n).copied().unwrap_or(0.0);
-                (n, if learned > 0.0 { learned } else { d }, 0)
-            })
+            .map(|(n, len)| self.at_learned_duration(n, len))
             .collect();
         Ok(self.timed_postures(&y0, &executed, StopReason::EndEvent))
+    }
+
+    /// A demonstrated bottom event of node `n` (`len` samples) as a planned one: for its
+    /// node's learned mean duration, its own length where the node has none.
+    fn at_learned_duration(&self, n: usize, len: f64) -> (usize, f64, usize) {
+        let learned = self.dwell.get(n).copied().unwrap_or(0.0);
+        (n, if learned > 0.0 { learned } else { len }, 0)
     }
 
     /// The normalised rows of `prefix` (the first samples of a gesture, in the data's units),
@@ -1645,7 +1645,7 @@ impl Hsom {
             p.state_length,
             p.action_horizon,
         )?;
-        Ok(prefix.iter().map(|r| self.normalise(r)).collect())
+        Ok(self.normalise_rows(prefix))
     }
 
     /// Continue a gesture from its first samples (`prefix`, in the data's units; at least
@@ -1684,18 +1684,15 @@ impl Hsom {
         let p = self.config.params();
         check_series(&demo_series(demos), p.state_length, p.action_horizon)?;
         let norm = self.normalised_prefix(prefix)?;
-        let (d, end) = demos
+        let (rows, end, _) = demos
             .iter()
-            .enumerate()
-            .map(|(i, d)| {
-                let rows: Vec<Vec<f64>> = d.rows.iter().map(|r| self.normalise(r)).collect();
+            .map(|d| {
+                let rows = self.normalise_rows(&d.rows);
                 let (end, cost) = super::recognize::open_end_cost(&norm, &rows);
-                (i, end, cost)
+                (rows, end, cost)
             })
             .min_by(|a, b| a.2.total_cmp(&b.2))
-            .map(|(i, end, _)| (i, end))
             .ok_or(HsomError::NoDemonstrations)?;
-        let rows: Vec<Vec<f64>> = demos[d].rows.iter().map(|r| self.normalise(r)).collect();
         // the events the prefix has reached (begun at or before its end) are skipped, as
         // `continue_events` takes the prefix's last event as done
         let mut begun = 0.0;
@@ -1706,10 +1703,7 @@ impl Hsom {
                 begun += len;
                 skip
             })
-            .map(|(n, len)| {
-                let learned = self.dwell.get(n).copied().unwrap_or(0.0);
-                (n, if learned > 0.0 { learned } else { len }, 0)
-            })
+            .map(|(n, len)| self.at_learned_duration(n, len))
             .collect();
         Ok(self.timed_postures(&norm[norm.len() - 1], &executed, StopReason::EndEvent))
     }
