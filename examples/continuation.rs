@@ -5,10 +5,13 @@
 //! along which the prefix runs closest, continued after the prefix's end). The prefix and
 //! each continuation are executed on the simulated arm and scored against the held-out
 //! demonstration; the prefix is the same for both, so the difference is the continuation's.
+//! With `--disturbance hold:N` or `rewind:N` the arm is held still, or pushed back along its
+//! path, for N samples at the prefix's end before the continuation takes over.
 //! Markdown on stdout: means over the folds per (gesture, seed), medians per gesture.
 //!
 //! ```sh
 //! cargo run --release --example continuation -- --seeds 1-5 --fraction 0.5
+//! cargo run --release --example continuation -- --seeds 6-10 --disturbance rewind:40
 //! ```
 
 use std::path::PathBuf;
@@ -18,7 +21,7 @@ use anyhow::{Context, Result};
 use clap::Parser;
 
 use cosco_hsom::config::load_config;
-use cosco_hsom::experiment::heldout::continuation_folds;
+use cosco_hsom::experiment::heldout::{continuation_folds, Disturbance};
 use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{synthetic_demonstrations, DemoSettings, FoldScores, Transition};
 use cosco_hsom::sim::NaoArm;
@@ -42,6 +45,9 @@ struct Args {
     /// The share of the held-out demonstration's samples shown, strictly between 0 and 1.
     #[arg(long, default_value_t = 0.5)]
     fraction: f64,
+    /// What happens at the prefix's end: `none`, `hold:N` or `rewind:N` (samples).
+    #[arg(long, default_value = "none")]
+    disturbance: String,
     /// CoSCo-HSOM configuration (XML).
     #[arg(long, default_value = "configs/nao-gestures.xml")]
     config: PathBuf,
@@ -65,14 +71,16 @@ fn run(a: Args) -> Result<()> {
     anyhow::ensure!(a.count >= 2, "--count must be at least 2, got {}", a.count);
     let config =
         load_config(&a.config).with_context(|| format!("loading {}", a.config.display()))?;
+    let disturbance = Disturbance::parse(&a.disturbance)?;
     let arm = NaoArm::load_default().context("loading the default arm model")?;
     let settings = DemoSettings {
         encoder_noise: a.noise,
         ..DemoSettings::default()
     };
     println!(
-        "Continuing the first {:.0} % of each held-out demonstration ({}, seeds {}, {} demonstrations, noise {} rad): joint DTW of prefix + continuation against the held-out demonstration, means over the folds; LElbowRoll swings exact (folds).\n",
+        "Continuing the first {:.0} % of each held-out demonstration, disturbance {} ({}, seeds {}, {} demonstrations, noise {} rad): joint DTW of prefix + continuation against the held-out demonstration, means over the folds; LElbowRoll swings exact (folds).\n",
         a.fraction * 100.0,
+        a.disturbance,
         a.config.display(),
         a.seeds,
         a.count,
@@ -84,8 +92,15 @@ fn run(a: Args) -> Result<()> {
         let mut rows = Vec::new();
         for seed in parse_seeds(&a.seeds)? {
             let demos = synthetic_demonstrations(&arm, &g, a.count, seed, &settings, |_| {})?;
-            let (h, s) = continuation_folds(&arm, &config, &demos, a.fraction, Transition::Linear)
-                .with_context(|| format!("{} seed {seed}", g.name))?;
+            let (h, s) = continuation_folds(
+                &arm,
+                &config,
+                &demos,
+                a.fraction,
+                disturbance,
+                Transition::Linear,
+            )
+            .with_context(|| format!("{} seed {seed}", g.name))?;
             let ((hd, he), (sd, se)) = (summary(&h), summary(&s));
             println!(
                 "| {} | {seed} | {hd:.4} | {sd:.4} | {he} of {} | {se} of {} |",

@@ -11,7 +11,8 @@ use rand_chacha::ChaCha8Rng;
 use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::experiment::heldout::{
-    continuation_folds, swing_folds, swing_folds_png, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD,
+    continuation_folds, swing_folds, swing_folds_png, Disturbance, SWING_JOINT,
+    SWING_MIN_AMPLITUDE_RAD,
 };
 use cosco_hsom::experiment::{
     hsom_folds, leave_one_out, sample_period, synthetic_demonstrations, DemoSettings, HeldOut,
@@ -194,7 +195,15 @@ fn swing_folds_draw_the_scored_folds() {
 #[test]
 fn continuing_a_prefix_is_scored_against_the_held_out_demonstration() {
     let f = fixture();
-    let (h, s) = continuation_folds(&f.arm, &f.config, &f.demos, 0.5, Transition::Linear).unwrap();
+    let (h, s) = continuation_folds(
+        &f.arm,
+        &f.config,
+        &f.demos,
+        0.5,
+        Disturbance::None,
+        Transition::Linear,
+    )
+    .unwrap();
     assert_eq!((h.len(), s.len()), (COUNT, COUNT));
     for (i, (a, b)) in h.iter().zip(&s).enumerate() {
         let d = trimmed_duration(&f.demos[i]);
@@ -213,10 +222,46 @@ fn continuing_a_prefix_is_scored_against_the_held_out_demonstration() {
         }
     }
     for bad in [0.0, 1.0, f64::NAN] {
-        let e = continuation_folds(&f.arm, &f.config, &f.demos, bad, Transition::Linear)
-            .unwrap_err()
-            .to_string();
+        let e = continuation_folds(
+            &f.arm,
+            &f.config,
+            &f.demos,
+            bad,
+            Disturbance::None,
+            Transition::Linear,
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("strictly between 0 and 1"), "{bad}: {e}");
+    }
+}
+
+/// A disturbance is what the encoders read at the prefix's end: held still, or the path
+/// retraced backwards; bad words are refused naming what is allowed.
+#[test]
+fn disturbances_hold_or_retrace_the_prefix() {
+    let prefix: Vec<Vec<f64>> = (0..5).map(|i| vec![i as f64]).collect();
+    let col = |rows: Vec<Vec<f64>>| rows.into_iter().map(|r| r[0]).collect::<Vec<_>>();
+    assert_eq!(
+        col(Disturbance::None.apply(&prefix)),
+        [0.0, 1.0, 2.0, 3.0, 4.0]
+    );
+    assert_eq!(
+        col(Disturbance::parse("hold:2").unwrap().apply(&prefix)),
+        [0.0, 1.0, 2.0, 3.0, 4.0, 4.0, 4.0]
+    );
+    assert_eq!(
+        col(Disturbance::parse("rewind:2").unwrap().apply(&prefix)),
+        [0.0, 1.0, 2.0, 3.0, 4.0, 3.0, 2.0]
+    );
+    // never past the prefix's start
+    assert_eq!(
+        col(Disturbance::Rewind(9).apply(&prefix)),
+        [0.0, 1.0, 2.0, 3.0, 4.0, 3.0, 2.0, 1.0, 0.0]
+    );
+    for bad in ["hold", "hold:0", "push:3", "rewind:x", ""] {
+        let e = Disturbance::parse(bad).unwrap_err().to_string();
+        assert!(e.contains("none, hold:N or rewind:N"), "{bad}: {e}");
     }
 }
 
