@@ -259,6 +259,8 @@ fn disturbances_hold_or_retrace_the_prefix() {
         col(Disturbance::Rewind(9).apply(&prefix)),
         [0.0, 1.0, 2.0, 3.0, 4.0, 3.0, 2.0, 1.0, 0.0]
     );
+    assert!(Disturbance::Rewind(3).apply(&[]).is_empty());
+    assert!(Disturbance::Hold(3).apply(&[]).is_empty());
     for bad in ["hold", "hold:0", "push:3", "rewind:x", ""] {
         let e = Disturbance::parse(bad).unwrap_err().to_string();
         assert!(e.contains("none, hold:N or rewind:N"), "{bad}: {e}");

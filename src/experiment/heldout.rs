@@ -416,9 +416,12 @@ impl Disturbance {
     }
 
     /// `prefix` as the encoders read it after the disturbance (a rewind is at most the
-    /// prefix's length less one).
+    /// prefix's length less one; an empty prefix stays empty).
     pub fn apply(self, prefix: &[Vec<f64>]) -> Vec<Vec<f64>> {
         let mut rows = prefix.to_vec();
+        if prefix.is_empty() {
+            return rows;
+        }
         match self {
             Disturbance::None => {}
             Disturbance::Hold(n) => {
