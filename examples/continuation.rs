@@ -14,6 +14,8 @@
 //! cargo run --release --example continuation -- --seeds 6-10 --disturbance rewind:40
 //! ```
 
+mod common;
+
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -23,25 +25,15 @@ use clap::Parser;
 use cosco_hsom::config::load_config;
 use cosco_hsom::experiment::heldout::{continuation_folds, Disturbance};
 use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};
-use cosco_hsom::experiment::{synthetic_demonstrations, DemoSettings, FoldScores, Transition};
+use cosco_hsom::experiment::{synthetic_demonstrations, FoldScores, Transition};
 use cosco_hsom::sim::NaoArm;
 
 /// Continuing a held-out demonstration's prefix: the hierarchy and the nearest sequence.
 #[derive(Parser, Debug)]
 #[command(name = "continuation")]
 struct Args {
-    /// Gestures, comma-separated.
-    #[arg(long, default_value = "reading-watch,wave,reach-point,salute")]
-    gestures: String,
-    /// Seeds of the demonstrations: numbers and ranges, e.g. `1-5`.
-    #[arg(long, default_value = "1-5")]
-    seeds: String,
-    /// Demonstrations per (gesture, seed), at least 2.
-    #[arg(long, default_value_t = 4)]
-    count: usize,
-    /// Encoder noise of the synthetic demonstrations, rad.
-    #[arg(long, default_value_t = 0.001)]
-    noise: f64,
+    #[command(flatten)]
+    sets: common::Sets,
     /// The share of the held-out demonstration's samples shown, strictly between 0 and 1.
     #[arg(long, default_value_t = 0.5)]
     fraction: f64,
@@ -68,30 +60,31 @@ fn summary(folds: &[FoldScores]) -> (f64, usize) {
 }
 
 fn run(a: Args) -> Result<()> {
-    anyhow::ensure!(a.count >= 2, "--count must be at least 2, got {}", a.count);
+    anyhow::ensure!(
+        a.sets.count >= 2,
+        "--count must be at least 2, got {}",
+        a.sets.count
+    );
     let config =
         load_config(&a.config).with_context(|| format!("loading {}", a.config.display()))?;
     let disturbance = Disturbance::parse(&a.disturbance)?;
     let arm = NaoArm::load_default().context("loading the default arm model")?;
-    let settings = DemoSettings {
-        encoder_noise: a.noise,
-        ..DemoSettings::default()
-    };
+    let settings = a.sets.demo_settings();
     println!(
         "Continuing the first {:.0} % of each held-out demonstration, disturbance {} ({}, seeds {}, {} demonstrations, noise {} rad): joint DTW of prefix + continuation against the held-out demonstration, means over the folds; LElbowRoll swings exact (folds).\n",
         a.fraction * 100.0,
         a.disturbance,
         a.config.display(),
-        a.seeds,
-        a.count,
-        a.noise
+        a.sets.seeds,
+        a.sets.count,
+        a.sets.noise
     );
     println!("| gesture | seed | hierarchy joint DTW | nearest sequence | hierarchy swings exact | nearest sequence swings exact |\n|---|---|---|---|---|---|");
     let mut all = Vec::new();
-    for g in parse_gestures(&a.gestures)? {
+    for g in parse_gestures(&a.sets.gestures)? {
         let mut rows = Vec::new();
-        for seed in parse_seeds(&a.seeds)? {
-            let demos = synthetic_demonstrations(&arm, &g, a.count, seed, &settings, |_| {})?;
+        for seed in parse_seeds(&a.sets.seeds)? {
+            let demos = synthetic_demonstrations(&arm, &g, a.sets.count, seed, &settings, |_| {})?;
             let (h, s) = continuation_folds(
                 &arm,
                 &config,
@@ -135,11 +128,5 @@ fn run(a: Args) -> Result<()> {
 }
 
 fn main() -> ExitCode {
-    match run(Args::parse()) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            ExitCode::FAILURE
-        }
-    }
+    common::exit(run(Args::parse()))
 }

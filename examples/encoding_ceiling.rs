@@ -14,6 +14,8 @@
 //!
 //! [`Hsom::reencode`]: cosco_hsom::hsom::Hsom::reencode
 
+mod common;
+
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -34,18 +36,8 @@ use cosco_hsom::sim::NaoArm;
 #[derive(Parser, Debug)]
 #[command(name = "encoding_ceiling")]
 struct Args {
-    /// Gestures, comma-separated.
-    #[arg(long, default_value = "reading-watch,wave,reach-point,salute")]
-    gestures: String,
-    /// Seeds of the demonstrations: numbers and ranges, e.g. `1-5`.
-    #[arg(long, default_value = "1-5")]
-    seeds: String,
-    /// Demonstrations per (gesture, seed).
-    #[arg(long, default_value_t = 4)]
-    count: usize,
-    /// Encoder noise of the synthetic demonstrations, rad.
-    #[arg(long, default_value_t = 0.001)]
-    noise: f64,
+    #[command(flatten)]
+    sets: common::Sets,
     /// CoSCo-HSOM configuration (XML).
     #[arg(long, default_value = "configs/nao-gestures.xml")]
     config: PathBuf,
@@ -85,18 +77,18 @@ fn ceiling(model: &Hsom, demos: &[Demonstration]) -> Result<(f64, f64, usize)> {
 
 /// Each gesture's ceiling through the bottom it shares with the others, beside alone.
 fn shared(a: &Args, arm: &NaoArm, config: &HsomConfig, settings: &DemoSettings) -> Result<()> {
-    let gestures = parse_gestures(&a.gestures)?;
-    println!("Each demonstration through the bottom level's events and back: the gesture learned alone, and through the bottom shared by {} gestures ({}, trained on all {} demonstrations of each): means over the demonstrations.\n", gestures.len(), a.config.display(), a.count);
+    let gestures = parse_gestures(&a.sets.gestures)?;
+    println!("Each demonstration through the bottom level's events and back: the gesture learned alone, and through the bottom shared by {} gestures ({}, trained on all {} demonstrations of each): means over the demonstrations.\n", gestures.len(), a.config.display(), a.sets.count);
     println!("| gesture | seed | joint DTW alone | joint DTW shared | shared / alone | events per demo alone | shared | bottom nodes used alone | shared |");
     println!("|---|---|---|---|---|---|---|---|---|");
     let mut all: Vec<(String, f64)> = Vec::new();
-    for &seed in &parse_seeds(&a.seeds)? {
+    for &seed in &parse_seeds(&a.sets.seeds)? {
         let sets: Vec<(String, Vec<Demonstration>)> = gestures
             .iter()
             .map(|g| {
                 Ok((
                     g.name.to_string(),
-                    synthetic_demonstrations(arm, g, a.count, seed, settings, |_| {})?,
+                    synthetic_demonstrations(arm, g, a.sets.count, seed, settings, |_| {})?,
                 ))
             })
             .collect::<Result<_>>()?;
@@ -121,20 +113,17 @@ fn shared(a: &Args, arm: &NaoArm, config: &HsomConfig, settings: &DemoSettings) 
 fn run(a: Args) -> Result<()> {
     let arm = NaoArm::load_default()?;
     let config = load_config(&a.config).with_context(|| a.config.display().to_string())?;
-    let settings = DemoSettings {
-        encoder_noise: a.noise,
-        ..DemoSettings::default()
-    };
+    let settings = a.sets.demo_settings();
     if a.shared {
         return shared(&a, &arm, &config, &settings);
     }
-    println!("Each demonstration through the bottom level's events and back ({}, trained on all {} demonstrations of the set): means over the demonstrations.\n", a.config.display(), a.count);
+    println!("Each demonstration through the bottom level's events and back ({}, trained on all {} demonstrations of the set): means over the demonstrations.\n", a.config.display(), a.sets.count);
     println!("| gesture | seed | joint DTW (rad/step) | LElbowRoll swings (re-encoded / demo) | LElbowRoll range ratio | events per demo |");
     println!("|---|---|---|---|---|---|");
     let mut all: Vec<Row> = Vec::new();
-    for g in parse_gestures(&a.gestures)? {
-        for &seed in &parse_seeds(&a.seeds)? {
-            let demos = synthetic_demonstrations(&arm, &g, a.count, seed, &settings, |_| {})?;
+    for g in parse_gestures(&a.sets.gestures)? {
+        for &seed in &parse_seeds(&a.sets.seeds)? {
+            let demos = synthetic_demonstrations(&arm, &g, a.sets.count, seed, &settings, |_| {})?;
             let model = config.fit(&demos)?;
             let (mut dtw, mut sw, mut dsw, mut rr) = (0.0, 0.0, 0.0, 0.0);
             for d in &demos {
@@ -177,11 +166,5 @@ fn run(a: Args) -> Result<()> {
 }
 
 fn main() -> ExitCode {
-    match run(Args::parse()) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            ExitCode::FAILURE
-        }
-    }
+    common::exit(run(Args::parse()))
 }

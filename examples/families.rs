@@ -16,6 +16,8 @@
 //! cargo run --release --example families -- --seeds 1-6
 //! ```
 
+mod common;
+
 #[path = "../tests/hsom_common/mod.rs"]
 mod hsom_common;
 
@@ -151,11 +153,5 @@ fn run(a: Args) -> Result<()> {
 }
 
 fn main() -> ExitCode {
-    match run(Args::parse()) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            ExitCode::FAILURE
-        }
-    }
+    common::exit(run(Args::parse()))
 }

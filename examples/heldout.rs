@@ -6,6 +6,8 @@
 //!     --config configs/nao-gestures.xml --config configs/table1.xml --in-sample --json h.json
 //! ```
 
+mod common;
+
 use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -23,18 +25,8 @@ use cosco_hsom::sim::NaoArm;
 #[derive(Parser, Debug)]
 #[command(name = "heldout")]
 struct Args {
-    /// Gestures, comma-separated.
-    #[arg(long, default_value = "reading-watch,wave,reach-point,salute")]
-    gestures: String,
-    /// Seeds of the demonstrations: numbers and ranges, e.g. `1-5` or `1,3,7-9`.
-    #[arg(long, default_value = "1-5")]
-    seeds: String,
-    /// Demonstrations per (gesture, seed), at least 2.
-    #[arg(long, default_value_t = 4)]
-    count: usize,
-    /// Encoder noise of the synthetic demonstrations, rad.
-    #[arg(long, default_value_t = 0.001)]
-    noise: f64,
+    #[command(flatten)]
+    sets: common::Sets,
     /// CoSCo-HSOM configuration (XML); repeat for several.
     #[arg(long = "config")]
     configs: Vec<PathBuf>,
@@ -54,8 +46,8 @@ struct Args {
 
 fn run(a: Args) -> Result<()> {
     let t = Instant::now();
-    let gestures = parse_gestures(&a.gestures)?;
-    let seeds = parse_seeds(&a.seeds)?;
+    let gestures = parse_gestures(&a.sets.gestures)?;
+    let seeds = parse_seeds(&a.sets.seeds)?;
     let paths = if a.configs.is_empty() {
         vec![PathBuf::from("configs/nao-gestures.xml")]
     } else {
@@ -77,8 +69,8 @@ fn run(a: Args) -> Result<()> {
         configs
     };
     let settings = StudySettings {
-        count: a.count,
-        noise: a.noise,
+        count: a.sets.count,
+        noise: a.sets.noise,
         transition: Transition::parse(&a.transition)?,
         in_sample: a.in_sample,
         threads: 2,
@@ -111,11 +103,5 @@ fn run(a: Args) -> Result<()> {
 }
 
 fn main() -> ExitCode {
-    match run(Args::parse()) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("Error: {e:#}");
-            ExitCode::FAILURE
-        }
-    }
+    common::exit(run(Args::parse()))
 }

@@ -8,6 +8,10 @@
 //! cargo run --release --example replay_baseline -- --seeds 11-15
 //! ```
 
+mod common;
+
+use std::process::ExitCode;
+
 use anyhow::Result;
 use clap::Parser;
 
@@ -33,8 +37,11 @@ struct Args {
     noise: f64,
 }
 
-fn main() -> Result<()> {
-    let a = Args::parse();
+fn main() -> ExitCode {
+    common::exit(run(Args::parse()))
+}
+
+fn run(a: Args) -> Result<()> {
     anyhow::ensure!(a.count >= 2, "--count must be at least 2, got {}", a.count);
     let arm = NaoArm::load_default()?;
     let settings = DemoSettings {
@@ -42,10 +49,11 @@ fn main() -> Result<()> {
         ..DemoSettings::default()
     };
     let params = MetricsParams::default();
+    let (gestures, seeds) = (parse_gestures(&a.gestures)?, parse_seeds(&a.seeds)?);
     println!("| gesture | seed | joint DTW (rad/step) | wrist DTW (mm/step) |\n|---|---|---|---|");
     let (mut all_j, mut all_w) = (Vec::new(), Vec::new());
-    for g in parse_gestures(&a.gestures)? {
-        for seed in parse_seeds(&a.seeds)? {
+    for g in gestures {
+        for &seed in &seeds {
             let demos: Vec<_> = record_demonstrations(&arm, &g, a.count, seed, &settings, |_| {})?
                 .iter()
                 .enumerate()

@@ -9,6 +9,8 @@
 //! cargo run --release --example swing_folds -- --seeds 11-15 --out docs/figures
 //! ```
 
+mod common;
+
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -103,11 +105,5 @@ fn config_name(p: &std::path::Path) -> String {
 }
 
 fn main() -> ExitCode {
-    match run(Args::parse()) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            ExitCode::FAILURE
-        }
-    }
+    common::exit(run(Args::parse()))
 }

@@ -126,6 +126,16 @@ fn series_of(demos: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<Vec<f64>>
         .collect()
 }
 
+/// The argument `demos` (a list of 2-D inputs) as demonstrations, with optional column
+/// names (default x0, x1, ...).
+fn demonstrations_of(
+    demos: &Bound<'_, PyAny>,
+    columns: Option<Vec<String>>,
+) -> PyResult<Vec<Demonstration>> {
+    let series = series_of(demos, "demos")?;
+    steps::demonstrations_from_rows(series, columns).map_err(step_err)
+}
+
 /// Labelled demonstration sets from a mapping label -> list of 2-D inputs, in the mapping's
 /// order, each demonstration named `gestures['label'][i]` in messages. `columns` name the
 /// variables of every label whose width they fit (the first label's always, so a wrong
@@ -358,8 +368,7 @@ impl Hsom {
         demos: &Bound<'_, PyAny>,
         columns: Option<Vec<String>>,
     ) -> PyResult<Self> {
-        let series = series_of(demos, "demos")?;
-        let demos = steps::demonstrations_from_rows(series, columns).map_err(step_err)?;
+        let demos = demonstrations_of(demos, columns)?;
         let cfg = config.inner.clone();
         let model = py
             .allow_threads(move || steps::train(&cfg, &demos, None))
@@ -420,8 +429,7 @@ impl Hsom {
         initial: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let initial = posture_of(initial, "initial")?;
-        let series = series_of(demos, "demos")?;
-        let demos = steps::demonstrations_from_rows(series, None).map_err(step_err)?;
+        let demos = demonstrations_of(demos, None)?;
         let rep = py
             .allow_threads(|| self.inner.follow_nearest(&demos, &initial))
             .map_err(|e| py_err(&e))?;
@@ -453,8 +461,7 @@ impl Hsom {
         prefix: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let rows = rows_of(prefix, "prefix")?;
-        let series = series_of(demos, "demos")?;
-        let demos = steps::demonstrations_from_rows(series, None).map_err(step_err)?;
+        let demos = demonstrations_of(demos, None)?;
         let rep = py
             .allow_threads(|| self.inner.follow_nearest_from(&demos, &rows))
             .map_err(|e| py_err(&e))?;
@@ -783,8 +790,7 @@ impl GmrModel {
         seed: u64,
         sample_period: f64,
     ) -> PyResult<Self> {
-        let series = series_of(demos, "demos")?;
-        let demos = steps::demonstrations_from_rows(series, columns).map_err(step_err)?;
+        let demos = demonstrations_of(demos, columns)?;
         let mut params = GmrParams::new().seed(seed).sample_period(sample_period);
         if let Some(k) = components {
             params = params.components(ComponentChoice::Fixed(k));
