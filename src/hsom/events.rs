@@ -971,7 +971,6 @@ impl Hsom {
         prefix: &[(usize, f64)],
         r: &ReproductionParams,
     ) -> Reproduction {
-        let y0 = start;
         let cfg = &self.config;
         let p = cfg.params();
         let max_len = r.max_length;
@@ -994,7 +993,7 @@ impl Hsom {
             .collect();
         let top = r.max_level.unwrap_or(h - 1).min(h - 1);
         // the initial event: the bottom node nearest to the initial posture (state half)
-        let (n_init, _) = self.maps[0].bmu_range(y0, 0..s);
+        let (n_init, _) = self.maps[0].bmu_range(start, 0..s);
         let init_content = event_content(&self.maps[0], n_init, 0.0, code);
         let mut lists = Lists::new(h, a_part(lay, &init_content));
         let mut plan: VecDeque<(u32, f64, usize)> = VecDeque::new();
