@@ -11,7 +11,7 @@ use rand_chacha::ChaCha8Rng;
 use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::experiment::heldout::{
-    continuation_folds, swing_folds, swing_folds_png, Disturbance, SWING_JOINT,
+    closed_loop_folds, continuation_folds, swing_folds, swing_folds_png, Disturbance, SWING_JOINT,
     SWING_MIN_AMPLITUDE_RAD,
 };
 use cosco_hsom::experiment::{
@@ -233,6 +233,101 @@ fn continuing_a_prefix_is_scored_against_the_held_out_demonstration() {
         .unwrap_err()
         .to_string();
         assert!(e.contains("strictly between 0 and 1"), "{bad}: {e}");
+    }
+}
+
+/// A hand grabs the arm during execution: every run of every method is scored against the
+/// held-out demonstration alone; the undisturbed runs are the held-out evaluation's own; by
+/// its clock a plan loses the grabbed second, re-planned after the grab the rest of the
+/// gesture comes after it; GMM/GMR has no re-plan; a bad moment or a grab of nothing is
+/// refused.
+#[test]
+fn a_grab_during_execution_is_scored_against_the_held_out_demonstration() {
+    let f = fixture();
+    let c = closed_loop_folds(&f.arm, &f.config, &f.demos, 0.5, 40, Transition::Linear).unwrap();
+    assert_eq!(
+        (c.hsom.len(), c.sequence.len(), c.gmr.len()),
+        (COUNT, COUNT, COUNT)
+    );
+    for i in 0..COUNT {
+        let d = trimmed_duration(&f.demos[i]);
+        let gmr = c.gmr[i].as_ref().unwrap();
+        assert!(gmr.replanned.is_none() && gmr.read_back.is_none());
+        for (method, fold) in [
+            ("hierarchy", &c.hsom[i]),
+            ("nearest sequence", &c.sequence[i]),
+            ("GMM/GMR", gmr),
+        ] {
+            let runs = [
+                Some(&fold.undisturbed),
+                Some(&fold.by_clock),
+                fold.replanned.as_ref(),
+                fold.read_back.as_ref(),
+            ];
+            for r in runs.into_iter().flatten() {
+                assert_eq!(r.fidelity.per_demo.len(), 1, "{method} fold {i}");
+                assert!(
+                    (r.fidelity.per_demo[0].demo_duration_s - d).abs() < 1e-9,
+                    "{method} fold {i}"
+                );
+            }
+        }
+        let fold = &f.heldout.folds[i];
+        let same = |a: &cosco_hsom::experiment::FoldScores,
+                    b: &cosco_hsom::experiment::FoldScores| {
+            a.fidelity.joint_dtw_rad_per_step.mean == b.fidelity.joint_dtw_rad_per_step.mean
+        };
+        assert!(same(&c.hsom[i].undisturbed, &fold.hsom), "fold {i}");
+        assert!(
+            same(&c.sequence[i].undisturbed, fold.sequence.as_ref().unwrap()),
+            "fold {i}"
+        );
+        assert!(
+            same(&gmr.undisturbed, fold.gmr.as_ref().unwrap()),
+            "fold {i}"
+        );
+        // re-planned, the rest of the gesture follows the grab (at half the held-out
+        // demonstration, 40 ticks); by the clock the plan goes on as planned
+        let after = (f.demos[i].rows.len() as f64 * 0.5).round() as usize + 40;
+        for (method, fold) in [
+            ("hierarchy", &c.hsom[i]),
+            ("nearest sequence", &c.sequence[i]),
+        ] {
+            let re = fold.replanned.as_ref().unwrap();
+            assert!(
+                re.postures > after + 20,
+                "{method} fold {i}: {} ticks",
+                re.postures
+            );
+            assert_eq!(
+                fold.by_clock.postures,
+                fold.undisturbed.postures.max(after + 1)
+            );
+        }
+        // the grab costs every plan by its clock
+        for run in [&c.hsom[i].by_clock, &c.sequence[i].by_clock, &gmr.by_clock] {
+            assert!(
+                run.fidelity.joint_dtw_rad_per_step.mean
+                    > c.sequence[i]
+                        .undisturbed
+                        .fidelity
+                        .joint_dtw_rad_per_step
+                        .mean
+                        .min(c.hsom[i].undisturbed.fidelity.joint_dtw_rad_per_step.mean),
+                "fold {i}"
+            );
+        }
+    }
+    for (at, grab, allowed) in [
+        (0.0, 40, "strictly between 0 and 1"),
+        (1.0, 40, "strictly between 0 and 1"),
+        (f64::NAN, 40, "strictly between 0 and 1"),
+        (0.5, 0, "at least 1"),
+    ] {
+        let e = closed_loop_folds(&f.arm, &f.config, &f.demos, at, grab, Transition::Linear)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(allowed), "{at} {grab}: {e}");
     }
 }
 

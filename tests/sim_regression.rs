@@ -13,8 +13,8 @@
 #![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use cosco_hsom::sim::{
-    check_posture, ArmSim, Controller, ControllerConfig, Interpolation, KeyPose, NamedPosture,
-    NaoArm, SimError, TargetTrajectory, JOINT_NAMES, JOINT_SPECS,
+    check_posture, ArmSim, Controller, ControllerConfig, Grab, Interpolation, KeyPose,
+    NamedPosture, NaoArm, SimError, TargetTrajectory, JOINT_NAMES, JOINT_SPECS,
 };
 use nalgebra::{Matrix3, Rotation3, Vector3};
 use rand::{Rng, SeedableRng};
@@ -337,6 +337,86 @@ fn controller_tracks_a_moving_target_with_bounded_error_and_lag() {
     eprintln!("tracking: max error {err:.2e} rad (per joint {per_joint:?}), lag {lag:.3} s");
     assert!(err < 0.01, "max tracking error {err}");
     assert!(lag < 0.010, "lag {lag}");
+}
+
+/// A hand grabbing the arm holds every joint where it was while the targets go on; once it
+/// lets go the servos pull the arm after the targets again. Appending the motion that
+/// followed keeps one clock.
+#[test]
+fn a_grab_holds_the_arm_still_while_the_targets_go_on_then_lets_go() {
+    let arm = arm();
+    let ctl = controller(ControllerConfig::default());
+    let centre = [0.9, 0.5, -0.8, -0.8, 0.0, 0.5];
+    let ramp: Vec<Vec<f64>> = (0..120)
+        .map(|i| {
+            let s = 0.4 * i as f64 / 120.0;
+            vec![
+                centre[0] + s,
+                centre[1],
+                centre[2] - s,
+                centre[3],
+                centre[4],
+                0.5,
+            ]
+        })
+        .collect();
+    let traj = TargetTrajectory::at_rate(40.0, &ramp).unwrap();
+    let run = |grab: Option<Grab>| {
+        let mut sim = arm.sim().unwrap();
+        sim.set_posture(&ramp[0]).unwrap();
+        match grab {
+            Some(g) => ctl.follow_grabbed(&mut sim, &traj, g).unwrap(),
+            None => ctl.follow(&mut sim, &traj).unwrap(),
+        }
+    };
+    let free = run(None);
+    let held = run(Some(Grab {
+        start_s: 1.0,
+        seconds: 1.0,
+    }));
+    assert_eq!(held.len(), free.len());
+    // before the grab: the same motion
+    assert!(max_abs_diff(&held.qpos[39], &free.qpos[39]) < 1e-12);
+    // during it (ticks 40..80): still, while the targets moved by 0.13 rad
+    for row in &held.qpos[41..80] {
+        assert!(max_abs_diff(row, &held.qpos[40]) < 1e-9, "{row:?}");
+    }
+    assert!(max_abs_diff(&held.target[79], &held.target[40]) > 0.1);
+    // after it: pulled on, towards the targets
+    let lag =
+        |rec: &cosco_hsom::sim::Recording, i: usize| max_abs_diff(&rec.qpos[i], &rec.target[i]);
+    assert!(lag(&held, 80) > 0.1, "at release {}", lag(&held, 80));
+    assert!(
+        lag(&held, 119) < lag(&held, 80) / 2.0,
+        "{}",
+        lag(&held, 119)
+    );
+    // the control: without a grab the arm follows throughout
+    assert!(lag(&free, 79) < 0.02, "{}", lag(&free, 79));
+    let mut whole = held.clone();
+    whole.append(free.clone()).unwrap();
+    assert_eq!(whole.len(), 2 * free.len());
+    assert!((whole.time[120] - 3.0).abs() < 1e-12 && (whole.time[239] - 5.975).abs() < 1e-9);
+    let mut other = free.clone();
+    other.rate_hz = 100.0;
+    assert!(whole
+        .append(other)
+        .unwrap_err()
+        .to_string()
+        .contains("100 Hz"));
+    let mut sim = arm.sim().unwrap();
+    let e = ctl
+        .follow_grabbed(
+            &mut sim,
+            &traj,
+            Grab {
+                start_s: -1.0,
+                seconds: 1.0,
+            },
+        )
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("grab start"), "{e}");
 }
 
 #[test]

@@ -14,7 +14,9 @@ use crate::gmr::MIN_DEMONSTRATIONS;
 use crate::metrics::{column_swings, FidelityReport};
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
 
-use super::baseline::{gmr_params, run_baseline_split, DEFAULT_COMPONENTS};
+use super::baseline::{gmr_params, plan as gmr_plan, run_baseline_split, DEFAULT_COMPONENTS};
+use super::evaluate::evaluate;
+use super::execute::{execute_grabbed, Replan};
 use super::pipeline::{
     execute_and_score, learn_and_score, sample_period, Outcome, Split, Training,
 };
@@ -512,6 +514,175 @@ pub fn continuation_folds(
         })
         .collect::<Result<Vec<_>, ExperimentError>>()
         .map(|v| v.into_iter().unzip())
+}
+
+/// One method on one fold of [`closed_loop_folds`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ClosedLoopFold {
+    /// Its plan from the held-out demonstration's first posture, executed untouched.
+    pub undisturbed: FoldScores,
+    /// The same plan executed while the arm is grabbed, going on by its clock (no re-plan).
+    pub by_clock: FoldScores,
+    /// Executed while the arm is grabbed; on release the method continues from what the
+    /// encoders read (its own execution and the grab). `None` for a method that cannot
+    /// (GMM/GMR: a time-driven regression has no reading to continue from).
+    pub replanned: Option<FoldScores>,
+    /// Executed untouched, and at the moment the grab would have come the method continues
+    /// from what the encoders read of its own execution: whether a re-plan alone, with no
+    /// disturbance, keeps the gesture. `None` where `replanned` is.
+    pub read_back: Option<FoldScores>,
+}
+
+/// [`closed_loop_folds`]: one [`ClosedLoopFold`] per demonstration for each method.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ClosedLoop {
+    /// CoSCo-HSOM: re-plans with [`Hsom::continue_events`](crate::hsom::Hsom::continue_events).
+    pub hsom: Vec<ClosedLoopFold>,
+    /// The nearest-sequence baseline: re-aligns with
+    /// [`Hsom::follow_nearest_from`](crate::hsom::Hsom::follow_nearest_from).
+    pub sequence: Vec<ClosedLoopFold>,
+    /// GMM/GMR by its clock (no re-plan), or why the fold could not run it.
+    pub gmr: Vec<Result<ClosedLoopFold, String>>,
+}
+
+/// A hand grabs the arm during execution, held out: on fold `i` each method learns from
+/// every demonstration but `demos[i]` and plans from `demos[i]`'s first posture; the plan is
+/// executed on the simulated arm and at `fraction` of `demos[i]`'s duration (the same
+/// moment for every method) a hand holds the arm still for `grab` ticks while the servo
+/// targets go on ([`execute_grabbed`](super::execute_grabbed)). Each method is executed
+/// undisturbed; grabbed, its plan going on by the clock; grabbed, then re-planned on release
+/// from the encoders' reading of its own execution and the grab (the closed loop); and, as
+/// that re-plan's control, re-planned at the same moment from the reading of its undisturbed
+/// execution (no grab). CoSCo-HSOM re-plans with
+/// [`Hsom::continue_events`](crate::hsom::Hsom::continue_events), the nearest-sequence
+/// baseline with [`Hsom::follow_nearest_from`](crate::hsom::Hsom::follow_nearest_from);
+/// GMM/GMR is time-driven: by its clock only. Every executed motion, the grab included, is
+/// scored against `demos[i]` alone.
+pub fn closed_loop_folds(
+    arm: &NaoArm,
+    config: &HsomConfig,
+    demos: &[Demonstration],
+    fraction: f64,
+    grab: usize,
+    transition: Transition,
+) -> Result<ClosedLoop, ExperimentError> {
+    check_demos(demos)?;
+    if !(fraction > 0.0 && fraction < 1.0) {
+        return Err(ExperimentError::Invalid(format!(
+            "grab at {fraction} of the demonstration: needs a number strictly between 0 and 1"
+        )));
+    }
+    if grab == 0 {
+        return Err(ExperimentError::Invalid(
+            "a grab of 0 ticks: needs at least 1".into(),
+        ));
+    }
+    let needed = config.params().action_horizon + 1;
+    let mut out = ClosedLoop {
+        hsom: Vec::new(),
+        sequence: Vec::new(),
+        gmr: Vec::new(),
+    };
+    for i in 0..demos.len() {
+        let train = all_but(demos, i);
+        let held = &demos[i];
+        let split = Split {
+            train: &train,
+            test: std::slice::from_ref(held),
+        };
+        let metrics = split.metrics()?;
+        let initial = split.initial()?;
+        let rate = 1.0 / metrics.sample_period;
+        let at = ((held.rows.len() as f64 * fraction).round() as usize).max(needed);
+        let method =
+            |plan: &[Vec<f64>], train_s: f64, reproduce_s: f64, replan: Option<&mut Replan<'_>>| {
+                let score = |rec: &Recording, clamped_values: usize, reproduce_s: f64| {
+                    Ok::<_, ExperimentError>(FoldScores {
+                        fidelity: evaluate(Some(arm), split.test, &rec.qpos, &metrics)?,
+                        swings: swings(rec, held)?,
+                        postures: rec.len(),
+                        clamped_values,
+                        train_s,
+                        reproduce_s,
+                    })
+                };
+                let still = execute_and_score(arm, plan, transition, split.test, &metrics)?;
+                let undisturbed = FoldScores {
+                    fidelity: still.fidelity.clone(),
+                    swings: swings(&still.executed, held)?,
+                    postures: plan.len(),
+                    clamped_values: still.clamped_values,
+                    train_s,
+                    reproduce_s,
+                };
+                let (rec, c) = execute_grabbed(arm, plan, transition, rate, (at, grab), None)?;
+                let by_clock = score(&rec, c, reproduce_s)?;
+                let (replanned, read_back) = match replan {
+                    Some(replan) => {
+                        let mut continued = |ticks: usize| {
+                            let t = Instant::now();
+                            let (rec, c) = execute_grabbed(
+                                arm,
+                                plan,
+                                transition,
+                                rate,
+                                (at, ticks),
+                                Some(&mut *replan),
+                            )?;
+                            score(&rec, c, reproduce_s + t.elapsed().as_secs_f64())
+                        };
+                        (Some(continued(grab)?), Some(continued(0)?))
+                    }
+                    None => (None, None),
+                };
+                Ok::<_, ExperimentError>(ClosedLoopFold {
+                    undisturbed,
+                    by_clock,
+                    replanned,
+                    read_back,
+                })
+            };
+        let t = Instant::now();
+        let model = config.fit(&train)?;
+        let train_s = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let plan = model.reproduce(initial)?.postures;
+        let reproduce_s = t.elapsed().as_secs_f64();
+        let mut replan = |read: &[Vec<f64>]| Ok(model.continue_events(read)?.postures);
+        out.hsom
+            .push(method(&plan, train_s, reproduce_s, Some(&mut replan))?);
+        let t = Instant::now();
+        let plan = model.follow_nearest(&train, initial)?.postures;
+        let reproduce_s = t.elapsed().as_secs_f64();
+        let mut replan = |read: &[Vec<f64>]| Ok(model.follow_nearest_from(&train, read)?.postures);
+        out.sequence
+            .push(method(&plan, train_s, reproduce_s, Some(&mut replan))?);
+        if train.len() < MIN_DEMONSTRATIONS {
+            out.gmr.push(Err(format!(
+                "fold {}: GMM/GMR needs at least {MIN_DEMONSTRATIONS} demonstrations to learn \
+                 from, this fold has {}",
+                i + 1,
+                train.len()
+            )));
+            continue;
+        }
+        let gmr = (|| {
+            let params = gmr_params(DEFAULT_COMPONENTS, metrics.sample_period)?;
+            let t = Instant::now();
+            let (model, _, _) = params.fit_with_details(&train)?;
+            let train_s = t.elapsed().as_secs_f64();
+            let t = Instant::now();
+            let plan = gmr_plan(&model, initial, rate)?;
+            Ok::<_, super::baseline::BaselineError>((plan, train_s, t.elapsed().as_secs_f64()))
+        })();
+        out.gmr.push(match gmr {
+            Ok((plan, train_s, reproduce_s)) => {
+                Ok(method(&plan.postures, train_s, reproduce_s, None)?)
+            }
+            Err(e) => Err(format!("fold {}: {e}", i + 1)),
+        });
+    }
+    Ok(out)
 }
 
 /// GMM/GMR ([`DEFAULT_COMPONENTS`]) on every fold, as [`hsom_folds`]; a fold where it cannot

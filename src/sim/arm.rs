@@ -354,6 +354,16 @@ impl<'a> ArmSim<'a> {
         self.teleport(p)
     }
 
+    /// Hold the joints at `posture` from outside (a hand on the arm): positions set,
+    /// velocities zeroed; the servo targets are not touched (the servos keep pushing) and
+    /// the next physics step moves the arm again.
+    pub(crate) fn pin(&mut self, posture: &Posture) {
+        for (k, j) in self.arm.joints.iter().enumerate() {
+            self.data.qpos_mut()[j.qpos] = posture[k];
+            self.data.qvel_mut()[j.dof] = 0.0;
+        }
+    }
+
     fn teleport(&mut self, p: Posture) -> Result<()> {
         for (k, j) in self.arm.joints.iter().enumerate() {
             self.data.qpos_mut()[j.qpos] = p[k];

@@ -260,6 +260,19 @@ pub struct Controller {
     config: ControllerConfig,
 }
 
+/// An external hand holding the arm still during a motion ([`Controller::follow_grabbed`]):
+/// from `start_s` (s from the motion's start) for `seconds`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Grab {
+    /// When the hand takes hold, s from the start of the motion (>= 0).
+    pub start_s: f64,
+    /// How long it holds, s (>= 0; 0: no grab).
+    pub seconds: f64,
+}
+
+/// No hand on the arm.
+fn no_hand(_: f64, _: &mut ArmSim<'_>) {}
+
 struct Segment {
     start: Posture,
     end: Posture,
@@ -332,7 +345,7 @@ impl Controller {
         }
         let interp = self.config.interpolation;
         let start = sim.targets();
-        self.run(sim, t, |time| {
+        self.run(sim, t, no_hand, |time| {
             let i = segments.partition_point(|s| s.t0 <= time);
             let Some(s) = i.checked_sub(1).map(|i| &segments[i]) else {
                 return (start, [0.0; NJ]);
@@ -359,13 +372,39 @@ impl Controller {
     /// servos follow as fast as their torque limits allow. Start from the trajectory's first
     /// posture (e.g. with [`ArmSim::set_posture`] or [`Controller::execute`]) to avoid a jump.
     pub fn follow(&self, sim: &mut ArmSim<'_>, trajectory: &TargetTrajectory) -> Result<Recording> {
-        self.run(sim, trajectory.duration, |t| trajectory.sample(t))
+        self.run(sim, trajectory.duration, no_hand, |t| trajectory.sample(t))
     }
 
+    /// [`Controller::follow`] while an external hand grabs the arm ([`Grab`]): from
+    /// `grab.start_s`, for `grab.seconds`, every joint stays where it was when grabbed
+    /// (position pinned, velocity zero, at every physics step) while the servo targets go on
+    /// along the trajectory; then the hand lets go and the servos pull the arm on. The
+    /// encoders read the held posture meanwhile. A grab outside the motion does nothing.
+    pub fn follow_grabbed(
+        &self,
+        sim: &mut ArmSim<'_>,
+        trajectory: &TargetTrajectory,
+        grab: Grab,
+    ) -> Result<Recording> {
+        non_negative("grab start", grab.start_s)?;
+        non_negative("grab duration", grab.seconds)?;
+        let mut held: Option<Posture> = None;
+        let hand = |t: f64, sim: &mut ArmSim<'_>| {
+            if t >= grab.start_s && t < grab.start_s + grab.seconds {
+                let p = *held.get_or_insert_with(|| sim.posture());
+                sim.pin(&p);
+            }
+        };
+        self.run(sim, trajectory.duration, hand, |t| trajectory.sample(t))
+    }
+
+    /// Run the servos along `desired` for `duration`, recording; `hand(t, sim)` acts on the
+    /// arm from outside before each physics step at time `t` ([`no_hand`]: nothing).
     fn run(
         &self,
         sim: &mut ArmSim<'_>,
         duration: f64,
+        mut hand: impl FnMut(f64, &mut ArmSim<'_>),
         desired: impl Fn(f64) -> (Posture, Posture),
     ) -> Result<Recording> {
         let dt = sim.arm().timestep();
@@ -447,6 +486,7 @@ impl Controller {
         record_until(&mut rec, &mut next, &prev, &prev, 0.0, 0.0);
         for n in 0..n_steps {
             let t = n as f64 * dt;
+            hand(t, sim);
             let (q, qd) = desired(t);
             sim.command(&q, &qd, gc);
             let q_before = sim.posture();

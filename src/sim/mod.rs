@@ -17,7 +17,7 @@ pub mod spec;
 
 pub use arm::{ArmSim, NaoArm, ServoGains, DEFAULT_MODEL_PATH, GRIPPER_SITE, WRIST_SITE};
 pub use controller::{
-    Controller, ControllerConfig, KeyPose, TargetTrajectory, DEFAULT_RECORD_RATE_HZ,
+    Controller, ControllerConfig, Grab, KeyPose, TargetTrajectory, DEFAULT_RECORD_RATE_HZ,
 };
 pub use error::{Result, SimError};
 pub use interp::Interpolation;

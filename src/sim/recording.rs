@@ -62,6 +62,25 @@ impl Recording {
             .fold(0.0, f64::max)
     }
 
+    /// Append a recording that went on from where this one ended (the state one tick after
+    /// this one's last sample is `later`'s first): `later`'s times are shifted by this one's
+    /// length. The rates and joints must agree.
+    pub fn append(&mut self, later: Recording) -> super::Result<()> {
+        if later.rate_hz != self.rate_hz || later.joint_names != self.joint_names {
+            return Err(super::SimError::InvalidTrajectory(format!(
+                "appending a recording at {} Hz of {:?} to one at {} Hz of {:?}",
+                later.rate_hz, later.joint_names, self.rate_hz, self.joint_names
+            )));
+        }
+        let offset = self.len() as f64 / self.rate_hz;
+        self.time.extend(later.time.iter().map(|t| t + offset));
+        self.qpos.extend(later.qpos);
+        self.target.extend(later.target);
+        self.wrist.extend(later.wrist);
+        self.gripper.extend(later.gripper);
+        Ok(())
+    }
+
     /// The encoder series as a [`Demonstration`] (columns: joint names, with times).
     pub fn to_demonstration(&self, source: impl Into<String>) -> Demonstration {
         Demonstration {
