@@ -4,8 +4,10 @@
 //! demonstration's duration a hand holds the arm still for `--grab` ticks (40 Hz) while the
 //! servo targets go on. Then either the plan goes on by its clock (no re-plan), or the method
 //! is given what the encoders read of its own execution and the grab and continues from there
-//! (the closed loop): the hierarchy with `Hsom::continue_events` (the reading pushed up the
-//! lists, re-planned on surprise), the nearest sequence with `Hsom::follow_nearest_from`
+//! (the closed loop): the hierarchy with `Hsom::resume` (the reading aligned with its own
+//! plan, the plan's events executed so far pushed up the lists, the levels plan the rest) and,
+//! beside it, with `Hsom::continue_events` (the reading encoded again by the bottom, as a new
+//! demonstration's prefix is), the nearest sequence with `Hsom::follow_nearest_from`
 //! (re-aligned by open-end DTW); as the re-plan's control, each also re-plans at the same
 //! moment from the reading of its undisturbed execution ("read back, no grab": does a re-plan
 //! alone keep the gesture?). GMM/GMR is time-driven: by its clock only. Every motion, the
@@ -25,7 +27,7 @@ use anyhow::{Context, Result};
 use clap::Parser;
 
 use cosco_hsom::config::load_config;
-use cosco_hsom::experiment::heldout::{closed_loop_folds, ClosedLoopFold};
+use cosco_hsom::experiment::heldout::{closed_loop_folds, ClosedLoop, ClosedLoopFold};
 use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{synthetic_demonstrations, FoldScores, Transition};
 use cosco_hsom::sim::NaoArm;
@@ -50,11 +52,13 @@ struct Args {
 }
 
 /// The columns, in order.
-const COLUMNS: [&str; 9] = [
+const COLUMNS: [&str; 11] = [
     "hierarchy undisturbed",
-    "hierarchy read back, no grab",
     "hierarchy by its clock",
-    "hierarchy re-planned",
+    "hierarchy read back, no grab",
+    "hierarchy resumed",
+    "hierarchy re-encoded read back, no grab",
+    "hierarchy re-encoded after the grab",
     "nearest sequence undisturbed",
     "nearest sequence read back, no grab",
     "nearest sequence re-aligned",
@@ -94,21 +98,26 @@ fn mean<'a>(folds: impl Iterator<Item = &'a FoldScores>) -> Mean {
 }
 
 /// The columns of one (gesture, seed).
-fn row(hsom: &[ClosedLoopFold], seq: &[ClosedLoopFold], gmr: &[&ClosedLoopFold]) -> [Mean; 9] {
+fn row(folds: &ClosedLoop) -> [Mean; 11] {
+    let gmr: Vec<&ClosedLoopFold> = folds.gmr.iter().filter_map(|r| r.as_ref().ok()).collect();
+    let replanned = |f: &[ClosedLoopFold]| mean(f.iter().filter_map(|f| f.replanned.as_ref()));
+    let read_back = |f: &[ClosedLoopFold]| mean(f.iter().filter_map(|f| f.read_back.as_ref()));
     [
-        mean(hsom.iter().map(|f| &f.undisturbed)),
-        mean(hsom.iter().filter_map(|f| f.read_back.as_ref())),
-        mean(hsom.iter().map(|f| &f.by_clock)),
-        mean(hsom.iter().filter_map(|f| f.replanned.as_ref())),
-        mean(seq.iter().map(|f| &f.undisturbed)),
-        mean(seq.iter().filter_map(|f| f.read_back.as_ref())),
-        mean(seq.iter().filter_map(|f| f.replanned.as_ref())),
+        mean(folds.hsom.iter().map(|f| &f.undisturbed)),
+        mean(folds.hsom.iter().map(|f| &f.by_clock)),
+        read_back(&folds.hsom),
+        replanned(&folds.hsom),
+        read_back(&folds.hsom_reencoded),
+        replanned(&folds.hsom_reencoded),
+        mean(folds.sequence.iter().map(|f| &f.undisturbed)),
+        read_back(&folds.sequence),
+        replanned(&folds.sequence),
         mean(gmr.iter().map(|f| &f.undisturbed)),
         mean(gmr.iter().map(|f| &f.by_clock)),
     ]
 }
 
-fn print_row(gesture: &str, seed: &str, r: &[Mean; 9]) {
+fn print_row(gesture: &str, seed: &str, r: &[Mean; 11]) {
     let cells: Vec<String> = r
         .iter()
         .map(|m| format!("{:.4} ({:.2}x, {}/{})", m.dtw, m.duration, m.exact, m.folds))
@@ -116,7 +125,7 @@ fn print_row(gesture: &str, seed: &str, r: &[Mean; 9]) {
     println!("| {gesture} | {seed} | {} |", cells.join(" | "));
 }
 
-fn print_median(gesture: &str, rows: &[[Mean; 9]]) {
+fn print_median(gesture: &str, rows: &[[Mean; 11]]) {
     let cells: Vec<String> = (0..COLUMNS.len())
         .map(|c| {
             let med =
@@ -164,9 +173,7 @@ fn run(a: Args) -> Result<()> {
             for e in folds.gmr.iter().filter_map(|r| r.as_ref().err()) {
                 eprintln!("{} seed {seed}: {e}", g.name);
             }
-            let gmr: Vec<&ClosedLoopFold> =
-                folds.gmr.iter().filter_map(|r| r.as_ref().ok()).collect();
-            let r = row(&folds.hsom, &folds.sequence, &gmr);
+            let r = row(&folds);
             print_row(g.name, &seed.to_string(), &r);
             rows.push(r);
         }
@@ -174,13 +181,14 @@ fn run(a: Args) -> Result<()> {
         all.extend(rows);
     }
     print_median("all", &all);
-    let count = |f: fn(&[Mean; 9]) -> bool| all.iter().filter(|r| f(r)).count();
+    let count = |f: fn(&[Mean; 11]) -> bool| all.iter().filter(|r| f(r)).count();
     println!(
-        "\nOf {} runs: the hierarchy re-planned is closer than the nearest sequence re-aligned in {}, than its own plan by the clock in {}; GMM/GMR by its clock is closer than the hierarchy re-planned in {}.",
+        "\nOf {} runs: the hierarchy resumed is closer than the nearest sequence re-aligned in {}, than its own plan by the clock in {}, than re-encoded after the grab in {}; GMM/GMR by its clock is closer than the hierarchy resumed in {}.",
         all.len(),
-        count(|r| r[3].dtw < r[6].dtw),
-        count(|r| r[3].dtw < r[2].dtw),
-        count(|r| r[8].dtw < r[3].dtw),
+        count(|r| r[3].dtw < r[8].dtw),
+        count(|r| r[3].dtw < r[1].dtw),
+        count(|r| r[3].dtw < r[5].dtw),
+        count(|r| r[10].dtw < r[3].dtw),
     );
     Ok(())
 }

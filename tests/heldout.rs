@@ -255,6 +255,7 @@ fn a_grab_during_execution_is_scored_against_the_held_out_demonstration() {
         assert!(gmr.replanned.is_none() && gmr.read_back.is_none());
         for (method, fold) in [
             ("hierarchy", &c.hsom[i]),
+            ("hierarchy re-encoded", &c.hsom_reencoded[i]),
             ("nearest sequence", &c.sequence[i]),
             ("GMM/GMR", gmr),
         ] {
@@ -278,6 +279,17 @@ fn a_grab_during_execution_is_scored_against_the_held_out_demonstration() {
             a.fidelity.joint_dtw_rad_per_step.mean == b.fidelity.joint_dtw_rad_per_step.mean
         };
         assert!(same(&c.hsom[i].undisturbed, &fold.hsom), "fold {i}");
+        // resumed from the reading of its own undisturbed execution, the hierarchy goes on
+        // as planned: within 2 % of its undisturbed run
+        let read_back = c.hsom[i].read_back.as_ref().unwrap();
+        let (a, b) = (
+            read_back.fidelity.joint_dtw_rad_per_step.mean,
+            fold.hsom.fidelity.joint_dtw_rad_per_step.mean,
+        );
+        assert!(
+            (a - b).abs() < 0.02 * b,
+            "fold {i}: read back {a}, undisturbed {b}"
+        );
         assert!(
             same(&c.sequence[i].undisturbed, fold.sequence.as_ref().unwrap()),
             "fold {i}"
@@ -291,6 +303,7 @@ fn a_grab_during_execution_is_scored_against_the_held_out_demonstration() {
         let after = (f.demos[i].rows.len() as f64 * 0.5).round() as usize + 40;
         for (method, fold) in [
             ("hierarchy", &c.hsom[i]),
+            ("hierarchy re-encoded", &c.hsom_reencoded[i]),
             ("nearest sequence", &c.sequence[i]),
         ] {
             let re = fold.replanned.as_ref().unwrap();
@@ -318,6 +331,20 @@ fn a_grab_during_execution_is_scored_against_the_held_out_demonstration() {
             );
         }
     }
+    // the control: re-planned from the same readings encoded again, the hierarchy loses its
+    // place (7 % off at this seed's mean, measured)
+    let off = (0..COUNT)
+        .filter(|&i| {
+            let a = c.hsom_reencoded[i].read_back.as_ref().unwrap();
+            let b = &c.hsom[i].undisturbed;
+            let (a, b) = (
+                a.fidelity.joint_dtw_rad_per_step.mean,
+                b.fidelity.joint_dtw_rad_per_step.mean,
+            );
+            (a - b).abs() >= 0.02 * b
+        })
+        .count();
+    assert!(off > 0, "re-encoded read back within 2 % on every fold");
     for (at, grab, allowed) in [
         (0.0, 40, "strictly between 0 and 1"),
         (1.0, 40, "strictly between 0 and 1"),

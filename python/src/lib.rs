@@ -451,6 +451,25 @@ impl Hsom {
         Ok(array2(py, &rep.postures, self.inner.columns().len()))
     }
 
+    /// Resume this model's own reproduction from `initial` after part of it was executed:
+    /// `reading` (2-D, at least actionHorizon + 1 rows, from `initial`) is what the encoders
+    /// read meanwhile, possibly disturbed. The reading is aligned with the plan, the event in
+    /// progress goes on, the levels plan the rest (`algorithm = events`). The postures of the
+    /// continuation, from the reading's last.
+    fn resume<'py>(
+        &self,
+        py: Python<'py>,
+        initial: &Bound<'py, PyAny>,
+        reading: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let initial = posture_of(initial, "initial")?;
+        let rows = rows_of(reading, "reading")?;
+        let rep = py
+            .allow_threads(|| self.inner.resume(&initial, &rows))
+            .map_err(|e| py_err(&e))?;
+        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+    }
+
     /// The nearest-sequence continuation of a prefix: of `demos`, the one along which the
     /// prefix runs closest, continued after the prefix's end through this model's bottom code.
     /// The postures of the continuation, from the prefix's last.

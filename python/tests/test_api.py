@@ -57,6 +57,27 @@ def test_continuing_a_prefix_both_ways(demos):
         model.continue_events(prefix[:1])
 
 
+def test_resuming_its_own_reproduction(demos):
+    cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
+    model = cosco_hsom.Hsom.fit(cfg, demos[1:])
+    initial = demos[0][0]
+    whole = model.reproduce(initial)
+    reading = whole[: len(whole) // 2]
+    rest = model.resume(initial, reading)
+    np.testing.assert_allclose(rest[0], reading[-1], rtol=0, atol=1e-12)
+    again = np.vstack([reading, rest[1:]])
+    # read back, the plan goes on as it was; held still for 20 samples, it goes on after
+    assert abs(len(again) - len(whole)) <= 1
+    assert mean_dtw(again, [whole]) < 0.01 * mean_dtw(whole[::-1], [whole]) + 1e-9
+    held = np.vstack([reading, np.repeat(reading[-1:], 20, axis=0)])
+    after = np.vstack([held, model.resume(initial, held)[1:]])
+    assert abs(len(after) - len(whole) - 20) <= 10
+    with pytest.raises(ValueError, match="reading"):
+        model.resume(initial, reading[:1])
+    with pytest.raises(ValueError, match="initial posture"):
+        model.resume([0.0], reading)
+
+
 def test_same_seed_same_model_other_seed_other_model(demos, tmp_path):
     cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
     a = cosco_hsom.Hsom.fit(cfg, demos)

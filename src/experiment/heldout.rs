@@ -536,8 +536,14 @@ pub struct ClosedLoopFold {
 /// [`closed_loop_folds`]: one [`ClosedLoopFold`] per demonstration for each method.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ClosedLoop {
-    /// CoSCo-HSOM: re-plans with [`Hsom::continue_events`](crate::hsom::Hsom::continue_events).
+    /// CoSCo-HSOM: resumes its own plan with [`Hsom::resume`](crate::hsom::Hsom::resume)
+    /// (the reading aligned with the plan, the plan's events executed so far pushed up the
+    /// lists, the levels plan the rest).
     pub hsom: Vec<ClosedLoopFold>,
+    /// CoSCo-HSOM re-planning from the reading encoded again by its bottom, with
+    /// [`Hsom::continue_events`](crate::hsom::Hsom::continue_events) (as a prefix of a new
+    /// demonstration is); its undisturbed and by-the-clock runs are `hsom`'s.
+    pub hsom_reencoded: Vec<ClosedLoopFold>,
     /// The nearest-sequence baseline: re-aligns with
     /// [`Hsom::follow_nearest_from`](crate::hsom::Hsom::follow_nearest_from).
     pub sequence: Vec<ClosedLoopFold>,
@@ -553,9 +559,11 @@ pub struct ClosedLoop {
 /// undisturbed; grabbed, its plan going on by the clock; grabbed, then re-planned on release
 /// from the encoders' reading of its own execution and the grab (the closed loop); and, as
 /// that re-plan's control, re-planned at the same moment from the reading of its undisturbed
-/// execution (no grab). CoSCo-HSOM re-plans with
-/// [`Hsom::continue_events`](crate::hsom::Hsom::continue_events), the nearest-sequence
-/// baseline with [`Hsom::follow_nearest_from`](crate::hsom::Hsom::follow_nearest_from);
+/// execution (no grab). CoSCo-HSOM resumes its plan with
+/// [`Hsom::resume`](crate::hsom::Hsom::resume) (and, measured beside it, re-plans from the
+/// reading encoded again with [`Hsom::continue_events`](crate::hsom::Hsom::continue_events)),
+/// the nearest-sequence baseline re-aligns with
+/// [`Hsom::follow_nearest_from`](crate::hsom::Hsom::follow_nearest_from);
 /// GMM/GMR is time-driven: by its clock only. Every executed motion, the grab included, is
 /// scored against `demos[i]` alone.
 pub fn closed_loop_folds(
@@ -581,6 +589,7 @@ pub fn closed_loop_folds(
     let mut out = ClosedLoop {
         hsom: Vec::new(),
         sequence: Vec::new(),
+        hsom_reencoded: Vec::new(),
         gmr: Vec::new(),
     };
     for i in 0..demos.len() {
@@ -648,8 +657,11 @@ pub fn closed_loop_folds(
         let t = Instant::now();
         let plan = model.reproduce(initial)?.postures;
         let reproduce_s = t.elapsed().as_secs_f64();
-        let mut replan = |read: &[Vec<f64>]| Ok(model.continue_events(read)?.postures);
+        let mut replan = |read: &[Vec<f64>]| Ok(model.resume(initial, read)?.postures);
         out.hsom
+            .push(method(&plan, train_s, reproduce_s, Some(&mut replan))?);
+        let mut replan = |read: &[Vec<f64>]| Ok(model.continue_events(read)?.postures);
+        out.hsom_reencoded
             .push(method(&plan, train_s, reproduce_s, Some(&mut replan))?);
         let t = Instant::now();
         let plan = model.follow_nearest(&train, initial)?.postures;

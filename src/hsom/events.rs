@@ -971,6 +971,18 @@ impl Hsom {
         prefix: &[(usize, f64)],
         r: &ReproductionParams,
     ) -> Reproduction {
+        let (executed, stop) = self.plan_event_list(start, prefix, r);
+        self.timed_postures(from, &executed[prefix.len()..], stop)
+    }
+
+    /// The events of [`Hsom::plan_events`]: the prefix's, then the planned ones, each (node,
+    /// duration in samples, level that planned it), and why the plan ended.
+    fn plan_event_list(
+        &self,
+        start: &[f64],
+        prefix: &[(usize, f64)],
+        r: &ReproductionParams,
+    ) -> (Vec<(usize, f64, usize)>, StopReason) {
         let cfg = &self.config;
         let p = cfg.params();
         let max_len = r.max_length;
@@ -1098,7 +1110,7 @@ impl Hsom {
                 plan.clear();
             }
         }
-        self.timed_postures(from, &executed[prefix.len()..], stop)
+        (executed, stop)
     }
 
     /// Expand the prediction of node `n` of `level` from slot `from` into timed bottom
@@ -1632,13 +1644,17 @@ impl Hsom {
         (n, if learned > 0.0 { learned } else { len }, 0)
     }
 
-    /// The normalised rows of `prefix` (the first samples of a gesture, in the data's units),
-    /// once checked as a demonstration is.
-    fn normalised_prefix(&self, prefix: &[Vec<f64>]) -> Result<Vec<Vec<f64>>, HsomError> {
+    /// The normalised rows of `prefix` (the first samples of a gesture, in the data's units;
+    /// `source` names it in errors), once checked as a demonstration is.
+    fn normalised_prefix(
+        &self,
+        source: &'static str,
+        prefix: &[Vec<f64>],
+    ) -> Result<Vec<Vec<f64>>, HsomError> {
         let p = self.config.params();
         check_series(
             &[super::algorithm::Series {
-                source: "prefix",
+                source,
                 rows: prefix,
             }],
             p.state_length,
@@ -1661,11 +1677,68 @@ impl Hsom {
                 algorithm: format!("{:?}", p.algorithm).to_lowercase(),
             });
         }
-        let norm = self.normalised_prefix(prefix)?;
+        let norm = self.normalised_prefix("prefix", prefix)?;
         let events = bottom_events(self, &norm);
         let last = &norm[norm.len() - 1];
         let r = &p.reproduction;
         let mut rep = self.plan_events(&norm[0], last, &events, r);
+        rep.truncate(r.max_length);
+        Ok(rep)
+    }
+
+    /// Resume this model's own reproduction from `initial` after part of it was executed:
+    /// `reading` is what the encoders read meanwhile (in the data's units, from `initial`; at
+    /// least `actionHorizon + 1` samples), possibly disturbed (held still, slowed, pushed).
+    /// The reproduction is planned again from `initial` (it is deterministic), the reading is
+    /// aligned with its postures (open-end DTW in the model's normalised units) to find how far
+    /// along the plan the arm has got; the event in progress there goes on for what is left of
+    /// it, and the levels plan the rest from the lists with the plan's events up to it pushed
+    /// as executed (docs/ALGORITHM.md, "In a closed loop"). The events executed are the
+    /// plan's own, not the reading encoded again: a reproduction's reading encodes into more
+    /// bottom events than were planned, and the lists' phase counts events. The postures
+    /// start at the reading's last posture and hold only the continuation. Needs
+    /// `algorithm = events`.
+    pub fn resume(&self, initial: &[f64], reading: &[Vec<f64>]) -> Result<Reproduction, HsomError> {
+        let p = self.config.params();
+        if p.algorithm != crate::config::Algorithm::Events {
+            return Err(HsomError::NeedsEvents {
+                what: "resuming a reproduction".into(),
+                algorithm: format!("{:?}", p.algorithm).to_lowercase(),
+            });
+        }
+        self.check_initial(initial)?;
+        let norm = self.normalised_prefix("reading", reading)?;
+        let y0 = self.normalise(initial);
+        let r = &p.reproduction;
+        let (events, stop) = self.plan_event_list(&y0, &[], r);
+        let plan = self.normalise_rows(&self.timed_postures(&y0, &events, stop).postures);
+        let (reached, _) = super::recognize::open_end_cost(&norm, &plan);
+        let reached = reached as f64;
+        // the plan's events begun by the sample reached: the last one is in progress
+        let mut start = 0.0;
+        let k = events
+            .iter()
+            .take_while(|e| {
+                let begun = start <= reached;
+                start += e.1;
+                begun
+            })
+            .count();
+        let from = &norm[norm.len() - 1];
+        if k == 0 {
+            return Ok(self.plan_events(&y0, from, &[], r));
+        }
+        let begun: Vec<(usize, f64)> = events[..k].iter().map(|&(n, d, _)| (n, d)).collect();
+        let (current, _, by) = events[k - 1];
+        let left = begun.iter().map(|e| e.1).sum::<f64>() - reached;
+        // the event in progress goes on for what is left of it; the levels plan the rest
+        // from the lists with it completed
+        let (planned, stop) = self.plan_event_list(&y0, &begun, r);
+        let rest: Vec<(usize, f64, usize)> = std::iter::once((current, left, by))
+            .filter(|e| e.1 >= 1.0)
+            .chain(planned[k..].iter().copied())
+            .collect();
+        let mut rep = self.timed_postures(from, &rest, stop);
         rep.truncate(r.max_length);
         Ok(rep)
     }
@@ -1682,7 +1755,7 @@ impl Hsom {
     ) -> Result<Reproduction, HsomError> {
         let p = self.config.params();
         check_series(&demo_series(demos), p.state_length, p.action_horizon)?;
-        let norm = self.normalised_prefix(prefix)?;
+        let norm = self.normalised_prefix("prefix", prefix)?;
         let (rows, end, _) = demos
             .iter()
             .map(|d| {
@@ -2199,6 +2272,77 @@ mod tests {
             .follow_nearest_from(&demos, &demos[0].rows[..1])
             .unwrap_err();
         assert!(e.to_string().contains("prefix"), "{e}");
+    }
+
+    /// Resuming its own reproduction: read back at any point of it (the reading is the
+    /// reproduction's first samples), the hierarchy goes on as planned, so reading and
+    /// continuation are the whole reproduction again (within 0.02, as long to a sample);
+    /// held still on the way out for 30 samples, it then goes on with the rest (out, hold,
+    /// back: one excursion, ending at home). Continuing the same readings as a new
+    /// demonstration's prefix (the reading encoded again by the bottom) does not give the
+    /// plan back (the control); a paper-algorithm model, a wrong initial posture and a
+    /// too-short reading are refused.
+    #[test]
+    fn resuming_its_own_reproduction_goes_on_as_planned() {
+        let m = trained(3);
+        let initial = gesture(30, 7)[0].clone();
+        let whole = m.reproduce(&initial).unwrap().postures;
+        let n = whole.len();
+        let joined = |reading: &[Vec<f64>], rest: &[Vec<f64>]| -> Vec<Vec<f64>> {
+            reading.iter().chain(rest.iter().skip(1)).cloned().collect()
+        };
+        let gap = |a: &[Vec<f64>], b: &[Vec<f64>]| {
+            a.iter()
+                .zip(b)
+                .flat_map(|(x, y)| x.iter().zip(y).map(|(p, q)| (p - q).abs()))
+                .fold(0.0, f64::max)
+        };
+        let mut control = Vec::new();
+        for k in [n / 4, n / 2, 3 * n / 4] {
+            let reading = &whole[..k];
+            let rest = m.resume(&initial, reading).unwrap().postures;
+            assert_eq!(&rest[0], reading.last().unwrap());
+            let again = joined(reading, &rest);
+            assert!(
+                again.len().abs_diff(n) <= 1,
+                "at {k}: {} of {n}",
+                again.len()
+            );
+            assert!(
+                gap(&again, &whole) < 0.02,
+                "at {k}: {}",
+                gap(&again, &whole)
+            );
+            let reencoded = joined(reading, &m.continue_events(reading).unwrap().postures);
+            control.push(gap(&reencoded, &whole));
+        }
+        // the control: the reading encoded again does not give the plan back (0.08, 0.51 and
+        // 0.08 measured)
+        assert!(control.iter().any(|&g| g > 0.05), "{control:?}");
+        // held still for 30 samples on the way out: then out, held, back, home
+        let out = whole.iter().position(|p| p[0] > 0.5).unwrap();
+        let mut reading = whole[..out].to_vec();
+        reading.extend(std::iter::repeat(whole[out - 1].clone()).take(30));
+        let after = joined(&reading, &m.resume(&initial, &reading).unwrap().postures);
+        assert_eq!(excursions(&after), 1, "{after:?}");
+        assert!(after.last().unwrap()[0].abs() < 0.15);
+        assert!(
+            after.len().abs_diff(n + 30) <= 10,
+            "{} against {}",
+            after.len(),
+            n + 30
+        );
+        let e = m.resume(&[0.0], &reading).unwrap_err().to_string();
+        assert!(e.contains("initial posture"), "{e}");
+        let e = m.resume(&initial, &reading[..2]).unwrap_err().to_string();
+        assert!(e.contains("reading") && e.contains("2 sample"), "{e}");
+        let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
+        let mut p = HsomParams::table1();
+        p.state_length = 2;
+        p.action_length = 2;
+        let paper = p.check("paper").unwrap().fit_series(&series).unwrap();
+        let e = paper.resume(&initial, &reading).unwrap_err().to_string();
+        assert!(e.contains("algorithm = events"), "{e}");
     }
 
     /// Continuing a prefix with the hierarchy: the prefix's events are pushed up the lists
