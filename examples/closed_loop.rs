@@ -16,6 +16,7 @@
 //!
 //! ```sh
 //! cargo run --release --example closed_loop -- --seeds 1-5 --at 0.5 --grab 40
+//! cargo run --release --example closed_loop -- --seeds 12 --gestures wave --png docs/figures
 //! ```
 
 mod common;
@@ -27,7 +28,9 @@ use anyhow::{Context, Result};
 use clap::Parser;
 
 use cosco_hsom::config::load_config;
-use cosco_hsom::experiment::heldout::{closed_loop_folds, ClosedLoop, ClosedLoopFold};
+use cosco_hsom::experiment::heldout::{
+    closed_loop_folds, closed_loop_png, ClosedLoop, ClosedLoopFold,
+};
 use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{synthetic_demonstrations, FoldScores, Transition};
 use cosco_hsom::sim::NaoArm;
@@ -49,6 +52,10 @@ struct Args {
     /// CoSCo-HSOM configuration (XML).
     #[arg(long, default_value = "configs/nao-gestures.xml")]
     config: PathBuf,
+    /// Also draw each (gesture, seed): `<DIR>/closed-loop-<gesture>-seed-<S>.png`, one panel
+    /// per fold (LElbowRoll against time, the grab shaded).
+    #[arg(long, value_name = "DIR")]
+    png: Option<PathBuf>,
 }
 
 /// The columns, in order.
@@ -172,6 +179,20 @@ fn run(a: Args) -> Result<()> {
                 .with_context(|| format!("{} seed {seed}", g.name))?;
             for e in folds.gmr.iter().filter_map(|r| r.as_ref().err()) {
                 eprintln!("{} seed {seed}: {e}", g.name);
+            }
+            if let Some(dir) = &a.png {
+                std::fs::create_dir_all(dir)
+                    .with_context(|| format!("creating {}", dir.display()))?;
+                let path = dir.join(format!("closed-loop-{}-seed-{seed}.png", g.name));
+                let title = format!(
+                    "{} seed {seed}: a hand holds the arm for {} ticks at {:.0} % of the held-out demonstration",
+                    g.name,
+                    a.grab,
+                    a.at * 100.0
+                );
+                closed_loop_png(&path, &title, &demos, &folds)
+                    .with_context(|| format!("drawing {}", path.display()))?;
+                eprintln!("wrote {}", path.display());
             }
             let r = row(&folds);
             print_row(g.name, &seed.to_string(), &r);

@@ -11,8 +11,8 @@ use rand_chacha::ChaCha8Rng;
 use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::experiment::heldout::{
-    closed_loop_folds, continuation_folds, swing_folds, swing_folds_png, Disturbance, SWING_JOINT,
-    SWING_MIN_AMPLITUDE_RAD,
+    closed_loop_folds, closed_loop_png, continuation_folds, swing_folds, swing_folds_png,
+    Disturbance, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD,
 };
 use cosco_hsom::experiment::{
     hsom_folds, leave_one_out, sample_period, synthetic_demonstrations, DemoSettings, HeldOut,
@@ -331,6 +331,26 @@ fn a_grab_during_execution_is_scored_against_the_held_out_demonstration() {
             );
         }
     }
+    // the traces drawn: the grab is where the runs by the clock stand still, and drawn
+    for (i, fold) in c.hsom.iter().enumerate() {
+        let (t0, t1) = c.grab_s[i];
+        assert!((t1 - t0 - 1.0).abs() < 1e-9, "fold {i}: {t0} .. {t1}");
+        let held: Vec<f64> = fold
+            .by_clock_trace
+            .iter()
+            .filter(|p| p.0 > t0 + 0.05 && p.0 < t1 - 0.05)
+            .map(|p| p.1)
+            .collect();
+        assert!(held.len() > 30 && held.iter().all(|v| (v - held[0]).abs() < 1e-9));
+        assert_eq!(
+            fold.replanned_trace.as_ref().unwrap().len(),
+            fold.replanned.as_ref().unwrap().postures
+        );
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("closed-loop.png");
+    closed_loop_png(&path, "reading-watch", &f.demos, &c).unwrap();
+    assert_eq!(&std::fs::read(&path).unwrap()[1..4], b"PNG");
     // the control: re-planned from the same readings encoded again, the hierarchy loses its
     // place (7 % off at this seed's mean, measured)
     let off = (0..COUNT)

@@ -11,7 +11,7 @@ use serde::Serialize;
 use crate::config::HsomConfig;
 use crate::demos::Demonstration;
 use crate::gmr::MIN_DEMONSTRATIONS;
-use crate::metrics::{column_swings, FidelityReport};
+use crate::metrics::{column_swings, FidelityReport, MetricsParams};
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
 
 use super::baseline::{gmr_params, plan as gmr_plan, run_baseline_split, DEFAULT_COMPONENTS};
@@ -531,6 +531,10 @@ pub struct ClosedLoopFold {
     /// from what the encoders read of its own execution: whether a re-plan alone, with no
     /// disturbance, keeps the gesture. `None` where `replanned` is.
     pub read_back: Option<FoldScores>,
+    /// `(time s, value rad)` of [`SWING_JOINT`] in the run by the clock.
+    pub by_clock_trace: Vec<(f64, f64)>,
+    /// The same in the re-planned run.
+    pub replanned_trace: Option<Vec<(f64, f64)>>,
 }
 
 /// [`closed_loop_folds`]: one [`ClosedLoopFold`] per demonstration for each method.
@@ -549,6 +553,99 @@ pub struct ClosedLoop {
     pub sequence: Vec<ClosedLoopFold>,
     /// GMM/GMR by its clock (no re-plan), or why the fold could not run it.
     pub gmr: Vec<Result<ClosedLoopFold, String>>,
+    /// When the hand held the arm on each fold: (start, end), s from the start of the motion.
+    pub grab_s: Vec<(f64, f64)>,
+}
+
+/// One fold of [`closed_loop_folds`]: where and how its methods are executed and scored.
+struct GrabbedFold<'a> {
+    arm: &'a NaoArm,
+    held: &'a Demonstration,
+    metrics: &'a MetricsParams,
+    rate: f64,
+    /// The tick the hand takes hold, and for how many.
+    grab: (usize, usize),
+    transition: Transition,
+}
+
+impl GrabbedFold<'_> {
+    /// Scores of an executed run against the held-out demonstration alone.
+    fn score(
+        &self,
+        rec: &Recording,
+        clamped_values: usize,
+        (train_s, reproduce_s): (f64, f64),
+    ) -> Result<FoldScores, ExperimentError> {
+        Ok(FoldScores {
+            fidelity: evaluate(
+                Some(self.arm),
+                std::slice::from_ref(self.held),
+                &rec.qpos,
+                self.metrics,
+            )?,
+            swings: swings(rec, self.held)?,
+            postures: rec.len(),
+            clamped_values,
+            train_s,
+            reproduce_s,
+        })
+    }
+
+    /// A method's `plan` executed undisturbed, grabbed by its clock, and (with `replan`)
+    /// grabbed then continued, and continued at the same moment without the grab.
+    fn run(
+        &self,
+        plan: &[Vec<f64>],
+        (train_s, reproduce_s): (f64, f64),
+        replan: Option<&mut Replan<'_>>,
+    ) -> Result<ClosedLoopFold, ExperimentError> {
+        let test = std::slice::from_ref(self.held);
+        let still = execute_and_score(self.arm, plan, self.transition, test, self.metrics)?;
+        let undisturbed = FoldScores {
+            fidelity: still.fidelity,
+            swings: swings(&still.executed, self.held)?,
+            postures: plan.len(),
+            clamped_values: still.clamped_values,
+            train_s,
+            reproduce_s,
+        };
+        let execute = |ticks: usize, replan: Option<&mut Replan<'_>>| {
+            execute_grabbed(
+                self.arm,
+                plan,
+                self.transition,
+                self.rate,
+                (self.grab.0, ticks),
+                replan,
+            )
+        };
+        let (rec, c) = execute(self.grab.1, None)?;
+        let by_clock = self.score(&rec, c, (train_s, reproduce_s))?;
+        let by_clock_trace = joint_trace(&rec);
+        let (mut replanned, mut read_back, mut replanned_trace) = (None, None, None);
+        if let Some(replan) = replan {
+            for ticks in [self.grab.1, 0] {
+                let t = Instant::now();
+                let (rec, c) = execute(ticks, Some(&mut *replan))?;
+                let scores =
+                    self.score(&rec, c, (train_s, reproduce_s + t.elapsed().as_secs_f64()))?;
+                if ticks > 0 {
+                    replanned = Some(scores);
+                    replanned_trace = Some(joint_trace(&rec));
+                } else {
+                    read_back = Some(scores);
+                }
+            }
+        }
+        Ok(ClosedLoopFold {
+            undisturbed,
+            by_clock,
+            replanned,
+            read_back,
+            by_clock_trace,
+            replanned_trace,
+        })
+    }
 }
 
 /// A hand grabs the arm during execution, held out: on fold `i` each method learns from
@@ -591,6 +688,7 @@ pub fn closed_loop_folds(
         sequence: Vec::new(),
         hsom_reencoded: Vec::new(),
         gmr: Vec::new(),
+        grab_s: Vec::new(),
     };
     for i in 0..demos.len() {
         let train = all_but(demos, i);
@@ -603,54 +701,19 @@ pub fn closed_loop_folds(
         let initial = split.initial()?;
         let rate = 1.0 / metrics.sample_period;
         let at = ((held.rows.len() as f64 * fraction).round() as usize).max(needed);
-        let method =
-            |plan: &[Vec<f64>], train_s: f64, reproduce_s: f64, replan: Option<&mut Replan<'_>>| {
-                let score = |rec: &Recording, clamped_values: usize, reproduce_s: f64| {
-                    Ok::<_, ExperimentError>(FoldScores {
-                        fidelity: evaluate(Some(arm), split.test, &rec.qpos, &metrics)?,
-                        swings: swings(rec, held)?,
-                        postures: rec.len(),
-                        clamped_values,
-                        train_s,
-                        reproduce_s,
-                    })
-                };
-                let still = execute_and_score(arm, plan, transition, split.test, &metrics)?;
-                let undisturbed = FoldScores {
-                    fidelity: still.fidelity.clone(),
-                    swings: swings(&still.executed, held)?,
-                    postures: plan.len(),
-                    clamped_values: still.clamped_values,
-                    train_s,
-                    reproduce_s,
-                };
-                let (rec, c) = execute_grabbed(arm, plan, transition, rate, (at, grab), None)?;
-                let by_clock = score(&rec, c, reproduce_s)?;
-                let (replanned, read_back) = match replan {
-                    Some(replan) => {
-                        let mut continued = |ticks: usize| {
-                            let t = Instant::now();
-                            let (rec, c) = execute_grabbed(
-                                arm,
-                                plan,
-                                transition,
-                                rate,
-                                (at, ticks),
-                                Some(&mut *replan),
-                            )?;
-                            score(&rec, c, reproduce_s + t.elapsed().as_secs_f64())
-                        };
-                        (Some(continued(grab)?), Some(continued(0)?))
-                    }
-                    None => (None, None),
-                };
-                Ok::<_, ExperimentError>(ClosedLoopFold {
-                    undisturbed,
-                    by_clock,
-                    replanned,
-                    read_back,
-                })
-            };
+        out.grab_s
+            .push((at as f64 / rate, (at + grab) as f64 / rate));
+        let fold = GrabbedFold {
+            arm,
+            held,
+            metrics: &metrics,
+            rate,
+            grab: (at, grab),
+            transition,
+        };
+        let method = |plan: &[Vec<f64>], train_s, reproduce_s, replan: Option<&mut Replan<'_>>| {
+            fold.run(plan, (train_s, reproduce_s), replan)
+        };
         let t = Instant::now();
         let model = config.fit(&train)?;
         let train_s = t.elapsed().as_secs_f64();
@@ -787,35 +850,138 @@ pub fn swing_folds(
         .map(|i| {
             let (run, swings) = hsom_fold(arm, config, demos, i, Training::Trained, transition)?;
             let demo = &demos[i];
-            let period = sample_period(demo);
             Ok(SwingFold {
                 held_out: i,
                 swings,
                 joint_dtw: run.fidelity.joint_dtw_rad_per_step.mean,
                 duration_ratio: run.fidelity.duration_ratio.mean,
-                reproduction: run
-                    .executed
-                    .time
-                    .iter()
-                    .zip(&run.executed.qpos)
-                    .map(|(&t, q)| (t, q[SWING_JOINT]))
-                    .collect(),
-                demo: demo
-                    .rows
-                    .iter()
-                    .enumerate()
-                    .map(|(k, r)| {
-                        let t = demo
-                            .time
-                            .as_ref()
-                            .and_then(|t| t.get(k).copied())
-                            .unwrap_or(k as f64 * period);
-                        (t, r[SWING_JOINT])
-                    })
-                    .collect(),
+                reproduction: joint_trace(&run.executed),
+                demo: demo_trace(demo),
             })
         })
         .collect()
+}
+
+/// `(time s, value rad)` of [`SWING_JOINT`] in an executed recording.
+fn joint_trace(rec: &Recording) -> Vec<(f64, f64)> {
+    rec.time
+        .iter()
+        .zip(&rec.qpos)
+        .map(|(&t, q)| (t, q[SWING_JOINT]))
+        .collect()
+}
+
+/// `(time s, value rad)` of [`SWING_JOINT`] in a demonstration (its own times, or its rows at
+/// its sample period).
+fn demo_trace(demo: &Demonstration) -> Vec<(f64, f64)> {
+    let period = sample_period(demo);
+    demo.rows
+        .iter()
+        .enumerate()
+        .map(|(k, r)| {
+            let t = demo
+                .time
+                .as_ref()
+                .and_then(|t| t.get(k).copied())
+                .unwrap_or(k as f64 * period);
+            (t, r[SWING_JOINT])
+        })
+        .collect()
+}
+
+/// One panel per fold of [`closed_loop_folds`] (`c`, on `demos`): [`SWING_JOINT`] against
+/// time in the held-out demonstration (grey), the hierarchy resumed after the grab (black),
+/// the nearest sequence re-aligned, GMM/GMR and the hierarchy's plan by their clocks, the
+/// grab shaded; each panel's title has the runs' joint DTW. Written atomically to `path`.
+pub fn closed_loop_png(
+    path: &std::path::Path,
+    title: &str,
+    demos: &[Demonstration],
+    c: &ClosedLoop,
+) -> Result<(), crate::plot::PlotError> {
+    use crate::plot::{Band, Panel, Series, BLACK, PALETTE};
+    use plotters::style::RGBColor;
+    let joint = JOINT_NAMES[SWING_JOINT];
+    let cost = |f: Option<&FoldScores>| {
+        f.map_or("-".to_string(), |f| {
+            format!("{:.3}", f.fidelity.joint_dtw_rad_per_step.mean)
+        })
+    };
+    // the legend once, in the first panel
+    let line = |i: usize, label: &str, color: RGBColor, width: u32, points: &[(f64, f64)]| {
+        let mut s = Series::new(label, color, points.to_vec());
+        s.width = width;
+        s.label = s.label.filter(|_| i == 0);
+        s
+    };
+    let n = c
+        .hsom
+        .len()
+        .min(c.sequence.len())
+        .min(demos.len())
+        .min(c.grab_s.len());
+    let panels: Vec<Panel> = (0..n)
+        .map(|i| {
+            let (h, s) = (&c.hsom[i], &c.sequence[i]);
+            let g = c.gmr.get(i).and_then(|g| g.as_ref().ok());
+            let mut p = Panel::new(
+                format!(
+                    "demonstration {} held out: DTW resumed {}, re-aligned {}, GMM/GMR {}",
+                    i + 1,
+                    cost(h.replanned.as_ref()),
+                    cost(s.replanned.as_ref()),
+                    cost(g.map(|g| &g.by_clock)),
+                ),
+                "time (s)",
+                format!("{joint} (rad)"),
+            );
+            let demo = demo_trace(&demos[i]);
+            let (lo, hi) = demo
+                .iter()
+                .chain(&h.by_clock_trace)
+                .chain(h.replanned_trace.iter().flatten())
+                .chain(s.replanned_trace.iter().flatten())
+                .chain(g.iter().flat_map(|g| &g.by_clock_trace))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                    (a.min(p.1), b.max(p.1))
+                });
+            let (t0, t1) = c.grab_s[i];
+            p.bands.push(Band {
+                label: Some("a hand holds the arm (the executed runs)".to_string())
+                    .filter(|_| i == 0),
+                color: RGBColor(190, 190, 190),
+                points: vec![(t0, lo, hi), (t1, lo, hi)],
+            });
+            let held = "the held-out demonstration";
+            p.series
+                .push(line(i, &held, RGBColor(160, 160, 160), 5, &demo));
+            if let Some(g) = g {
+                p.series.push(line(
+                    i,
+                    "GMM/GMR by its clock",
+                    PALETTE[3],
+                    1,
+                    &g.by_clock_trace,
+                ));
+            }
+            p.series.push(line(
+                i,
+                "hierarchy by its clock",
+                PALETTE[4],
+                1,
+                &h.by_clock_trace,
+            ));
+            if let Some(t) = &s.replanned_trace {
+                p.series
+                    .push(line(i, "nearest sequence re-aligned", PALETTE[1], 2, t));
+            }
+            if let Some(t) = &h.replanned_trace {
+                p.series.push(line(i, "hierarchy resumed", BLACK, 2, t));
+            }
+            p
+        })
+        .collect();
+    crate::plot::panels_png(path, title, &panels, 2, (760, 420))
 }
 
 /// One panel per fold of [`swing_folds`]: the held-out demonstration (in the palette's
