@@ -71,8 +71,9 @@ class Hsom:
         levels plan the rest; the continuation's postures, from the prefix's last."""
     def resume(self, initial: npt.ArrayLike, reading: npt.ArrayLike) -> np.ndarray:
         """Resume this model's reproduction from `initial` after part of it was executed
-        (`reading`: what the encoders read, possibly disturbed): aligned with the plan, the
-        levels plan the rest; the continuation's postures, from the reading's last."""
+        (`reading`: what the encoders read, possibly disturbed): aligned with the plan, its
+        events executed for the durations read, re-planned where they surprise the levels;
+        the continuation's postures, from the reading's last."""
     def follow_nearest_from(self, demos: Sequence[npt.ArrayLike], prefix: npt.ArrayLike) -> np.ndarray:
         """The nearest-sequence continuation: the demonstration along which the prefix runs
         closest, continued after the prefix's end; from the prefix's last posture."""

@@ -453,9 +453,10 @@ impl Hsom {
 
     /// Resume this model's own reproduction from `initial` after part of it was executed:
     /// `reading` (2-D, at least actionHorizon + 1 rows, from `initial`) is what the encoders
-    /// read meanwhile, possibly disturbed. The reading is aligned with the plan, the event in
-    /// progress goes on, the levels plan the rest (`algorithm = events`). The postures of the
-    /// continuation, from the reading's last.
+    /// read meanwhile, possibly disturbed. The reading is aligned with the plan, the plan's
+    /// events are executed for the durations read (pushed up the lists; the levels re-plan
+    /// where one surprises them), the event in progress goes on (`algorithm = events`). The
+    /// postures of the continuation, from the reading's last.
     fn resume<'py>(
         &self,
         py: Python<'py>,

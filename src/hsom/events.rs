@@ -237,6 +237,58 @@ pub(crate) fn bottom_events(model: &Hsom, demo: &[Vec<f64>]) -> Vec<(usize, f64)
     out
 }
 
+/// How far a `reading` of a plan's execution has got along the plan, event by event: the
+/// events of the plan (`events`: node, duration in samples, level) begun by the reading's
+/// end, each with its duration as executed (its planned duration, longer or shorter by the
+/// reading samples more or fewer than the plan samples aligned with it: a hold of 40
+/// samples adds 40 to the event held), and the share of the last one still to come (plan
+/// samples). `reading` and the plan's samples `plan` (both normalised) are aligned by DTW with
+/// an open end in the plan; each sample counts for the event whose span holds it, a reading
+/// sample for the last plan sample it is aligned with. Read back exactly, every event is as
+/// planned.
+fn observed_durations(
+    reading: &[Vec<f64>],
+    plan: &[Vec<f64>],
+    events: &[(usize, f64, usize)],
+) -> (Vec<(usize, f64)>, f64) {
+    if reading.is_empty() || plan.is_empty() || events.is_empty() {
+        return (Vec::new(), 0.0);
+    }
+    let (end, _) = super::recognize::open_end_cost(reading, plan);
+    let Ok(al) = crate::dtw::dtw(reading, &plan[..=end], crate::dtw::Band::None) else {
+        return (Vec::new(), 0.0);
+    };
+    // the plan sample each reading sample reached last
+    let mut last = vec![0usize; reading.len()];
+    for &(i, j) in &al.path {
+        last[i] = last[i].max(j);
+    }
+    // sample j of the plan belongs to the event whose span [start, start + duration) holds it
+    let mut starts = Vec::with_capacity(events.len());
+    let mut t = 0.0;
+    for e in events {
+        starts.push(t);
+        t += e.1;
+    }
+    let event_of = |j: usize| starts.partition_point(|&s| s <= j as f64).saturating_sub(1);
+    let begun = event_of(end) + 1;
+    let mut stretch = vec![0.0f64; begun];
+    for &j in &last {
+        stretch[event_of(j).min(begun - 1)] += 1.0;
+    }
+    for j in 0..=end {
+        stretch[event_of(j).min(begun - 1)] -= 1.0;
+    }
+    let executed = events[..begun]
+        .iter()
+        .zip(stretch)
+        .map(|(e, s)| (e.0, (e.1 + s).max(1.0)))
+        .collect();
+    // the continuation's first posture is the reading's last, plan sample `end`
+    let left = (starts[begun - 1] + events[begun - 1].1 - end as f64).max(0.0);
+    (executed, left)
+}
+
 fn dist2(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
 }
@@ -971,16 +1023,21 @@ impl Hsom {
         prefix: &[(usize, f64)],
         r: &ReproductionParams,
     ) -> Reproduction {
-        let (executed, stop) = self.plan_event_list(start, prefix, r);
+        let (executed, stop) = self.plan_event_list(start, prefix, &[], r);
         self.timed_postures(from, &executed[prefix.len()..], stop)
     }
 
     /// The events of [`Hsom::plan_events`]: the prefix's, then the planned ones, each (node,
-    /// duration in samples, level that planned it), and why the plan ended.
+    /// duration in samples, level that planned it), and why the plan ended. The first
+    /// planned events are `executed` where given (what was executed of an earlier plan: its
+    /// nodes, for the durations observed): each is pushed up the lists in the plan's place,
+    /// and where it surprises the levels the rest of the plan is made anew, as for any
+    /// executed event.
     fn plan_event_list(
         &self,
         start: &[f64],
         prefix: &[(usize, f64)],
+        observed: &[(usize, f64)],
         r: &ReproductionParams,
     ) -> (Vec<(usize, f64, usize)>, StopReason) {
         let cfg = &self.config;
@@ -1087,8 +1144,11 @@ impl Hsom {
                     );
                 }
             }
-            let Some((node, dur, by)) = plan.pop_front() else {
-                break;
+            let planned = plan.pop_front();
+            let (node, dur, by) = match (observed.get(executed.len() - prefix.len()), planned) {
+                (Some(&(n, d)), planned) => (n as u32, d, planned.map_or(0, |e| e.2)),
+                (None, Some(e)) => e,
+                (None, None) => break,
             };
             first = false;
             if node == END {
@@ -1689,15 +1749,18 @@ impl Hsom {
     /// Resume this model's own reproduction from `initial` after part of it was executed:
     /// `reading` is what the encoders read meanwhile (in the data's units, from `initial`; at
     /// least `actionHorizon + 1` samples), possibly disturbed (held still, slowed, pushed).
-    /// The reproduction is planned again from `initial` (it is deterministic), the reading is
-    /// aligned with its postures (open-end DTW in the model's normalised units) to find how far
-    /// along the plan the arm has got; the event in progress there goes on for what is left of
-    /// it, and the levels plan the rest from the lists with the plan's events up to it pushed
-    /// as executed (docs/ALGORITHM.md, "In a closed loop"). The events executed are the
-    /// plan's own, not the reading encoded again: a reproduction's reading encodes into more
-    /// bottom events than were planned, and the lists' phase counts events. The postures
-    /// start at the reading's last posture and hold only the continuation. Needs
-    /// `algorithm = events`.
+    /// The closed loop of passage 5 on the plan's own events (docs/ALGORITHM.md, "In a closed
+    /// loop"): the reproduction is planned again from `initial` (it is deterministic), the
+    /// reading is aligned with its postures by DTW (open end, the model's normalised units),
+    /// so each planned event begun by the reading's end has an observed duration (the reading
+    /// samples aligned with it); the plan is then made again with those events executed for
+    /// those durations, each pushed up the lists, and where one surprises the levels (a chunk
+    /// completed otherwise than expected) the rest is planned anew; the event in progress goes
+    /// on for what is left of it. Read back without a disturbance this is the plan itself.
+    /// The events are the plan's own, not the reading encoded again: a reproduction's reading
+    /// encodes into more bottom events than were planned, and the lists' phase counts events.
+    /// The postures start at the reading's last posture and hold only the continuation.
+    /// Needs `algorithm = events`.
     pub fn resume(&self, initial: &[f64], reading: &[Vec<f64>]) -> Result<Reproduction, HsomError> {
         let p = self.config.params();
         if p.algorithm != crate::config::Algorithm::Events {
@@ -1710,33 +1773,20 @@ impl Hsom {
         let norm = self.normalised_prefix("reading", reading)?;
         let y0 = self.normalise(initial);
         let r = &p.reproduction;
-        let (events, stop) = self.plan_event_list(&y0, &[], r);
+        let (events, stop) = self.plan_event_list(&y0, &[], &[], r);
         let plan = self.normalise_rows(&self.timed_postures(&y0, &events, stop).postures);
-        let (reached, _) = super::recognize::open_end_cost(&norm, &plan);
-        let reached = reached as f64;
-        // the plan's events begun by the sample reached: the last one is in progress
-        let mut start = 0.0;
-        let k = events
-            .iter()
-            .take_while(|e| {
-                let begun = start <= reached;
-                start += e.1;
-                begun
-            })
-            .count();
+        let (executed, left) = observed_durations(&norm, &plan, &events);
         let from = &norm[norm.len() - 1];
-        if k == 0 {
+        let Some(&(current, _)) = executed.last() else {
             return Ok(self.plan_events(&y0, from, &[], r));
-        }
-        let begun: Vec<(usize, f64)> = events[..k].iter().map(|&(n, d, _)| (n, d)).collect();
-        let (current, _, by) = events[k - 1];
-        let left = begun.iter().map(|e| e.1).sum::<f64>() - reached;
-        // the event in progress goes on for what is left of it; the levels plan the rest
-        // from the lists with it completed
-        let (planned, stop) = self.plan_event_list(&y0, &begun, r);
-        let rest: Vec<(usize, f64, usize)> = std::iter::once((current, left, by))
+        };
+        // the events begun are executed as observed (the one in progress as it will have
+        // lasted), and the plan is made again from there; the one in progress goes on first
+        let (all, stop) = self.plan_event_list(&y0, &[], &executed, r);
+        let k = executed.len();
+        let rest: Vec<(usize, f64, usize)> = std::iter::once((current, left, all[k - 1].2))
             .filter(|e| e.1 >= 1.0)
-            .chain(planned[k..].iter().copied())
+            .chain(all[k..].iter().copied())
             .collect();
         let mut rep = self.timed_postures(from, &rest, stop);
         rep.truncate(r.max_length);
