@@ -226,17 +226,7 @@ pub fn reproduce_gesture(
 
 /// A demonstration file whose columns are the model's.
 fn read_for_model(model: &GestureModel, path: &Path) -> Result<Demonstration, LabelledError> {
-    let d = demos::read_csv(path)?;
-    if d.columns != model.columns() {
-        return Err(StepError::ColumnsDiffer {
-            path: path.display().to_string(),
-            what: "model",
-            expected: model.columns().to_vec(),
-            found: d.columns,
-        }
-        .into());
-    }
-    Ok(d)
+    Ok(steps::read_for_columns(path, model.columns())?)
 }
 
 /// The first `prefix` samples of a demonstration file, continued by the gesture the

@@ -255,6 +255,25 @@ pub fn reproduce(
     model_name: &str,
     initial: &[f64],
 ) -> Result<Reproduction, StepError> {
+    check_initial(model, model_name, initial)?;
+    Ok(model.reproduce(initial)?)
+}
+
+/// Resume the reproduction from `initial` after part of it was executed (`reading`: what the
+/// encoders read meanwhile; [`Hsom::resume`]), with the checks of [`reproduce`].
+pub fn resume(
+    model: &Hsom,
+    model_name: &str,
+    initial: &[f64],
+    reading: &[Vec<f64>],
+) -> Result<Reproduction, StepError> {
+    check_initial(model, model_name, initial)?;
+    Ok(model.resume(initial, reading)?)
+}
+
+/// `initial` has one value per learned variable and, for the arm's joints, lies within
+/// their ranges.
+fn check_initial(model: &Hsom, model_name: &str, initial: &[f64]) -> Result<(), StepError> {
     let columns = model.columns();
     if initial.len() != columns.len() {
         return Err(StepError::InitialWidth {
@@ -280,21 +299,40 @@ pub fn reproduce(
             }
         }
     }
-    Ok(model.reproduce(initial)?)
+    Ok(())
 }
 
 /// The first row of a demonstration file, as an initial posture for `model`.
 pub fn initial_from_file(model: &Hsom, path: &Path) -> Result<Vec<f64>, StepError> {
+    Ok(rows_from_file(model, path)?.swap_remove(0))
+}
+
+/// The rows of a CSV of postures (a demonstration, an encoder reading, or a reproduction
+/// as `cosco reproduce` writes it: a first `time` or `step` column is not a variable) whose
+/// columns must be the model's.
+pub fn rows_from_file(model: &Hsom, path: &Path) -> Result<Vec<Vec<f64>>, StepError> {
+    let d = read_reproduction(path)?;
+    check_columns(path, &d, model.columns())?;
+    Ok(d.rows)
+}
+
+/// A demonstration CSV whose columns must be `columns` (a model's).
+pub fn read_for_columns(path: &Path, columns: &[String]) -> Result<Demonstration, StepError> {
     let d = demos::read_csv(path)?;
-    if d.columns != model.columns() {
+    check_columns(path, &d, columns)?;
+    Ok(d)
+}
+
+fn check_columns(path: &Path, d: &Demonstration, columns: &[String]) -> Result<(), StepError> {
+    if d.columns != columns {
         return Err(StepError::ColumnsDiffer {
             path: path.display().to_string(),
             what: "model",
-            expected: model.columns().to_vec(),
-            found: d.columns,
+            expected: columns.to_vec(),
+            found: d.columns.clone(),
         });
     }
-    Ok(d.rows[0].clone())
+    Ok(())
 }
 
 /// A reproduction as `cosco reproduce` writes it: CSV with `step`, then the model's columns.

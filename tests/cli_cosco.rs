@@ -213,6 +213,57 @@ fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
     assert!(std::fs::read_to_string(&rep)
         .unwrap()
         .starts_with("step,x,y\n"));
+    // resuming after the first half was executed (read back as x,y): the rest of it
+    let rows: Vec<Vec<f64>> = std::fs::read_to_string(&rep)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').skip(1).map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let half = rows.len() / 2;
+    let mut reading = String::from("x,y\n");
+    for r in &rows[..half] {
+        reading += &format!("{},{}\n", r[0], r[1]);
+    }
+    std::fs::write(d.join("reading.csv"), reading).unwrap();
+    let rest = d.join("rest.csv");
+    let resume = |out: &std::path::Path| {
+        let mut c = cosco();
+        c.arg("reproduce")
+            .arg("--model")
+            .arg(&model)
+            .arg("--initial-from")
+            .arg(d.join("demos/s0.csv"))
+            .arg("--resume-from")
+            .arg(d.join("reading.csv"))
+            .arg("--out")
+            .arg(out);
+        c
+    };
+    resume(&rest).assert().success();
+    let tail: Vec<Vec<f64>> = std::fs::read_to_string(&rest)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').skip(1).map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert!(
+        (half + tail.len() - 1).abs_diff(rows.len()) <= 1,
+        "{half} + {} against {}",
+        tail.len(),
+        rows.len()
+    );
+    let (a, b) = (tail.last().unwrap(), rows.last().unwrap());
+    assert!(
+        (a[0] - b[0]).abs() + (a[1] - b[1]).abs() < 0.05,
+        "{a:?} against {b:?}"
+    );
+    // a reading of other columns is named
+    std::fs::write(d.join("reading.csv"), "x,z\n0,0\n1,1\n2,2\n").unwrap();
+    resume(&rest)
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("reading.csv").and(predicate::str::contains("columns")));
     let eval = cosco()
         .arg("evaluate")
         .arg("--reproduction")

@@ -101,6 +101,11 @@ enum Command {
         /// Samples of --prefix-from to continue from.
         #[arg(long, requires = "prefix_from")]
         prefix: Option<usize>,
+        /// Resume the reproduction from the initial posture after part of it was executed:
+        /// this CSV (the model's columns) is what the encoders read meanwhile, possibly
+        /// disturbed; writes the rest, from the reading's last posture (`algorithm = events`).
+        #[arg(long, conflicts_with = "prefix_from")]
+        resume_from: Option<PathBuf>,
         /// Output CSV.
         #[arg(long)]
         out: PathBuf,
@@ -236,6 +241,7 @@ fn run(cli: Cli) -> Result<()> {
             gesture,
             prefix_from,
             prefix,
+            resume_from,
             out,
         } => {
             let (n, label) = match (prefix_from, prefix) {
@@ -245,6 +251,7 @@ fn run(cli: Cli) -> Result<()> {
                     gesture.as_deref(),
                     initial.as_deref(),
                     initial_from.as_deref(),
+                    resume_from.as_deref(),
                     &out,
                 )?,
             };

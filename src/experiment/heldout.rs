@@ -954,7 +954,7 @@ pub fn closed_loop_png(
             });
             let held = "the held-out demonstration";
             p.series
-                .push(line(i, &held, RGBColor(160, 160, 160), 5, &demo));
+                .push(line(i, held, RGBColor(160, 160, 160), 5, &demo));
             if let Some(g) = g {
                 p.series.push(line(
                     i,

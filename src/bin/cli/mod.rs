@@ -165,13 +165,16 @@ fn write_reproduction(model: &GestureModel, rep: &Reproduction, out: &Path) -> R
 }
 
 /// `cosco reproduce` with a model of one or several gestures: gesture `label` (required with
-/// several) from the command line's initial posture or a demonstration's first row. Returns
-/// the number of postures and the gesture.
+/// several) from the command line's initial posture or a demonstration's first row; with
+/// `resume_from` (an encoder reading of part of that reproduction) the rest of it
+/// ([`Hsom::resume`](cosco_hsom::hsom::Hsom::resume)). Returns the number of postures and the
+/// gesture.
 pub fn reproduce_gesture_file(
     model: &Path,
     label: Option<&str>,
     initial: Option<&str>,
     initial_from: Option<&Path>,
+    resume_from: Option<&Path>,
     out: &Path,
 ) -> Result<(usize, Option<String>)> {
     let m = load_gesture_model(model)?;
@@ -182,7 +185,14 @@ pub fn reproduce_gesture_file(
         (None, Some(p)) => steps::initial_from_file(branch, p)?,
         _ => bail!("give exactly one of --initial and --initial-from"),
     };
-    let rep = labelled::reproduce_gesture(&m, &model.display().to_string(), label, &initial)?;
+    let rep = match resume_from {
+        Some(path) => {
+            let reading = steps::rows_from_file(branch, path)?;
+            steps::resume(branch, &model.display().to_string(), &initial, &reading)
+                .with_context(|| format!("resuming after {}", path.display()))?
+        }
+        None => labelled::reproduce_gesture(&m, &model.display().to_string(), label, &initial)?,
+    };
     write_reproduction(&m, &rep, out)?;
     Ok((rep.postures.len(), label.map(str::to_string)))
 }
