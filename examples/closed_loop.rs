@@ -27,13 +27,11 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::Parser;
 
-use cosco_hsom::config::load_config;
 use cosco_hsom::experiment::heldout::{
-    closed_loop_folds, closed_loop_png, ClosedLoop, ClosedLoopFold,
+    check_grab, closed_loop_folds, closed_loop_png, ClosedLoop, ClosedLoopFold,
 };
 use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{synthetic_demonstrations, FoldScores, Transition};
-use cosco_hsom::sim::NaoArm;
 
 /// A grab during execution: the hierarchy's and the nearest sequence's closed loops, and
 /// every method by its clock.
@@ -150,14 +148,9 @@ fn print_median(gesture: &str, rows: &[[Mean; 11]]) {
 }
 
 fn run(a: Args) -> Result<()> {
-    anyhow::ensure!(
-        a.sets.count >= 2,
-        "--count must be at least 2, got {}",
-        a.sets.count
-    );
-    let config =
-        load_config(&a.config).with_context(|| format!("loading {}", a.config.display()))?;
-    let arm = NaoArm::load_default().context("loading the default arm model")?;
+    a.sets.check_leave_one_out()?;
+    check_grab(a.at, a.grab)?;
+    let (config, arm) = common::config_and_arm(&a.config)?;
     let settings = a.sets.demo_settings();
     println!(
         "A hand holds the arm still for {} ticks at {:.0} % of the held-out demonstration's duration ({}, seeds {}, {} demonstrations, noise {} rad). Each cell: joint DTW against the held-out demonstration (duration ratio, folds whose LElbowRoll swings are the demonstration's), means over the folds.\n",

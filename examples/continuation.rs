@@ -22,11 +22,9 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::Parser;
 
-use cosco_hsom::config::load_config;
 use cosco_hsom::experiment::heldout::{continuation_folds, Disturbance};
 use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{synthetic_demonstrations, FoldScores, Transition};
-use cosco_hsom::sim::NaoArm;
 
 /// Continuing a held-out demonstration's prefix: the hierarchy and the nearest sequence.
 #[derive(Parser, Debug)]
@@ -60,15 +58,9 @@ fn summary(folds: &[FoldScores]) -> (f64, usize) {
 }
 
 fn run(a: Args) -> Result<()> {
-    anyhow::ensure!(
-        a.sets.count >= 2,
-        "--count must be at least 2, got {}",
-        a.sets.count
-    );
-    let config =
-        load_config(&a.config).with_context(|| format!("loading {}", a.config.display()))?;
+    a.sets.check_leave_one_out()?;
     let disturbance = Disturbance::parse(&a.disturbance)?;
-    let arm = NaoArm::load_default().context("loading the default arm model")?;
+    let (config, arm) = common::config_and_arm(&a.config)?;
     let settings = a.sets.demo_settings();
     println!(
         "Continuing the first {:.0} % of each held-out demonstration, disturbance {} ({}, seeds {}, {} demonstrations, noise {} rad): joint DTW of prefix + continuation against the held-out demonstration, means over the folds; LElbowRoll swings exact (folds).\n",

@@ -214,12 +214,16 @@ fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
         .unwrap()
         .starts_with("step,x,y\n"));
     // resuming after the first half was executed (read back as x,y): the rest of it
-    let rows: Vec<Vec<f64>> = std::fs::read_to_string(&rep)
-        .unwrap()
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').skip(1).map(|v| v.parse().unwrap()).collect())
-        .collect();
+    // the postures of a reproduction CSV (after its `step` column)
+    let postures = |path: &std::path::Path| -> Vec<Vec<f64>> {
+        std::fs::read_to_string(path)
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').skip(1).map(|v| v.parse().unwrap()).collect())
+            .collect()
+    };
+    let rows = postures(&rep);
     let half = rows.len() / 2;
     let mut reading = String::from("x,y\n");
     for r in &rows[..half] {
@@ -241,12 +245,7 @@ fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
         c
     };
     resume(&rest).assert().success();
-    let tail: Vec<Vec<f64>> = std::fs::read_to_string(&rest)
-        .unwrap()
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').skip(1).map(|v| v.parse().unwrap()).collect())
-        .collect();
+    let tail = postures(&rest);
     assert!(
         (half + tail.len() - 1).abs_diff(rows.len()) <= 1,
         "{half} + {} against {}",

@@ -1,9 +1,13 @@
 //! What several examples share: the sets of synthetic demonstrations they record (the same
 //! flags and defaults in each) and how they exit.
 
+use std::path::Path;
 use std::process::ExitCode;
 
+use anyhow::Context;
+use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::experiment::DemoSettings;
+use cosco_hsom::sim::NaoArm;
 
 /// Which sets of synthetic demonstrations to record: every gesture x seed, `count` each.
 #[derive(clap::Args, Debug)]
@@ -31,6 +35,27 @@ impl Sets {
             ..DemoSettings::default()
         }
     }
+}
+
+impl Sets {
+    /// Leave-one-out needs at least 2 demonstrations per set (one held out, one to learn from).
+    #[allow(dead_code)] // not every example holds demonstrations out
+    pub fn check_leave_one_out(&self) -> anyhow::Result<()> {
+        anyhow::ensure!(
+            self.count >= 2,
+            "--count must be at least 2, got {}",
+            self.count
+        );
+        Ok(())
+    }
+}
+
+/// A CoSCo-HSOM configuration file, loaded, and the default arm model.
+#[allow(dead_code)] // examples that do not train take the module for `exit`
+pub fn config_and_arm(config: &Path) -> anyhow::Result<(HsomConfig, NaoArm)> {
+    let c = load_config(config).with_context(|| format!("loading {}", config.display()))?;
+    let arm = NaoArm::load_default().context("loading the default arm model")?;
+    Ok((c, arm))
 }
 
 /// An example's exit status: success, or the error with its causes on stderr and failure.

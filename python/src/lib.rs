@@ -356,6 +356,18 @@ struct Hsom {
     name: String,
 }
 
+impl Hsom {
+    /// `f` on the model with the GIL released; the postures it gives, as a 2-D array.
+    fn postures<'py, E: Error + Send + 'static>(
+        &self,
+        py: Python<'py>,
+        f: impl FnOnce(&cosco_hsom::hsom::Hsom) -> Result<cosco_hsom::hsom::Reproduction, E> + Send,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let rep = py.allow_threads(|| f(&self.inner)).map_err(|e| py_err(&e))?;
+        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+    }
+}
+
 #[pymethods]
 impl Hsom {
     /// Train on demonstrations (a list of 2-D arrays, samples x variables), with optional
@@ -411,10 +423,7 @@ impl Hsom {
         initial: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let initial = posture_of(initial, "initial")?;
-        let rep = py
-            .allow_threads(|| steps::reproduce(&self.inner, &self.name, &initial))
-            .map_err(step_err)?;
-        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+        self.postures(py, |m| steps::reproduce(m, &self.name, &initial))
     }
 
     /// The nearest-sequence baseline (docs/ALGORITHM.md, "A simpler thing does as well"): of
@@ -430,10 +439,7 @@ impl Hsom {
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let initial = posture_of(initial, "initial")?;
         let demos = demonstrations_of(demos, None)?;
-        let rep = py
-            .allow_threads(|| self.inner.follow_nearest(&demos, &initial))
-            .map_err(|e| py_err(&e))?;
-        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+        self.postures(py, |m| m.follow_nearest(&demos, &initial))
     }
 
     /// Continue a gesture from its first samples (2-D, at least actionHorizon + 1 rows):
@@ -445,10 +451,7 @@ impl Hsom {
         prefix: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let rows = rows_of(prefix, "prefix")?;
-        let rep = py
-            .allow_threads(|| self.inner.continue_events(&rows))
-            .map_err(|e| py_err(&e))?;
-        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+        self.postures(py, |m| m.continue_events(&rows))
     }
 
     /// Resume this model's own reproduction from `initial` after part of it was executed:
@@ -465,10 +468,7 @@ impl Hsom {
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let initial = posture_of(initial, "initial")?;
         let rows = rows_of(reading, "reading")?;
-        let rep = py
-            .allow_threads(|| self.inner.resume(&initial, &rows))
-            .map_err(|e| py_err(&e))?;
-        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+        self.postures(py, |m| steps::resume(m, &self.name, &initial, &rows))
     }
 
     /// The nearest-sequence continuation of a prefix: of `demos`, the one along which the
@@ -482,10 +482,7 @@ impl Hsom {
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let rows = rows_of(prefix, "prefix")?;
         let demos = demonstrations_of(demos, None)?;
-        let rep = py
-            .allow_threads(|| self.inner.follow_nearest_from(&demos, &rows))
-            .map_err(|e| py_err(&e))?;
-        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+        self.postures(py, |m| m.follow_nearest_from(&demos, &rows))
     }
 
     /// The names of the variables the model learned.

@@ -648,6 +648,22 @@ impl GrabbedFold<'_> {
     }
 }
 
+/// The grab of [`closed_loop_folds`]: at a share of the demonstration strictly between 0
+/// and 1, for at least one tick.
+pub fn check_grab(fraction: f64, grab: usize) -> Result<(), ExperimentError> {
+    if !(fraction > 0.0 && fraction < 1.0) {
+        return Err(ExperimentError::Invalid(format!(
+            "grab at {fraction} of the demonstration: needs a number strictly between 0 and 1"
+        )));
+    }
+    if grab == 0 {
+        return Err(ExperimentError::Invalid(
+            "a grab of 0 ticks: needs at least 1".into(),
+        ));
+    }
+    Ok(())
+}
+
 /// A hand grabs the arm during execution, held out: on fold `i` each method learns from
 /// every demonstration but `demos[i]` and plans from `demos[i]`'s first posture; the plan is
 /// executed on the simulated arm and at `fraction` of `demos[i]`'s duration (the same
@@ -672,16 +688,7 @@ pub fn closed_loop_folds(
     transition: Transition,
 ) -> Result<ClosedLoop, ExperimentError> {
     check_demos(demos)?;
-    if !(fraction > 0.0 && fraction < 1.0) {
-        return Err(ExperimentError::Invalid(format!(
-            "grab at {fraction} of the demonstration: needs a number strictly between 0 and 1"
-        )));
-    }
-    if grab == 0 {
-        return Err(ExperimentError::Invalid(
-            "a grab of 0 ticks: needs at least 1".into(),
-        ));
-    }
+    check_grab(fraction, grab)?;
     let needed = config.params().action_horizon + 1;
     let mut out = ClosedLoop {
         hsom: Vec::new(),
