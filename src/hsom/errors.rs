@@ -17,6 +17,16 @@ pub enum HsomError {
         /// The model's algorithm.
         algorithm: String,
     },
+    /// A reading is too long to align with the plan it is a reading of.
+    #[error("the reading has {rows} samples; at most {most} can be aligned with this model's plan of {plan} (a bound on the work of one alignment)")]
+    ReadingTooLong {
+        /// Samples of the reading.
+        rows: usize,
+        /// The most that can be aligned with this plan.
+        most: usize,
+        /// Samples of the plan.
+        plan: usize,
+    },
     /// A demonstration is too short for one state-action pair at the configuration's
     /// action horizon.
     #[error("demonstration {demo} has {rows} sample(s); at least {needed} are needed (actionHorizon + 1, and never fewer than 2)")]

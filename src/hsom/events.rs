@@ -1775,6 +1775,16 @@ impl Hsom {
         let r = &p.reproduction;
         let (events, stop) = self.plan_event_list(&y0, &[], &[], r);
         let plan = self.normalise_rows(&self.timed_postures(&y0, &events, stop).postures);
+        // the alignment keeps a cell per (reading, plan) sample pair: bounded as the
+        // consensus's alignments are
+        let most = MAX_ALIGNED * MAX_ALIGNED / plan.len().max(1);
+        if norm.len() > most {
+            return Err(HsomError::ReadingTooLong {
+                rows: norm.len(),
+                most,
+                plan: plan.len(),
+            });
+        }
         let (executed, left) = observed_durations(&norm, &plan, &events);
         let from = &norm[norm.len() - 1];
         let Some(&(current, _)) = executed.last() else {
@@ -2386,6 +2396,12 @@ mod tests {
         assert!(e.contains("initial posture"), "{e}");
         let e = m.resume(&initial, &reading[..2]).unwrap_err().to_string();
         assert!(e.contains("reading") && e.contains("2 sample"), "{e}");
+        let endless = vec![initial.clone(); MAX_ALIGNED * MAX_ALIGNED / n + 1];
+        let e = m.resume(&initial, &endless).unwrap_err().to_string();
+        assert!(
+            e.contains("at most") && e.contains(&format!("plan of {n}")),
+            "{e}"
+        );
         let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
         let mut p = HsomParams::table1();
         p.state_length = 2;
