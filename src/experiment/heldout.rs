@@ -596,9 +596,10 @@ impl GrabbedFold<'_> {
     fn run(
         &self,
         plan: &[Vec<f64>],
-        (train_s, reproduce_s): (f64, f64),
+        times: (f64, f64),
         replan: Option<&mut Replan<'_>>,
     ) -> Result<ClosedLoopFold, ExperimentError> {
+        let (train_s, reproduce_s) = times;
         let test = std::slice::from_ref(self.held);
         let still = execute_and_score(self.arm, plan, self.transition, test, self.metrics)?;
         let undisturbed = FoldScores {
@@ -609,42 +610,59 @@ impl GrabbedFold<'_> {
             train_s,
             reproduce_s,
         };
-        let execute = |ticks: usize, replan: Option<&mut Replan<'_>>| {
-            execute_grabbed(
-                self.arm,
-                plan,
-                self.transition,
-                self.rate,
-                (self.grab.0, ticks),
-                replan,
-            )
+        let (rec, c) = self.execute(plan, self.grab.1, None)?;
+        let fold = ClosedLoopFold {
+            undisturbed,
+            by_clock: self.score(&rec, c, times)?,
+            replanned: None,
+            read_back: None,
+            by_clock_trace: joint_trace(&rec),
+            replanned_trace: None,
         };
-        let (rec, c) = execute(self.grab.1, None)?;
-        let by_clock = self.score(&rec, c, (train_s, reproduce_s))?;
-        let by_clock_trace = joint_trace(&rec);
-        let (mut replanned, mut read_back, mut replanned_trace) = (None, None, None);
-        if let Some(replan) = replan {
-            for ticks in [self.grab.1, 0] {
-                let t = Instant::now();
-                let (rec, c) = execute(ticks, Some(&mut *replan))?;
-                let scores =
-                    self.score(&rec, c, (train_s, reproduce_s + t.elapsed().as_secs_f64()))?;
-                if ticks > 0 {
-                    replanned = Some(scores);
-                    replanned_trace = Some(joint_trace(&rec));
-                } else {
-                    read_back = Some(scores);
-                }
+        match replan {
+            Some(replan) => self.continued(fold, plan, times, replan),
+            None => Ok(fold),
+        }
+    }
+
+    /// `fold` (a method's runs without a re-plan) with `replan`'s: grabbed then continued, and
+    /// continued at the same moment without the grab.
+    fn continued(
+        &self,
+        mut fold: ClosedLoopFold,
+        plan: &[Vec<f64>],
+        (train_s, reproduce_s): (f64, f64),
+        replan: &mut Replan<'_>,
+    ) -> Result<ClosedLoopFold, ExperimentError> {
+        for ticks in [self.grab.1, 0] {
+            let t = Instant::now();
+            let (rec, c) = self.execute(plan, ticks, Some(&mut *replan))?;
+            let scores = self.score(&rec, c, (train_s, reproduce_s + t.elapsed().as_secs_f64()))?;
+            if ticks > 0 {
+                fold.replanned = Some(scores);
+                fold.replanned_trace = Some(joint_trace(&rec));
+            } else {
+                fold.read_back = Some(scores);
             }
         }
-        Ok(ClosedLoopFold {
-            undisturbed,
-            by_clock,
-            replanned,
-            read_back,
-            by_clock_trace,
-            replanned_trace,
-        })
+        Ok(fold)
+    }
+
+    /// `plan` executed with a grab of `ticks` at this fold's moment ([`execute_grabbed`]).
+    fn execute(
+        &self,
+        plan: &[Vec<f64>],
+        ticks: usize,
+        replan: Option<&mut Replan<'_>>,
+    ) -> Result<(Recording, usize), ExperimentError> {
+        execute_grabbed(
+            self.arm,
+            plan,
+            self.transition,
+            self.rate,
+            (self.grab.0, ticks),
+            replan,
+        )
     }
 }
 
@@ -728,11 +746,22 @@ pub fn closed_loop_folds(
         let plan = model.reproduce(initial)?.postures;
         let reproduce_s = t.elapsed().as_secs_f64();
         let mut replan = |read: &[Vec<f64>]| Ok(model.resume(initial, read)?.postures);
-        out.hsom
-            .push(method(&plan, train_s, reproduce_s, Some(&mut replan))?);
+        let hsom = method(&plan, train_s, reproduce_s, Some(&mut replan))?;
+        // the same plan: its undisturbed and by-the-clock runs are the ones above
         let mut replan = |read: &[Vec<f64>]| Ok(model.continue_events(read)?.postures);
-        out.hsom_reencoded
-            .push(method(&plan, train_s, reproduce_s, Some(&mut replan))?);
+        let without = ClosedLoopFold {
+            replanned: None,
+            read_back: None,
+            replanned_trace: None,
+            ..hsom.clone()
+        };
+        out.hsom_reencoded.push(fold.continued(
+            without,
+            &plan,
+            (train_s, reproduce_s),
+            &mut replan,
+        )?);
+        out.hsom.push(hsom);
         let t = Instant::now();
         let plan = model.follow_nearest(&train, initial)?.postures;
         let reproduce_s = t.elapsed().as_secs_f64();
