@@ -67,7 +67,7 @@ fn table1(c: &mut Criterion) {
 
 /// The recommended configs/nao-gestures.xml (events): training on 3 demonstrations plus one
 /// reproduction (target: under 50 ms together), and reproduction against gesture length
-/// (it must stay linear).
+/// (it must stay linear); resuming a reproduction after half of it was read back.
 fn events(c: &mut Criterion) {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/nao-gestures.xml");
     let cfg = cosco_hsom::config::load_config(&path).unwrap();
@@ -88,6 +88,15 @@ fn events(c: &mut Criterion) {
             BenchmarkId::new("reproduce", format!("{n}_samples_{len}_postures")),
             &m,
             |b, m| b.iter(|| black_box(m.reproduce(&d[0].rows[0]).unwrap())),
+        );
+        // resuming after half of it was read back: the plan made twice and a DTW alignment of
+        // the reading with it (quadratic in the length, where reproducing is linear)
+        let initial = &d[0].rows[0];
+        let reading = m.reproduce(initial).unwrap().postures[..len / 2].to_vec();
+        g.bench_with_input(
+            BenchmarkId::new("resume_half", format!("{n}_samples_{len}_postures")),
+            &m,
+            |b, m| b.iter(|| black_box(m.resume(initial, &reading).unwrap())),
         );
     }
     g.finish();
