@@ -28,7 +28,7 @@ use anyhow::{Context, Result};
 use clap::Parser;
 
 use cosco_hsom::experiment::heldout::{
-    check_grab, closed_loop_folds, closed_loop_png, ClosedLoop, ClosedLoopFold,
+    closed_loop_folds, closed_loop_png, ClosedLoop, ClosedLoopFold, ClosedLoopGrab,
 };
 use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{synthetic_demonstrations, FoldScores, Transition};
@@ -47,6 +47,10 @@ struct Args {
     /// How long it holds the arm still, ticks of 40 Hz (at least 1).
     #[arg(long, default_value_t = 40)]
     grab: usize,
+    /// Gaussian noise on what a method reads of the encoders when it continues, rad (the
+    /// scored recording stays exact); drawn from the demonstrations' seed.
+    #[arg(long, default_value_t = 0.0)]
+    reading_noise: f64,
     /// CoSCo-HSOM configuration (XML).
     #[arg(long, default_value = "configs/nao-gestures.xml")]
     config: PathBuf,
@@ -149,13 +153,20 @@ fn print_median(gesture: &str, rows: &[[Mean; 11]]) {
 
 fn run(a: Args) -> Result<()> {
     a.sets.check_leave_one_out()?;
-    check_grab(a.at, a.grab)?;
+    let grab = |seed: u64| ClosedLoopGrab {
+        at: a.at,
+        ticks: a.grab,
+        reading_noise: a.reading_noise,
+        seed,
+    };
+    grab(0).check()?;
     let (config, arm) = common::config_and_arm(&a.config)?;
     let settings = a.sets.demo_settings();
     println!(
-        "A hand holds the arm still for {} ticks at {:.0} % of the held-out demonstration's duration ({}, seeds {}, {} demonstrations, noise {} rad). Each cell: joint DTW against the held-out demonstration (duration ratio, folds whose LElbowRoll swings are the demonstration's), means over the folds.\n",
+        "A hand holds the arm still for {} ticks at {:.0} % of the held-out demonstration's duration; continuations read the encoders with noise {} rad ({}, seeds {}, {} demonstrations, noise {} rad). Each cell: joint DTW against the held-out demonstration (duration ratio, folds whose LElbowRoll swings are the demonstration's), means over the folds.\n",
         a.grab,
         a.at * 100.0,
+        a.reading_noise,
         a.config.display(),
         a.sets.seeds,
         a.sets.count,
@@ -168,7 +179,7 @@ fn run(a: Args) -> Result<()> {
         let mut rows = Vec::new();
         for seed in parse_seeds(&a.sets.seeds)? {
             let demos = synthetic_demonstrations(&arm, &g, a.sets.count, seed, &settings, |_| {})?;
-            let folds = closed_loop_folds(&arm, &config, &demos, a.at, a.grab, Transition::Linear)
+            let folds = closed_loop_folds(&arm, &config, &demos, grab(seed), Transition::Linear)
                 .with_context(|| format!("{} seed {seed}", g.name))?;
             for e in folds.gmr.iter().filter_map(|r| r.as_ref().err()) {
                 eprintln!("{} seed {seed}: {e}", g.name);

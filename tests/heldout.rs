@@ -12,7 +12,7 @@ use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::experiment::heldout::{
     closed_loop_folds, closed_loop_png, continuation_folds, swing_folds, swing_folds_png,
-    Disturbance, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD,
+    ClosedLoopGrab, Disturbance, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD,
 };
 use cosco_hsom::experiment::{
     hsom_folds, leave_one_out, sample_period, synthetic_demonstrations, DemoSettings, HeldOut,
@@ -244,7 +244,14 @@ fn continuing_a_prefix_is_scored_against_the_held_out_demonstration() {
 #[test]
 fn a_grab_during_execution_is_scored_against_the_held_out_demonstration() {
     let f = fixture();
-    let c = closed_loop_folds(&f.arm, &f.config, &f.demos, 0.5, 40, Transition::Linear).unwrap();
+    let c = closed_loop_folds(
+        &f.arm,
+        &f.config,
+        &f.demos,
+        ClosedLoopGrab::DEFAULT,
+        Transition::Linear,
+    )
+    .unwrap();
     assert_eq!(
         (c.hsom.len(), c.sequence.len(), c.gmr.len()),
         (COUNT, COUNT, COUNT)
@@ -365,16 +372,24 @@ fn a_grab_during_execution_is_scored_against_the_held_out_demonstration() {
         })
         .count();
     assert!(off > 0, "re-encoded read back within 2 % on every fold");
-    for (at, grab, allowed) in [
-        (0.0, 40, "strictly between 0 and 1"),
-        (1.0, 40, "strictly between 0 and 1"),
-        (f64::NAN, 40, "strictly between 0 and 1"),
-        (0.5, 0, "at least 1"),
+    for (at, ticks, reading_noise, allowed) in [
+        (0.0, 40, 0.0, "strictly between 0 and 1"),
+        (1.0, 40, 0.0, "strictly between 0 and 1"),
+        (f64::NAN, 40, 0.0, "strictly between 0 and 1"),
+        (0.5, 0, 0.0, "at least 1"),
+        (0.5, 40, -0.1, "finite standard deviation >= 0"),
+        (0.5, 40, f64::INFINITY, "finite standard deviation >= 0"),
     ] {
-        let e = closed_loop_folds(&f.arm, &f.config, &f.demos, at, grab, Transition::Linear)
+        let grab = ClosedLoopGrab {
+            at,
+            ticks,
+            reading_noise,
+            seed: 0,
+        };
+        let e = closed_loop_folds(&f.arm, &f.config, &f.demos, grab, Transition::Linear)
             .unwrap_err()
             .to_string();
-        assert!(e.contains(allowed), "{at} {grab}: {e}");
+        assert!(e.contains(allowed), "{grab:?}: {e}");
     }
 }
 

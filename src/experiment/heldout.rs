@@ -16,7 +16,7 @@ use crate::sim::{NaoArm, Recording, JOINT_NAMES};
 
 use super::baseline::{gmr_params, plan as gmr_plan, run_baseline_split, DEFAULT_COMPONENTS};
 use super::evaluate::evaluate;
-use super::execute::{execute_grabbed, Replan};
+use super::execute::{execute_grabbed, ReadingNoise, Replan};
 use super::pipeline::{
     execute_and_score, learn_and_score, sample_period, Outcome, Split, Training,
 };
@@ -565,6 +565,8 @@ struct GrabbedFold<'a> {
     rate: f64,
     /// The tick the hand takes hold, and for how many.
     grab: (usize, usize),
+    /// On what a method reads when it continues.
+    noise: ReadingNoise,
     transition: Transition,
 }
 
@@ -661,31 +663,64 @@ impl GrabbedFold<'_> {
             self.transition,
             self.rate,
             (self.grab.0, ticks),
-            replan,
+            replan.map(|r| (r, self.noise)),
         )
     }
 }
 
-/// The grab of [`closed_loop_folds`]: at a share of the demonstration strictly between 0
-/// and 1, for at least one tick.
-pub fn check_grab(fraction: f64, grab: usize) -> Result<(), ExperimentError> {
-    if !(fraction > 0.0 && fraction < 1.0) {
-        return Err(ExperimentError::Invalid(format!(
-            "grab at {fraction} of the demonstration: needs a number strictly between 0 and 1"
-        )));
+/// The disturbance of [`closed_loop_folds`]: a hand holds the arm still for `ticks` ticks at
+/// the share `at` of the held-out demonstration's duration; a method continuing afterwards
+/// reads the encoders with Gaussian noise of `reading_noise` rad (drawn from `seed` and the
+/// fold).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClosedLoopGrab {
+    /// When, as a share of the held-out demonstration, strictly between 0 and 1.
+    pub at: f64,
+    /// How long, ticks (at least 1).
+    pub ticks: usize,
+    /// Noise on the readings a method continues from, rad (>= 0).
+    pub reading_noise: f64,
+    /// Seed of that noise.
+    pub seed: u64,
+}
+
+impl ClosedLoopGrab {
+    /// Half-way, 1 s at 40 Hz, exact readings.
+    pub const DEFAULT: ClosedLoopGrab = ClosedLoopGrab {
+        at: 0.5,
+        ticks: 40,
+        reading_noise: 0.0,
+        seed: 0,
+    };
+
+    /// Refuse a moment outside (0, 1), a grab of no tick and a noise that is not a finite
+    /// number >= 0, naming the value and what is allowed.
+    pub fn check(&self) -> Result<(), ExperimentError> {
+        let at = self.at;
+        if !(at > 0.0 && at < 1.0) {
+            return Err(ExperimentError::Invalid(format!(
+                "grab at {at} of the demonstration: needs a number strictly between 0 and 1"
+            )));
+        }
+        if self.ticks == 0 {
+            return Err(ExperimentError::Invalid(
+                "a grab of 0 ticks: needs at least 1".into(),
+            ));
+        }
+        let n = self.reading_noise;
+        if !(n.is_finite() && n >= 0.0) {
+            return Err(ExperimentError::Invalid(format!(
+                "reading noise {n}: needs a finite standard deviation >= 0 (rad)"
+            )));
+        }
+        Ok(())
     }
-    if grab == 0 {
-        return Err(ExperimentError::Invalid(
-            "a grab of 0 ticks: needs at least 1".into(),
-        ));
-    }
-    Ok(())
 }
 
 /// A hand grabs the arm during execution, held out: on fold `i` each method learns from
 /// every demonstration but `demos[i]` and plans from `demos[i]`'s first posture; the plan is
-/// executed on the simulated arm and at `fraction` of `demos[i]`'s duration (the same
-/// moment for every method) a hand holds the arm still for `grab` ticks while the servo
+/// executed on the simulated arm and at `grab.at` of `demos[i]`'s duration (the same
+/// moment for every method) a hand holds the arm still for `grab.ticks` ticks while the servo
 /// targets go on ([`execute_grabbed`](super::execute_grabbed)). Each method is executed
 /// undisturbed; grabbed, its plan going on by the clock; grabbed, then re-planned on release
 /// from the encoders' reading of its own execution and the grab (the closed loop); and, as
@@ -701,12 +736,11 @@ pub fn closed_loop_folds(
     arm: &NaoArm,
     config: &HsomConfig,
     demos: &[Demonstration],
-    fraction: f64,
-    grab: usize,
+    grab: ClosedLoopGrab,
     transition: Transition,
 ) -> Result<ClosedLoop, ExperimentError> {
     check_demos(demos)?;
-    check_grab(fraction, grab)?;
+    grab.check()?;
     let needed = config.params().action_horizon + 1;
     let mut out = ClosedLoop {
         hsom: Vec::new(),
@@ -725,15 +759,19 @@ pub fn closed_loop_folds(
         let metrics = split.metrics()?;
         let initial = split.initial()?;
         let rate = 1.0 / metrics.sample_period;
-        let at = ((held.rows.len() as f64 * fraction).round() as usize).max(needed);
+        let at = ((held.rows.len() as f64 * grab.at).round() as usize).max(needed);
         out.grab_s
-            .push((at as f64 / rate, (at + grab) as f64 / rate));
+            .push((at as f64 / rate, (at + grab.ticks) as f64 / rate));
         let fold = GrabbedFold {
             arm,
             held,
             metrics: &metrics,
             rate,
-            grab: (at, grab),
+            grab: (at, grab.ticks),
+            noise: ReadingNoise {
+                std: grab.reading_noise,
+                seed: grab.seed.wrapping_add(i as u64),
+            },
             transition,
         };
         let method = |plan: &[Vec<f64>], train_s, reproduce_s, replan: Option<&mut Replan<'_>>| {
