@@ -20,7 +20,6 @@ use clap::Parser;
 use cosco_hsom::experiment::multi::{run_seed, to_markdown, MultiSettings};
 use cosco_hsom::experiment::study::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::Transition;
-use cosco_hsom::sim::NaoArm;
 
 /// Held-out study of one hierarchy on several gestures.
 #[derive(Parser, Debug)]
@@ -62,8 +61,7 @@ fn run(a: Args) -> Result<()> {
     let t = Instant::now();
     let gestures = parse_gestures(&a.gestures)?;
     let seeds = parse_seeds(&a.seeds)?;
-    let config = cosco_hsom::config::load_config(&a.config)
-        .with_context(|| format!("loading {}", a.config.display()))?;
+    let (config, arm) = common::config_and_arm(&a.config)?;
     let settings = MultiSettings {
         train: a.train,
         test: a.test,
@@ -73,7 +71,6 @@ fn run(a: Args) -> Result<()> {
         unknown: !a.no_unknown,
         controls: !a.no_controls,
     };
-    let arm = NaoArm::load_default().context("loading the default arm model")?;
     let pb = indicatif::ProgressBar::new(seeds.len() as u64);
     let mut results = Vec::new();
     for &s in &seeds {

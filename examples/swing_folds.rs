@@ -17,12 +17,10 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::Parser;
 
-use cosco_hsom::config::load_config;
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
 use cosco_hsom::experiment::heldout::{swing_folds, swing_folds_png};
 use cosco_hsom::experiment::study::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::Transition;
-use cosco_hsom::sim::NaoArm;
 
 /// Leave-one-out folds of one gesture, drawn.
 #[derive(Parser, Debug)]
@@ -49,8 +47,7 @@ struct Args {
 }
 
 fn run(a: Args) -> Result<()> {
-    let config =
-        load_config(&a.config).with_context(|| format!("loading {}", a.config.display()))?;
+    let (config, arm) = common::config_and_arm(&a.config)?;
     let mut gestures = parse_gestures(&a.gesture)?;
     if gestures.len() != 1 {
         anyhow::bail!(
@@ -61,7 +58,6 @@ fn run(a: Args) -> Result<()> {
     }
     let gesture = gestures.remove(0);
     let seeds = parse_seeds(&a.seeds)?;
-    let arm = NaoArm::load_default()?;
     std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
     let settings = DemoSettings {
         encoder_noise: a.noise,

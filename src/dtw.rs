@@ -225,8 +225,30 @@ pub fn dtw<R: AsRef<[f64]>>(a: &[R], b: &[R], band: Band) -> Result<Alignment, D
     check(a, b)?;
     let (n, m) = (a.len(), b.len());
     let w = band.width(n, m)?;
-    let mut acc = vec![INF; n * m];
-    let mut dir = vec![0u8; n * m];
+    let (acc, dir) = fill(a, b, w);
+    Ok(backtrack(&acc, &dir, m, (n - 1, m - 1)))
+}
+
+/// DTW with an open end in `b`: the cheapest warping path that starts at both starts and
+/// covers all of `a`, ending at whichever sample of `b` makes it cheapest (the first such
+/// one), with its path from `(0, 0)` to `(n−1, end)`; `O(n·m)` memory, no band. Where `a` is
+/// the first part of something like `b`, the path's last column says how far along `b` it
+/// got.
+pub fn dtw_open_end<R: AsRef<[f64]>>(a: &[R], b: &[R]) -> Result<Alignment, DtwError> {
+    check(a, b)?;
+    let (n, m) = (a.len(), b.len());
+    let (acc, dir) = fill(a, b, None);
+    let last = &acc[(n - 1) * m..];
+    let end = (0..m).fold(0, |e, j| if last[j].0 < last[e].0 { j } else { e });
+    Ok(backtrack(&acc, &dir, m, (n - 1, end)))
+}
+
+/// The accumulated costs (cost, steps) and the predecessor directions of every cell of the
+/// `a` x `b` matrix (row-major), inside the band of half-width `w`.
+fn fill<R: AsRef<[f64]>>(a: &[R], b: &[R], w: Option<usize>) -> (Vec<(f64, usize)>, Vec<u8>) {
+    let m = b.len();
+    let mut acc = vec![INF; a.len() * m];
+    let mut dir = vec![0u8; a.len() * m];
     for (i, ai) in a.iter().enumerate() {
         let ai = ai.as_ref();
         let (lo, hi) = band_columns(i, m, w);
@@ -245,9 +267,14 @@ pub fn dtw<R: AsRef<[f64]>>(a: &[R], b: &[R], band: Band) -> Result<Alignment, D
             dir[k] = d_ir;
         }
     }
-    let (distance, steps) = acc[n * m - 1];
+    (acc, dir)
+}
+
+/// The warping path ending at cell `(i, j)` of a filled matrix of `m` columns.
+fn backtrack(acc: &[(f64, usize)], dir: &[u8], m: usize, (i, j): (usize, usize)) -> Alignment {
+    let (distance, steps) = acc[i * m + j];
     let mut path = Vec::with_capacity(steps);
-    let (mut i, mut j) = (n - 1, m - 1);
+    let (mut i, mut j) = (i, j);
     path.push((i, j));
     while i > 0 || j > 0 {
         match dir[i * m + j] {
@@ -261,11 +288,11 @@ pub fn dtw<R: AsRef<[f64]>>(a: &[R], b: &[R], band: Band) -> Result<Alignment, D
         path.push((i, j));
     }
     path.reverse();
-    Ok(Alignment {
+    Alignment {
         distance,
         normalized: distance / path.len() as f64,
         path,
-    })
+    }
 }
 
 #[cfg(test)]
@@ -277,6 +304,22 @@ mod tests {
         let al = dtw(&[vec![0.0, 0.0]], &[vec![3.0, 4.0]], Band::None).unwrap();
         assert_eq!(al.distance, 5.0);
         assert_eq!(al.path, vec![(0, 0)]);
+    }
+
+    /// The open end stops where `a` (a prefix of `b`, the middle held) has got along `b`, and
+    /// its path is the one full DTW finds against `b` cut there.
+    #[test]
+    fn the_open_end_stops_where_a_prefix_has_got() {
+        let b: Vec<Vec<f64>> = (0..20).map(|i| vec![i as f64]).collect();
+        let mut a: Vec<Vec<f64>> = (0..8).map(|i| vec![i as f64]).collect();
+        a.splice(4..4, std::iter::repeat(vec![4.0]).take(5));
+        let open = dtw_open_end(&a, &b).unwrap();
+        assert_eq!(*open.path.last().unwrap(), (a.len() - 1, 7));
+        assert_eq!(open.distance, 0.0);
+        let cut = dtw(&a, &b[..8], Band::None).unwrap();
+        assert_eq!(open.path, cut.path);
+        // the full alignment must reach b's end, at a cost
+        assert!(dtw(&a, &b, Band::None).unwrap().distance > 0.0);
     }
 
     #[test]

@@ -176,19 +176,28 @@ pub struct ReadingNoise {
 }
 
 impl ReadingNoise {
-    /// `rows` as read with this noise.
+    /// Refuse a standard deviation that is not a finite number >= 0, naming it.
+    pub fn check(&self) -> Result<(), ExperimentError> {
+        if self.std.is_finite() && self.std >= 0.0 {
+            Ok(())
+        } else {
+            Err(ExperimentError::Invalid(format!(
+                "reading noise {}: needs a finite standard deviation >= 0 (rad)",
+                self.std
+            )))
+        }
+    }
+
+    /// `rows` as read with this noise ([`ReadingNoise::check`]ed).
     pub fn apply(&self, rows: &[Vec<f64>]) -> Result<Vec<Vec<f64>>, ExperimentError> {
         use rand::SeedableRng;
         use rand_distr::Distribution;
+        self.check()?;
         if self.std == 0.0 {
             return Ok(rows.to_vec());
         }
-        let normal = rand_distr::Normal::new(0.0, self.std).map_err(|_| {
-            ExperimentError::Invalid(format!(
-                "reading noise {}: needs a finite standard deviation >= 0 (rad)",
-                self.std
-            ))
-        })?;
+        let normal = rand_distr::Normal::new(0.0, self.std)
+            .map_err(|e| ExperimentError::Invalid(format!("reading noise {}: {e}", self.std)))?;
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(self.seed);
         Ok(rows
             .iter()

@@ -707,13 +707,11 @@ impl ClosedLoopGrab {
                 "a grab of 0 ticks: needs at least 1".into(),
             ));
         }
-        let n = self.reading_noise;
-        if !(n.is_finite() && n >= 0.0) {
-            return Err(ExperimentError::Invalid(format!(
-                "reading noise {n}: needs a finite standard deviation >= 0 (rad)"
-            )));
+        ReadingNoise {
+            std: self.reading_noise,
+            seed: self.seed,
         }
-        Ok(())
+        .check()
     }
 }
 

@@ -243,7 +243,7 @@ pub(crate) fn bottom_events(model: &Hsom, demo: &[Vec<f64>]) -> Vec<(usize, f64)
 /// reading samples more or fewer than the plan samples aligned with it: a hold of 40
 /// samples adds 40 to the event held), and the share of the last one still to come (plan
 /// samples). `reading` and the plan's samples `plan` (both normalised) are aligned by DTW with
-/// an open end in the plan; each sample counts for the event whose span holds it, a reading
+/// an open end in the plan ([`crate::dtw::dtw_open_end`]); each sample counts for the event whose span holds it, a reading
 /// sample for the last plan sample it is aligned with. Read back exactly, every event is as
 /// planned.
 fn observed_durations(
@@ -254,10 +254,10 @@ fn observed_durations(
     if reading.is_empty() || plan.is_empty() || events.is_empty() {
         return (Vec::new(), 0.0);
     }
-    let (end, _) = super::recognize::open_end_cost(reading, plan);
-    let Ok(al) = crate::dtw::dtw(reading, &plan[..=end], crate::dtw::Band::None) else {
+    let Ok(al) = crate::dtw::dtw_open_end(reading, plan) else {
         return (Vec::new(), 0.0);
     };
+    let end = al.path.last().map_or(0, |p| p.1);
     // the plan sample each reading sample reached last
     let mut last = vec![0usize; reading.len()];
     for &(i, j) in &al.path {
@@ -273,11 +273,12 @@ fn observed_durations(
     let event_of = |j: usize| starts.partition_point(|&s| s <= j as f64).saturating_sub(1);
     let begun = event_of(end) + 1;
     let mut stretch = vec![0.0f64; begun];
+    // every j here is at most `end`, so its event is one of those begun
     for &j in &last {
-        stretch[event_of(j).min(begun - 1)] += 1.0;
+        stretch[event_of(j)] += 1.0;
     }
     for j in 0..=end {
-        stretch[event_of(j).min(begun - 1)] -= 1.0;
+        stretch[event_of(j)] -= 1.0;
     }
     let executed = events[..begun]
         .iter()
