@@ -43,6 +43,7 @@ pub mod metrics;
 #[cfg(feature = "sim")]
 pub mod mujoco;
 pub mod nearest;
+pub mod offline;
 #[cfg(feature = "plot")]
 pub mod plot;
 #[cfg(feature = "sim")]

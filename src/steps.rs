@@ -140,6 +140,12 @@ pub fn check_model_extension(path: &Path) -> Result<(), StepError> {
 /// an existing directory where a file can be created (a temporary file is made and removed).
 pub fn check_model_output(path: &Path) -> Result<(), StepError> {
     check_model_extension(path)?;
+    check_output(path)
+}
+
+/// Check, before any work, that a file can be written to `path`: its directory exists and a
+/// file can be created there (a temporary file is made and removed).
+pub fn check_output(path: &Path) -> Result<(), StepError> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),

@@ -123,6 +123,42 @@ enum Command {
         #[arg(long)]
         json: Option<PathBuf>,
     },
+    /// Held out on your own demonstrations, without the simulator: for each demonstration,
+    /// learn from the others, reproduce from its first sample, score against it; the
+    /// hierarchy beside the nearest sequence, height 1, GMM/GMR and a replay, on the same folds
+    /// (Markdown on stdout).
+    Heldout {
+        /// Demonstrations: a directory of *.csv files or files (one gesture), or directories of
+        /// gesture subdirectories (DIR/<gesture>/*.csv, each gesture on its own); at least 3
+        /// per gesture.
+        #[arg(long, num_args = 1.., required = true)]
+        demos: Vec<PathBuf>,
+        /// XML configuration (default: the built-in configs/nao-gestures.xml).
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Take stateLength and actionLength from the demonstrations' columns.
+        #[arg(long)]
+        state_length_from_data: bool,
+        /// Leave out the configuration at height 1.
+        #[arg(long)]
+        no_height_1: bool,
+        /// Leave out GMM/GMR.
+        #[arg(long)]
+        no_gmr: bool,
+        /// Leave out the in-sample result (learned from all).
+        #[arg(long)]
+        no_in_sample: bool,
+        /// Worker threads (default: every core).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
+        threads: Option<u64>,
+        /// Also write every fold's scores as JSON here.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Also draw one fold per gesture (the first sample's plane) as a PNG here.
+        #[cfg(feature = "plot")]
+        #[arg(long)]
+        png: Option<PathBuf>,
+    },
     /// Print a saved model's levels, sizes and quality measures.
     Inspect {
         /// A model saved by `cosco train` (.bin or .txt).
@@ -264,6 +300,36 @@ fn run(cli: Cli) -> Result<()> {
             for line in cli::recognize_lines(&model, &demos, json.as_deref())? {
                 outln!("{line}");
             }
+        }
+        Command::Heldout {
+            demos,
+            config,
+            state_length_from_data,
+            no_height_1,
+            no_gmr,
+            no_in_sample,
+            threads,
+            json,
+            #[cfg(feature = "plot")]
+            png,
+        } => {
+            #[cfg(not(feature = "plot"))]
+            let png: Option<PathBuf> = None;
+            let job = cli::HeldoutJob {
+                demos,
+                config,
+                state_length_from_data,
+                settings: cosco_hsom::offline::LooSettings {
+                    height_1: !no_height_1,
+                    gmr: !no_gmr,
+                    replay: true,
+                    in_sample: !no_in_sample,
+                    threads: threads.map_or_else(cli::cores, |t| t as usize),
+                },
+                json,
+                png,
+            };
+            out!("{}", cli::heldout(&job)?);
         }
         Command::Inspect { model } => {
             let m = cli::load_gesture_model(&model)?;

@@ -544,4 +544,40 @@ impl HsomConfig {
     pub fn period(&self, level: usize) -> u64 {
         (self.params.update_period as u64).pow(level as u32)
     }
+    /// The same configuration with its lowest `height` levels (`levels` truncated, a
+    /// `maxLevel` at or above the new top level dropped: the top is the limit anyway). A
+    /// height above the configuration's own, or 0, is an error naming both: levels cannot be
+    /// made up.
+    pub fn at_height(&self, height: usize) -> Result<HsomConfig, ConfigError> {
+        let mut p = self.params.clone();
+        if height == 0 || height > p.levels.len() {
+            return Err(ConfigError::Invalid {
+                file: self.source.clone(),
+                field: "height".into(),
+                value: height.to_string(),
+                reason: format!(
+                    "a height override from 1 to the configuration's own {} levels",
+                    p.levels.len()
+                ),
+            });
+        }
+        p.levels.truncate(height);
+        p.height = height;
+        if p.reproduction.max_level.is_some_and(|m| m + 1 >= height) {
+            p.reproduction.max_level = None;
+        }
+        p.check(&format!("{} (at height {height})", self.source))
+    }
+    /// The same configuration for data of `width` variables: `stateLength` and
+    /// `actionLength` set to `width` (the rest unchanged and checked again), as the
+    /// configuration is adapted to data other than the arm's six joints.
+    pub fn for_width(&self, width: usize) -> Result<HsomConfig, ConfigError> {
+        let mut p = self.params.clone();
+        p.state_length = width;
+        p.action_length = width;
+        p.check(&format!(
+            "{} (stateLength {width} from the data)",
+            self.source
+        ))
+    }
 }

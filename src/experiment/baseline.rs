@@ -26,9 +26,10 @@ use plotters::style::RGBColor;
 
 use crate::demos::Demonstration;
 use crate::gmr::{
-    BicScore, ComponentChoice, GmrError, GmrModel, GmrParams, GmrValidParams, Prediction,
-    TrainingSet,
+    lead_in_ticks_at, plan_at, BicScore, ComponentChoice, GmrError, GmrModel, GmrParams,
+    GmrValidParams, TrainingSet,
 };
+pub use crate::gmr::{minimum_jerk, GmrPlan, LEAD_IN_MIN_S};
 use crate::metrics::{FidelityReport, MetricsParams};
 use crate::plot::{demo_color, panels_png, Band, Ellipse, Panel, PlotError, Scatter, Series};
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
@@ -39,8 +40,6 @@ use super::{are_arm_joints, ExperimentError, Transition};
 
 /// Peak joint speed of the lead-in from the initial posture to GMR's first point, rad/s.
 pub const LEAD_IN_PEAK_SPEED: f64 = 1.0;
-/// Shortest lead-in, seconds.
-pub const LEAD_IN_MIN_S: f64 = 0.1;
 /// Name of the baseline in reports.
 pub const GMR_NAME: &str = "GMM/GMR";
 /// What the baseline needs as input (the report's "needs as input" row).
@@ -81,67 +80,16 @@ pub enum BaselineError {
     Invalid(String),
 }
 
-/// Minimum-jerk samples from `from` to `to` at `s = k / n`, `k = 0 … n−1` (`to` itself is
-/// not included: it is the next posture of the plan). `n = 0` gives nothing.
-pub fn minimum_jerk(from: &[f64], to: &[f64], n: usize) -> Vec<Vec<f64>> {
-    (0..n)
-        .map(|k| {
-            let s = k as f64 / n as f64;
-            let h = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
-            from.iter().zip(to).map(|(a, b)| a + (b - a) * h).collect()
-        })
-        .collect()
-}
-
 /// Ticks of the lead-in from `from` to `to` at `rate_hz` (see the module documentation); at
 /// least 1 (the initial posture itself).
 pub fn lead_in_ticks(from: &[f64], to: &[f64], rate_hz: f64) -> usize {
-    let delta = from
-        .iter()
-        .zip(to)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max);
-    let t = LEAD_IN_MIN_S.max(1.875 * delta / LEAD_IN_PEAK_SPEED);
-    ((t * rate_hz).ceil() as usize).max(1)
-}
-
-/// The postures the baseline sends to the controller.
-#[derive(Debug, Clone, PartialEq)]
-pub struct GmrPlan {
-    /// One posture per tick; the first is the initial posture.
-    pub postures: Vec<Vec<f64>>,
-    /// How many leading postures are the minimum-jerk lead-in.
-    pub lead_in: usize,
-    /// GMR's predictions (`time` on GMR's own time line, from 0), one per posture after
-    /// the lead-in.
-    pub predictions: Vec<Prediction>,
+    lead_in_ticks_at(from, to, rate_hz, LEAD_IN_PEAK_SPEED)
 }
 
 /// The plan: the lead-in from `initial` to GMR's first point, then GMR's mean every
 /// `1 / rate_hz` seconds over the model's duration.
 pub fn plan(model: &GmrModel, initial: &[f64], rate_hz: f64) -> Result<GmrPlan, BaselineError> {
-    if !(rate_hz.is_finite() && rate_hz > 0.0) {
-        return Err(BaselineError::Invalid(format!(
-            "rate_hz = {rate_hz}: needs a finite rate > 0"
-        )));
-    }
-    if initial.len() != model.columns().len() || initial.iter().any(|v| !v.is_finite()) {
-        return Err(BaselineError::Invalid(format!(
-            "initial posture {initial:?}: needs {} finite values ({})",
-            model.columns().len(),
-            model.columns().join(", ")
-        )));
-    }
-    let predictions = model.reproduce(1.0 / rate_hz)?;
-    let first = &predictions[0].mean;
-    let lead_in = lead_in_ticks(initial, first, rate_hz);
-    let mut postures = minimum_jerk(initial, first, lead_in);
-    postures.extend(predictions.iter().map(|p| p.mean.clone()));
-    Ok(GmrPlan {
-        postures,
-        lead_in,
-        predictions,
-    })
+    Ok(plan_at(model, initial, rate_hz, LEAD_IN_PEAK_SPEED)?)
 }
 
 /// Everything one run of the baseline produced.

@@ -16,6 +16,7 @@ use crate::config::HsomConfig;
 use crate::demos::Demonstration;
 use crate::fsutil::write_atomic;
 use crate::gesture::Gesture;
+pub use crate::metrics::median;
 use crate::metrics::FidelityReport;
 use crate::sim::NaoArm;
 
@@ -287,21 +288,6 @@ pub fn run_study(
         noise: settings.noise,
         transition: settings.transition.name(),
         configs: configs_out,
-    })
-}
-
-/// The median of the finite values (`None` when there are none).
-pub fn median(values: impl IntoIterator<Item = f64>) -> Option<f64> {
-    let mut v: Vec<f64> = values.into_iter().filter(|x| x.is_finite()).collect();
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    Some(if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        (v[n / 2 - 1] + v[n / 2]) / 2.0
     })
 }
 

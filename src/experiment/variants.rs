@@ -156,24 +156,7 @@ pub fn at_height(
     config: &HsomConfig,
     height: usize,
 ) -> Result<HsomConfig, crate::config::ConfigError> {
-    let mut p = config.params().clone();
-    if height == 0 || height > p.levels.len() {
-        return Err(crate::config::ConfigError::Invalid {
-            file: config.source().to_string(),
-            field: "height".into(),
-            value: height.to_string(),
-            reason: format!(
-                "a height override from 1 to the configuration's own {} levels",
-                p.levels.len()
-            ),
-        });
-    }
-    p.levels.truncate(height);
-    p.height = height;
-    if p.reproduction.max_level.is_some_and(|m| m + 1 >= height) {
-        p.reproduction.max_level = None;
-    }
-    p.check(&format!("{} (at height {height})", config.source()))
+    config.at_height(height)
 }
 
 /// Reference rows of the before/after table, each executed with `transition`: the paper

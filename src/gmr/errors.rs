@@ -17,6 +17,16 @@ pub enum GmrError {
         /// What is allowed.
         reason: &'static str,
     },
+    /// An initial posture that is not one finite value per column of the model.
+    #[error("initial posture {found}: needs {expected} finite values ({columns})")]
+    BadInitial {
+        /// The posture given, as text.
+        found: String,
+        /// Values needed.
+        expected: usize,
+        /// The model's columns, comma-separated.
+        columns: String,
+    },
     /// Fewer demonstrations than the pipeline needs.
     #[error("the GMM/GMR baseline needs at least {required} demonstrations to align and to estimate their spread, got {found}")]
     TooFewDemonstrations {

@@ -332,3 +332,59 @@ pub fn parse_noise(s: &str) -> Result<f64, String> {
         )),
     }
 }
+
+/// Every core (1 when it cannot be told).
+pub fn cores() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
+/// What `cosco heldout` does.
+pub struct HeldoutJob {
+    /// Demonstration paths, as for `cosco train`.
+    pub demos: Vec<PathBuf>,
+    /// Configuration file (default: the built-in recommended one).
+    pub config: Option<PathBuf>,
+    /// Take `stateLength` from the data.
+    pub state_length_from_data: bool,
+    /// Which methods, which results, how many threads.
+    pub settings: cosco_hsom::offline::LooSettings,
+    /// Where to write every fold's scores as JSON.
+    pub json: Option<PathBuf>,
+    /// Where to draw one fold per gesture.
+    pub png: Option<PathBuf>,
+}
+
+/// `cosco heldout`: leave-one-out on the demonstrations with a progress bar; the Markdown
+/// tables, after writing the JSON and the figure when asked.
+pub fn heldout(job: &HeldoutJob) -> Result<String> {
+    use cosco_hsom::offline;
+    for p in job.json.iter().chain(&job.png) {
+        steps::check_output(p)?;
+    }
+    let cfg = hsom_config(job.config.as_deref())?;
+    let (cfg, gestures) = offline::read_gestures(&job.demos, &cfg, job.state_length_from_data)?;
+    let folds: usize = gestures.iter().map(|(_, d)| d.len()).sum();
+    let per = if job.settings.in_sample { 2 } else { 1 };
+    let pb = progress((folds * per) as u64, "folds");
+    let study = offline::leave_one_out(
+        &cfg,
+        gestures,
+        &job.settings,
+        Some(&|done, _| pb.set_position(done as u64)),
+    )?;
+    pb.finish_and_clear();
+    if let Some(p) = &job.json {
+        let doc = serde_json::json!({
+            "config": cfg.source(),
+            "summary": offline::summary(&study),
+            "gestures": study,
+        });
+        cosco_hsom::fsutil::write_atomic(p, &serde_json::to_vec_pretty(&doc)?)
+            .with_context(|| format!("writing {}", p.display()))?;
+    }
+    #[cfg(feature = "plot")]
+    if let Some(p) = &job.png {
+        offline::png(p, &study, 0)?;
+    }
+    Ok(offline::markdown(&study))
+}

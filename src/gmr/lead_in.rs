@@ -1,0 +1,89 @@
+//! From an initial posture to GMR's mean trajectory: a minimum-jerk lead-in to GMR's first
+//! point, then the mean every sample period (what the baseline executes; the formula is in
+//! `experiment::baseline`'s documentation). Here without the simulator, for any data: the
+//! lead-in's peak speed is an argument (the arm's 1 rad/s in `experiment::baseline`; the
+//! demonstrations' own speed in [`crate::offline`]).
+
+use super::{GmrError, GmrModel, Prediction};
+
+/// Shortest lead-in, seconds.
+pub const LEAD_IN_MIN_S: f64 = 0.1;
+
+/// Minimum-jerk samples from `from` to `to` at `s = k / n`, `k = 0 … n−1` (`to` itself is
+/// not included: it is the next posture of the plan). `n = 0` gives nothing.
+pub fn minimum_jerk(from: &[f64], to: &[f64], n: usize) -> Vec<Vec<f64>> {
+    (0..n)
+        .map(|k| {
+            let s = k as f64 / n as f64;
+            let h = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
+            from.iter().zip(to).map(|(a, b)| a + (b - a) * h).collect()
+        })
+        .collect()
+}
+
+/// Ticks of a minimum-jerk lead-in from `from` to `to` at `rate_hz` whose peak speed is at
+/// most `peak_speed` (units per second) on every variable, lasting at least
+/// [`LEAD_IN_MIN_S`]; at least 1 (the initial posture itself).
+pub fn lead_in_ticks_at(from: &[f64], to: &[f64], rate_hz: f64, peak_speed: f64) -> usize {
+    let delta = from
+        .iter()
+        .zip(to)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    let t = LEAD_IN_MIN_S.max(1.875 * delta / peak_speed);
+    ((t * rate_hz).ceil() as usize).max(1)
+}
+
+/// The postures of GMR's reproduction from an initial posture.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GmrPlan {
+    /// One posture per tick; the first is the initial posture.
+    pub postures: Vec<Vec<f64>>,
+    /// How many leading postures are the minimum-jerk lead-in.
+    pub lead_in: usize,
+    /// GMR's predictions (`time` on GMR's own time line, from 0), one per posture after
+    /// the lead-in.
+    pub predictions: Vec<Prediction>,
+}
+
+/// The plan: the lead-in from `initial` to GMR's first point at `peak_speed`, then GMR's
+/// mean every `1 / rate_hz` seconds over the model's duration. The rate and the speed must
+/// be finite and above 0, the initial posture one finite value per column of the model.
+pub fn plan_at(
+    model: &GmrModel,
+    initial: &[f64],
+    rate_hz: f64,
+    peak_speed: f64,
+) -> Result<GmrPlan, GmrError> {
+    if !(rate_hz.is_finite() && rate_hz > 0.0) {
+        return Err(GmrError::InvalidParam {
+            name: "rate_hz",
+            value: rate_hz.to_string(),
+            reason: "a finite rate > 0",
+        });
+    }
+    if !(peak_speed.is_finite() && peak_speed > 0.0) {
+        return Err(GmrError::InvalidParam {
+            name: "peak_speed",
+            value: peak_speed.to_string(),
+            reason: "a finite speed > 0",
+        });
+    }
+    if initial.len() != model.columns().len() || initial.iter().any(|v| !v.is_finite()) {
+        return Err(GmrError::BadInitial {
+            found: format!("{initial:?}"),
+            expected: model.columns().len(),
+            columns: model.columns().join(", "),
+        });
+    }
+    let predictions = model.reproduce(1.0 / rate_hz)?;
+    let first = &predictions[0].mean;
+    let lead_in = lead_in_ticks_at(initial, first, rate_hz, peak_speed);
+    let mut postures = minimum_jerk(initial, first, lead_in);
+    postures.extend(predictions.iter().map(|p| p.mean.clone()));
+    Ok(GmrPlan {
+        postures,
+        lead_in,
+        predictions,
+    })
+}
