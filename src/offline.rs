@@ -732,7 +732,8 @@ pub fn png(path: &std::path::Path, study: &[GestureLoo], fold: usize) -> Result<
         panel
             .series
             .push(Series::new("held out", BLACK, points(&target.rows, period)));
-        for r in f.runs.iter().filter(|r| !r.postures.is_empty()) {
+        // GMM/GMR first, the hierarchy last (on top)
+        for r in f.runs.iter().rev().filter(|r| !r.postures.is_empty()) {
             if r.method == Method::Height1 || r.method == Method::Replay {
                 continue;
             }

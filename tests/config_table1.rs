@@ -476,3 +476,37 @@ fn new_options_parse_and_bad_values_are_named() {
         assert_eq!(c.params(), again.params());
     }
 }
+
+#[test]
+fn consensus_weighing_parses_round_trips_and_names_bad_values() {
+    let t = std::fs::read_to_string("configs/nao-gestures.xml").unwrap();
+    let default = parse_config(&t, "nao-gestures.xml").unwrap();
+    assert_eq!(
+        default.params().consensus,
+        cosco_hsom::config::Consensus::All
+    );
+    let with = |word: &str| {
+        t.replacen(
+            "<normalisation>global</normalisation>",
+            &format!("<normalisation>global</normalisation><consensus>{word}</consensus>"),
+            1,
+        )
+    };
+    for (word, expected) in [
+        ("local", cosco_hsom::config::Consensus::Local),
+        ("LOCAL", cosco_hsom::config::Consensus::Local),
+        ("all", cosco_hsom::config::Consensus::All),
+    ] {
+        let c = parse_config(&with(word), "ok.xml").unwrap();
+        assert_eq!(c.params().consensus, expected);
+        let again = parse_config(&c.to_xml(), "again.xml").unwrap();
+        assert_eq!(c.params(), again.params());
+    }
+    match err(&with("nearest")) {
+        ConfigError::Invalid { field, reason, .. } => {
+            assert_eq!(field, "consensus");
+            assert!(reason.contains("all, local"), "{reason}");
+        }
+        e => panic!("{e}"),
+    }
+}

@@ -208,3 +208,45 @@ fn cosco_heldout_on_directories_of_gestures() {
             "gesture 'two': leave-one-out needs at least 3 demonstrations",
         ));
 }
+
+#[test]
+fn an_outlier_spoils_the_other_folds_unless_the_consensus_is_local() {
+    // three demonstrations of one route and an outlier far from it (another mode): with
+    // `consensus = all` each training set that holds the outlier places every event a third
+    // of the way to it; `local` leaves it out where the others agree. Scored on the three
+    // folds that hold the outlier in training (the control: `all` fails the same bound)
+    let mut demos = handwriting(4, 9);
+    for r in &mut demos[3].rows {
+        r[1] += 60.0;
+    }
+    let with = |c: cosco_hsom::config::Consensus| {
+        let mut p = quick().into_params();
+        p.consensus = c;
+        let study = leave_one_out(
+            &p.check("quick").unwrap(),
+            vec![("h".into(), demos.clone())],
+            &LooSettings {
+                height_1: false,
+                gmr: false,
+                replay: false,
+                in_sample: false,
+                threads: 2,
+            },
+            None,
+        )
+        .unwrap();
+        let folds = &study[0].held_out[..3];
+        [Method::Hierarchy, Method::NearestSequence].map(|m| {
+            folds
+                .iter()
+                .map(|f| f.score(m).unwrap().relative_dtw)
+                .fold(0.0, f64::max)
+        })
+    };
+    let local = with(cosco_hsom::config::Consensus::Local);
+    let all = with(cosco_hsom::config::Consensus::All);
+    for k in 0..2 {
+        assert!(local[k] < 0.06, "local {local:?}");
+        assert!(all[k] > 0.06, "all {all:?} (the control)");
+    }
+}

@@ -103,6 +103,18 @@ pub enum Normalisation {
     None,
 }
 
+/// How the events extension's consensus (where each bottom node's events are placed)
+/// weighs the other demonstrations at each sample (docs/ALGORITHM.md, passage 6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Consensus {
+    /// Every demonstration alike: the mean of the samples aligned to this one (the default).
+    All,
+    /// The demonstrations that agree here: each other demonstration's aligned sample
+    /// weighted by how far it is, relative to the nearest one (for demonstrations of several
+    /// modes: different routes from different starts).
+    Local,
+}
+
 /// The reproduction procedure (paper III-C.2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ReproductionMode {
@@ -285,6 +297,8 @@ pub struct HsomParams {
     pub memory_mode: MemoryMode,
     /// Input scaling of the bottom level.
     pub normalisation: Normalisation,
+    /// How the consensus weighs the demonstrations (`algorithm = events`).
+    pub consensus: Consensus,
     /// Training of upper levels on partially filled lists.
     pub partial_training: PartialTraining,
     /// When the bottom activity list is updated.
@@ -319,6 +333,7 @@ impl HsomParams {
             training_steps: 5000,
             memory_mode: MemoryMode::Lists,
             normalisation: Normalisation::Global,
+            consensus: Consensus::All,
             partial_training: PartialTraining::Skip,
             list_update: ListUpdate::EveryStep,
             change_ratio: 1.0,

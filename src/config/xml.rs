@@ -9,7 +9,7 @@ use crate::som::{Decay, Neighbourhood, Schedule, Topology};
 
 use super::errors::ConfigError;
 use super::hyperparams::{
-    Algorithm, HsomConfig, HsomParams, IdDecoding, LevelParams, ListUpdate, MemoryMode,
+    Algorithm, Consensus, HsomConfig, HsomParams, IdDecoding, LevelParams, ListUpdate, MemoryMode,
     Normalisation, PartialTraining, Reflex, ReproductionMode, ReproductionParams, StopRule, Timing,
 };
 
@@ -32,6 +32,7 @@ struct RawConfig {
     #[serde(rename = "memoryMode")]
     memory_mode: Option<String>,
     normalisation: Option<String>,
+    consensus: Option<String>,
     #[serde(rename = "partialTraining")]
     partial_training: Option<String>,
     #[serde(rename = "listUpdate")]
@@ -594,6 +595,13 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
             ]),
             "global, perDimension, none",
         )?,
+        consensus: f.name(
+            "consensus",
+            &raw.consensus,
+            Consensus::All,
+            word(&[("all", Consensus::All), ("local", Consensus::Local)]),
+            "all, local",
+        )?,
         partial_training: f.name(
             "partialTraining",
             &raw.partial_training,
@@ -656,6 +664,11 @@ impl HsomConfig {
             Normalisation::None => "none",
         };
         let _ = writeln!(s, "  <normalisation>{nm}</normalisation>");
+        let cs = match p.consensus {
+            Consensus::All => "all",
+            Consensus::Local => "local",
+        };
+        let _ = writeln!(s, "  <consensus>{cs}</consensus>");
         let pt = match p.partial_training {
             PartialTraining::Skip => "skip",
             PartialTraining::Masked => "masked",

@@ -16,7 +16,7 @@ use std::collections::{BTreeMap, VecDeque};
 
 use rand::{Rng, SeedableRng};
 
-use crate::config::{HsomConfig, ReproductionParams};
+use crate::config::{Consensus, HsomConfig, ReproductionParams};
 use crate::demos::Demonstration;
 use crate::som::SelfOrganizingMap;
 
@@ -108,7 +108,11 @@ pub(crate) const MAX_ALIGNED: usize = 2000;
 /// each other whatever their tempo. Sequences longer than `max_aligned` are aligned in
 /// blocks of `ceil(len / max_aligned)` samples. docs/ALGORITHM.md, passage 6 of the events
 /// extension.
-pub(crate) fn consensus(norm: &[Vec<Vec<f64>>], max_aligned: usize) -> Vec<Vec<Vec<f64>>> {
+pub(crate) fn consensus(
+    norm: &[Vec<Vec<f64>>],
+    max_aligned: usize,
+    weighing: Consensus,
+) -> Vec<Vec<Vec<f64>>> {
     let block = |d: &[Vec<f64>]| d.len().div_ceil(max_aligned.max(1)).max(1);
     let blocks: Vec<Vec<Vec<f64>>> = norm
         .iter()
@@ -126,16 +130,17 @@ pub(crate) fn consensus(norm: &[Vec<Vec<f64>>], max_aligned: usize) -> Vec<Vec<V
                 .collect()
         })
         .collect();
-    let mut out: Vec<Vec<Vec<f64>>> = norm.to_vec();
-    for j in 0..norm.len() {
-        for k in j + 1..norm.len() {
+    let n = norm.len();
+    // aligned[a][b]: per block of `a`, the mean of the blocks of `b` aligned to it
+    let mut aligned: Vec<Vec<Vec<Vec<f64>>>> = vec![vec![Vec::new(); n]; n];
+    for j in 0..n {
+        for k in j + 1..n {
             // cannot fail: the training series were checked (rows non-empty, of stateLength
             // finite values, at magnitudes the normalisation keeps below 1e100)
             let Ok(al) = crate::dtw::dtw(&blocks[j], &blocks[k], crate::dtw::Band::None) else {
                 continue;
             };
             for (a, b) in [(j, k), (k, j)] {
-                // per block of `a`, the mean of the blocks of `b` aligned to it
                 let mut acc = vec![(vec![0.0; norm[a][0].len()], 0.0); blocks[a].len()];
                 for &(x, y) in &al.path {
                     let (x, y) = if a == j { (x, y) } else { (y, x) };
@@ -146,20 +151,61 @@ pub(crate) fn consensus(norm: &[Vec<Vec<f64>>], max_aligned: usize) -> Vec<Vec<V
                         .for_each(|(s, v)| *s += v);
                     acc[x].1 += 1.0;
                 }
-                let size = block(&norm[a]);
-                for (t, row) in out[a].iter_mut().enumerate() {
-                    let (sum, n) = &acc[t / size];
-                    row.iter_mut().zip(sum).for_each(|(r, v)| *r += v / n);
-                }
+                aligned[a][b] = acc
+                    .into_iter()
+                    .map(|(sum, c)| sum.into_iter().map(|v| v / c).collect())
+                    .collect();
             }
         }
     }
-    let n = norm.len() as f64;
-    out.iter_mut().for_each(|d| {
-        d.iter_mut()
-            .for_each(|r| r.iter_mut().for_each(|v| *v /= n))
-    });
+    let mut out: Vec<Vec<Vec<f64>>> = norm.to_vec();
+    for a in 0..n {
+        let size = block(&norm[a]);
+        for (t, row) in out[a].iter_mut().enumerate() {
+            let others: Vec<&Vec<f64>> = (0..n)
+                .filter(|&b| b != a && !aligned[a][b].is_empty())
+                .map(|b| &aligned[a][b][t / size])
+                .collect();
+            let weights = agreement(weighing, &norm[a][t], &others);
+            let mut total = 1.0;
+            let mut acc = norm[a][t].clone();
+            for (m, w) in others.iter().zip(weights) {
+                acc.iter_mut().zip(m.iter()).for_each(|(s, v)| *s += w * v);
+                total += w;
+            }
+            row.iter_mut().zip(&acc).for_each(|(r, v)| *r = v / total);
+        }
+    }
     out
+}
+
+/// How far a demonstration may lie from a sample, in units of the nearest other
+/// demonstration's distance, and still count fully in the local consensus.
+pub(crate) const LOCAL_REACH: f64 = 2.0;
+
+/// The weight of each other demonstration's aligned sample (`others`) in the consensus of
+/// the sample `x` (whose own weight is 1). `All`: 1 each. `Local`: with `h` the distance of
+/// the nearest of them and `r = LOCAL_REACH · h`, `min(1, exp(-(d² - r²) / (2 r²)))` at
+/// distance `d`: every demonstration within `r` counts fully, one three times as far
+/// (`d = 3r`) by 0.018, so another mode, a route far from this one, drops out. With `h = 0`
+/// (another demonstration exactly here) only those exactly here count.
+fn agreement(weighing: Consensus, x: &[f64], others: &[&Vec<f64>]) -> Vec<f64> {
+    if weighing == Consensus::All {
+        return vec![1.0; others.len()];
+    }
+    let d2: Vec<f64> = others.iter().map(|m| dist2(m, x)).collect();
+    let r2 = d2.iter().cloned().fold(f64::INFINITY, f64::min) * LOCAL_REACH * LOCAL_REACH;
+    d2.iter()
+        .map(|&d| {
+            if r2 > 0.0 {
+                (-(d - r2) / (2.0 * r2)).exp().min(1.0)
+            } else if d == 0.0 {
+                1.0
+            } else {
+                0.0
+            }
+        })
+        .collect()
 }
 
 /// Per bottom node, how many samples its events hold and the sum of the values given for
@@ -1328,7 +1374,8 @@ impl Hsom {
             return;
         }
         let mut sums = NodeSums::new(self.maps[0].len(), self.config.params().state_length);
-        for (demo, agreed) in norm.iter().zip(consensus(norm, MAX_ALIGNED)) {
+        let weighing = self.config.params().consensus;
+        for (demo, agreed) in norm.iter().zip(consensus(norm, MAX_ALIGNED, weighing)) {
             sums.add(&NodeSums::of(self, &agreed, &bottom_events(self, demo)));
         }
         self.knots = Some(self.smoothed_postures(&sums));
@@ -2040,7 +2087,7 @@ mod tests {
         let (a, b) = (bump(5, 10, 1.0), bump(20, 25, 2.0));
         let top = |d: &[Vec<f64>]| d.iter().map(|r| r[0]).fold(f64::MIN, f64::max);
         for max_aligned in [MAX_ALIGNED, 16] {
-            let c = consensus(&[a.clone(), b.clone()], max_aligned);
+            let c = consensus(&[a.clone(), b.clone()], max_aligned, Consensus::All);
             assert_eq!((c[0].len(), c[1].len()), (a.len(), b.len()));
             // each consensus path's apex lies between the two apexes (1 and 2), toward the
             // other's: the higher apex aligned to the lower one's single top sample gives
@@ -2057,7 +2104,50 @@ mod tests {
             }
         }
         // one demonstration is its own consensus
-        assert_eq!(consensus(std::slice::from_ref(&a), MAX_ALIGNED), vec![a]);
+        assert_eq!(
+            consensus(std::slice::from_ref(&a), MAX_ALIGNED, Consensus::All),
+            vec![a]
+        );
+    }
+
+    #[test]
+    fn the_local_consensus_keeps_another_mode_out_and_agrees_with_all_within_one() {
+        // two routes from two starts: demonstrations 0 and 1 go along y = 0 and y = 0.25,
+        // demonstration 2 along y = 8 (another mode, 32 times as far)
+        let route =
+            |y: f64| -> Vec<Vec<f64>> { (0..30).map(|i| vec![i as f64 / 29.0, y]).collect() };
+        let demos = [route(0.0), route(0.25), route(8.0)];
+        let all = consensus(&demos, MAX_ALIGNED, Consensus::All);
+        let local = consensus(&demos, MAX_ALIGNED, Consensus::Local);
+        for t in 0..30 {
+            // all: each route pulled to the mean of the three (y = 2.75)
+            assert!((all[0][t][1] - 2.75).abs() < 1e-9, "{:?}", all[0][t]);
+            // local: the first two agree with each other (y = 0.125), the other mode
+            // counts for nothing measurable
+            assert!((local[0][t][1] - 0.125).abs() < 1e-9, "{:?}", local[0][t]);
+            assert!((local[1][t][1] - 0.125).abs() < 1e-9, "{:?}", local[1][t]);
+            // the lone route: its nearest other is far, so both others count fully
+            assert!((local[2][t][1] - all[2][t][1]).abs() < 1e-9);
+        }
+        // within one mode (every demonstration within twice the nearest one's distance)
+        // local is all
+        let one_mode = [route(0.0), route(0.25), route(0.5)];
+        assert_eq!(
+            consensus(&one_mode, MAX_ALIGNED, Consensus::Local),
+            consensus(&one_mode, MAX_ALIGNED, Consensus::All)
+        );
+        // weights: 1 within reach, 0.018 at three times the reach, 0 when another
+        // demonstration lies exactly here and this one does not
+        let x = [0.0, 0.0];
+        let (a, b, c) = (vec![0.1, 0.0], vec![0.2, 0.0], vec![0.6, 0.0]);
+        let w = agreement(Consensus::Local, &x, &[&a, &b, &c]);
+        assert_eq!(&w[..2], &[1.0, 1.0]);
+        assert!((w[2] - (-4.0f64).exp()).abs() < 1e-12, "{w:?}");
+        let here = vec![0.0, 0.0];
+        assert_eq!(
+            agreement(Consensus::Local, &x, &[&here, &a]),
+            vec![1.0, 0.0]
+        );
     }
 
     #[test]
