@@ -604,6 +604,18 @@ pub fn summary(study: &[GestureLoo]) -> Vec<MethodSummary> {
         .collect()
 }
 
+/// The study as a JSON document (what `cosco heldout --json` writes): the configuration's
+/// name, the [`summary`] and every gesture's folds with every method's score.
+pub fn json(config: &HsomConfig, study: &[GestureLoo]) -> String {
+    let doc = serde_json::json!({
+        "config": config.source(),
+        "summary": summary(study),
+        "gestures": study,
+    });
+    // cannot fail: plain numbers (non-finite ones become null), strings and enums
+    serde_json::to_string_pretty(&doc).unwrap_or_default()
+}
+
 /// The study as Markdown: per gesture, each method's mean relative DTW over the folds held
 /// out (and in-sample), then the summary over the gestures.
 pub fn markdown(study: &[GestureLoo]) -> String {

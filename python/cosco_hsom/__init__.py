@@ -13,6 +13,8 @@ The algorithm of the Rust crate ``cosco-hsom``, built without its simulator:
   ``.continue_prefix(prefix)``, ``.save(path)`` / ``GestureModel.load(path)`` (format 11, the
   files of ``cosco train`` on labelled directories).
 - :mod:`cosco_hsom.gmr`: the paper's GMM/GMR baseline.
+- :func:`heldout`: leave-one-out on demonstrations (``cosco heldout``): the hierarchy beside
+  its nearest-sequence baseline, height 1, GMM/GMR and a replay, on the same folds.
 - :func:`dtw`: dynamic time warping.
 
 Demonstrations are 2-D numpy arrays (samples x variables). Bad input raises ``ValueError``
@@ -22,7 +24,7 @@ also a ``FileNotFoundError`` / ``PermissionError`` / ``OSError`` (:class:`Missin
 """
 
 from ._errors import FileAccessError, FileError, MissingFileError
-from ._native import Config, GestureModel, Hsom, Recognition, dtw
+from ._native import Config, GestureModel, Hsom, Recognition, dtw, heldout
 from . import gmr
 
 __all__ = [
@@ -31,6 +33,7 @@ __all__ = [
     "GestureModel",
     "Recognition",
     "dtw",
+    "heldout",
     "gmr",
     "MissingFileError",
     "FileAccessError",

@@ -2,7 +2,7 @@ from . import gmr as gmr
 from ._errors import FileAccessError as FileAccessError
 from ._errors import FileError as FileError
 from ._errors import MissingFileError as MissingFileError
-from ._native import Config as Config, Hsom as Hsom, dtw as dtw
+from ._native import Config as Config, Hsom as Hsom, dtw as dtw, heldout as heldout
 from ._native import GestureModel as GestureModel, Recognition as Recognition
 
 __all__ = [
@@ -11,6 +11,7 @@ __all__ = [
     "GestureModel",
     "Recognition",
     "dtw",
+    "heldout",
     "gmr",
     "MissingFileError",
     "FileAccessError",

@@ -30,6 +30,7 @@ class Config:
         seed: Optional[int] = None,
         state_length: Optional[int] = None,
         training_steps: Optional[int] = None,
+        consensus: Optional[str] = None,
     ) -> "Config":
         """A copy with some settings changed, validated again."""
     def to_xml(self) -> str:
@@ -166,6 +167,19 @@ class GmrModel:
     def n_components(self) -> int: ...
     @property
     def columns(self) -> List[str]: ...
+
+def heldout(
+    config: Config,
+    gestures: Union[Sequence[_Array2], Mapping[str, Sequence[_Array2]]],
+    *,
+    columns: Optional[Sequence[str]] = None,
+    sample_period: float = 0.025,
+    height_1: bool = True,
+    gmr: bool = True,
+    in_sample: bool = True,
+    threads: int = 1,
+) -> Dict[str, Any]:
+    """Leave-one-out (``cosco heldout``): the JSON document of ``--json`` as a dict."""
 
 def dtw(a: _Array2, b: _Array2, per_step: bool = False) -> float:
     """DTW with Euclidean local cost: the summed cost of the cheapest path (or per step)."""

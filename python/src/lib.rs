@@ -277,14 +277,26 @@ impl Config {
     }
 
     /// A copy with some settings changed, validated again.
-    #[pyo3(signature = (*, seed = None, state_length = None, training_steps = None))]
+    #[pyo3(signature = (*, seed = None, state_length = None, training_steps = None, consensus = None))]
     fn replace(
         &self,
         seed: Option<u64>,
         state_length: Option<usize>,
         training_steps: Option<usize>,
+        consensus: Option<&str>,
     ) -> PyResult<Self> {
         let mut p = self.inner.params().clone();
+        if let Some(c) = consensus {
+            p.consensus = match c.to_ascii_lowercase().as_str() {
+                "all" => cosco_hsom::config::Consensus::All,
+                "local" => cosco_hsom::config::Consensus::Local,
+                _ => {
+                    return Err(PyValueError::new_err(format!(
+                        "consensus = {c:?}: one of 'all', 'local'"
+                    )))
+                }
+            };
+        }
         if let Some(s) = seed {
             p.seed = s;
         }
@@ -363,7 +375,9 @@ impl Hsom {
         py: Python<'py>,
         f: impl FnOnce(&cosco_hsom::hsom::Hsom) -> Result<cosco_hsom::hsom::Reproduction, E> + Send,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let rep = py.allow_threads(|| f(&self.inner)).map_err(|e| py_err(&e))?;
+        let rep = py
+            .allow_threads(|| f(&self.inner))
+            .map_err(|e| py_err(&e))?;
         Ok(array2(py, &rep.postures, self.inner.columns().len()))
     }
 }
@@ -879,6 +893,64 @@ impl GmrModel {
 /// Dynamic time warping between two sequences (2-D: samples x variables, same width), with
 /// Euclidean local cost and no band: the summed cost of the cheapest warping path, or the
 /// mean cost per path step with `per_step=True`.
+/// Leave-one-out on demonstrations (`cosco heldout`): for each demonstration of a gesture,
+/// learn from the others, reproduce from its first sample, score against it alone; the
+/// hierarchy beside the nearest sequence, height 1, GMM/GMR and a replay on the same folds.
+/// `gestures`: a list of 2-D arrays (one gesture) or a mapping label -> list. Returns the
+/// JSON document of `cosco heldout --json` as a dict. The GIL is released while it runs.
+#[pyfunction]
+#[pyo3(signature = (config, gestures, *, columns = None, sample_period = 0.025, height_1 = true, gmr = true, in_sample = true, threads = 1))]
+#[allow(clippy::too_many_arguments)]
+fn heldout<'py>(
+    py: Python<'py>,
+    config: &Config,
+    gestures: &Bound<'py, PyAny>,
+    columns: Option<Vec<String>>,
+    sample_period: f64,
+    height_1: bool,
+    gmr: bool,
+    in_sample: bool,
+    threads: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    use cosco_hsom::offline;
+    if !(sample_period.is_finite() && sample_period > 0.0) {
+        return Err(PyValueError::new_err(format!(
+            "sample_period = {sample_period}: a finite number of seconds > 0"
+        )));
+    }
+    let mut sets = if gestures.hasattr("items")? {
+        labelled_sets(gestures, columns)?
+    } else {
+        vec![("gesture".to_string(), demonstrations_of(gestures, columns)?)]
+    };
+    for d in sets.iter_mut().flat_map(|(_, d)| d.iter_mut()) {
+        d.time = Some(
+            (0..d.rows.len())
+                .map(|k| k as f64 * sample_period)
+                .collect(),
+        );
+    }
+    let width = config.inner.params().state_length;
+    for d in sets.iter().flat_map(|(_, d)| d) {
+        cosco_hsom::demos::validate_set(std::slice::from_ref(d), Some(width))
+            .map_err(|e| py_err(&e))?;
+    }
+    let settings = offline::LooSettings {
+        height_1,
+        gmr,
+        replay: true,
+        in_sample,
+        threads,
+    };
+    let cfg = config.inner.clone();
+    let text = py
+        .allow_threads(|| {
+            offline::leave_one_out(&cfg, sets, &settings, None).map(|s| offline::json(&cfg, &s))
+        })
+        .map_err(|e| py_err(&e))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
 #[pyfunction]
 #[pyo3(signature = (a, b, per_step = false))]
 fn dtw(a: &Bound<'_, PyAny>, b: &Bound<'_, PyAny>, per_step: bool) -> PyResult<f64> {
@@ -901,5 +973,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Recognition>()?;
     m.add_class::<GmrModel>()?;
     m.add_function(wrap_pyfunction!(dtw, m)?)?;
+    m.add_function(wrap_pyfunction!(heldout, m)?)?;
     Ok(())
 }

@@ -158,3 +158,35 @@ def test_native_module_links_no_simulator():
     out = subprocess.run([ldd, cosco_hsom._native.__file__], capture_output=True, text=True).stdout
     assert "libc" in out  # the listing worked
     assert "mujoco" not in out.lower() and "osmesa" not in out.lower(), out
+
+
+def test_heldout_scores_every_method_on_the_same_folds(demos):
+    cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
+    doc = cosco_hsom.heldout(cfg, demos[:4], columns=["x", "y"], threads=2)
+    (g,) = doc["gestures"]
+    assert g["gesture"] == "gesture"
+    assert len(g["held_out"]) == 4 and len(g["in_sample"]) == 4
+    methods = [r["method"] for r in g["held_out"][0]["runs"]]
+    assert methods == ["hierarchy", "nearest_sequence", "height1", "gmm_gmr", "replay"]
+    for fold in g["held_out"]:
+        for run in fold["runs"]:
+            assert run["error"] is None, run
+            assert 0 < run["score"]["relative_dtw"] < 0.5
+    summary = {s["method"]: s for s in doc["summary"]}
+    assert summary["hierarchy"]["folds"] == 4
+    # several gestures, by label; local consensus accepted, a bad word named
+    two = cosco_hsom.heldout(
+        cfg.replace(consensus="local"),
+        {"a": demos[:3], "b": demos[3:6]},
+        height_1=False,
+        gmr=False,
+        in_sample=False,
+    )
+    assert [g["gesture"] for g in two["gestures"]] == ["a", "b"]
+    assert all(len(g["in_sample"]) == 0 for g in two["gestures"])
+    with pytest.raises(ValueError, match="consensus"):
+        cfg.replace(consensus="nearest")
+    with pytest.raises(ValueError, match="at least 3 demonstrations"):
+        cosco_hsom.heldout(cfg, demos[:2])
+    with pytest.raises(ValueError, match="sample_period"):
+        cosco_hsom.heldout(cfg, demos[:3], sample_period=0.0)

@@ -1,5 +1,6 @@
 //! `cosco`: the steps of the main job one at a time, for scripting. Without the feature `sim`
-//! only `train`, `reproduce`, `recognize`, `inspect` and `evaluate` (which need no simulator).
+//! only `train`, `reproduce`, `recognize`, `inspect`, `evaluate` and `heldout` (which need no
+//! simulator; `heldout --png` needs the feature `plot`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;

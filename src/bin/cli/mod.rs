@@ -374,12 +374,7 @@ pub fn heldout(job: &HeldoutJob) -> Result<String> {
     )?;
     pb.finish_and_clear();
     if let Some(p) = &job.json {
-        let doc = serde_json::json!({
-            "config": cfg.source(),
-            "summary": offline::summary(&study),
-            "gestures": study,
-        });
-        cosco_hsom::fsutil::write_atomic(p, &serde_json::to_vec_pretty(&doc)?)
+        cosco_hsom::fsutil::write_atomic(p, offline::json(&cfg, &study).as_bytes())
             .with_context(|| format!("writing {}", p.display()))?;
     }
     #[cfg(feature = "plot")]
