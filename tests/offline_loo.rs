@@ -196,6 +196,43 @@ fn cosco_heldout_on_directories_of_gestures() {
     assert!(std::fs::read(d.join("loo.png"))
         .unwrap()
         .starts_with(b"\x89PNG"));
+    // one gesture's directory, the local consensus, no GMM/GMR: its name is the directory's
+    cosco()
+        .arg("--demos")
+        .arg(d.join("set/loops"))
+        .args([
+            "--state-length-from-data",
+            "--consensus",
+            "local",
+            "--no-gmr",
+        ])
+        .assert()
+        .success()
+        .stdout(
+            predicate::str::contains("| loops | 3 |")
+                .and(predicate::str::contains("GMM/GMR").not()),
+        );
+    cosco()
+        .arg("--demos")
+        .arg(d.join("set/loops"))
+        .args(["--consensus", "nearest"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("one of all, local"));
+    // and `cosco train` adapts to the data the same way
+    Command::cargo_bin("cosco")
+        .unwrap()
+        .arg("train")
+        .arg("--config")
+        .arg(d.join("c.xml"))
+        .arg("--demos")
+        .arg(d.join("set/loops"))
+        .arg("--state-length-from-data")
+        .arg("--out")
+        .arg(d.join("m.bin"))
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("stateLength 2"));
     // too few demonstrations to leave one out, named
     write_gesture(&d.join("two"), &handwriting(2, 9));
     cosco()

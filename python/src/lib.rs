@@ -287,15 +287,7 @@ impl Config {
     ) -> PyResult<Self> {
         let mut p = self.inner.params().clone();
         if let Some(c) = consensus {
-            p.consensus = match c.to_ascii_lowercase().as_str() {
-                "all" => cosco_hsom::config::Consensus::All,
-                "local" => cosco_hsom::config::Consensus::Local,
-                _ => {
-                    return Err(PyValueError::new_err(format!(
-                        "consensus = {c:?}: one of 'all', 'local'"
-                    )))
-                }
-            };
+            p.consensus = c.parse().map_err(PyValueError::new_err)?;
         }
         if let Some(s) = seed {
             p.seed = s;

@@ -75,6 +75,9 @@ enum Command {
         /// Where to save the model: `.bin` (binary) or `.txt` (plain text).
         #[arg(long)]
         out: PathBuf,
+        /// Take stateLength and actionLength from the demonstrations' columns.
+        #[arg(long)]
+        state_length_from_data: bool,
     },
     /// Reproduce a gesture from an initial posture with a saved model; writes `step` then the
     /// demonstrations' columns.
@@ -140,6 +143,10 @@ enum Command {
         /// Take stateLength and actionLength from the demonstrations' columns.
         #[arg(long)]
         state_length_from_data: bool,
+        /// How the consensus weighs the demonstrations (`all` or `local`: for demonstrations
+        /// of several routes), instead of the configuration's.
+        #[arg(long)]
+        consensus: Option<cosco_hsom::config::Consensus>,
         /// Leave out the configuration at height 1.
         #[arg(long)]
         no_height_1: bool,
@@ -258,8 +265,13 @@ fn run(cli: Cli) -> Result<()> {
                 outln!("{}", f.display());
             }
         }
-        Command::Train { config, demos, out } => {
-            let model = cli::train_files(config.as_deref(), &demos, &out)?;
+        Command::Train {
+            config,
+            demos,
+            out,
+            state_length_from_data,
+        } => {
+            let model = cli::train_files(config.as_deref(), &demos, &out, state_length_from_data)?;
             if model.labels().is_empty() {
                 out!("{}", model.branches()[0].summary());
             } else {
@@ -306,6 +318,7 @@ fn run(cli: Cli) -> Result<()> {
             demos,
             config,
             state_length_from_data,
+            consensus,
             no_height_1,
             no_gmr,
             no_in_sample,
@@ -320,6 +333,7 @@ fn run(cli: Cli) -> Result<()> {
                 demos,
                 config,
                 state_length_from_data,
+                consensus,
                 settings: cosco_hsom::offline::LooSettings {
                     height_1: !no_height_1,
                     gmr: !no_gmr,

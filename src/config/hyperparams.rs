@@ -115,6 +115,18 @@ pub enum Consensus {
     Local,
 }
 
+impl std::str::FromStr for Consensus {
+    type Err = String;
+    /// `all` or `local`, in any case; otherwise a message naming the word and both values.
+    fn from_str(word: &str) -> Result<Self, String> {
+        match word.to_ascii_lowercase().as_str() {
+            "all" => Ok(Consensus::All),
+            "local" => Ok(Consensus::Local),
+            _ => Err(format!("consensus {word:?}: one of all, local")),
+        }
+    }
+}
+
 /// The reproduction procedure (paper III-C.2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ReproductionMode {
@@ -582,6 +594,12 @@ impl HsomConfig {
             p.reproduction.max_level = None;
         }
         p.check(&format!("{} (at height {height})", self.source))
+    }
+    /// The same configuration with another [`Consensus`].
+    pub fn with_consensus(&self, consensus: Consensus) -> Result<HsomConfig, ConfigError> {
+        let mut p = self.params.clone();
+        p.consensus = consensus;
+        p.check(&self.source)
     }
     /// The same configuration for data of `width` variables: `stateLength` and
     /// `actionLength` set to `width` (the rest unchanged and checked again), as the

@@ -136,10 +136,19 @@ pub fn train_files(
     config: Option<&Path>,
     demo_paths: &[PathBuf],
     out: &Path,
+    state_length_from_data: bool,
 ) -> Result<GestureModel> {
     // where the model goes is checked before any reading or training
     steps::check_model_output(out)?;
-    let cfg = hsom_config(config)?;
+    let mut cfg = hsom_config(config)?;
+    if state_length_from_data {
+        let sets = labelled::read_demo_sets(demo_paths, None)?;
+        let width = match &sets {
+            labelled::DemoSets::Plain(d) => d[0].width(),
+            labelled::DemoSets::Labelled(s) => s[0].1[0].width(),
+        };
+        cfg = cfg.for_width(width)?;
+    }
     let sets = labelled::read_demo_sets(demo_paths, Some(cfg.params().state_length))?;
     let pb = progress(cfg.params().training_steps as u64, "training");
     let model = labelled::train_sets(
@@ -346,6 +355,8 @@ pub struct HeldoutJob {
     pub config: Option<PathBuf>,
     /// Take `stateLength` from the data.
     pub state_length_from_data: bool,
+    /// Override the configuration's consensus.
+    pub consensus: Option<cosco_hsom::config::Consensus>,
     /// Which methods, which results, how many threads.
     pub settings: cosco_hsom::offline::LooSettings,
     /// Where to write every fold's scores as JSON.
@@ -361,7 +372,10 @@ pub fn heldout(job: &HeldoutJob) -> Result<String> {
     for p in job.json.iter().chain(&job.png) {
         steps::check_output(p)?;
     }
-    let cfg = hsom_config(job.config.as_deref())?;
+    let mut cfg = hsom_config(job.config.as_deref())?;
+    if let Some(c) = job.consensus {
+        cfg = cfg.with_consensus(c)?;
+    }
     let (cfg, gestures) = offline::read_gestures(&job.demos, &cfg, job.state_length_from_data)?;
     let folds: usize = gestures.iter().map(|(_, d)| d.len()).sum();
     let per = if job.settings.in_sample { 2 } else { 1 };
