@@ -521,7 +521,7 @@ pub fn leave_one_out(
 pub struct MethodSummary {
     /// Which method.
     pub method: Method,
-    /// Folds it ran on (held out) and of those, failed.
+    /// Folds it ran on (held out).
     pub folds: usize,
     /// Folds where it produced nothing.
     pub failed: usize,

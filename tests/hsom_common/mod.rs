@@ -40,22 +40,7 @@ pub fn dtw(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
 }
 
 /// Diagonal of the bounding box of all demonstrations (the scale for relative errors).
-pub fn diagonal(demos: &[Demonstration]) -> f64 {
-    let d = demos[0].rows[0].len();
-    let mut lo = vec![f64::INFINITY; d];
-    let mut hi = vec![f64::NEG_INFINITY; d];
-    for r in demos.iter().flat_map(|x| &x.rows) {
-        for k in 0..d {
-            lo[k] = lo[k].min(r[k]);
-            hi[k] = hi[k].max(r[k]);
-        }
-    }
-    lo.iter()
-        .zip(&hi)
-        .map(|(a, b)| (b - a) * (b - a))
-        .sum::<f64>()
-        .sqrt()
-}
+pub use cosco_hsom::offline::diagonal;
 
 /// Mean DTW distance from `rep` to the demonstrations, relative to their bounding-box diagonal.
 pub fn relative_dtw(rep: &[Vec<f64>], demos: &[Demonstration]) -> f64 {
