@@ -120,7 +120,7 @@ pub struct Score {
     /// Distance between the last samples, data units.
     pub final_error: f64,
     /// Normalised jerk of the reproduction over the demonstration's (`None` when either has
-    /// none).
+    /// none, or the demonstration's is below [`MIN_DEMO_JERK`]).
     pub jerk_ratio: Option<f64>,
 }
 
@@ -227,15 +227,21 @@ pub enum LooError {
 
 /// The peak speed of demonstrations sampled every `period` seconds, units per second: the
 /// median over the demonstrations of their largest speed on any variable, each speed a
-/// difference over 4 samples (so a single noisy sample does not make it). The lead-in of
+/// difference over 4 samples (so a single noisy sample does not make it; over all of a
+/// demonstration shorter than 5 samples; 0 for one sample). The lead-in of
 /// GMM/GMR moves at most this fast.
 pub fn peak_speed(demos: &[Demonstration], period: f64) -> f64 {
     let per_demo = demos.iter().map(|d| {
+        // over 4 samples, or all of a shorter demonstration
+        let span = d.rows.len().saturating_sub(1).min(4);
+        if span == 0 {
+            return 0.0;
+        }
         d.rows
-            .windows(5)
-            .flat_map(|w| w[4].iter().zip(&w[0]).map(|(b, a)| (b - a).abs()))
+            .windows(span + 1)
+            .flat_map(|w| w[span].iter().zip(&w[0]).map(|(b, a)| (b - a).abs()))
             .fold(0.0, f64::max)
-            / (4.0 * period)
+            / (span as f64 * period)
     });
     median(per_demo).unwrap_or(0.0)
 }
@@ -258,6 +264,12 @@ pub fn diagonal(demos: &[Demonstration]) -> f64 {
         .sqrt()
 }
 
+/// The smallest normalised jerk of a held-out demonstration for which the jerk ratio is
+/// given. Every motion that starts and ends at rest has at least √360 ≈ 19 (minimum jerk);
+/// below 1 the demonstration is a nearly uniform motion (a straight line at constant speed
+/// has 0) and a ratio to it means nothing.
+pub const MIN_DEMO_JERK: f64 = 1.0;
+
 /// Score `postures` against `demo` alone.
 fn score(demo: &Demonstration, postures: &[Vec<f64>], diag: f64) -> Result<Score, String> {
     let params = MetricsParams {
@@ -270,7 +282,7 @@ fn score(demo: &Demonstration, postures: &[Vec<f64>], diag: f64) -> Result<Score
         f.reproduction_smoothness.normalized_jerk,
         f.demo_smoothness[0].normalized_jerk,
     ) {
-        (Some(r), Some(d)) if d > 0.0 => Some(r / d),
+        (Some(r), Some(d)) if d >= MIN_DEMO_JERK => Some(r / d),
         _ => None,
     };
     Ok(Score {
@@ -616,6 +628,27 @@ pub fn json(config: &HsomConfig, study: &[GestureLoo]) -> String {
     serde_json::to_string_pretty(&doc).unwrap_or_default()
 }
 
+/// Every distinct reason a method produced nothing, with the folds it happened on
+/// (`gesture`, held out or in-sample, the demonstration's file), in the order met.
+pub fn failures(study: &[GestureLoo]) -> Vec<(Method, String, Vec<String>)> {
+    let mut out: Vec<(Method, String, Vec<String>)> = Vec::new();
+    for g in study {
+        for (kind, folds) in [("held out", &g.held_out), ("in-sample", &g.in_sample)] {
+            for f in folds {
+                for r in &f.runs {
+                    let Some(e) = &r.error else { continue };
+                    let at = format!("{} ({kind}, {})", g.gesture, f.demonstration);
+                    match out.iter_mut().find(|(m, w, _)| *m == r.method && w == e) {
+                        Some((_, _, at_list)) => at_list.push(at),
+                        None => out.push((r.method, e.clone(), vec![at])),
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
 /// The study as Markdown: per gesture, each method's mean relative DTW over the folds held
 /// out (and in-sample), then the summary over the gestures.
 pub fn markdown(study: &[GestureLoo]) -> String {
@@ -691,6 +724,18 @@ pub fn markdown(study: &[GestureLoo]) -> String {
             s.failed,
             s.folds
         );
+    }
+    let failed = failures(study);
+    if !failed.is_empty() {
+        let _ = writeln!(out, "\nFailed runs (method: reason; where):\n");
+        for (m, why, at) in failed {
+            let shown = at.iter().take(3).cloned().collect::<Vec<_>>().join("; ");
+            let more = match at.len() {
+                n if n > 3 => format!("; and {} more", n - 3),
+                _ => String::new(),
+            };
+            let _ = writeln!(out, "- {}: {why}; {shown}{more}", m.name());
+        }
     }
     out
 }

@@ -287,3 +287,67 @@ fn an_outlier_spoils_the_other_folds_unless_the_consensus_is_local() {
         assert!(all[k] > 0.06, "all {all:?} (the control)");
     }
 }
+
+/// Demonstrations too short for the configuration (3 samples; it needs actionHorizon + 1).
+fn too_short(k: usize) -> Vec<Demonstration> {
+    (0..k)
+        .map(|i| {
+            let mut d = handwriting(1, 9).remove(0);
+            d.rows.truncate(3);
+            d.source = format!("short{i}");
+            d
+        })
+        .collect()
+}
+
+#[test]
+fn failed_runs_are_listed_with_their_reasons_and_the_study_goes_on() {
+    let study = leave_one_out(
+        &quick(),
+        vec![
+            ("ok".into(), handwriting(3, 9)),
+            ("short".into(), too_short(3)),
+        ],
+        &settings(2),
+        None,
+    )
+    .unwrap();
+    assert!(study[0]
+        .held_out
+        .iter()
+        .all(|f| f.score(Method::Hierarchy).is_some()));
+    assert!(study[1]
+        .held_out
+        .iter()
+        .all(|f| f.score(Method::Hierarchy).is_none()));
+    let failed = cosco_hsom::offline::failures(&study);
+    let (_, why, at) = failed
+        .iter()
+        .find(|(m, _, _)| *m == Method::Hierarchy)
+        .expect("the hierarchy's failure is listed");
+    assert!(why.contains("at least 11 are needed"), "{why}");
+    assert!(at.iter().all(|a| a.starts_with("short (")), "{at:?}");
+    let md = cosco_hsom::offline::markdown(&study);
+    assert!(
+        md.contains("Failed runs") && md.contains("at least 11 are needed"),
+        "{md}"
+    );
+    let s = summary(&study);
+    assert_eq!((s[0].folds, s[0].failed), (6, 3));
+}
+
+#[test]
+fn cosco_heldout_refuses_a_study_where_the_hierarchy_never_ran() {
+    let dir = tempfile::tempdir().unwrap();
+    write_gesture(&dir.path().join("short"), &too_short(3));
+    Command::cargo_bin("cosco")
+        .unwrap()
+        .args(["heldout", "--state-length-from-data", "--no-gmr", "--demos"])
+        .arg(dir.path().join("short"))
+        .assert()
+        .failure()
+        .stderr(
+            predicate::str::contains("the hierarchy produced no reproduction on any fold")
+                .and(predicate::str::contains("at least 11 are needed")),
+        );
+}

@@ -387,6 +387,21 @@ pub fn heldout(job: &HeldoutJob) -> Result<String> {
         Some(&|done, _| pb.set_position(done as u64)),
     )?;
     pb.finish_and_clear();
+    // nothing to compare when the hierarchy itself never ran: the reason, as an error
+    let ran = |m| {
+        study
+            .iter()
+            .flat_map(|g| &g.held_out)
+            .flat_map(|f| &f.runs)
+            .any(|r| r.method == m && r.score.is_some())
+    };
+    if !ran(offline::Method::Hierarchy) {
+        let why = offline::failures(&study)
+            .into_iter()
+            .find(|(m, _, _)| *m == offline::Method::Hierarchy)
+            .map_or_else(|| "no fold ran".to_string(), |(_, why, _)| why);
+        bail!("the hierarchy produced no reproduction on any fold: {why}");
+    }
     if let Some(p) = &job.json {
         cosco_hsom::fsutil::write_atomic(p, offline::json(&cfg, &study).as_bytes())
             .with_context(|| format!("writing {}", p.display()))?;
