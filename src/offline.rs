@@ -389,8 +389,8 @@ fn fold(
 }
 
 /// The gestures of `paths` as `cosco train` reads them: a directory of CSV files or files
-/// (one gesture, named after its directory, else `gesture`), or directories of gesture subdirectories
-/// (`DIR/<gesture>/*.csv`, each gesture on its own). With `from_data` the configuration is
+/// (one gesture, named after its directory, else `gesture`), or directories of gesture
+/// subdirectories (`DIR/<gesture>/*.csv`, each gesture on its own). With `from_data` the configuration is
 /// adapted to the data's width ([`HsomConfig::for_width`]); otherwise every file must have
 /// the configuration's `stateLength` columns.
 pub fn read_gestures(
