@@ -219,6 +219,10 @@ pub enum LooError {
         /// The file's columns.
         found: usize,
     },
+    /// A demonstration is not valid (non-finite values, columns that differ within a
+    /// gesture, ...).
+    #[error(transparent)]
+    Demo(#[from] crate::demos::DemoError),
     /// The figure could not be drawn or written.
     #[cfg(feature = "plot")]
     #[error(transparent)]
@@ -391,8 +395,8 @@ fn fold(
 /// The gestures of `paths` as `cosco train` reads them: a directory of CSV files or files
 /// (one gesture, named after its directory, else `gesture`), or directories of gesture
 /// subdirectories (`DIR/<gesture>/*.csv`, each gesture on its own). With `from_data` the configuration is
-/// adapted to the data's width ([`HsomConfig::for_width`]); otherwise every file must have
-/// the configuration's `stateLength` columns.
+/// adapted to the data's width ([`HsomConfig::for_width`]); otherwise [`leave_one_out`]
+/// refuses files without the configuration's `stateLength` columns.
 pub fn read_gestures(
     paths: &[std::path::PathBuf],
     config: &HsomConfig,
@@ -414,24 +418,12 @@ pub fn read_gestures(
     } else {
         config.clone()
     };
-    let expected = config.params().state_length;
-    if let Some(d) = sets
-        .iter()
-        .flat_map(|(_, d)| d)
-        .find(|d| d.width() != expected)
-    {
-        return Err(LooError::Width {
-            path: d.source.clone(),
-            expected,
-            found: d.width(),
-        });
-    }
     Ok((config, sets))
 }
 
-/// Leave-one-out on each gesture's demonstrations (`(name, demonstrations)`, each set
-/// already checked against `config`), with the settings' methods; `progress(done, total)`
-/// after each fold when given. Folds run on `settings.threads` threads; the result does not
+/// Leave-one-out on each gesture's demonstrations (`(name, demonstrations)`; each set is
+/// checked first: at least 3, of the configuration's `stateLength`, valid), with the
+/// settings' methods; `progress(done, total)` after each fold when given. Folds run on `settings.threads` threads; the result does not
 /// depend on their number.
 pub fn leave_one_out(
     config: &HsomConfig,
@@ -450,6 +442,21 @@ pub fn leave_one_out(
             gesture: g.clone(),
             found: d.len(),
         });
+    }
+    let expected = config.params().state_length;
+    if let Some(d) = gestures
+        .iter()
+        .flat_map(|(_, d)| d)
+        .find(|d| d.width() != expected)
+    {
+        return Err(LooError::Width {
+            path: d.source.clone(),
+            expected,
+            found: d.width(),
+        });
+    }
+    for (_, demos) in &gestures {
+        crate::demos::validate_set(demos, None)?;
     }
     let height_1 = match settings.height_1 {
         true => Some(config.at_height(1)?),
@@ -653,7 +660,8 @@ pub fn failures(study: &[GestureLoo]) -> Vec<(Method, String, Vec<String>)> {
 /// out (and in-sample), then the summary over the gestures.
 pub fn markdown(study: &[GestureLoo]) -> String {
     use std::fmt::Write as _;
-    let methods: Vec<Method> = summary(study).iter().map(|s| s.method).collect();
+    let summaries = summary(study);
+    let methods: Vec<Method> = summaries.iter().map(|s| s.method).collect();
     let cell = |v: Option<f64>| v.map_or("failed".to_string(), |v| format!("{v:.4}"));
     let mut out = String::new();
     let _ = writeln!(
@@ -701,7 +709,7 @@ pub fn markdown(study: &[GestureLoo]) -> String {
     );
     let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
     let opt = |v: Option<f64>, d: usize| v.map_or("-".to_string(), |v| format!("{v:.d$}"));
-    for s in summary(study) {
+    for s in summaries {
         let _ = writeln!(
             out,
             "| {} | {} | {} | {} | {} | {} | {} | {} | {} of {} |",

@@ -120,6 +120,21 @@ fn bad_studies_are_named_errors() {
         leave_one_out(&quick(), vec![], &settings(1), None),
         Err(LooError::Empty)
     ));
+    // the configuration's width, and valid values, checked before any fold
+    let wide = leave_one_out(
+        &recommended_for(6),
+        vec![("h".into(), handwriting(3, 9))],
+        &settings(1),
+        None,
+    );
+    assert!(
+        matches!(&wide, Err(LooError::Width { expected: 6, found: 2, path }) if path == "hand0"),
+        "{wide:?}"
+    );
+    let mut bad = handwriting(3, 9);
+    bad[1].rows[5][0] = f64::NAN;
+    let nan = leave_one_out(&quick(), vec![("h".into(), bad)], &settings(1), None);
+    assert!(matches!(&nan, Err(LooError::Demo(_))), "{nan:?}");
     assert!(matches!(
         leave_one_out(
             &quick(),

@@ -922,11 +922,6 @@ fn heldout<'py>(
                 .collect(),
         );
     }
-    let width = config.inner.params().state_length;
-    for d in sets.iter().flat_map(|(_, d)| d) {
-        cosco_hsom::demos::validate_set(std::slice::from_ref(d), Some(width))
-            .map_err(|e| py_err(&e))?;
-    }
     let settings = offline::LooSettings {
         height_1,
         gmr,

@@ -188,5 +188,7 @@ def test_heldout_scores_every_method_on_the_same_folds(demos):
         cfg.replace(consensus="nearest")
     with pytest.raises(ValueError, match="at least 3 demonstrations"):
         cosco_hsom.heldout(cfg, demos[:2])
+    with pytest.raises(ValueError, match="stateLength is 6"):
+        cosco_hsom.heldout(cosco_hsom.Config.nao_gestures(), demos[:3])
     with pytest.raises(ValueError, match="sample_period"):
         cosco_hsom.heldout(cfg, demos[:3], sample_period=0.0)
