@@ -483,7 +483,7 @@ fn consensus_weighing_parses_round_trips_and_names_bad_values() {
     let default = parse_config(&t, "nao-gestures.xml").unwrap();
     assert_eq!(
         default.params().consensus,
-        cosco_hsom::config::Consensus::All
+        cosco_hsom::config::Consensus::Start
     );
     let with = |word: &str| {
         t.replacen(
@@ -496,6 +496,7 @@ fn consensus_weighing_parses_round_trips_and_names_bad_values() {
         ("local", cosco_hsom::config::Consensus::Local),
         ("LOCAL", cosco_hsom::config::Consensus::Local),
         ("all", cosco_hsom::config::Consensus::All),
+        ("Start", cosco_hsom::config::Consensus::Start),
     ] {
         let c = parse_config(&with(word), "ok.xml").unwrap();
         assert_eq!(c.params().consensus, expected);
@@ -505,7 +506,7 @@ fn consensus_weighing_parses_round_trips_and_names_bad_values() {
     match err(&with("nearest")) {
         ConfigError::Invalid { field, reason, .. } => {
             assert_eq!(field, "consensus");
-            assert!(reason.contains("all, local"), "{reason}");
+            assert!(reason.contains("all, local, start"), "{reason}");
         }
         e => panic!("{e}"),
     }

@@ -257,3 +257,50 @@ fn corrupted_truncated_and_other_version_text_files_are_refused() {
     std::fs::write(&p, "something else\n").unwrap();
     assert!(matches!(Hsom::load(&p), Err(PersistError::BadMagic { .. })));
 }
+
+/// Seven handwriting-like drawings, each shifted 6 units further along y than the last
+/// (nested curves: where a drawing starts tells where it goes).
+fn nested() -> Vec<Demonstration> {
+    let mut demos = handwriting(7, 9);
+    for (i, d) in demos.iter_mut().enumerate() {
+        for r in &mut d.rows {
+            r[1] += 6.0 * i as f64;
+        }
+    }
+    demos
+}
+
+#[test]
+fn start_weighted_postures_survive_save_and_load_in_both_formats() {
+    // `consensus = start` (the default) on drawings whose start predicts their route keeps
+    // each demonstration's placement and start in the model; the control: all alike
+    // reproduces otherwise from the same start
+    let demos = nested();
+    let m = recommended_for(2).fit(&demos).unwrap();
+    let init = demos[6].rows[0].clone();
+    let before = m.reproduce(&init).unwrap();
+    let mut p = recommended_for(2).into_params();
+    p.consensus = cosco_hsom::config::Consensus::All;
+    let alike = p.check("all").unwrap().fit(&demos).unwrap();
+    assert_ne!(alike.reproduce(&init).unwrap().postures, before.postures);
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["m.bin", "m.txt"] {
+        let path = dir.path().join(name);
+        m.save(&path).unwrap();
+        let back = Hsom::load(&path).unwrap();
+        assert_eq!(back, m, "{name}");
+        assert_eq!(back.reproduce(&init).unwrap(), before, "{name}");
+    }
+    // a corrupted width is refused, naming the start-weighted postures
+    let path = dir.path().join("m.txt");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let width = text
+        .lines()
+        .find(|l| l.starts_with("start-width "))
+        .unwrap()
+        .to_string();
+    let bad = with_checksum(&text.replace(&width, "start-width -1"));
+    std::fs::write(&path, bad).unwrap();
+    let e = Hsom::load(&path).unwrap_err().to_string();
+    assert!(e.contains("start-weighted postures"), "{e}");
+}

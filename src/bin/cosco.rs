@@ -143,8 +143,9 @@ enum Command {
         /// Take stateLength and actionLength from the demonstrations' columns.
         #[arg(long)]
         state_length_from_data: bool,
-        /// How the consensus weighs the demonstrations (`all` or `local`: for demonstrations
-        /// of several routes), instead of the configuration's.
+        /// How the consensus weighs the demonstrations, instead of the configuration's:
+        /// `start` (by how near each one started, where the starts predict the route),
+        /// `all` (alike) or `local` (those that agree at each sample).
         #[arg(long)]
         consensus: Option<cosco_hsom::config::Consensus>,
         /// Leave out the configuration at height 1.

@@ -107,22 +107,30 @@ pub enum Normalisation {
 /// weighs the other demonstrations at each sample (docs/ALGORITHM.md, passage 6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Consensus {
-    /// Every demonstration alike: the mean of the samples aligned to this one (the default).
+    /// Every demonstration alike: the mean of the samples aligned to this one.
     All,
     /// The demonstrations that agree here: each other demonstration's aligned sample
     /// weighted by how far it is, relative to the nearest one (for demonstrations of several
     /// modes: different routes from different starts).
     Local,
+    /// Every demonstration alike where it is learned, and at reproduction each training
+    /// demonstration's placement weighted by how near its first posture is to the
+    /// reproduction's (a Gaussian of that distance, its width chosen by leave-one-out on the
+    /// training demonstrations, and used only where the starts predict the placements better
+    /// than shuffled starts do: otherwise, and with three demonstrations or fewer, `All`).
+    /// The default.
+    Start,
 }
 
 impl std::str::FromStr for Consensus {
     type Err = String;
-    /// `all` or `local`, in any case; otherwise a message naming the word and both values.
+    /// `all`, `local` or `start`, in any case; otherwise a message naming the word and both values.
     fn from_str(word: &str) -> Result<Self, String> {
         match word.to_ascii_lowercase().as_str() {
             "all" => Ok(Consensus::All),
             "local" => Ok(Consensus::Local),
-            _ => Err(format!("consensus {word:?}: one of all, local")),
+            "start" => Ok(Consensus::Start),
+            _ => Err(format!("consensus {word:?}: one of all, local, start")),
         }
     }
 }
@@ -345,7 +353,7 @@ impl HsomParams {
             training_steps: 5000,
             memory_mode: MemoryMode::Lists,
             normalisation: Normalisation::Global,
-            consensus: Consensus::All,
+            consensus: Consensus::Start,
             partial_training: PartialTraining::Skip,
             list_update: ListUpdate::EveryStep,
             change_ratio: 1.0,

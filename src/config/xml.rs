@@ -598,9 +598,13 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
         consensus: f.name(
             "consensus",
             &raw.consensus,
-            Consensus::All,
-            word(&[("all", Consensus::All), ("local", Consensus::Local)]),
-            "all, local",
+            Consensus::Start,
+            word(&[
+                ("all", Consensus::All),
+                ("local", Consensus::Local),
+                ("start", Consensus::Start),
+            ]),
+            "all, local, start",
         )?,
         partial_training: f.name(
             "partialTraining",
@@ -667,6 +671,7 @@ impl HsomConfig {
         let cs = match p.consensus {
             Consensus::All => "all",
             Consensus::Local => "local",
+            Consensus::Start => "start",
         };
         let _ = writeln!(s, "  <consensus>{cs}</consensus>");
         let pt = match p.partial_training {

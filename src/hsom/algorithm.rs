@@ -11,7 +11,9 @@ use super::errors::HsomError;
 use super::memory::{ActivityLevels, ActivityList};
 
 /// A trained CoSCo-HSOM: one Kohonen map per level plus the few per-node statistics used by
-/// reproduction. Its size depends on the configuration only, never on the training data.
+/// reproduction. Its size depends on the configuration only, never on the length of the
+/// training data; with `consensus = start`, where the starts are used, it also keeps one
+/// placement of the bottom nodes per training demonstration.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Hsom {
     pub(crate) config: HsomConfig,
@@ -90,6 +92,10 @@ pub struct Hsom {
     /// (a branch of a model of several gestures: its own gesture's; [`Hsom::fit_postures`]);
     /// `None`: the nodes' weights.
     pub(crate) knots: Option<Vec<f64>>,
+    /// With `consensus = start`: each training demonstration's own placement of the bottom
+    /// nodes and its first posture, weighed at reproduction by the start
+    /// ([`super::events::StartKnots`]).
+    pub(crate) start_knots: Option<super::events::StartKnots>,
 }
 
 /// Quality of one level, as reported by [`Hsom::summary`].
@@ -771,6 +777,7 @@ impl HsomConfig {
             heldout_accuracy: vec![0.0; p.height],
             heldout_lookup: vec![0.0; p.height],
             knots: None,
+            start_knots: None,
             followers: p
                 .levels
                 .iter()

@@ -14,7 +14,9 @@
 
 use std::collections::{BTreeMap, VecDeque};
 
+use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 
 use crate::config::{Consensus, HsomConfig, ReproductionParams};
 use crate::demos::Demonstration;
@@ -113,6 +115,34 @@ pub(crate) fn consensus(
     max_aligned: usize,
     weighing: Consensus,
 ) -> Vec<Vec<Vec<f64>>> {
+    let aligned = aligned_samples(norm, max_aligned);
+    let n = norm.len();
+    let mut out: Vec<Vec<Vec<f64>>> = norm.to_vec();
+    for a in 0..n {
+        for (t, row) in out[a].iter_mut().enumerate() {
+            let others: Vec<&Vec<f64>> = (0..n)
+                .filter(|&b| b != a)
+                .filter_map(|b| aligned[a][b].as_ref().map(|al| &al[t]))
+                .collect();
+            let weights = agreement(weighing, &norm[a][t], &others);
+            let mut total = 1.0;
+            let mut acc = norm[a][t].clone();
+            for (m, w) in others.iter().zip(weights) {
+                acc.iter_mut().zip(m.iter()).for_each(|(s, v)| *s += w * v);
+                total += w;
+            }
+            row.iter_mut().zip(&acc).for_each(|(r, v)| *r = v / total);
+        }
+    }
+    out
+}
+
+/// `aligned[a][b]`: per sample of the normalised demonstration `a`, the mean of the samples
+/// of `b` aligned to it by DTW (`None` for `b == a`, and where an alignment failed).
+/// Sequences longer than `max_aligned` are aligned in blocks of `ceil(len / max_aligned)`
+/// samples (their means), every sample of a block taking the block's value.
+#[allow(clippy::type_complexity)]
+fn aligned_samples(norm: &[Vec<Vec<f64>>], max_aligned: usize) -> Vec<Vec<Option<Vec<Vec<f64>>>>> {
     let block = |d: &[Vec<f64>]| d.len().div_ceil(max_aligned.max(1)).max(1);
     let blocks: Vec<Vec<Vec<f64>>> = norm
         .iter()
@@ -131,8 +161,7 @@ pub(crate) fn consensus(
         })
         .collect();
     let n = norm.len();
-    // aligned[a][b]: per block of `a`, the mean of the blocks of `b` aligned to it
-    let mut aligned: Vec<Vec<Vec<Vec<f64>>>> = vec![vec![Vec::new(); n]; n];
+    let mut aligned: Vec<Vec<Option<Vec<Vec<f64>>>>> = vec![vec![None; n]; n];
     for j in 0..n {
         for k in j + 1..n {
             // cannot fail: the training series were checked (rows non-empty, of stateLength
@@ -151,32 +180,20 @@ pub(crate) fn consensus(
                         .for_each(|(s, v)| *s += v);
                     acc[x].1 += 1.0;
                 }
-                aligned[a][b] = acc
+                let per_block: Vec<Vec<f64>> = acc
                     .into_iter()
                     .map(|(sum, c)| sum.into_iter().map(|v| v / c).collect())
                     .collect();
+                let size = block(&norm[a]);
+                aligned[a][b] = Some(
+                    (0..norm[a].len())
+                        .map(|t| per_block[t / size].clone())
+                        .collect(),
+                );
             }
         }
     }
-    let mut out: Vec<Vec<Vec<f64>>> = norm.to_vec();
-    for a in 0..n {
-        let size = block(&norm[a]);
-        for (t, row) in out[a].iter_mut().enumerate() {
-            let others: Vec<&Vec<f64>> = (0..n)
-                .filter(|&b| b != a && !aligned[a][b].is_empty())
-                .map(|b| &aligned[a][b][t / size])
-                .collect();
-            let weights = agreement(weighing, &norm[a][t], &others);
-            let mut total = 1.0;
-            let mut acc = norm[a][t].clone();
-            for (m, w) in others.iter().zip(weights) {
-                acc.iter_mut().zip(m.iter()).for_each(|(s, v)| *s += w * v);
-                total += w;
-            }
-            row.iter_mut().zip(&acc).for_each(|(r, v)| *r = v / total);
-        }
-    }
-    out
+    aligned
 }
 
 /// How far a demonstration may lie from a sample, in units of the nearest other
@@ -206,6 +223,196 @@ fn agreement(weighing: Consensus, x: &[f64], others: &[&Vec<f64>]) -> Vec<f64> {
             }
         })
         .collect()
+}
+
+/// With `consensus = start` (docs/ALGORITHM.md, passage 6): where each training
+/// demonstration places every bottom node's events (the node's samples, of every
+/// demonstration, replaced by that demonstration's samples aligned to them, smoothed as
+/// [`Hsom::fit_postures`] smooths the consensus), and where each started. A reproduction
+/// weighs the demonstrations by a Gaussian of the distance between their start and its own,
+/// of the width that best predicted each training demonstration's placement from the others'
+/// (leave-one-out); all alike (`width` infinite) is a candidate, and is the consensus of
+/// `all`.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct StartKnots {
+    /// Per training demonstration, its first posture (state part, normalised).
+    pub(crate) starts: Vec<Vec<f64>>,
+    /// Per training demonstration, its placement of every bottom node (`stateLength` values
+    /// per node).
+    pub(crate) knots: Vec<Vec<f64>>,
+    /// The Gaussian's width (normalised units); infinite: all alike.
+    pub(crate) width: f64,
+}
+
+/// Widths [`StartKnots`] chooses among, in units of the median distance between two
+/// training demonstrations' starts; all alike (infinite) is tried first and kept on a tie.
+const START_WIDTHS: [f64; 5] = [2.0, 1.0, 0.5, 0.25, 0.125];
+
+/// Every order of `0..n` (`n!` of them, the identity first).
+fn all_orders(n: usize) -> Vec<Vec<usize>> {
+    let mut out = vec![Vec::new()];
+    for k in 0..n {
+        out = out
+            .into_iter()
+            .flat_map(|o: Vec<usize>| {
+                (0..=k).map(move |i| {
+                    let mut o = o.clone();
+                    o.insert(i, k);
+                    o
+                })
+            })
+            .collect();
+    }
+    out.sort();
+    out
+}
+
+/// Shuffles of the starts [`StartKnots::fit`] compares the starts' own gain with.
+const START_SHUFFLES: usize = 199;
+
+/// The permutation test's level: the starts are used where at most this fraction of
+/// shuffles (their own order included) predict the placements as well.
+const START_SIGNIFICANCE: f64 = 0.05;
+
+impl StartKnots {
+    /// The weights of demonstrations starting at `starts` for a reproduction starting at
+    /// `x`: `exp(-(d² - d_min²) / (2 width²))` (the nearest counts 1, so some always count);
+    /// all 1 for an infinite width.
+    fn weights(starts: &[&Vec<f64>], x: &[f64], width: f64) -> Vec<f64> {
+        if !width.is_finite() {
+            return vec![1.0; starts.len()];
+        }
+        let d2: Vec<f64> = starts.iter().map(|s| dist2(s, x)).collect();
+        let min = d2.iter().cloned().fold(f64::INFINITY, f64::min);
+        d2.iter()
+            .map(|d| (-(d - min) / (2.0 * width * width)).exp())
+            .collect()
+    }
+
+    /// The weighted mean of `knots` (flattened placements) with `weights`.
+    fn mean(knots: &[&Vec<f64>], weights: &[f64]) -> Vec<f64> {
+        let total: f64 = weights.iter().sum();
+        let mut out = vec![0.0; knots[0].len()];
+        for (k, w) in knots.iter().zip(weights) {
+            out.iter_mut()
+                .zip(k.iter())
+                .for_each(|(o, v)| *o += w / total * v);
+        }
+        out
+    }
+
+    /// The placement for a reproduction starting at `x` (normalised, state part).
+    pub(crate) fn placed(&self, x: &[f64]) -> Vec<f64> {
+        let starts: Vec<&Vec<f64>> = self.starts.iter().collect();
+        let knots: Vec<&Vec<f64>> = self.knots.iter().collect();
+        Self::mean(
+            &knots,
+            &Self::weights(&starts, &x[..starts[0].len()], self.width),
+        )
+    }
+
+    /// The width that predicts each demonstration's placement best from the others' (the
+    /// squared error per node weighted by the samples on the node, `count`, summed over the
+    /// demonstrations), kept only where the starts are evidence: its gain over all alike must
+    /// be larger than that of the best width for the starts shuffled among the
+    /// demonstrations, in all but [`START_SIGNIFICANCE`] of [`START_SHUFFLES`] shuffles
+    /// (a permutation test, drawn from `seed`). Infinite (all alike) otherwise, and with
+    /// identical starts. With three demonstrations (six orders) it cannot be.
+    fn fit(starts: Vec<Vec<f64>>, knots: Vec<Vec<f64>>, count: &[f64], seed: u64) -> Self {
+        let n = starts.len();
+        let s = knots[0].len() / count.len().max(1);
+        let mut dist: Vec<f64> = (0..n)
+            .flat_map(|a| (a + 1..n).map(move |b| (a, b)))
+            .map(|(a, b)| dist2(&starts[a], &starts[b]).sqrt())
+            .filter(|d| *d > 0.0)
+            .collect();
+        dist.sort_by(f64::total_cmp);
+        let Some(&median) = dist.get(dist.len() / 2) else {
+            return StartKnots {
+                starts,
+                knots,
+                width: f64::INFINITY,
+            };
+        };
+        // gram[e][f]: the placements' inner product, each node weighted by its samples, so
+        // that an error below costs n^2 per demonstration whatever the map's size
+        let mut gram = vec![vec![0.0; n]; n];
+        for e in 0..n {
+            for f in e..n {
+                let g: f64 = count
+                    .iter()
+                    .enumerate()
+                    .map(|(j, c)| {
+                        let (x, y) = (&knots[e][j * s..(j + 1) * s], &knots[f][j * s..(j + 1) * s]);
+                        c * x.iter().zip(y).map(|(u, v)| u * v).sum::<f64>()
+                    })
+                    .sum();
+                (gram[e][f], gram[f][e]) = (g, g);
+            }
+        }
+        // the error of predicting each demonstration's placement from the others' weighed
+        // by the starts in the order `order` (demonstration d started at starts[order[d]]):
+        // |sum_e w_e K_e / W - K_d|^2, expanded over `gram`
+        let error = |order: &[usize], width: f64| -> f64 {
+            (0..n)
+                .map(|d| {
+                    let others: Vec<usize> = (0..n).filter(|&o| o != d).collect();
+                    let st: Vec<&Vec<f64>> = others.iter().map(|&o| &starts[order[o]]).collect();
+                    let w = Self::weights(&st, &starts[order[d]], width);
+                    let total: f64 = w.iter().sum();
+                    let mut e = gram[d][d];
+                    for (i, &a) in others.iter().enumerate() {
+                        e -= 2.0 * w[i] / total * gram[a][d];
+                        for (k, &b) in others.iter().enumerate() {
+                            e += w[i] * w[k] / (total * total) * gram[a][b];
+                        }
+                    }
+                    e
+                })
+                .sum()
+        };
+        let alike = error(&(0..n).collect::<Vec<_>>(), f64::INFINITY);
+        let best = |order: &[usize]| -> (f64, f64) {
+            START_WIDTHS
+                .iter()
+                .map(|f| (alike - error(order, f * median), f * median))
+                .fold((0.0, f64::INFINITY), |b, g| if g.0 > b.0 { g } else { b })
+        };
+        let (gain, width) = best(&(0..n).collect::<Vec<_>>());
+        if gain <= 0.0 {
+            return StartKnots {
+                starts,
+                knots,
+                width: f64::INFINITY,
+            };
+        }
+        // every other order where there are at most 720 (exact), else shuffles from the seed
+        let orders: Vec<Vec<usize>> = if n <= 6 {
+            all_orders(n)
+        } else {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            let mut order: Vec<usize> = (0..n).collect();
+            std::iter::once(order.clone())
+                .chain((0..START_SHUFFLES).map(|_| {
+                    order.shuffle(&mut rng);
+                    order.clone()
+                }))
+                .collect()
+        };
+        // the starts' own order counts itself (its gain is `gain`)
+        let as_good = orders.iter().filter(|o| best(o).0 >= gain).count();
+        let p = as_good as f64 / orders.len() as f64;
+        let width = if p <= START_SIGNIFICANCE {
+            width
+        } else {
+            f64::INFINITY
+        };
+        StartKnots {
+            starts,
+            knots,
+            width,
+        }
+    }
 }
 
 /// Per bottom node, how many samples its events hold and the sum of the values given for
@@ -1071,7 +1278,7 @@ impl Hsom {
         r: &ReproductionParams,
     ) -> Reproduction {
         let (executed, stop) = self.plan_event_list(start, prefix, &[], r);
-        self.timed_postures(from, &executed[prefix.len()..], stop)
+        self.timed_postures(start, from, &executed[prefix.len()..], stop)
     }
 
     /// The events of [`Hsom::plan_events`]: the prefix's, then the planned ones, each (node,
@@ -1306,12 +1513,21 @@ impl Hsom {
 }
 
 impl Hsom {
-    /// Where a reproduction places bottom node `n`'s events: the branch's own posture
-    /// ([`Hsom::fit_postures`]) when it has them, else the node's weights (state part).
-    fn knot(&self, n: usize, s: usize) -> Vec<f64> {
+    /// Where a reproduction that starts at `start` (normalised) places every bottom node's
+    /// events, `stateLength` values per node: with `consensus = start` the training
+    /// demonstrations' placements weighed by their starts ([`StartKnots`]); otherwise the
+    /// branch's own postures ([`Hsom::fit_postures`]) when it has them, else the nodes'
+    /// weights (state part).
+    fn placement(&self, start: &[f64]) -> Vec<f64> {
+        let s = self.config.params().state_length;
+        if let Some(k) = &self.start_knots {
+            return k.placed(start);
+        }
         match &self.knots {
-            Some(k) => k[n * s..(n + 1) * s].to_vec(),
-            None => self.maps[0].weights(n)[..s].to_vec(),
+            Some(k) => k.clone(),
+            None => (0..self.maps[0].len())
+                .flat_map(|n| self.maps[0].weights(n)[..s].to_vec())
+                .collect(),
         }
     }
 
@@ -1370,11 +1586,40 @@ impl Hsom {
     /// on: the weights (and no stored postures).
     pub(crate) fn fit_postures(&mut self, norm: &[Vec<Vec<f64>>]) {
         self.knots = None;
+        self.start_knots = None;
         if norm.len() < 2 {
             return;
         }
-        let mut sums = NodeSums::new(self.maps[0].len(), self.config.params().state_length);
+        let s = self.config.params().state_length;
         let weighing = self.config.params().consensus;
+        if weighing == Consensus::Start {
+            let aligned = aligned_samples(norm, MAX_ALIGNED);
+            let events: Vec<Vec<(usize, f64)>> =
+                norm.iter().map(|d| bottom_events(self, d)).collect();
+            let mut count = NodeSums::new(self.maps[0].len(), s);
+            for (demo, ev) in norm.iter().zip(&events) {
+                count.add(&NodeSums::of(self, demo, ev));
+            }
+            let knots: Vec<Vec<f64>> = (0..norm.len())
+                .map(|d| {
+                    let mut sums = NodeSums::new(self.maps[0].len(), s);
+                    for (a, ev) in events.iter().enumerate() {
+                        let values = aligned[a][d].as_ref().unwrap_or(&norm[a]);
+                        sums.add(&NodeSums::of(self, values, ev));
+                    }
+                    self.smoothed_postures(&sums)
+                })
+                .collect();
+            let all: Vec<&Vec<f64>> = knots.iter().collect();
+            self.knots = Some(StartKnots::mean(&all, &vec![1.0; all.len()]));
+            let starts = norm.iter().map(|d| d[0][..s].to_vec()).collect();
+            let seed = self.config.params().seed;
+            let weighed = StartKnots::fit(starts, knots, &count.count, seed);
+            // all alike is the mean already stored: nothing more to keep
+            self.start_knots = weighed.width.is_finite().then_some(weighed);
+            return;
+        }
+        let mut sums = NodeSums::new(self.maps[0].len(), s);
         for (demo, agreed) in norm.iter().zip(consensus(norm, MAX_ALIGNED, weighing)) {
             sums.add(&NodeSums::of(self, &agreed, &bottom_events(self, demo)));
         }
@@ -1392,11 +1637,14 @@ impl Hsom {
     /// ([`turning_points_kept`]), the only place the curve goes beyond its knots.
     fn timed_postures(
         &self,
+        start: &[f64],
         y0: &[f64],
         executed: &[(usize, f64, usize)],
         stop: StopReason,
     ) -> Reproduction {
         let s = y0.len();
+        let placed = self.placement(start);
+        let knot = |n: usize| placed[n * s..(n + 1) * s].to_vec();
         let mut t = vec![0.0];
         let mut v: Vec<Vec<f64>> = vec![y0.to_vec()];
         let mut by = vec![0usize];
@@ -1406,7 +1654,7 @@ impl Hsom {
         let mut now = 0.0;
         for &(n, d, l) in executed {
             t.push(now + d / 2.0);
-            v.push(self.knot(n, s));
+            v.push(knot(n));
             by.push(l);
             spans.push((now.ceil() as usize, (now + d).ceil() as usize));
             now += d;
@@ -1415,7 +1663,7 @@ impl Hsom {
             t.push(now);
             // the last event's second half goes on along its node's learned action (the
             // posture actionHorizon samples later), as far as that half lasts
-            let mut end = self.knot(n, s);
+            let mut end = knot(n);
             let w = self.maps[0].weights(n);
             let on = (d / 2.0 / self.config.params().action_horizon as f64).min(1.0);
             for (j, e) in end.iter_mut().enumerate() {
@@ -1709,7 +1957,7 @@ impl Hsom {
             .into_iter()
             .map(|(n, d)| (n, d, 0))
             .collect();
-        Ok(self.timed_postures(&norm[0], &executed, StopReason::EndEvent))
+        Ok(self.timed_postures(&norm[0], &norm[0], &executed, StopReason::EndEvent))
     }
 
     /// The *nearest-sequence* baseline (docs/ALGORITHM.md, "A simpler thing"): of the
@@ -1742,7 +1990,7 @@ impl Hsom {
             .into_iter()
             .map(|(n, len)| self.at_learned_duration(n, len))
             .collect();
-        Ok(self.timed_postures(&y0, &executed, StopReason::EndEvent))
+        Ok(self.timed_postures(&y0, &y0, &executed, StopReason::EndEvent))
     }
 
     /// A demonstrated bottom event of node `n` (`len` samples) as a planned one: for its
@@ -1822,7 +2070,7 @@ impl Hsom {
         let y0 = self.normalise(initial);
         let r = &p.reproduction;
         let (events, stop) = self.plan_event_list(&y0, &[], &[], r);
-        let plan = self.normalise_rows(&self.timed_postures(&y0, &events, stop).postures);
+        let plan = self.normalise_rows(&self.timed_postures(&y0, &y0, &events, stop).postures);
         // the alignment keeps a cell per (reading, plan) sample pair: bounded as the
         // consensus's alignments are
         let most = MAX_ALIGNED * MAX_ALIGNED / plan.len().max(1);
@@ -1846,7 +2094,7 @@ impl Hsom {
             .filter(|e| e.1 >= 1.0)
             .chain(all[k..].iter().copied())
             .collect();
-        let mut rep = self.timed_postures(from, &rest, stop);
+        let mut rep = self.timed_postures(&y0, from, &rest, stop);
         rep.truncate(r.max_length);
         Ok(rep)
     }
@@ -1885,7 +2133,12 @@ impl Hsom {
             })
             .map(|(n, len)| self.at_learned_duration(n, len))
             .collect();
-        Ok(self.timed_postures(&norm[norm.len() - 1], &executed, StopReason::EndEvent))
+        Ok(self.timed_postures(
+            &norm[0],
+            &norm[norm.len() - 1],
+            &executed,
+            StopReason::EndEvent,
+        ))
     }
 }
 
@@ -2151,6 +2404,57 @@ mod tests {
     }
 
     #[test]
+    fn the_starts_weigh_the_placements_only_where_they_predict_them() {
+        // six demonstrations whose placements of two nodes follow their starts (nested
+        // curves: where a drawing starts tells where it goes)
+        let starts: Vec<Vec<f64>> = (0..6).map(|i| vec![i as f64, 0.0]).collect();
+        let knots: Vec<Vec<f64>> = (0..6)
+            .map(|i| vec![i as f64, 1.0, 2.0 * i as f64, -1.0])
+            .collect();
+        let count = [3.0, 1.0];
+        let fitted = StartKnots::fit(starts.clone(), knots.clone(), &count, 1);
+        assert!(fitted.width.is_finite(), "{}", fitted.width);
+        // a reproduction that starts where the last one did is placed where it was, not at
+        // the mean of all (2.5, 5)
+        let p = fitted.placed(&[5.0, 0.0]);
+        assert!(
+            (p[0] - 5.0).abs() < 0.1 && (p[2] - 10.0).abs() < 0.2,
+            "{p:?}"
+        );
+        // the same seed, the same width
+        assert_eq!(
+            StartKnots::fit(starts.clone(), knots.clone(), &count, 1),
+            fitted
+        );
+        // the control: the same placements in an order the starts do not predict
+        let shuffled: Vec<Vec<f64>> = [3, 0, 5, 1, 4, 2]
+            .iter()
+            .map(|&i| knots[i].clone())
+            .collect();
+        let control = StartKnots::fit(starts.clone(), shuffled, &count, 1);
+        assert!(!control.width.is_finite(), "{}", control.width);
+        let mean = control.placed(&[5.0, 0.0]);
+        assert!(
+            (mean[0] - 2.5).abs() < 1e-12 && (mean[2] - 5.0).abs() < 1e-12,
+            "{mean:?}"
+        );
+        // three demonstrations cannot show it (6 orders: the starts' own is 1 in 6), nor
+        // identical starts
+        let three = StartKnots::fit(starts[..3].to_vec(), knots[..3].to_vec(), &count, 1);
+        assert!(!three.width.is_finite());
+        let same = StartKnots::fit(vec![vec![0.0, 0.0]; 6], knots.clone(), &count, 1);
+        assert!(!same.width.is_finite());
+        // more than six demonstrations: shuffles from the seed
+        let starts9: Vec<Vec<f64>> = (0..9).map(|i| vec![i as f64, 0.0]).collect();
+        let knots9: Vec<Vec<f64>> = (0..9).map(|i| vec![i as f64, 0.0, 0.0, 0.0]).collect();
+        assert!(StartKnots::fit(starts9, knots9, &count, 7)
+            .width
+            .is_finite());
+        assert_eq!(all_orders(3).len(), 6);
+        assert_eq!(all_orders(3)[0], vec![0, 1, 2]);
+    }
+
+    #[test]
     fn each_node_is_placed_where_the_demonstrations_agree() {
         // the same gesture at three amplitudes: each demonstration's apex has its own
         // nodes, and a reproduction along any of them should reach the mean apex (1.0)
@@ -2181,7 +2485,7 @@ mod tests {
                 node
             };
             let s = m.config.params().state_length;
-            h.denormalise(&h.knot(node, s))[0]
+            h.denormalise(&h.placement(&[])[node * s..(node + 1) * s])[0]
         };
         // the control: each node at its own samples' mean, each demonstration its own apex
         let norm: Vec<Vec<Vec<f64>>> = series.iter().map(|d| m.normalise_rows(d)).collect();

@@ -10,17 +10,18 @@ use crate::som::SelfOrganizingMap;
 
 use super::algorithm::{input_dim, Hsom};
 use super::errors::PersistError;
-use super::events::FOLLOWERS;
+use super::events::{StartKnots, FOLLOWERS};
 
 /// Magic bytes opening a binary model file.
 pub(super) const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 pub(super) const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of both formats.
-/// (10 added the levels' held-out prediction and lookup accuracies; 9 is the first format
-/// of a model of several gestures, [`super::labels::GESTURES_FORMAT_VERSION`] now 11, so the
-/// single-gesture format skips it.)
-pub const FORMAT_VERSION: u32 = 10;
+/// (12 added the start-weighted postures of `consensus = start`; 10 the levels' held-out
+/// prediction and lookup accuracies; 9 and 11 were formats of a model of several gestures,
+/// [`super::labels::GESTURES_FORMAT_VERSION`] now 13, so the single-gesture format skips
+/// them.)
+pub const FORMAT_VERSION: u32 = 12;
 
 /// The longest demonstration a model file may record, samples (a day at 1 kHz): the
 /// reproduction's length cap derives from it.
@@ -151,6 +152,14 @@ impl Hsom {
         b.extend_from_slice(&(knots.len() as u32).to_le_bytes());
         for &v in knots {
             f(&mut b, v);
+        }
+        let start = self.start_knots.as_ref();
+        b.extend_from_slice(&(start.map_or(0, |k| k.starts.len()) as u32).to_le_bytes());
+        if let Some(k) = start {
+            f(&mut b, k.width);
+            for &v in k.starts.iter().chain(&k.knots).flatten() {
+                f(&mut b, v);
+            }
         }
         for c in &self.columns {
             b.extend_from_slice(&(c.len() as u32).to_le_bytes());
@@ -289,6 +298,31 @@ impl Hsom {
         let nk = r.u32("postures length")? as usize;
         r.need(nk.saturating_mul(8), "postures")?;
         let knots = r.f64s(nk, "postures")?;
+        let n0 = shapes[0].0 * shapes[0].1;
+        let ns = r.u32("start-weighted demonstrations")? as usize;
+        let start = if ns == 0 {
+            None
+        } else {
+            let per = state.saturating_mul(n0 + 1).saturating_mul(8);
+            r.need(
+                ns.saturating_mul(per).saturating_add(8),
+                "start-weighted postures",
+            )?;
+            let width = r.f64s(1, "start width")?[0];
+            let mut starts = Vec::with_capacity(ns);
+            for _ in 0..ns {
+                starts.push(r.f64s(state, "starts")?);
+            }
+            let mut placed = Vec::with_capacity(ns);
+            for _ in 0..ns {
+                placed.push(r.f64s(n0 * state, "start-weighted postures")?);
+            }
+            Some(StartKnots {
+                starts,
+                knots: placed,
+                width,
+            })
+        };
         let mut columns = Vec::with_capacity(state.min(r.remaining() / 4));
         for _ in 0..state {
             let n = r.u32("column name length")? as usize;
@@ -338,6 +372,7 @@ impl Hsom {
                 followers,
                 exemplars,
                 knots,
+                start,
             },
             path,
         )
@@ -391,6 +426,21 @@ impl Hsom {
             .map(|v| format!(" {v}"))
             .collect();
         let _ = writeln!(s, "postures{}", knots.concat());
+        let start = self.start_knots.as_ref();
+        let _ = writeln!(
+            s,
+            "start-demonstrations {}",
+            start.map_or(0, |k| k.starts.len())
+        );
+        if let Some(k) = start {
+            let _ = writeln!(s, "start-width {}", k.width);
+            for (i, v) in k.starts.iter().enumerate() {
+                line(&mut s, &format!("start-{i}"), v);
+            }
+            for (i, v) in k.knots.iter().enumerate() {
+                line(&mut s, &format!("start-postures-{i}"), v);
+            }
+        }
         let _ = writeln!(s, "columns {}", self.columns.len());
         for c in &self.columns {
             let _ = writeln!(s, "column {}", c.replace(['\n', '\r'], " "));
@@ -588,6 +638,37 @@ impl Hsom {
                     .map_err(|_| corrupted(format!("bad number {t:?} in \"postures\" line")))
             })
             .collect::<Result<_, _>>()?;
+        let ns: Vec<usize> = values(
+            next("start-demonstrations")?,
+            "start-demonstrations ",
+            1,
+            &corrupted,
+        )?;
+        let start = if ns[0] == 0 {
+            None
+        } else {
+            let width: Vec<f64> = values(next("start-width")?, "start-width ", 1, &corrupted)?;
+            let mut starts = Vec::new();
+            for i in 0..ns[0] {
+                let key = format!("start-{i}");
+                starts.push(values(next(&key)?, &format!("{key} "), state, &corrupted)?);
+            }
+            let mut placed = Vec::new();
+            for i in 0..ns[0] {
+                let key = format!("start-postures-{i}");
+                placed.push(values(
+                    next(&key)?,
+                    &format!("{key} "),
+                    n0 * state,
+                    &corrupted,
+                )?);
+            }
+            Some(StartKnots {
+                starts,
+                knots: placed,
+                width: width[0],
+            })
+        };
         let nc: Vec<usize> = values(next("columns")?, "columns ", 1, &corrupted)?;
         if nc[0] != state {
             return Err(corrupted(format!(
@@ -704,6 +785,7 @@ impl Hsom {
                 followers,
                 exemplars,
                 knots,
+                start,
             },
             path,
         )
@@ -820,6 +902,33 @@ fn build(
             what: "a non-finite posture value".into(),
         });
     }
+    if let Some(StartKnots {
+        starts,
+        knots: placed,
+        width,
+    }) = &extra.start
+    {
+        let state = config.params().state_length;
+        let sound = width.is_finite()
+            && *width > 0.0
+            && starts.len() >= 3
+            && starts.len() == placed.len()
+            && starts.iter().all(|v| v.len() == state)
+            && placed.iter().all(|v| v.len() == want)
+            && starts.iter().chain(placed).flatten().all(|v| v.is_finite())
+            && !extra.knots.is_empty();
+        if !sound {
+            return Err(PersistError::Corrupted {
+                path: path.to_path_buf(),
+                what: format!(
+                    "start-weighted postures of {} demonstrations (width {width}): at least 3 \
+                     needed, each with stateLength finite start values and {want} posture \
+                     values, a positive finite width, and the postures stored",
+                    starts.len()
+                ),
+            });
+        }
+    }
     Ok(Hsom {
         config,
         maps,
@@ -848,6 +957,7 @@ fn build(
         followers: extra.followers,
         exemplars: extra.exemplars,
         knots: (!extra.knots.is_empty()).then_some(extra.knots),
+        start_knots: extra.start,
     })
 }
 
@@ -856,6 +966,9 @@ struct Extra {
     /// Per bottom node the posture a reproduction places its events at (empty: the
     /// weights); `stateLength` values per node.
     knots: Vec<f64>,
+    /// With `consensus = start`, where the starts are used: the width, each training
+    /// demonstration's first posture and its placement of every bottom node.
+    start: Option<StartKnots>,
     runs: [f64; 3],
     dwell: Vec<f64>,
     speed: Vec<f64>,
