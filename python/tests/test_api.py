@@ -184,7 +184,9 @@ def test_heldout_scores_every_method_on_the_same_folds(demos):
     )
     assert [g["gesture"] for g in two["gestures"]] == ["a", "b"]
     assert all(len(g["in_sample"]) == 0 for g in two["gestures"])
-    with pytest.raises(ValueError, match="consensus"):
+    for word in ("all", "start", "START"):
+        cfg.replace(consensus=word)
+    with pytest.raises(ValueError, match="all, local, start"):
         cfg.replace(consensus="nearest")
     with pytest.raises(ValueError, match="at least 3 demonstrations"):
         cosco_hsom.heldout(cfg, demos[:2])
