@@ -303,4 +303,15 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     std::fs::write(&path, bad).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("start-weighted postures"), "{e}");
+    // so is a negative count of demonstrations that ended on a node
+    let ends = text
+        .lines()
+        .find(|l| l.starts_with("end-postures "))
+        .unwrap()
+        .to_string();
+    let first = ends.split_whitespace().nth(1).unwrap();
+    let bad_ends = ends.replacen(&format!(" {first} "), " -1 ", 1);
+    std::fs::write(&path, with_checksum(&text.replace(&ends, &bad_ends))).unwrap();
+    let e = Hsom::load(&path).unwrap_err().to_string();
+    assert!(e.contains("end-posture values"), "{e}");
 }

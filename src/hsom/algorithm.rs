@@ -96,6 +96,11 @@ pub struct Hsom {
     /// nodes and its first posture, weighed at reproduction by the start
     /// ([`super::events::StartKnots`]).
     pub(crate) start_knots: Option<super::events::StartKnots>,
+    /// Per bottom node (`algorithm = events`), where the demonstrations whose last event was
+    /// on it ended: `stateLength + 1` values per node, the number of such demonstrations then
+    /// the mean of their last postures (normalised; zeros where none ended there). A
+    /// reproduction that ends after the node ends there (docs/ALGORITHM.md, passage 4).
+    pub(crate) end_postures: Option<Vec<f64>>,
 }
 
 /// Quality of one level, as reported by [`Hsom::summary`].
@@ -778,6 +783,7 @@ impl HsomConfig {
             heldout_lookup: vec![0.0; p.height],
             knots: None,
             start_knots: None,
+            end_postures: None,
             followers: p
                 .levels
                 .iter()

@@ -1587,6 +1587,7 @@ impl Hsom {
     pub(crate) fn fit_postures(&mut self, norm: &[Vec<Vec<f64>>]) {
         self.knots = None;
         self.start_knots = None;
+        self.end_postures = Some(self.ends(norm));
         if norm.len() < 2 {
             return;
         }
@@ -1626,6 +1627,47 @@ impl Hsom {
         self.knots = Some(self.smoothed_postures(&sums));
     }
 
+    /// Where the demonstrations `norm` (normalised) ended, per bottom node their last event
+    /// was on: `stateLength + 1` values per node, the number of them and the mean of their
+    /// last postures ([`Hsom::end_postures`](super::algorithm::Hsom)).
+    fn ends(&self, norm: &[Vec<Vec<f64>>]) -> Vec<f64> {
+        let s = self.config.params().state_length;
+        let mut out = vec![0.0; self.maps[0].len() * (s + 1)];
+        for demo in norm {
+            let (Some(&(node, _)), Some(last)) = (bottom_events(self, demo).last(), demo.last())
+            else {
+                continue;
+            };
+            let row = &mut out[node * (s + 1)..(node + 1) * (s + 1)];
+            row[0] += 1.0;
+            let k = row[0];
+            for (m, v) in row[1..].iter_mut().zip(last) {
+                *m += (v - *m) / k;
+            }
+        }
+        out
+    }
+
+    /// Where a reproduction whose last event is on node `n` ends by its end event: where the
+    /// demonstrations whose last event was on it ended, or, where none did (the end decoded
+    /// by content after another node), where all of them ended; `None` without end postures.
+    fn end_posture(&self, n: usize, s: usize) -> Option<Vec<f64>> {
+        let all = self.end_postures.as_ref()?;
+        let row = &all[n * (s + 1)..(n + 1) * (s + 1)];
+        if row[0] > 0.0 {
+            return Some(row[1..].to_vec());
+        }
+        let mut mean = vec![0.0; s];
+        let mut total = 0.0;
+        for r in all.chunks(s + 1) {
+            total += r[0];
+            mean.iter_mut()
+                .zip(&r[1..])
+                .for_each(|(m, v)| *m += r[0] * v);
+        }
+        (total > 0.0).then(|| mean.iter().map(|m| m / total).collect())
+    }
+
     /// Postures at every sample from the executed events: each event's node posture (its
     /// state half) is reached at the middle of the event, the initial posture is the first
     /// knot, and the last event ends where its node's learned action leads (its action half,
@@ -1661,14 +1703,22 @@ impl Hsom {
         }
         if let Some(&(n, d, l)) = executed.last() {
             t.push(now);
-            // the last event's second half goes on along its node's learned action (the
-            // posture actionHorizon samples later), as far as that half lasts
-            let mut end = knot(n);
-            let w = self.maps[0].weights(n);
-            let on = (d / 2.0 / self.config.params().action_horizon as f64).min(1.0);
-            for (j, e) in end.iter_mut().enumerate() {
-                *e += (w[s + j] - w[j]) * on;
-            }
+            // a reproduction that ends by its end event ends where the demonstrations ended
+            // (after its last node, or all of them); otherwise (a length cap) the last
+            // event's second half goes on along its node's learned action (the posture
+            // actionHorizon samples later), as far as that half lasts
+            let ended = self
+                .end_posture(n, s)
+                .filter(|_| stop == StopReason::EndEvent);
+            let end = ended.unwrap_or_else(|| {
+                let mut end = knot(n);
+                let w = self.maps[0].weights(n);
+                let on = (d / 2.0 / self.config.params().action_horizon as f64).min(1.0);
+                for (j, e) in end.iter_mut().enumerate() {
+                    *e += (w[s + j] - w[j]) * on;
+                }
+                end
+            });
             v.push(end);
             by.push(l);
         }
@@ -2974,6 +3024,45 @@ mod tests {
         assert!(rep.predicted_by.iter().all(|&l| m.level_trusted(l)));
         // deterministic
         assert_eq!(rep, m.reproduce(&[0.0, 0.0]).unwrap());
+    }
+
+    #[test]
+    fn a_reproduction_that_ends_by_its_end_event_ends_where_the_demonstrations_ended() {
+        // three strokes from rest to (1, 0.5) that end in motion, at the far end
+        let stroke = |hold: usize, seed: u64| -> Vec<Vec<f64>> {
+            let mut rows = gesture(hold, seed);
+            rows.truncate(hold + 40);
+            rows
+        };
+        let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| stroke(30 + 5 * i, i as u64)).collect();
+        let m = config(3).fit_series(&series).unwrap();
+        let s = 2;
+        let ends = m.end_postures.as_ref().unwrap();
+        assert_eq!(ends.chunks(s + 1).map(|r| r[0]).sum::<f64>(), 3.0);
+        let rep = m.reproduce(&[0.0, 0.0]).unwrap();
+        assert_eq!(rep.stop, StopReason::EndEvent);
+        let last = rep.postures.last().unwrap();
+        assert!(
+            (last[0] - 0.975).abs() < 0.02 && (last[1] - 0.4875).abs() < 0.01,
+            "{last:?}"
+        );
+        // a plan that ends two events early (the end decoded by content after a node no
+        // demonstration ended after) still ends where they ended; the control: the same
+        // events cut by a length cap stop where the last one's action leads, short of it
+        let norm = m.normalise_rows(&series[0]);
+        let mut executed: Vec<(usize, f64, usize)> = bottom_events(&m, &norm)
+            .into_iter()
+            .map(|(n, d)| (n, d, 0))
+            .collect();
+        executed.truncate(executed.len() - 2);
+        let early = m.timed_postures(&norm[0], &norm[0], &executed, StopReason::EndEvent);
+        let capped = m.timed_postures(&norm[0], &norm[0], &executed, StopReason::LearnedLength);
+        let (e, c) = (
+            early.postures.last().unwrap(),
+            capped.postures.last().unwrap(),
+        );
+        assert!((e[0] - 0.975).abs() < 0.02, "{e:?}");
+        assert!(c[0] < 0.9, "{c:?} (the control)");
     }
 
     #[test]

@@ -161,6 +161,11 @@ impl Hsom {
                 f(&mut b, v);
             }
         }
+        let ends = self.end_postures.as_deref().unwrap_or(&[]);
+        b.extend_from_slice(&(ends.len() as u32).to_le_bytes());
+        for &v in ends {
+            f(&mut b, v);
+        }
         for c in &self.columns {
             b.extend_from_slice(&(c.len() as u32).to_le_bytes());
             b.extend_from_slice(c.as_bytes());
@@ -323,6 +328,9 @@ impl Hsom {
                 width,
             })
         };
+        let ne = r.u32("end postures length")? as usize;
+        r.need(ne.saturating_mul(8), "end postures")?;
+        let ends = r.f64s(ne, "end postures")?;
         let mut columns = Vec::with_capacity(state.min(r.remaining() / 4));
         for _ in 0..state {
             let n = r.u32("column name length")? as usize;
@@ -373,6 +381,7 @@ impl Hsom {
                 exemplars,
                 knots,
                 start,
+                ends,
             },
             path,
         )
@@ -441,6 +450,13 @@ impl Hsom {
                 line(&mut s, &format!("start-postures-{i}"), v);
             }
         }
+        let ends: Vec<String> = self
+            .end_postures
+            .iter()
+            .flatten()
+            .map(|v| format!(" {v}"))
+            .collect();
+        let _ = writeln!(s, "end-postures{}", ends.concat());
         let _ = writeln!(s, "columns {}", self.columns.len());
         for c in &self.columns {
             let _ = writeln!(s, "column {}", c.replace(['\n', '\r'], " "));
@@ -669,6 +685,22 @@ impl Hsom {
                 width: width[0],
             })
         };
+        let el = next("end-postures")?;
+        let ends: Vec<f64> = el
+            .strip_prefix("end-postures")
+            .ok_or_else(|| {
+                corrupted(format!(
+                    "expected an \"end-postures\" line, found {el:.40?}"
+                ))
+            })?
+            .split_whitespace()
+            // one more than the bottom level can hold: a longer line is refused, not parsed
+            .take(n0 * (state + 1) + 1)
+            .map(|t| {
+                t.parse::<f64>()
+                    .map_err(|_| corrupted(format!("bad number {t:?} in \"end-postures\" line")))
+            })
+            .collect::<Result<_, _>>()?;
         let nc: Vec<usize> = values(next("columns")?, "columns ", 1, &corrupted)?;
         if nc[0] != state {
             return Err(corrupted(format!(
@@ -786,6 +818,7 @@ impl Hsom {
                 exemplars,
                 knots,
                 start,
+                ends,
             },
             path,
         )
@@ -902,6 +935,24 @@ fn build(
             what: "a non-finite posture value".into(),
         });
     }
+    let state = config.params().state_length;
+    let want_ends = n0 as usize * (state + 1);
+    let ends_sound = (extra.ends.is_empty() || extra.ends.len() == want_ends)
+        && extra.ends.iter().all(|v| v.is_finite())
+        && extra
+            .ends
+            .chunks(state + 1)
+            .all(|r| r[0] >= 0.0 && r[0].fract() == 0.0 && r[0] <= MAX_DEMO_SAMPLES);
+    if !ends_sound {
+        return Err(PersistError::Corrupted {
+            path: path.to_path_buf(),
+            what: format!(
+                "{} end-posture values: none or {want_ends} (nodes x (1 + stateLength)), each \
+                 node's count of demonstrations a whole number >= 0, all finite",
+                extra.ends.len()
+            ),
+        });
+    }
     if let Some(StartKnots {
         starts,
         knots: placed,
@@ -958,6 +1009,7 @@ fn build(
         exemplars: extra.exemplars,
         knots: (!extra.knots.is_empty()).then_some(extra.knots),
         start_knots: extra.start,
+        end_postures: (!extra.ends.is_empty()).then_some(extra.ends),
     })
 }
 
@@ -969,6 +1021,9 @@ struct Extra {
     /// With `consensus = start`, where the starts are used: the width, each training
     /// demonstration's first posture and its placement of every bottom node.
     start: Option<StartKnots>,
+    /// Per bottom node, the number of demonstrations whose last event was on it and the mean
+    /// of their last postures (empty: none stored).
+    ends: Vec<f64>,
     runs: [f64; 3],
     dwell: Vec<f64>,
     speed: Vec<f64>,
