@@ -99,7 +99,8 @@ pub struct Hsom {
     /// Per bottom node (`algorithm = events`), where the demonstrations whose last event was
     /// on it ended: `stateLength + 1` values per node, the number of such demonstrations then
     /// the mean of their last postures (normalised; zeros where none ended there). A
-    /// reproduction that ends after the node ends there (docs/ALGORITHM.md, passage 4).
+    /// reproduction whose end is decoded after a node no demonstration ended after ends where
+    /// all of them ended (docs/ALGORITHM.md, passage 4).
     pub(crate) end_postures: Option<Vec<f64>>,
 }
 

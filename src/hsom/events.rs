@@ -1648,14 +1648,14 @@ impl Hsom {
         out
     }
 
-    /// Where a reproduction whose last event is on node `n` ends by its end event: where the
-    /// demonstrations whose last event was on it ended, or, where none did (the end decoded
-    /// by content after another node), where all of them ended; `None` without end postures.
+    /// Where a reproduction whose last event is on node `n` ends by its end event, when no
+    /// demonstration ended after `n` (the end decoded by content after another node): where
+    /// all of them ended. `None` after a node one ended after (its last event's learned
+    /// action leads there, from the mean of many samples) and without end postures.
     fn end_posture(&self, n: usize, s: usize) -> Option<Vec<f64>> {
         let all = self.end_postures.as_ref()?;
-        let row = &all[n * (s + 1)..(n + 1) * (s + 1)];
-        if row[0] > 0.0 {
-            return Some(row[1..].to_vec());
+        if all[n * (s + 1)] > 0.0 {
+            return None;
         }
         let mut mean = vec![0.0; s];
         let mut total = 0.0;
@@ -1703,10 +1703,10 @@ impl Hsom {
         }
         if let Some(&(n, d, l)) = executed.last() {
             t.push(now);
-            // a reproduction that ends by its end event ends where the demonstrations ended
-            // (after its last node, or all of them); otherwise (a length cap) the last
-            // event's second half goes on along its node's learned action (the posture
-            // actionHorizon samples later), as far as that half lasts
+            // the last event's second half goes on along its node's learned action (the
+            // posture actionHorizon samples later), as far as that half lasts; but a
+            // reproduction that ends by its end event after a node no demonstration ended
+            // after ends where they ended
             let ended = self
                 .end_posture(n, s)
                 .filter(|_| stop == StopReason::EndEvent);
@@ -3027,7 +3027,7 @@ mod tests {
     }
 
     #[test]
-    fn a_reproduction_that_ends_by_its_end_event_ends_where_the_demonstrations_ended() {
+    fn a_plan_that_ends_after_a_node_no_demonstration_ended_after_ends_where_they_ended() {
         // three strokes from rest to (1, 0.5) that end in motion, at the far end
         let stroke = |hold: usize, seed: u64| -> Vec<Vec<f64>> {
             let mut rows = gesture(hold, seed);
@@ -3039,11 +3039,17 @@ mod tests {
         let s = 2;
         let ends = m.end_postures.as_ref().unwrap();
         assert_eq!(ends.chunks(s + 1).map(|r| r[0]).sum::<f64>(), 3.0);
+        let end_node = bottom_events(&m, &m.normalise_rows(&series[0]))
+            .last()
+            .unwrap()
+            .0;
+        assert!(m.end_posture(end_node, s).is_none());
         let rep = m.reproduce(&[0.0, 0.0]).unwrap();
         assert_eq!(rep.stop, StopReason::EndEvent);
+        // after the node the demonstrations ended after, where its learned action leads
         let last = rep.postures.last().unwrap();
         assert!(
-            (last[0] - 0.975).abs() < 0.02 && (last[1] - 0.4875).abs() < 0.01,
+            (last[0] - 0.975).abs() < 0.05 && (last[1] - 0.4875).abs() < 0.025,
             "{last:?}"
         );
         // a plan that ends two events early (the end decoded by content after a node no
