@@ -261,6 +261,40 @@ fn cosco_heldout_on_directories_of_gestures() {
         ));
 }
 
+/// Held out with `consensus` (the hierarchy and the nearest sequence only, no in-sample):
+/// per fold, the relative DTW of the hierarchy and of the nearest sequence.
+fn held_out_with(
+    consensus: cosco_hsom::config::Consensus,
+    demos: &[Demonstration],
+) -> [Vec<f64>; 2] {
+    let mut p = quick().into_params();
+    p.consensus = consensus;
+    let study = leave_one_out(
+        &p.check("quick").unwrap(),
+        vec![("g".into(), demos.to_vec())],
+        &LooSettings {
+            height_1: false,
+            gmr: false,
+            replay: false,
+            in_sample: false,
+            threads: 2,
+        },
+        None,
+    )
+    .unwrap();
+    [Method::Hierarchy, Method::NearestSequence].map(|m| {
+        study[0]
+            .held_out
+            .iter()
+            .map(|f| f.score(m).unwrap().relative_dtw)
+            .collect()
+    })
+}
+
+fn worst(d: &[f64]) -> f64 {
+    d.iter().cloned().fold(0.0, f64::max)
+}
+
 #[test]
 fn an_outlier_spoils_the_other_folds_unless_the_consensus_is_local() {
     // three demonstrations of one route and an outlier far from it (another mode): with
@@ -271,35 +305,11 @@ fn an_outlier_spoils_the_other_folds_unless_the_consensus_is_local() {
     for r in &mut demos[3].rows {
         r[1] += 60.0;
     }
-    let with = |c: cosco_hsom::config::Consensus| {
-        let mut p = quick().into_params();
-        p.consensus = c;
-        let study = leave_one_out(
-            &p.check("quick").unwrap(),
-            vec![("h".into(), demos.clone())],
-            &LooSettings {
-                height_1: false,
-                gmr: false,
-                replay: false,
-                in_sample: false,
-                threads: 2,
-            },
-            None,
-        )
-        .unwrap();
-        let folds = &study[0].held_out[..3];
-        [Method::Hierarchy, Method::NearestSequence].map(|m| {
-            folds
-                .iter()
-                .map(|f| f.score(m).unwrap().relative_dtw)
-                .fold(0.0, f64::max)
-        })
-    };
-    let local = with(cosco_hsom::config::Consensus::Local);
-    let all = with(cosco_hsom::config::Consensus::All);
+    let local = held_out_with(cosco_hsom::config::Consensus::Local, &demos);
+    let all = held_out_with(cosco_hsom::config::Consensus::All, &demos);
     for k in 0..2 {
-        assert!(local[k] < 0.06, "local {local:?}");
-        assert!(all[k] > 0.06, "all {all:?} (the control)");
+        assert!(worst(&local[k][..3]) < 0.06, "local {local:?}");
+        assert!(worst(&all[k][..3]) > 0.06, "all {all:?} (the control)");
     }
 }
 
@@ -317,42 +327,18 @@ fn nested_drawings_follow_the_ones_that_started_near_the_held_out_one() {
             r[1] += 6.0 * i as f64;
         }
     }
-    let with = |c: cosco_hsom::config::Consensus| {
-        let mut p = quick().into_params();
-        p.consensus = c;
-        let study = leave_one_out(
-            &p.check("quick").unwrap(),
-            vec![("nested".into(), demos.clone())],
-            &LooSettings {
-                height_1: false,
-                gmr: false,
-                replay: false,
-                in_sample: false,
-                threads: 2,
-            },
-            None,
-        )
-        .unwrap();
-        let folds = &study[0].held_out;
-        [Method::Hierarchy, Method::NearestSequence].map(|m| {
-            let d: Vec<f64> = folds
-                .iter()
-                .map(|f| f.score(m).unwrap().relative_dtw)
-                .collect();
-            (
-                d.iter().cloned().fold(0.0, f64::max),
-                d.iter().sum::<f64>() / d.len() as f64,
-            )
-        })
-    };
-    let start = with(cosco_hsom::config::Consensus::Start);
-    let all = with(cosco_hsom::config::Consensus::All);
+    let mean = |d: &[f64]| d.iter().sum::<f64>() / d.len() as f64;
+    let start = held_out_with(cosco_hsom::config::Consensus::Start, &demos);
+    let all = held_out_with(cosco_hsom::config::Consensus::All, &demos);
     for k in 0..2 {
         // measured: start 0.105 / 0.045 (the outer folds have a neighbour one shift away
         // on one side only), all 0.34 / 0.19
-        assert!(start[k].0 < 0.15 && start[k].1 < 0.06, "start {start:?}");
         assert!(
-            all[k].0 > 0.15 && all[k].1 > 0.06,
+            worst(&start[k]) < 0.15 && mean(&start[k]) < 0.06,
+            "start {start:?}"
+        );
+        assert!(
+            worst(&all[k]) > 0.15 && mean(&all[k]) > 0.06,
             "all {all:?} (the control)"
         );
     }
