@@ -315,9 +315,10 @@ impl StartKnots {
     /// squared error per node weighted by the samples on the node, `count`, summed over the
     /// demonstrations), kept only where the starts are evidence: its gain over all alike must
     /// be larger than that of the best width for the starts shuffled among the
-    /// demonstrations, in all but [`START_SIGNIFICANCE`] of [`START_SHUFFLES`] shuffles
-    /// (a permutation test, drawn from `seed`). Infinite (all alike) otherwise, and with
-    /// identical starts. With three demonstrations (six orders) it cannot be.
+    /// demonstrations, in all but [`START_SIGNIFICANCE`] of the orders (a permutation test:
+    /// every order up to 6 demonstrations, else [`START_SHUFFLES`] shuffles drawn from
+    /// `seed`). Infinite (all alike) otherwise, and with identical starts. With three
+    /// demonstrations (six orders) it cannot be.
     fn fit(starts: Vec<Vec<f64>>, knots: Vec<Vec<f64>>, count: &[f64], seed: u64) -> Self {
         let n = starts.len();
         let s = knots[0].len() / count.len().max(1);
