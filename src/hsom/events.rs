@@ -1675,7 +1675,7 @@ impl Hsom {
     /// the posture `actionHorizon` samples later, reached in proportion to the event's
     /// second half: a gesture that ends in motion is not cut at the middle of its last
     /// event; one that ends in a hold ends there, action and state being equal); in between a monotone cubic
-    /// ([`monotone_tangents`]) per variable, so holds are held and the motion starts and ends at
+    /// (Fritsch-Carlson) per variable, so holds are held and the motion starts and ends at
     /// rest; a knot at a turning point is moved so that the event's mean is its node's posture
     /// ([`turning_points_kept`]), the only place the curve goes beyond its knots.
     fn timed_postures(
@@ -1752,8 +1752,8 @@ impl Hsom {
     }
 }
 
-/// The monotone cubic through the knots (t, v) ([`monotone_tangents`], zero at both ends)
-/// at the samples 0..samples.
+/// The monotone cubic through the knots (t, v) (Fritsch-Carlson tangents, zero at both
+/// ends) at the samples 0..samples.
 fn monotone_cubic(t: &[f64], v: &[f64], samples: usize) -> Vec<f64> {
     let k = t.len();
     let m = monotone_tangents(t, v);
