@@ -96,11 +96,10 @@ pub struct Hsom {
     /// nodes and its first posture, weighed at reproduction by the start
     /// ([`super::events::StartKnots`]).
     pub(crate) start_knots: Option<super::events::StartKnots>,
-    /// Per bottom node (`algorithm = events`), where the demonstrations whose last event was
-    /// on it ended: `stateLength + 1` values per node, the number of such demonstrations then
-    /// the mean of their last postures (normalised; zeros where none ended there). A
-    /// reproduction whose end is decoded after a node no demonstration ended after ends where
-    /// all of them ended (docs/ALGORITHM.md, passage 4).
+    /// Where the demonstrations ended (`algorithm = events`): per bottom node, how many had
+    /// their last event on it, then the mean of their last postures (`stateLength` values,
+    /// normalised). A reproduction whose end is decoded after a node no demonstration ended
+    /// after ends there (docs/ALGORITHM.md, passage 4).
     pub(crate) end_postures: Option<Vec<f64>>,
 }
 

@@ -1628,21 +1628,21 @@ impl Hsom {
         self.knots = Some(self.smoothed_postures(&sums));
     }
 
-    /// Where the demonstrations `norm` (normalised) ended, per bottom node their last event
-    /// was on: `stateLength + 1` values per node, the number of them and the mean of their
-    /// last postures ([`Hsom::end_postures`](super::algorithm::Hsom)).
+    /// Where the demonstrations `norm` (normalised) ended: per bottom node, how many had
+    /// their last event on it, then the mean of their last postures (`stateLength` values;
+    /// [`Hsom::end_postures`](super::algorithm::Hsom)).
     fn ends(&self, norm: &[Vec<Vec<f64>>]) -> Vec<f64> {
-        let s = self.config.params().state_length;
-        let mut out = vec![0.0; self.maps[0].len() * (s + 1)];
+        let (n0, s) = (self.maps[0].len(), self.config.params().state_length);
+        let mut out = vec![0.0; n0 + s];
+        let mut k = 0.0;
         for demo in norm {
             let (Some(&(node, _)), Some(last)) = (bottom_events(self, demo).last(), demo.last())
             else {
                 continue;
             };
-            let row = &mut out[node * (s + 1)..(node + 1) * (s + 1)];
-            row[0] += 1.0;
-            let k = row[0];
-            for (m, v) in row[1..].iter_mut().zip(last) {
+            out[node] += 1.0;
+            k += 1.0;
+            for (m, v) in out[n0..].iter_mut().zip(last) {
                 *m += (v - *m) / k;
             }
         }
@@ -1653,20 +1653,10 @@ impl Hsom {
     /// demonstration ended after `n` (the end decoded by content after another node): where
     /// all of them ended. `None` after a node one ended after (its last event's learned
     /// action leads there, from the mean of many samples) and without end postures.
-    fn end_posture(&self, n: usize, s: usize) -> Option<Vec<f64>> {
-        let all = self.end_postures.as_ref()?;
-        if all[n * (s + 1)] > 0.0 {
-            return None;
-        }
-        let mut mean = vec![0.0; s];
-        let mut total = 0.0;
-        for r in all.chunks(s + 1) {
-            total += r[0];
-            mean.iter_mut()
-                .zip(&r[1..])
-                .for_each(|(m, v)| *m += r[0] * v);
-        }
-        (total > 0.0).then(|| mean.iter().map(|m| m / total).collect())
+    fn end_posture(&self, n: usize) -> Option<Vec<f64>> {
+        let ends = self.end_postures.as_ref()?;
+        let n0 = self.maps[0].len();
+        (ends[n] == 0.0 && ends[..n0].iter().any(|&c| c > 0.0)).then(|| ends[n0..].to_vec())
     }
 
     /// Postures at every sample from the executed events: each event's node posture (its
@@ -1708,9 +1698,7 @@ impl Hsom {
             // posture actionHorizon samples later), as far as that half lasts; but a
             // reproduction that ends by its end event after a node no demonstration ended
             // after ends where they ended
-            let ended = self
-                .end_posture(n, s)
-                .filter(|_| stop == StopReason::EndEvent);
+            let ended = self.end_posture(n).filter(|_| stop == StopReason::EndEvent);
             let end = ended.unwrap_or_else(|| {
                 let mut end = knot(n);
                 let w = self.maps[0].weights(n);
@@ -3039,12 +3027,12 @@ mod tests {
         let m = config(3).fit_series(&series).unwrap();
         let s = 2;
         let ends = m.end_postures.as_ref().unwrap();
-        assert_eq!(ends.chunks(s + 1).map(|r| r[0]).sum::<f64>(), 3.0);
+        assert_eq!(ends[..m.maps[0].len()].iter().sum::<f64>(), 3.0);
         let end_node = bottom_events(&m, &m.normalise_rows(&series[0]))
             .last()
             .unwrap()
             .0;
-        assert!(m.end_posture(end_node, s).is_none());
+        assert!(m.end_posture(end_node).is_none());
         let rep = m.reproduce(&[0.0, 0.0]).unwrap();
         assert_eq!(rep.stop, StopReason::EndEvent);
         // after the node the demonstrations ended after, where its learned action leads

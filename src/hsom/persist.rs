@@ -695,7 +695,7 @@ impl Hsom {
             })?
             .split_whitespace()
             // one more than the bottom level can hold: a longer line is refused, not parsed
-            .take(n0 * (state + 1) + 1)
+            .take(n0 + state + 1)
             .map(|t| {
                 t.parse::<f64>()
                     .map_err(|_| corrupted(format!("bad number {t:?} in \"end-postures\" line")))
@@ -936,19 +936,18 @@ fn build(
         });
     }
     let state = config.params().state_length;
-    let want_ends = n0 as usize * (state + 1);
+    let want_ends = n0 as usize + state;
     let ends_sound = (extra.ends.is_empty() || extra.ends.len() == want_ends)
         && extra.ends.iter().all(|v| v.is_finite())
-        && extra
-            .ends
-            .chunks(state + 1)
-            .all(|r| r[0] >= 0.0 && r[0].fract() == 0.0 && r[0] <= MAX_DEMO_SAMPLES);
+        && extra.ends[..extra.ends.len().min(n0 as usize)]
+            .iter()
+            .all(|&c| c >= 0.0 && c.fract() == 0.0 && c <= MAX_DEMO_SAMPLES);
     if !ends_sound {
         return Err(PersistError::Corrupted {
             path: path.to_path_buf(),
             what: format!(
-                "{} end-posture values: none or {want_ends} (nodes x (1 + stateLength)), each \
-                 node's count of demonstrations a whole number >= 0, all finite",
+                "{} end-posture values: none or {want_ends} (a count of demonstrations per \
+                 node, each a whole number >= 0, then stateLength finite values)",
                 extra.ends.len()
             ),
         });
@@ -1021,8 +1020,8 @@ struct Extra {
     /// With `consensus = start`, where the starts are used: the width, each training
     /// demonstration's first posture and its placement of every bottom node.
     start: Option<StartKnots>,
-    /// Per bottom node, the number of demonstrations whose last event was on it and the mean
-    /// of their last postures (empty: none stored).
+    /// Per bottom node, the number of demonstrations whose last event was on it, then the
+    /// mean of all their last postures (empty: none stored).
     ends: Vec<f64>,
     runs: [f64; 3],
     dwell: Vec<f64>,
