@@ -314,4 +314,15 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     std::fs::write(&path, with_checksum(&text.replace(&ends, &bad_ends))).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("end-posture values"), "{e}");
+    // and traces whose last word names a node the level does not have
+    let traces = text
+        .lines()
+        .find(|l| l.starts_with("traces "))
+        .unwrap()
+        .to_string();
+    let last = traces.rsplit(' ').next().unwrap();
+    let bad_traces = format!("{} 999999", &traces[..traces.len() - last.len() - 1]);
+    std::fs::write(&path, with_checksum(&text.replace(&traces, &bad_traces))).unwrap();
+    let e = Hsom::load(&path).unwrap_err().to_string();
+    assert!(e.contains("traces") && e.contains("999999"), "{e}");
 }

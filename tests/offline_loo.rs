@@ -234,6 +234,27 @@ fn cosco_heldout_on_directories_of_gestures() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("one of all, local"));
+    // plans decoded slot by slot: accepted; a bad word is named with the words allowed
+    cosco()
+        .arg("--demos")
+        .arg(d.join("set/loops"))
+        .args([
+            "--state-length-from-data",
+            "--plan",
+            "decoded",
+            "--no-gmr",
+            "--no-height-1",
+        ])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("| loops | 3 |"));
+    cosco()
+        .arg("--demos")
+        .arg(d.join("set/loops"))
+        .args(["--plan", "replay"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("one of traced, decoded"));
     // and `cosco train` adapts to the data the same way
     Command::cargo_bin("cosco")
         .unwrap()

@@ -31,6 +31,7 @@ class Config:
         state_length: Optional[int] = None,
         training_steps: Optional[int] = None,
         consensus: Optional[str] = None,
+        plan: Optional[str] = None,
     ) -> "Config":
         """A copy with some settings changed, validated again."""
     def to_xml(self) -> str:

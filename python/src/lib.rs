@@ -277,17 +277,21 @@ impl Config {
     }
 
     /// A copy with some settings changed, validated again.
-    #[pyo3(signature = (*, seed = None, state_length = None, training_steps = None, consensus = None))]
+    #[pyo3(signature = (*, seed = None, state_length = None, training_steps = None, consensus = None, plan = None))]
     fn replace(
         &self,
         seed: Option<u64>,
         state_length: Option<usize>,
         training_steps: Option<usize>,
         consensus: Option<&str>,
+        plan: Option<&str>,
     ) -> PyResult<Self> {
         let mut p = self.inner.params().clone();
         if let Some(c) = consensus {
             p.consensus = c.parse().map_err(PyValueError::new_err)?;
+        }
+        if let Some(w) = plan {
+            p.plan = w.parse().map_err(PyValueError::new_err)?;
         }
         if let Some(s) = seed {
             p.seed = s;

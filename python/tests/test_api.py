@@ -188,6 +188,11 @@ def test_heldout_scores_every_method_on_the_same_folds(demos):
         cfg.replace(consensus=word)
     with pytest.raises(ValueError, match="all, local, start"):
         cfg.replace(consensus="nearest")
+    # how the levels' prediction becomes a plan: traced (the default) or decoded
+    assert "<plan>traced</plan>" in cfg.to_xml()
+    assert "<plan>decoded</plan>" in cfg.replace(plan="Decoded").to_xml()
+    with pytest.raises(ValueError, match="traced, decoded"):
+        cfg.replace(plan="replayed")
     with pytest.raises(ValueError, match="at least 3 demonstrations"):
         cosco_hsom.heldout(cfg, demos[:2])
     with pytest.raises(ValueError, match="stateLength is 6"):

@@ -148,6 +148,11 @@ enum Command {
         /// `all` (alike) or `local` (those that agree at each sample).
         #[arg(long)]
         consensus: Option<cosco_hsom::config::Consensus>,
+        /// How the levels' prediction becomes a plan, instead of the configuration's:
+        /// `traced` (the demonstrated stretch the predicting node stands for, followed along
+        /// its demonstration) or `decoded` (slot by slot, by content).
+        #[arg(long)]
+        plan: Option<cosco_hsom::config::Plan>,
         /// Leave out the configuration at height 1.
         #[arg(long)]
         no_height_1: bool,
@@ -320,6 +325,7 @@ fn run(cli: Cli) -> Result<()> {
             config,
             state_length_from_data,
             consensus,
+            plan,
             no_height_1,
             no_gmr,
             no_in_sample,
@@ -335,6 +341,7 @@ fn run(cli: Cli) -> Result<()> {
                 config,
                 state_length_from_data,
                 consensus,
+                plan,
                 settings: cosco_hsom::offline::LooSettings {
                     height_1: !no_height_1,
                     gmr: !no_gmr,

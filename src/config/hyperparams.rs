@@ -135,6 +135,32 @@ impl std::str::FromStr for Consensus {
     }
 }
 
+/// How the events extension turns the levels' prediction into a plan of bottom events
+/// (docs/ALGORITHM.md, passage 5).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Plan {
+    /// The demonstrated stretch the predicting node stands for: of the training chunks the
+    /// node was the BMU of, the one whose demonstration was nearest where the reproduction is,
+    /// replayed event by event, and continued along the same demonstration until a level is
+    /// surprised. The default.
+    Traced,
+    /// Every predicted slot decoded by content, level by level (among the followers of the
+    /// entry before, the node's exemplar first).
+    Decoded,
+}
+
+impl std::str::FromStr for Plan {
+    type Err = String;
+    /// `traced` or `decoded`, in any case; otherwise a message naming the word and both values.
+    fn from_str(word: &str) -> Result<Self, String> {
+        match word.to_ascii_lowercase().as_str() {
+            "traced" => Ok(Plan::Traced),
+            "decoded" => Ok(Plan::Decoded),
+            _ => Err(format!("plan {word:?}: one of traced, decoded")),
+        }
+    }
+}
+
 /// The reproduction procedure (paper III-C.2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ReproductionMode {
@@ -319,6 +345,8 @@ pub struct HsomParams {
     pub normalisation: Normalisation,
     /// How the consensus weighs the demonstrations (`algorithm = events`).
     pub consensus: Consensus,
+    /// How the levels' prediction becomes a plan (`algorithm = events`).
+    pub plan: Plan,
     /// Training of upper levels on partially filled lists.
     pub partial_training: PartialTraining,
     /// When the bottom activity list is updated.
@@ -354,6 +382,7 @@ impl HsomParams {
             memory_mode: MemoryMode::Lists,
             normalisation: Normalisation::Global,
             consensus: Consensus::Start,
+            plan: Plan::Traced,
             partial_training: PartialTraining::Skip,
             list_update: ListUpdate::EveryStep,
             change_ratio: 1.0,
@@ -607,6 +636,12 @@ impl HsomConfig {
     pub fn with_consensus(&self, consensus: Consensus) -> Result<HsomConfig, ConfigError> {
         let mut p = self.params.clone();
         p.consensus = consensus;
+        p.check(&self.source)
+    }
+    /// The same configuration with another [`Plan`].
+    pub fn with_plan(&self, plan: Plan) -> Result<HsomConfig, ConfigError> {
+        let mut p = self.params.clone();
+        p.plan = plan;
         p.check(&self.source)
     }
     /// The same configuration for data of `width` variables: `stateLength` and

@@ -10,7 +10,8 @@ use crate::som::{Decay, Neighbourhood, Schedule, Topology};
 use super::errors::ConfigError;
 use super::hyperparams::{
     Algorithm, Consensus, HsomConfig, HsomParams, IdDecoding, LevelParams, ListUpdate, MemoryMode,
-    Normalisation, PartialTraining, Reflex, ReproductionMode, ReproductionParams, StopRule, Timing,
+    Normalisation, PartialTraining, Plan, Reflex, ReproductionMode, ReproductionParams, StopRule,
+    Timing,
 };
 
 #[derive(Debug, Deserialize)]
@@ -33,6 +34,7 @@ struct RawConfig {
     memory_mode: Option<String>,
     normalisation: Option<String>,
     consensus: Option<String>,
+    plan: Option<String>,
     #[serde(rename = "partialTraining")]
     partial_training: Option<String>,
     #[serde(rename = "listUpdate")]
@@ -606,6 +608,13 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
             ]),
             "all, local, start",
         )?,
+        plan: f.name(
+            "plan",
+            &raw.plan,
+            Plan::Traced,
+            word(&[("traced", Plan::Traced), ("decoded", Plan::Decoded)]),
+            "traced, decoded",
+        )?,
         partial_training: f.name(
             "partialTraining",
             &raw.partial_training,
@@ -674,6 +683,11 @@ impl HsomConfig {
             Consensus::Start => "start",
         };
         let _ = writeln!(s, "  <consensus>{cs}</consensus>");
+        let pl = match p.plan {
+            Plan::Traced => "traced",
+            Plan::Decoded => "decoded",
+        };
+        let _ = writeln!(s, "  <plan>{pl}</plan>");
         let pt = match p.partial_training {
             PartialTraining::Skip => "skip",
             PartialTraining::Masked => "masked",

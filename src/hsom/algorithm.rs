@@ -101,6 +101,10 @@ pub struct Hsom {
     /// normalised). A reproduction whose end is decoded after a node no demonstration ended
     /// after ends there (docs/ALGORITHM.md, passage 4).
     pub(crate) end_postures: Option<Vec<f64>>,
+    /// The training demonstrations' entries at every level and which training chunk each
+    /// node's exemplar is (`algorithm = events`): a plan replays the demonstrated chunk its
+    /// node stands for ([`super::events::Traces`]).
+    pub(crate) traces: Option<super::events::Traces>,
 }
 
 /// Quality of one level, as reported by [`Hsom::summary`].
@@ -784,6 +788,7 @@ impl HsomConfig {
             knots: None,
             start_knots: None,
             end_postures: None,
+            traces: None,
             followers: p
                 .levels
                 .iter()

@@ -770,6 +770,133 @@ fn entry_content(
     }
 }
 
+/// How many of the training chunks a node was the BMU of it keeps for traced plans (those
+/// nearest its weights first): a bound on the model's size, not a tuned value.
+pub(crate) const TRACED_CHUNKS: usize = 8;
+/// The most words a level's traced chunks may take (16 MiB); a level whose nodes x
+/// [`TRACED_CHUNKS`] x chunk width would take more keeps none, and its plans are decoded.
+const TRACE_BUDGET: usize = 1 << 22;
+
+/// Words before a traced chunk's bottom events: its index, the bottom node before it, its
+/// demonstration.
+const TRACE_HEAD: usize = 3;
+
+/// Words of one traced chunk of level `l` (memory `k`): its index in its demonstration, the
+/// bottom node before it (its first, for a demonstration's first chunk), the demonstration
+/// (its index among the training demonstrations), its `k^l` bottom
+/// events, then for each level `m` from 1 to `l - 1` the BMUs of its `k^(l-m)` chunks of
+/// level `m`; `None` where that does not fit in `usize`.
+pub(crate) fn trace_width(k: usize, l: usize) -> Option<usize> {
+    (0..=l).try_fold(TRACE_HEAD, |w, m| {
+        let span = k.checked_pow((l - m) as u32)?;
+        // m = 0: the bottom events (k^l); 1..l: the BMUs of level m (k^(l-m)); not level l
+        if m == l {
+            Some(w)
+        } else {
+            w.checked_add(span)
+        }
+    })
+}
+
+/// The words of level `l` (nodes `nodes`, memory `k`) when it keeps traced chunks: 0 where
+/// they would not fit [`TRACE_BUDGET`].
+pub(crate) fn trace_words(k: usize, l: usize, nodes: usize) -> usize {
+    trace_width(k, l)
+        .and_then(|w| w.checked_mul(nodes * TRACED_CHUNKS))
+        .filter(|&n| n <= TRACE_BUDGET)
+        .unwrap_or(0)
+}
+
+/// What the levels were trained on, kept so a plan can replay it (`plan = traced`; a fixed
+/// size, set by the configuration alone): per level l >= 1, per node, up to
+/// [`TRACED_CHUNKS`] of the training chunks it was the BMU of, nearest its weights first (the
+/// exemplar first), each as [`trace_width`] words; `u32::MAX` pads what is not there. Level
+/// 0, and a level over [`TRACE_BUDGET`], keeps none.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Traces {
+    pub(crate) levels: Vec<Vec<u32>>,
+}
+
+impl Traces {
+    /// Flat form for the model file: the number of levels, then per level its word count and
+    /// words.
+    pub(crate) fn to_words(&self) -> Vec<u32> {
+        let mut w = vec![self.levels.len() as u32];
+        for l in &self.levels {
+            w.push(l.len() as u32);
+            w.extend_from_slice(l);
+        }
+        w
+    }
+
+    /// The traces of a model with memory `k` whose levels have `nodes` nodes each, from
+    /// [`Traces::to_words`] (loaded, untrusted): every level sized as the configuration
+    /// sizes it ([`trace_words`]), every bottom node before a chunk a node, every bottom
+    /// event a node or the end, every upper entry a node of its level (or the padding);
+    /// otherwise what is wrong.
+    pub(crate) fn from_words(w: &[u32], k: usize, nodes: &[usize]) -> Result<Traces, String> {
+        let mut it = w.iter().copied();
+        let mut next = |what: &str| it.next().ok_or_else(|| format!("traces end before {what}"));
+        let levels = next("the level count")? as usize;
+        if levels != nodes.len() {
+            return Err(format!(
+                "traces of {levels} levels, the model has {}",
+                nodes.len()
+            ));
+        }
+        let n0 = nodes[0];
+        let mut out = Vec::with_capacity(levels);
+        for (l, &n) in nodes.iter().enumerate() {
+            let len = next("a level's length")? as usize;
+            let want = if l == 0 { 0 } else { trace_words(k, l, n) };
+            if len != want {
+                return Err(format!("level {l} holds {len} words, {want} expected"));
+            }
+            let words = (0..len)
+                .map(|_| next("a word"))
+                .collect::<Result<Vec<u32>, String>>()?;
+            if len > 0 {
+                let width = trace_width(k, l).unwrap_or(usize::MAX);
+                let span = k.pow(l as u32);
+                for (i, slot) in words.chunks(width).enumerate() {
+                    let bad = |what: &str, v: u32| {
+                        format!(
+                            "level {l} node {} chunk {}: {what} {v}",
+                            i / TRACED_CHUNKS,
+                            i % TRACED_CHUNKS
+                        )
+                    };
+                    if slot[1] != u32::MAX && slot[1] as usize >= n0 {
+                        return Err(bad("bottom node before it", slot[1]));
+                    }
+                    if let Some(&e) = slot[TRACE_HEAD..TRACE_HEAD + span]
+                        .iter()
+                        .find(|&&e| e != u32::MAX && e != END && e as usize >= n0)
+                    {
+                        return Err(bad("bottom event", e));
+                    }
+                    let mut at = TRACE_HEAD + span;
+                    for (m, &nm) in nodes.iter().enumerate().take(l).skip(1) {
+                        let count = k.pow((l - m) as u32);
+                        if let Some(&e) = slot[at..at + count]
+                            .iter()
+                            .find(|&&e| e != u32::MAX && e as usize >= nm)
+                        {
+                            return Err(bad(&format!("level {m} entry"), e));
+                        }
+                        at += count;
+                    }
+                }
+            }
+            out.push(words);
+        }
+        if it.next().is_some() {
+            return Err("traces go on past their last level".into());
+        }
+        Ok(Traces { levels: out })
+    }
+}
+
 /// What decoding needs: the model and its encoding.
 struct Decoder<'a> {
     model: &'a Hsom,
@@ -1053,6 +1180,10 @@ impl Hsom {
         // 2. level by level
         let mut items: Vec<Vec<Item>> =
             events.iter().map(|ev| self.event_items(ev, code)).collect();
+        // every level's entries per demonstration, and per level every training chunk's
+        // BMU and distance (for the traced chunks)
+        let mut seqs_by_level: Vec<Vec<Vec<u32>>> = vec![seqs0.clone()];
+        let mut chunk_bmus: Vec<Vec<(usize, f64, usize, usize)>> = vec![Vec::new()];
         let mut x = vec![0.0; lay.dim()];
         let mut mask = vec![true; lay.dim()];
         for l in 1..p.height {
@@ -1109,10 +1240,12 @@ impl Hsom {
             // every node's exemplar: the entries of its nearest training chunk among those
             // it is the BMU of
             let mut best = vec![f64::INFINITY; self.maps[l].len()];
+            let mut bmus = Vec::new();
             for (di, dc) in demo_chunks.iter().enumerate() {
                 for (ci, ch) in dc.iter().enumerate() {
                     ch.input(lay, lay.k, &mut x, &mut mask);
                     let (b, d2) = self.maps[l].bmu(&x);
+                    bmus.push((b, d2, di, ci));
                     if d2 < best[b] {
                         best[b] = d2;
                         for j in 0..lay.k {
@@ -1140,7 +1273,73 @@ impl Hsom {
             };
             self.lookup[l] = lookup_accuracy(&self.followers[l - 1], nodes_below, &seqs);
             items = r.next_items;
+            seqs_by_level.push(
+                items
+                    .iter()
+                    .map(|it| it.iter().map(|i| i.node).collect())
+                    .collect(),
+            );
+            chunk_bmus.push(bmus);
         }
+        self.traces = Some(self.traced_chunks(&seqs_by_level, chunk_bmus));
+    }
+
+    /// The traced chunks ([`Traces`]) from every level's entries per demonstration
+    /// (`seqs[0]`: the bottom events' nodes, then the end) and every training chunk's (BMU,
+    /// distance, demonstration, index) per level.
+    fn traced_chunks(
+        &self,
+        seqs: &[Vec<Vec<u32>>],
+        mut chunk_bmus: Vec<Vec<(usize, f64, usize, usize)>>,
+    ) -> Traces {
+        let k = self.config.params().memory;
+        let mut levels = vec![Vec::new()];
+        for l in 1..self.maps.len() {
+            let nodes = self.maps[l].len();
+            let words = trace_words(k, l, nodes);
+            let Some(width) = trace_width(k, l).filter(|_| words > 0) else {
+                levels.push(Vec::new());
+                continue;
+            };
+            let mut w = vec![u32::MAX; words];
+            let mut kept = vec![0usize; nodes];
+            let mine = chunk_bmus
+                .get_mut(l)
+                .map(std::mem::take)
+                .unwrap_or_default();
+            let mut mine = mine;
+            mine.sort_by(|a, b| a.1.total_cmp(&b.1).then((a.2, a.3).cmp(&(b.2, b.3))));
+            let span = k.pow(l as u32);
+            for (b, _, d, q) in mine {
+                if kept[b] == TRACED_CHUNKS {
+                    continue;
+                }
+                let slot = &mut w[(b * TRACED_CHUNKS + kept[b]) * width..][..width];
+                kept[b] += 1;
+                let bottom = &seqs[0][d];
+                let first = q * span;
+                slot[0] = q as u32;
+                slot[1] = bottom
+                    .get(first.saturating_sub(1))
+                    .copied()
+                    .filter(|&e| e != END)
+                    .unwrap_or(u32::MAX);
+                slot[2] = d as u32;
+                for (i, v) in slot[TRACE_HEAD..TRACE_HEAD + span].iter_mut().enumerate() {
+                    *v = bottom.get(first + i).copied().unwrap_or(u32::MAX);
+                }
+                let mut at = TRACE_HEAD + span;
+                for (m, level) in seqs.iter().enumerate().take(l).skip(1) {
+                    let count = k.pow((l - m) as u32);
+                    for (i, v) in slot[at..at + count].iter_mut().enumerate() {
+                        *v = level[d].get(q * count + i).copied().unwrap_or(u32::MAX);
+                    }
+                    at += count;
+                }
+            }
+            levels.push(w);
+        }
+        Traces { levels }
     }
 
     /// A demonstration's bottom events as level 1's entries, ending with the end.
@@ -1321,6 +1520,8 @@ impl Hsom {
         let init_content = event_content(&self.maps[0], n_init, 0.0, code);
         let mut lists = Lists::new(h, a_part(lay, &init_content));
         let mut plan: VecDeque<(u32, f64, usize)> = VecDeque::new();
+        // the training demonstration the last traced plan came from
+        let mut follow: Option<u32> = None;
         let mut executed: Vec<(usize, f64, usize)> = Vec::new();
         let mut x = vec![0.0; lay.dim()];
         let mut mask = vec![true; lay.dim()];
@@ -1368,6 +1569,10 @@ impl Hsom {
                     plan.push_back((next, self.dwell[next as usize].max(1.0), 0));
                 } else {
                     let done: Vec<usize> = lists.chunk.iter().map(|c| c.len()).collect();
+                    let here: Vec<f64> = match executed.last() {
+                        Some(e) => self.maps[0].weights(e.0)[..s].to_vec(),
+                        None => start[..s].to_vec(),
+                    };
                     let ctx = Planner {
                         lay,
                         code,
@@ -1376,6 +1581,8 @@ impl Hsom {
                         used: &used_levels,
                         by: level,
                         executed: executed.len(),
+                        here: &here,
+                        index: &lists.index,
                     };
                     // the chunk in progress at the top level used is its own match
                     let mut tail = lists.tail.clone();
@@ -1386,17 +1593,27 @@ impl Hsom {
                     } else {
                         self.exemplar_phase[level][matched[level]]
                     };
-                    self.expand(
-                        &ctx,
-                        level,
-                        matched[level],
-                        done[level],
-                        true,
-                        pos,
-                        &mut plan,
-                        &mut lists.expected,
-                        &mut tail,
-                    );
+                    let traced = p.plan == crate::config::Plan::Traced
+                        && self.traced_plan(
+                            &ctx,
+                            level,
+                            &mut follow,
+                            &mut plan,
+                            &mut lists.expected,
+                        );
+                    if !traced {
+                        self.expand(
+                            &ctx,
+                            level,
+                            matched[level],
+                            done[level],
+                            true,
+                            pos,
+                            &mut plan,
+                            &mut lists.expected,
+                            &mut tail,
+                        );
+                    }
                 }
             }
             let planned = plan.pop_front();
@@ -1426,6 +1643,106 @@ impl Hsom {
             }
         }
         (executed, stop)
+    }
+
+    /// The plan of the demonstrated stretch node `matched[level]` stands for, from where the
+    /// reproduction is in its chunk (docs/ALGORITHM.md, passage 5, `plan = traced`): of the
+    /// training chunks the node keeps ([`Traces`]) at the reproduction's place in the gesture
+    /// (the same chunk index), the one whose bottom event before it was nearest where the
+    /// reproduction is (`ctx.here`: the last executed event's node, or the start; for a
+    /// demonstration's first chunk its first event; ties to the one nearest the node's
+    /// weights): the chunk that goes on from the event just executed. Its bottom events go to
+    /// `plan` (at their nodes' learned durations), and the entries of every level below it
+    /// completes to `expected` (the chunk's; the partial match for a chunk already begun).
+    /// False where the node keeps no such chunk: the plan is then decoded.
+    fn traced_plan(
+        &self,
+        ctx: &Planner<'_>,
+        level: usize,
+        follow: &mut Option<u32>,
+        plan: &mut VecDeque<(u32, f64, usize)>,
+        expected: &mut [VecDeque<u32>],
+    ) -> bool {
+        let Some(words) = self
+            .traces
+            .as_ref()
+            .and_then(|t| t.levels.get(level))
+            .filter(|w| !w.is_empty())
+        else {
+            return false;
+        };
+        let (k, s) = (ctx.lay.k, ctx.lay.s);
+        let n0 = self.maps[0].len();
+        let Some(width) = trace_width(k, level) else {
+            return false;
+        };
+        let span = k.pow(level as u32);
+        let n = ctx.matched[level];
+        // bottom events the reproduction has completed in its current chunk of this level
+        let off: usize = (1..=level).map(|m| ctx.done[m] * k.pow(m as u32 - 1)).sum();
+        let index = ctx.index[level];
+        let mut best: Option<(&[u32], (bool, bool, f64))> = None;
+        for (i, slot) in words.chunks_exact(width).enumerate() {
+            let first = slot[TRACE_HEAD + off.min(span - 1)];
+            let before = slot[1] as usize;
+            if slot[0] as usize != index || off >= span || first == u32::MAX || before >= n0 {
+                continue;
+            }
+            // the demonstration followed goes on; otherwise the node matched, otherwise any;
+            // nearest first, then nearest the node's weights
+            let key = (
+                Some(slot[2]) != *follow,
+                i / TRACED_CHUNKS != n,
+                dist2(&self.maps[0].weights(before)[..s], ctx.here),
+            );
+            let better = |b: &(bool, bool, f64)| {
+                key.0
+                    .cmp(&b.0)
+                    .then(key.1.cmp(&b.1))
+                    .then(key.2.total_cmp(&b.2))
+                    .is_lt()
+            };
+            if best.is_none_or(|b| better(&b.1)) {
+                best = Some((slot, key));
+            }
+        }
+        let Some((slot, _)) = best else {
+            *follow = None;
+            return false;
+        };
+        *follow = Some(slot[2]);
+        let mut end = off;
+        for &e in &slot[TRACE_HEAD + off..TRACE_HEAD + span] {
+            if e == u32::MAX || (e != END && e as usize >= n0) {
+                break;
+            }
+            end += 1;
+            if e == END {
+                plan.push_back((END, 0.0, ctx.by));
+                break;
+            }
+            plan.push_back((e, self.dwell[e as usize].max(1.0), ctx.by));
+        }
+        let mut at = TRACE_HEAD + span;
+        for (m, exp) in expected.iter_mut().enumerate().take(level).skip(1) {
+            let count = k.pow((level - m) as u32);
+            let sm = k.pow(m as u32);
+            let mut q = off / sm;
+            while (q + 1) * sm <= end {
+                let e = if q == off / sm && off % sm != 0 {
+                    ctx.matched[m] as u32
+                } else {
+                    slot[at + q]
+                };
+                if e == u32::MAX {
+                    break;
+                }
+                exp.push_back(e);
+                q += 1;
+            }
+            at += count;
+        }
+        true
     }
 
     /// Expand the prediction of node `n` of `level` from slot `from` into timed bottom
@@ -1675,6 +1992,20 @@ impl Hsom {
         executed: &[(usize, f64, usize)],
         stop: StopReason,
     ) -> Reproduction {
+        let timed = self.timed_knots(start, y0, executed, stop);
+        let samples = timed.total.floor() as usize + 1;
+        self.curve(&timed, &vec![0.0; y0.len()], samples, stop)
+    }
+
+    /// The knots of [`Hsom::timed_postures`]: their times, their values per variable (turning
+    /// points kept), the level that planned each, and the events' total duration.
+    fn timed_knots(
+        &self,
+        start: &[f64],
+        y0: &[f64],
+        executed: &[(usize, f64, usize)],
+        stop: StopReason,
+    ) -> Timed {
         let s = y0.len();
         let placed = self.placement(start);
         let knot = |n: usize| placed[n * s..(n + 1) * s].to_vec();
@@ -1711,15 +2042,35 @@ impl Hsom {
             v.push(end);
             by.push(l);
         }
-        let samples = now.floor() as usize + 1;
+        let values = (0..s)
+            .map(|d| {
+                let target: Vec<f64> = v.iter().map(|r| r[d]).collect();
+                turning_points_kept(&t, &target, &spans)
+            })
+            .collect();
+        Timed {
+            t,
+            values,
+            by,
+            total: now,
+        }
+    }
+
+    /// The postures at `samples` samples along the knots `timed`, the curve leaving the first
+    /// knot at the slope `m0` per variable (within the monotone limits of
+    /// [`monotone_cubic_from`]).
+    fn curve(&self, timed: &Timed, m0: &[f64], samples: usize, stop: StopReason) -> Reproduction {
+        let s = timed.values.len();
         let mut out = vec![vec![0.0; s]; samples];
-        for d in 0..s {
-            let target: Vec<f64> = v.iter().map(|r| r[d]).collect();
-            let knots = turning_points_kept(&t, &target, &spans);
-            for (row, y) in out.iter_mut().zip(monotone_cubic(&t, &knots, samples)) {
+        for (d, knots) in timed.values.iter().enumerate() {
+            for (row, y) in out
+                .iter_mut()
+                .zip(monotone_cubic_from(&timed.t, knots, samples, m0[d]))
+            {
                 row[d] = y;
             }
         }
+        let (t, by) = (&timed.t, &timed.by);
         let k = t.len();
         let mut seg = 0;
         let out_by: Vec<usize> = (0..samples)
@@ -1740,11 +2091,68 @@ impl Hsom {
     }
 }
 
+/// Knots of a timed reproduction ([`Hsom::timed_knots`]).
+struct Timed {
+    /// Knot times, samples from the first.
+    t: Vec<f64>,
+    /// Per variable, the value at each knot.
+    values: Vec<Vec<f64>>,
+    /// Per knot, the level that planned its event.
+    by: Vec<usize>,
+    /// The events' total duration, samples.
+    total: f64,
+}
+
+impl Timed {
+    /// The same curve from `now` samples on, starting at `from`: the knots after `now` (by
+    /// half a sample at least), shifted to start there.
+    fn from(&self, now: f64, from: &[f64]) -> Timed {
+        let keep: Vec<usize> = (1..self.t.len())
+            .filter(|&i| self.t[i] - now >= 0.5)
+            .collect();
+        Timed {
+            t: std::iter::once(0.0)
+                .chain(keep.iter().map(|&i| self.t[i] - now))
+                .collect(),
+            values: self
+                .values
+                .iter()
+                .zip(from)
+                .map(|(v, &f)| {
+                    std::iter::once(f)
+                        .chain(keep.iter().map(|&i| v[i]))
+                        .collect()
+                })
+                .collect(),
+            by: std::iter::once(0)
+                .chain(keep.iter().map(|&i| self.by[i]))
+                .collect(),
+            total: (self.total - now).max(0.0),
+        }
+    }
+}
+
 /// The monotone cubic through the knots (t, v) (Fritsch-Carlson tangents, zero at both
 /// ends) at the samples 0..samples.
+#[cfg(test)]
 fn monotone_cubic(t: &[f64], v: &[f64], samples: usize) -> Vec<f64> {
+    monotone_cubic_from(t, v, samples, 0.0)
+}
+
+/// [`monotone_cubic`] with the tangent `m0` at the first knot: kept where it goes the way of
+/// the first segment, at most 3x its secant (Fritsch-Carlson's bound: no overshoot); 0
+/// otherwise.
+fn monotone_cubic_from(t: &[f64], v: &[f64], samples: usize, m0: f64) -> Vec<f64> {
     let k = t.len();
-    let m = monotone_tangents(t, v);
+    let mut m = monotone_tangents(t, v);
+    if k >= 2 && t[1] > t[0] {
+        let secant = (v[1] - v[0]) / (t[1] - t[0]);
+        m[0] = if m0 * secant > 0.0 {
+            m0.signum() * m0.abs().min(3.0 * secant.abs())
+        } else {
+            0.0
+        };
+    }
     let mut seg = 0;
     (0..samples)
         .map(|i| {
@@ -1975,6 +2383,11 @@ struct Planner<'a> {
     by: usize,
     /// Bottom events executed before the plan.
     executed: usize,
+    /// Where the reproduction is: the last executed event's node's posture (the start
+    /// posture before any).
+    here: &'a [f64],
+    /// Per level, the index of its current chunk.
+    index: &'a [usize],
 }
 
 impl Hsom {
@@ -2122,18 +2535,26 @@ impl Hsom {
         }
         let (executed, left) = observed_durations(&norm, &plan, &events);
         let from = &norm[norm.len() - 1];
-        let Some(&(current, _)) = executed.last() else {
+        if executed.is_empty() {
             return Ok(self.plan_events(&y0, from, &[], r));
-        };
+        }
         // the events begun are executed as observed (the one in progress as it will have
         // lasted), and the plan is made again from there; the one in progress goes on first
         let (all, stop) = self.plan_event_list(&y0, &[], &executed, r);
-        let k = executed.len();
-        let rest: Vec<(usize, f64, usize)> = std::iter::once((current, left, all[k - 1].2))
-            .filter(|e| e.1 >= 1.0)
-            .chain(all[k..].iter().copied())
+        // the continuation is the whole plan's curve (the events executed as observed, then
+        // the rest), from where the reading is along it: it starts at the reading's last
+        // posture, moving as the encoders read, and goes on through the plan's knots after
+        // that time (each turning point kept as in the whole plan)
+        let timed = self.timed_knots(&y0, &y0, &all, stop);
+        let now = executed.iter().map(|e| e.1).sum::<f64>() - left;
+        let rest = timed.from(now, from);
+        let v0: Vec<f64> = from
+            .iter()
+            .zip(&norm[norm.len() - 2])
+            .map(|(a, b)| a - b)
             .collect();
-        let mut rep = self.timed_postures(&y0, from, &rest, stop);
+        let samples = rest.total.floor() as usize + 1;
+        let mut rep = self.curve(&rest, &v0, samples, stop);
         rep.truncate(r.max_length);
         Ok(rep)
     }
@@ -2744,6 +3165,59 @@ mod tests {
         assert!(e.contains("initial posture") && e.contains('2'), "{e}");
     }
 
+    /// A traced plan (the default) replays the demonstrated stretch its node stands for and
+    /// goes on along the same demonstration across chunks: from each demonstration's start
+    /// the hierarchy executes exactly that demonstration's bottom events (one excursion, or
+    /// two), at its nodes' learned durations. The traces have a size set by the
+    /// configuration alone. The control: with every traced chunk of the first demonstration
+    /// marked as the second's and its events made the second's, its start makes the second's
+    /// number of excursions, so the plan is the traces' and not the levels' decoding.
+    #[test]
+    fn a_traced_plan_replays_the_demonstration_its_node_stands_for() {
+        let (demos, m) = once_and_twice();
+        assert_eq!(m.config.params().plan, crate::config::Plan::Traced);
+        let r = &m.config.params().reproduction;
+        let tr = m.traces.as_ref().unwrap();
+        let k = m.config.params().memory;
+        assert_eq!(tr.levels[1].len(), trace_words(k, 1, m.maps[1].len()));
+        for d in &demos {
+            let y0 = m.normalise(&d.rows[0]);
+            let (executed, stop) = m.plan_event_list(&y0, &[], &[], r);
+            assert_eq!(stop, StopReason::EndEvent);
+            let demonstrated: Vec<usize> = bottom_events(&m, &m.normalise_rows(&d.rows))
+                .iter()
+                .map(|e| e.0)
+                .collect();
+            let nodes: Vec<usize> = executed.iter().map(|e| e.0).collect();
+            assert_eq!(nodes, demonstrated, "{}", d.source);
+            assert!(executed.iter().all(|e| e.1 == m.dwell[e.0].max(1.0)));
+            let rep = m.reproduce(&d.rows[0]).unwrap();
+            assert_eq!(
+                excursions(&rep.postures),
+                excursions(&d.rows),
+                "{}",
+                d.source
+            );
+        }
+        // the control: the first demonstration's traced chunks replaced by the second's
+        let mut other = m.clone();
+        let width = trace_width(k, 1).unwrap();
+        let words = &mut other.traces.as_mut().unwrap().levels[1];
+        let second: Vec<Vec<u32>> = words
+            .chunks_exact(width)
+            .filter(|c| c[2] == 1)
+            .map(|c| c.to_vec())
+            .collect();
+        for slot in words.chunks_exact_mut(width).filter(|c| c[2] == 0) {
+            if let Some(theirs) = second.iter().find(|c| c[0] == slot[0]) {
+                slot[TRACE_HEAD..].copy_from_slice(&theirs[TRACE_HEAD..]);
+            }
+            slot[2] = 1;
+        }
+        let rep = other.reproduce(&demos[0].rows[0]).unwrap();
+        assert_eq!(excursions(&rep.postures), excursions(&demos[1].rows));
+    }
+
     /// Continued after a prefix, the nearest sequence goes on along the demonstration the
     /// prefix ran along, from where it ended: half of "twice" (its first excursion) is
     /// completed with the second, the prefix of "once" up to its far hold with the way back
@@ -3025,7 +3499,6 @@ mod tests {
         };
         let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| stroke(30 + 5 * i, i as u64)).collect();
         let m = config(3).fit_series(&series).unwrap();
-        let s = 2;
         let ends = m.end_postures.as_ref().unwrap();
         assert_eq!(ends[..m.maps[0].len()].iter().sum::<f64>(), 3.0);
         let end_node = bottom_events(&m, &m.normalise_rows(&series[0]))

@@ -17,11 +17,12 @@ pub(super) const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 pub(super) const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of both formats.
-/// (12 added the start-weighted postures of `consensus = start`; 10 the levels' held-out
+/// (14 added the traces a `plan = traced` replays; 12 the start-weighted postures of
+/// `consensus = start`; 10 the levels' held-out
 /// prediction and lookup accuracies; 9 and 11 were formats of a model of several gestures,
-/// [`super::labels::GESTURES_FORMAT_VERSION`] now 13, so the single-gesture format skips
-/// them.)
-pub const FORMAT_VERSION: u32 = 12;
+/// [`super::labels::GESTURES_FORMAT_VERSION`] now 15, so the single-gesture format skips
+/// them and 13.)
+pub const FORMAT_VERSION: u32 = 14;
 
 /// The longest demonstration a model file may record, samples (a day at 1 kHz): the
 /// reproduction's length cap derives from it.
@@ -165,6 +166,11 @@ impl Hsom {
         b.extend_from_slice(&(ends.len() as u32).to_le_bytes());
         for &v in ends {
             f(&mut b, v);
+        }
+        let traces = self.traces.as_ref().map_or_else(Vec::new, |t| t.to_words());
+        b.extend_from_slice(&(traces.len() as u32).to_le_bytes());
+        for v in traces {
+            b.extend_from_slice(&v.to_le_bytes());
         }
         for c in &self.columns {
             b.extend_from_slice(&(c.len() as u32).to_le_bytes());
@@ -331,6 +337,9 @@ impl Hsom {
         let ne = r.u32("end postures length")? as usize;
         r.need(ne.saturating_mul(8), "end postures")?;
         let ends = r.f64s(ne, "end postures")?;
+        let nt = r.u32("traces length")? as usize;
+        r.need(nt.saturating_mul(4), "traces")?;
+        let traces = r.u32s(nt, "traces")?;
         let mut columns = Vec::with_capacity(state.min(r.remaining() / 4));
         for _ in 0..state {
             let n = r.u32("column name length")? as usize;
@@ -382,6 +391,7 @@ impl Hsom {
                 knots,
                 start,
                 ends,
+                traces,
             },
             path,
         )
@@ -457,6 +467,13 @@ impl Hsom {
             .map(|v| format!(" {v}"))
             .collect();
         let _ = writeln!(s, "end-postures{}", ends.concat());
+        let traces: Vec<String> = self
+            .traces
+            .iter()
+            .flat_map(|t| t.to_words())
+            .map(|v| format!(" {v}"))
+            .collect();
+        let _ = writeln!(s, "traces{}", traces.concat());
         let _ = writeln!(s, "columns {}", self.columns.len());
         for c in &self.columns {
             let _ = writeln!(s, "column {}", c.replace(['\n', '\r'], " "));
@@ -701,6 +718,16 @@ impl Hsom {
                     .map_err(|_| corrupted(format!("bad number {t:?} in \"end-postures\" line")))
             })
             .collect::<Result<_, _>>()?;
+        let tl = next("traces")?;
+        let traces: Vec<u32> = tl
+            .strip_prefix("traces")
+            .ok_or_else(|| corrupted(format!("expected a \"traces\" line, found {tl:.40?}")))?
+            .split_whitespace()
+            .map(|t| {
+                t.parse::<u32>()
+                    .map_err(|_| corrupted(format!("bad number {t:?} in \"traces\" line")))
+            })
+            .collect::<Result<_, _>>()?;
         let nc: Vec<usize> = values(next("columns")?, "columns ", 1, &corrupted)?;
         if nc[0] != state {
             return Err(corrupted(format!(
@@ -819,6 +846,7 @@ impl Hsom {
                 knots,
                 start,
                 ends,
+                traces,
             },
             path,
         )
@@ -979,6 +1007,20 @@ fn build(
             });
         }
     }
+    let traces = if extra.traces.is_empty() {
+        None
+    } else {
+        let nodes: Vec<usize> = maps.iter().map(|m| m.len()).collect();
+        let k = config.params().memory;
+        Some(
+            super::events::Traces::from_words(&extra.traces, k, &nodes).map_err(|why| {
+                PersistError::Corrupted {
+                    path: path.to_path_buf(),
+                    what: format!("traces: {why}"),
+                }
+            })?,
+        )
+    };
     Ok(Hsom {
         config,
         maps,
@@ -1008,6 +1050,7 @@ fn build(
         exemplars: extra.exemplars,
         knots: (!extra.knots.is_empty()).then_some(extra.knots),
         start_knots: extra.start,
+        traces,
         end_postures: (!extra.ends.is_empty()).then_some(extra.ends),
     })
 }
@@ -1039,6 +1082,8 @@ struct Extra {
     exemplar_phase: Vec<Vec<f64>>,
     followers: Vec<Vec<u32>>,
     exemplars: Vec<Vec<u32>>,
+    /// [`super::events::Traces::to_words`] (empty: none stored).
+    traces: Vec<u32>,
 }
 
 pub(super) enum Format {

@@ -357,6 +357,8 @@ pub struct HeldoutJob {
     pub state_length_from_data: bool,
     /// Override the configuration's consensus.
     pub consensus: Option<cosco_hsom::config::Consensus>,
+    /// Override the configuration's plan.
+    pub plan: Option<cosco_hsom::config::Plan>,
     /// Which methods, which results, how many threads.
     pub settings: cosco_hsom::offline::LooSettings,
     /// Where to write every fold's scores as JSON.
@@ -373,6 +375,9 @@ pub fn heldout(job: &HeldoutJob) -> Result<String> {
         steps::check_output(p)?;
     }
     let mut cfg = hsom_config(job.config.as_deref())?;
+    if let Some(p) = job.plan {
+        cfg = cfg.with_plan(p)?;
+    }
     if let Some(c) = job.consensus {
         cfg = cfg.with_consensus(c)?;
     }
