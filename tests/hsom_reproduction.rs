@@ -325,4 +325,8 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     std::fs::write(&path, with_checksum(&text.replace(&traces, &bad_traces))).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("traces") && e.contains("999999"), "{e}");
+    // and a traced model whose traces are gone
+    std::fs::write(&path, with_checksum(&text.replace(&traces, "traces"))).unwrap();
+    let e = Hsom::load(&path).unwrap_err().to_string();
+    assert!(e.contains("traces missing"), "{e}");
 }

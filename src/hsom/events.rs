@@ -1182,7 +1182,7 @@ impl Hsom {
             events.iter().map(|ev| self.event_items(ev, code)).collect();
         // every level's entries per demonstration, and per level every training chunk's
         // BMU and distance (for the traced chunks)
-        let mut seqs_by_level: Vec<Vec<Vec<u32>>> = vec![seqs0.clone()];
+        let mut seqs_by_level: Vec<Vec<Vec<u32>>> = Vec::new();
         let mut chunk_bmus: Vec<Vec<(usize, f64, usize, usize)>> = vec![Vec::new()];
         let mut x = vec![0.0; lay.dim()];
         let mut mask = vec![true; lay.dim()];
@@ -1191,6 +1191,7 @@ impl Hsom {
                 .iter()
                 .map(|it| it.iter().map(|i| i.node).collect())
                 .collect();
+            seqs_by_level.push(seqs.clone());
             let nodes_below = self.maps[l - 1].len();
             if l > 1 {
                 self.followers[l - 1] = followers_table(nodes_below, &seqs);
@@ -1273,20 +1274,16 @@ impl Hsom {
             };
             self.lookup[l] = lookup_accuracy(&self.followers[l - 1], nodes_below, &seqs);
             items = r.next_items;
-            seqs_by_level.push(
-                items
-                    .iter()
-                    .map(|it| it.iter().map(|i| i.node).collect())
-                    .collect(),
-            );
             chunk_bmus.push(bmus);
         }
-        self.traces = Some(self.traced_chunks(&seqs_by_level, chunk_bmus));
+        // kept only where plans replay them
+        self.traces = (p.plan == crate::config::Plan::Traced)
+            .then(|| self.traced_chunks(&seqs_by_level, chunk_bmus));
     }
 
-    /// The traced chunks ([`Traces`]) from every level's entries per demonstration
-    /// (`seqs[0]`: the bottom events' nodes, then the end) and every training chunk's (BMU,
-    /// distance, demonstration, index) per level.
+    /// The traced chunks ([`Traces`]) from the entries per demonstration of every level below
+    /// the top (`seqs[0]`: the bottom events' nodes, then the end) and every training chunk's
+    /// (BMU, distance, demonstration, index) per level.
     fn traced_chunks(
         &self,
         seqs: &[Vec<Vec<u32>>],
@@ -1303,11 +1300,10 @@ impl Hsom {
             };
             let mut w = vec![u32::MAX; words];
             let mut kept = vec![0usize; nodes];
-            let mine = chunk_bmus
+            let mut mine = chunk_bmus
                 .get_mut(l)
                 .map(std::mem::take)
                 .unwrap_or_default();
-            let mut mine = mine;
             mine.sort_by(|a, b| a.1.total_cmp(&b.1).then((a.2, a.3).cmp(&(b.2, b.3))));
             let span = k.pow(l as u32);
             for (b, _, d, q) in mine {
@@ -1681,32 +1677,24 @@ impl Hsom {
         // bottom events the reproduction has completed in its current chunk of this level
         let off: usize = (1..=level).map(|m| ctx.done[m] * k.pow(m as u32 - 1)).sum();
         let index = ctx.index[level];
-        let mut best: Option<(&[u32], (bool, bool, f64))> = None;
-        for (i, slot) in words.chunks_exact(width).enumerate() {
-            let first = slot[TRACE_HEAD + off.min(span - 1)];
-            let before = slot[1] as usize;
-            if slot[0] as usize != index || off >= span || first == u32::MAX || before >= n0 {
-                continue;
-            }
-            // the demonstration followed goes on; otherwise the node matched, otherwise any;
-            // nearest first, then nearest the node's weights
-            let key = (
-                Some(slot[2]) != *follow,
-                i / TRACED_CHUNKS != n,
-                dist2(&self.maps[0].weights(before)[..s], ctx.here),
-            );
-            let better = |b: &(bool, bool, f64)| {
-                key.0
-                    .cmp(&b.0)
-                    .then(key.1.cmp(&b.1))
-                    .then(key.2.total_cmp(&b.2))
-                    .is_lt()
-            };
-            if best.is_none_or(|b| better(&b.1)) {
-                best = Some((slot, key));
-            }
-        }
-        let Some((slot, _)) = best else {
+        let followed = *follow;
+        // the demonstration followed goes on; otherwise the node matched, otherwise any;
+        // nearest first, then nearest the node's weights (the first of equals)
+        let best = words
+            .chunks_exact(width)
+            .enumerate()
+            .filter(|(_, slot)| {
+                slot[0] as usize == index
+                    && off < span
+                    && slot[TRACE_HEAD + off] != u32::MAX
+                    && (slot[1] as usize) < n0
+            })
+            .map(|(i, slot)| {
+                let d = dist2(&self.maps[0].weights(slot[1] as usize)[..s], ctx.here);
+                (slot, Some(slot[2]) != followed, i / TRACED_CHUNKS != n, d)
+            })
+            .min_by(|a, b| a.1.cmp(&b.1).then(a.2.cmp(&b.2)).then(a.3.total_cmp(&b.3)));
+        let Some((slot, ..)) = best else {
             *follow = None;
             return false;
         };

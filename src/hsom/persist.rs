@@ -1007,6 +1007,20 @@ fn build(
             });
         }
     }
+    let p = config.params();
+    let traced =
+        p.algorithm == crate::config::Algorithm::Events && p.plan == crate::config::Plan::Traced;
+    if traced == extra.traces.is_empty() {
+        return Err(PersistError::Corrupted {
+            path: path.to_path_buf(),
+            what: format!(
+                "traces {} for a model whose plan is {}: stored exactly with algorithm = \
+                 events and plan = traced",
+                if traced { "missing" } else { "stored" },
+                if traced { "traced" } else { "not traced" },
+            ),
+        });
+    }
     let traces = if extra.traces.is_empty() {
         None
     } else {
