@@ -517,24 +517,24 @@ fn plan_parses_round_trips_and_names_bad_values() {
     use cosco_hsom::config::Plan;
     let t = std::fs::read_to_string("configs/nao-gestures.xml").unwrap();
     let default = parse_config(&t, "nao-gestures.xml").unwrap();
-    assert_eq!(default.params().plan, Plan::Traced);
+    assert_eq!(default.params().plan, Plan::Decoded);
     // not written: the default
-    let bare = t.replacen("<plan>traced</plan>", "", 1);
+    let bare = t.replacen("<plan>decoded</plan>", "", 1);
     assert_eq!(
         parse_config(&bare, "bare.xml").unwrap().params().plan,
-        Plan::Traced
+        Plan::Decoded
     );
     for (word, expected) in [
-        ("decoded", Plan::Decoded),
-        ("Decoded", Plan::Decoded),
-        ("TRACED", Plan::Traced),
+        ("traced", Plan::Traced),
+        ("Traced", Plan::Traced),
+        ("DECODED", Plan::Decoded),
     ] {
-        let c = parse_config(&t.replacen("traced", word, 1), "ok.xml").unwrap();
+        let c = parse_config(&t.replacen("decoded", word, 1), "ok.xml").unwrap();
         assert_eq!(c.params().plan, expected);
         let again = parse_config(&c.to_xml(), "again.xml").unwrap();
         assert_eq!(c.params(), again.params());
     }
-    match err(&t.replacen("<plan>traced</plan>", "<plan>replayed</plan>", 1)) {
+    match err(&t.replacen("<plan>decoded</plan>", "<plan>replayed</plan>", 1)) {
         ConfigError::Invalid { field, reason, .. } => {
             assert_eq!(field, "plan");
             assert!(reason.contains("traced, decoded"), "{reason}");

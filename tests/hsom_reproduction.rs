@@ -314,7 +314,22 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     std::fs::write(&path, with_checksum(&text.replace(&ends, &bad_ends))).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("end-posture values"), "{e}");
-    // and traces whose last word names a node the level does not have
+    // a model whose plans follow a demonstration keeps its traced chunks in both formats;
+    // traces whose last word names a node the level does not have are refused
+    let traced = recommended_for(2)
+        .with_plan(cosco_hsom::config::Plan::Traced)
+        .unwrap()
+        .fit(&demos)
+        .unwrap();
+    for name in ["t.bin", "t.txt"] {
+        let path = dir.path().join(name);
+        traced.save(&path).unwrap();
+        assert_eq!(Hsom::load(&path).unwrap(), traced, "{name}");
+    }
+    // a decoded model holds none: an empty traces line
+    assert!(text.lines().any(|l| l == "traces"));
+    let path = dir.path().join("t.txt");
+    let text = std::fs::read_to_string(&path).unwrap();
     let traces = text
         .lines()
         .find(|l| l.starts_with("traces "))

@@ -234,14 +234,14 @@ fn cosco_heldout_on_directories_of_gestures() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("one of all, local"));
-    // plans decoded slot by slot: accepted; a bad word is named with the words allowed
+    // plans that follow a demonstration: accepted; a bad word is named with the words allowed
     cosco()
         .arg("--demos")
         .arg(d.join("set/loops"))
         .args([
             "--state-length-from-data",
             "--plan",
-            "decoded",
+            "traced",
             "--no-gmr",
             "--no-height-1",
         ])

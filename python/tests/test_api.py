@@ -188,9 +188,9 @@ def test_heldout_scores_every_method_on_the_same_folds(demos):
         cfg.replace(consensus=word)
     with pytest.raises(ValueError, match="all, local, start"):
         cfg.replace(consensus="nearest")
-    # how the levels' prediction becomes a plan: traced (the default) or decoded
-    assert "<plan>traced</plan>" in cfg.to_xml()
-    assert "<plan>decoded</plan>" in cfg.replace(plan="Decoded").to_xml()
+    # how the levels' prediction becomes a plan: decoded (the default) or traced
+    assert "<plan>decoded</plan>" in cfg.to_xml()
+    assert "<plan>traced</plan>" in cfg.replace(plan="Traced").to_xml()
     with pytest.raises(ValueError, match="traced, decoded"):
         cfg.replace(plan="replayed")
     with pytest.raises(ValueError, match="at least 3 demonstrations"):

@@ -142,10 +142,10 @@ pub enum Plan {
     /// The demonstrated stretch the predicting node stands for: of the training chunks the
     /// node was the BMU of, the one whose demonstration was nearest where the reproduction is,
     /// replayed event by event, and continued along the same demonstration until a level is
-    /// surprised. The default.
+    /// surprised.
     Traced,
     /// Every predicted slot decoded by content, level by level (among the followers of the
-    /// entry before, the node's exemplar first).
+    /// entry before, the node's exemplar first). The default.
     Decoded,
 }
 
@@ -382,7 +382,7 @@ impl HsomParams {
             memory_mode: MemoryMode::Lists,
             normalisation: Normalisation::Global,
             consensus: Consensus::Start,
-            plan: Plan::Traced,
+            plan: Plan::Decoded,
             partial_training: PartialTraining::Skip,
             list_update: ListUpdate::EveryStep,
             change_ratio: 1.0,

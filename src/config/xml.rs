@@ -611,7 +611,7 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
         plan: f.name(
             "plan",
             &raw.plan,
-            Plan::Traced,
+            Plan::Decoded,
             word(&[("traced", Plan::Traced), ("decoded", Plan::Decoded)]),
             "traced, decoded",
         )?,

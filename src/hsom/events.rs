@@ -3153,7 +3153,7 @@ mod tests {
         assert!(e.contains("initial posture") && e.contains('2'), "{e}");
     }
 
-    /// A traced plan (the default) replays the demonstrated stretch its node stands for and
+    /// A traced plan (`plan = traced`) replays the demonstrated stretch its node stands for and
     /// goes on along the same demonstration across chunks: from each demonstration's start
     /// the hierarchy executes exactly that demonstration's bottom events (one excursion, or
     /// two), at its nodes' learned durations. The traces have a size set by the
@@ -3162,8 +3162,12 @@ mod tests {
     /// number of excursions, so the plan is the traces' and not the levels' decoding.
     #[test]
     fn a_traced_plan_replays_the_demonstration_its_node_stands_for() {
-        let (demos, m) = once_and_twice();
-        assert_eq!(m.config.params().plan, crate::config::Plan::Traced);
+        let (demos, _) = once_and_twice();
+        let m = config(2)
+            .with_plan(crate::config::Plan::Traced)
+            .unwrap()
+            .fit(&demos)
+            .unwrap();
         let r = &m.config.params().reproduction;
         let tr = m.traces.as_ref().unwrap();
         let k = m.config.params().memory;
