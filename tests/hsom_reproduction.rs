@@ -340,6 +340,18 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     std::fs::write(&path, with_checksum(&text.replace(&traces, &bad_traces))).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("traces") && e.contains("999999"), "{e}");
+    // so are traces whose first chunk places an event at a non-finite value (NaN's bits):
+    // after the level count, the bottom's and level 1's lengths, the chunk's head (3 words)
+    // and its memory (4) bottom events
+    let mut words: Vec<&str> = traces.split(' ').collect();
+    words[1 + 3 + 3 + 4] = "2143289344";
+    let bad_traces = words.join(" ");
+    std::fs::write(&path, with_checksum(&text.replace(&traces, &bad_traces))).unwrap();
+    let e = Hsom::load(&path).unwrap_err().to_string();
+    assert!(
+        e.contains("traces") && e.contains("posture value 2143289344"),
+        "{e}"
+    );
     // and a traced model whose traces are gone
     std::fs::write(&path, with_checksum(&text.replace(&traces, "traces"))).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();

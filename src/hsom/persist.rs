@@ -17,12 +17,12 @@ pub(super) const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 pub(super) const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of both formats.
-/// (14 added the traces a `plan = traced` replays; 12 the start-weighted postures of
-/// `consensus = start`; 10 the levels' held-out
-/// prediction and lookup accuracies; 9 and 11 were formats of a model of several gestures,
-/// [`super::labels::GESTURES_FORMAT_VERSION`] now 15, so the single-gesture format skips
-/// them and 13.)
-pub const FORMAT_VERSION: u32 = 14;
+/// (16 added to every traced chunk its events' places in the consensus; 14 the traces a
+/// `plan = traced` replays; 12 the start-weighted postures of `consensus = start`; 10 the
+/// levels' held-out prediction and lookup accuracies; 9, 11, 13 and 15 were formats of a
+/// model of several gestures, [`super::labels::GESTURES_FORMAT_VERSION`] now 17, so the
+/// single-gesture format skips them.)
+pub const FORMAT_VERSION: u32 = 16;
 
 /// The longest demonstration a model file may record, samples (a day at 1 kHz): the
 /// reproduction's length cap derives from it.
@@ -1027,11 +1027,15 @@ fn build(
         let nodes: Vec<usize> = maps.iter().map(|m| m.len()).collect();
         let k = config.params().memory;
         Some(
-            super::events::Traces::from_words(&extra.traces, k, &nodes).map_err(|why| {
-                PersistError::Corrupted {
-                    path: path.to_path_buf(),
-                    what: format!("traces: {why}"),
-                }
+            super::events::Traces::from_words(
+                &extra.traces,
+                k,
+                config.params().state_length,
+                &nodes,
+            )
+            .map_err(|why| PersistError::Corrupted {
+                path: path.to_path_buf(),
+                what: format!("traces: {why}"),
             })?,
         )
     };
