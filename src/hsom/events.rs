@@ -95,7 +95,7 @@ pub(super) struct Item {
     pub(super) content: Vec<f64>,
 }
 
-/// Longest sequence [`consensus`] aligns sample by sample: a longer demonstration is aligned
+/// Longest sequence [`aligned_samples`] aligns sample by sample: a longer demonstration is aligned
 /// in blocks of consecutive samples (their means), so that an alignment never takes more
 /// than this squared cells whatever the data (64 MB, tens of milliseconds). Demonstrations of
 /// gestures (the Nao's 250-400 samples, handwriting's 100) are aligned sample by sample.
@@ -107,15 +107,13 @@ pub(crate) const MAX_ALIGNED: usize = 2000;
 /// agree it is each one's own path; where they differ (an apex a little higher in one, a
 /// lane a little to the side) it is their average at that point of the gesture, as
 /// GMM/GMR's regression is, with no time axis: a wave's turning points are aligned with
-/// each other whatever their tempo. Sequences longer than `max_aligned` are aligned in
-/// blocks of `ceil(len / max_aligned)` samples. docs/ALGORITHM.md, passage 6 of the events
-/// extension.
+/// each other whatever their tempo. `aligned`: the demonstrations' alignments
+/// ([`aligned_samples`] of `norm`). docs/ALGORITHM.md, passage 6 of the events extension.
 pub(crate) fn consensus(
     norm: &[Vec<Vec<f64>>],
-    max_aligned: usize,
+    aligned: &Aligned,
     weighing: Consensus,
 ) -> Vec<Vec<Vec<f64>>> {
-    let aligned = aligned_samples(norm, max_aligned);
     let n = norm.len();
     let mut out: Vec<Vec<Vec<f64>>> = norm.to_vec();
     for a in 0..n {
@@ -137,12 +135,15 @@ pub(crate) fn consensus(
     out
 }
 
+/// Per pair of demonstrations (`[a][b]`), per sample of `a`, the mean of `b`'s samples aligned
+/// to it ([`aligned_samples`]).
+type Aligned = Vec<Vec<Option<Vec<Vec<f64>>>>>;
+
 /// `aligned[a][b]`: per sample of the normalised demonstration `a`, the mean of the samples
 /// of `b` aligned to it by DTW (`None` for `b == a`, and where an alignment failed).
 /// Sequences longer than `max_aligned` are aligned in blocks of `ceil(len / max_aligned)`
 /// samples (their means), every sample of a block taking the block's value.
-#[allow(clippy::type_complexity)]
-fn aligned_samples(norm: &[Vec<Vec<f64>>], max_aligned: usize) -> Vec<Vec<Option<Vec<Vec<f64>>>>> {
+fn aligned_samples(norm: &[Vec<Vec<f64>>], max_aligned: usize) -> Aligned {
     let block = |d: &[Vec<f64>]| d.len().div_ceil(max_aligned.max(1)).max(1);
     let blocks: Vec<Vec<Vec<f64>>> = norm
         .iter()
@@ -1945,19 +1946,20 @@ impl Hsom {
         self.knots = None;
         self.start_knots = None;
         self.end_postures = Some(self.ends(norm));
-        self.fit_node_postures(norm);
-        self.place_traced_events(norm);
+        let aligned = aligned_samples(norm, MAX_ALIGNED);
+        self.fit_node_postures(norm, &aligned);
+        self.place_traced_events(norm, &aligned);
     }
 
-    /// The nodes' places of [`Hsom::fit_postures`].
-    fn fit_node_postures(&mut self, norm: &[Vec<Vec<f64>>]) {
+    /// The nodes' places of [`Hsom::fit_postures`] (`aligned`: [`aligned_samples`] of
+    /// `norm`).
+    fn fit_node_postures(&mut self, norm: &[Vec<Vec<f64>>], aligned: &Aligned) {
         if norm.len() < 2 {
             return;
         }
         let s = self.config.params().state_length;
         let weighing = self.config.params().consensus;
         if weighing == Consensus::Start {
-            let aligned = aligned_samples(norm, MAX_ALIGNED);
             let events: Vec<Vec<(usize, f64)>> =
                 norm.iter().map(|d| bottom_events(self, d)).collect();
             let mut count = NodeSums::new(self.maps[0].len(), s);
@@ -1984,7 +1986,7 @@ impl Hsom {
             return;
         }
         let mut sums = NodeSums::new(self.maps[0].len(), s);
-        for (demo, agreed) in norm.iter().zip(consensus(norm, MAX_ALIGNED, weighing)) {
+        for (demo, agreed) in norm.iter().zip(consensus(norm, aligned, weighing)) {
             sums.add(&NodeSums::of(self, &agreed, &bottom_events(self, demo)));
         }
         self.knots = Some(self.smoothed_postures(&sums));
@@ -2002,12 +2004,15 @@ impl Hsom {
     /// event of that demonstration, where a node's place pools every visit to the node, from
     /// wherever in the gesture it came. One value per event: the model keeps it in the
     /// traced chunks at a size set by the configuration.
-    pub(crate) fn event_offsets(&self, norm: &[Vec<Vec<f64>>]) -> Vec<Vec<Vec<f64>>> {
+    pub(crate) fn event_offsets(
+        &self,
+        norm: &[Vec<Vec<f64>>],
+        aligned: &Aligned,
+    ) -> Vec<Vec<(usize, Vec<f64>)>> {
         let s = self.config.params().state_length;
         let agreed: Vec<Vec<Vec<f64>>> = match (&self.start_knots, self.config.params().consensus) {
-            (_, Consensus::Local) => consensus(norm, MAX_ALIGNED, Consensus::Local),
+            (_, Consensus::Local) => consensus(norm, aligned, Consensus::Local),
             (Some(k), _) => {
-                let aligned = aligned_samples(norm, MAX_ALIGNED);
                 let starts: Vec<Vec<f64>> = norm.iter().map(|d| d[0][..s].to_vec()).collect();
                 let refs: Vec<&Vec<f64>> = starts.iter().collect();
                 (0..norm.len())
@@ -2030,7 +2035,7 @@ impl Hsom {
                     })
                     .collect()
             }
-            _ => consensus(norm, MAX_ALIGNED, Consensus::All),
+            _ => consensus(norm, aligned, Consensus::All),
         };
         norm.iter()
             .zip(&agreed)
@@ -2049,7 +2054,7 @@ impl Hsom {
                                 .zip(r.iter())
                                 .for_each(|(a, v)| *a += v / rows.len() as f64);
                         }
-                        m
+                        (n, m)
                     })
                     .collect()
             })
@@ -2060,15 +2065,11 @@ impl Hsom {
     /// normalised demonstrations the traces were made from, once the nodes are placed): each
     /// traced event's offset from its node's place; where the demonstration's events do not
     /// match the traced ones (other demonstrations), none.
-    fn place_traced_events(&mut self, norm: &[Vec<Vec<f64>>]) {
+    fn place_traced_events(&mut self, norm: &[Vec<Vec<f64>>], aligned: &Aligned) {
         let Some(mut traces) = self.traces.take() else {
             return;
         };
-        let own = self.event_offsets(norm);
-        let nodes: Vec<Vec<usize>> = norm
-            .iter()
-            .map(|d| bottom_events(self, d).into_iter().map(|e| e.0).collect())
-            .collect();
+        let own = self.event_offsets(norm, aligned);
         let (k, s) = (
             self.config.params().memory,
             self.config.params().state_length,
@@ -2085,10 +2086,11 @@ impl Hsom {
                     let e = slot[TRACE_HEAD + i];
                     let at = &mut slot[postures + i * s..postures + (i + 1) * s];
                     at.fill(u32::MAX);
-                    let idx = q * span + i;
-                    let same = nodes.get(d).and_then(|n| n.get(idx)) == Some(&(e as usize));
-                    if e != u32::MAX && e != END && same {
-                        for (w, v) in at.iter_mut().zip(&own[d][idx]) {
+                    let Some((n, offset)) = own.get(d).and_then(|o| o.get(q * span + i)) else {
+                        continue;
+                    };
+                    if *n as u32 == e {
+                        for (w, v) in at.iter_mut().zip(offset) {
                             *w = (*v as f32).to_bits();
                         }
                     }
@@ -2605,7 +2607,10 @@ impl Hsom {
     /// length where the node has none); with `plan = traced`, each at that event's place in
     /// the consensus of `norm` ([`Hsom::event_postures`]), as a traced plan places it.
     fn followed(&self, norm: &[Vec<Vec<f64>>], d: usize, after: Option<f64>) -> Vec<Step<usize>> {
-        let own = self.traces.is_some().then(|| self.event_offsets(norm));
+        let own = self
+            .traces
+            .is_some()
+            .then(|| self.event_offsets(norm, &aligned_samples(norm, MAX_ALIGNED)));
         let mut begun = 0.0;
         bottom_events(self, &norm[d])
             .into_iter()
@@ -2617,7 +2622,7 @@ impl Hsom {
             })
             .map(|(i, (n, len))| {
                 let learned = self.dwell.get(n).copied().unwrap_or(0.0);
-                let at = own.as_ref().map(|o| o[d][i].clone());
+                let at = own.as_ref().map(|o| o[d][i].1.clone());
                 (n, if learned > 0.0 { learned } else { len }, 0, at)
             })
             .collect()
@@ -2963,7 +2968,11 @@ mod tests {
         let (a, b) = (bump(5, 10, 1.0), bump(20, 25, 2.0));
         let top = |d: &[Vec<f64>]| d.iter().map(|r| r[0]).fold(f64::MIN, f64::max);
         for max_aligned in [MAX_ALIGNED, 16] {
-            let c = consensus(&[a.clone(), b.clone()], max_aligned, Consensus::All);
+            let c = consensus(
+                &[a.clone(), b.clone()],
+                &aligned_samples(&[a.clone(), b.clone()], max_aligned),
+                Consensus::All,
+            );
             assert_eq!((c[0].len(), c[1].len()), (a.len(), b.len()));
             // each consensus path's apex lies between the two apexes (1 and 2), toward the
             // other's: the higher apex aligned to the lower one's single top sample gives
@@ -2981,7 +2990,11 @@ mod tests {
         }
         // one demonstration is its own consensus
         assert_eq!(
-            consensus(std::slice::from_ref(&a), MAX_ALIGNED, Consensus::All),
+            consensus(
+                std::slice::from_ref(&a),
+                &aligned_samples(std::slice::from_ref(&a), MAX_ALIGNED),
+                Consensus::All
+            ),
             vec![a]
         );
     }
@@ -2993,8 +3006,16 @@ mod tests {
         let route =
             |y: f64| -> Vec<Vec<f64>> { (0..30).map(|i| vec![i as f64 / 29.0, y]).collect() };
         let demos = [route(0.0), route(0.25), route(8.0)];
-        let all = consensus(&demos, MAX_ALIGNED, Consensus::All);
-        let local = consensus(&demos, MAX_ALIGNED, Consensus::Local);
+        let all = consensus(
+            &demos,
+            &aligned_samples(&demos, MAX_ALIGNED),
+            Consensus::All,
+        );
+        let local = consensus(
+            &demos,
+            &aligned_samples(&demos, MAX_ALIGNED),
+            Consensus::Local,
+        );
         for t in 0..30 {
             // all: each route pulled to the mean of the three (y = 2.75)
             assert!((all[0][t][1] - 2.75).abs() < 1e-9, "{:?}", all[0][t]);
@@ -3009,8 +3030,16 @@ mod tests {
         // local is all
         let one_mode = [route(0.0), route(0.25), route(0.5)];
         assert_eq!(
-            consensus(&one_mode, MAX_ALIGNED, Consensus::Local),
-            consensus(&one_mode, MAX_ALIGNED, Consensus::All)
+            consensus(
+                &one_mode,
+                &aligned_samples(&one_mode, MAX_ALIGNED),
+                Consensus::Local
+            ),
+            consensus(
+                &one_mode,
+                &aligned_samples(&one_mode, MAX_ALIGNED),
+                Consensus::All
+            )
         );
         // weights: 1 within reach, 0.018 at three times the reach, 0 when another
         // demonstration lies exactly here and this one does not
