@@ -542,3 +542,29 @@ fn plan_parses_round_trips_and_names_bad_values() {
         e => panic!("{e}"),
     }
 }
+
+/// tests/configs/traced-finer-events.xml, measured beside the recommended configuration in
+/// docs/CONFIG.md (`changeRatio`), is that configuration with exactly `plan` and `changeRatio`
+/// changed: the comparison it documents stays one of two settings.
+#[test]
+fn the_finer_events_configuration_is_the_recommended_one_with_two_settings_changed() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let rec = load_config(&root.join("configs/nao-gestures.xml"))
+        .unwrap()
+        .into_params();
+    let fine = load_config(&root.join("tests/configs/traced-finer-events.xml"))
+        .unwrap()
+        .into_params();
+    assert_eq!(
+        (rec.plan, rec.change_ratio),
+        (cosco_hsom::config::Plan::Decoded, 0.6)
+    );
+    assert_eq!(
+        (fine.plan, fine.change_ratio),
+        (cosco_hsom::config::Plan::Traced, 0.8)
+    );
+    let mut same = fine.clone();
+    same.plan = rec.plan;
+    same.change_ratio = rec.change_ratio;
+    assert_eq!(same, rec);
+}
