@@ -534,6 +534,220 @@ impl ConfigStudy {
     }
 }
 
+/// What the held-out gates of issue 8 (its "How it is judged") need of one
+/// (gesture, seed) set: the hierarchy's and GMM/GMR's means over the same folds, and per
+/// fold the swings counted (hierarchy, held-out demonstration, nearest sequence).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GateRow {
+    /// Gesture name.
+    pub gesture: String,
+    /// Seed of the demonstrations.
+    pub seed: u64,
+    /// CoSCo-HSOM, means over every fold.
+    pub hsom: HeldOutSummary,
+    /// (CoSCo-HSOM, GMM/GMR) over the folds where GMM/GMR ran.
+    pub paired: Option<(HeldOutSummary, HeldOutSummary)>,
+    /// Per fold: (the hierarchy's swings, the held-out demonstration's, the nearest
+    /// sequence's when it ran).
+    pub swings: Vec<(usize, usize, Option<usize>)>,
+}
+
+impl GateRow {
+    /// The gate row of a study row.
+    pub fn of(r: &StudyRow) -> GateRow {
+        GateRow {
+            gesture: r.gesture.clone(),
+            seed: r.seed,
+            hsom: r.heldout.hsom.clone(),
+            paired: r.heldout.paired(),
+            swings: r
+                .heldout
+                .folds
+                .iter()
+                .map(|f| {
+                    (
+                        f.hsom.swings.reproduction,
+                        f.hsom.swings.demo,
+                        f.sequence.as_ref().map(|s| s.swings.reproduction),
+                    )
+                })
+                .collect(),
+        }
+    }
+}
+
+/// Demonstrated large swings per fold, on average, from which a gesture's count is a gate
+/// (the wave: 6 half-swings; the other gestures 0-1).
+pub const REPEATED_SWINGS: f64 = 2.0;
+
+/// Folds of one repeated gesture whose swings match the held-out demonstration's.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SwingGate {
+    /// Gesture name.
+    pub gesture: String,
+    /// Folds where the hierarchy swings exactly as the held-out demonstration.
+    pub hierarchy: usize,
+    /// The same for the nearest sequence (`None` when it did not run on every fold).
+    pub sequence: Option<usize>,
+    /// Folds.
+    pub folds: usize,
+}
+
+/// The held-out gates of issue 8 over one configuration's (gesture, seed) sets.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Gates {
+    /// (gesture, seed) sets.
+    pub sets: usize,
+    /// Medians over the sets where GMM/GMR ran of the hierarchy's and GMM/GMR's joint DTW
+    /// (rad/step) on the same folds: the goal is at most GMM/GMR's, 1.1x at the very worst.
+    pub joint_dtw: Option<(f64, f64)>,
+    /// The same for the wrist-path DTW (mm/step).
+    pub wrist_dtw: Option<(f64, f64)>,
+    /// Median duration ratio (the gate: 0.85-1.15).
+    pub duration_ratio: Option<f64>,
+    /// Sets whose mean velocity reversals exceed the demonstrations' mean + 1.
+    pub reversals_above: Vec<(String, u64)>,
+    /// Sets whose normalised jerk exceeds 2x the demonstrations'.
+    pub jerk_above: Vec<(String, u64)>,
+    /// Per gesture whose demonstrations swing at least [`REPEATED_SWINGS`] times on
+    /// average: the folds that keep the count.
+    pub swings: Vec<SwingGate>,
+}
+
+impl Gates {
+    /// The gates over `rows`.
+    pub fn of(rows: &[GateRow]) -> Gates {
+        let paired: Vec<&(HeldOutSummary, HeldOutSummary)> =
+            rows.iter().filter_map(|r| r.paired.as_ref()).collect();
+        let both = |f: fn(&HeldOutSummary) -> Option<f64>| {
+            let h = median(paired.iter().filter_map(|(h, _)| f(h)))?;
+            let g = median(paired.iter().filter_map(|(_, g)| f(g)))?;
+            Some((h, g))
+        };
+        let mut gestures: Vec<&str> = Vec::new();
+        for r in rows {
+            if !gestures.contains(&r.gesture.as_str()) {
+                gestures.push(&r.gesture);
+            }
+        }
+        let swings = gestures
+            .iter()
+            .filter_map(|g| {
+                let folds: Vec<&(usize, usize, Option<usize>)> = rows
+                    .iter()
+                    .filter(|r| r.gesture == *g)
+                    .flat_map(|r| &r.swings)
+                    .collect();
+                let demo = folds.iter().map(|f| f.1 as f64).sum::<f64>() / folds.len() as f64;
+                (!folds.is_empty() && demo >= REPEATED_SWINGS).then(|| SwingGate {
+                    gesture: g.to_string(),
+                    hierarchy: folds.iter().filter(|f| f.0 == f.1).count(),
+                    sequence: folds
+                        .iter()
+                        .map(|f| f.2.map(|s| usize::from(s == f.1)))
+                        .sum::<Option<usize>>(),
+                    folds: folds.len(),
+                })
+            })
+            .collect();
+        let above = |f: &dyn Fn(&HeldOutSummary) -> bool| {
+            rows.iter()
+                .filter(|r| f(&r.hsom))
+                .map(|r| (r.gesture.clone(), r.seed))
+                .collect()
+        };
+        Gates {
+            sets: rows.len(),
+            joint_dtw: both(|s| Some(s.joint_dtw_rad_per_step)),
+            wrist_dtw: both(|s| s.wrist_dtw_mm),
+            duration_ratio: median(rows.iter().map(|r| r.hsom.duration_ratio)),
+            reversals_above: above(&|s| s.velocity_reversals > s.demo_velocity_reversals + 1.0),
+            jerk_above: above(&|s| match (s.normalized_jerk, s.demo_normalized_jerk) {
+                (Some(j), Some(d)) => j > 2.0 * d,
+                _ => false,
+            }),
+            swings,
+        }
+    }
+
+    /// The gates as a Markdown list, each with its figure and whether it is met.
+    pub fn to_markdown(&self) -> String {
+        let mut md = String::new();
+        let fidelity = |what: &str, unit: &str, digits: usize, v: Option<(f64, f64)>| match v {
+            Some((h, g)) if g > 0.0 => {
+                let r = h / g;
+                let verdict = if r <= 1.0 {
+                    "met"
+                } else if r <= 1.1 {
+                    "within 1.1x, not at or below"
+                } else {
+                    "not met"
+                };
+                format!(
+                    "- {what}: median {h:.digits$} {unit} against GMM/GMR's {g:.digits$} on the same \
+                     folds ({r:.2}x; at or below, 1.1x at the very worst): {verdict}\n"
+                )
+            }
+            _ => format!("- {what}: GMM/GMR did not run\n"),
+        };
+        md.push_str(&fidelity("joint DTW", "rad/step", 4, self.joint_dtw));
+        md.push_str(&fidelity("wrist-path DTW", "mm/step", 2, self.wrist_dtw));
+        let _ = writeln!(
+            md,
+            "- timing: median duration ratio {} (0.85-1.15): {}",
+            number(self.duration_ratio, 2),
+            match self.duration_ratio {
+                Some(d) if (0.85..=1.15).contains(&d) => "met",
+                Some(_) => "not met",
+                None => "n/a",
+            }
+        );
+        let list = |sets: &[(String, u64)]| {
+            if sets.is_empty() {
+                "none: met".to_string()
+            } else {
+                let named: Vec<String> = sets.iter().map(|(g, s)| format!("{g} {s}")).collect();
+                format!("{} of {} sets: {}", sets.len(), self.sets, named.join(", "))
+            }
+        };
+        let _ = writeln!(
+            md,
+            "- velocity reversals above the demonstrations' mean + 1: {}",
+            list(&self.reversals_above)
+        );
+        let _ = writeln!(
+            md,
+            "- normalised jerk above 2x the demonstrations': {}",
+            list(&self.jerk_above)
+        );
+        for g in &self.swings {
+            let seq = g
+                .sequence
+                .map_or(String::new(), |s| format!(" (the nearest sequence {s})"));
+            let _ = writeln!(
+                md,
+                "- {}: the held-out demonstration's swing count kept on {} of {} folds{seq}: {}",
+                g.gesture,
+                g.hierarchy,
+                g.folds,
+                if g.hierarchy == g.folds {
+                    "met"
+                } else {
+                    "not met"
+                }
+            );
+        }
+        md
+    }
+}
+
+impl ConfigStudy {
+    /// The gates of issue 8 over this configuration's sets.
+    pub fn gates(&self) -> Gates {
+        Gates::of(&self.rows.iter().map(GateRow::of).collect::<Vec<_>>())
+    }
+}
+
 impl Study {
     /// Every configuration's tables in Markdown.
     pub fn to_markdown(&self, in_sample: bool) -> String {
@@ -554,6 +768,13 @@ impl Study {
                  prediction accuracy / lookup-table accuracy.\n"
             );
             md.push_str(&c.levels_table());
+            let _ = writeln!(
+                md,
+                "\nThe held-out gates of issue 8 (its \"How it is judged\") over these {} \
+                 sets:\n",
+                c.rows.len()
+            );
+            md.push_str(&c.gates().to_markdown());
             md.push('\n');
         }
         md
@@ -593,6 +814,107 @@ mod tests {
         assert_eq!(g[0].name, "wave");
         let e = parse_gestures("wave,dance").unwrap_err().to_string();
         assert!(e.contains("'dance'") && e.contains("reading-watch"), "{e}");
+    }
+
+    /// A summary with the given joint DTW, reversals (reproduction, demonstrations) and
+    /// jerk (reproduction, demonstrations); the rest plain.
+    fn summary(dtw: f64, rev: (f64, f64), jerk: (f64, f64)) -> HeldOutSummary {
+        HeldOutSummary {
+            folds: 2,
+            joint_dtw_rad_per_step: dtw,
+            wrist_dtw_mm: Some(10.0 * dtw),
+            apex_error_rad: 0.1,
+            final_error_rad: 0.01,
+            duration_ratio: 1.0,
+            normalized_jerk: Some(jerk.0),
+            velocity_reversals: rev.0,
+            demo_normalized_jerk: Some(jerk.1),
+            demo_velocity_reversals: rev.1,
+            swings: 0.0,
+            demo_swings: 0.0,
+        }
+    }
+
+    fn row(
+        gesture: &str,
+        seed: u64,
+        hsom: HeldOutSummary,
+        gmr: f64,
+        swings: &[(usize, usize)],
+    ) -> GateRow {
+        GateRow {
+            gesture: gesture.into(),
+            seed,
+            paired: Some((hsom.clone(), summary(gmr, (4.0, 4.0), (100.0, 100.0)))),
+            hsom,
+            swings: swings.iter().map(|&(r, d)| (r, d, Some(d))).collect(),
+        }
+    }
+
+    /// The gates name every set that fails one, and a control that breaks each (reversals
+    /// above, jerk above, a lost swing, a far reproduction) fails it.
+    #[test]
+    fn gates_name_the_sets_that_fail_and_the_controls_fail_them() {
+        let good = vec![
+            row(
+                "wave",
+                1,
+                summary(0.10, (10.0, 10.0), (150.0, 100.0)),
+                0.10,
+                &[(6, 6), (6, 6)],
+            ),
+            row(
+                "wave",
+                2,
+                summary(0.12, (10.5, 10.0), (180.0, 100.0)),
+                0.12,
+                &[(6, 6), (4, 4)],
+            ),
+            row(
+                "salute",
+                1,
+                summary(0.08, (6.0, 5.5), (90.0, 100.0)),
+                0.09,
+                &[(0, 0), (1, 0)],
+            ),
+        ];
+        let g = Gates::of(&good);
+        assert_eq!(g.sets, 3);
+        assert_eq!(g.joint_dtw, Some((0.10, 0.10)));
+        assert!(g.reversals_above.is_empty() && g.jerk_above.is_empty());
+        // salute's demonstrations do not swing: no count gate for it
+        assert_eq!(
+            g.swings,
+            vec![SwingGate {
+                gesture: "wave".into(),
+                hierarchy: 4,
+                sequence: Some(4),
+                folds: 4
+            }]
+        );
+        let md = g.to_markdown();
+        assert!(md.contains("1.00x") && md.contains("4 of 4 folds"), "{md}");
+        assert!(!md.contains("not met"), "{md}");
+        // the controls: one set each above the reversal and the jerk gates, a swing lost, and
+        // every reproduction 20 % farther than GMM/GMR
+        let mut bad = good.clone();
+        bad[0].hsom.velocity_reversals = 11.5;
+        bad[1].hsom.normalized_jerk = Some(201.0);
+        bad[1].swings[0].0 = 5;
+        for r in &mut bad {
+            let (h, g) = r.paired.as_mut().unwrap();
+            h.joint_dtw_rad_per_step = 1.2 * g.joint_dtw_rad_per_step;
+        }
+        let g = Gates::of(&bad);
+        assert_eq!(g.reversals_above, vec![("wave".to_string(), 1)]);
+        assert_eq!(g.jerk_above, vec![("wave".to_string(), 2)]);
+        assert_eq!(g.swings[0].hierarchy, 3);
+        let md = g.to_markdown();
+        assert!(md.contains("1.20x") && md.contains("not met"), "{md}");
+        assert!(
+            md.contains("1 of 3 sets: wave 1") && md.contains("1 of 3 sets: wave 2"),
+            "{md}"
+        );
     }
 
     #[test]
