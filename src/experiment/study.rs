@@ -780,9 +780,20 @@ impl Study {
         md
     }
 
-    /// Write every number as JSON to `path`, atomically.
+    /// Write every number as JSON to `path`, atomically: the study, and `gates`, each
+    /// configuration's [`Gates`] in the order of `configs`.
     pub fn write_json(&self, path: &Path) -> std::io::Result<()> {
-        let json = serde_json::to_vec_pretty(self).map_err(std::io::Error::other)?;
+        #[derive(Serialize)]
+        struct WithGates<'a> {
+            #[serde(flatten)]
+            study: &'a Study,
+            gates: Vec<Gates>,
+        }
+        let out = WithGates {
+            study: self,
+            gates: self.configs.iter().map(ConfigStudy::gates).collect(),
+        };
+        let json = serde_json::to_vec_pretty(&out).map_err(std::io::Error::other)?;
         write_atomic(path, &json)
     }
 }
@@ -915,6 +926,29 @@ mod tests {
             md.contains("1 of 3 sets: wave 1") && md.contains("1 of 3 sets: wave 2"),
             "{md}"
         );
+    }
+
+    /// The JSON holds the study's fields and, beside them, one gates entry per configuration.
+    #[test]
+    fn the_json_holds_the_gates_beside_the_study() {
+        let study = Study {
+            count: 4,
+            noise: 0.001,
+            transition: "linear".into(),
+            configs: vec![ConfigStudy {
+                config: "a.xml".into(),
+                rows: Vec::new(),
+            }],
+        };
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("study.json");
+        study.write_json(&path).unwrap();
+        let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+        assert_eq!(v["count"], 4);
+        assert_eq!(v["configs"][0]["config"], "a.xml");
+        assert_eq!(v["gates"].as_array().unwrap().len(), 1);
+        assert_eq!(v["gates"][0]["sets"], 0);
+        assert!(v["gates"][0]["joint_dtw"].is_null());
     }
 
     #[test]
