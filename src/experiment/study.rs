@@ -435,6 +435,17 @@ fn columns(in_sample: bool) -> Vec<Column> {
     c
 }
 
+/// The distinct `names`, in the order they first appear.
+fn first_seen<'a>(names: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
+    let mut out: Vec<&str> = Vec::new();
+    for n in names {
+        if !out.contains(&n) {
+            out.push(n);
+        }
+    }
+    out
+}
+
 fn number(v: Option<f64>, digits: usize) -> String {
     match v {
         Some(v) if v.is_finite() => format!("{v:.digits$}"),
@@ -481,12 +492,7 @@ impl ConfigStudy {
         for r in &self.rows {
             line(&mut t, &r.gesture, &r.seed.to_string(), &[r], false);
         }
-        let mut gestures: Vec<&str> = Vec::new();
-        for r in &self.rows {
-            if !gestures.contains(&r.gesture.as_str()) {
-                gestures.push(&r.gesture);
-            }
-        }
+        let gestures = first_seen(self.rows.iter().map(|r| r.gesture.as_str()));
         for g in &gestures {
             let rows: Vec<&StudyRow> = self.rows.iter().filter(|r| r.gesture == *g).collect();
             line(&mut t, &format!("**{g}**"), "median", &rows, true);
@@ -624,12 +630,7 @@ impl Gates {
             let g = median(paired.iter().filter_map(|(_, g)| f(g)))?;
             Some((h, g))
         };
-        let mut gestures: Vec<&str> = Vec::new();
-        for r in rows {
-            if !gestures.contains(&r.gesture.as_str()) {
-                gestures.push(&r.gesture);
-            }
-        }
+        let gestures = first_seen(rows.iter().map(|r| r.gesture.as_str()));
         let swings = gestures
             .iter()
             .filter_map(|g| {
