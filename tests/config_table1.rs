@@ -513,6 +513,45 @@ fn consensus_weighing_parses_round_trips_and_names_bad_values() {
 }
 
 #[test]
+fn alignment_parses_round_trips_and_names_bad_values() {
+    use cosco_hsom::config::Alignment;
+    let t = std::fs::read_to_string("configs/nao-gestures.xml").unwrap();
+    // not written: the default
+    assert!(!t.contains("<alignment>"));
+    let default = parse_config(&t, "nao-gestures.xml").unwrap();
+    assert_eq!(default.params().alignment, Alignment::Stepped);
+    let with = |word: &str| {
+        t.replacen(
+            "<normalisation>global</normalisation>",
+            &format!("<normalisation>global</normalisation><alignment>{word}</alignment>"),
+            1,
+        )
+    };
+    for (word, expected) in [
+        ("smooth", Alignment::Smooth),
+        ("Smooth", Alignment::Smooth),
+        ("STEPPED", Alignment::Stepped),
+    ] {
+        let c = parse_config(&with(word), "ok.xml").unwrap();
+        assert_eq!(c.params().alignment, expected);
+        let again = parse_config(&c.to_xml(), "again.xml").unwrap();
+        assert_eq!(c.params(), again.params());
+    }
+    match err(&with("linear")) {
+        ConfigError::Invalid {
+            field,
+            value,
+            reason,
+            ..
+        } => {
+            assert_eq!((field.as_str(), value.as_str()), ("alignment", "linear"));
+            assert!(reason.contains("stepped, smooth"), "{reason}");
+        }
+        e => panic!("{e}"),
+    }
+}
+
+#[test]
 fn plan_parses_round_trips_and_names_bad_values() {
     use cosco_hsom::config::Plan;
     let t = std::fs::read_to_string("configs/nao-gestures.xml").unwrap();
@@ -544,10 +583,12 @@ fn plan_parses_round_trips_and_names_bad_values() {
 }
 
 /// tests/configs/traced-finer-events.xml, measured beside the recommended configuration in
-/// docs/CONFIG.md (`changeRatio`), is that configuration with exactly `plan` and `changeRatio`
-/// changed: the comparison it documents stays one of two settings.
+/// docs/CONFIG.md (`changeRatio`, `alignment`), is that configuration with exactly `plan`,
+/// `changeRatio` and `alignment` changed: the comparison it documents stays one of three
+/// settings.
 #[test]
-fn the_finer_events_configuration_is_the_recommended_one_with_two_settings_changed() {
+fn the_finer_events_configuration_is_the_recommended_one_with_three_settings_changed() {
+    use cosco_hsom::config::{Alignment, Plan};
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let rec = load_config(&root.join("configs/nao-gestures.xml"))
         .unwrap()
@@ -556,15 +597,16 @@ fn the_finer_events_configuration_is_the_recommended_one_with_two_settings_chang
         .unwrap()
         .into_params();
     assert_eq!(
-        (rec.plan, rec.change_ratio),
-        (cosco_hsom::config::Plan::Decoded, 0.6)
+        (rec.plan, rec.change_ratio, rec.alignment),
+        (Plan::Decoded, 0.6, Alignment::Stepped)
     );
     assert_eq!(
-        (fine.plan, fine.change_ratio),
-        (cosco_hsom::config::Plan::Traced, 0.8)
+        (fine.plan, fine.change_ratio, fine.alignment),
+        (Plan::Traced, 0.8, Alignment::Smooth)
     );
     let mut same = fine.clone();
     same.plan = rec.plan;
     same.change_ratio = rec.change_ratio;
+    same.alignment = rec.alignment;
     assert_eq!(same, rec);
 }

@@ -234,27 +234,33 @@ fn cosco_heldout_on_directories_of_gestures() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("one of all, local"));
-    // plans that follow a demonstration: accepted; a bad word is named with the words allowed
-    cosco()
-        .arg("--demos")
-        .arg(d.join("set/loops"))
-        .args([
-            "--state-length-from-data",
-            "--plan",
-            "traced",
-            "--no-gmr",
-            "--no-height-1",
-        ])
-        .assert()
-        .success()
-        .stdout(predicate::str::contains("| loops | 3 |"));
-    cosco()
-        .arg("--demos")
-        .arg(d.join("set/loops"))
-        .args(["--plan", "replay"])
-        .assert()
-        .failure()
-        .stderr(predicate::str::contains("one of traced, decoded"));
+    // plans that follow a demonstration, the consensus read along a smooth warp: accepted; a
+    // bad word is named with the words allowed
+    for (flag, word, bad, allowed) in [
+        ("--plan", "traced", "replay", "one of traced, decoded"),
+        ("--alignment", "smooth", "linear", "one of stepped, smooth"),
+    ] {
+        cosco()
+            .arg("--demos")
+            .arg(d.join("set/loops"))
+            .args([
+                "--state-length-from-data",
+                flag,
+                word,
+                "--no-gmr",
+                "--no-height-1",
+            ])
+            .assert()
+            .success()
+            .stdout(predicate::str::contains("| loops | 3 |"));
+        cosco()
+            .arg("--demos")
+            .arg(d.join("set/loops"))
+            .args([flag, bad])
+            .assert()
+            .failure()
+            .stderr(predicate::str::contains(allowed));
+    }
     // and `cosco train` adapts to the data the same way
     Command::cargo_bin("cosco")
         .unwrap()

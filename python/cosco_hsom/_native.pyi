@@ -32,6 +32,7 @@ class Config:
         training_steps: Optional[int] = None,
         consensus: Optional[str] = None,
         plan: Optional[str] = None,
+        alignment: Optional[str] = None,
     ) -> "Config":
         """A copy with some settings changed, validated again."""
     def to_xml(self) -> str:

@@ -277,7 +277,8 @@ impl Config {
     }
 
     /// A copy with some settings changed, validated again.
-    #[pyo3(signature = (*, seed = None, state_length = None, training_steps = None, consensus = None, plan = None))]
+    #[pyo3(signature = (*, seed = None, state_length = None, training_steps = None, consensus = None, plan = None, alignment = None))]
+    #[allow(clippy::too_many_arguments)]
     fn replace(
         &self,
         seed: Option<u64>,
@@ -285,10 +286,14 @@ impl Config {
         training_steps: Option<usize>,
         consensus: Option<&str>,
         plan: Option<&str>,
+        alignment: Option<&str>,
     ) -> PyResult<Self> {
         let mut p = self.inner.params().clone();
         if let Some(c) = consensus {
             p.consensus = c.parse().map_err(PyValueError::new_err)?;
+        }
+        if let Some(a) = alignment {
+            p.alignment = a.parse().map_err(PyValueError::new_err)?;
         }
         if let Some(w) = plan {
             p.plan = w.parse().map_err(PyValueError::new_err)?;

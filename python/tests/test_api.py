@@ -193,6 +193,11 @@ def test_heldout_scores_every_method_on_the_same_folds(demos):
     assert "<plan>traced</plan>" in cfg.replace(plan="Traced").to_xml()
     with pytest.raises(ValueError, match="traced, decoded"):
         cfg.replace(plan="replayed")
+    # how the consensus reads one demonstration along another: stepped (the default) or smooth
+    assert "<alignment>stepped</alignment>" in cfg.to_xml()
+    assert "<alignment>smooth</alignment>" in cfg.replace(alignment="Smooth").to_xml()
+    with pytest.raises(ValueError, match="stepped, smooth"):
+        cfg.replace(alignment="linear")
     with pytest.raises(ValueError, match="at least 3 demonstrations"):
         cosco_hsom.heldout(cfg, demos[:2])
     with pytest.raises(ValueError, match="stateLength is 6"):

@@ -153,6 +153,11 @@ enum Command {
         /// its demonstration) or `decoded` (slot by slot, by content).
         #[arg(long)]
         plan: Option<cosco_hsom::config::Plan>,
+        /// How the consensus reads one demonstration along another, instead of the
+        /// configuration's: `stepped` (each sample the mean of those aligned to it) or `smooth`
+        /// (the DTW warp's stairs replaced by lines).
+        #[arg(long)]
+        alignment: Option<cosco_hsom::config::Alignment>,
         /// Leave out the configuration at height 1.
         #[arg(long)]
         no_height_1: bool,
@@ -326,6 +331,7 @@ fn run(cli: Cli) -> Result<()> {
             state_length_from_data,
             consensus,
             plan,
+            alignment,
             no_height_1,
             no_gmr,
             no_in_sample,
@@ -342,6 +348,7 @@ fn run(cli: Cli) -> Result<()> {
                 state_length_from_data,
                 consensus,
                 plan,
+                alignment,
                 settings: cosco_hsom::offline::LooSettings {
                     height_1: !no_height_1,
                     gmr: !no_gmr,

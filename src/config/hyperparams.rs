@@ -135,6 +135,34 @@ impl std::str::FromStr for Consensus {
     }
 }
 
+/// How the events extension reads one demonstration along another for the consensus
+/// (docs/ALGORITHM.md, passage 6, "A consensus without stairs"): DTW aligns them sample to
+/// sample, and where one is slower, a run of its samples is aligned to one sample of the
+/// other.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Alignment {
+    /// Each sample takes the mean of the samples aligned to it: a run aligned to one sample
+    /// all take that sample (the warp's stairs). The default.
+    Stepped,
+    /// The warp's stairs replaced by the line through their middles, the other
+    /// demonstration read between its samples (linearly): a run aligned to one sample
+    /// moves on through it at an even pace.
+    Smooth,
+}
+
+impl std::str::FromStr for Alignment {
+    type Err = String;
+    /// `stepped` or `smooth`, in any case; otherwise a message naming the word and both
+    /// values.
+    fn from_str(word: &str) -> Result<Self, String> {
+        match word.to_ascii_lowercase().as_str() {
+            "stepped" => Ok(Alignment::Stepped),
+            "smooth" => Ok(Alignment::Smooth),
+            _ => Err(format!("alignment {word:?}: one of stepped, smooth")),
+        }
+    }
+}
+
 /// How the events extension turns the levels' prediction into a plan of bottom events
 /// (docs/ALGORITHM.md, passage 5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -345,6 +373,8 @@ pub struct HsomParams {
     pub normalisation: Normalisation,
     /// How the consensus weighs the demonstrations (`algorithm = events`).
     pub consensus: Consensus,
+    /// How the consensus reads one demonstration along another (`algorithm = events`).
+    pub alignment: Alignment,
     /// How the levels' prediction becomes a plan (`algorithm = events`).
     pub plan: Plan,
     /// Training of upper levels on partially filled lists.
@@ -382,6 +412,7 @@ impl HsomParams {
             memory_mode: MemoryMode::Lists,
             normalisation: Normalisation::Global,
             consensus: Consensus::Start,
+            alignment: Alignment::Stepped,
             plan: Plan::Decoded,
             partial_training: PartialTraining::Skip,
             list_update: ListUpdate::EveryStep,
@@ -636,6 +667,12 @@ impl HsomConfig {
     pub fn with_consensus(&self, consensus: Consensus) -> Result<HsomConfig, ConfigError> {
         let mut p = self.params.clone();
         p.consensus = consensus;
+        p.check(&self.source)
+    }
+    /// The same configuration with another [`Alignment`].
+    pub fn with_alignment(&self, alignment: Alignment) -> Result<HsomConfig, ConfigError> {
+        let mut p = self.params.clone();
+        p.alignment = alignment;
         p.check(&self.source)
     }
     /// The same configuration with another [`Plan`].

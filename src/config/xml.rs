@@ -9,9 +9,9 @@ use crate::som::{Decay, Neighbourhood, Schedule, Topology};
 
 use super::errors::ConfigError;
 use super::hyperparams::{
-    Algorithm, Consensus, HsomConfig, HsomParams, IdDecoding, LevelParams, ListUpdate, MemoryMode,
-    Normalisation, PartialTraining, Plan, Reflex, ReproductionMode, ReproductionParams, StopRule,
-    Timing,
+    Algorithm, Alignment, Consensus, HsomConfig, HsomParams, IdDecoding, LevelParams, ListUpdate,
+    MemoryMode, Normalisation, PartialTraining, Plan, Reflex, ReproductionMode, ReproductionParams,
+    StopRule, Timing,
 };
 
 #[derive(Debug, Deserialize)]
@@ -34,6 +34,7 @@ struct RawConfig {
     memory_mode: Option<String>,
     normalisation: Option<String>,
     consensus: Option<String>,
+    alignment: Option<String>,
     plan: Option<String>,
     #[serde(rename = "partialTraining")]
     partial_training: Option<String>,
@@ -608,6 +609,16 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
             ]),
             "all, local, start",
         )?,
+        alignment: f.name(
+            "alignment",
+            &raw.alignment,
+            Alignment::Stepped,
+            word(&[
+                ("stepped", Alignment::Stepped),
+                ("smooth", Alignment::Smooth),
+            ]),
+            "stepped, smooth",
+        )?,
         plan: f.name(
             "plan",
             &raw.plan,
@@ -683,6 +694,11 @@ impl HsomConfig {
             Consensus::Start => "start",
         };
         let _ = writeln!(s, "  <consensus>{cs}</consensus>");
+        let al = match p.alignment {
+            Alignment::Stepped => "stepped",
+            Alignment::Smooth => "smooth",
+        };
+        let _ = writeln!(s, "  <alignment>{al}</alignment>");
         let pl = match p.plan {
             Plan::Traced => "traced",
             Plan::Decoded => "decoded",

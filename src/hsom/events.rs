@@ -18,7 +18,7 @@ use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use crate::config::{Consensus, HsomConfig, ReproductionParams};
+use crate::config::{Alignment, Consensus, HsomConfig, ReproductionParams};
 use crate::demos::Demonstration;
 use crate::som::SelfOrganizingMap;
 
@@ -140,10 +140,11 @@ pub(crate) fn consensus(
 type Aligned = Vec<Vec<Option<Vec<Vec<f64>>>>>;
 
 /// `aligned[a][b]`: per sample of the normalised demonstration `a`, the mean of the samples
-/// of `b` aligned to it by DTW (`None` for `b == a`, and where an alignment failed).
+/// of `b` aligned to it by DTW (`None` for `b == a`, and where an alignment failed); with
+/// [`Alignment::Smooth`], `b` read along the warp without its stairs ([`smooth_warp`]).
 /// Sequences longer than `max_aligned` are aligned in blocks of `ceil(len / max_aligned)`
 /// samples (their means), every sample of a block taking the block's value.
-fn aligned_samples(norm: &[Vec<Vec<f64>>], max_aligned: usize) -> Aligned {
+fn aligned_samples(norm: &[Vec<Vec<f64>>], max_aligned: usize, how: Alignment) -> Aligned {
     let block = |d: &[Vec<f64>]| d.len().div_ceil(max_aligned.max(1)).max(1);
     let blocks: Vec<Vec<Vec<f64>>> = norm
         .iter()
@@ -171,7 +172,9 @@ fn aligned_samples(norm: &[Vec<Vec<f64>>], max_aligned: usize) -> Aligned {
                 continue;
             };
             for (a, b) in [(j, k), (k, j)] {
-                let mut acc = vec![(vec![0.0; norm[a][0].len()], 0.0); blocks[a].len()];
+                // per block of a: the sum of b's blocks aligned to it, of their indices, and
+                // their count
+                let mut acc = vec![(vec![0.0; norm[a][0].len()], 0.0, 0.0); blocks[a].len()];
                 for &(x, y) in &al.path {
                     let (x, y) = if a == j { (x, y) } else { (y, x) };
                     acc[x]
@@ -179,12 +182,19 @@ fn aligned_samples(norm: &[Vec<Vec<f64>>], max_aligned: usize) -> Aligned {
                         .iter_mut()
                         .zip(&blocks[b][y])
                         .for_each(|(s, v)| *s += v);
-                    acc[x].1 += 1.0;
+                    acc[x].1 += y as f64;
+                    acc[x].2 += 1.0;
                 }
-                let per_block: Vec<Vec<f64>> = acc
-                    .into_iter()
-                    .map(|(sum, c)| sum.into_iter().map(|v| v / c).collect())
-                    .collect();
+                let per_block: Vec<Vec<f64>> = match how {
+                    Alignment::Stepped => acc
+                        .into_iter()
+                        .map(|(sum, _, c)| sum.into_iter().map(|v| v / c).collect())
+                        .collect(),
+                    Alignment::Smooth => {
+                        let warp: Vec<f64> = acc.iter().map(|(_, y, c)| y / c).collect();
+                        smooth_warp(&warp, &blocks[b])
+                    }
+                };
                 let size = block(&norm[a]);
                 aligned[a][b] = Some(
                     (0..norm[a].len())
@@ -195,6 +205,62 @@ fn aligned_samples(norm: &[Vec<Vec<f64>>], max_aligned: usize) -> Aligned {
         }
     }
     aligned
+}
+
+/// `b` read along `warp` (per sample of another sequence, the mean index of the samples of `b`
+/// DTW aligned to it: non-decreasing, from 0 to `b`'s last), the warp's stairs replaced by
+/// lines: each run of equal values (samples aligned to one sample of `b`) becomes the point
+/// at its middle, the warp is the line through those points (and through its first and last
+/// values at the ends), and `b` is read there, linearly between its samples. Where the other
+/// sequence is slower than `b`, its samples then move on through `b` at an even pace instead
+/// of all taking one sample of `b` (a stair that a traced plan's short events, each the mean
+/// of a few samples, would carry into its knots as uneven steps: docs/ALGORITHM.md, passage
+/// 6, "A consensus without stairs").
+fn smooth_warp(warp: &[f64], b: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let n = warp.len();
+    if n == 0 || b.is_empty() {
+        return Vec::new();
+    }
+    // the points: (sample, index into b), by increasing sample
+    let mut points: Vec<(f64, f64)> = vec![(0.0, warp[0])];
+    let mut run = 0;
+    for x in 1..=n {
+        if x == n || warp[x] != warp[run] {
+            let mid = (run + x - 1) as f64 / 2.0;
+            if mid > points[points.len() - 1].0 {
+                points.push((mid, warp[run]));
+            }
+            run = x;
+        }
+    }
+    let last = (n - 1) as f64;
+    if last > points[points.len() - 1].0 {
+        points.push((last, warp[n - 1]));
+    }
+    let top = b.len() - 1;
+    let mut seg = 0;
+    (0..n)
+        .map(|x| {
+            let xf = x as f64;
+            while seg + 2 < points.len() && xf > points[seg + 1].0 {
+                seg += 1;
+            }
+            let y = match points.get(seg + 1) {
+                Some(&(x1, y1)) => {
+                    let (x0, y0) = points[seg];
+                    y0 + (y1 - y0) * ((xf - x0) / (x1 - x0)).clamp(0.0, 1.0)
+                }
+                None => points[seg].1,
+            }
+            .clamp(0.0, top as f64);
+            let i = (y.floor() as usize).min(top);
+            let (f, k) = (y - i as f64, (i + 1).min(top));
+            b[i].iter()
+                .zip(&b[k])
+                .map(|(p, q)| p + f * (q - p))
+                .collect()
+        })
+        .collect()
 }
 
 /// How far a demonstration may lie from a sample, in units of the nearest other
@@ -1946,7 +2012,7 @@ impl Hsom {
         self.knots = None;
         self.start_knots = None;
         self.end_postures = Some(self.ends(norm));
-        let aligned = aligned_samples(norm, MAX_ALIGNED);
+        let aligned = aligned_samples(norm, MAX_ALIGNED, self.config.params().alignment);
         self.fit_node_postures(norm, &aligned);
         self.place_traced_events(norm, &aligned);
     }
@@ -2607,10 +2673,10 @@ impl Hsom {
     /// length where the node has none); with `plan = traced`, each at that event's place in
     /// the consensus of `norm` ([`Hsom::event_postures`]), as a traced plan places it.
     fn followed(&self, norm: &[Vec<Vec<f64>>], d: usize, after: Option<f64>) -> Vec<Step<usize>> {
-        let own = self
-            .traces
-            .is_some()
-            .then(|| self.event_offsets(norm, &aligned_samples(norm, MAX_ALIGNED)));
+        let own = self.traces.is_some().then(|| {
+            let how = self.config.params().alignment;
+            self.event_offsets(norm, &aligned_samples(norm, MAX_ALIGNED, how))
+        });
         let mut begun = 0.0;
         bottom_events(self, &norm[d])
             .into_iter()
@@ -2970,7 +3036,7 @@ mod tests {
         for max_aligned in [MAX_ALIGNED, 16] {
             let c = consensus(
                 &[a.clone(), b.clone()],
-                &aligned_samples(&[a.clone(), b.clone()], max_aligned),
+                &aligned_samples(&[a.clone(), b.clone()], max_aligned, Alignment::Stepped),
                 Consensus::All,
             );
             assert_eq!((c[0].len(), c[1].len()), (a.len(), b.len()));
@@ -2992,7 +3058,7 @@ mod tests {
         assert_eq!(
             consensus(
                 std::slice::from_ref(&a),
-                &aligned_samples(std::slice::from_ref(&a), MAX_ALIGNED),
+                &aligned_samples(std::slice::from_ref(&a), MAX_ALIGNED, Alignment::Stepped),
                 Consensus::All
             ),
             vec![a]
@@ -3008,12 +3074,12 @@ mod tests {
         let demos = [route(0.0), route(0.25), route(8.0)];
         let all = consensus(
             &demos,
-            &aligned_samples(&demos, MAX_ALIGNED),
+            &aligned_samples(&demos, MAX_ALIGNED, Alignment::Stepped),
             Consensus::All,
         );
         let local = consensus(
             &demos,
-            &aligned_samples(&demos, MAX_ALIGNED),
+            &aligned_samples(&demos, MAX_ALIGNED, Alignment::Stepped),
             Consensus::Local,
         );
         for t in 0..30 {
@@ -3032,12 +3098,12 @@ mod tests {
         assert_eq!(
             consensus(
                 &one_mode,
-                &aligned_samples(&one_mode, MAX_ALIGNED),
+                &aligned_samples(&one_mode, MAX_ALIGNED, Alignment::Stepped),
                 Consensus::Local
             ),
             consensus(
                 &one_mode,
-                &aligned_samples(&one_mode, MAX_ALIGNED),
+                &aligned_samples(&one_mode, MAX_ALIGNED, Alignment::Stepped),
                 Consensus::All
             )
         );
@@ -3479,6 +3545,95 @@ mod tests {
         }
         let (a, b): (f64, f64) = (dtw_placed.iter().sum(), dtw_nodes.iter().sum());
         assert!(a < 1.05 * b, "DTW {dtw_placed:?} against {dtw_nodes:?}");
+    }
+
+    /// A warp with stairs (runs of three samples aligned to one sample of `b`) is read at an
+    /// even pace: every step a third of `b`'s, from `b`'s first sample to its last; the
+    /// stepped mean of the same alignment jumps a whole sample of `b` at each stair. A warp
+    /// without stairs reads `b` as it is.
+    #[test]
+    fn a_smooth_warp_moves_on_evenly_through_the_stairs() {
+        let b: Vec<Vec<f64>> = (0..4).map(|i| vec![i as f64, -2.0 * i as f64]).collect();
+        let stairs: Vec<f64> = (0..12).map(|x| (x / 3) as f64).collect();
+        let read = smooth_warp(&stairs, &b);
+        assert_eq!(read.len(), 12);
+        assert_eq!((read[0][0], read[11][0]), (0.0, 3.0));
+        let steps: Vec<f64> = read.windows(2).map(|w| w[1][0] - w[0][0]).collect();
+        // the middles 1, 4, 7, 10 are a third of a sample of b apart, after the first run
+        // and before the last
+        for (x, d) in steps.iter().enumerate().skip(1).take(9) {
+            assert!((d - 1.0 / 3.0).abs() < 1e-12, "step {x}: {d}");
+        }
+        assert!(
+            steps.iter().all(|&d| (-1e-12..=0.5).contains(&d)),
+            "{steps:?}"
+        );
+        // both variables read at the same place
+        assert!(read.iter().all(|r| (r[1] + 2.0 * r[0]).abs() < 1e-12));
+        let stepped: Vec<f64> = stairs.iter().map(|&y| b[y as usize][0]).collect();
+        assert!(stepped.windows(2).any(|w| w[1] - w[0] == 1.0));
+        let identity: Vec<f64> = (0..4).map(|x| x as f64).collect();
+        assert_eq!(smooth_warp(&identity, &b), b);
+        assert!(smooth_warp(&[], &b).is_empty());
+    }
+
+    /// On a family of strokes drawn at different tempos (DTW aligns them with stairs), traced
+    /// plans over short events (`changeRatio` 0.8, a bottom of 256 nodes) are smoother held
+    /// out with the consensus read along a smooth warp than along the stepped one (the
+    /// control), on every fold, and no farther from the held-out stroke.
+    #[test]
+    fn traced_plans_are_smoother_on_a_consensus_without_stairs() {
+        // a bend drawn slowly and fast: 60 to 120 samples, eased in and out at different
+        // rates, so that DTW aligns the fast ones to the slow ones with stairs
+        let draw = |i: usize| -> Vec<Vec<f64>> {
+            let n = 60 + 15 * i;
+            let ease = 1.0 + 0.5 * i as f64;
+            (0..n)
+                .map(|j| {
+                    let u = j as f64 / (n - 1) as f64;
+                    let t = u.powf(ease) / (u.powf(ease) + (1.0 - u).powf(ease));
+                    vec![t, 0.3 * (std::f64::consts::PI * t).sin()]
+                })
+                .collect()
+        };
+        let all: Vec<Vec<Vec<f64>>> = (0..5).map(draw).collect();
+        let mut jerk = [Vec::new(), Vec::new()];
+        let mut dtw = [Vec::new(), Vec::new()];
+        for out in 0..5 {
+            let train: Vec<Vec<Vec<f64>>> = (0..5)
+                .filter(|&i| i != out)
+                .map(|i| all[i].clone())
+                .collect();
+            for (i, how) in [Alignment::Stepped, Alignment::Smooth]
+                .into_iter()
+                .enumerate()
+            {
+                let mut p = config(2)
+                    .with_plan(crate::config::Plan::Traced)
+                    .unwrap()
+                    .into_params();
+                p.levels[0] =
+                    crate::config::LevelParams::new(16, 16, crate::som::Topology::Orthogonal, 0.1);
+                p.change_ratio = 0.8;
+                p.alignment = how;
+                let m = p.check("test").unwrap().fit_series(&train).unwrap();
+                let r = m.reproduce(&all[out][0]).unwrap().postures;
+                jerk[i].push(crate::metrics::normalized_jerk(&r, 0.025).unwrap());
+                dtw[i].push(
+                    crate::dtw::dtw_distance(&r, &all[out], crate::dtw::Band::None)
+                        .unwrap()
+                        .per_step(),
+                );
+            }
+        }
+        let sum = |v: &Vec<f64>| v.iter().sum::<f64>();
+        // smoother on every fold, by a quarter at least in all
+        assert!(
+            jerk[1].iter().zip(&jerk[0]).all(|(a, b)| a < b),
+            "jerk {jerk:?}"
+        );
+        assert!(sum(&jerk[1]) < 0.75 * sum(&jerk[0]), "jerk {jerk:?}");
+        assert!(sum(&dtw[1]) < 1.02 * sum(&dtw[0]), "DTW {dtw:?}");
     }
 
     /// Continued after a prefix, the nearest sequence goes on along the demonstration the

@@ -359,6 +359,8 @@ pub struct HeldoutJob {
     pub consensus: Option<cosco_hsom::config::Consensus>,
     /// Override the configuration's plan.
     pub plan: Option<cosco_hsom::config::Plan>,
+    /// Override the configuration's alignment.
+    pub alignment: Option<cosco_hsom::config::Alignment>,
     /// Which methods, which results, how many threads.
     pub settings: cosco_hsom::offline::LooSettings,
     /// Where to write every fold's scores as JSON.
@@ -380,6 +382,9 @@ pub fn heldout(job: &HeldoutJob) -> Result<String> {
     }
     if let Some(c) = job.consensus {
         cfg = cfg.with_consensus(c)?;
+    }
+    if let Some(a) = job.alignment {
+        cfg = cfg.with_alignment(a)?;
     }
     let (cfg, gestures) = offline::read_gestures(&job.demos, &cfg, job.state_length_from_data)?;
     let folds: usize = gestures.iter().map(|(_, d)| d.len()).sum();
