@@ -20,7 +20,6 @@ use clap::Parser;
 
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
 use cosco_hsom::experiment::heldout::{alignment_fold, velocity_png};
-use cosco_hsom::experiment::study::parse_gestures;
 use cosco_hsom::experiment::Transition;
 use cosco_hsom::sim::JOINT_NAMES;
 
@@ -53,15 +52,7 @@ struct Args {
 
 fn run(a: Args) -> Result<()> {
     let (config, arm) = common::config_and_arm(&a.config)?;
-    let mut gestures = parse_gestures(&a.gesture)?;
-    if gestures.len() != 1 {
-        anyhow::bail!(
-            "--gesture '{}': name exactly one gesture ({} given)",
-            a.gesture,
-            gestures.len()
-        );
-    }
-    let gesture = gestures.remove(0);
+    let gesture = common::one_gesture(&a.gesture)?;
     if a.fold == 0 || a.fold > a.count {
         anyhow::bail!("--fold {}: allowed 1 to --count ({})", a.fold, a.count);
     }

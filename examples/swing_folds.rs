@@ -19,7 +19,7 @@ use clap::Parser;
 
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
 use cosco_hsom::experiment::heldout::{swing_folds, swing_folds_png};
-use cosco_hsom::experiment::study::{parse_gestures, parse_seeds};
+use cosco_hsom::experiment::study::parse_seeds;
 use cosco_hsom::experiment::Transition;
 
 /// Leave-one-out folds of one gesture, drawn.
@@ -48,15 +48,7 @@ struct Args {
 
 fn run(a: Args) -> Result<()> {
     let (config, arm) = common::config_and_arm(&a.config)?;
-    let mut gestures = parse_gestures(&a.gesture)?;
-    if gestures.len() != 1 {
-        anyhow::bail!(
-            "--gesture '{}': name exactly one gesture ({} given)",
-            a.gesture,
-            gestures.len()
-        );
-    }
-    let gesture = gestures.remove(0);
+    let gesture = common::one_gesture(&a.gesture)?;
     let seeds = parse_seeds(&a.seeds)?;
     std::fs::create_dir_all(&a.out).with_context(|| format!("creating {}", a.out.display()))?;
     let settings = DemoSettings {

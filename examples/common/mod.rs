@@ -58,6 +58,19 @@ pub fn config_and_arm(config: &Path) -> anyhow::Result<(HsomConfig, NaoArm)> {
     Ok((c, arm))
 }
 
+/// The one gesture `--gesture` names (a list of more, or none, is refused).
+#[allow(dead_code)] // used by the examples that draw one gesture
+pub fn one_gesture(names: &str) -> anyhow::Result<cosco_hsom::gesture::Gesture> {
+    let mut gestures = cosco_hsom::experiment::study::parse_gestures(names)?;
+    if gestures.len() != 1 {
+        anyhow::bail!(
+            "--gesture '{names}': name exactly one gesture ({} given)",
+            gestures.len()
+        );
+    }
+    Ok(gestures.remove(0))
+}
+
 /// An example's exit status: success, or the error with its causes on stderr and failure.
 pub fn exit(result: anyhow::Result<()>) -> ExitCode {
     match result {
