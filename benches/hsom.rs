@@ -5,7 +5,7 @@
 mod common;
 
 use common::gestures;
-use cosco_hsom::config::{HsomParams, MemoryMode};
+use cosco_hsom::config::{Alignment, HsomParams, MemoryMode};
 use cosco_hsom::hsom::{ActivityLevels, ActivityList};
 use cosco_hsom::som::{Neighbourhood, SelfOrganizingMap, Topology};
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
@@ -80,6 +80,20 @@ fn events(c: &mut Criterion) {
             black_box(m.reproduce(&demos[0].rows[0]).unwrap())
         })
     });
+    // the candidate of docs/ALGORITHM.md ("The decision before the team"): traced plans over
+    // finer events, the consensus read along a smooth warp; and the same with the stepped one
+    let finer = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/configs/traced-finer-events.xml");
+    let finer = cosco_hsom::config::load_config(&finer).unwrap();
+    for how in [Alignment::Smooth, Alignment::Stepped] {
+        let c = finer.with_alignment(how).unwrap();
+        g.bench_function(format!("fit_3x300_and_reproduce_finer_{how:?}"), |b| {
+            b.iter(|| {
+                let m = c.fit(&demos).unwrap();
+                black_box(m.reproduce(&demos[0].rows[0]).unwrap())
+            })
+        });
+    }
     for n in [300, 600, 1200, 2400] {
         let d = gestures(3, n);
         let m = cfg.fit(&d).unwrap();
