@@ -150,6 +150,16 @@ pub enum Alignment {
     Smooth,
 }
 
+impl Alignment {
+    /// The configuration's word for it: `stepped` or `smooth`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Alignment::Stepped => "stepped",
+            Alignment::Smooth => "smooth",
+        }
+    }
+}
+
 impl std::str::FromStr for Alignment {
     type Err = String;
     /// `stepped` or `smooth`, in any case; otherwise a message naming the word and both

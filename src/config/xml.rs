@@ -694,11 +694,7 @@ impl HsomConfig {
             Consensus::Start => "start",
         };
         let _ = writeln!(s, "  <consensus>{cs}</consensus>");
-        let al = match p.alignment {
-            Alignment::Stepped => "stepped",
-            Alignment::Smooth => "smooth",
-        };
-        let _ = writeln!(s, "  <alignment>{al}</alignment>");
+        let _ = writeln!(s, "  <alignment>{}</alignment>", p.alignment.name());
         let pl = match p.plan {
             Plan::Traced => "traced",
             Plan::Decoded => "decoded",

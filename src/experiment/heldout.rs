@@ -1145,12 +1145,8 @@ pub fn alignment_fold(
                 (Some(r), Some(d)) if d > 0.0 => r / d,
                 _ => f64::NAN,
             };
-            let name = match how {
-                Alignment::Stepped => "stepped",
-                Alignment::Smooth => "smooth",
-            };
             Ok(AlignmentRun {
-                alignment: name.to_string(),
+                alignment: how.name().to_string(),
                 speed: speed_trace(&run.executed.qpos, joint, period),
                 jerk_ratio: jerk,
                 joint_dtw: f.joint_dtw_rad_per_step.mean,
