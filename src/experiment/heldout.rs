@@ -1117,13 +1117,15 @@ pub fn alignment_fold(
         ))
     })?;
     let period = sample_period(demo);
-    let peak = |j: usize| {
-        speed_trace(&demo.rows, j, period)
-            .iter()
-            .fold(0.0_f64, |m, p| m.max(p.1.abs()))
-    };
-    let joint = (0..demo.rows[0].len())
-        .max_by(|&a, &b| peak(a).total_cmp(&peak(b)))
+    let peaks: Vec<f64> = (0..demo.rows[0].len())
+        .map(|j| {
+            speed_trace(&demo.rows, j, period)
+                .iter()
+                .fold(0.0_f64, |m, p| m.max(p.1.abs()))
+        })
+        .collect();
+    let joint = (0..peaks.len())
+        .max_by(|&a, &b| peaks[a].total_cmp(&peaks[b]))
         .unwrap_or(0);
     let train = all_but(demos, i);
     let runs = [Alignment::Stepped, Alignment::Smooth]
