@@ -2427,14 +2427,25 @@ const TURNING_ITERATIONS: usize = 20;
 /// short (the wave's troughs 0.05-0.15 rad). Elsewhere the mean of a segment is its middle
 /// value and the knot stays. A fixed point, reached in a few corrections; docs/ALGORITHM.md,
 /// passage 6 of the events extension.
+///
+/// Only the samples the knot moves count: those strictly between its neighbours' times. The
+/// first event's first sample is the initial posture itself, which no knot moves; counting it
+/// made each correction add the same step again, and a one-sample first event at a turn threw
+/// its knot 20 gaps away (a start-up jump and back).
 fn turning_points_kept(t: &[f64], target: &[f64], spans: &[(usize, usize)]) -> Vec<f64> {
     let k = target.len();
-    let turning: Vec<usize> = (1..k.saturating_sub(1))
+    let turning: Vec<(usize, usize, usize)> = (1..k.saturating_sub(1))
         .filter(|&i| {
             let (p, q, r) = (target[i - 1], target[i], target[i + 1]);
             (q > p && q > r) || (q < p && q < r)
         })
-        .filter(|&i| spans.get(i - 1).is_some_and(|&(a, b)| b > a))
+        .filter_map(|i| {
+            let &(a, b) = spans.get(i - 1)?;
+            // samples j with t[i - 1] < j < t[i + 1]
+            let a = a.max(t[i - 1].floor() as usize + 1);
+            let b = b.min(t[i + 1].ceil() as usize);
+            (b > a).then_some((i, a, b))
+        })
         .collect();
     let mut v = target.to_vec();
     // only the turning events' samples are evaluated: the work per correction is the knots
@@ -2445,8 +2456,7 @@ fn turning_points_kept(t: &[f64], target: &[f64], spans: &[(usize, usize)]) -> V
         }
         let m = monotone_tangents(t, &v);
         let mut moved = 0.0f64;
-        for &i in &turning {
-            let (a, b) = spans[i - 1];
+        for &(i, a, b) in &turning {
             let mean = (a..b).map(|j| cubic_at(t, &v, &m, j as f64)).sum::<f64>() / (b - a) as f64;
             let step = target[i] - mean;
             v[i] += step;
@@ -4117,6 +4127,27 @@ mod tests {
         // a hold (no strict extremum) is held where it is: nothing moves
         let hold = [0.0, 1.0, 1.0, 1.0, 0.0, 0.0];
         assert_eq!(turning_points_kept(&t, &hold, &spans), hold.to_vec());
+    }
+
+    #[test]
+    fn a_turn_at_the_first_sample_is_not_thrown_away_from_the_start() {
+        // a first event of one sample at a turn: its only sample is the initial posture,
+        // which no knot moves, so the knot stays at the node's posture
+        let t = [0.0, 0.5, 5.0, 10.0];
+        let spans = [(0, 1), (1, 9)];
+        let v = [0.0, 0.01, -0.5, -0.5];
+        let kept = turning_points_kept(&t, &v, &spans);
+        assert_eq!(kept, v.to_vec());
+        let c = monotone_cubic(&t, &kept, 11);
+        assert!(c.iter().all(|&x| x <= 0.01), "{c:?}");
+        // a longer first event at a turn is still kept, on its samples after the start
+        let t = [0.0, 2.5, 7.5, 10.0];
+        let spans = [(0, 5), (5, 10)];
+        let v = [0.0, 0.3, 0.0, 0.0];
+        let kept = turning_points_kept(&t, &v, &spans);
+        let c = monotone_cubic(&t, &kept, 11);
+        let mean = c[1..5].iter().sum::<f64>() / 4.0;
+        assert!((mean - 0.3).abs() < 1e-6 && kept[1] < 0.6, "{mean} {kept:?}");
     }
 
     #[test]
