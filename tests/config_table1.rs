@@ -610,3 +610,73 @@ fn the_finer_events_configuration_is_the_recommended_one_with_three_settings_cha
     same.alignment = rec.alignment;
     assert_eq!(same, rec);
 }
+
+#[test]
+fn the_halves_configuration_is_the_recommended_one_with_three_settings_changed() {
+    use cosco_hsom::config::{Alignment, Knots, Plan};
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let rec = load_config(&root.join("configs/nao-gestures.xml"))
+        .unwrap()
+        .into_params();
+    let halves = load_config(&root.join("tests/configs/traced-halves.xml"))
+        .unwrap()
+        .into_params();
+    assert_eq!(rec.knots, Knots::Event);
+    assert_eq!(
+        (halves.plan, halves.alignment, halves.knots),
+        (Plan::Traced, Alignment::Smooth, Knots::Halves)
+    );
+    // the bottom events, and so recognition, are the recommended configuration's
+    assert_eq!(halves.change_ratio, rec.change_ratio);
+    let mut same = halves.clone();
+    same.plan = rec.plan;
+    same.alignment = rec.alignment;
+    same.knots = rec.knots;
+    assert_eq!(same, rec);
+}
+
+#[test]
+fn knots_parse_round_trip_and_name_bad_values() {
+    use cosco_hsom::config::Knots;
+    let t = std::fs::read_to_string("configs/nao-gestures.xml").unwrap();
+    // not written: the default
+    assert!(!t.contains("<knots>"));
+    assert_eq!(
+        parse_config(&t, "nao-gestures.xml").unwrap().params().knots,
+        Knots::Event
+    );
+    let with = |word: &str| {
+        t.replacen(
+            "<normalisation>global</normalisation>",
+            &format!("<normalisation>global</normalisation><knots>{word}</knots>"),
+            1,
+        )
+    };
+    for (word, expected) in [
+        ("halves", Knots::Halves),
+        ("Halves", Knots::Halves),
+        ("EVENT", Knots::Event),
+    ] {
+        let c = parse_config(&with(word), "ok.xml").unwrap();
+        assert_eq!(c.params().knots, expected);
+        assert_eq!(word.parse::<Knots>().unwrap(), expected);
+        let again = parse_config(&c.to_xml(), "again.xml").unwrap();
+        assert_eq!(c.params(), again.params());
+    }
+    assert!("thirds"
+        .parse::<Knots>()
+        .unwrap_err()
+        .contains("event, halves"));
+    match err(&with("thirds")) {
+        ConfigError::Invalid {
+            field,
+            value,
+            reason,
+            ..
+        } => {
+            assert_eq!((field.as_str(), value.as_str()), ("knots", "thirds"));
+            assert!(reason.contains("event, halves"), "{reason}");
+        }
+        e => panic!("{e}"),
+    }
+}

@@ -326,6 +326,34 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
         traced.save(&path).unwrap();
         assert_eq!(Hsom::load(&path).unwrap(), traced, "{name}");
     }
+    // so does one whose traced events place two knots each (three places per event), and
+    // it reproduces the same after loading; read as one place per event (its configuration
+    // edited), its traces are the wrong size and are refused
+    let halves = recommended_for(2)
+        .with_plan(cosco_hsom::config::Plan::Traced)
+        .unwrap()
+        .with_knots(cosco_hsom::config::Knots::Halves)
+        .unwrap()
+        .fit(&demos)
+        .unwrap();
+    let start = demos[0].rows[0].clone();
+    for name in ["h.bin", "h.txt"] {
+        let path = dir.path().join(name);
+        halves.save(&path).unwrap();
+        let loaded = Hsom::load(&path).unwrap();
+        assert_eq!(loaded, halves, "{name}");
+        assert_eq!(
+            loaded.reproduce(&start).unwrap(),
+            halves.reproduce(&start).unwrap()
+        );
+    }
+    let path = dir.path().join("h.txt");
+    let h = std::fs::read_to_string(&path).unwrap();
+    assert!(h.contains("<knots>halves</knots>"));
+    let as_event = with_checksum(&h.replace("<knots>halves</knots>", "<knots>event</knots>"));
+    std::fs::write(&path, as_event).unwrap();
+    let e = Hsom::load(&path).unwrap_err().to_string();
+    assert!(e.contains("traces") && e.contains("expected"), "{e}");
     // a decoded model holds none: an empty traces line
     assert!(text.lines().any(|l| l == "traces"));
     let path = dir.path().join("t.txt");

@@ -33,6 +33,7 @@ class Config:
         consensus: Optional[str] = None,
         plan: Optional[str] = None,
         alignment: Optional[str] = None,
+        knots: Optional[str] = None,
     ) -> "Config":
         """A copy with some settings changed, validated again."""
     def to_xml(self) -> str:

@@ -277,7 +277,7 @@ impl Config {
     }
 
     /// A copy with some settings changed, validated again.
-    #[pyo3(signature = (*, seed = None, state_length = None, training_steps = None, consensus = None, plan = None, alignment = None))]
+    #[pyo3(signature = (*, seed = None, state_length = None, training_steps = None, consensus = None, plan = None, alignment = None, knots = None))]
     #[allow(clippy::too_many_arguments)]
     fn replace(
         &self,
@@ -287,6 +287,7 @@ impl Config {
         consensus: Option<&str>,
         plan: Option<&str>,
         alignment: Option<&str>,
+        knots: Option<&str>,
     ) -> PyResult<Self> {
         let mut p = self.inner.params().clone();
         if let Some(c) = consensus {
@@ -297,6 +298,9 @@ impl Config {
         }
         if let Some(w) = plan {
             p.plan = w.parse().map_err(PyValueError::new_err)?;
+        }
+        if let Some(k) = knots {
+            p.knots = k.parse().map_err(PyValueError::new_err)?;
         }
         if let Some(s) = seed {
             p.seed = s;

@@ -198,6 +198,11 @@ def test_heldout_scores_every_method_on_the_same_folds(demos):
     assert "<alignment>smooth</alignment>" in cfg.replace(alignment="Smooth").to_xml()
     with pytest.raises(ValueError, match="stepped, smooth"):
         cfg.replace(alignment="linear")
+    # where a traced plan's events put their knots: event (the default) or halves
+    assert "<knots>event</knots>" in cfg.to_xml()
+    assert "<knots>halves</knots>" in cfg.replace(knots="Halves").to_xml()
+    with pytest.raises(ValueError, match="event, halves"):
+        cfg.replace(knots="thirds")
     with pytest.raises(ValueError, match="at least 3 demonstrations"):
         cosco_hsom.heldout(cfg, demos[:2])
     with pytest.raises(ValueError, match="stateLength is 6"):

@@ -158,6 +158,10 @@ enum Command {
         /// (the DTW warp's stairs replaced by lines).
         #[arg(long)]
         alignment: Option<cosco_hsom::config::Alignment>,
+        /// Where a traced plan's events put their knots, instead of the configuration's:
+        /// `event` (one, at its middle) or `halves` (one at each half's place).
+        #[arg(long)]
+        knots: Option<cosco_hsom::config::Knots>,
         /// Leave out the configuration at height 1.
         #[arg(long)]
         no_height_1: bool,
@@ -332,6 +336,7 @@ fn run(cli: Cli) -> Result<()> {
             consensus,
             plan,
             alignment,
+            knots,
             no_height_1,
             no_gmr,
             no_in_sample,
@@ -349,6 +354,7 @@ fn run(cli: Cli) -> Result<()> {
                 consensus,
                 plan,
                 alignment,
+                knots,
                 settings: cosco_hsom::offline::LooSettings {
                     height_1: !no_height_1,
                     gmr: !no_gmr,

@@ -173,6 +173,43 @@ impl std::str::FromStr for Alignment {
     }
 }
 
+/// Where a traced plan's events put their knots, the postures the executed curve passes
+/// through (docs/ALGORITHM.md, passage 6, "Two knots per event"; `plan = traced` only: a
+/// decoded event has no place of its own in the consensus).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Knots {
+    /// One knot per event, at its middle, where the event lies in the consensus. The
+    /// default.
+    Event,
+    /// Two knots per event of two samples or more, at a quarter and three quarters of its
+    /// duration, each where that half of the event lies in the consensus: a swing shorter
+    /// than two events keeps its turn.
+    Halves,
+}
+
+impl Knots {
+    /// The configuration's word for it: `event` or `halves`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Knots::Event => "event",
+            Knots::Halves => "halves",
+        }
+    }
+}
+
+impl std::str::FromStr for Knots {
+    type Err = String;
+    /// `event` or `halves`, in any case; otherwise a message naming the word and both
+    /// values.
+    fn from_str(word: &str) -> Result<Self, String> {
+        match word.to_ascii_lowercase().as_str() {
+            "event" => Ok(Knots::Event),
+            "halves" => Ok(Knots::Halves),
+            _ => Err(format!("knots {word:?}: one of event, halves")),
+        }
+    }
+}
+
 /// How the events extension turns the levels' prediction into a plan of bottom events
 /// (docs/ALGORITHM.md, passage 5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -387,6 +424,8 @@ pub struct HsomParams {
     pub alignment: Alignment,
     /// How the levels' prediction becomes a plan (`algorithm = events`).
     pub plan: Plan,
+    /// Where a traced plan's events put their knots (`plan = traced`).
+    pub knots: Knots,
     /// Training of upper levels on partially filled lists.
     pub partial_training: PartialTraining,
     /// When the bottom activity list is updated.
@@ -423,6 +462,7 @@ impl HsomParams {
             normalisation: Normalisation::Global,
             consensus: Consensus::Start,
             alignment: Alignment::Stepped,
+            knots: Knots::Event,
             plan: Plan::Decoded,
             partial_training: PartialTraining::Skip,
             list_update: ListUpdate::EveryStep,
@@ -683,6 +723,12 @@ impl HsomConfig {
     pub fn with_alignment(&self, alignment: Alignment) -> Result<HsomConfig, ConfigError> {
         let mut p = self.params.clone();
         p.alignment = alignment;
+        p.check(&self.source)
+    }
+    /// The same configuration with another [`Knots`].
+    pub fn with_knots(&self, knots: Knots) -> Result<HsomConfig, ConfigError> {
+        let mut p = self.params.clone();
+        p.knots = knots;
         p.check(&self.source)
     }
     /// The same configuration with another [`Plan`].

@@ -8,8 +8,8 @@ mod xml;
 
 pub use errors::ConfigError;
 pub use hyperparams::{
-    Algorithm, Alignment, Consensus, HsomConfig, HsomParams, IdDecoding, LevelParams, ListUpdate,
-    MemoryMode, Normalisation, PartialTraining, Plan, Reflex, ReproductionMode, ReproductionParams,
-    StopRule, Timing,
+    Algorithm, Alignment, Consensus, HsomConfig, HsomParams, IdDecoding, Knots, LevelParams,
+    ListUpdate, MemoryMode, Normalisation, PartialTraining, Plan, Reflex, ReproductionMode,
+    ReproductionParams, StopRule, Timing,
 };
 pub use xml::{load_config, parse_config};

@@ -9,9 +9,9 @@ use crate::som::{Decay, Neighbourhood, Schedule, Topology};
 
 use super::errors::ConfigError;
 use super::hyperparams::{
-    Algorithm, Alignment, Consensus, HsomConfig, HsomParams, IdDecoding, LevelParams, ListUpdate,
-    MemoryMode, Normalisation, PartialTraining, Plan, Reflex, ReproductionMode, ReproductionParams,
-    StopRule, Timing,
+    Algorithm, Alignment, Consensus, HsomConfig, HsomParams, IdDecoding, Knots, LevelParams,
+    ListUpdate, MemoryMode, Normalisation, PartialTraining, Plan, Reflex, ReproductionMode,
+    ReproductionParams, StopRule, Timing,
 };
 
 #[derive(Debug, Deserialize)]
@@ -36,6 +36,7 @@ struct RawConfig {
     consensus: Option<String>,
     alignment: Option<String>,
     plan: Option<String>,
+    knots: Option<String>,
     #[serde(rename = "partialTraining")]
     partial_training: Option<String>,
     #[serde(rename = "listUpdate")]
@@ -619,6 +620,13 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
             ]),
             "stepped, smooth",
         )?,
+        knots: f.name(
+            "knots",
+            &raw.knots,
+            Knots::Event,
+            word(&[("event", Knots::Event), ("halves", Knots::Halves)]),
+            "event, halves",
+        )?,
         plan: f.name(
             "plan",
             &raw.plan,
@@ -700,6 +708,7 @@ impl HsomConfig {
             Plan::Decoded => "decoded",
         };
         let _ = writeln!(s, "  <plan>{pl}</plan>");
+        let _ = writeln!(s, "  <knots>{}</knots>", p.knots.name());
         let pt = match p.partial_training {
             PartialTraining::Skip => "skip",
             PartialTraining::Masked => "masked",

@@ -1030,7 +1030,7 @@ fn build(
             super::events::Traces::from_words(
                 &extra.traces,
                 k,
-                config.params().state_length,
+                super::events::trace_places(config.params()),
                 &nodes,
             )
             .map_err(|why| PersistError::Corrupted {

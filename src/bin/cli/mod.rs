@@ -361,6 +361,8 @@ pub struct HeldoutJob {
     pub plan: Option<cosco_hsom::config::Plan>,
     /// Override the configuration's alignment.
     pub alignment: Option<cosco_hsom::config::Alignment>,
+    /// Override the configuration's knots.
+    pub knots: Option<cosco_hsom::config::Knots>,
     /// Which methods, which results, how many threads.
     pub settings: cosco_hsom::offline::LooSettings,
     /// Where to write every fold's scores as JSON.
@@ -385,6 +387,9 @@ pub fn heldout(job: &HeldoutJob) -> Result<String> {
     }
     if let Some(a) = job.alignment {
         cfg = cfg.with_alignment(a)?;
+    }
+    if let Some(k) = job.knots {
+        cfg = cfg.with_knots(k)?;
     }
     let (cfg, gestures) = offline::read_gestures(&job.demos, &cfg, job.state_length_from_data)?;
     let folds: usize = gestures.iter().map(|(_, d)| d.len()).sum();
