@@ -94,6 +94,16 @@ fn events(c: &mut Criterion) {
             })
         });
     }
+    // the second candidate: traced plans over the recommended events, two knots per event
+    let halves =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/configs/traced-halves.xml");
+    let halves = cosco_hsom::config::load_config(&halves).unwrap();
+    g.bench_function("fit_3x300_and_reproduce_halves", |b| {
+        b.iter(|| {
+            let m = halves.fit(&demos).unwrap();
+            black_box(m.reproduce(&demos[0].rows[0]).unwrap())
+        })
+    });
     for n in [300, 600, 1200, 2400] {
         let d = gestures(3, n);
         let m = cfg.fit(&d).unwrap();

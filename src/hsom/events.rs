@@ -3702,7 +3702,10 @@ mod tests {
                 .map(|j| {
                     let u = (j as f64 - hold as f64).clamp(0.0, swings) / per as f64;
                     let x = (std::f64::consts::PI * u).sin();
-                    vec![0.5 * x, 0.2 * (1.0 - (std::f64::consts::PI * u / 3.0).cos())]
+                    vec![
+                        0.5 * x,
+                        0.2 * (1.0 - (std::f64::consts::PI * u / 3.0).cos()),
+                    ]
                 })
                 .collect()
         };
