@@ -930,11 +930,11 @@ impl Traces {
     }
 
     /// The traces of a model with memory `k` and `s` values placing each event
-    /// ([`trace_places`]) whose levels have `nodes` nodes each, from [`Traces::to_words`] (loaded, untrusted): every level sized as the
-    /// configuration sizes it ([`trace_words`]), every bottom node before a chunk a node,
-    /// every bottom event a node or the end, every upper entry a node of its level (or the
-    /// padding), every event's posture `s` finite values (or all padding); otherwise what is
-    /// wrong.
+    /// ([`trace_places`]) whose levels have `nodes` nodes each, from [`Traces::to_words`]
+    /// (loaded, untrusted): every level sized as the configuration sizes it
+    /// ([`trace_words`]), every bottom node before a chunk a node, every bottom event a node
+    /// or the end, every upper entry a node of its level (or the padding), every event's
+    /// place `s` finite values (or all padding); otherwise what is wrong.
     pub(crate) fn from_words(
         w: &[u32],
         k: usize,
