@@ -181,9 +181,9 @@ pub enum Knots {
     /// One knot per event, at its middle, where the event lies in the consensus. The
     /// default.
     Event,
-    /// Two knots per event of two samples or more, at a quarter and three quarters of its
-    /// duration, each where that half of the event lies in the consensus: a swing shorter
-    /// than two events keeps its turn.
+    /// Two knots per event of four samples or more (two per half), at a quarter and three
+    /// quarters of its duration, each where that half of the event lies in the consensus: a
+    /// swing shorter than two events keeps its turn.
     Halves,
 }
 
