@@ -234,11 +234,12 @@ fn cosco_heldout_on_directories_of_gestures() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("one of all, local"));
-    // plans that follow a demonstration, the consensus read along a smooth warp: accepted; a
-    // bad word is named with the words allowed
+    // plans that follow a demonstration, the consensus read along a smooth warp, two knots
+    // per event: accepted; a bad word is named with the words allowed
     for (flag, word, bad, allowed) in [
         ("--plan", "traced", "replay", "one of traced, decoded"),
         ("--alignment", "smooth", "linear", "one of stepped, smooth"),
+        ("--knots", "halves", "thirds", "one of event, halves"),
     ] {
         cosco()
             .arg("--demos")
