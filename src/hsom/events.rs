@@ -2264,10 +2264,13 @@ impl Hsom {
         // floor(total) + 1 samples below
         let mut spans = Vec::with_capacity(executed.len());
         let mut now = 0.0;
+        // knots = halves: a traced event's place is followed by its halves' (trace_places)
+        let halves = self.config.params().knots == crate::config::Knots::Halves;
         for &(n, d, l, ref at) in executed {
             match at {
-                // knots = halves: a knot at the middle of each half, where that half lies
-                Some(a) if a.len() == 3 * s && d >= 2.0 * HALF_SAMPLES => {
+                // a knot at the middle of each half, where that half lies
+                Some(a) if halves && d >= 2.0 * HALF_SAMPLES => {
+                    debug_assert_eq!(a.len(), 3 * s);
                     for (half, (from, to)) in [(now, now + d / 2.0), (now + d / 2.0, now + d)]
                         .into_iter()
                         .enumerate()
