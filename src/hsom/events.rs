@@ -2260,6 +2260,9 @@ impl Hsom {
         let mut t = vec![0.0];
         let mut v: Vec<Vec<f64>> = vec![y0.to_vec()];
         let mut by = vec![0usize];
+        // per knot: its place is the mean of the span it stands for in the followed
+        // demonstration's consensus (a traced event or half), so that mean is kept
+        let mut traced_mean = vec![false];
         // the samples of each event (knot i + 1): ceil(start)..ceil(end), within the
         // floor(total) + 1 samples below
         let mut spans = Vec::with_capacity(executed.len());
@@ -2278,6 +2281,7 @@ impl Hsom {
                         t.push((from + to) / 2.0);
                         v.push(traced(n, &a[(half + 1) * s..(half + 2) * s]));
                         by.push(l);
+                        traced_mean.push(true);
                         spans.push((from.ceil() as usize, to.ceil() as usize));
                     }
                 }
@@ -2285,6 +2289,7 @@ impl Hsom {
                     t.push(now + d / 2.0);
                     v.push(at.as_ref().map_or_else(|| knot(n), |a| traced(n, a)));
                     by.push(l);
+                    traced_mean.push(at.is_some());
                     spans.push((now.ceil() as usize, (now + d).ceil() as usize));
                 }
             }
@@ -2308,11 +2313,12 @@ impl Hsom {
             });
             v.push(end);
             by.push(l);
+            traced_mean.push(false);
         }
         let values = (0..s)
             .map(|d| {
                 let target: Vec<f64> = v.iter().map(|r| r[d]).collect();
-                turning_points_kept(&t, &target, &spans)
+                turning_points_kept(&t, &target, &spans, &traced_mean)
             })
             .collect();
         Timed {
@@ -2481,12 +2487,34 @@ const TURNING_ITERATIONS: usize = 20;
 /// first event's first sample is the initial posture itself, which no knot moves; counting it
 /// made each correction add the same step again, and a one-sample first event at a turn threw
 /// its knot 20 gaps away (a start-up jump and back).
-fn turning_points_kept(t: &[f64], target: &[f64], spans: &[(usize, usize)]) -> Vec<f64> {
+///
+/// A traced knot (`traced_mean[i]`: a traced event or half, whose target is the mean of the
+/// followed demonstration's consensus over exactly the span it stands for) beside a turning
+/// point keeps its span's mean too: the turn's samples may lie in its span rather than in the
+/// turning knot's (the wave's last trough fell at the start of the next event's first half,
+/// whose mean the rise after it lifted above the turning knot's), and only the pair moved
+/// brings the curve down into the turn. A decoded knot's target is its node's place, a mean
+/// over every event of that node, not over this span, so only turning points move there.
+/// Elsewhere a span's mean is its middle value: moving those knots too, measured, amplified
+/// the unevenness between them (jerk; docs/ALGORITHM.md, passage 6).
+fn turning_points_kept(
+    t: &[f64],
+    target: &[f64],
+    spans: &[(usize, usize)],
+    traced_mean: &[bool],
+) -> Vec<f64> {
     let k = target.len();
-    let turning: Vec<(usize, usize, usize)> = (1..k.saturating_sub(1))
-        .filter(|&i| {
+    // a strict local extremum of its neighbours
+    let extremum = |i: usize| {
+        i >= 1 && i + 1 < k && {
             let (p, q, r) = (target[i - 1], target[i], target[i + 1]);
             (q > p && q > r) || (q < p && q < r)
+        }
+    };
+    let turning: Vec<(usize, usize, usize)> = (1..k.saturating_sub(1))
+        .filter(|&i| {
+            extremum(i)
+                || (traced_mean.get(i) == Some(&true) && (extremum(i - 1) || extremum(i + 1)))
         })
         .filter_map(|i| {
             let &(a, b) = spans.get(i - 1)?;
@@ -4229,7 +4257,7 @@ mod tests {
         let spans = [(0, 5), (5, 10), (10, 15), (15, 20)];
         let mean = |c: &[f64], (a, b): (usize, usize)| c[a..b].iter().sum::<f64>() / (b - a) as f64;
         let peak = [0.0, 0.3, 1.0, 0.3, 0.0, 0.0];
-        let kept = turning_points_kept(&t, &peak, &spans);
+        let kept = turning_points_kept(&t, &peak, &spans, &[]);
         let c = monotone_cubic(&t, &kept, 21);
         // the turn's event has the node's posture as its mean, so the curve turns beyond it
         assert!(
@@ -4246,7 +4274,7 @@ mod tests {
         assert!(mean(&plain, spans[1]) < 0.97, "{}", mean(&plain, spans[1]));
         // a hold (no strict extremum) is held where it is: nothing moves
         let hold = [0.0, 1.0, 1.0, 1.0, 0.0, 0.0];
-        assert_eq!(turning_points_kept(&t, &hold, &spans), hold.to_vec());
+        assert_eq!(turning_points_kept(&t, &hold, &spans, &[]), hold.to_vec());
     }
 
     #[test]
@@ -4256,7 +4284,7 @@ mod tests {
         let t = [0.0, 0.5, 5.0, 10.0];
         let spans = [(0, 1), (1, 9)];
         let v = [0.0, 0.01, -0.5, -0.5];
-        let kept = turning_points_kept(&t, &v, &spans);
+        let kept = turning_points_kept(&t, &v, &spans, &[]);
         assert_eq!(kept, v.to_vec());
         let c = monotone_cubic(&t, &kept, 11);
         assert!(c.iter().all(|&x| x <= 0.01), "{c:?}");
@@ -4264,13 +4292,79 @@ mod tests {
         let t = [0.0, 2.5, 7.5, 10.0];
         let spans = [(0, 5), (5, 10)];
         let v = [0.0, 0.3, 0.0, 0.0];
-        let kept = turning_points_kept(&t, &v, &spans);
+        let kept = turning_points_kept(&t, &v, &spans, &[]);
         let c = monotone_cubic(&t, &kept, 11);
         let mean = c[1..5].iter().sum::<f64>() / 4.0;
         assert!(
             (mean - 0.3).abs() < 1e-6 && kept[1] < 0.6,
             "{mean} {kept:?}"
         );
+    }
+
+    #[test]
+    fn a_turn_in_the_span_beside_its_turning_knot_is_kept_by_both() {
+        // a slow descent to a trough at 20.3 samples, a fast rise, a hold: the trough lies at
+        // the start of the span 20..25, whose mean the rise lifts above the mean of 15..20,
+        // so the knot of 15..20 is the turning point and the one holding the trough is not
+        let c0 = 20.3;
+        let y = |j: f64| {
+            use std::f64::consts::PI;
+            if j < c0 {
+                (PI * (j - (c0 - 20.0)) / 20.0).cos()
+            } else if j < c0 + 12.0 {
+                -(PI * (j - c0) / 12.0).cos()
+            } else {
+                1.0
+            }
+        };
+        let spans: Vec<(usize, usize)> = (0..8).map(|i| (5 * i, 5 * i + 5)).collect();
+        let mut t = vec![0.0];
+        let mut v = vec![y(0.0)];
+        for &(a, b) in &spans {
+            t.push((a + b) as f64 / 2.0);
+            v.push((a..b).map(|j| y(j as f64)).sum::<f64>() / (b - a) as f64);
+        }
+        t.push(40.0);
+        v.push(y(40.0));
+        let n = t.len();
+        assert!(v[4] < v[5] && v[5] < v[6] && v[4] < v[3], "{v:?}");
+        let mean = |c: &[f64], (a, b): (usize, usize)| c[a..b].iter().sum::<f64>() / (b - a) as f64;
+        // the control, decoded knots: only the turning point moves; the span holding the
+        // trough keeps its knot at its mean, and the curve's mean over it is off
+        let plain = turning_points_kept(&t, &v, &spans, &vec![false; n]);
+        assert_eq!(plain[5], v[5]);
+        let c = monotone_cubic(&t, &plain, 41);
+        assert!(mean(&c, spans[4]) > v[5] + 0.01, "{}", mean(&c, spans[4]));
+        // traced knots: the turning point's neighbours keep their spans' means too
+        let mut traced = vec![true; n];
+        (traced[0], traced[n - 1]) = (false, false);
+        let kept = turning_points_kept(&t, &v, &spans, &traced);
+        let c = monotone_cubic(&t, &kept, 41);
+        for i in [3, 4, 5] {
+            assert!((mean(&c, spans[i - 1]) - v[i]).abs() < 1e-3, "knot {i}");
+        }
+        // and the curve is nearer the one the means were taken from around the turn
+        let off = |c: &[f64]| {
+            let e2: f64 = (10..30).map(|j| (c[j] - y(j as f64)).powi(2)).sum();
+            (e2 / 20.0).sqrt()
+        };
+        let plain_curve = monotone_cubic(&t, &plain, 41);
+        assert!(
+            off(&c) < off(&plain_curve),
+            "{} against {}",
+            off(&c),
+            off(&plain_curve)
+        );
+        // knots away from the turn stay where they are (the ends, the slopes, the hold)
+        for i in [0, 1, 2, 6, 7, 8, 9] {
+            assert_eq!(kept[i], v[i], "knot {i}");
+        }
+        // one trough, no new turn
+        let turns = c
+            .windows(3)
+            .filter(|w| (w[1] - w[0]) * (w[2] - w[1]) < 0.0)
+            .count();
+        assert_eq!(turns, 1, "{c:?}");
     }
 
     #[test]
