@@ -2250,6 +2250,30 @@ impl Hsom {
         executed: &[Step<usize>],
         stop: StopReason,
     ) -> Timed {
+        let p = self.knot_places(start, y0, executed, stop);
+        let values = (0..y0.len())
+            .map(|d| {
+                let target: Vec<f64> = p.v.iter().map(|r| r[d]).collect();
+                turning_points_kept(&p.t, &target, &p.spans, &p.traced_mean)
+            })
+            .collect();
+        Timed {
+            t: p.t,
+            values,
+            by: p.by,
+            total: p.total,
+        }
+    }
+
+    /// The knots of [`Hsom::timed_knots`] where the plan places them, before the turning
+    /// points are kept.
+    fn knot_places(
+        &self,
+        start: &[f64],
+        y0: &[f64],
+        executed: &[Step<usize>],
+        stop: StopReason,
+    ) -> Places {
         let s = y0.len();
         let placed = self.placement(start);
         let knot = |n: usize| placed[n * s..(n + 1) * s].to_vec();
@@ -2315,16 +2339,12 @@ impl Hsom {
             by.push(l);
             traced_mean.push(false);
         }
-        let values = (0..s)
-            .map(|d| {
-                let target: Vec<f64> = v.iter().map(|r| r[d]).collect();
-                turning_points_kept(&t, &target, &spans, &traced_mean)
-            })
-            .collect();
-        Timed {
+        Places {
             t,
-            values,
+            v,
             by,
+            traced_mean,
+            spans,
             total: now,
         }
     }
@@ -2362,6 +2382,23 @@ impl Hsom {
             stop,
         }
     }
+}
+
+/// Knots where the plan places them ([`Hsom::knot_places`]).
+struct Places {
+    /// Knot times, samples from the first.
+    t: Vec<f64>,
+    /// Per knot, its place (`stateLength` values, normalised).
+    v: Vec<Vec<f64>>,
+    /// Per knot, the level that planned its event.
+    by: Vec<usize>,
+    /// Per knot, whether its place is the mean of the followed demonstration's consensus over
+    /// its span (a traced event or half; [`turning_points_kept`]).
+    traced_mean: Vec<bool>,
+    /// Per knot after the first, the samples of its event or half.
+    spans: Vec<(usize, usize)>,
+    /// The events' total duration, samples.
+    total: f64,
 }
 
 /// Knots of a timed reproduction ([`Hsom::timed_knots`]).
@@ -3785,13 +3822,27 @@ mod tests {
         let at: Vec<f64> = vec![0.0, 0.0, 0.1, 0.1, 0.2, 0.2];
         let n = m.dwell.iter().position(|&d| d > 0.0).unwrap();
         let executed: Vec<Step<usize>> = vec![(n, 3.5, 1, Some(at.clone())), (n, 4.0, 1, Some(at))];
-        let timed = m.timed_knots(&y0, &y0, &executed, StopReason::LearnedLength);
-        assert_eq!(timed.t, vec![0.0, 1.75, 4.5, 6.5, 7.5]);
+        let places = m.knot_places(&y0, &y0, &executed, StopReason::LearnedLength);
+        assert_eq!(places.t, vec![0.0, 1.75, 4.5, 6.5, 7.5]);
         let placed = m.placement(&y0);
-        assert_eq!(timed.by, vec![0, 1, 1, 1, 1]);
-        // the whole event at its place, the first half of the next at that half's
-        assert!((timed.values[0][2] - (placed[2 * n] + 0.1)).abs() < 1e-12);
-        assert!((timed.values[0][1] - (placed[2 * n] + 0.0)).abs() < 1e-12);
+        assert_eq!(places.by, vec![0, 1, 1, 1, 1]);
+        assert_eq!(places.traced_mean, vec![false, true, true, true, false]);
+        // the whole event at its place, the first half of the next at that half's, the
+        // second at the second's
+        for (k, off) in [(1, 0.0), (2, 0.1), (3, 0.2)] {
+            assert!(
+                (places.v[k][0] - (placed[2 * n] + off)).abs() < 1e-12,
+                "knot {k}"
+            );
+        }
+        // and the knots the curve passes through are those places, turning points kept
+        let timed = m.timed_knots(&y0, &y0, &executed, StopReason::LearnedLength);
+        assert_eq!(timed.t, places.t);
+        let target: Vec<f64> = places.v.iter().map(|r| r[0]).collect();
+        assert_eq!(
+            timed.values[0],
+            turning_points_kept(&places.t, &target, &places.spans, &places.traced_mean)
+        );
     }
 
     /// Continued after a prefix, the nearest sequence goes on along the demonstration the
