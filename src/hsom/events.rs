@@ -2285,7 +2285,7 @@ impl Hsom {
         let mut v: Vec<Vec<f64>> = vec![y0.to_vec()];
         let mut by = vec![0usize];
         // per knot: its place is the mean of the span it stands for in the followed
-        // demonstration's consensus (a traced event or half), so that mean is kept
+        // demonstration's consensus (a traced event or half), a mean kept beside a turn
         let mut traced_mean = vec![false];
         // the samples of each event (knot i + 1): ceil(start)..ceil(end), within the
         // floor(total) + 1 samples below
@@ -2529,8 +2529,9 @@ const TURNING_ITERATIONS: usize = 20;
 /// followed demonstration's consensus over exactly the span it stands for) beside a turning
 /// point keeps its span's mean too: the turn's samples may lie in its span rather than in the
 /// turning knot's (the wave's last trough fell at the start of the next event's first half,
-/// whose mean the rise after it lifted above the turning knot's), and only the pair moved
-/// brings the curve down into the turn. A decoded knot's target is its node's place, a mean
+/// whose mean the rise after it lifted above the turning knot's), and with only the turning
+/// knot moved the curve stayed flat at the pair's means there (moved too, that trough came
+/// 0.02 rad deeper and its return home counted as a swing). A decoded knot's target is its node's place, a mean
 /// over every event of that node, not over this span, so only turning points move there.
 /// Elsewhere a span's mean is its middle value: moving those knots too, measured, amplified
 /// the unevenness between them (jerk; docs/ALGORITHM.md, passage 6).
