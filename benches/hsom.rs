@@ -80,10 +80,11 @@ fn events(c: &mut Criterion) {
             black_box(m.reproduce(&demos[0].rows[0]).unwrap())
         })
     });
-    // the candidate of docs/ALGORITHM.md ("The decision before the team"): traced plans over
-    // finer events, the consensus read along a smooth warp; and the same with the stepped one
-    let finer = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/configs/traced-finer-events.xml");
+    // the other candidate of docs/ALGORITHM.md ("The decision, gate by gate"): traced plans
+    // over finer events, the consensus read along a smooth warp; and the same with the
+    // stepped one
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let finer = root.join("tests/configs/traced-finer-events.xml");
     let finer = cosco_hsom::config::load_config(&finer).unwrap();
     for how in [Alignment::Smooth, Alignment::Stepped] {
         let c = finer.with_alignment(how).unwrap();
@@ -94,13 +95,13 @@ fn events(c: &mut Criterion) {
             })
         });
     }
-    // the second candidate: traced plans over the recommended events, two knots per event
-    let halves =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/configs/traced-halves.xml");
-    let halves = cosco_hsom::config::load_config(&halves).unwrap();
-    g.bench_function("fit_3x300_and_reproduce_halves", |b| {
+    // the recommended configuration until the nineteenth session: decoded plans, one knot
+    // per event
+    let decoded = root.join("tests/configs/decoded-plan.xml");
+    let decoded = cosco_hsom::config::load_config(&decoded).unwrap();
+    g.bench_function("fit_3x300_and_reproduce_decoded", |b| {
         b.iter(|| {
-            let m = halves.fit(&demos).unwrap();
+            let m = decoded.fit(&demos).unwrap();
             black_box(m.reproduce(&demos[0].rows[0]).unwrap())
         })
     });

@@ -515,10 +515,10 @@ fn consensus_weighing_parses_round_trips_and_names_bad_values() {
 #[test]
 fn alignment_parses_round_trips_and_names_bad_values() {
     use cosco_hsom::config::Alignment;
-    let t = std::fs::read_to_string("configs/nao-gestures.xml").unwrap();
-    // not written: the default
+    let t = std::fs::read_to_string("tests/configs/decoded-plan.xml").unwrap();
+    // not written there: the default
     assert!(!t.contains("<alignment>"));
-    let default = parse_config(&t, "nao-gestures.xml").unwrap();
+    let default = parse_config(&t, "decoded-plan.xml").unwrap();
     assert_eq!(default.params().alignment, Alignment::Stepped);
     let with = |word: &str| {
         t.replacen(
@@ -554,10 +554,10 @@ fn alignment_parses_round_trips_and_names_bad_values() {
 #[test]
 fn plan_parses_round_trips_and_names_bad_values() {
     use cosco_hsom::config::Plan;
-    let t = std::fs::read_to_string("configs/nao-gestures.xml").unwrap();
-    let default = parse_config(&t, "nao-gestures.xml").unwrap();
+    let t = std::fs::read_to_string("tests/configs/decoded-plan.xml").unwrap();
+    let default = parse_config(&t, "decoded-plan.xml").unwrap();
     assert_eq!(default.params().plan, Plan::Decoded);
-    // not written: the default
+    // not written there: the default
     let bare = t.replacen("<plan>decoded</plan>", "", 1);
     assert_eq!(
         parse_config(&bare, "bare.xml").unwrap().params().plan,
@@ -568,7 +568,8 @@ fn plan_parses_round_trips_and_names_bad_values() {
         ("Traced", Plan::Traced),
         ("DECODED", Plan::Decoded),
     ] {
-        let c = parse_config(&t.replacen("decoded", word, 1), "ok.xml").unwrap();
+        let written = format!("<plan>{word}</plan>");
+        let c = parse_config(&t.replacen("<plan>decoded</plan>", &written, 1), "ok.xml").unwrap();
         assert_eq!(c.params().plan, expected);
         let again = parse_config(&c.to_xml(), "again.xml").unwrap();
         assert_eq!(c.params(), again.params());
@@ -583,12 +584,11 @@ fn plan_parses_round_trips_and_names_bad_values() {
 }
 
 /// tests/configs/traced-finer-events.xml, measured beside the recommended configuration in
-/// docs/CONFIG.md (`changeRatio`, `alignment`), is that configuration with exactly `plan`,
-/// `changeRatio` and `alignment` changed: the comparison it documents stays one of three
-/// settings.
+/// docs/CONFIG.md (`changeRatio`, `knots`), is that configuration with exactly `changeRatio`
+/// and `knots` changed: the comparison it documents stays one of two settings.
 #[test]
-fn the_finer_events_configuration_is_the_recommended_one_with_three_settings_changed() {
-    use cosco_hsom::config::{Alignment, Plan};
+fn the_finer_events_configuration_is_the_recommended_one_with_two_settings_changed() {
+    use cosco_hsom::config::{Alignment, Knots, Plan};
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let rec = load_config(&root.join("configs/nao-gestures.xml"))
         .unwrap()
@@ -597,38 +597,42 @@ fn the_finer_events_configuration_is_the_recommended_one_with_three_settings_cha
         .unwrap()
         .into_params();
     assert_eq!(
-        (rec.plan, rec.change_ratio, rec.alignment),
-        (Plan::Decoded, 0.6, Alignment::Stepped)
+        (rec.plan, rec.change_ratio, rec.alignment, rec.knots),
+        (Plan::Traced, 0.6, Alignment::Smooth, Knots::Halves)
     );
     assert_eq!(
-        (fine.plan, fine.change_ratio, fine.alignment),
-        (Plan::Traced, 0.8, Alignment::Smooth)
+        (fine.plan, fine.change_ratio, fine.alignment, fine.knots),
+        (Plan::Traced, 0.8, Alignment::Smooth, Knots::Event)
     );
     let mut same = fine.clone();
-    same.plan = rec.plan;
     same.change_ratio = rec.change_ratio;
-    same.alignment = rec.alignment;
+    same.knots = rec.knots;
     assert_eq!(same, rec);
 }
 
+/// tests/configs/decoded-plan.xml, the recommended configuration up to the nineteenth
+/// session, is today's with exactly `plan`, `alignment` and `knots` at their defaults: its
+/// bottom events, and so recognition, are the recommended configuration's.
 #[test]
-fn the_halves_configuration_is_the_recommended_one_with_three_settings_changed() {
+fn the_decoded_plan_configuration_is_the_recommended_one_with_three_settings_changed() {
     use cosco_hsom::config::{Alignment, Knots, Plan};
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let rec = load_config(&root.join("configs/nao-gestures.xml"))
         .unwrap()
         .into_params();
-    let halves = load_config(&root.join("tests/configs/traced-halves.xml"))
+    let decoded = load_config(&root.join("tests/configs/decoded-plan.xml"))
         .unwrap()
         .into_params();
-    assert_eq!(rec.knots, Knots::Event);
     assert_eq!(
-        (halves.plan, halves.alignment, halves.knots),
+        (rec.plan, rec.alignment, rec.knots),
         (Plan::Traced, Alignment::Smooth, Knots::Halves)
     );
-    // the bottom events, and so recognition, are the recommended configuration's
-    assert_eq!(halves.change_ratio, rec.change_ratio);
-    let mut same = halves.clone();
+    assert_eq!(
+        (decoded.plan, decoded.alignment, decoded.knots),
+        (Plan::Decoded, Alignment::Stepped, Knots::Event)
+    );
+    assert_eq!(decoded.change_ratio, rec.change_ratio);
+    let mut same = decoded.clone();
     same.plan = rec.plan;
     same.alignment = rec.alignment;
     same.knots = rec.knots;
@@ -638,11 +642,11 @@ fn the_halves_configuration_is_the_recommended_one_with_three_settings_changed()
 #[test]
 fn knots_parse_round_trip_and_name_bad_values() {
     use cosco_hsom::config::Knots;
-    let t = std::fs::read_to_string("configs/nao-gestures.xml").unwrap();
-    // not written: the default
+    let t = std::fs::read_to_string("tests/configs/decoded-plan.xml").unwrap();
+    // not written there: the default
     assert!(!t.contains("<knots>"));
     assert_eq!(
-        parse_config(&t, "nao-gestures.xml").unwrap().params().knots,
+        parse_config(&t, "decoded-plan.xml").unwrap().params().knots,
         Knots::Event
     );
     let with = |word: &str| {

@@ -201,8 +201,11 @@ fn an_alignment_fold_runs_each_alignment_of_the_consensus() {
     assert_eq!(fold.held_out, 2);
     let names: Vec<&str> = fold.runs.iter().map(|r| r.alignment.as_str()).collect();
     assert_eq!(names, ["stepped", "smooth"]);
+    // the run with the configuration's own alignment is the held-out evaluation's fold
+    let own = f.config.params().alignment.name();
+    let own = fold.runs.iter().find(|r| r.alignment == own).unwrap();
     assert_eq!(
-        fold.runs[0].joint_dtw,
+        own.joint_dtw,
         f.heldout.folds[2].hsom.fidelity.joint_dtw_rad_per_step.mean
     );
     let demo = &f.demos[2];
@@ -368,19 +371,50 @@ fn a_grab_during_execution_is_scored_against_the_held_out_demonstration() {
                 fold.undisturbed.postures.max(after + 1)
             );
         }
-        // the grab costs every plan by its clock
-        for run in [&c.hsom[i].by_clock, &c.sequence[i].by_clock, &gmr.by_clock] {
-            assert!(
-                run.fidelity.joint_dtw_rad_per_step.mean
-                    > c.sequence[i]
-                        .undisturbed
-                        .fidelity
-                        .joint_dtw_rad_per_step
-                        .mean
-                        .min(c.hsom[i].undisturbed.fidelity.joint_dtw_rad_per_step.mean),
-                "fold {i}"
-            );
-        }
+    }
+    // the grab costs every plan by its clock, over the folds together: its mean joint DTW
+    // by the clock is above its mean undisturbed. Not per fold: a grab that falls in a hold
+    // of the plan (reading-watch's apex) holds still where the plan would have, and can
+    // then lie nearer a held-out demonstration that held longer; measured at 0.3, 0.5 and
+    // 0.7 of the demonstration, some fold of every method does so somewhere, GMM/GMR's
+    // included (docs/ALGORITHM.md, "In a closed loop")
+    let mean = |runs: &mut dyn Iterator<Item = f64>| {
+        let v: Vec<f64> = runs.collect();
+        v.iter().sum::<f64>() / v.len() as f64
+    };
+    let dtw = |r: &cosco_hsom::experiment::FoldScores| r.fidelity.joint_dtw_rad_per_step.mean;
+    for (method, folds) in [
+        (
+            "hierarchy",
+            c.hsom
+                .iter()
+                .map(|f| (&f.by_clock, &f.undisturbed))
+                .collect::<Vec<_>>(),
+        ),
+        (
+            "nearest sequence",
+            c.sequence
+                .iter()
+                .map(|f| (&f.by_clock, &f.undisturbed))
+                .collect(),
+        ),
+        (
+            "GMM/GMR",
+            c.gmr
+                .iter()
+                .map(|f| {
+                    let f = f.as_ref().unwrap();
+                    (&f.by_clock, &f.undisturbed)
+                })
+                .collect(),
+        ),
+    ] {
+        let by_clock = mean(&mut folds.iter().map(|(b, _)| dtw(b)));
+        let undisturbed = mean(&mut folds.iter().map(|(_, u)| dtw(u)));
+        assert!(
+            by_clock > undisturbed,
+            "{method}: by its clock {by_clock}, undisturbed {undisturbed}"
+        );
     }
     // the traces drawn: the grab is where the runs by the clock stand still, and drawn
     for (i, fold) in c.hsom.iter().enumerate() {

@@ -319,6 +319,8 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     let traced = recommended_for(2)
         .with_plan(cosco_hsom::config::Plan::Traced)
         .unwrap()
+        .with_knots(cosco_hsom::config::Knots::Event)
+        .unwrap()
         .fit(&demos)
         .unwrap();
     for name in ["t.bin", "t.txt"] {
@@ -355,6 +357,14 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("traces") && e.contains("expected"), "{e}");
     // a decoded model holds none: an empty traces line
+    let decoded = recommended_for(2)
+        .with_plan(cosco_hsom::config::Plan::Decoded)
+        .unwrap()
+        .fit(&demos)
+        .unwrap();
+    let path = dir.path().join("d.txt");
+    decoded.save(&path).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
     assert!(text.lines().any(|l| l == "traces"));
     let path = dir.path().join("t.txt");
     let text = std::fs::read_to_string(&path).unwrap();

@@ -188,7 +188,12 @@ def test_heldout_scores_every_method_on_the_same_folds(demos):
         cfg.replace(consensus=word)
     with pytest.raises(ValueError, match="all, local, start"):
         cfg.replace(consensus="nearest")
-    # how the levels' prediction becomes a plan: decoded (the default) or traced
+    # how the levels' prediction becomes a plan: decoded (the default when not written) or
+    # traced (the recommended configuration's, written there with its smooth alignment and
+    # two knots per event)
+    nao = cosco_hsom.Config.nao_gestures().to_xml()
+    for written in ("<plan>traced</plan>", "<alignment>smooth</alignment>", "<knots>halves</knots>"):
+        assert written in nao
     assert "<plan>decoded</plan>" in cfg.to_xml()
     assert "<plan>traced</plan>" in cfg.replace(plan="Traced").to_xml()
     with pytest.raises(ValueError, match="traced, decoded"):
