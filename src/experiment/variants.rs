@@ -3,7 +3,8 @@
 //! scored exactly like the main result, so `report.md` shows what every option buys.
 
 use crate::config::{
-    parse_config, Algorithm, HsomConfig, HsomParams, ListUpdate, Reflex, ReproductionMode, Timing,
+    parse_config, Algorithm, Alignment, HsomConfig, HsomParams, Knots, ListUpdate, Plan, Reflex,
+    ReproductionMode, Timing,
 };
 use crate::demos::Demonstration;
 use crate::sim::NaoArm;
@@ -89,6 +90,16 @@ pub fn variants(
         let mut q = p.clone();
         q.change_ratio = 1.0;
         push("without changeRatio hysteresis", q, transition)?;
+    }
+    if p.algorithm == Algorithm::Events && p.plan == Plan::Traced {
+        // plans decoded slot by slot, one knot per event, the consensus read along the
+        // stepped warp: the recommended configuration until the nineteenth session
+        // (tests/configs/decoded-plan.xml)
+        let mut q = p.clone();
+        q.plan = Plan::Decoded;
+        q.knots = Knots::Event;
+        q.alignment = Alignment::Stepped;
+        push("with decoded plans (the former default)", q, transition)?;
     }
     if p.list_update == ListUpdate::OnChange {
         let mut q = p.clone();
