@@ -877,14 +877,19 @@ pub(crate) fn trace_width(k: usize, l: usize, s: usize) -> Option<usize> {
 }
 
 /// The values that place each traced event of a model configured by `p` (the `s` of
-/// [`trace_width`] and the rest): `stateLength`, or three times that with `knots = halves`
-/// (the event, then its first and second half).
+/// [`trace_width`] and the rest): `stateLength`, or seven times that with `knots = halves`
+/// (the event, its first and second half, then the first half's lowest and highest values
+/// and the second's: where a turn in that half reaches, [`turning_points_kept`]).
 pub(crate) fn trace_places(p: &crate::config::HsomParams) -> usize {
     match p.knots {
         crate::config::Knots::Event => p.state_length,
-        crate::config::Knots::Halves => 3 * p.state_length,
+        crate::config::Knots::Halves => HALF_PLACES * p.state_length,
     }
 }
+
+/// Places per traced event with `knots = halves` ([`trace_places`]), each `stateLength`
+/// values.
+const HALF_PLACES: usize = 7;
 
 /// Where the postures of a traced chunk of level `l` (memory `k`) begin in its words: after
 /// its head and bottom events.
@@ -2080,7 +2085,9 @@ impl Hsom {
     /// (docs/ALGORITHM.md, passage 6, "Traced events"): the demonstrations' agreement at that
     /// event of that demonstration, where a node's place pools every visit to the node, from
     /// wherever in the gesture it came. One value per event: the model keeps it in the
-    /// traced chunks at a size set by the configuration.
+    /// traced chunks at a size set by the configuration. With `knots = halves` also each
+    /// half's, and each half's lowest and highest consensus values per variable (as offsets
+    /// from the same place; [`trace_places`]).
     pub(crate) fn event_offsets(
         &self,
         norm: &[Vec<Vec<f64>>],
@@ -2140,8 +2147,19 @@ impl Hsom {
                             // the first half the first len / 2 samples (at least one), the
                             // second the rest (the whole event where it has one sample)
                             let h = (rows.len() / 2).max(1);
-                            m.extend(offset(&rows[..h]));
-                            m.extend(offset(if h < rows.len() { &rows[h..] } else { rows }));
+                            let parts = [&rows[..h], if h < rows.len() { &rows[h..] } else { rows }];
+                            for part in parts {
+                                m.extend(offset(part));
+                            }
+                            // where a turn in each half reaches: its extremes per variable
+                            for part in parts {
+                                for pick in [f64::min, f64::max] {
+                                    m.extend((0..s).map(|j| {
+                                        let e = part.iter().map(|r| r[j]).reduce(pick);
+                                        e.unwrap_or(placed[n * s + j]) - placed[n * s + j]
+                                    }));
+                                }
+                            }
                         }
                         (n, m)
                     })
@@ -2254,7 +2272,12 @@ impl Hsom {
         let values = (0..y0.len())
             .map(|d| {
                 let target: Vec<f64> = p.v.iter().map(|r| r[d]).collect();
-                turning_points_kept(&p.t, &target, &p.spans, &p.traced_mean)
+                let reach: Vec<Option<(f64, f64)>> = p
+                    .reach
+                    .iter()
+                    .map(|r| r.as_ref().map(|(lo, hi)| (lo[d], hi[d])))
+                    .collect();
+                turning_points_kept(&p.t, &target, &p.spans, &p.traced_mean, &reach)
             })
             .collect();
         Timed {
@@ -2287,6 +2310,8 @@ impl Hsom {
         // per knot: its place is the mean of the span it stands for in the followed
         // demonstration's consensus (a traced event or half), a mean kept beside a turn
         let mut traced_mean = vec![false];
+        // per knot of a traced half: its span's lowest and highest consensus values
+        let mut reach: Vec<Option<(Vec<f64>, Vec<f64>)>> = vec![None];
         // the samples of each event (knot i + 1): ceil(start)..ceil(end), within the
         // floor(total) + 1 samples below
         let mut spans = Vec::with_capacity(executed.len());
@@ -2297,13 +2322,15 @@ impl Hsom {
             match at {
                 // a knot at the middle of each half, where that half lies
                 Some(a) if halves && d >= 2.0 * HALF_SAMPLES => {
-                    debug_assert_eq!(a.len(), 3 * s);
+                    debug_assert_eq!(a.len(), HALF_PLACES * s);
+                    let place = |i: usize| traced(n, &a[i * s..(i + 1) * s]);
                     for (half, (from, to)) in [(now, now + d / 2.0), (now + d / 2.0, now + d)]
                         .into_iter()
                         .enumerate()
                     {
                         t.push((from + to) / 2.0);
-                        v.push(traced(n, &a[(half + 1) * s..(half + 2) * s]));
+                        v.push(place(half + 1));
+                        reach.push(Some((place(3 + 2 * half), place(4 + 2 * half))));
                         by.push(l);
                         traced_mean.push(true);
                         spans.push((from.ceil() as usize, to.ceil() as usize));
@@ -2312,6 +2339,7 @@ impl Hsom {
                 _ => {
                     t.push(now + d / 2.0);
                     v.push(at.as_ref().map_or_else(|| knot(n), |a| traced(n, a)));
+                    reach.push(None);
                     by.push(l);
                     traced_mean.push(at.is_some());
                     spans.push((now.ceil() as usize, (now + d).ceil() as usize));
@@ -2336,6 +2364,7 @@ impl Hsom {
                 end
             });
             v.push(end);
+            reach.push(None);
             by.push(l);
             traced_mean.push(false);
         }
@@ -2344,6 +2373,7 @@ impl Hsom {
             v,
             by,
             traced_mean,
+            reach,
             spans,
             total: now,
         }
@@ -2395,6 +2425,10 @@ struct Places {
     /// Per knot, whether its place is the mean of the followed demonstration's consensus over
     /// its span (a traced event or half; [`turning_points_kept`]).
     traced_mean: Vec<bool>,
+    /// Per knot of a traced half (`knots = halves`), the lowest and highest values of the
+    /// followed demonstration's consensus over its span (normalised): where a turn there
+    /// reaches ([`turning_points_kept`]).
+    reach: Vec<Option<(Vec<f64>, Vec<f64>)>>,
     /// Per knot after the first, the samples of its event or half.
     spans: Vec<(usize, usize)>,
     /// The events' total duration, samples.
@@ -2535,11 +2569,24 @@ const TURNING_ITERATIONS: usize = 20;
 /// over every event of that node, not over this span, so only turning points move there.
 /// Elsewhere a span's mean is its middle value: moving those knots too, measured, amplified
 /// the unevenness between them (jerk; docs/ALGORITHM.md, passage 6).
+///
+/// A turning knot of a traced half whose span's extremes are known (`reach[i]`: the lowest
+/// and highest values of the followed demonstration's consensus over the span) is placed at
+/// the extreme it turns at, the lowest for a trough, the highest for a peak (never inside
+/// its mean), and not corrected further: the curve's turn, at the knot (its tangent is zero
+/// there), then reaches where the demonstrations' consensus turns. A mean cannot find that
+/// where the turn is a sample or two of a long half: where DTW aligns the other
+/// demonstrations' deeper trough to one sample of the followed one, the consensus has a
+/// one-sample tip that the half's mean, and the curve whose mean matches it, average away
+/// (wave seed 13, fold 3: the last trough 0.11 rad short of the consensus and the rise after
+/// it 0.28 rad, under the swing count's 0.3; docs/ALGORITHM.md, passage 6, "Where a turn
+/// reaches").
 fn turning_points_kept(
     t: &[f64],
     target: &[f64],
     spans: &[(usize, usize)],
     traced_mean: &[bool],
+    reach: &[Option<(f64, f64)>],
 ) -> Vec<f64> {
     let k = target.len();
     // a strict local extremum of its neighbours
@@ -2549,7 +2596,21 @@ fn turning_points_kept(
             (q > p && q > r) || (q < p && q < r)
         }
     };
+    let mut v = target.to_vec();
+    // a traced half's turning knot at the extreme of its span it turns at
+    let mut reached = vec![false; k];
+    for i in (1..k.saturating_sub(1)).filter(|&i| extremum(i)) {
+        if let Some(&Some((lo, hi))) = reach.get(i) {
+            v[i] = if target[i] < target[i - 1] {
+                lo.min(target[i])
+            } else {
+                hi.max(target[i])
+            };
+            reached[i] = true;
+        }
+    }
     let turning: Vec<(usize, usize, usize)> = (1..k.saturating_sub(1))
+        .filter(|&i| !reached[i])
         .filter(|&i| {
             extremum(i)
                 || (traced_mean.get(i) == Some(&true) && (extremum(i - 1) || extremum(i + 1)))
@@ -2562,7 +2623,6 @@ fn turning_points_kept(
             (b > a).then_some((i, a, b))
         })
         .collect();
-    let mut v = target.to_vec();
     // only the turning events' samples are evaluated: the work per correction is the knots
     // plus those events
     for _ in 0..TURNING_ITERATIONS {
@@ -3820,7 +3880,10 @@ mod tests {
         p.knots = Knots::Halves;
         let m = p.check("test").unwrap().fit_series(&all[..4]).unwrap();
         let y0 = m.normalise(&all[0][0]);
-        let at: Vec<f64> = vec![0.0, 0.0, 0.1, 0.1, 0.2, 0.2];
+        // the event, its halves, then each half's lowest and highest values (s = 2)
+        let at: Vec<f64> = vec![
+            0.0, 0.0, 0.1, 0.1, 0.2, 0.2, -0.3, -0.3, 0.4, 0.4, -0.5, -0.5, 0.6, 0.6,
+        ];
         let n = m.dwell.iter().position(|&d| d > 0.0).unwrap();
         let executed: Vec<Step<usize>> = vec![(n, 3.5, 1, Some(at.clone())), (n, 4.0, 1, Some(at))];
         let places = m.knot_places(&y0, &y0, &executed, StopReason::LearnedLength);
@@ -3840,9 +3903,20 @@ mod tests {
         let timed = m.timed_knots(&y0, &y0, &executed, StopReason::LearnedLength);
         assert_eq!(timed.t, places.t);
         let target: Vec<f64> = places.v.iter().map(|r| r[0]).collect();
+        // each half's extremes go with its knot; the whole event and the end have none
+        let reach: Vec<Option<(f64, f64)>> = places
+            .reach
+            .iter()
+            .map(|r| r.as_ref().map(|(lo, hi)| (lo[0], hi[0])))
+            .collect();
+        let at = |off: f64| placed[2 * n] + off;
+        assert_eq!(
+            reach,
+            vec![None, None, Some((at(-0.3), at(0.4))), Some((at(-0.5), at(0.6))), None]
+        );
         assert_eq!(
             timed.values[0],
-            turning_points_kept(&places.t, &target, &places.spans, &places.traced_mean)
+            turning_points_kept(&places.t, &target, &places.spans, &places.traced_mean, &reach)
         );
     }
 
@@ -4309,7 +4383,7 @@ mod tests {
         let spans = [(0, 5), (5, 10), (10, 15), (15, 20)];
         let mean = |c: &[f64], (a, b): (usize, usize)| c[a..b].iter().sum::<f64>() / (b - a) as f64;
         let peak = [0.0, 0.3, 1.0, 0.3, 0.0, 0.0];
-        let kept = turning_points_kept(&t, &peak, &spans, &[]);
+        let kept = turning_points_kept(&t, &peak, &spans, &[], &[]);
         let c = monotone_cubic(&t, &kept, 21);
         // the turn's event has the node's posture as its mean, so the curve turns beyond it
         assert!(
@@ -4326,7 +4400,7 @@ mod tests {
         assert!(mean(&plain, spans[1]) < 0.97, "{}", mean(&plain, spans[1]));
         // a hold (no strict extremum) is held where it is: nothing moves
         let hold = [0.0, 1.0, 1.0, 1.0, 0.0, 0.0];
-        assert_eq!(turning_points_kept(&t, &hold, &spans, &[]), hold.to_vec());
+        assert_eq!(turning_points_kept(&t, &hold, &spans, &[], &[]), hold.to_vec());
     }
 
     #[test]
@@ -4336,7 +4410,7 @@ mod tests {
         let t = [0.0, 0.5, 5.0, 10.0];
         let spans = [(0, 1), (1, 9)];
         let v = [0.0, 0.01, -0.5, -0.5];
-        let kept = turning_points_kept(&t, &v, &spans, &[]);
+        let kept = turning_points_kept(&t, &v, &spans, &[], &[]);
         assert_eq!(kept, v.to_vec());
         let c = monotone_cubic(&t, &kept, 11);
         assert!(c.iter().all(|&x| x <= 0.01), "{c:?}");
@@ -4344,7 +4418,7 @@ mod tests {
         let t = [0.0, 2.5, 7.5, 10.0];
         let spans = [(0, 5), (5, 10)];
         let v = [0.0, 0.3, 0.0, 0.0];
-        let kept = turning_points_kept(&t, &v, &spans, &[]);
+        let kept = turning_points_kept(&t, &v, &spans, &[], &[]);
         let c = monotone_cubic(&t, &kept, 11);
         let mean = c[1..5].iter().sum::<f64>() / 4.0;
         assert!(
@@ -4383,14 +4457,14 @@ mod tests {
         let mean = |c: &[f64], (a, b): (usize, usize)| c[a..b].iter().sum::<f64>() / (b - a) as f64;
         // the control, decoded knots: only the turning point moves; the span holding the
         // trough keeps its knot at its mean, and the curve's mean over it is off
-        let plain = turning_points_kept(&t, &v, &spans, &vec![false; n]);
+        let plain = turning_points_kept(&t, &v, &spans, &vec![false; n], &[]);
         assert_eq!(plain[5], v[5]);
         let c = monotone_cubic(&t, &plain, 41);
         assert!(mean(&c, spans[4]) > v[5] + 0.01, "{}", mean(&c, spans[4]));
         // traced knots: the turning point's neighbours keep their spans' means too
         let mut traced = vec![true; n];
         (traced[0], traced[n - 1]) = (false, false);
-        let kept = turning_points_kept(&t, &v, &spans, &traced);
+        let kept = turning_points_kept(&t, &v, &spans, &traced, &[]);
         let c = monotone_cubic(&t, &kept, 41);
         for i in [3, 4, 5] {
             assert!((mean(&c, spans[i - 1]) - v[i]).abs() < 1e-3, "knot {i}");

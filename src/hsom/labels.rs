@@ -28,7 +28,7 @@ use super::reproduce::Reproduction;
 
 /// Format version of a multi-gesture model file (a single-gesture model stays
 /// [`FORMAT_VERSION`]).
-pub const GESTURES_FORMAT_VERSION: u32 = 17;
+pub const GESTURES_FORMAT_VERSION: u32 = 19;
 
 /// Most gesture labels a model may hold (a bound on what a file may make us allocate).
 pub const MAX_LABELS: usize = 1024;

@@ -17,12 +17,13 @@ pub(super) const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 pub(super) const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of both formats.
-/// (16 added to every traced chunk its events' places in the consensus; 14 the traces a
+/// (18 added, with `knots = halves`, each traced half's lowest and highest consensus values;
+/// 16 to every traced chunk its events' places in the consensus; 14 the traces a
 /// `plan = traced` replays; 12 the start-weighted postures of `consensus = start`; 10 the
-/// levels' held-out prediction and lookup accuracies; 9, 11, 13 and 15 were formats of a
-/// model of several gestures, [`super::labels::GESTURES_FORMAT_VERSION`] now 17, so the
+/// levels' held-out prediction and lookup accuracies; 9, 11, 13, 15 and 17 were formats of
+/// a model of several gestures, [`super::labels::GESTURES_FORMAT_VERSION`] now 19, so the
 /// single-gesture format skips them.)
-pub const FORMAT_VERSION: u32 = 16;
+pub const FORMAT_VERSION: u32 = 18;
 
 /// The longest demonstration a model file may record, samples (a day at 1 kHz): the
 /// reproduction's length cap derives from it.
