@@ -4403,6 +4403,39 @@ mod tests {
         assert_eq!(turning_points_kept(&t, &hold, &spans, &[], &[]), hold.to_vec());
     }
 
+    /// A traced half whose consensus dips for a sample or two (DTW's pile-up of the other
+    /// demonstrations' deeper trough): its turning knot goes to that dip, so the curve turns
+    /// there; matching the half's mean instead (the control, no extremes known) turns well
+    /// inside it. A peak goes to its highest value, a knot that is no turning point stays,
+    /// and an extreme inside the knot's own place never pulls it back.
+    #[test]
+    fn a_traced_turn_reaches_the_extreme_of_its_span() {
+        let t = [0.0, 5.0, 15.0, 25.0, 30.0];
+        let spans = [(0, 10), (10, 20), (20, 30)];
+        let traced = [false, true, true, true, false];
+        let trough = [0.0, -0.3, -0.6, -0.3, 0.0];
+        let reach = [None, Some((-0.5, -0.1)), Some((-1.0, -0.4)), Some((-0.5, -0.1)), None];
+        let min = |v: &[f64]| monotone_cubic(&t, v, 31).into_iter().fold(f64::MAX, f64::min);
+        let kept = turning_points_kept(&t, &trough, &spans, &traced, &reach);
+        assert_eq!(kept[2], -1.0);
+        assert!((min(&kept) + 1.0).abs() < 1e-9, "{}", min(&kept));
+        // the control: the mean matched, the curve turns 0.2 rad inside the dip
+        let mean_kept = turning_points_kept(&t, &trough, &spans, &traced, &[]);
+        assert!(min(&mean_kept) > -0.8, "{}", min(&mean_kept));
+        // a peak reaches its highest value
+        let peak: Vec<f64> = trough.iter().map(|v| -v).collect();
+        let up = [None, None, Some((0.4, 1.0)), None, None];
+        assert_eq!(turning_points_kept(&t, &peak, &spans, &traced, &up)[2], 1.0);
+        // knots that are no turning point ignore their extremes
+        let slope = [0.0, -0.3, -0.6, -0.9, -1.0];
+        let kept = turning_points_kept(&t, &slope, &spans, &traced, &reach);
+        assert_eq!(kept, slope.to_vec());
+        // an extreme inside the knot's place (not one of the span's samples) never moves
+        // the turn inward
+        let inside = [None, None, Some((-0.5, -0.4)), None, None];
+        assert_eq!(turning_points_kept(&t, &trough, &spans, &traced, &inside)[2], -0.6);
+    }
+
     #[test]
     fn a_turn_at_the_first_sample_is_not_thrown_away_from_the_start() {
         // a first event of one sample at a turn: its only sample is the initial posture,
