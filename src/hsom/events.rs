@@ -2147,7 +2147,8 @@ impl Hsom {
                             // the first half the first len / 2 samples (at least one), the
                             // second the rest (the whole event where it has one sample)
                             let h = (rows.len() / 2).max(1);
-                            let parts = [&rows[..h], if h < rows.len() { &rows[h..] } else { rows }];
+                            let parts =
+                                [&rows[..h], if h < rows.len() { &rows[h..] } else { rows }];
                             for part in parts {
                                 m.extend(offset(part));
                             }
@@ -3912,11 +3913,23 @@ mod tests {
         let at = |off: f64| placed[2 * n] + off;
         assert_eq!(
             reach,
-            vec![None, None, Some((at(-0.3), at(0.4))), Some((at(-0.5), at(0.6))), None]
+            vec![
+                None,
+                None,
+                Some((at(-0.3), at(0.4))),
+                Some((at(-0.5), at(0.6))),
+                None
+            ]
         );
         assert_eq!(
             timed.values[0],
-            turning_points_kept(&places.t, &target, &places.spans, &places.traced_mean, &reach)
+            turning_points_kept(
+                &places.t,
+                &target,
+                &places.spans,
+                &places.traced_mean,
+                &reach
+            )
         );
     }
 
@@ -4400,7 +4413,10 @@ mod tests {
         assert!(mean(&plain, spans[1]) < 0.97, "{}", mean(&plain, spans[1]));
         // a hold (no strict extremum) is held where it is: nothing moves
         let hold = [0.0, 1.0, 1.0, 1.0, 0.0, 0.0];
-        assert_eq!(turning_points_kept(&t, &hold, &spans, &[], &[]), hold.to_vec());
+        assert_eq!(
+            turning_points_kept(&t, &hold, &spans, &[], &[]),
+            hold.to_vec()
+        );
     }
 
     /// A traced half whose consensus dips for a sample or two (DTW's pile-up of the other
@@ -4414,8 +4430,18 @@ mod tests {
         let spans = [(0, 10), (10, 20), (20, 30)];
         let traced = [false, true, true, true, false];
         let trough = [0.0, -0.3, -0.6, -0.3, 0.0];
-        let reach = [None, Some((-0.5, -0.1)), Some((-1.0, -0.4)), Some((-0.5, -0.1)), None];
-        let min = |v: &[f64]| monotone_cubic(&t, v, 31).into_iter().fold(f64::MAX, f64::min);
+        let reach = [
+            None,
+            Some((-0.5, -0.1)),
+            Some((-1.0, -0.4)),
+            Some((-0.5, -0.1)),
+            None,
+        ];
+        let min = |v: &[f64]| {
+            monotone_cubic(&t, v, 31)
+                .into_iter()
+                .fold(f64::MAX, f64::min)
+        };
         let kept = turning_points_kept(&t, &trough, &spans, &traced, &reach);
         assert_eq!(kept[2], -1.0);
         assert!((min(&kept) + 1.0).abs() < 1e-9, "{}", min(&kept));
@@ -4433,7 +4459,10 @@ mod tests {
         // an extreme inside the knot's place (not one of the span's samples) never moves
         // the turn inward
         let inside = [None, None, Some((-0.5, -0.4)), None, None];
-        assert_eq!(turning_points_kept(&t, &trough, &spans, &traced, &inside)[2], -0.6);
+        assert_eq!(
+            turning_points_kept(&t, &trough, &spans, &traced, &inside)[2],
+            -0.6
+        );
     }
 
     #[test]
