@@ -328,7 +328,7 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
         traced.save(&path).unwrap();
         assert_eq!(Hsom::load(&path).unwrap(), traced, "{name}");
     }
-    // so does one whose traced events place two knots each (three places per event), and
+    // so does one whose traced events place two knots each (seven places per event), and
     // it reproduces the same after loading; read as one place per event (its configuration
     // edited), its traces are the wrong size and are refused
     let halves = recommended_for(2)
