@@ -103,6 +103,11 @@ pub struct HeldOutSummary {
     pub swings: f64,
     /// Large swings of [`SWING_JOINT`] of the held-out demonstrations.
     pub demo_swings: f64,
+    /// How long the reproductions stay at their apex, seconds (docs/METRICS.md,
+    /// `apex_dwell`).
+    pub hold_s: f64,
+    /// The same for the held-out demonstrations.
+    pub demo_hold_s: f64,
 }
 
 fn mean(values: impl Iterator<Item = f64>) -> Option<f64> {
@@ -142,6 +147,8 @@ impl HeldOutSummary {
             })?,
             swings: m(&|s| s.swings.reproduction as f64)?,
             demo_swings: m(&|s| s.swings.demo as f64)?,
+            hold_s: m(&|s| s.fidelity.reproduction_hold_s)?,
+            demo_hold_s: m(&|s| s.fidelity.demo_hold_s.first().copied().unwrap_or(f64::NAN))?,
         })
     }
 }

@@ -5,7 +5,7 @@ use std::ops::Range;
 use serde::Serialize;
 
 use super::errors::MetricsError;
-use super::smoothness::{key_pose, smoothness, Smoothness};
+use super::smoothness::{apex_dwell, key_pose, smoothness, Smoothness};
 use crate::dtw::{dtw_distance, euclidean, Band};
 use crate::gmr::{active_range, IdleTrim};
 
@@ -177,6 +177,11 @@ pub struct FidelityReport {
     pub reproduction_smoothness: Smoothness,
     /// Smoothness of each demonstration, for comparison.
     pub demo_smoothness: Vec<Smoothness>,
+    /// How long the trimmed reproduction stays at its apex, seconds
+    /// ([`super::smoothness::apex_dwell`]; 0 when it never moves).
+    pub reproduction_hold_s: f64,
+    /// The same for each trimmed demonstration.
+    pub demo_hold_s: Vec<f64>,
     /// The settings used.
     pub settings: MetricsParams,
 }
@@ -324,6 +329,8 @@ pub fn fidelity_named(
         None
     };
     let deadband = params.reversal_deadband;
+    // the time at the apex of the trimmed trajectory (docs/METRICS.md)
+    let dwell = |rows: &[Vec<f64>]| apex_dwell(rows).map_or(0.0, |n| n as f64 * dt);
     Ok(FidelityReport {
         joint_dtw_rad_per_step: Stat::max_of(&collect(&|s| s.joint_dtw_rad_per_step)),
         wrist_dtw_mm: wrist,
@@ -337,6 +344,12 @@ pub fn fidelity_named(
             .iter()
             .zip(&demo_ranges)
             .map(|(d, r)| smoothness(&d.joints, r.clone(), dt, deadband))
+            .collect(),
+        reproduction_hold_s: if reproduction_moves { dwell(rep) } else { 0.0 },
+        demo_hold_s: demos
+            .iter()
+            .zip(&demo_ranges)
+            .map(|(d, r)| dwell(&d.joints[r.clone()]))
             .collect(),
         per_demo,
         settings: *params,

@@ -12,8 +12,8 @@ pub use fidelity::{
     fidelity, fidelity_named, DemoScores, FidelityReport, MetricsParams, Stat, Trajectory,
 };
 pub use smoothness::{
-    column_swings, key_pose, large_swings, normalized_jerk, smoothness, velocity_reversals,
-    Smoothness,
+    apex_dwell, column_swings, key_pose, large_swings, normalized_jerk, smoothness,
+    velocity_reversals, Smoothness, APEX_RADIUS,
 };
 
 /// The median of the finite values (`None` when there are none).

@@ -106,6 +106,25 @@ pub fn key_pose<R: AsRef<[f64]>>(rows: &[R]) -> Option<usize> {
     Some(best.0)
 }
 
+/// Samples within this fraction of the gesture's amplitude (the key pose's distance from the
+/// first sample) of the key pose count as at the apex ([`apex_dwell`]): wider than the
+/// demonstrator's wobble in a hold, narrower than the strokes into and out of it.
+pub const APEX_RADIUS: f64 = 0.1;
+
+/// How long a trajectory stays at its apex, in samples: the run of consecutive samples
+/// around its key pose ([`key_pose`]) that lie within [`APEX_RADIUS`] of the amplitude of
+/// it. For a gesture that holds at its apex, its hold with the last stretch of the stroke in
+/// and the first out; `None` for an empty trajectory.
+pub fn apex_dwell<R: AsRef<[f64]>>(rows: &[R]) -> Option<usize> {
+    let key = key_pose(rows)?;
+    let apex = rows[key].as_ref();
+    let radius = APEX_RADIUS * euclidean(apex, rows[0].as_ref());
+    let near = |k: &usize| euclidean(rows[*k].as_ref(), apex) <= radius;
+    let before = (0..key).rev().take_while(near).count();
+    let after = (key + 1..rows.len()).take_while(near).count();
+    Some(before + 1 + after)
+}
+
 /// Large swings of one signal (a joint's trajectory): the number of direction changes whose
 /// excursions on both sides, between consecutive turning points, exceed `min_amplitude`
 /// (hysteresis, as a zig-zag filter). The direction is set once the signal has moved more
@@ -243,5 +262,25 @@ mod tests {
             column_swings(&[[0.0, 0.0], [0.0, 1.0], [0.0, 0.0]], 1, 0.3).unwrap(),
             1
         );
+    }
+
+    /// The time at the apex counts the hold and the last and first samples of the strokes
+    /// within a tenth of the amplitude; a wobble in the hold smaller than that does not
+    /// break it, and a stroke that only passes through its apex (the control) stays there
+    /// a few samples.
+    #[test]
+    fn the_time_at_the_apex_counts_the_hold_through_its_wobble() {
+        // a stroke of 20 samples from 0 to 1, a hold of 40 with a 0.03 wobble, back in 20
+        let mut rows: Vec<[f64; 2]> = (0..20).map(|k| [k as f64 / 20.0, 0.0]).collect();
+        rows.extend((0..40).map(|k| [1.0 + 0.03 * (k as f64 * 0.7).sin(), 0.0]));
+        rows.extend((0..=20).map(|k| [1.0 - k as f64 / 20.0, 0.0]));
+        let dwell = apex_dwell(&rows).unwrap();
+        // the 40 held samples and the strokes' last and first two (within 0.1 of the apex)
+        assert!((42..=46).contains(&dwell), "{dwell}");
+        let through: Vec<[f64; 2]> = (0..=40)
+            .map(|k| [1.0 - (k as f64 - 20.0).abs() / 20.0, 0.0])
+            .collect();
+        assert!(apex_dwell(&through).unwrap() <= 5);
+        assert_eq!(apex_dwell::<[f64; 2]>(&[]), None);
     }
 }
