@@ -2,8 +2,7 @@
 //! contact sheet of key frames.
 
 use super::{font, save_png, RenderError, Result};
-use image::codecs::gif::{GifEncoder, Repeat};
-use image::{Delay, Frame, RgbImage};
+use image::RgbImage;
 use std::path::Path;
 
 /// Frames of one simulation, with the simulation time of each.
@@ -66,29 +65,12 @@ impl Clip {
         self.frames.iter().map(|(t, f)| (*t, f))
     }
 
-    /// Encode the clip as an animated GIF (looping forever).
+    /// Encode the clip as an animated GIF (looping forever): one palette for the whole clip
+    /// and frame deltas (see the `animation` module), so a still background costs nothing
+    /// after the first frame.
     pub fn gif_bytes(&self) -> Result<Vec<u8>> {
-        if self.frames.is_empty() {
-            return Err(RenderError::NoFrames("GIF"));
-        }
-        let enc = |source| RenderError::Encode {
-            what: "GIF",
-            source,
-        };
-        let mut bytes = Vec::new();
-        {
-            // speed 10: image's default trade-off between quantisation quality and time
-            let mut encoder = GifEncoder::new_with_speed(&mut bytes, 10);
-            encoder.set_repeat(Repeat::Infinite).map_err(enc)?;
-            let delay = Delay::from_numer_denom_ms(self.delay_ms, 1);
-            for (_, frame) in &self.frames {
-                let rgba = image::DynamicImage::ImageRgb8(frame.clone()).into_rgba8();
-                encoder
-                    .encode_frame(Frame::from_parts(rgba, 0, 0, delay))
-                    .map_err(enc)?;
-            }
-        }
-        Ok(bytes)
+        let frames: Vec<&RgbImage> = self.frames.iter().map(|(_, f)| f).collect();
+        super::animation::encode(&frames, self.delay_ms)
     }
 
     /// Write the clip as an animated GIF at `path`, atomically.

@@ -79,6 +79,9 @@ pub enum RenderError {
         /// The encoder's error.
         source: image::ImageError,
     },
+    /// Encoding a GIF failed.
+    #[error("cannot encode GIF: {0}")]
+    Gif(#[from] gif::EncodingError),
     /// Writing a file failed.
     #[error("cannot write {path}: {source}")]
     Io {
