@@ -103,7 +103,10 @@ mod tests {
             frame_sources(&qpos, 1),
             vec![(0, 0), (1, 0), (2, 2), (3, 2), (4, 4), (5, 4)]
         );
-        assert_eq!(frame_sources(&qpos, 2), vec![(0, 0), (2, 0), (4, 4)]);
+        // every second sample: sample 2 is compared with sample 0, 1.2e-3 away
+        assert_eq!(frame_sources(&qpos, 2), vec![(0, 0), (2, 2), (4, 4)]);
+        let qpos = vec![q(0.0), q(2.0), q(0.5e-3)];
+        assert_eq!(frame_sources(&qpos, 2), vec![(0, 0), (2, 0)]);
         // a single joint beyond the tolerance is enough to render
         let qpos = vec![vec![0.0, 0.0], vec![0.0, 2.0 * STILL_RAD]];
         assert_eq!(frame_sources(&qpos, 1), vec![(0, 0), (1, 1)]);
