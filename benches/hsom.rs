@@ -5,7 +5,7 @@
 mod common;
 
 use common::gestures;
-use cosco_hsom::config::{Alignment, HsomParams, MemoryMode};
+use cosco_hsom::config::{HsomParams, MemoryMode};
 use cosco_hsom::hsom::{ActivityLevels, ActivityList};
 use cosco_hsom::som::{Neighbourhood, SelfOrganizingMap, Topology};
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
@@ -57,7 +57,7 @@ fn table1(c: &mut Criterion) {
         b.iter(|| black_box(model.reproduce(&demos[0].rows[0]).unwrap()))
     });
     let mut p = HsomParams::table1();
-    p.memory_mode = MemoryMode::Levels;
+    p.paper_mut().unwrap().memory_mode = MemoryMode::Levels;
     let cfg_levels = p.check("t").unwrap();
     g.bench_function("fit_3x300_activity_levels", |b| {
         b.iter(|| black_box(cfg_levels.fit(&demos).unwrap()))
@@ -77,31 +77,6 @@ fn events(c: &mut Criterion) {
     g.bench_function("fit_3x300_and_reproduce", |b| {
         b.iter(|| {
             let m = cfg.fit(&demos).unwrap();
-            black_box(m.reproduce(&demos[0].rows[0]).unwrap())
-        })
-    });
-    // the other candidate of docs/ALGORITHM.md ("The decision, gate by gate"): traced plans
-    // over finer events, the consensus read along a smooth warp; and the same with the
-    // stepped one
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let finer = root.join("tests/configs/traced-finer-events.xml");
-    let finer = cosco_hsom::config::load_config(&finer).unwrap();
-    for how in [Alignment::Smooth, Alignment::Stepped] {
-        let c = finer.with_alignment(how).unwrap();
-        g.bench_function(format!("fit_3x300_and_reproduce_finer_{how:?}"), |b| {
-            b.iter(|| {
-                let m = c.fit(&demos).unwrap();
-                black_box(m.reproduce(&demos[0].rows[0]).unwrap())
-            })
-        });
-    }
-    // the recommended configuration until the nineteenth session: decoded plans, one knot
-    // per event
-    let decoded = root.join("tests/configs/decoded-plan.xml");
-    let decoded = cosco_hsom::config::load_config(&decoded).unwrap();
-    g.bench_function("fit_3x300_and_reproduce_decoded", |b| {
-        b.iter(|| {
-            let m = decoded.fit(&demos).unwrap();
             black_box(m.reproduce(&demos[0].rows[0]).unwrap())
         })
     });

@@ -3,11 +3,11 @@
 //! them, reproduction on cue, continuation of a prefix, and recognition of files.
 //!
 //! ```
-//! use cosco_hsom::config::{Algorithm, HsomParams};
+//! use cosco_hsom::config::{AlgorithmParams, EventsParams, HsomParams};
 //! use cosco_hsom::labelled::train_gestures;
 //! use cosco_hsom::steps::demonstrations_from_rows;
 //! let mut p = HsomParams::table1();
-//! p.algorithm = Algorithm::Events;
+//! p.algorithm = AlgorithmParams::Events(EventsParams { change_ratio: 1.0, action_horizon: 1 });
 //! p.state_length = 2;
 //! p.action_length = 2;
 //! p.training_steps = 300;

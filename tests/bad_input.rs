@@ -70,11 +70,19 @@ fn a_configuration_whose_root_is_not_hsom_is_refused_with_its_line() {
     );
 }
 
+/// Table I for 2 variables; with a `horizon` above 1 the events algorithm (which reads it) on
+/// Table I's levels.
 fn config(horizon: usize, normalisation: &str) -> cosco_hsom::config::HsomConfig {
     let mut p = HsomParams::table1();
     p.state_length = 2;
     p.action_length = 2;
-    p.action_horizon = horizon;
+    if horizon > 1 {
+        p.algorithm =
+            cosco_hsom::config::AlgorithmParams::Events(cosco_hsom::config::EventsParams {
+                change_ratio: 1.0,
+                action_horizon: horizon,
+            });
+    }
     p.normalisation = match normalisation {
         "none" => cosco_hsom::config::Normalisation::None,
         _ => cosco_hsom::config::Normalisation::Global,

@@ -3,25 +3,65 @@
 use std::path::Path;
 
 use cosco_hsom::config::{
-    load_config, parse_config, Algorithm, ConfigError, HsomParams, ListUpdate, Reflex,
-    ReproductionMode, Timing,
+    load_config, parse_config, Algorithm, ConfigError, HsomParams, IdDecoding, MemoryMode, StopRule,
 };
 use cosco_hsom::som::Topology;
 
 fn table1_text() -> String {
-    std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/configs/successor-table.xml"),
-    )
-    .unwrap()
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/table1.xml"))
+        .unwrap()
+}
+
+fn recommended_text() -> String {
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/nao-gestures.xml"))
+        .unwrap()
 }
 
 #[test]
 fn recommended_configuration_uses_the_events_extension() {
     let c = load_config(&Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/nao-gestures.xml"))
         .unwrap();
-    assert_eq!(c.params().algorithm, Algorithm::Events);
+    assert_eq!(c.params().kind(), Algorithm::Events);
+    assert_eq!(c.params(), &HsomParams::recommended());
     let again = parse_config(&c.to_xml(), "again.xml").unwrap();
     assert_eq!(c.params(), again.params());
+}
+
+/// The recommended file names at most 10 top-level settings and 7 per level, and every one
+/// of them is read by its algorithm (a setting it does not read would be refused).
+#[test]
+fn the_recommended_file_is_small() {
+    let t = recommended_text();
+    let top = t
+        .lines()
+        .filter(|l| l.starts_with("  <") && !l.starts_with("  </") && !l.contains("<levels>"))
+        .count();
+    assert!(top <= 10, "{top} top-level settings");
+    let most = t
+        .split("<level ")
+        .skip(1)
+        .map(|l| l.split("</level>").next().unwrap().matches("</").count())
+        .max()
+        .unwrap();
+    assert!(most <= 7, "{most} settings in a level");
+}
+
+/// An omitted setting takes the recommended configuration's value (`algorithm` events), or
+/// Table I's under `algorithm = paper`: an empty configuration is the recommended one.
+#[test]
+fn omitted_settings_take_the_defaults_of_their_algorithm() {
+    let c = parse_config("<hsom/>", "empty.xml").unwrap();
+    assert_eq!(c.params(), &HsomParams::recommended());
+    let c = parse_config("<hsom><algorithm>paper</algorithm></hsom>", "paper.xml").unwrap();
+    assert_eq!(c.params(), &HsomParams::table1());
+    let c = parse_config(
+        "<hsom><seed>7</seed><changeRatio>0.8</changeRatio></hsom>",
+        "x",
+    )
+    .unwrap();
+    assert_eq!(c.params().seed, 7);
+    assert_eq!(c.params().change_ratio(), 0.8);
+    assert_eq!(c.params().action_horizon(), 10);
 }
 
 #[test]
@@ -56,18 +96,18 @@ fn events_configurations_are_checked_with_their_own_input_sizes() {
         "<algorithm>events</algorithm><memoryMode>levels</memoryMode>",
         1,
     );
-    assert_invalid(
+    assert_not_read(
         parse_config(&levels, "bad.xml").unwrap_err(),
         "memoryMode",
-        "levels",
+        "paper",
     );
 }
 
 #[test]
 fn unknown_algorithm_is_refused() {
     let t = table1_text().replacen(
-        "<seed>1</seed>",
-        "<seed>1</seed><algorithm>magic</algorithm>",
+        "<algorithm>paper</algorithm>",
+        "<algorithm>magic</algorithm>",
         1,
     );
     let e = parse_config(&t, "bad.xml").unwrap_err();
@@ -80,7 +120,7 @@ fn table1_file_reproduces_the_paper_table() {
     let c = load_config(&Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/table1.xml")).unwrap();
     let p = c.params();
     assert_eq!(
-        (p.height, p.memory, p.update_period, p.training_steps),
+        (p.height, p.memory, p.update_period(), p.training_steps),
         (6, 4, 2, 5000)
     );
     assert_eq!((p.state_length, p.action_length), (6, 6));
@@ -90,17 +130,15 @@ fn table1_file_reproduces_the_paper_table() {
         assert_eq!(l.learning_factor.initial, a);
         assert_eq!(l.topology, Topology::Orthogonal);
     }
-    // the file is the paper taken literally: the built-in Table I with the paper's own
-    // output (the node's action half, open loop) and nothing beyond the paper switched on
-    let mut b = HsomParams::table1();
-    b.reproduction.continuity = 0.0;
-    b.reproduction.closed_loop = false;
-    assert_eq!(p, b.check("x").unwrap().params());
-    assert_eq!(p.algorithm, Algorithm::Paper);
-    assert_eq!(p.list_update, ListUpdate::EveryStep);
-    assert_eq!(p.reproduction.mode, ReproductionMode::Literal);
-    assert_eq!(p.reproduction.reflex, Reflex::Bmu);
-    assert_eq!(p.reproduction.timing, Timing::Step);
+    // the file is the paper taken literally: the built-in Table I
+    assert_eq!(p, &HsomParams::table1());
+    assert_eq!(p.kind(), Algorithm::Paper);
+    let q = p.paper().unwrap();
+    assert_eq!(
+        (q.memory_mode, q.offset, q.id_decoding, q.stop),
+        (MemoryMode::Lists, 3, IdDecoding::Round, StopRule::Learned)
+    );
+    assert_eq!((p.change_ratio(), p.action_horizon()), (1.0, 1));
 }
 
 #[test]
@@ -149,12 +187,12 @@ fn invalid_malformed_xml_reports_line_and_column() {
             file, line, column, ..
         } => {
             assert_eq!(file, "bad.xml");
-            assert_eq!(*line, 8);
+            assert_eq!(*line, 10);
             assert!(*column > 1);
         }
         other => panic!("{other:?}"),
     }
-    assert!(e.to_string().starts_with("bad.xml:8:"), "{e}");
+    assert!(e.to_string().starts_with("bad.xml:10:"), "{e}");
     assert!(matches!(
         err("<hsom><memory>4</memory>"),
         ConfigError::Malformed { .. }
@@ -177,16 +215,6 @@ fn invalid_unknown_element() {
         "<rows>16</rows><depth>2</depth>",
     ));
     assert!(e.to_string().contains("depth"), "{e}");
-}
-
-#[test]
-fn invalid_missing_memory() {
-    let e = err(&replace("<memory>4</memory>", ""));
-    assert!(
-        matches!(&e, ConfigError::Missing { field, .. } if field == "memory"),
-        "{e:?}"
-    );
-    assert!(e.to_string().contains("bad.xml") && e.to_string().contains("memory"));
 }
 
 #[test]
@@ -433,254 +461,191 @@ fn invalid_too_many_weights() {
     );
 }
 
+fn assert_not_read(e: ConfigError, field: &str, reads: &str) {
+    let msg = e.to_string();
+    match &e {
+        ConfigError::NotRead {
+            field: f, reads: r, ..
+        } => {
+            assert_eq!((f.as_str(), r.as_str()), (field, reads), "{msg}");
+        }
+        other => panic!("expected NotRead for {field}, got {other:?}"),
+    }
+    assert!(
+        msg.contains("bad.xml") && msg.contains(field) && msg.contains(reads),
+        "{msg}"
+    );
+}
+
 #[test]
-fn new_options_parse_and_bad_values_are_named() {
-    let t = table1_text();
-    for (from, to, field) in [
-        ("<changeRatio>0.6<", "<changeRatio>0<", "changeRatio"),
-        ("<changeRatio>0.6<", "<changeRatio>1.5<", "changeRatio"),
-        ("<actionHorizon>10<", "<actionHorizon>0<", "actionHorizon"),
+fn invalid_change_ratio_and_action_horizon() {
+    let t = recommended_text();
+    for (from, to, field, value) in [
+        ("<changeRatio>0.6<", "<changeRatio>0<", "changeRatio", "0"),
         (
-            "<listUpdate>onChange<",
-            "<listUpdate>sometimes<",
-            "listUpdate",
-        ),
-        ("<timing>speed<", "<timing>fast<", "reproduction/timing"),
-        ("<reflex>successor<", "<reflex>jump<", "reproduction/reflex"),
-        (
-            "<minAccuracy>0.2<",
-            "<minAccuracy>2<",
-            "reproduction/minAccuracy",
+            "<changeRatio>0.6<",
+            "<changeRatio>1.5<",
+            "changeRatio",
+            "1.5",
         ),
         (
-            "<loopWindow>24<",
-            "<loopWindow>0<",
-            "reproduction/loopWindow",
+            "<actionHorizon>10<",
+            "<actionHorizon>0<",
+            "actionHorizon",
+            "0",
         ),
     ] {
         assert!(t.contains(from), "{from}");
-        match err(&t.replacen(from, to, 1)) {
-            ConfigError::Invalid { field: f, .. } => assert_eq!(f, field),
-            e => panic!("{to}: {e}"),
+        assert_invalid(err(&t.replacen(from, to, 1)), field, value);
+    }
+}
+
+#[test]
+fn invalid_max_level_above_the_height() {
+    // never clamped: the top level is height - 1
+    let t = replace(
+        "<maxLength>2000</maxLength>",
+        "<maxLength>2000</maxLength><maxLevel>6</maxLevel>",
+    );
+    assert_invalid(err(&t), "reproduction/maxLevel", "6");
+    let t = replace(
+        "<maxLength>2000</maxLength>",
+        "<maxLength>2000</maxLength><maxLevel>5</maxLevel>",
+    );
+    let c = parse_config(&t, "ok.xml").unwrap();
+    assert_eq!(c.params().reproduction.max_level, Some(5));
+    // cut to a height that no longer has level 5: an error naming maxLevel, not a silent drop
+    let e = c.at_height(3).unwrap_err();
+    assert!(e.to_string().contains("reproduction/maxLevel"), "{e}");
+    assert_eq!(c.at_height(6).unwrap().params(), c.params());
+}
+
+#[test]
+fn invalid_length_factor() {
+    assert_invalid(
+        err(&replace(
+            "<lengthFactor>1.5</lengthFactor>",
+            "<lengthFactor>0</lengthFactor>",
+        )),
+        "reproduction/lengthFactor",
+        "0",
+    );
+}
+
+#[test]
+fn invalid_stop() {
+    assert_invalid(
+        err(&replace("<stop>learned</stop>", "<stop>never</stop>")),
+        "reproduction/stop",
+        "never",
+    );
+}
+
+/// Every retired setting is refused by name, saying what it is now, whatever its value.
+#[test]
+fn retired_settings_are_errors_naming_them() {
+    let top = [
+        ("plan", "traced", "follow a training demonstration"),
+        ("alignment", "smooth", "stairs"),
+        ("knots", "halves", "two knots"),
+        ("consensus", "all", "starts"),
+        ("partialTraining", "skip", "list below is full"),
+        ("listUpdate", "onChange", "every step"),
+    ];
+    for (name, value, now) in top {
+        for text in [recommended_text(), table1_text()] {
+            let t = text.replacen(
+                "<seed>1</seed>",
+                &format!("<seed>1</seed><{name}>{value}</{name}>"),
+                1,
+            );
+            let e = err(&t);
+            assert!(
+                matches!(&e, ConfigError::Retired { field, .. } if field == name),
+                "{e:?}"
+            );
+            let m = e.to_string();
+            assert!(
+                m.contains("bad.xml") && m.contains(name) && m.contains("retired"),
+                "{m}"
+            );
+            assert!(m.contains(now), "{m}");
         }
     }
-    // every word is accepted, case-insensitively
-    for (from, to) in [
-        ("<listUpdate>onChange<", "<listUpdate>EVERYSTEP<"),
-        ("<timing>speed<", "<timing>dwell<"),
-        ("<timing>speed<", "<timing>step<"),
-        ("<reflex>successor<", "<reflex>bmu<"),
+    let reproduction = [
+        ("mode", "literal"),
+        ("unseenFallback", "true"),
+        ("minLengthFraction", "0.6"),
+        ("stationarySteps", "60"),
+        ("stationaryTolerance", "1"),
+        ("endTolerance", "0"),
+        ("confusionThreshold", "0"),
+        ("continuity", "0"),
+        ("closedLoop", "false"),
+        ("minAccuracy", "0"),
+        ("reflex", "bmu"),
+        ("timing", "step"),
+        ("loopVisits", "0"),
+        ("loopWindow", "24"),
+        ("revisitSuccessors", "false"),
+    ];
+    for (name, value) in reproduction {
+        let t = replace(
+            "<maxLength>2000</maxLength>",
+            &format!("<maxLength>2000</maxLength><{name}>{value}</{name}>"),
+        );
+        let field = format!("reproduction/{name}");
+        let e = err(&t);
+        assert!(
+            matches!(&e, ConfigError::Retired { field: f, .. } if *f == field),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("retired"), "{e}");
+    }
+}
+
+/// A setting the chosen algorithm does not read is an error naming it and the algorithm that
+/// reads it.
+#[test]
+fn settings_the_algorithm_does_not_read_are_errors() {
+    let rec = recommended_text();
+    for (add, field) in [
+        ("<updatePeriod>4</updatePeriod>", "updatePeriod"),
+        ("<memoryMode>lists</memoryMode>", "memoryMode"),
+        (
+            "<reproduction><offset>3</offset></reproduction>",
+            "reproduction/offset",
+        ),
+        (
+            "<reproduction><idDecoding>round</idDecoding></reproduction>",
+            "reproduction/idDecoding",
+        ),
+        (
+            "<reproduction><stop>learned</stop></reproduction>",
+            "reproduction/stop",
+        ),
     ] {
-        let c = parse_config(&t.replacen(from, to, 1), "ok.xml").unwrap();
-        let again = parse_config(&c.to_xml(), "again.xml").unwrap();
-        assert_eq!(c.params(), again.params());
+        let t = rec.replacen("</levels>", &format!("</levels>{add}"), 1);
+        assert_not_read(err(&t), field, "paper");
     }
-}
-
-#[test]
-fn consensus_weighing_parses_round_trips_and_names_bad_values() {
-    let t = std::fs::read_to_string("configs/nao-gestures.xml").unwrap();
-    let default = parse_config(&t, "nao-gestures.xml").unwrap();
-    assert_eq!(
-        default.params().consensus,
-        cosco_hsom::config::Consensus::Start
-    );
-    let with = |word: &str| {
-        t.replacen(
-            "<normalisation>global</normalisation>",
-            &format!("<normalisation>global</normalisation><consensus>{word}</consensus>"),
-            1,
-        )
-    };
-    for (word, expected) in [
-        ("local", cosco_hsom::config::Consensus::Local),
-        ("LOCAL", cosco_hsom::config::Consensus::Local),
-        ("all", cosco_hsom::config::Consensus::All),
-        ("Start", cosco_hsom::config::Consensus::Start),
+    for (add, field) in [
+        ("<changeRatio>1</changeRatio>", "changeRatio"),
+        ("<actionHorizon>1</actionHorizon>", "actionHorizon"),
     ] {
-        let c = parse_config(&with(word), "ok.xml").unwrap();
-        assert_eq!(c.params().consensus, expected);
-        let again = parse_config(&c.to_xml(), "again.xml").unwrap();
-        assert_eq!(c.params(), again.params());
-    }
-    match err(&with("nearest")) {
-        ConfigError::Invalid { field, reason, .. } => {
-            assert_eq!(field, "consensus");
-            assert!(reason.contains("all, local, start"), "{reason}");
-        }
-        e => panic!("{e}"),
+        let t = replace("<seed>1</seed>", &format!("<seed>1</seed>{add}"));
+        assert_not_read(err(&t), field, "events");
     }
 }
 
 #[test]
-fn alignment_parses_round_trips_and_names_bad_values() {
-    use cosco_hsom::config::Alignment;
-    let t = std::fs::read_to_string("tests/configs/decoded-plan.xml").unwrap();
-    // not written there: the default
-    assert!(!t.contains("<alignment>"));
-    let default = parse_config(&t, "decoded-plan.xml").unwrap();
-    assert_eq!(default.params().alignment, Alignment::Stepped);
-    let with = |word: &str| {
-        t.replacen(
-            "<normalisation>global</normalisation>",
-            &format!("<normalisation>global</normalisation><alignment>{word}</alignment>"),
-            1,
-        )
-    };
-    for (word, expected) in [
-        ("smooth", Alignment::Smooth),
-        ("Smooth", Alignment::Smooth),
-        ("STEPPED", Alignment::Stepped),
-    ] {
-        let c = parse_config(&with(word), "ok.xml").unwrap();
-        assert_eq!(c.params().alignment, expected);
-        let again = parse_config(&c.to_xml(), "again.xml").unwrap();
-        assert_eq!(c.params(), again.params());
-    }
-    match err(&with("linear")) {
-        ConfigError::Invalid {
-            field,
-            value,
-            reason,
-            ..
-        } => {
-            assert_eq!((field.as_str(), value.as_str()), ("alignment", "linear"));
-            assert!(reason.contains("stepped, smooth"), "{reason}");
-        }
-        e => panic!("{e}"),
-    }
-}
-
-#[test]
-fn plan_parses_round_trips_and_names_bad_values() {
-    use cosco_hsom::config::Plan;
-    let t = std::fs::read_to_string("tests/configs/decoded-plan.xml").unwrap();
-    let default = parse_config(&t, "decoded-plan.xml").unwrap();
-    assert_eq!(default.params().plan, Plan::Decoded);
-    // not written there: the default
-    let bare = t.replacen("<plan>decoded</plan>", "", 1);
-    assert_eq!(
-        parse_config(&bare, "bare.xml").unwrap().params().plan,
-        Plan::Decoded
+fn to_xml_round_trips_the_recommended_configuration_and_levels_mode() {
+    let c = parse_config(&recommended_text(), "rec.xml").unwrap();
+    assert_eq!(parse_config(&c.to_xml(), "again.xml").unwrap(), c);
+    let t = replace(
+        "<memoryMode>lists</memoryMode>",
+        "<memoryMode>LEVELS</memoryMode>",
     );
-    for (word, expected) in [
-        ("traced", Plan::Traced),
-        ("Traced", Plan::Traced),
-        ("DECODED", Plan::Decoded),
-    ] {
-        let written = format!("<plan>{word}</plan>");
-        let c = parse_config(&t.replacen("<plan>decoded</plan>", &written, 1), "ok.xml").unwrap();
-        assert_eq!(c.params().plan, expected);
-        let again = parse_config(&c.to_xml(), "again.xml").unwrap();
-        assert_eq!(c.params(), again.params());
-    }
-    match err(&t.replacen("<plan>decoded</plan>", "<plan>replayed</plan>", 1)) {
-        ConfigError::Invalid { field, reason, .. } => {
-            assert_eq!(field, "plan");
-            assert!(reason.contains("traced, decoded"), "{reason}");
-        }
-        e => panic!("{e}"),
-    }
-}
-
-/// tests/configs/traced-finer-events.xml, measured beside the recommended configuration in
-/// docs/CONFIG.md (`changeRatio`, `knots`), is that configuration with exactly `changeRatio`
-/// and `knots` changed: the comparison it documents stays one of two settings.
-#[test]
-fn the_finer_events_configuration_is_the_recommended_one_with_two_settings_changed() {
-    use cosco_hsom::config::{Alignment, Knots, Plan};
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let rec = load_config(&root.join("configs/nao-gestures.xml"))
-        .unwrap()
-        .into_params();
-    let fine = load_config(&root.join("tests/configs/traced-finer-events.xml"))
-        .unwrap()
-        .into_params();
-    assert_eq!(
-        (rec.plan, rec.change_ratio, rec.alignment, rec.knots),
-        (Plan::Traced, 0.6, Alignment::Smooth, Knots::Halves)
-    );
-    assert_eq!(
-        (fine.plan, fine.change_ratio, fine.alignment, fine.knots),
-        (Plan::Traced, 0.8, Alignment::Smooth, Knots::Event)
-    );
-    let mut same = fine.clone();
-    same.change_ratio = rec.change_ratio;
-    same.knots = rec.knots;
-    assert_eq!(same, rec);
-}
-
-/// tests/configs/decoded-plan.xml, the recommended configuration up to the nineteenth
-/// session, is today's with exactly `plan`, `alignment` and `knots` at their defaults: its
-/// bottom events, and so recognition, are the recommended configuration's.
-#[test]
-fn the_decoded_plan_configuration_is_the_recommended_one_with_three_settings_changed() {
-    use cosco_hsom::config::{Alignment, Knots, Plan};
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let rec = load_config(&root.join("configs/nao-gestures.xml"))
-        .unwrap()
-        .into_params();
-    let decoded = load_config(&root.join("tests/configs/decoded-plan.xml"))
-        .unwrap()
-        .into_params();
-    assert_eq!(
-        (rec.plan, rec.alignment, rec.knots),
-        (Plan::Traced, Alignment::Smooth, Knots::Halves)
-    );
-    assert_eq!(
-        (decoded.plan, decoded.alignment, decoded.knots),
-        (Plan::Decoded, Alignment::Stepped, Knots::Event)
-    );
-    assert_eq!(decoded.change_ratio, rec.change_ratio);
-    let mut same = decoded.clone();
-    same.plan = rec.plan;
-    same.alignment = rec.alignment;
-    same.knots = rec.knots;
-    assert_eq!(same, rec);
-}
-
-#[test]
-fn knots_parse_round_trip_and_name_bad_values() {
-    use cosco_hsom::config::Knots;
-    let t = std::fs::read_to_string("tests/configs/decoded-plan.xml").unwrap();
-    // not written there: the default
-    assert!(!t.contains("<knots>"));
-    assert_eq!(
-        parse_config(&t, "decoded-plan.xml").unwrap().params().knots,
-        Knots::Event
-    );
-    let with = |word: &str| {
-        t.replacen(
-            "<normalisation>global</normalisation>",
-            &format!("<normalisation>global</normalisation><knots>{word}</knots>"),
-            1,
-        )
-    };
-    for (word, expected) in [
-        ("halves", Knots::Halves),
-        ("Halves", Knots::Halves),
-        ("EVENT", Knots::Event),
-    ] {
-        let c = parse_config(&with(word), "ok.xml").unwrap();
-        assert_eq!(c.params().knots, expected);
-        assert_eq!(word.parse::<Knots>().unwrap(), expected);
-        let again = parse_config(&c.to_xml(), "again.xml").unwrap();
-        assert_eq!(c.params(), again.params());
-    }
-    assert!("thirds"
-        .parse::<Knots>()
-        .unwrap_err()
-        .contains("event, halves"));
-    match err(&with("thirds")) {
-        ConfigError::Invalid {
-            field,
-            value,
-            reason,
-            ..
-        } => {
-            assert_eq!((field.as_str(), value.as_str()), ("knots", "thirds"));
-            assert!(reason.contains("event, halves"), "{reason}");
-        }
-        e => panic!("{e}"),
-    }
+    let c = parse_config(&t, "levels.xml").unwrap();
+    assert_eq!(c.params().memory_mode(), MemoryMode::Levels);
+    assert_eq!(parse_config(&c.to_xml(), "again.xml").unwrap(), c);
 }

@@ -78,8 +78,14 @@ fn small_events_model() -> Hsom {
 }
 
 fn small_model_of(algorithm: cosco_hsom::config::Algorithm) -> Hsom {
+    use cosco_hsom::config::{Algorithm, AlgorithmParams, EventsParams};
     let mut p = cosco_hsom::config::HsomParams::table1();
-    p.algorithm = algorithm;
+    if algorithm == Algorithm::Events {
+        p.algorithm = AlgorithmParams::Events(EventsParams {
+            change_ratio: 1.0,
+            action_horizon: 1,
+        });
+    }
     p.state_length = 2;
     p.action_length = 2;
     p.height = 3;

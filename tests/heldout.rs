@@ -11,9 +11,8 @@ use rand_chacha::ChaCha8Rng;
 use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::experiment::heldout::{
-    alignment_fold, closed_loop_folds, closed_loop_png, continuation_folds, swing_folds,
-    swing_folds_png, velocity_png, ClosedLoopGrab, Disturbance, SWING_JOINT,
-    SWING_MIN_AMPLITUDE_RAD,
+    closed_loop_folds, closed_loop_png, continuation_folds, swing_folds, swing_folds_png,
+    ClosedLoopGrab, Disturbance, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD,
 };
 use cosco_hsom::experiment::{
     hsom_folds, leave_one_out, sample_period, synthetic_demonstrations, DemoSettings, HeldOut,
@@ -188,52 +187,6 @@ fn swing_folds_draw_the_scored_folds() {
     swing_folds_png(&path, "reading-watch", &folds).unwrap();
     let png = std::fs::read(&path).unwrap();
     assert_eq!(&png[1..4], b"PNG");
-}
-
-/// One fold learned with each alignment of the consensus: the stepped run is the fold the
-/// leave-one-out scored (the fixture's configuration is stepped), the joint drawn is the
-/// held-out demonstration's fastest, its speeds are the samples' differences; a PNG; a fold
-/// past the demonstrations is refused, naming how many there are.
-#[test]
-fn an_alignment_fold_runs_each_alignment_of_the_consensus() {
-    let f = fixture();
-    let fold = alignment_fold(&f.arm, &f.config, &f.demos, 2, Transition::Linear).unwrap();
-    assert_eq!(fold.held_out, 2);
-    let names: Vec<&str> = fold.runs.iter().map(|r| r.alignment.as_str()).collect();
-    assert_eq!(names, ["stepped", "smooth"]);
-    // the run with the configuration's own alignment is the held-out evaluation's fold
-    let own = f.config.params().alignment.name();
-    let own = fold.runs.iter().find(|r| r.alignment == own).unwrap();
-    assert_eq!(
-        own.joint_dtw,
-        f.heldout.folds[2].hsom.fidelity.joint_dtw_rad_per_step.mean
-    );
-    let demo = &f.demos[2];
-    let dt = sample_period(demo);
-    assert_eq!(fold.demo.len(), demo.rows.len() - 1);
-    for (p, w) in fold.demo.iter().zip(demo.rows.windows(2)) {
-        assert!((p.1 - (w[1][fold.joint] - w[0][fold.joint]) / dt).abs() < 1e-9);
-    }
-    let peak = |j: usize| {
-        demo.rows
-            .windows(2)
-            .map(|w| ((w[1][j] - w[0][j]) / dt).abs())
-            .fold(0.0, f64::max)
-    };
-    assert!((0..demo.rows[0].len()).all(|j| peak(j) <= peak(fold.joint)));
-    for r in &fold.runs {
-        assert!(
-            r.speed.len() > 10 && r.jerk_ratio > 0.0 && r.joint_dtw > 0.0,
-            "{r:?}"
-        );
-        assert!(r.jerk_ratio.is_finite());
-    }
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("speed.png");
-    velocity_png(&path, "reading-watch", &fold).unwrap();
-    assert_eq!(&std::fs::read(&path).unwrap()[1..4], b"PNG");
-    let e = alignment_fold(&f.arm, &f.config, &f.demos, COUNT, Transition::Linear).unwrap_err();
-    assert!(e.to_string().contains("there are 4 demonstrations"), "{e}");
 }
 
 /// Continuing a prefix: one fold per demonstration for the hierarchy and the nearest

@@ -2,89 +2,29 @@
 
 mod hsom_common;
 
-use cosco_hsom::config::{HsomConfig, IdDecoding, ReproductionMode};
+use cosco_hsom::config::{AlgorithmParams, HsomConfig, IdDecoding};
 use hsom_common::*;
 
 fn run(name: &str, demos: &[cosco_hsom::demos::Demonstration], cfg: &HsomConfig) -> (f64, f64) {
-    let model = cfg.fit(&demos[1..]).unwrap();
     let init = &demos[0].rows[0];
     let mut res = Vec::new();
-    let d = cfg.params().reproduction.clone();
-    let mut cases = vec![(
-        "DEFAULT".to_string(),
-        d.mode,
-        d.id_decoding,
-        d.max_level,
-        d.confusion_threshold,
-        d.continuity,
-        d.closed_loop,
-    )];
+    let mut cases = vec![("DEFAULT".to_string(), cfg.clone())];
     if std::env::var("HSOM_SWEEP").is_ok() {
-        for lam in [0.0, 0.5, 0.85] {
-            for mode in [ReproductionMode::Strided, ReproductionMode::Literal] {
-                cases.push((
-                    format!("{mode:?} continuity{lam}"),
-                    mode,
-                    IdDecoding::Round,
-                    None,
-                    0.0,
-                    lam,
-                    false,
-                ));
-                cases.push((
-                    format!("{mode:?} continuity{lam} closed"),
-                    mode,
-                    IdDecoding::Round,
-                    None,
-                    0.0,
-                    lam,
-                    true,
-                ));
-            }
-        }
-        cases.push((
-            "Literal nearest".into(),
-            ReproductionMode::Literal,
-            IdDecoding::Nearest,
-            None,
-            0.0,
-            0.7,
-            false,
-        ));
-        cases.push((
-            "Literal floor".into(),
-            ReproductionMode::Literal,
-            IdDecoding::Floor,
-            None,
-            0.0,
-            0.7,
-            false,
-        ));
-        for maxl in [Some(2), Some(3), Some(4), None] {
-            for conf in [0.0, 0.5, 1.0, 2.0] {
-                for mode in [ReproductionMode::Strided, ReproductionMode::Literal] {
-                    cases.push((
-                        format!("{mode:?} l{maxl:?} conf{conf}"),
-                        mode,
-                        IdDecoding::Round,
-                        maxl,
-                        conf,
-                        0.7,
-                        false,
-                    ));
+        // the paper algorithm's ID decodings and the highest level used
+        for dec in [IdDecoding::Round, IdDecoding::Floor, IdDecoding::Nearest] {
+            for maxl in [Some(2), Some(3), Some(4), None] {
+                let mut p = cfg.params().clone();
+                if let AlgorithmParams::Paper(q) = &mut p.algorithm {
+                    q.id_decoding = dec;
                 }
+                p.reproduction.max_level = maxl.filter(|&m| m < p.height);
+                cases.push((format!("{dec:?} l{maxl:?}"), p.check("sweep").unwrap()));
             }
         }
     }
-    for (label, mode, dec, maxl, conf, lam, cl) in cases {
-        let mut r = cfg.params().reproduction.clone();
-        r.mode = mode;
-        r.id_decoding = dec;
-        r.max_level = maxl;
-        r.confusion_threshold = conf;
-        r.continuity = lam;
-        r.closed_loop = cl;
-        let rep = model.reproduce_with(init, &r).unwrap();
+    for (label, case) in cases {
+        let model = case.fit(&demos[1..]).unwrap();
+        let rep = model.reproduce(init).unwrap();
         let e = relative_dtw(&rep.postures, &demos[1..]);
         let mean_len = demos[1..].iter().map(|d| d.rows.len()).sum::<usize>() as f64
             / (demos.len() - 1) as f64;
@@ -106,14 +46,6 @@ fn run(name: &str, demos: &[cosco_hsom::demos::Demonstration], cfg: &HsomConfig)
     (res[0], e_un)
 }
 
-fn table1_file() -> cosco_hsom::config::HsomParams {
-    let path =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/configs/successor-table.xml");
-    cosco_hsom::config::load_config(&path)
-        .unwrap()
-        .into_params()
-}
-
 #[test]
 fn measure_families() {
     for (name, demos) in [
@@ -123,11 +55,6 @@ fn measure_families() {
         ("joints6", joints6(6, 9)),
     ] {
         let mut cfg = table1_for(demos[0].rows[0].len());
-        if std::env::var("HSOM_MASKED").is_ok() {
-            let mut p = cfg.into_params();
-            p.partial_training = cosco_hsom::config::PartialTraining::Masked;
-            cfg = p.check("masked").unwrap();
-        }
         if let Ok(s) = std::env::var("HSOM_SEED") {
             let mut p = cfg.into_params();
             p.seed = s.parse().unwrap();
@@ -150,22 +77,6 @@ fn measure_families() {
                 "{name}: trained {trained} vs untrained {untrained}"
             );
         }
-        // the shipped configs/table1.xml (its options chosen for the densely sampled Nao
-        // gestures), stateLength adapted
-        let mut p = table1_file();
-        p.state_length = demos[0].rows[0].len();
-        p.action_length = p.state_length;
-        if let Ok(s) = std::env::var("HSOM_SEED") {
-            p.seed = s.parse().unwrap();
-        }
-        let file_cfg = p.check("successor-table.xml").unwrap();
-        let (succ, untrained) = run(&format!("{name}/succ"), &demos, &file_cfg);
-        if std::env::var("HSOM_SEED").is_err() {
-            assert!(
-                succ < untrained,
-                "{name} (successor-table.xml): trained {succ} vs untrained {untrained}"
-            );
-        }
         // the recommended configs/nao-gestures.xml (the events extension), stateLength adapted
         let mut p = recommended_for(demos[0].rows[0].len()).into_params();
         if let Ok(s) = std::env::var("HSOM_SEED") {
@@ -173,7 +84,7 @@ fn measure_families() {
         }
         let rec_cfg = p.check("nao-gestures.xml").unwrap();
         let (events, untrained) = run(&format!("{name}/events"), &demos, &rec_cfg);
-        println!("{name:<8} events {events:.4} vs successor-table {succ:.4} vs built-in Table I {trained:.4}");
+        println!("{name:<8} events {events:.4} vs built-in Table I {trained:.4}");
         if std::env::var("HSOM_SEED").is_err() {
             assert!(
                 events < untrained,

@@ -2,7 +2,6 @@
 
 mod hsom_common;
 
-use cosco_hsom::config::ReproductionMode;
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::hsom::{Hsom, PersistError};
 use hsom_common::*;
@@ -73,11 +72,11 @@ fn trained_hierarchy_reproduces_the_key_posture_gesture_and_untrained_does_not()
 fn literal_mode_also_runs_and_respects_max_length() {
     let demos = key_postures();
     let model = table1_for(3).fit(&demos).unwrap();
-    let mut r = model.config().params().reproduction.clone();
-    r.mode = ReproductionMode::Literal;
-    r.max_length = 37;
-    r.stop = cosco_hsom::config::StopRule::MaxLength;
-    let rep = model.reproduce_with(&demos[0].rows[0], &r).unwrap();
+    let mut p = model.config().params().clone();
+    p.reproduction.max_length = 37;
+    p.paper_mut().unwrap().stop = cosco_hsom::config::StopRule::MaxLength;
+    let model = p.check("t").unwrap().fit(&demos).unwrap();
+    let rep = model.reproduce(&demos[0].rows[0]).unwrap();
     assert_eq!(rep.postures.len(), 37);
     assert!(
         rep.predicted_by.iter().any(|&l| l >= 1),
@@ -272,17 +271,12 @@ fn nested() -> Vec<Demonstration> {
 
 #[test]
 fn start_weighted_postures_survive_save_and_load_in_both_formats() {
-    // `consensus = start` (the default) on drawings whose start predicts their route keeps
-    // each demonstration's placement and start in the model; the control: all alike
-    // reproduces otherwise from the same start
+    // the consensus weighed by the starts, on drawings whose start predicts their route,
+    // keeps each demonstration's placement and start in the model (the width is stored)
     let demos = nested();
     let m = recommended_for(2).fit(&demos).unwrap();
     let init = demos[6].rows[0].clone();
     let before = m.reproduce(&init).unwrap();
-    let mut p = recommended_for(2).into_params();
-    p.consensus = cosco_hsom::config::Consensus::All;
-    let alike = p.check("all").unwrap().fit(&demos).unwrap();
-    assert_ne!(alike.reproduce(&init).unwrap().postures, before.postures);
     let dir = tempfile::tempdir().unwrap();
     for name in ["m.bin", "m.txt"] {
         let path = dir.path().join(name);
@@ -314,59 +308,28 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     std::fs::write(&path, with_checksum(&text.replace(&ends, &bad_ends))).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("end-posture values"), "{e}");
-    // a model whose plans follow a demonstration keeps its traced chunks in both formats;
-    // traces whose last word names a node the level does not have are refused
-    let traced = recommended_for(2)
-        .with_plan(cosco_hsom::config::Plan::Traced)
+    // the model keeps its traced chunks (seven places per event: the event, its halves, each
+    // half's extremes) in both formats (above); traces one word short are refused
+    let path = dir.path().join("m.txt");
+    m.save(&path).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let traces = text
+        .lines()
+        .find(|l| l.starts_with("traces "))
         .unwrap()
-        .with_knots(cosco_hsom::config::Knots::Event)
-        .unwrap()
-        .fit(&demos)
-        .unwrap();
-    for name in ["t.bin", "t.txt"] {
-        let path = dir.path().join(name);
-        traced.save(&path).unwrap();
-        assert_eq!(Hsom::load(&path).unwrap(), traced, "{name}");
-    }
-    // so does one whose traced events place two knots each (seven places per event), and
-    // it reproduces the same after loading; read as one place per event (its configuration
-    // edited), its traces are the wrong size and are refused
-    let halves = recommended_for(2)
-        .with_plan(cosco_hsom::config::Plan::Traced)
-        .unwrap()
-        .with_knots(cosco_hsom::config::Knots::Halves)
-        .unwrap()
-        .fit(&demos)
-        .unwrap();
-    let start = demos[0].rows[0].clone();
-    for name in ["h.bin", "h.txt"] {
-        let path = dir.path().join(name);
-        halves.save(&path).unwrap();
-        let loaded = Hsom::load(&path).unwrap();
-        assert_eq!(loaded, halves, "{name}");
-        assert_eq!(
-            loaded.reproduce(&start).unwrap(),
-            halves.reproduce(&start).unwrap()
-        );
-    }
-    let path = dir.path().join("h.txt");
-    let h = std::fs::read_to_string(&path).unwrap();
-    assert!(h.contains("<knots>halves</knots>"));
-    let as_event = with_checksum(&h.replace("<knots>halves</knots>", "<knots>event</knots>"));
-    std::fs::write(&path, as_event).unwrap();
+        .to_string();
+    let short = &traces[..traces.rfind(' ').unwrap()];
+    std::fs::write(&path, with_checksum(&text.replace(&traces, short))).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
-    assert!(e.contains("traces") && e.contains("expected"), "{e}");
-    // a decoded model holds none: an empty traces line
-    let decoded = recommended_for(2)
-        .with_plan(cosco_hsom::config::Plan::Decoded)
-        .unwrap()
-        .fit(&demos)
-        .unwrap();
-    let path = dir.path().join("d.txt");
-    decoded.save(&path).unwrap();
+    assert!(e.contains("traces end before a word"), "{e}");
+    // a model of the paper algorithm holds none: an empty traces line
+    let paper = table1_for(2).fit(&demos).unwrap();
+    let path = dir.path().join("p.txt");
+    paper.save(&path).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     assert!(text.lines().any(|l| l == "traces"));
     let path = dir.path().join("t.txt");
+    m.save(&path).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     let traces = text
         .lines()

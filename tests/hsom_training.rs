@@ -2,7 +2,7 @@
 
 mod hsom_common;
 
-use cosco_hsom::config::{HsomParams, LevelParams, MemoryMode, PartialTraining};
+use cosco_hsom::config::{HsomParams, LevelParams, MemoryMode};
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::hsom::HsomError;
 use cosco_hsom::som::Topology;
@@ -10,7 +10,7 @@ use cosco_hsom::som::Topology;
 fn small(height: usize, update_period: usize, memory: usize, steps: usize) -> HsomParams {
     let mut p = HsomParams::table1();
     p.height = height;
-    p.update_period = update_period;
+    p.paper_mut().unwrap().update_period = update_period;
     p.memory = memory;
     p.training_steps = steps;
     p.state_length = 2;
@@ -18,7 +18,7 @@ fn small(height: usize, update_period: usize, memory: usize, steps: usize) -> Hs
     p.levels = (0..height)
         .map(|l| LevelParams::new(4 + l, 4, Topology::Orthogonal, 0.3))
         .collect();
-    p.reproduction.offset = 1;
+    p.paper_mut().unwrap().offset = 1;
     p
 }
 
@@ -36,16 +36,15 @@ fn line(n: usize, name: &str) -> Demonstration {
 #[test]
 fn footnote_2_schedule_after_step_7() {
     // updatePeriod 2, three levels: after step 7 the levels were trained 7, 3 and 1 times
-    let mut p = small(3, 2, 4, 7);
-    p.partial_training = PartialTraining::Masked;
+    // (memory 1: a list is full from its first entry)
+    let p = small(3, 2, 1, 7);
     let m = p.check("t").unwrap().fit(&[line(20, "d")]).unwrap();
     assert_eq!(m.trained_counts(), &[7, 3, 1]);
 }
 
 #[test]
 fn schedule_over_a_long_run_is_steps_over_period_to_the_level() {
-    let mut p = small(4, 3, 2, 1000);
-    p.partial_training = PartialTraining::Masked;
+    let p = small(4, 3, 1, 1000);
     let m = p.check("t").unwrap().fit(&[line(2000, "d")]).unwrap();
     assert_eq!(m.trained_counts(), &[1000, 333, 111, 37]);
 }
@@ -110,9 +109,8 @@ fn initial_weights_lie_in_the_data_bounding_box_whatever_the_units() {
         .unwrap()
         .initialise(std::slice::from_ref(&d))
         .unwrap();
-    let mut r = m.config().params().reproduction.clone();
-    r.continuity = 0.0; // postures are the nodes' action halves
-    let rep = m.reproduce_with(&d.rows[0], &r).unwrap();
+    // postures are the nodes' action halves
+    let rep = m.reproduce(&d.rows[0]).unwrap();
     for y in &rep.postures[1..] {
         assert!(
             y[0] >= 4999.0 && y[0] <= 6000.0 && y[1] <= -2999.0 && y[1] >= -3100.0,
@@ -124,7 +122,7 @@ fn initial_weights_lie_in_the_data_bounding_box_whatever_the_units() {
 #[test]
 fn levels_memory_mode_trains_on_activity_maps() {
     let mut p = small(3, 2, 4, 400);
-    p.memory_mode = MemoryMode::Levels;
+    p.paper_mut().unwrap().memory_mode = MemoryMode::Levels;
     let m = p
         .check("t")
         .unwrap()
@@ -249,7 +247,7 @@ fn hexagonal_hierarchy_trains_and_reproduces() {
 
 #[test]
 fn random_small_configurations_never_panic_and_round_trip() {
-    use cosco_hsom::config::{IdDecoding, ReproductionMode};
+    use cosco_hsom::config::IdDecoding;
     use cosco_hsom::hsom::Hsom;
     use rand::{Rng, SeedableRng};
     let dir = tempfile::tempdir().unwrap();
@@ -273,28 +271,15 @@ fn random_small_configurations_never_panic_and_round_trip() {
                 rng.gen_range(0.05..1.0),
             );
         }
-        p.memory_mode = if rng.gen_bool(0.3) {
+        p.paper_mut().unwrap().memory_mode = if rng.gen_bool(0.3) {
             MemoryMode::Levels
         } else {
             MemoryMode::Lists
         };
-        p.partial_training = if rng.gen() {
-            PartialTraining::Masked
-        } else {
-            PartialTraining::Skip
-        };
-        p.reproduction.offset = rng.gen_range(1..=memory);
-        p.reproduction.mode = if rng.gen() {
-            ReproductionMode::Literal
-        } else {
-            ReproductionMode::Strided
-        };
-        p.reproduction.id_decoding =
+        p.paper_mut().unwrap().offset = rng.gen_range(1..=memory);
+        p.paper_mut().unwrap().id_decoding =
             [IdDecoding::Round, IdDecoding::Floor, IdDecoding::Nearest][rng.gen_range(0..3)];
         p.reproduction.max_length = rng.gen_range(1..300);
-        p.reproduction.continuity = rng.gen_range(0.0..1.0);
-        p.reproduction.closed_loop = rng.gen();
-        p.reproduction.confusion_threshold = if rng.gen() { 0.0 } else { 1.0 };
         let cfg = p.check("random").unwrap();
         let demos: Vec<Demonstration> = (0..rng.gen_range(1..4))
             .map(|i| Demonstration {

@@ -9,7 +9,7 @@ use assert_cmd::Command;
 use predicates::prelude::*;
 use rand::{Rng, SeedableRng};
 
-use cosco_hsom::config::{Algorithm, HsomConfig, HsomParams, LevelParams};
+use cosco_hsom::config::{AlgorithmParams, EventsParams, HsomConfig, HsomParams, LevelParams};
 use cosco_hsom::demos::{write_csv, Demonstration};
 use cosco_hsom::hsom::{GestureError, GestureModel, GESTURES_FORMAT_VERSION};
 use cosco_hsom::som::Topology;
@@ -53,7 +53,10 @@ const APEXES: [(&str, [f64; 2]); 3] = [
 
 fn config() -> HsomConfig {
     let mut p = HsomParams::table1();
-    p.algorithm = Algorithm::Events;
+    p.algorithm = AlgorithmParams::Events(EventsParams {
+        change_ratio: 0.6,
+        action_horizon: 5,
+    });
     p.state_length = 2;
     p.action_length = 2;
     p.height = 3;
@@ -62,8 +65,6 @@ fn config() -> HsomConfig {
     for l in 1..3 {
         p.levels[l] = LevelParams::new(6, 6, Topology::Orthogonal, 0.5);
     }
-    p.change_ratio = 0.6;
-    p.action_horizon = 5;
     p.training_steps = 3000;
     p.check("test").unwrap()
 }

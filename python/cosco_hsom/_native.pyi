@@ -30,14 +30,10 @@ class Config:
         seed: Optional[int] = None,
         state_length: Optional[int] = None,
         training_steps: Optional[int] = None,
-        consensus: Optional[str] = None,
-        plan: Optional[str] = None,
-        alignment: Optional[str] = None,
-        knots: Optional[str] = None,
     ) -> "Config":
         """A copy with some settings changed, validated again."""
     def to_xml(self) -> str:
-        """The configuration as XML (every optional value written out)."""
+        """The configuration as XML (every setting its algorithm reads written out)."""
     @property
     def seed(self) -> int: ...
     @property

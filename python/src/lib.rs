@@ -277,31 +277,14 @@ impl Config {
     }
 
     /// A copy with some settings changed, validated again.
-    #[pyo3(signature = (*, seed = None, state_length = None, training_steps = None, consensus = None, plan = None, alignment = None, knots = None))]
-    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (*, seed = None, state_length = None, training_steps = None))]
     fn replace(
         &self,
         seed: Option<u64>,
         state_length: Option<usize>,
         training_steps: Option<usize>,
-        consensus: Option<&str>,
-        plan: Option<&str>,
-        alignment: Option<&str>,
-        knots: Option<&str>,
     ) -> PyResult<Self> {
         let mut p = self.inner.params().clone();
-        if let Some(c) = consensus {
-            p.consensus = c.parse().map_err(PyValueError::new_err)?;
-        }
-        if let Some(a) = alignment {
-            p.alignment = a.parse().map_err(PyValueError::new_err)?;
-        }
-        if let Some(w) = plan {
-            p.plan = w.parse().map_err(PyValueError::new_err)?;
-        }
-        if let Some(k) = knots {
-            p.knots = k.parse().map_err(PyValueError::new_err)?;
-        }
         if let Some(s) = seed {
             p.seed = s;
         }
@@ -317,7 +300,7 @@ impl Config {
         })
     }
 
-    /// The configuration as XML (every optional value written out).
+    /// The configuration as XML (every setting its algorithm reads written out).
     fn to_xml(&self) -> String {
         self.inner.to_xml()
     }

@@ -143,25 +143,6 @@ enum Command {
         /// Take stateLength and actionLength from the demonstrations' columns.
         #[arg(long)]
         state_length_from_data: bool,
-        /// How the consensus weighs the demonstrations, instead of the configuration's:
-        /// `start` (by how near each one started, where the starts predict the route),
-        /// `all` (alike) or `local` (those that agree at each sample).
-        #[arg(long)]
-        consensus: Option<cosco_hsom::config::Consensus>,
-        /// How the levels' prediction becomes a plan, instead of the configuration's:
-        /// `traced` (the demonstrated stretch the predicting node stands for, followed along
-        /// its demonstration) or `decoded` (slot by slot, by content).
-        #[arg(long)]
-        plan: Option<cosco_hsom::config::Plan>,
-        /// How the consensus reads one demonstration along another, instead of the
-        /// configuration's: `stepped` (each sample the mean of those aligned to it) or `smooth`
-        /// (the DTW warp's stairs replaced by lines).
-        #[arg(long)]
-        alignment: Option<cosco_hsom::config::Alignment>,
-        /// Where a traced plan's events put their knots, instead of the configuration's:
-        /// `event` (one, at its middle) or `halves` (one at each half's place).
-        #[arg(long)]
-        knots: Option<cosco_hsom::config::Knots>,
         /// Leave out the configuration at height 1.
         #[arg(long)]
         no_height_1: bool,
@@ -333,10 +314,6 @@ fn run(cli: Cli) -> Result<()> {
             demos,
             config,
             state_length_from_data,
-            consensus,
-            plan,
-            alignment,
-            knots,
             no_height_1,
             no_gmr,
             no_in_sample,
@@ -351,10 +328,6 @@ fn run(cli: Cli) -> Result<()> {
                 demos,
                 config,
                 state_length_from_data,
-                consensus,
-                plan,
-                alignment,
-                knots,
                 settings: cosco_hsom::offline::LooSettings {
                     height_1: !no_height_1,
                     gmr: !no_gmr,

@@ -67,4 +67,26 @@ pub enum ConfigError {
         /// What is expected.
         reason: String,
     },
+    /// A setting this implementation no longer offers.
+    #[error("{file}: <{field}> was retired: {now} (docs/CONFIG.md, \"Retired settings\")")]
+    Retired {
+        /// The file.
+        file: String,
+        /// Path of the element.
+        field: String,
+        /// What it is now.
+        now: String,
+    },
+    /// A setting the chosen algorithm does not read.
+    #[error("{file}: <{field}> is read only by algorithm {reads}, not by the chosen algorithm {chosen}; remove it (docs/CONFIG.md)")]
+    NotRead {
+        /// The file.
+        file: String,
+        /// Path of the element.
+        field: String,
+        /// The algorithm that reads it.
+        reads: String,
+        /// The configuration's algorithm.
+        chosen: String,
+    },
 }

@@ -8,8 +8,8 @@ mod xml;
 
 pub use errors::ConfigError;
 pub use hyperparams::{
-    Algorithm, Alignment, Consensus, HsomConfig, HsomParams, IdDecoding, Knots, LevelParams,
-    ListUpdate, MemoryMode, Normalisation, PartialTraining, Plan, Reflex, ReproductionMode,
-    ReproductionParams, StopRule, Timing,
+    Algorithm, AlgorithmParams, EventsParams, HsomConfig, HsomParams, IdDecoding, LevelParams,
+    MemoryMode, Normalisation, PaperParams, ReproductionParams, StopRule,
+    PAPER_MIN_LENGTH_FRACTION, PAPER_STATIONARY_STEPS, PAPER_STATIONARY_TOLERANCE,
 };
 pub use xml::{load_config, parse_config};

@@ -3,15 +3,15 @@
 use std::path::Path;
 
 use quick_xml::events::Event;
+use serde::de::IgnoredAny;
 use serde::Deserialize;
 
 use crate::som::{Decay, Neighbourhood, Schedule, Topology};
 
 use super::errors::ConfigError;
 use super::hyperparams::{
-    Algorithm, Alignment, Consensus, HsomConfig, HsomParams, IdDecoding, Knots, LevelParams,
-    ListUpdate, MemoryMode, Normalisation, PartialTraining, Plan, Reflex, ReproductionMode,
-    ReproductionParams, StopRule, Timing,
+    Algorithm, AlgorithmParams, EventsParams, HsomConfig, HsomParams, IdDecoding, LevelParams,
+    MemoryMode, Normalisation, PaperParams, StopRule,
 };
 
 #[derive(Debug, Deserialize)]
@@ -33,14 +33,6 @@ struct RawConfig {
     #[serde(rename = "memoryMode")]
     memory_mode: Option<String>,
     normalisation: Option<String>,
-    consensus: Option<String>,
-    alignment: Option<String>,
-    plan: Option<String>,
-    knots: Option<String>,
-    #[serde(rename = "partialTraining")]
-    partial_training: Option<String>,
-    #[serde(rename = "listUpdate")]
-    list_update: Option<String>,
     #[serde(rename = "changeRatio")]
     change_ratio: Option<String>,
     #[serde(rename = "actionHorizon")]
@@ -48,6 +40,15 @@ struct RawConfig {
     algorithm: Option<String>,
     levels: Option<RawLevels>,
     reproduction: Option<RawReproduction>,
+    // retired settings, read only to name them in the error
+    consensus: Option<IgnoredAny>,
+    alignment: Option<IgnoredAny>,
+    plan: Option<IgnoredAny>,
+    knots: Option<IgnoredAny>,
+    #[serde(rename = "partialTraining")]
+    partial_training: Option<IgnoredAny>,
+    #[serde(rename = "listUpdate")]
+    list_update: Option<IgnoredAny>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -80,45 +81,114 @@ struct RawLevel {
     learning_radius_decay: Option<String>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawReproduction {
     offset: Option<String>,
-    mode: Option<String>,
     #[serde(rename = "idDecoding")]
     id_decoding: Option<String>,
-    #[serde(rename = "unseenFallback")]
-    unseen_fallback: Option<String>,
     #[serde(rename = "maxLength")]
     max_length: Option<String>,
     stop: Option<String>,
-    #[serde(rename = "minLengthFraction")]
-    min_length_fraction: Option<String>,
     #[serde(rename = "lengthFactor")]
     length_factor: Option<String>,
-    #[serde(rename = "stationarySteps")]
-    stationary_steps: Option<String>,
-    #[serde(rename = "confusionThreshold")]
-    confusion_threshold: Option<String>,
     #[serde(rename = "maxLevel")]
     max_level: Option<String>,
-    continuity: Option<String>,
-    #[serde(rename = "endTolerance")]
-    end_tolerance: Option<String>,
+    // retired settings, read only to name them in the error
+    mode: Option<IgnoredAny>,
+    #[serde(rename = "unseenFallback")]
+    unseen_fallback: Option<IgnoredAny>,
+    #[serde(rename = "minLengthFraction")]
+    min_length_fraction: Option<IgnoredAny>,
+    #[serde(rename = "stationarySteps")]
+    stationary_steps: Option<IgnoredAny>,
     #[serde(rename = "stationaryTolerance")]
-    stationary_tolerance: Option<String>,
+    stationary_tolerance: Option<IgnoredAny>,
+    #[serde(rename = "confusionThreshold")]
+    confusion_threshold: Option<IgnoredAny>,
+    continuity: Option<IgnoredAny>,
+    #[serde(rename = "endTolerance")]
+    end_tolerance: Option<IgnoredAny>,
     #[serde(rename = "closedLoop")]
-    closed_loop: Option<String>,
-    reflex: Option<String>,
-    timing: Option<String>,
+    closed_loop: Option<IgnoredAny>,
+    reflex: Option<IgnoredAny>,
+    timing: Option<IgnoredAny>,
     #[serde(rename = "minAccuracy")]
-    min_accuracy: Option<String>,
+    min_accuracy: Option<IgnoredAny>,
     #[serde(rename = "loopVisits")]
-    loop_visits: Option<String>,
+    loop_visits: Option<IgnoredAny>,
     #[serde(rename = "loopWindow")]
-    loop_window: Option<String>,
+    loop_window: Option<IgnoredAny>,
     #[serde(rename = "revisitSuccessors")]
-    revisit_successors: Option<String>,
+    revisit_successors: Option<IgnoredAny>,
+}
+
+/// Each retired setting, whether `raw` names it, and what it is now.
+fn retired(raw: &RawConfig) -> Vec<(&'static str, bool, &'static str)> {
+    let mut out = vec![
+        ("plan", raw.plan.is_some(), "plans always follow a training demonstration (what `traced` was)"),
+        ("alignment", raw.alignment.is_some(), "the consensus always reads one demonstration along another without the warp's stairs (what `smooth` was)"),
+        ("knots", raw.knots.is_some(), "a followed event of four samples or more always passes through two knots, one per half (what `halves` was)"),
+        ("consensus", raw.consensus.is_some(), "the consensus always weighs the demonstrations by their starts where the starts predict the placements, all alike otherwise (what `start` was)"),
+        ("partialTraining", raw.partial_training.is_some(), "an upper level of the paper algorithm trains once the list below is full (what `skip` was)"),
+        ("listUpdate", raw.list_update.is_some(), "the paper algorithm's bottom list takes every step's BMU (what `everyStep` was); the events algorithm's lists hold events"),
+    ];
+    let Some(r) = &raw.reproduction else {
+        return out;
+    };
+    let loops = "the paper algorithm executes what the hierarchy predicts, with no loop breaking";
+    out.extend([
+        ("reproduction/mode", r.mode.is_some(), "the paper's procedure taken literally (what `literal` was)"),
+        ("reproduction/unseenFallback", r.unseen_fallback.is_some(), "a decoded node the training data never used is always replaced by the nearest used one (what `true` was)"),
+        ("reproduction/minLengthFraction", r.min_length_fraction.is_some(), "the learned stop waits for 0.6 of the shortest demonstration"),
+        ("reproduction/stationarySteps", r.stationary_steps.is_some(), "the learned stop's stationarity window is 60 steps"),
+        ("reproduction/stationaryTolerance", r.stationary_tolerance.is_some(), "the learned stop's stationarity radius is one bottom quantization error"),
+        ("reproduction/endTolerance", r.end_tolerance.is_some(), "the learned stop ends on a node where a demonstration ended (what 0 was)"),
+        ("reproduction/confusionThreshold", r.confusion_threshold.is_some(), "every level with enough history predicts (what 0 was)"),
+        ("reproduction/continuity", r.continuity.is_some(), "the next posture is the executed node's action half, the paper's output (what 0 was)"),
+        ("reproduction/closedLoop", r.closed_loop.is_some(), "the predicted node is what the bottom list records (what `false` was)"),
+        ("reproduction/minAccuracy", r.min_accuracy.is_some(), "every level with enough history predicts (what 0 was)"),
+        ("reproduction/reflex", r.reflex.is_some(), "the reflex executes the BMU of the current posture, the paper's (what `bmu` was)"),
+        ("reproduction/timing", r.timing.is_some(), "one posture per executed node, the paper's (what `step` was)"),
+        ("reproduction/loopVisits", r.loop_visits.is_some(), loops),
+        ("reproduction/loopWindow", r.loop_window.is_some(), loops),
+        ("reproduction/revisitSuccessors", r.revisit_successors.is_some(), loops),
+    ]);
+    out
+}
+
+/// Each setting only one algorithm reads, whether `raw` names it, and that algorithm.
+fn one_algorithm(raw: &RawConfig) -> Vec<(&'static str, bool, Algorithm)> {
+    let r = raw.reproduction.as_ref();
+    vec![
+        (
+            "updatePeriod",
+            raw.update_period.is_some(),
+            Algorithm::Paper,
+        ),
+        ("memoryMode", raw.memory_mode.is_some(), Algorithm::Paper),
+        (
+            "reproduction/offset",
+            r.is_some_and(|r| r.offset.is_some()),
+            Algorithm::Paper,
+        ),
+        (
+            "reproduction/idDecoding",
+            r.is_some_and(|r| r.id_decoding.is_some()),
+            Algorithm::Paper,
+        ),
+        (
+            "reproduction/stop",
+            r.is_some_and(|r| r.stop.is_some()),
+            Algorithm::Paper,
+        ),
+        ("changeRatio", raw.change_ratio.is_some(), Algorithm::Events),
+        (
+            "actionHorizon",
+            raw.action_horizon.is_some(),
+            Algorithm::Events,
+        ),
+    ]
 }
 
 /// Read, parse and validate a configuration file.
@@ -347,6 +417,9 @@ fn word<'a, T: Copy>(table: &'a [(&'a str, T)]) -> impl Fn(&str) -> Option<T> + 
 }
 
 /// Parse and validate a configuration held in `text`; `file` names it in error messages.
+/// Omitted settings take the values of [`HsomParams::recommended`] (`algorithm = events`, the
+/// default) or [`HsomParams::table1`] (`algorithm = paper`); a retired setting, or one the
+/// chosen algorithm does not read, is an error naming it.
 pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
     check_well_formed(text, file)?;
     let raw: RawConfig = quick_xml::de::from_str(text).map_err(|e| ConfigError::Schema {
@@ -359,9 +432,130 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
             return Err(f.invalid("hsom/@version", v, "expected 1"));
         }
     }
-    let height: usize = f.req("height", &raw.height)?;
-    let memory: usize = f.req("memory", &raw.memory)?;
-    let raw_levels = raw.levels.as_ref().ok_or_else(|| f.missing("levels"))?;
+    if let Some((field, _, now)) = retired(&raw).into_iter().find(|r| r.1) {
+        return Err(ConfigError::Retired {
+            file: file.to_string(),
+            field: field.to_string(),
+            now: now.to_string(),
+        });
+    }
+    let algorithm = f.name(
+        "algorithm",
+        &raw.algorithm,
+        Algorithm::Events,
+        word(&[("paper", Algorithm::Paper), ("events", Algorithm::Events)]),
+        "paper, events",
+    )?;
+    if let Some((field, _, reads)) = one_algorithm(&raw)
+        .into_iter()
+        .find(|r| r.1 && r.2 != algorithm)
+    {
+        return Err(ConfigError::NotRead {
+            file: file.to_string(),
+            field: field.to_string(),
+            reads: reads.name().to_string(),
+            chosen: algorithm.name().to_string(),
+        });
+    }
+    let base = match algorithm {
+        Algorithm::Paper => HsomParams::table1(),
+        Algorithm::Events => HsomParams::recommended(),
+    };
+    let height: usize = f.opt("height", &raw.height, base.height)?;
+    let memory: usize = f.opt("memory", &raw.memory, base.memory)?;
+    let levels = match &raw.levels {
+        None => base.levels.clone(),
+        Some(raw_levels) => parse_levels(&f, raw_levels, height)?,
+    };
+    let d = base.reproduction.clone();
+    let empty = RawReproduction::default();
+    let r = raw.reproduction.as_ref().unwrap_or(&empty);
+    let reproduction = super::hyperparams::ReproductionParams {
+        max_length: f.opt("reproduction/maxLength", &r.max_length, d.max_length)?,
+        max_level: match &r.max_level {
+            None => d.max_level,
+            Some(s) => Some(f.parse("reproduction/maxLevel", s)?),
+        },
+        length_factor: f.opt(
+            "reproduction/lengthFactor",
+            &r.length_factor,
+            d.length_factor,
+        )?,
+    };
+    let algorithm = match &base.algorithm {
+        AlgorithmParams::Paper(q) => AlgorithmParams::Paper(PaperParams {
+            update_period: f.opt("updatePeriod", &raw.update_period, q.update_period)?,
+            memory_mode: f.name(
+                "memoryMode",
+                &raw.memory_mode,
+                q.memory_mode,
+                word(&[("lists", MemoryMode::Lists), ("levels", MemoryMode::Levels)]),
+                "lists, levels",
+            )?,
+            offset: f.opt(
+                "reproduction/offset",
+                &r.offset,
+                memory.saturating_sub(1).max(1),
+            )?,
+            id_decoding: f.name(
+                "reproduction/idDecoding",
+                &r.id_decoding,
+                q.id_decoding,
+                word(&[
+                    ("round", IdDecoding::Round),
+                    ("floor", IdDecoding::Floor),
+                    ("nearest", IdDecoding::Nearest),
+                ]),
+                "round, floor, nearest",
+            )?,
+            stop: f.name(
+                "reproduction/stop",
+                &r.stop,
+                q.stop,
+                word(&[
+                    ("learned", StopRule::Learned),
+                    ("maxlength", StopRule::MaxLength),
+                ]),
+                "learned, maxLength",
+            )?,
+        }),
+        AlgorithmParams::Events(q) => AlgorithmParams::Events(EventsParams {
+            change_ratio: f.opt("changeRatio", &raw.change_ratio, q.change_ratio)?,
+            action_horizon: f.opt("actionHorizon", &raw.action_horizon, q.action_horizon)?,
+        }),
+    };
+    let params = HsomParams {
+        seed: f.opt("seed", &raw.seed, base.seed)?,
+        height,
+        memory,
+        state_length: f.opt("stateLength", &raw.state_length, base.state_length)?,
+        action_length: f.opt("actionLength", &raw.action_length, base.action_length)?,
+        training_steps: f.opt("trainingSteps", &raw.training_steps, base.training_steps)?,
+        normalisation: f.name(
+            "normalisation",
+            &raw.normalisation,
+            base.normalisation,
+            word(&[
+                ("global", Normalisation::Global),
+                ("perdimension", Normalisation::PerDimension),
+                ("none", Normalisation::None),
+            ]),
+            "global, perDimension, none",
+        )?,
+        levels,
+        reproduction,
+        algorithm,
+    };
+    params.check(file)
+}
+
+/// The `<level>` elements of `raw_levels`, in index order, for a hierarchy of `height`.
+fn parse_levels(
+    f: &Fields,
+    raw_levels: &RawLevels,
+    height: usize,
+) -> Result<Vec<LevelParams>, ConfigError> {
+    let file = f.file;
     let n = raw_levels.level.len();
     // every index 0..height-1 once: which one is missing, or which one is out of range
     let given: Vec<Option<usize>> = raw_levels
@@ -459,219 +653,12 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
         };
         levels[idx] = Some(lp);
     }
-    let levels: Vec<LevelParams> = levels.into_iter().flatten().collect();
-    let d = ReproductionParams::default();
-    let reproduction = match &raw.reproduction {
-        None => ReproductionParams {
-            offset: memory.saturating_sub(1).max(1),
-            ..d
-        },
-        Some(r) => ReproductionParams {
-            offset: f.opt(
-                "reproduction/offset",
-                &r.offset,
-                memory.saturating_sub(1).max(1),
-            )?,
-            mode: f.name(
-                "reproduction/mode",
-                &r.mode,
-                d.mode,
-                word(&[
-                    ("literal", ReproductionMode::Literal),
-                    ("strided", ReproductionMode::Strided),
-                ]),
-                "literal, strided",
-            )?,
-            id_decoding: f.name(
-                "reproduction/idDecoding",
-                &r.id_decoding,
-                d.id_decoding,
-                word(&[
-                    ("round", IdDecoding::Round),
-                    ("floor", IdDecoding::Floor),
-                    ("nearest", IdDecoding::Nearest),
-                ]),
-                "round, floor, nearest",
-            )?,
-            unseen_fallback: f.opt(
-                "reproduction/unseenFallback",
-                &r.unseen_fallback,
-                d.unseen_fallback,
-            )?,
-            max_length: f.opt("reproduction/maxLength", &r.max_length, d.max_length)?,
-            stop: f.name(
-                "reproduction/stop",
-                &r.stop,
-                d.stop,
-                word(&[
-                    ("learned", StopRule::Learned),
-                    ("maxlength", StopRule::MaxLength),
-                ]),
-                "learned, maxLength",
-            )?,
-            min_length_fraction: f.opt(
-                "reproduction/minLengthFraction",
-                &r.min_length_fraction,
-                d.min_length_fraction,
-            )?,
-            length_factor: f.opt(
-                "reproduction/lengthFactor",
-                &r.length_factor,
-                d.length_factor,
-            )?,
-            stationary_steps: f.opt(
-                "reproduction/stationarySteps",
-                &r.stationary_steps,
-                d.stationary_steps,
-            )?,
-            confusion_threshold: f.opt(
-                "reproduction/confusionThreshold",
-                &r.confusion_threshold,
-                d.confusion_threshold,
-            )?,
-            max_level: match &r.max_level {
-                None => None,
-                Some(s) => Some(f.parse("reproduction/maxLevel", s)?),
-            },
-            continuity: f.opt("reproduction/continuity", &r.continuity, d.continuity)?,
-            end_tolerance: f.opt(
-                "reproduction/endTolerance",
-                &r.end_tolerance,
-                d.end_tolerance,
-            )?,
-            stationary_tolerance: f.opt(
-                "reproduction/stationaryTolerance",
-                &r.stationary_tolerance,
-                d.stationary_tolerance,
-            )?,
-            closed_loop: f.opt("reproduction/closedLoop", &r.closed_loop, d.closed_loop)?,
-            min_accuracy: f.opt("reproduction/minAccuracy", &r.min_accuracy, d.min_accuracy)?,
-            loop_visits: f.opt("reproduction/loopVisits", &r.loop_visits, d.loop_visits)?,
-            loop_window: f.opt("reproduction/loopWindow", &r.loop_window, d.loop_window)?,
-            revisit_successors: f.opt(
-                "reproduction/revisitSuccessors",
-                &r.revisit_successors,
-                d.revisit_successors,
-            )?,
-            reflex: f.name(
-                "reproduction/reflex",
-                &r.reflex,
-                d.reflex,
-                word(&[("bmu", Reflex::Bmu), ("successor", Reflex::Successor)]),
-                "bmu, successor",
-            )?,
-            timing: f.name(
-                "reproduction/timing",
-                &r.timing,
-                d.timing,
-                word(&[
-                    ("step", Timing::Step),
-                    ("dwell", Timing::Dwell),
-                    ("speed", Timing::Speed),
-                ]),
-                "step, dwell, speed",
-            )?,
-        },
-    };
-    let params = HsomParams {
-        seed: f.opt("seed", &raw.seed, 1u64)?,
-        height,
-        memory,
-        update_period: f.req("updatePeriod", &raw.update_period)?,
-        state_length: f.req("stateLength", &raw.state_length)?,
-        action_length: f.req("actionLength", &raw.action_length)?,
-        training_steps: f.req("trainingSteps", &raw.training_steps)?,
-        memory_mode: f.name(
-            "memoryMode",
-            &raw.memory_mode,
-            MemoryMode::Lists,
-            word(&[("lists", MemoryMode::Lists), ("levels", MemoryMode::Levels)]),
-            "lists, levels",
-        )?,
-        normalisation: f.name(
-            "normalisation",
-            &raw.normalisation,
-            Normalisation::Global,
-            word(&[
-                ("global", Normalisation::Global),
-                ("perdimension", Normalisation::PerDimension),
-                ("none", Normalisation::None),
-            ]),
-            "global, perDimension, none",
-        )?,
-        consensus: f.name(
-            "consensus",
-            &raw.consensus,
-            Consensus::Start,
-            word(&[
-                ("all", Consensus::All),
-                ("local", Consensus::Local),
-                ("start", Consensus::Start),
-            ]),
-            "all, local, start",
-        )?,
-        alignment: f.name(
-            "alignment",
-            &raw.alignment,
-            Alignment::Stepped,
-            word(&[
-                ("stepped", Alignment::Stepped),
-                ("smooth", Alignment::Smooth),
-            ]),
-            "stepped, smooth",
-        )?,
-        knots: f.name(
-            "knots",
-            &raw.knots,
-            Knots::Event,
-            word(&[("event", Knots::Event), ("halves", Knots::Halves)]),
-            "event, halves",
-        )?,
-        plan: f.name(
-            "plan",
-            &raw.plan,
-            Plan::Decoded,
-            word(&[("traced", Plan::Traced), ("decoded", Plan::Decoded)]),
-            "traced, decoded",
-        )?,
-        partial_training: f.name(
-            "partialTraining",
-            &raw.partial_training,
-            PartialTraining::Skip,
-            word(&[
-                ("skip", PartialTraining::Skip),
-                ("masked", PartialTraining::Masked),
-            ]),
-            "skip, masked",
-        )?,
-        list_update: f.name(
-            "listUpdate",
-            &raw.list_update,
-            ListUpdate::EveryStep,
-            word(&[
-                ("everystep", ListUpdate::EveryStep),
-                ("onchange", ListUpdate::OnChange),
-            ]),
-            "everyStep, onChange",
-        )?,
-        change_ratio: f.opt("changeRatio", &raw.change_ratio, 1.0)?,
-        action_horizon: f.opt("actionHorizon", &raw.action_horizon, 1usize)?,
-        algorithm: f.name(
-            "algorithm",
-            &raw.algorithm,
-            Algorithm::Paper,
-            word(&[("paper", Algorithm::Paper), ("events", Algorithm::Events)]),
-            "paper, events",
-        )?,
-        levels,
-        reproduction,
-    };
-    params.check(file)
+    Ok(levels.into_iter().flatten().collect())
 }
 
 impl HsomConfig {
     /// The configuration as an XML document that [`parse_config`] reads back to an equal
-    /// configuration (every optional value written out).
+    /// configuration (every setting its algorithm reads written out).
     pub fn to_xml(&self) -> String {
         use std::fmt::Write;
         let p = self.params();
@@ -679,53 +666,32 @@ impl HsomConfig {
         let _ = writeln!(s, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>");
         let _ = writeln!(s, "<hsom version=\"1\">");
         let _ = writeln!(s, "  <seed>{}</seed>", p.seed);
+        let _ = writeln!(s, "  <algorithm>{}</algorithm>", p.kind().name());
         let _ = writeln!(s, "  <height>{}</height>", p.height);
         let _ = writeln!(s, "  <memory>{}</memory>", p.memory);
-        let _ = writeln!(s, "  <updatePeriod>{}</updatePeriod>", p.update_period);
         let _ = writeln!(s, "  <stateLength>{}</stateLength>", p.state_length);
         let _ = writeln!(s, "  <actionLength>{}</actionLength>", p.action_length);
         let _ = writeln!(s, "  <trainingSteps>{}</trainingSteps>", p.training_steps);
-        let mm = match p.memory_mode {
-            MemoryMode::Lists => "lists",
-            MemoryMode::Levels => "levels",
-        };
-        let _ = writeln!(s, "  <memoryMode>{mm}</memoryMode>");
         let nm = match p.normalisation {
             Normalisation::Global => "global",
             Normalisation::PerDimension => "perDimension",
             Normalisation::None => "none",
         };
         let _ = writeln!(s, "  <normalisation>{nm}</normalisation>");
-        let cs = match p.consensus {
-            Consensus::All => "all",
-            Consensus::Local => "local",
-            Consensus::Start => "start",
-        };
-        let _ = writeln!(s, "  <consensus>{cs}</consensus>");
-        let _ = writeln!(s, "  <alignment>{}</alignment>", p.alignment.name());
-        let pl = match p.plan {
-            Plan::Traced => "traced",
-            Plan::Decoded => "decoded",
-        };
-        let _ = writeln!(s, "  <plan>{pl}</plan>");
-        let _ = writeln!(s, "  <knots>{}</knots>", p.knots.name());
-        let pt = match p.partial_training {
-            PartialTraining::Skip => "skip",
-            PartialTraining::Masked => "masked",
-        };
-        let _ = writeln!(s, "  <partialTraining>{pt}</partialTraining>");
-        let lu = match p.list_update {
-            ListUpdate::EveryStep => "everyStep",
-            ListUpdate::OnChange => "onChange",
-        };
-        let _ = writeln!(s, "  <listUpdate>{lu}</listUpdate>");
-        let _ = writeln!(s, "  <changeRatio>{}</changeRatio>", p.change_ratio);
-        let _ = writeln!(s, "  <actionHorizon>{}</actionHorizon>", p.action_horizon);
-        let alg = match p.algorithm {
-            Algorithm::Paper => "paper",
-            Algorithm::Events => "events",
-        };
-        let _ = writeln!(s, "  <algorithm>{alg}</algorithm>");
+        match &p.algorithm {
+            AlgorithmParams::Paper(q) => {
+                let _ = writeln!(s, "  <updatePeriod>{}</updatePeriod>", q.update_period);
+                let mm = match q.memory_mode {
+                    MemoryMode::Lists => "lists",
+                    MemoryMode::Levels => "levels",
+                };
+                let _ = writeln!(s, "  <memoryMode>{mm}</memoryMode>");
+            }
+            AlgorithmParams::Events(q) => {
+                let _ = writeln!(s, "  <changeRatio>{}</changeRatio>", q.change_ratio);
+                let _ = writeln!(s, "  <actionHorizon>{}</actionHorizon>", q.action_horizon);
+            }
+        }
         let _ = writeln!(s, "  <levels>");
         for (i, l) in p.levels.iter().enumerate().rev() {
             let _ = writeln!(s, "    <level index=\"{i}\">");
@@ -737,109 +703,37 @@ impl HsomConfig {
                 "      <neighbourhood>{}</neighbourhood>",
                 l.neighbourhood.name()
             );
-            let _ = writeln!(
-                s,
-                "      <learningFactor>{}</learningFactor>",
-                l.learning_factor.initial
-            );
-            let _ = writeln!(
-                s,
-                "      <learningFactorFinal>{}</learningFactorFinal>",
-                l.learning_factor.last
-            );
-            let _ = writeln!(
-                s,
-                "      <learningFactorDecay>{}</learningFactorDecay>",
-                l.learning_factor.decay.name()
-            );
-            let _ = writeln!(
-                s,
-                "      <learningRadius>{}</learningRadius>",
-                l.learning_radius.initial
-            );
-            let _ = writeln!(
-                s,
-                "      <learningRadiusFinal>{}</learningRadiusFinal>",
-                l.learning_radius.last
-            );
-            let _ = writeln!(
-                s,
-                "      <learningRadiusDecay>{}</learningRadiusDecay>",
-                l.learning_radius.decay.name()
-            );
+            for (name, sch) in [
+                ("learningFactor", &l.learning_factor),
+                ("learningRadius", &l.learning_radius),
+            ] {
+                let _ = writeln!(s, "      <{name}>{}</{name}>", sch.initial);
+                let _ = writeln!(s, "      <{name}Final>{}</{name}Final>", sch.last);
+                let _ = writeln!(s, "      <{name}Decay>{}</{name}Decay>", sch.decay.name());
+            }
             let _ = writeln!(s, "    </level>");
         }
         let _ = writeln!(s, "  </levels>");
         let r = &p.reproduction;
         let _ = writeln!(s, "  <reproduction>");
-        let _ = writeln!(s, "    <offset>{}</offset>", r.offset);
-        let mode = match r.mode {
-            ReproductionMode::Literal => "literal",
-            ReproductionMode::Strided => "strided",
-        };
-        let _ = writeln!(s, "    <mode>{mode}</mode>");
-        let dec = match r.id_decoding {
-            IdDecoding::Round => "round",
-            IdDecoding::Floor => "floor",
-            IdDecoding::Nearest => "nearest",
-        };
-        let _ = writeln!(s, "    <idDecoding>{dec}</idDecoding>");
-        let _ = writeln!(
-            s,
-            "    <unseenFallback>{}</unseenFallback>",
-            r.unseen_fallback
-        );
         let _ = writeln!(s, "    <maxLength>{}</maxLength>", r.max_length);
-        let stop = match r.stop {
-            StopRule::Learned => "learned",
-            StopRule::MaxLength => "maxLength",
-        };
-        let _ = writeln!(s, "    <stop>{stop}</stop>");
-        let _ = writeln!(
-            s,
-            "    <minLengthFraction>{}</minLengthFraction>",
-            r.min_length_fraction
-        );
         let _ = writeln!(s, "    <lengthFactor>{}</lengthFactor>", r.length_factor);
-        let _ = writeln!(
-            s,
-            "    <stationarySteps>{}</stationarySteps>",
-            r.stationary_steps
-        );
-        let _ = writeln!(
-            s,
-            "    <confusionThreshold>{}</confusionThreshold>",
-            r.confusion_threshold
-        );
-        let _ = writeln!(s, "    <continuity>{}</continuity>", r.continuity);
-        let _ = writeln!(s, "    <endTolerance>{}</endTolerance>", r.end_tolerance);
-        let _ = writeln!(
-            s,
-            "    <stationaryTolerance>{}</stationaryTolerance>",
-            r.stationary_tolerance
-        );
-        let _ = writeln!(s, "    <closedLoop>{}</closedLoop>", r.closed_loop);
-        let rf = match r.reflex {
-            Reflex::Bmu => "bmu",
-            Reflex::Successor => "successor",
-        };
-        let _ = writeln!(s, "    <minAccuracy>{}</minAccuracy>", r.min_accuracy);
-        let _ = writeln!(s, "    <reflex>{rf}</reflex>");
-        let _ = writeln!(s, "    <loopVisits>{}</loopVisits>", r.loop_visits);
-        let _ = writeln!(s, "    <loopWindow>{}</loopWindow>", r.loop_window);
-        let _ = writeln!(
-            s,
-            "    <revisitSuccessors>{}</revisitSuccessors>",
-            r.revisit_successors
-        );
-        let tm = match r.timing {
-            Timing::Step => "step",
-            Timing::Dwell => "dwell",
-            Timing::Speed => "speed",
-        };
-        let _ = writeln!(s, "    <timing>{tm}</timing>");
         if let Some(m) = r.max_level {
             let _ = writeln!(s, "    <maxLevel>{m}</maxLevel>");
+        }
+        if let Some(q) = p.paper() {
+            let _ = writeln!(s, "    <offset>{}</offset>", q.offset);
+            let dec = match q.id_decoding {
+                IdDecoding::Round => "round",
+                IdDecoding::Floor => "floor",
+                IdDecoding::Nearest => "nearest",
+            };
+            let _ = writeln!(s, "    <idDecoding>{dec}</idDecoding>");
+            let stop = match q.stop {
+                StopRule::Learned => "learned",
+                StopRule::MaxLength => "maxLength",
+            };
+            let _ = writeln!(s, "    <stop>{stop}</stop>");
         }
         let _ = writeln!(s, "  </reproduction>");
         let _ = writeln!(s, "</hsom>");

@@ -280,7 +280,7 @@ pub fn run_all_gestures(
             "--gesture all needs at least 2 gestures".into(),
         ));
     }
-    if config.params().algorithm != crate::config::Algorithm::Events {
+    if config.params().kind() != crate::config::Algorithm::Events {
         // refused before anything is recorded
         return Err(gerr(GestureError::NeedsEvents));
     }

@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::config::{Alignment, HsomConfig};
+use crate::config::HsomConfig;
 use crate::demos::Demonstration;
 use crate::gmr::MIN_DEMONSTRATIONS;
 use crate::metrics::{column_swings, FidelityReport, MetricsParams};
@@ -477,7 +477,7 @@ pub fn continuation_folds(
             "prefix fraction {fraction}: needs a number strictly between 0 and 1"
         )));
     }
-    let needed = config.params().action_horizon + 1;
+    let needed = config.params().action_horizon() + 1;
     (0..demos.len())
         .map(|i| {
             let train = all_but(demos, i);
@@ -746,7 +746,7 @@ pub fn closed_loop_folds(
 ) -> Result<ClosedLoop, ExperimentError> {
     check_demos(demos)?;
     grab.check()?;
-    let needed = config.params().action_horizon + 1;
+    let needed = config.params().action_horizon() + 1;
     let mut out = ClosedLoop {
         hsom: Vec::new(),
         sequence: Vec::new(),
@@ -1061,149 +1061,6 @@ pub fn closed_loop_png(
         })
         .collect();
     crate::plot::panels_png(path, title, &panels, 2, (760, 420))
-}
-
-/// One leave-one-out fold learned with each [`Alignment`] of the consensus, to compare the
-/// executed speed ([`alignment_fold`], [`velocity_png`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct AlignmentFold {
-    /// 0-based index of the held-out demonstration.
-    pub held_out: usize,
-    /// The joint drawn: the held-out demonstration's fastest (largest peak speed).
-    pub joint: usize,
-    /// `(time s, speed rad/s)` of that joint in the held-out demonstration.
-    pub demo: Vec<(f64, f64)>,
-    /// Per alignment: stepped, then smooth.
-    pub runs: Vec<AlignmentRun>,
-}
-
-/// The fold of an [`AlignmentFold`] learned with one alignment.
-#[derive(Debug, Clone, PartialEq)]
-pub struct AlignmentRun {
-    /// `stepped` or `smooth`.
-    pub alignment: String,
-    /// `(time s, speed rad/s)` of the joint in the executed reproduction.
-    pub speed: Vec<(f64, f64)>,
-    /// Its normalised jerk over the held-out demonstration's.
-    pub jerk_ratio: f64,
-    /// Its joint DTW, rad per step.
-    pub joint_dtw: f64,
-}
-
-/// `(time s, speed rad/s)` of column `j` of `rows` sampled every `period` s: the difference of
-/// consecutive samples, at their middle.
-fn speed_trace<R: AsRef<[f64]>>(rows: &[R], j: usize, period: f64) -> Vec<(f64, f64)> {
-    rows.windows(2)
-        .enumerate()
-        .map(|(k, w)| {
-            (
-                (k as f64 + 0.5) * period,
-                (w[1].as_ref()[j] - w[0].as_ref()[j]) / period,
-            )
-        })
-        .collect()
-}
-
-/// Fold `i` of `demos` (learn from the others, reproduce from demonstration `i`'s first
-/// posture, execute with `transition`) learned with `config` at each [`Alignment`]: the
-/// executed speed of the held-out demonstration's fastest joint beside the demonstration's,
-/// to see what the consensus's stairs do to a plan's tempo (docs/ALGORITHM.md, passage 6, "A
-/// consensus without stairs").
-pub fn alignment_fold(
-    arm: &NaoArm,
-    config: &HsomConfig,
-    demos: &[Demonstration],
-    i: usize,
-    transition: Transition,
-) -> Result<AlignmentFold, ExperimentError> {
-    check_demos(demos)?;
-    let demo = demos.get(i).ok_or_else(|| {
-        ExperimentError::Invalid(format!(
-            "fold {i}: there are {} demonstrations (0-based index)",
-            demos.len()
-        ))
-    })?;
-    let period = sample_period(demo);
-    let peaks: Vec<f64> = (0..demo.rows[0].len())
-        .map(|j| {
-            speed_trace(&demo.rows, j, period)
-                .iter()
-                .fold(0.0_f64, |m, p| m.max(p.1.abs()))
-        })
-        .collect();
-    let joint = (0..peaks.len())
-        .max_by(|&a, &b| peaks[a].total_cmp(&peaks[b]))
-        .unwrap_or(0);
-    let train = all_but(demos, i);
-    let runs = [Alignment::Stepped, Alignment::Smooth]
-        .into_iter()
-        .map(|how| {
-            let c = config
-                .with_alignment(how)
-                .map_err(|e| ExperimentError::Invalid(e.to_string()))?;
-            let split = Split {
-                train: &train,
-                test: std::slice::from_ref(demo),
-            };
-            let run = learn_and_score(arm, &c, split, Training::Trained, transition, None)?;
-            let f = &run.fidelity;
-            let jerk = match (
-                f.reproduction_smoothness.normalized_jerk,
-                f.demo_smoothness.first().and_then(|d| d.normalized_jerk),
-            ) {
-                (Some(r), Some(d)) if d > 0.0 => r / d,
-                _ => f64::NAN,
-            };
-            Ok(AlignmentRun {
-                alignment: how.name().to_string(),
-                speed: speed_trace(&run.executed.qpos, joint, period),
-                jerk_ratio: jerk,
-                joint_dtw: f.joint_dtw_rad_per_step.mean,
-            })
-        })
-        .collect::<Result<Vec<_>, ExperimentError>>()?;
-    Ok(AlignmentFold {
-        held_out: i,
-        joint,
-        demo: speed_trace(&demo.rows, joint, period),
-        runs,
-    })
-}
-
-/// One panel per alignment of `fold` ([`alignment_fold`]): the joint's speed in the held-out
-/// demonstration (grey) and in the executed reproduction (black), each panel's title with
-/// the jerk ratio and joint DTW. Written atomically to `path`.
-pub fn velocity_png(
-    path: &std::path::Path,
-    title: &str,
-    fold: &AlignmentFold,
-) -> Result<(), crate::plot::PlotError> {
-    use crate::plot::{Panel, Series, BLACK};
-    let joint = JOINT_NAMES.get(fold.joint).copied().unwrap_or("joint");
-    let panels: Vec<Panel> = fold
-        .runs
-        .iter()
-        .map(|run| {
-            let mut p = Panel::new(
-                format!(
-                    "alignment {}: jerk {:.2}x the demonstration's, {:.4} rad/step",
-                    run.alignment, run.jerk_ratio, run.joint_dtw
-                ),
-                "time (s)",
-                format!("{joint} speed (rad/s)"),
-            );
-            p.series.push(Series::new(
-                format!("demonstration {} (held out)", fold.held_out + 1),
-                crate::plot::GREY,
-                fold.demo.clone(),
-            ));
-            let mut r = Series::new("reproduction", BLACK, run.speed.clone());
-            r.width = 3;
-            p.series.push(r);
-            p
-        })
-        .collect();
-    crate::plot::panels_png(path, title, &panels, 1, (1000, 340))
 }
 
 /// One panel per fold of [`swing_folds`]: the held-out demonstration (in the palette's

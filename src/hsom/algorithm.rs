@@ -3,7 +3,7 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use crate::config::{HsomConfig, ListUpdate, MemoryMode, Normalisation, PartialTraining};
+use crate::config::{HsomConfig, MemoryMode, Normalisation};
 use crate::demos::Demonstration;
 use crate::som::{SelfOrganizingMap, Topology};
 
@@ -39,19 +39,6 @@ pub struct Hsom {
     /// (first and last run of each demonstration, the idle start and end, excluded); 0 when
     /// it never had such a run.
     pub(crate) dwell: Vec<f64>,
-    /// Per bottom node: mean distance (normalised units) between consecutive samples during
-    /// those runs, its speed in the demonstrations; 0 when unknown.
-    pub(crate) speed: Vec<f64>,
-    /// Per bottom node: the distinct node that most often followed its runs (`u32::MAX`:
-    /// none).
-    pub(crate) successor: Vec<u32>,
-    /// Per bottom node: as `successor`, but ties between equally frequent transitions go to
-    /// the one that came first in the demonstrations (smallest mean relative position); equal
-    /// to `successor` for nodes no demonstration revisited (`revisitSuccessors`).
-    pub(crate) first_successor: Vec<u32>,
-    /// Per bottom node: the distinct node that followed it latest in the demonstrations
-    /// (largest mean relative position of the transition; `u32::MAX`: none).
-    pub(crate) last_successor: Vec<u32>,
     /// Names of the demonstrations' columns (`x0`, `x1`, ... for plain series).
     pub(crate) columns: Vec<String>,
     /// Per level: how often its partial match predicted the next entry of the level below
@@ -241,10 +228,6 @@ pub(crate) enum Memory {
 #[derive(Debug, Clone)]
 pub(crate) struct Stm {
     pub(crate) mem: Memory,
-    /// Newest bottom entry (node index), for `listUpdate = onChange`.
-    pub(crate) last0: Option<usize>,
-    pub(crate) on_change: bool,
-    pub(crate) change_ratio: f64,
     /// Pushes since the last clear, per level.
     pub(crate) pushes: Vec<usize>,
     pub(crate) memory: usize,
@@ -253,7 +236,7 @@ pub(crate) struct Stm {
 impl Stm {
     pub(crate) fn new(config: &HsomConfig) -> Self {
         let p = config.params();
-        let mem = match p.memory_mode {
+        let mem = match p.memory_mode() {
             MemoryMode::Lists => {
                 Memory::Lists((0..p.height).map(|_| ActivityList::new(p.memory)).collect())
             }
@@ -266,9 +249,6 @@ impl Stm {
         };
         Stm {
             mem,
-            last0: None,
-            on_change: p.list_update == ListUpdate::OnChange,
-            change_ratio: p.change_ratio,
             pushes: vec![0; p.height],
             memory: p.memory,
         }
@@ -279,46 +259,11 @@ impl Stm {
             Memory::Levels(v) => v.iter_mut().for_each(|l| l.clear()),
         }
         self.pushes.iter_mut().for_each(|c| *c = 0);
-        self.last0 = None;
     }
-    /// Push a bottom BMU, unless `listUpdate = onChange` and it is the newest entry already;
-    /// true when pushed (the schedule of the upper levels then advances).
+    /// Push a bottom BMU.
     #[inline]
-    pub(crate) fn push_bottom(&mut self, node: usize, map: &SelfOrganizingMap) -> bool {
-        self.push_bottom_observed(node, map, None)
-    }
-    /// As [`Stm::push_bottom`] for an observed input `x` whose BMU `node` is at squared
-    /// distance `d2`: with `onChange` and `changeRatio` r < 1 the newest entry is kept while
-    /// the BMU is not clearly closer, d2 > r^2 |x - w(newest)|^2 (hysteresis against noise
-    /// flickering between neighbouring nodes).
-    #[inline]
-    pub(crate) fn push_bottom_observed(
-        &mut self,
-        node: usize,
-        map: &SelfOrganizingMap,
-        obs: Option<(&[f64], f64)>,
-    ) -> bool {
-        if self.on_change {
-            let Some(last) = self.last0 else {
-                self.push(0, node, map);
-                self.last0 = Some(node);
-                return true;
-            };
-            if last == node {
-                return false;
-            }
-            if let Some((x, d2)) = obs {
-                if self.change_ratio < 1.0 {
-                    let dl2 = map.distance2(last, x, 0..map.dim());
-                    if d2 > self.change_ratio * self.change_ratio * dl2 {
-                        return false;
-                    }
-                }
-            }
-        }
+    pub(crate) fn push_bottom(&mut self, node: usize, map: &SelfOrganizingMap) {
         self.push(0, node, map);
-        self.last0 = Some(node);
-        true
     }
     #[inline]
     pub(crate) fn push(&mut self, level: usize, node: usize, map: &SelfOrganizingMap) {
@@ -329,17 +274,11 @@ impl Stm {
         self.pushes[level] += 1;
     }
     /// Input of level `level + 1` from the memory of `level`, for training: false when the
-    /// level above must not train now.
+    /// level above must not train now (the list below is not yet full).
     #[inline]
-    pub(crate) fn input(
-        &self,
-        level: usize,
-        partial: PartialTraining,
-        out: &mut [f64],
-        mask: &mut [bool],
-    ) -> bool {
+    pub(crate) fn input(&self, level: usize, out: &mut [f64], mask: &mut [bool]) -> bool {
         let n = self.pushes[level];
-        if n == 0 || (partial == PartialTraining::Skip && n < self.memory) {
+        if n == 0 || n < self.memory {
             return false;
         }
         match &self.mem {
@@ -420,10 +359,10 @@ pub(crate) fn input_dim(config: &HsomConfig, level: usize) -> usize {
     let p = config.params();
     if level == 0 {
         p.state_length + p.action_length
-    } else if p.algorithm == crate::config::Algorithm::Events {
+    } else if p.kind() == crate::config::Algorithm::Events {
         super::events::Layout::of(config).dim()
     } else {
-        match p.memory_mode {
+        match p.memory_mode() {
             MemoryMode::Lists => 2 * p.memory,
             MemoryMode::Levels => p.levels[level - 1].rows * p.levels[level - 1].cols,
         }
@@ -526,7 +465,7 @@ impl HsomConfig {
     ) -> Result<Hsom, HsomError> {
         let p = self.params();
         let state = p.state_length;
-        check_series(series, state, p.action_horizon)?;
+        check_series(series, state, p.action_horizon())?;
         let columns = if columns.len() == state {
             columns
         } else {
@@ -618,7 +557,7 @@ impl HsomConfig {
                 )
             } else {
                 let below = &p.levels[l - 1];
-                match p.memory_mode {
+                match p.memory_mode() {
                     MemoryMode::Lists => (
                         vec![0.0; dim],
                         (0..dim)
@@ -651,22 +590,16 @@ impl HsomConfig {
             .collect();
         let mut trained = vec![0u64; p.height];
         let (mut d, mut pos) = (0usize, 0usize);
-        // bottom pushes (the upper levels' clock; = the step with listUpdate = everyStep)
-        let mut sc = 0u64;
-        let horizon = p.action_horizon.max(1);
+        let horizon = p.action_horizon();
         let chunk = (total / 100).max(1);
-        // with onChange, trainingSteps counts bottom list updates (distinct key postures), so
-        // that the upper levels train as often as with everyStep
-        let on_change = stm.on_change;
-        let events = p.algorithm == crate::config::Algorithm::Events;
+        let events = p.kind() == crate::config::Algorithm::Events;
         let mut s = 0u64;
         // the events extension trains the upper levels afterwards, so only the bottom's
         // samples are drawn (the paper's levels learn from the sequence as it is presented)
         let shuffled = events && presentation == Presentation::Shuffled;
         let samples: usize = norm.iter().map(|r| r.len() - 1).sum();
         loop {
-            let done = if on_change { sc } else { s };
-            if done >= total as u64 {
+            if s >= total as u64 {
                 break;
             }
             s += 1;
@@ -681,19 +614,15 @@ impl HsomConfig {
                 pos = g;
                 stm.clear();
             }
-            let pushed = {
+            {
                 let demo = &norm[d];
                 let x = &mut bufs[0];
                 x[..state].copy_from_slice(&demo[pos]);
                 x[state..].copy_from_slice(&demo[(pos + horizon).min(demo.len() - 1)]);
                 let lp = &p.levels[0];
-                let prog = if on_change {
-                    (sc as f64 / total.max(1) as f64).min(1.0)
-                } else {
-                    trained[0] as f64 / expected[0]
-                };
-                let (b, d2) = maps[0].bmu(x);
-                let pushed = stm.push_bottom_observed(b, &maps[0], Some((&x[..], d2)));
+                let prog = trained[0] as f64 / expected[0];
+                let (b, _) = maps[0].bmu(x);
+                stm.push_bottom(b, &maps[0]);
                 maps[0].update(
                     x,
                     None,
@@ -703,31 +632,21 @@ impl HsomConfig {
                     lp.neighbourhood,
                 );
                 trained[0] += 1;
-                pushed
-            };
-            if pushed {
-                sc += 1;
             }
             for l in 1..p.height {
-                if events || !pushed || sc % self.period(l) != 0 {
+                if events || s % self.period(l) != 0 {
                     break;
                 }
                 let (lower, upper) = bufs.split_at_mut(l);
                 let _ = lower;
                 let x = &mut upper[0];
                 let mask = &mut masks[l];
-                if !stm.input(l - 1, p.partial_training, x, mask) {
+                if !stm.input(l - 1, x, mask) {
                     continue;
                 }
                 let full = mask.iter().all(|&m| m);
                 let lp = &p.levels[l];
-                // with onChange the number of trainings is not known in advance: the
-                // schedules follow the global step instead
-                let prog = if on_change {
-                    ((sc - 1) as f64 / total.max(1) as f64).min(1.0)
-                } else {
-                    trained[l] as f64 / expected[l]
-                };
+                let prog = trained[l] as f64 / expected[l];
                 let (b, _) = if full {
                     maps[l].bmu(x)
                 } else {
@@ -751,8 +670,8 @@ impl HsomConfig {
                 pos = 0;
             }
             if let Some(cb) = progress {
-                let done = if on_change { sc } else { s } as usize;
-                if (done % chunk == 0 || done == total) && (!on_change || pushed) {
+                let done = s as usize;
+                if done % chunk == 0 || done == total {
                     cb(done, total);
                 }
             }
@@ -775,10 +694,6 @@ impl HsomConfig {
             ],
             demo_runs: [0.0; 3],
             dwell: vec![0.0; p.levels[0].rows * p.levels[0].cols],
-            speed: vec![0.0; p.levels[0].rows * p.levels[0].cols],
-            successor: vec![u32::MAX; p.levels[0].rows * p.levels[0].cols],
-            first_successor: vec![u32::MAX; p.levels[0].rows * p.levels[0].cols],
-            last_successor: vec![u32::MAX; p.levels[0].rows * p.levels[0].cols],
             columns,
             accuracy: vec![0.0; p.height],
             lookup: vec![0.0; p.height],
@@ -822,7 +737,7 @@ impl Hsom {
     /// learned from these (raw) demonstrations ([`Hsom::fit_postures`]). A bottom shared by
     /// several gestures gets none of its own: each branch learns its own.
     fn learn_postures<'a>(&mut self, demos: impl Iterator<Item = &'a [Vec<f64>]>) {
-        if self.config.params().algorithm == crate::config::Algorithm::Events {
+        if self.config.params().kind() == crate::config::Algorithm::Events {
             let norm: Vec<Vec<Vec<f64>>> = demos.map(|rows| self.normalise_rows(rows)).collect();
             self.fit_postures(&norm);
         }
@@ -834,7 +749,7 @@ impl Hsom {
         let cfg = self.config.clone();
         let p = cfg.params();
         let state = p.state_length;
-        let events = p.algorithm == crate::config::Algorithm::Events;
+        let events = p.kind() == crate::config::Algorithm::Events;
         let mut stm = Stm::new(&cfg);
         let mut bufs: Vec<Vec<f64>> = (0..p.height)
             .map(|l| vec![0.0; input_dim(&cfg, l)])
@@ -848,16 +763,9 @@ impl Hsom {
         let n0 = self.maps[0].len();
         let mut dwell_sum = vec![0.0f64; n0];
         let mut dwell_n = vec![0u32; n0];
-        let mut path_sum = vec![0.0f64; n0];
-        // (from, to) -> (forward transitions, all transitions)
-        let mut trans: std::collections::BTreeMap<(usize, usize), (u32, u32)> = Default::default();
-        // nodes with more than one run within one demonstration (oscillations, turnarounds)
-        let mut revisited = vec![false; n0];
-        // per transition: sum of the relative positions (run index / runs) where it occurred
-        let mut trans_phase: std::collections::BTreeMap<(usize, usize), f64> = Default::default();
         let mut runs_per_demo = Vec::with_capacity(norm.len());
-        let horizon = p.action_horizon.max(1);
-        let offset = p.reproduction.offset;
+        let horizon = p.action_horizon();
+        let offset = p.offset();
         let (mut acc_n, mut acc_ok) = (vec![0u32; p.height], vec![0u32; p.height]);
         let mut pbuf = vec![0.0; 2 * p.memory];
         let mut pmask = vec![true; 2 * p.memory];
@@ -877,7 +785,7 @@ impl Hsom {
             };
             let mut sc = 0u64;
             // runs of the same bottom BMU: (node, length)
-            let mut runs: Vec<(usize, usize, f64)> = Vec::new();
+            let mut runs: Vec<(usize, usize)> = Vec::new();
             for pos in 0..demo.len() - 1 {
                 bufs[0][..state].copy_from_slice(&demo[pos]);
                 bufs[0][state..].copy_from_slice(&demo[(pos + horizon).min(demo.len() - 1)]);
@@ -896,47 +804,32 @@ impl Hsom {
                 if pos + 2 == demo.len() {
                     self.end_hits[a] = self.end_hits[a].saturating_add(1);
                 }
-                let step_len = demo[pos]
-                    .iter()
-                    .zip(&demo[pos + 1])
-                    .map(|(a, b)| (a - b) * (a - b))
-                    .sum::<f64>()
-                    .sqrt();
                 let guess = if events {
                     None
                 } else {
                     self.predict_next(&stm, 1, offset, &mut pbuf, &mut pmask)
                 };
-                let pushed = stm.push_bottom_observed(a, &self.maps[0], Some((&bufs[0], d2)));
-                if pushed {
-                    if let Some(g) = guess {
-                        acc_n[1] += 1;
-                        acc_ok[1] += u32::from(g == a);
-                        scored[1].push((last(&seqs, 0), a as u32));
-                    }
-                    if let Some(s0) = seqs[0].last_mut() {
-                        s0.push(a as u32);
-                    }
+                stm.push_bottom(a, &self.maps[0]);
+                if let Some(g) = guess {
+                    acc_n[1] += 1;
+                    acc_ok[1] += u32::from(g == a);
+                    scored[1].push((last(&seqs, 0), a as u32));
                 }
-                // runs: steps between pushes, on the pushed node (= runs of the same BMU
-                // with everyStep or changeRatio 1)
+                if let Some(s0) = seqs[0].last_mut() {
+                    s0.push(a as u32);
+                }
                 match runs.last_mut() {
-                    Some((n, len, path)) if !pushed || *n == a => {
-                        *len += 1;
-                        *path += step_len;
-                    }
-                    _ => runs.push((a, 1, step_len)),
+                    Some((n, len)) if *n == a => *len += 1,
+                    _ => runs.push((a, 1)),
                 }
-                if pushed {
-                    sc += 1;
-                }
+                sc += 1;
                 for l in 1..p.height {
-                    if events || !pushed || sc % cfg.period(l) != 0 {
+                    if events || sc % cfg.period(l) != 0 {
                         break;
                     }
                     let x = &mut bufs[l];
                     let mask = &mut masks[l];
-                    if !stm.input(l - 1, p.partial_training, x, mask) {
+                    if !stm.input(l - 1, x, mask) {
                         continue;
                     }
                     let full = mask.iter().all(|&m| m);
@@ -970,28 +863,10 @@ impl Hsom {
                 }
             }
             let k = runs.len();
-            for (i, &(n, len, path)) in runs.iter().enumerate() {
+            for (i, &(n, len)) in runs.iter().enumerate() {
                 if i > 0 && i + 1 < k {
                     dwell_sum[n] += len as f64;
                     dwell_n[n] += 1;
-                    path_sum[n] += path;
-                }
-                if i + 1 < k {
-                    // a forward transition goes to a node not among the previous `memory`
-                    // runs (noise flicker and immediate returns are not departures)
-                    let to = runs[i + 1].0;
-                    let back = runs[i.saturating_sub(p.memory)..=i]
-                        .iter()
-                        .any(|r| r.0 == to);
-                    let e = trans.entry((n, to)).or_insert((0, 0));
-                    e.0 += u32::from(!back);
-                    e.1 += 1;
-                    *trans_phase.entry((n, to)).or_insert(0.0) += i as f64 / k as f64;
-                }
-            }
-            for (i, r) in runs.iter().enumerate() {
-                if runs[..i].iter().any(|q| q.0 == r.0) {
-                    revisited[r.0] = true;
                 }
             }
             runs_per_demo.push(k as f64);
@@ -1002,43 +877,7 @@ impl Hsom {
             } else {
                 0.0
             };
-            self.speed[i] = if dwell_sum[i] > 0.0 {
-                path_sum[i] / dwell_sum[i]
-            } else {
-                0.0
-            };
         }
-        // most frequent successor, ties to the smaller node index (BTreeMap order)
-        // the most frequent forward successor, else the most frequent one;
-        // `first_successor`: the same counts, ties to the transition with the smallest mean
-        // relative position (only for nodes revisited within a demonstration);
-        // `last_successor`: the transition with the largest mean relative position
-        let mut best = vec![((0u32, 0u32), u32::MAX); n0];
-        let mut first = vec![((0u32, 0u32), f64::INFINITY, u32::MAX); n0];
-        for (&(from, to), &c) in &trans {
-            if c > best[from].0 {
-                best[from] = (c, to as u32);
-            }
-            // the same counts, ties to the transition that came first in the demonstrations
-            let ph = trans_phase[&(from, to)] / c.1.max(1) as f64;
-            if c > first[from].0 || (c == first[from].0 && ph < first[from].1) {
-                first[from] = (c, ph, to as u32);
-            }
-        }
-        self.successor = best.into_iter().map(|(_, t)| t).collect();
-        let mut late = vec![(f64::NEG_INFINITY, u32::MAX); n0];
-        for (&(from, to), &c) in &trans {
-            let ph = trans_phase[&(from, to)] / c.1.max(1) as f64;
-            if ph > late[from].0 {
-                late[from] = (ph, to as u32);
-            }
-        }
-        self.last_successor = late.into_iter().map(|(_, t)| t).collect();
-        self.first_successor = first
-            .into_iter()
-            .enumerate()
-            .map(|(i, (_, _, t))| if !revisited[i] { self.successor[i] } else { t })
-            .collect();
         if !events {
             for l in 1..p.height {
                 let nodes = self.maps[l - 1].len();
@@ -1169,9 +1008,9 @@ impl Hsom {
     pub fn summary(&self) -> ModelSummary {
         let p = self.config.params();
         ModelSummary {
-            memory_mode: p.memory_mode,
+            memory_mode: p.memory_mode(),
             memory: p.memory,
-            update_period: p.update_period,
+            update_period: p.update_period(),
             state_length: p.state_length,
             weights: self.maps.iter().map(|m| m.all_weights().len()).sum(),
             demo_lengths: self.demo_len,

@@ -6,6 +6,10 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum HsomError {
+    /// Settings out of their documented range (e.g. reproduction settings given to
+    /// [`Hsom::reproduce_with`](crate::hsom::Hsom::reproduce_with)).
+    #[error(transparent)]
+    Config(#[from] crate::config::ConfigError),
     /// No demonstration was given.
     #[error("no demonstrations to train on")]
     NoDemonstrations,

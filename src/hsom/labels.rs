@@ -28,7 +28,7 @@ use super::reproduce::Reproduction;
 
 /// Format version of a multi-gesture model file (a single-gesture model stays
 /// [`FORMAT_VERSION`]).
-pub const GESTURES_FORMAT_VERSION: u32 = 19;
+pub const GESTURES_FORMAT_VERSION: u32 = 21;
 
 /// Most gesture labels a model may hold (a bound on what a file may make us allocate).
 pub const MAX_LABELS: usize = 1024;
@@ -166,7 +166,7 @@ impl HsomConfig {
         progress: Option<&dyn Fn(usize, usize)>,
         learn: bool,
     ) -> Result<GestureModel, GestureError> {
-        if self.params().algorithm != Algorithm::Events {
+        if self.params().kind() != Algorithm::Events {
             return Err(GestureError::NeedsEvents);
         }
         if sets.is_empty() {
@@ -290,10 +290,6 @@ impl Hsom {
         ];
         b.demo_runs = [0.0; 3];
         b.dwell.fill(0.0);
-        b.speed.fill(0.0);
-        b.successor.fill(u32::MAX);
-        b.first_successor.fill(u32::MAX);
-        b.last_successor.fill(u32::MAX);
         b.accuracy = vec![0.0; h];
         b.lookup = vec![0.0; h];
         b.threshold = vec![0.0; h];

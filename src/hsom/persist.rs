@@ -16,14 +16,10 @@ use super::events::{StartKnots, FOLLOWERS};
 pub(super) const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 pub(super) const TEXT_MAGIC: &str = "cosco-hsom model";
-/// Format version of both formats.
-/// (18 added, with `knots = halves`, each traced half's lowest and highest consensus values;
-/// 16 to every traced chunk its events' places in the consensus; 14 the traces a
-/// `plan = traced` replays; 12 the start-weighted postures of `consensus = start`; 10 the
-/// levels' held-out prediction and lookup accuracies; 9, 11, 13, 15 and 17 were formats of
-/// a model of several gestures, [`super::labels::GESTURES_FORMAT_VERSION`] now 19, so the
-/// single-gesture format skips them.)
-pub const FORMAT_VERSION: u32 = 18;
+/// Format version of both formats. A model of several gestures has its own,
+/// [`super::labels::GESTURES_FORMAT_VERSION`], always odd, so that no number means both: the
+/// single-gesture format's are even from 10 on.
+pub const FORMAT_VERSION: u32 = 20;
 
 /// The longest demonstration a model file may record, samples (a day at 1 kHz): the
 /// reproduction's length cap derives from it.
@@ -127,7 +123,6 @@ impl Hsom {
             .demo_runs
             .iter()
             .chain(&self.dwell)
-            .chain(&self.speed)
             .chain(&self.accuracy)
             .chain(&self.lookup)
             .chain(&self.threshold)
@@ -138,11 +133,9 @@ impl Hsom {
             f(&mut b, v);
         }
         for &v in self
-            .successor
+            .followers
             .iter()
-            .chain(&self.first_successor)
-            .chain(&self.last_successor)
-            .chain(self.followers.iter().flatten())
+            .flatten()
             .chain(self.exemplars.iter().flatten())
         {
             b.extend_from_slice(&v.to_le_bytes());
@@ -274,21 +267,17 @@ impl Hsom {
         let offset = r.f64s(state, "offset")?;
         let scale = r.f64s(state, "scale")?;
         let dl = [r.f64("lengths")?, r.f64("lengths")?, r.f64("lengths")?];
-        r.need((3 + 2 * n0 + 5 * height) * 8 + n0 * 4, "run statistics")?;
+        r.need((3 + n0 + 5 * height) * 8, "run statistics")?;
         let runs = [r.f64("runs")?, r.f64("runs")?, r.f64("runs")?];
         let dwell = r.f64s(n0, "dwell")?;
-        let speed = r.f64s(n0, "speed")?;
         let accuracy = r.f64s(height, "accuracy")?;
         let lookup = r.f64s(height, "lookup accuracy")?;
         let threshold = r.f64s(height, "match thresholds")?;
         let heldout_accuracy = r.f64s(height, "held-out accuracy")?;
         let heldout_lookup = r.f64s(height, "held-out lookup accuracy")?;
         let positions = (n0 + 1) * FOLLOWERS;
-        r.need(positions * 8 + n0 * 4, "follower positions")?;
+        r.need(positions * 8, "follower positions")?;
         let follower_at = r.f64s(positions, "follower positions")?;
-        let successor = r.u32s(n0, "successors")?;
-        let first_successor = r.u32s(n0, "first successors")?;
-        let last_successor = r.u32s(n0, "last successors")?;
         let mut followers = Vec::with_capacity(shapes.len());
         for &(rows, cols, _) in &shapes {
             let n = (rows * cols + 1) * FOLLOWERS;
@@ -375,10 +364,6 @@ impl Hsom {
             Extra {
                 runs,
                 dwell,
-                speed,
-                successor,
-                first_successor,
-                last_successor,
                 columns,
                 accuracy,
                 lookup,
@@ -420,16 +405,12 @@ impl Hsom {
         line(&mut s, "end-nodes", &self.end_hits);
         line(&mut s, "demo-runs", &self.demo_runs);
         line(&mut s, "dwell", &self.dwell);
-        line(&mut s, "speed", &self.speed);
         line(&mut s, "accuracy", &self.accuracy);
         line(&mut s, "lookup-accuracy", &self.lookup);
         line(&mut s, "match-thresholds", &self.threshold);
         line(&mut s, "heldout-accuracy", &self.heldout_accuracy);
         line(&mut s, "heldout-lookup-accuracy", &self.heldout_lookup);
         line(&mut s, "follower-positions", &self.follower_at);
-        line(&mut s, "successors", &self.successor);
-        line(&mut s, "first-successors", &self.first_successor);
-        line(&mut s, "last-successors", &self.last_successor);
         for (l, f) in self.followers.iter().enumerate() {
             line(&mut s, &format!("followers-{l}"), f);
         }
@@ -595,7 +576,6 @@ impl Hsom {
         let end_hits: Vec<u32> = values(next("end-nodes")?, "end-nodes ", n0, &corrupted)?;
         let runs: Vec<f64> = values(next("demo-runs")?, "demo-runs ", 3, &corrupted)?;
         let dwell: Vec<f64> = values(next("dwell")?, "dwell ", n0, &corrupted)?;
-        let speed: Vec<f64> = values(next("speed")?, "speed ", n0, &corrupted)?;
         let accuracy: Vec<f64> = values(next("accuracy")?, "accuracy ", shapes.len(), &corrupted)?;
         let lookup: Vec<f64> = values(
             next("lookup-accuracy")?,
@@ -627,15 +607,6 @@ impl Hsom {
             (n0 + 1) * FOLLOWERS,
             &corrupted,
         )?;
-        let successor: Vec<u32> = values(next("successors")?, "successors ", n0, &corrupted)?;
-        let first_successor: Vec<u32> = values(
-            next("first-successors")?,
-            "first-successors ",
-            n0,
-            &corrupted,
-        )?;
-        let last_successor: Vec<u32> =
-            values(next("last-successors")?, "last-successors ", n0, &corrupted)?;
         let mut followers = Vec::with_capacity(shapes.len());
         for (l, &(rows, cols, _)) in shapes.iter().enumerate() {
             let key = format!("followers-{l}");
@@ -830,10 +801,6 @@ impl Hsom {
             Extra {
                 runs: [runs[0], runs[1], runs[2]],
                 dwell,
-                speed,
-                successor,
-                first_successor,
-                last_successor,
                 columns,
                 accuracy,
                 lookup,
@@ -895,7 +862,6 @@ fn build(
             .dwell
             .iter()
             .all(|v| v.is_finite() && *v >= 0.0 && *v <= longest)
-        && extra.speed.iter().all(|v| v.is_finite() && *v >= 0.0)
         && extra
             .accuracy
             .iter()
@@ -919,17 +885,11 @@ fn build(
             let below = if l == 0 { 0 } else { maps[l - 1].len() };
             e.iter()
                 .all(|&v| (v as usize) < below || v == u32::MAX || v == super::events::END)
-        })
-        && extra
-            .successor
-            .iter()
-            .chain(&extra.first_successor)
-            .chain(&extra.last_successor)
-            .all(|&v| v < n0 || v == u32::MAX || v == super::events::END);
+        });
     if !stats_ok {
         return Err(PersistError::Corrupted {
             path: path.to_path_buf(),
-            what: "bad run statistics (a dwell or event count negative, non-finite or longer than the longest demonstration, an accuracy outside [0, 1], a position negative or non-finite, or a successor, follower or exemplar outside its map)".into(),
+            what: "bad run statistics (a dwell or event count negative, non-finite or longer than the longest demonstration, an accuracy outside [0, 1], a position negative or non-finite, or a follower or exemplar outside its map)".into(),
         });
     }
     let finite = maps
@@ -1009,16 +969,14 @@ fn build(
         }
     }
     let p = config.params();
-    let traced =
-        p.algorithm == crate::config::Algorithm::Events && p.plan == crate::config::Plan::Traced;
+    let traced = p.kind() == crate::config::Algorithm::Events;
     if traced == extra.traces.is_empty() {
         return Err(PersistError::Corrupted {
             path: path.to_path_buf(),
             what: format!(
-                "traces {} for a model whose plan is {}: stored exactly with algorithm = \
-                 events and plan = traced",
+                "traces {} for a model of algorithm {}: stored exactly with algorithm = events",
                 if traced { "missing" } else { "stored" },
-                if traced { "traced" } else { "not traced" },
+                p.kind().name(),
             ),
         });
     }
@@ -1053,10 +1011,6 @@ fn build(
         demo_len,
         demo_runs: extra.runs,
         dwell: extra.dwell,
-        speed: extra.speed,
-        successor: extra.successor,
-        first_successor: extra.first_successor,
-        last_successor: extra.last_successor,
         columns: extra.columns,
         heldout_accuracy: extra.heldout_accuracy,
         heldout_lookup: extra.heldout_lookup,
@@ -1087,10 +1041,6 @@ struct Extra {
     ends: Vec<f64>,
     runs: [f64; 3],
     dwell: Vec<f64>,
-    speed: Vec<f64>,
-    successor: Vec<u32>,
-    first_successor: Vec<u32>,
-    last_successor: Vec<u32>,
     columns: Vec<String>,
     accuracy: Vec<f64>,
     lookup: Vec<f64>,

@@ -53,7 +53,7 @@ pub(crate) fn posture_distances(model: &Hsom, norm: &[Vec<f64>]) -> Vec<f64> {
     let map = &model.maps[0];
     let used: Vec<usize> = (0..map.len()).filter(|&n| model.dwell[n] > 0.0).collect();
     let s = model.config.params().state_length;
-    let h = model.config.params().action_horizon.max(1);
+    let h = model.config.params().action_horizon().max(1);
     let mut x = vec![0.0; 2 * s];
     (0..norm.len().saturating_sub(1))
         .map(|pos| {
@@ -399,7 +399,7 @@ impl GestureModel {
         let post = self.postures_of(&norm);
         let fin = self.scores_of(&post, rows.len(), &ev, true);
         let best = argmin(&fin);
-        let horizon = self.branches[0].config.params().action_horizon;
+        let horizon = self.branches[0].config.params().action_horizon();
         let mut decided_at = rows.len();
         let mut done = 0.0;
         let mut ends = Vec::with_capacity(ev.len());

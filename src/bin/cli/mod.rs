@@ -355,14 +355,6 @@ pub struct HeldoutJob {
     pub config: Option<PathBuf>,
     /// Take `stateLength` from the data.
     pub state_length_from_data: bool,
-    /// Override the configuration's consensus.
-    pub consensus: Option<cosco_hsom::config::Consensus>,
-    /// Override the configuration's plan.
-    pub plan: Option<cosco_hsom::config::Plan>,
-    /// Override the configuration's alignment.
-    pub alignment: Option<cosco_hsom::config::Alignment>,
-    /// Override the configuration's knots.
-    pub knots: Option<cosco_hsom::config::Knots>,
     /// Which methods, which results, how many threads.
     pub settings: cosco_hsom::offline::LooSettings,
     /// Where to write every fold's scores as JSON.
@@ -378,19 +370,7 @@ pub fn heldout(job: &HeldoutJob) -> Result<String> {
     for p in job.json.iter().chain(&job.png) {
         steps::check_output(p)?;
     }
-    let mut cfg = hsom_config(job.config.as_deref())?;
-    if let Some(p) = job.plan {
-        cfg = cfg.with_plan(p)?;
-    }
-    if let Some(c) = job.consensus {
-        cfg = cfg.with_consensus(c)?;
-    }
-    if let Some(a) = job.alignment {
-        cfg = cfg.with_alignment(a)?;
-    }
-    if let Some(k) = job.knots {
-        cfg = cfg.with_knots(k)?;
-    }
+    let cfg = hsom_config(job.config.as_deref())?;
     let (cfg, gestures) = offline::read_gestures(&job.demos, &cfg, job.state_length_from_data)?;
     let folds: usize = gestures.iter().map(|(_, d)| d.len()).sum();
     let per = if job.settings.in_sample { 2 } else { 1 };
