@@ -30,11 +30,12 @@ use std::sync::Mutex;
 use serde::Serialize;
 
 use crate::config::HsomConfig;
+use crate::demos::sample_period;
 use crate::demos::Demonstration;
 use crate::gmr::{plan_at, ComponentChoice, GmrParams};
 use crate::hsom::Hsom;
 use crate::metrics::{median, MetricsParams};
-use crate::steps::{evaluate_rows, sample_period};
+use crate::steps::evaluate_rows;
 
 /// The components the GMM/GMR baseline chooses among (lowest BIC), as in the experiment.
 pub const GMR_COMPONENTS: ComponentChoice = ComponentChoice::Bic { min: 1, max: 16 };

@@ -9,7 +9,7 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::config::{Alignment, HsomConfig};
-use crate::demos::Demonstration;
+use crate::demos::{sample_period, Demonstration};
 use crate::gmr::MIN_DEMONSTRATIONS;
 use crate::metrics::{column_swings, FidelityReport, MetricsParams};
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
@@ -17,9 +17,7 @@ use crate::sim::{NaoArm, Recording, JOINT_NAMES};
 use super::baseline::{gmr_params, plan as gmr_plan, run_baseline_split, DEFAULT_COMPONENTS};
 use super::evaluate::evaluate;
 use super::execute::{execute_grabbed, ReadingNoise, Replan};
-use super::pipeline::{
-    execute_and_score, learn_and_score, sample_period, Outcome, Split, Training,
-};
+use super::pipeline::{execute_and_score, learn_and_score, Outcome, Split, Training};
 use super::{are_arm_joints, ExperimentError, Transition};
 
 /// The joint whose large swings are counted (column 3, `LElbowRoll`: the wave's joint).

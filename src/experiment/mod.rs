@@ -32,8 +32,8 @@ pub use heldout::{
     FoldScores, HeldOut, HeldOutSummary, Swings,
 };
 pub use pipeline::{
-    execute_and_score, learn_and_reproduce, learn_and_score, reproduce_variant, sample_period,
-    Executed, Outcome, Split, Training,
+    execute_and_score, learn_and_reproduce, learn_and_score, reproduce_variant, Executed, Outcome,
+    Split, Training,
 };
 
 /// Errors of the experiment pipeline.

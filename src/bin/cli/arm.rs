@@ -6,15 +6,14 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 
-use cosco_hsom::demos::{self, write_csv, Demonstration};
+use cosco_hsom::demos::{self, sample_period, write_csv, Demonstration};
 use cosco_hsom::experiment::baseline::GMR_NAME;
 use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
 use cosco_hsom::experiment::report::{level_rows, DemoInfo, Report, Stage};
 use cosco_hsom::experiment::variants::{reference_variants, run_variant, variants};
 use cosco_hsom::experiment::{
     are_arm_joints, check_reachable, demo_wrist_paths, film, hsom_folds, learn_and_reproduce,
-    leave_one_out, sample_period, synthetic_demonstrations, DemoSettings, HeldOutSummary, Training,
-    Transition,
+    leave_one_out, synthetic_demonstrations, DemoSettings, HeldOutSummary, Training, Transition,
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::plot::BLACK;

@@ -6,12 +6,12 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 
-use cosco_hsom::demos::{validate_set, write_csv, Demonstration};
+use cosco_hsom::demos::{sample_period, validate_set, write_csv, Demonstration};
 use cosco_hsom::experiment::baseline::{fig3_png, fig5_png, gmr_params, run_baseline, GMR_COLOR};
 use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
 use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report};
 use cosco_hsom::experiment::{
-    are_arm_joints, demo_wrist_paths, learn_and_reproduce, sample_period, Training, Transition,
+    are_arm_joints, demo_wrist_paths, learn_and_reproduce, Training, Transition,
 };
 use cosco_hsom::gmr::{load_model, save_model, ComponentChoice, MIN_DEMONSTRATIONS};
 use cosco_hsom::metrics::MetricsParams;

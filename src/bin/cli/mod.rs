@@ -19,13 +19,14 @@ use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use cosco_hsom::config::HsomConfig;
+use cosco_hsom::demos::sample_period;
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::hsom::{GestureModel, Hsom, Reproduction};
 use cosco_hsom::labelled;
 use cosco_hsom::metrics::{FidelityReport, MetricsParams};
+use cosco_hsom::steps;
 #[cfg(feature = "sim")]
 pub use cosco_hsom::steps::DEFAULT_CONFIG_NAME;
-use cosco_hsom::steps::{self, sample_period};
 
 /// A progress bar on stderr (hidden when stderr is not a terminal).
 pub fn progress(len: u64, what: &str) -> ProgressBar {
