@@ -32,6 +32,7 @@
 pub mod config;
 pub mod demos;
 pub mod dtw;
+pub mod eval;
 #[cfg(feature = "sim")]
 pub mod experiment;
 pub mod fsutil;
@@ -43,7 +44,7 @@ pub mod metrics;
 #[cfg(feature = "sim")]
 pub mod mujoco;
 pub mod nearest;
-pub mod offline;
+
 #[cfg(feature = "plot")]
 pub mod plot;
 #[cfg(feature = "sim")]

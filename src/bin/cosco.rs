@@ -347,7 +347,7 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             #[cfg(not(feature = "plot"))]
             let png: Option<PathBuf> = None;
-            let job = cli::HeldoutJob {
+            let job = cosco_hsom::eval::HeldoutJob {
                 demos,
                 config,
                 state_length_from_data,
@@ -355,7 +355,7 @@ fn run(cli: Cli) -> Result<()> {
                 plan,
                 alignment,
                 knots,
-                settings: cosco_hsom::offline::LooSettings {
+                settings: cosco_hsom::eval::LooSettings {
                     height_1: !no_height_1,
                     gmr: !no_gmr,
                     replay: true,
@@ -365,7 +365,14 @@ fn run(cli: Cli) -> Result<()> {
                 json,
                 png,
             };
-            out!("{}", cli::heldout(&job)?);
+            let pb = cli::progress(0, "folds");
+            let on_fold = |done: usize, total: usize| {
+                pb.set_length(total as u64);
+                pb.set_position(done as u64);
+            };
+            let tables = cosco_hsom::eval::heldout(&job, Some(&on_fold))?;
+            pb.finish_and_clear();
+            out!("{tables}");
         }
         Command::Inspect { model } => {
             let m = cli::load_gesture_model(&model)?;

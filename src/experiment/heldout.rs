@@ -10,6 +10,7 @@ use serde::Serialize;
 
 use crate::config::{Alignment, HsomConfig};
 use crate::demos::{sample_period, Demonstration};
+use crate::eval::all_but;
 use crate::gmr::MIN_DEMONSTRATIONS;
 use crate::metrics::{column_swings, FidelityReport, MetricsParams};
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
@@ -266,16 +267,6 @@ fn check_demos(demos: &[Demonstration]) -> Result<(), ExperimentError> {
         }
     }
     Ok(())
-}
-
-/// Fold `i`'s training demonstrations: all but `demos[i]`.
-fn all_but(demos: &[Demonstration], i: usize) -> Vec<Demonstration> {
-    demos
-        .iter()
-        .enumerate()
-        .filter(|&(j, _)| j != i)
-        .map(|(_, d)| d.clone())
-        .collect()
 }
 
 fn swings(executed: &Recording, held_out: &Demonstration) -> Result<Swings, ExperimentError> {
