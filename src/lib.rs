@@ -20,6 +20,9 @@
 //!   merged into tables and box plots.
 //! - [`steps`]: the steps of `cosco train/reproduce/inspect/evaluate`, shared with the Python
 //!   package (same checks, same messages).
+//! - [`commands`]: the `cosco` subcommands that read and write files (train, reproduce,
+//!   recognize, evaluate) on top of [`steps`].
+//! - [`eval`]: one evaluator (methods x an executor, leave-one-out and in-sample, results).
 //! - [`fsutil`]: atomic file writes.
 //!
 //! Feature `sim` (on by default) holds everything that needs MuJoCo or OSMesa: [`mujoco`],
@@ -29,6 +32,7 @@
 //! wrist paths: those need the arm's kinematics), and builds without libmujoco-dev.
 #![warn(missing_docs)]
 
+pub mod commands;
 pub mod config;
 pub mod demos;
 pub mod dtw;

@@ -4,12 +4,14 @@
 
 pub mod all_gestures;
 pub mod baseline;
+pub mod compare;
 pub mod demonstrate;
 pub mod evaluate;
 pub mod execute;
 pub mod figures;
 pub mod film;
 pub mod heldout;
+pub mod job;
 pub mod multi;
 pub mod pipeline;
 pub mod report;
