@@ -262,7 +262,7 @@ pub fn leave_one_out<E: Executor>(
                     demos.clone()
                 };
                 let input = FoldInput {
-                    config,
+                    config: Some(config),
                     height_1: height_1.as_ref(),
                     train: &train,
                     target: &demos[i],

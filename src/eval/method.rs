@@ -84,8 +84,9 @@ pub fn peak_speed(demos: &[Demonstration], period: f64) -> f64 {
 /// One fold: what the methods learn from and whom they are scored against.
 #[derive(Debug, Clone, Copy)]
 pub struct FoldInput<'a> {
-    /// The configuration of the hierarchy and of the nearest sequence.
-    pub config: &'a HsomConfig,
+    /// The configuration of the hierarchy and of the nearest sequence (`None` when neither
+    /// runs).
+    pub config: Option<&'a HsomConfig>,
     /// The configuration at height 1 ([`Method::Height1`]; `None` when not run).
     pub height_1: Option<&'a HsomConfig>,
     /// Demonstrations to learn from.
@@ -143,7 +144,13 @@ pub fn run_fold<E: Executor>(
         .map(|&method| {
             let produced = match method {
                 Method::Hierarchy | Method::NearestSequence => {
-                    match model.get_or_insert_with(|| fit(input.config, train)) {
+                    let trained = model.get_or_insert_with(|| {
+                        input
+                            .config
+                            .ok_or_else(|| "no configuration of the hierarchy given".to_string())
+                            .and_then(|c| fit(c, train))
+                    });
+                    match trained {
                         Ok((m, train_s)) => {
                             let t = Instant::now();
                             let rep = match method {

@@ -10,16 +10,16 @@ use serde::Serialize;
 
 use crate::config::{Alignment, HsomConfig};
 use crate::demos::{sample_period, Demonstration};
-use crate::eval::all_but;
+use crate::eval::{all_but, run_fold, FoldInput, Method, MethodRun};
 use crate::gmr::MIN_DEMONSTRATIONS;
 use crate::metrics::{column_swings, FidelityReport, MetricsParams};
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
 
-use super::baseline::{gmr_params, plan as gmr_plan, run_baseline_split, DEFAULT_COMPONENTS};
+use super::baseline::{gmr_params, plan as gmr_plan, DEFAULT_COMPONENTS};
 use super::evaluate::evaluate;
 use super::execute::{execute_grabbed, ReadingNoise, Replan};
 use super::pipeline::{execute_and_score, learn_and_score, Outcome, Split, Training};
-use super::{are_arm_joints, ExperimentError, Transition};
+use super::{are_arm_joints, ArmExecutor, ExperimentError, Transition};
 
 /// The joint whose large swings are counted (column 3, `LElbowRoll`: the wave's joint).
 pub const SWING_JOINT: usize = 3;
@@ -329,13 +329,30 @@ fn hsom_fold(
     Ok((run, swings))
 }
 
+/// A method's run on the arm ([`run_fold`] with [`ArmExecutor`]) as the fold's scores against
+/// the held-out demonstration `held`.
+fn scores_of(
+    run: MethodRun<Recording>,
+    held: &Demonstration,
+) -> Result<FoldScores, ExperimentError> {
+    Ok(FoldScores {
+        swings: swings(&run.executed.trace, held)?,
+        postures: run.postures.len(),
+        clamped_values: run.executed.clamped_values,
+        train_s: run.train_s,
+        reproduce_s: run.reproduce_s,
+        fidelity: run.executed.fidelity,
+    })
+}
+
 /// CoSCo-HSOM's folds as [`hsom_folds`] (trained), and on each fold, from the same trained
 /// model, the *nearest-sequence* baseline: instead of the levels' plan, the bottom events of
 /// the training demonstration whose first posture is nearest `demos[i]`'s
 /// ([`Hsom::follow_nearest`](crate::hsom::Hsom::follow_nearest)), executed with
 /// `transition` and scored against `demos[i]` only: what the upper levels add over following
-/// one whole demonstrated sequence through the same bottom code. Returns (CoSCo-HSOM's
-/// folds, the baseline's), one per demonstration each.
+/// one whole demonstrated sequence through the same bottom code. The evaluator's
+/// [`run_fold`] on the arm's executor. Returns (CoSCo-HSOM's folds, the baseline's), one per
+/// demonstration each.
 pub fn hsom_and_sequence_folds(
     arm: &NaoArm,
     config: &HsomConfig,
@@ -343,37 +360,31 @@ pub fn hsom_and_sequence_folds(
     transition: Transition,
 ) -> Result<(Vec<FoldScores>, Vec<FoldScores>), ExperimentError> {
     check_demos(demos)?;
+    let executor = ArmExecutor { arm, transition };
     (0..demos.len())
         .map(|i| {
-            let (run, swings_hsom) =
-                hsom_fold(arm, config, demos, i, Training::Trained, transition)?;
             let train = all_but(demos, i);
-            let split = Split {
+            let input = FoldInput {
+                config: Some(config),
+                height_1: None,
                 train: &train,
-                test: std::slice::from_ref(&demos[i]),
+                target: &demos[i],
             };
-            let t = Instant::now();
-            let rep = run.model.follow_nearest(&train, split.initial()?)?;
-            let reproduce_s = t.elapsed().as_secs_f64();
-            let seq = execute_and_score(
-                arm,
-                &rep.postures,
-                transition,
-                split.test,
-                &split.metrics()?,
-            )?;
-            let sequence = FoldScores {
-                swings: swings(&seq.executed, &demos[i])?,
-                fidelity: seq.fidelity,
-                postures: rep.postures.len(),
-                clamped_values: seq.clamped_values,
-                train_s: run.train_s,
-                reproduce_s,
-            };
-            Ok((fold_scores(run, swings_hsom), sequence))
+            let methods = [Method::Hierarchy, Method::NearestSequence];
+            let mut scores = run_fold(&methods, &input, &executor)
+                .into_iter()
+                .map(|(_, run)| scores_of(run.map_err(ExperimentError::Invalid)?, &demos[i]));
+            let hsom = scores.next().unwrap_or_else(|| Err(no_run()))?;
+            let sequence = scores.next().unwrap_or_else(|| Err(no_run()))?;
+            Ok((hsom, sequence))
         })
         .collect::<Result<Vec<_>, ExperimentError>>()
         .map(|v| v.into_iter().unzip())
+}
+
+/// A method asked of [`run_fold`] that it did not answer (cannot happen: it answers each).
+fn no_run() -> ExperimentError {
+    ExperimentError::Invalid("the evaluator returned no run for a method".into())
 }
 
 /// What happens to the arm at the end of a shown prefix, before the continuation takes over
@@ -828,14 +839,19 @@ pub fn closed_loop_folds(
     Ok(out)
 }
 
-/// GMM/GMR ([`DEFAULT_COMPONENTS`]) on every fold, as [`hsom_folds`]; a fold where it cannot
-/// run (fewer than [`MIN_DEMONSTRATIONS`] to learn from, a failed fit) gives the reason.
-/// Errors only when `demos` cannot be used at all.
+/// GMM/GMR ([`DEFAULT_COMPONENTS`]) on every fold, as [`hsom_folds`] (the evaluator's
+/// [`run_fold`] on the arm's executor: posture to posture, the lead-in at the arm's speed); a
+/// fold where it cannot run (fewer than [`MIN_DEMONSTRATIONS`] to learn from, a failed fit)
+/// gives the reason. Errors only when `demos` cannot be used at all.
 pub fn gmr_folds(
     arm: &NaoArm,
     demos: &[Demonstration],
 ) -> Result<Vec<Result<FoldScores, String>>, ExperimentError> {
     check_demos(demos)?;
+    let executor = ArmExecutor {
+        arm,
+        transition: Transition::Linear,
+    };
     Ok((0..demos.len())
         .map(|i| {
             let train = all_but(demos, i);
@@ -847,24 +863,18 @@ pub fn gmr_folds(
                     train.len()
                 ));
             }
-            let split = Split {
+            let input = FoldInput {
+                config: None,
+                height_1: None,
                 train: &train,
-                test: std::slice::from_ref(&demos[i]),
+                target: &demos[i],
             };
-            let run = (|| {
-                let metrics = split.metrics()?;
-                let params = gmr_params(DEFAULT_COMPONENTS, metrics.sample_period)?;
-                let run = run_baseline_split(arm, split, &params, &metrics)?;
-                Ok::<_, super::baseline::BaselineError>(FoldScores {
-                    swings: swings(&run.executed, &demos[i])?,
-                    postures: run.plan.postures.len(),
-                    clamped_values: run.clamped,
-                    train_s: run.train_s,
-                    reproduce_s: run.reproduce_s,
-                    fidelity: run.fidelity,
-                })
-            })();
-            run.map_err(|e| format!("fold {}: {e}", i + 1))
+            let run = run_fold(&[Method::GmmGmr], &input, &executor)
+                .pop()
+                .ok_or_else(|| no_run().to_string())
+                .and_then(|(_, run)| run)
+                .and_then(|run| scores_of(run, &demos[i]).map_err(|e| e.to_string()));
+            run.map_err(|e| format!("fold {}: GMM/GMR: {e}", i + 1))
         })
         .collect())
 }

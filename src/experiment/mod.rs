@@ -3,6 +3,7 @@
 //! simulated arm, and measure how faithful the reproduction is.
 
 pub mod all_gestures;
+pub mod arm_executor;
 pub mod baseline;
 pub mod compare;
 pub mod demonstrate;
@@ -18,6 +19,7 @@ pub mod report;
 pub mod study;
 pub mod variants;
 
+pub use arm_executor::ArmExecutor;
 pub use demonstrate::{
     joint_limits, record_demonstrations, synthetic_demonstrations, DemoSettings,
 };
