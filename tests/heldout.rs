@@ -10,10 +10,10 @@ use rand_chacha::ChaCha8Rng;
 
 use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::{sample_period, Demonstration};
+use cosco_hsom::experiment::closed_loop::{closed_loop_folds, closed_loop_png, ClosedLoopGrab};
 use cosco_hsom::experiment::heldout::{
-    alignment_fold, closed_loop_folds, closed_loop_png, continuation_folds, swing_folds,
-    swing_folds_png, velocity_png, ClosedLoopGrab, Disturbance, SWING_JOINT,
-    SWING_MIN_AMPLITUDE_RAD,
+    alignment_fold, continuation_folds, swing_folds, swing_folds_png, velocity_png, Disturbance,
+    SWING_JOINT, SWING_MIN_AMPLITUDE_RAD,
 };
 use cosco_hsom::experiment::{
     hsom_folds, leave_one_out, synthetic_demonstrations, DemoSettings, HeldOut, HeldOutSummary,

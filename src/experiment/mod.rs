@@ -5,6 +5,7 @@
 pub mod all_gestures;
 pub mod arm_executor;
 pub mod baseline;
+pub mod closed_loop;
 pub mod compare;
 pub mod demonstrate;
 pub mod evaluate;
