@@ -1,4 +1,4 @@
-//! A hand grabs the arm during execution, held out (`experiment::heldout::closed_loop_folds`):
+//! A hand grabs the arm during execution, held out (`experiment::closed_loop::closed_loop_folds`):
 //! for every leave-one-out fold each method plans from the held-out demonstration's first
 //! posture, its plan is executed on the simulated arm, and at `--at` of the held-out
 //! demonstration's duration a hand holds the arm still for `--grab` ticks (40 Hz) while the
@@ -27,7 +27,7 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::Parser;
 
-use cosco_hsom::experiment::heldout::{
+use cosco_hsom::experiment::closed_loop::{
     closed_loop_folds, closed_loop_png, ClosedLoop, ClosedLoopFold, ClosedLoopGrab,
 };
 use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};

@@ -552,7 +552,7 @@ pub fn validate_set(
                 found: d.columns.clone(),
             });
         }
-        let (a, b) = (sample_period(first), sample_period(d));
+        let (a, b) = (median_interval(first), median_interval(d));
         let same = match (a, b) {
             (None, None) => true,
             (Some(x), Some(y)) => (x - y).abs() <= 0.01 * x.max(y),
@@ -572,9 +572,19 @@ pub fn validate_set(
     Ok(())
 }
 
+/// Seconds between samples of a demonstration: from its `time` column (its span over the
+/// intervals), else 1/40 s. The one period that scoring, GMM/GMR and execution use.
+pub fn sample_period(d: &Demonstration) -> f64 {
+    match &d.time {
+        Some(t) if t.len() >= 2 => (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64,
+        _ => 0.025,
+    }
+}
+
 /// The median interval of a demonstration's `time` column, s (None without one or with a
-/// single sample).
-pub fn sample_period(d: &Demonstration) -> Option<f64> {
+/// single sample): what [`validate_set`] compares, so that one late sample does not make two
+/// recordings differ in rate.
+fn median_interval(d: &Demonstration) -> Option<f64> {
     let t = d.time.as_ref()?;
     let mut dt: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
     if dt.is_empty() {

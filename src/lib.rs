@@ -20,6 +20,9 @@
 //!   merged into tables and box plots.
 //! - [`steps`]: the steps of `cosco train/reproduce/inspect/evaluate`, shared with the Python
 //!   package (same checks, same messages).
+//! - [`commands`]: the `cosco` subcommands that read and write files (train, reproduce,
+//!   recognize, evaluate) on top of [`steps`].
+//! - [`eval`]: one evaluator (methods x an executor, leave-one-out and in-sample, results).
 //! - [`fsutil`]: atomic file writes.
 //!
 //! Feature `sim` (on by default) holds everything that needs MuJoCo or OSMesa: [`mujoco`],
@@ -29,9 +32,11 @@
 //! wrist paths: those need the arm's kinematics), and builds without libmujoco-dev.
 #![warn(missing_docs)]
 
+pub mod commands;
 pub mod config;
 pub mod demos;
 pub mod dtw;
+pub mod eval;
 #[cfg(feature = "sim")]
 pub mod experiment;
 pub mod fsutil;
@@ -43,7 +48,7 @@ pub mod metrics;
 #[cfg(feature = "sim")]
 pub mod mujoco;
 pub mod nearest;
-pub mod offline;
+
 #[cfg(feature = "plot")]
 pub mod plot;
 #[cfg(feature = "sim")]

@@ -372,14 +372,6 @@ pub fn read_reproduction(path: &Path) -> Result<Demonstration, StepError> {
     Ok(d)
 }
 
-/// Seconds between samples of a demonstration: from its `time` column, else 1/40 s.
-pub fn sample_period(d: &Demonstration) -> f64 {
-    match &d.time {
-        Some(t) if t.len() >= 2 => (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64,
-        _ => 0.025,
-    }
-}
-
 /// A reproduction file and its demonstrations, read and checked for `cosco evaluate`.
 pub fn evaluation_inputs(
     reproduction: &Path,

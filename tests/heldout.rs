@@ -9,14 +9,15 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use cosco_hsom::config::{load_config, HsomConfig};
-use cosco_hsom::demos::Demonstration;
+use cosco_hsom::demos::{sample_period, Demonstration};
+use cosco_hsom::experiment::closed_loop::{closed_loop_folds, closed_loop_png, ClosedLoopGrab};
 use cosco_hsom::experiment::heldout::{
-    closed_loop_folds, closed_loop_png, continuation_folds, swing_folds, swing_folds_png,
-    ClosedLoopGrab, Disturbance, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD,
+    continuation_folds, swing_folds, swing_folds_png, Disturbance, SWING_JOINT,
+    SWING_MIN_AMPLITUDE_RAD,
 };
 use cosco_hsom::experiment::{
-    hsom_folds, leave_one_out, sample_period, synthetic_demonstrations, DemoSettings, HeldOut,
-    HeldOutSummary, Training, Transition,
+    hsom_folds, leave_one_out, synthetic_demonstrations, DemoSettings, HeldOut, HeldOutSummary,
+    Training, Transition,
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::gmr::{active_range, IdleTrim};

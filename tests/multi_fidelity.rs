@@ -7,9 +7,9 @@
 #![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use cosco_hsom::config::load_config;
-use cosco_hsom::demos::Demonstration;
+use cosco_hsom::demos::{sample_period, Demonstration};
 use cosco_hsom::experiment::{
-    execute_and_score, sample_period, synthetic_demonstrations, DemoSettings, Transition,
+    execute_and_score, synthetic_demonstrations, DemoSettings, Transition,
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::metrics::MetricsParams;

@@ -1,4 +1,4 @@
-//! Leave-one-out on recorded demonstrations without the simulator (`cosco_hsom::offline`,
+//! Leave-one-out on recorded demonstrations without the simulator (`cosco_hsom::eval`,
 //! `cosco heldout`): each fold learns without the demonstration it scores against, every
 //! method runs on the same folds, the result does not depend on the threads, and bad input
 //! is a named error. Needs no simulator: runs in both builds.
@@ -10,7 +10,7 @@ use predicates::prelude::*;
 
 use cosco_hsom::config::HsomConfig;
 use cosco_hsom::demos::{write_csv, Demonstration};
-use cosco_hsom::offline::{leave_one_out, summary, LooError, LooSettings, Method};
+use cosco_hsom::eval::{leave_one_out, summary, Kinematic, LooError, LooSettings, Method};
 use hsom_common::{handwriting, recommended_for};
 
 /// The recommended configuration for 2-D data, trained briefly.
@@ -37,7 +37,14 @@ fn a_fold_never_learns_from_the_demonstration_it_is_scored_against() {
     for r in &mut demos[3].rows {
         r[1] += 60.0;
     }
-    let study = leave_one_out(&quick(), vec![("h".into(), demos)], &settings(2), None).unwrap();
+    let study = leave_one_out(
+        &quick(),
+        vec![("h".into(), demos)],
+        &settings(2),
+        &Kinematic,
+        None,
+    )
+    .unwrap();
     let g = &study[0];
     assert_eq!((g.held_out.len(), g.in_sample.len()), (4, 4));
     for f in &g.held_out[..3] {
@@ -63,7 +70,14 @@ fn a_copy_among_the_training_demonstrations_is_replayed_exactly() {
     let mut copy = demos[0].clone();
     copy.source = "copy".into();
     demos.push(copy);
-    let study = leave_one_out(&quick(), vec![("h".into(), demos)], &settings(1), None).unwrap();
+    let study = leave_one_out(
+        &quick(),
+        vec![("h".into(), demos)],
+        &settings(1),
+        &Kinematic,
+        None,
+    )
+    .unwrap();
     let replay = study[0].held_out[0].score(Method::Replay).unwrap();
     assert_eq!(replay.relative_dtw, 0.0);
     assert!((replay.duration_ratio - 1.0).abs() < 1e-12);
@@ -80,12 +94,13 @@ fn threads_do_not_change_the_result_and_every_method_runs_on_every_fold() {
             ("b".to_string(), handwriting(4, 10)),
         ]
     };
-    let one = leave_one_out(&quick(), gestures(), &settings(1), None).unwrap();
+    let one = leave_one_out(&quick(), gestures(), &settings(1), &Kinematic, None).unwrap();
     let calls = std::sync::atomic::AtomicUsize::new(0);
     let two = leave_one_out(
         &quick(),
         gestures(),
         &settings(2),
+        &Kinematic,
         Some(&|_, total| {
             assert_eq!(total, 14);
             calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
@@ -110,6 +125,7 @@ fn bad_studies_are_named_errors() {
         &quick(),
         vec![("short".into(), handwriting(2, 9))],
         &settings(1),
+        &Kinematic,
         None,
     );
     assert!(
@@ -117,7 +133,7 @@ fn bad_studies_are_named_errors() {
         "{too_few:?}"
     );
     assert!(matches!(
-        leave_one_out(&quick(), vec![], &settings(1), None),
+        leave_one_out(&quick(), vec![], &settings(1), &Kinematic, None),
         Err(LooError::Empty)
     ));
     // the configuration's width, and valid values, checked before any fold
@@ -125,6 +141,7 @@ fn bad_studies_are_named_errors() {
         &recommended_for(6),
         vec![("h".into(), handwriting(3, 9))],
         &settings(1),
+        &Kinematic,
         None,
     );
     assert!(
@@ -133,13 +150,20 @@ fn bad_studies_are_named_errors() {
     );
     let mut bad = handwriting(3, 9);
     bad[1].rows[5][0] = f64::NAN;
-    let nan = leave_one_out(&quick(), vec![("h".into(), bad)], &settings(1), None);
+    let nan = leave_one_out(
+        &quick(),
+        vec![("h".into(), bad)],
+        &settings(1),
+        &Kinematic,
+        None,
+    );
     assert!(matches!(&nan, Err(LooError::Demo(_))), "{nan:?}");
     assert!(matches!(
         leave_one_out(
             &quick(),
             vec![("h".into(), handwriting(3, 9))],
             &settings(0),
+            &Kinematic,
             None
         ),
         Err(LooError::Threads(0))
@@ -272,6 +296,7 @@ fn held_out(demos: &[Demonstration]) -> [Vec<f64>; 2] {
             in_sample: false,
             threads: 2,
         },
+        &Kinematic,
         None,
     )
     .unwrap();
@@ -344,6 +369,7 @@ fn failed_runs_are_listed_with_their_reasons_and_the_study_goes_on() {
             ("short".into(), too_short(3)),
         ],
         &settings(2),
+        &Kinematic,
         None,
     )
     .unwrap();
@@ -355,14 +381,14 @@ fn failed_runs_are_listed_with_their_reasons_and_the_study_goes_on() {
         .held_out
         .iter()
         .all(|f| f.score(Method::Hierarchy).is_none()));
-    let failed = cosco_hsom::offline::failures(&study);
+    let failed = cosco_hsom::eval::failures(&study);
     let (_, why, at) = failed
         .iter()
         .find(|(m, _, _)| *m == Method::Hierarchy)
         .expect("the hierarchy's failure is listed");
     assert!(why.contains("at least 11 are needed"), "{why}");
     assert!(at.iter().all(|a| a.starts_with("short (")), "{at:?}");
-    let md = cosco_hsom::offline::markdown(&study);
+    let md = cosco_hsom::eval::markdown(&study);
     assert!(
         md.contains("Failed runs") && md.contains("at least 11 are needed"),
         "{md}"

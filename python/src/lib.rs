@@ -900,7 +900,7 @@ fn heldout<'py>(
     in_sample: bool,
     threads: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use cosco_hsom::offline;
+    use cosco_hsom::eval;
     if !(sample_period.is_finite() && sample_period > 0.0) {
         return Err(PyValueError::new_err(format!(
             "sample_period = {sample_period}: a finite number of seconds > 0"
@@ -918,7 +918,7 @@ fn heldout<'py>(
                 .collect(),
         );
     }
-    let settings = offline::LooSettings {
+    let settings = eval::LooSettings {
         height_1,
         gmr,
         replay: true,
@@ -928,7 +928,7 @@ fn heldout<'py>(
     let cfg = config.inner.clone();
     let text = py
         .allow_threads(|| {
-            offline::leave_one_out(&cfg, sets, &settings, None).map(|s| offline::json(&cfg, &s))
+            eval::leave_one_out(&cfg, sets, &settings, &eval::Kinematic, None).map(|s| eval::json(&cfg, &s))
         })
         .map_err(|e| py_err(&e))?;
     py.import("json")?.call_method1("loads", (text,))

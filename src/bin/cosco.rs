@@ -2,11 +2,11 @@
 //! only `train`, `reproduce`, `recognize`, `inspect`, `evaluate` and `heldout` (which need no
 //! simulator; `heldout --png` needs the feature `plot`).
 
-use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::{Context, Result};
-use clap::{Parser, Subcommand};
+use clap::Parser;
+use cosco_hsom::commands;
 
 mod cli;
 
@@ -26,224 +26,9 @@ macro_rules! outln {
     }};
 }
 
-#[derive(Parser)]
-#[command(
-    name = "cosco",
-    version,
-    about = "CoSCo-HSOM: learn a gesture from raw demonstrations, reproduce it from the initial posture"
-)]
-struct Cli {
-    #[command(subcommand)]
-    command: Command,
-}
-
-#[derive(Subcommand)]
-enum Command {
-    #[cfg(feature = "sim")]
-    /// Record synthetic, human-like demonstrations of a gesture on the simulated arm (40 Hz encoders).
-    Demos {
-        /// Gesture name (reading-watch, wave, reach-point, salute), or `all`: every gesture,
-        /// each in its own labelled subdirectory of --out (OUT/<gesture>/demo_01.csv, ...).
-        #[arg(long, default_value = "reading-watch")]
-        gesture: String,
-        /// Number of demonstrations.
-        #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = cli::parse_count)]
-        count: usize,
-        /// Seed of every random choice.
-        #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = cli::parse_seed)]
-        seed: u64,
-        /// Output directory (created if missing); files demo_01.csv, demo_02.csv, ...
-        #[arg(long)]
-        out: PathBuf,
-        /// Standard deviation of the encoder noise, rad.
-        #[arg(long, default_value_t = cli::DEFAULT_ENCODER_NOISE, allow_negative_numbers = true, value_parser = cli::parse_noise)]
-        noise: f64,
-        /// MJCF model of the arm.
-        #[arg(long)]
-        model: Option<PathBuf>,
-    },
-    /// Train a CoSCo-HSOM hierarchy on demonstration CSV files and save it (.bin or .txt).
-    Train {
-        /// XML configuration (default: the built-in configs/nao-gestures.xml, the recommended events extension).
-        #[arg(long)]
-        config: Option<PathBuf>,
-        /// Demonstrations: a directory of *.csv files, or files (one gesture); or directories
-        /// whose subdirectories are gesture labels (DIR/<label>/*.csv: several gestures in one
-        /// hierarchy).
-        #[arg(long, num_args = 1.., required = true)]
-        demos: Vec<PathBuf>,
-        /// Where to save the model: `.bin` (binary) or `.txt` (plain text).
-        #[arg(long)]
-        out: PathBuf,
-        /// Take stateLength and actionLength from the demonstrations' columns.
-        #[arg(long)]
-        state_length_from_data: bool,
-    },
-    /// Reproduce a gesture from an initial posture with a saved model; writes `step` then the
-    /// demonstrations' columns.
-    Reproduce {
-        /// A model saved by `cosco train` (.bin or .txt).
-        #[arg(long)]
-        model: PathBuf,
-        /// The initial posture, comma-separated, one value per state variable.
-        #[arg(
-            long,
-            conflicts_with_all = ["initial_from", "prefix_from"],
-            required_unless_present_any = ["initial_from", "prefix_from"]
-        )]
-        initial: Option<String>,
-        /// Take the initial posture from the first row of this demonstration CSV.
-        #[arg(long, conflicts_with = "prefix_from")]
-        initial_from: Option<PathBuf>,
-        /// The gesture to reproduce (required with a model of several gestures).
-        #[arg(long, conflicts_with = "prefix_from")]
-        gesture: Option<String>,
-        /// Continue the gesture begun in this demonstration CSV's first --prefix samples; the
-        /// hierarchy decides which gesture it is.
-        #[arg(long, requires = "prefix")]
-        prefix_from: Option<PathBuf>,
-        /// Samples of --prefix-from to continue from.
-        #[arg(long, requires = "prefix_from")]
-        prefix: Option<usize>,
-        /// Resume the reproduction from the initial posture after part of it was executed:
-        /// this CSV (the model's columns) is what the encoders read meanwhile, possibly
-        /// disturbed; writes the rest, from the reading's last posture (`algorithm = events`).
-        #[arg(long, conflicts_with = "prefix_from")]
-        resume_from: Option<PathBuf>,
-        /// Output CSV.
-        #[arg(long)]
-        out: PathBuf,
-    },
-    /// Recognise demonstrations with a model of several gestures: per file the label (or
-    /// `unknown`), a score per label and the earliest sample from which the decision held.
-    Recognize {
-        /// A model trained on labelled directories (`cosco train --demos DIR`, DIR/<label>/*.csv).
-        #[arg(long)]
-        model: PathBuf,
-        /// A demonstration CSV, a directory of them, or a directory of label subdirectories.
-        #[arg(long)]
-        demos: PathBuf,
-        /// Also write every answer as JSON here.
-        #[arg(long)]
-        json: Option<PathBuf>,
-    },
-    /// Held out on your own demonstrations, without the simulator: for each demonstration,
-    /// learn from the others, reproduce from its first sample, score against it; the
-    /// hierarchy beside the nearest sequence, height 1, GMM/GMR and a replay, on the same folds
-    /// (Markdown on stdout).
-    Heldout {
-        /// Demonstrations: a directory of *.csv files or files (one gesture), or directories of
-        /// gesture subdirectories (DIR/<gesture>/*.csv, each gesture on its own); at least 3
-        /// per gesture.
-        #[arg(long, num_args = 1.., required = true)]
-        demos: Vec<PathBuf>,
-        /// XML configuration (default: the built-in configs/nao-gestures.xml).
-        #[arg(long)]
-        config: Option<PathBuf>,
-        /// Take stateLength and actionLength from the demonstrations' columns.
-        #[arg(long)]
-        state_length_from_data: bool,
-        /// Leave out the configuration at height 1.
-        #[arg(long)]
-        no_height_1: bool,
-        /// Leave out GMM/GMR.
-        #[arg(long)]
-        no_gmr: bool,
-        /// Leave out the in-sample result (learned from all).
-        #[arg(long)]
-        no_in_sample: bool,
-        /// Worker threads (default: every core).
-        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
-        threads: Option<u64>,
-        /// Also write every fold's scores as JSON here.
-        #[arg(long)]
-        json: Option<PathBuf>,
-        /// Also draw one fold per gesture (the first sample's plane) as a PNG here.
-        #[cfg(feature = "plot")]
-        #[arg(long)]
-        png: Option<PathBuf>,
-    },
-    /// Print a saved model's levels, sizes and quality measures.
-    Inspect {
-        /// A model saved by `cosco train` (.bin or .txt).
-        model: PathBuf,
-    },
-    /// Fidelity metrics of a reproduction CSV against demonstrations (docs/METRICS.md).
-    Evaluate {
-        /// Reproduction CSV (`time` or `step` column, then the demonstrations' columns).
-        #[arg(long)]
-        reproduction: PathBuf,
-        /// Demonstrations: a directory of *.csv files, or files.
-        #[arg(long, num_args = 1.., required = true)]
-        demos: Vec<PathBuf>,
-        /// Also write the full report as JSON here.
-        #[arg(long)]
-        json: Option<PathBuf>,
-        /// MJCF model of the arm, for wrist paths (default: the crate's model).
-        #[cfg(feature = "sim")]
-        #[arg(long)]
-        model: Option<PathBuf>,
-    },
-    #[cfg(feature = "sim")]
-    /// Compare CoSCo-HSOM with the paper's GMM/GMR baseline on the same demonstrations, both
-    /// executed on the simulated arm from the same initial posture (report, csvs, plots).
-    Compare {
-        /// Directory of demonstration CSVs (columns: time, then the arm's six joints).
-        #[arg(long)]
-        demos: PathBuf,
-        /// CoSCo-HSOM configuration (XML); default: the built-in configs/nao-gestures.xml.
-        #[arg(long)]
-        config: Option<PathBuf>,
-        /// Output directory (created if missing).
-        #[arg(long, default_value = "out-compare")]
-        out: PathBuf,
-        /// GMM components: a number K >= 1, or `bic` (lowest BIC over 1..=16).
-        #[arg(long, default_value = "bic", value_parser = cli::compare::parse_components)]
-        components: cosco_hsom::gmr::ComponentChoice,
-        /// How CoSCo-HSOM's postures become servo targets: `linear` (the paper) or
-        /// `min-jerk[:TOL]` (as for `simulate`).
-        #[arg(long, default_value = "linear")]
-        transition: String,
-        /// MJCF model of the arm.
-        #[arg(long)]
-        model: Option<PathBuf>,
-    },
-    #[cfg(feature = "sim")]
-    /// Run a sweep: every combination of the axes of a TOML spec (docs/SWEEPS.md), one JSON
-    /// file per run in DIR/runs, finished runs skipped; `merge` makes the tables and plots.
-    #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
-    Sweep {
-        #[command(subcommand)]
-        action: Option<SweepAction>,
-        /// The spec file (TOML).
-        #[arg(long, required = true)]
-        spec: Option<PathBuf>,
-        /// Output directory: DIR/runs/<run-id>.json, then the merged tables and plots.
-        #[arg(long, required = true)]
-        out: Option<PathBuf>,
-        /// Run only the runs whose grid index is I modulo N (default: SLURM_ARRAY_TASK_ID /
-        /// SLURM_ARRAY_TASK_COUNT when set, else all).
-        #[arg(long, value_name = "I/N")]
-        shard: Option<String>,
-        /// Worker threads (default: every core).
-        #[arg(long)]
-        threads: Option<usize>,
-        /// Run again the runs whose file records a failure.
-        #[arg(long)]
-        retry_failed: bool,
-    },
-}
-
 #[cfg(feature = "sim")]
-#[derive(Subcommand)]
-enum SweepAction {
-    /// Merge the run files of DIR (all shards) into tables.md, tables.csv, wins.csv,
-    /// timing.md and plots/*.png there.
-    Merge {
-        /// The sweep's output directory.
-        dir: PathBuf,
-    },
-}
+use cli::cosco_args::SweepAction;
+use cli::cosco_args::{Cli, Command};
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
@@ -256,7 +41,18 @@ fn run(cli: Cli) -> Result<()> {
             noise,
             model,
         } => {
-            let files = cli::demos(&gesture, count, seed, &out, noise, model.as_deref())?;
+            let bars = cli::StageBars::default();
+            let on_progress = |stage: &str, done, total| bars.update(stage, done, total);
+            let files = cosco_hsom::experiment::job::demos(
+                &gesture,
+                count,
+                seed,
+                &out,
+                noise,
+                model.as_deref(),
+                &on_progress,
+            )?;
+            bars.finish();
             for f in files {
                 outln!("{}", f.display());
             }
@@ -267,7 +63,16 @@ fn run(cli: Cli) -> Result<()> {
             out,
             state_length_from_data,
         } => {
-            let model = cli::train_files(config.as_deref(), &demos, &out, state_length_from_data)?;
+            let bars = cli::StageBars::default();
+            let on_step = |done, total| bars.update("training", done, total);
+            let model = commands::train_files(
+                config.as_deref(),
+                &demos,
+                &out,
+                state_length_from_data,
+                Some(&on_step),
+            )?;
+            bars.finish();
             if model.labels().is_empty() {
                 out!("{}", model.branches()[0].summary());
             } else {
@@ -290,8 +95,8 @@ fn run(cli: Cli) -> Result<()> {
             out,
         } => {
             let (n, label) = match (prefix_from, prefix) {
-                (Some(p), Some(k)) => cli::continue_file(&model, &p, k, &out)?,
-                _ => cli::reproduce_gesture_file(
+                (Some(p), Some(k)) => commands::continue_file(&model, &p, k, &out)?,
+                _ => commands::reproduce_gesture_file(
                     &model,
                     gesture.as_deref(),
                     initial.as_deref(),
@@ -306,7 +111,7 @@ fn run(cli: Cli) -> Result<()> {
             }
         }
         Command::Recognize { model, demos, json } => {
-            for line in cli::recognize_lines(&model, &demos, json.as_deref())? {
+            for line in commands::recognize_lines(&model, &demos, json.as_deref())? {
                 outln!("{line}");
             }
         }
@@ -323,12 +128,12 @@ fn run(cli: Cli) -> Result<()> {
             png,
         } => {
             #[cfg(not(feature = "plot"))]
-            let png: Option<PathBuf> = None;
-            let job = cli::HeldoutJob {
+            let png: Option<std::path::PathBuf> = None;
+            let job = cosco_hsom::eval::HeldoutJob {
                 demos,
                 config,
                 state_length_from_data,
-                settings: cosco_hsom::offline::LooSettings {
+                settings: cosco_hsom::eval::LooSettings {
                     height_1: !no_height_1,
                     gmr: !no_gmr,
                     replay: true,
@@ -338,10 +143,17 @@ fn run(cli: Cli) -> Result<()> {
                 json,
                 png,
             };
-            out!("{}", cli::heldout(&job)?);
+            let pb = cli::progress(0, "folds");
+            let on_fold = |done: usize, total: usize| {
+                pb.set_length(total as u64);
+                pb.set_position(done as u64);
+            };
+            let tables = cosco_hsom::eval::heldout(&job, Some(&on_fold))?;
+            pb.finish_and_clear();
+            out!("{tables}");
         }
         Command::Inspect { model } => {
-            let m = cli::load_gesture_model(&model)?;
+            let m = commands::load_gesture_model(&model)?;
             outln!("{}", model.display());
             if m.labels().is_empty() {
                 out!("{}", m.branches()[0].summary());
@@ -359,9 +171,9 @@ fn run(cli: Cli) -> Result<()> {
             model,
         } => {
             #[cfg(not(feature = "sim"))]
-            let model: Option<PathBuf> = None;
-            let (report, unit) = cli::evaluate_files(&reproduction, &demos, model.as_deref())?;
-            out!("{}", cli::fidelity_lines(&report, unit));
+            let model: Option<std::path::PathBuf> = None;
+            let (report, unit) = commands::evaluate_files(&reproduction, &demos, model.as_deref())?;
+            out!("{}", commands::fidelity_lines(&report, unit));
             if let Some(p) = json {
                 let bytes = serde_json::to_vec_pretty(&report)?;
                 cosco_hsom::fsutil::write_atomic(&p, &bytes)
@@ -385,7 +197,10 @@ fn run(cli: Cli) -> Result<()> {
                 model,
                 transition: cosco_hsom::experiment::Transition::parse(&transition)?,
             };
-            let report = cli::compare::compare(&job)?;
+            let bars = cli::StageBars::default();
+            let on_progress = |stage: &str, done, total| bars.update(stage, done, total);
+            let report = cli::compare::compare(&job, &on_progress)?;
+            bars.finish();
             for line in cli::compare::summary_lines(&report) {
                 outln!("{line}");
             }

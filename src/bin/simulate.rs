@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 use anyhow::Result;
 use clap::Parser;
+use cosco_hsom::experiment::job;
 
 mod cli;
 
@@ -70,7 +71,7 @@ struct Args {
 
 fn run(a: Args) -> Result<()> {
     let strict = a.strict;
-    let job = cli::Job {
+    let job = job::Job {
         gesture: a.gesture,
         config: a.config,
         demos: a.demos,
@@ -84,14 +85,23 @@ fn run(a: Args) -> Result<()> {
         variants: !a.no_variants,
         heldout: !a.no_heldout,
     };
+    let bars = cli::StageBars::default();
+    let on_progress = |stage: &str, done, total| bars.update(stage, done, total);
     if job.gesture == "all" {
-        for line in cli::all_gestures_job(&job)? {
+        let lines = job::all_gestures_job(&job, &on_progress)?;
+        bars.finish();
+        for line in lines {
             outln!("{line}");
         }
         outln!("report: {}", job.out.join("report.md").display());
         return Ok(());
     }
-    let report = cli::main_job(&job)?;
+    let summary = job::main_job(&job, &on_progress)?;
+    bars.finish();
+    for w in &summary.warnings {
+        eprintln!("warning: {w}");
+    }
+    let report = summary.report;
     // values moved into the joint ranges before execution: said on stderr, an error with --strict
     let clamped: Vec<String> = report
         .methods

@@ -28,9 +28,10 @@ use crate::sim::{NaoArm, Recording};
 use super::demonstrate::{synthetic_demonstrations, DemoSettings};
 use super::film::{clip_options, film};
 use super::multi::{confusion_counts, confusion_markdown};
-use super::pipeline::{execute_and_score, sample_period};
+use super::pipeline::execute_and_score;
 use super::study::median;
 use super::{ExperimentError, Transition};
+use crate::demos::sample_period;
 
 /// Frames of each gesture on the contact sheet (one row per gesture).
 const SHEET_COLUMNS: usize = 4;

@@ -47,10 +47,9 @@ pub const GMR_NEEDS: &str = "at least 2 demonstrations, pre-processed: idle star
     DTW-aligned to the medoid demonstration, resampled to a fixed number of points; a time \
     index t (it regresses q on t over the learned duration); the initial posture only for \
     the minimum-jerk lead-in to GMR's first point";
-/// The default component choice: the lowest BIC over 1..=16. Wider than the library's
-/// default 1..=8: on the four gestures BIC still fell at 8 components (a wave needs about
-/// two per oscillation), and over 1..=16 it has an interior minimum (12 to 15).
-pub const DEFAULT_COMPONENTS: ComponentChoice = ComponentChoice::Bic { min: 1, max: 16 };
+/// The default component choice: the evaluator's ([`crate::eval::GMR_COMPONENTS`]), the lowest
+/// BIC over 1..=16; over 1..=16 it has an interior minimum on the four gestures (12 to 15).
+pub const DEFAULT_COMPONENTS: ComponentChoice = crate::eval::GMR_COMPONENTS;
 /// Colour of the baseline's curves.
 pub const GMR_COLOR: RGBColor = RGBColor(200, 0, 130);
 

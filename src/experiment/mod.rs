@@ -3,19 +3,24 @@
 //! simulated arm, and measure how faithful the reproduction is.
 
 pub mod all_gestures;
+pub mod arm_executor;
 pub mod baseline;
+pub mod closed_loop;
+pub mod compare;
 pub mod demonstrate;
 pub mod evaluate;
 pub mod execute;
 pub mod figures;
 pub mod film;
 pub mod heldout;
+pub mod job;
 pub mod multi;
 pub mod pipeline;
 pub mod report;
 pub mod study;
 pub mod variants;
 
+pub use arm_executor::ArmExecutor;
 pub use demonstrate::{
     joint_limits, record_demonstrations, synthetic_demonstrations, DemoSettings,
 };
@@ -32,8 +37,8 @@ pub use heldout::{
     FoldScores, HeldOut, HeldOutSummary, Swings,
 };
 pub use pipeline::{
-    execute_and_score, learn_and_reproduce, learn_and_score, reproduce_variant, sample_period,
-    Executed, Outcome, Split, Training,
+    execute_and_score, learn_and_reproduce, learn_and_score, reproduce_variant, Executed, Outcome,
+    Split, Training,
 };
 
 /// Errors of the experiment pipeline.

@@ -22,8 +22,9 @@ use crate::nearest::NearestNeighbour;
 use crate::sim::NaoArm;
 
 use super::demonstrate::{synthetic_demonstrations, DemoSettings};
-use super::pipeline::{execute_and_score, sample_period};
+use super::pipeline::execute_and_score;
 use super::{ExperimentError, Transition};
+use crate::demos::sample_period;
 
 /// What the study does.
 #[derive(Debug, Clone)]

@@ -112,7 +112,7 @@ impl Outcome {
     }
 }
 
-pub use crate::steps::sample_period;
+use crate::demos::sample_period;
 
 /// An executed and scored posture sequence.
 #[derive(Debug, Clone)]

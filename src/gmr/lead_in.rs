@@ -2,7 +2,7 @@
 //! point, then the mean every sample period (what the baseline executes; the formula is in
 //! `experiment::baseline`'s documentation). Here without the simulator, for any data: the
 //! lead-in's peak speed is an argument (the arm's 1 rad/s in `experiment::baseline`; the
-//! demonstrations' own speed in [`crate::offline`]).
+//! demonstrations' own speed in [`crate::eval`]).
 
 use super::{GmrError, GmrModel, Prediction};
 

@@ -40,7 +40,7 @@ pub fn dtw(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
 }
 
 /// Diagonal of the bounding box of all demonstrations (the scale for relative errors).
-pub use cosco_hsom::offline::diagonal;
+pub use cosco_hsom::eval::diagonal;
 
 /// Mean DTW distance from `rep` to the demonstrations, relative to their bounding-box diagonal.
 pub fn relative_dtw(rep: &[Vec<f64>], demos: &[Demonstration]) -> f64 {

@@ -1,4 +1,4 @@
-//! `cosco compare` and the baseline section of `simulate`: the paper's GMM/GMR baseline and
+//! `cosco compare` and the baseline section of the main job: the paper's GMM/GMR baseline and
 //! CoSCo-HSOM trained on the same demonstrations, both executed on the simulated arm from
 //! the same initial posture, scored with the same metrics, side by side in one table.
 
@@ -6,21 +6,21 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 
-use cosco_hsom::demos::{validate_set, write_csv, Demonstration};
-use cosco_hsom::experiment::baseline::{fig3_png, fig5_png, gmr_params, run_baseline, GMR_COLOR};
-use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
-use cosco_hsom::experiment::report::{DemoInfo, MethodResult, Report};
-use cosco_hsom::experiment::{
-    are_arm_joints, demo_wrist_paths, learn_and_reproduce, sample_period, Training, Transition,
-};
-use cosco_hsom::gmr::{load_model, save_model, ComponentChoice, MIN_DEMONSTRATIONS};
-use cosco_hsom::metrics::MetricsParams;
-use cosco_hsom::plot::BLACK;
-use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
+use crate::demos::{sample_period, validate_set, write_csv, Demonstration};
+use crate::gmr::{load_model, save_model, ComponentChoice, MIN_DEMONSTRATIONS};
+use crate::metrics::MetricsParams;
+use crate::plot::BLACK;
+use crate::sim::{NaoArm, Recording, JOINT_NAMES};
+use crate::steps;
 
-use super::{file_size, hsom_config, load_arm, progress, read_demos, Stopwatch, FIG4_JOINTS};
+use super::all_gestures::Progress;
+use super::baseline::{fig3_png, fig5_png, gmr_params, run_baseline, GMR_COLOR};
+use super::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
+use super::job::{config_name, file_size, load_arm, write_hsom_run, Stopwatch, FIG4_JOINTS};
+use super::report::{DemoInfo, MethodResult, Report};
+use super::{are_arm_joints, demo_wrist_paths, learn_and_reproduce, Training, Transition};
 
-pub use cosco_hsom::experiment::baseline::DEFAULT_COMPONENTS;
+pub use super::baseline::DEFAULT_COMPONENTS;
 
 /// Parse `--components`: a count `K` (≥ 1) or `bic` (BIC over 1..=16).
 pub fn parse_components(s: &str) -> Result<ComponentChoice, String> {
@@ -176,24 +176,24 @@ pub struct CompareJob {
 /// `transition`, score (the main job's `learn_and_reproduce`); writes `model.bin` and
 /// `reproduction.csv` into `out`.
 fn hsom_method(
-    cfg: &cosco_hsom::config::HsomConfig,
+    cfg: &crate::config::HsomConfig,
     arm: &NaoArm,
     demos: &[Demonstration],
     transition: Transition,
     out: &Path,
     files: &mut Vec<String>,
+    on_progress: Progress<'_>,
 ) -> Result<(MethodResult, Recording)> {
-    let pb = progress(cfg.params().training_steps as u64, "training");
+    let total = cfg.params().training_steps;
     let run = learn_and_reproduce(
         arm,
         cfg,
         demos,
         Training::Trained,
         transition,
-        Some(&|done, _| pb.set_position(done as u64)),
+        Some(&|done, _| on_progress("training", done, total)),
     )?;
-    pb.finish_and_clear();
-    let result = super::write_hsom_run(
+    let result = write_hsom_run(
         out,
         &run,
         vec![format!("transition: {transition:?}")],
@@ -204,11 +204,11 @@ fn hsom_method(
 
 /// `cosco compare`: both methods on the same demonstrations, executed on the simulated arm;
 /// report, csvs, models and plots written into `job.out`.
-pub fn compare(job: &CompareJob) -> Result<Report> {
+pub fn compare(job: &CompareJob, on_progress: Progress<'_>) -> Result<Report> {
     let mut clock = Stopwatch::new();
     let out = &job.out;
-    let cfg = hsom_config(job.config.as_deref())?;
-    let demos = read_demos(std::slice::from_ref(&job.demos), None)?;
+    let cfg = steps::config(job.config.as_deref())?;
+    let demos = steps::read_demos(std::slice::from_ref(&job.demos), None)?;
     require_arm_joints(&demos)?;
     if demos.len() < MIN_DEMONSTRATIONS {
         bail!(
@@ -237,8 +237,15 @@ pub fn compare(job: &CompareJob) -> Result<Report> {
     clock.lap("read demonstrations");
 
     let mut files = Vec::new();
-    let (hsom_result, hsom_exec) =
-        hsom_method(&cfg, &arm, &demos, job.transition, out, &mut files)?;
+    let (hsom_result, hsom_exec) = hsom_method(
+        &cfg,
+        &arm,
+        &demos,
+        job.transition,
+        out,
+        &mut files,
+        on_progress,
+    )?;
     clock.lap("CoSCo-HSOM (train + reproduce + execute + metrics)");
     let demo_wrists = demo_wrist_paths(&arm, &demos)?;
     let gmr_result = baseline_section(
@@ -258,7 +265,7 @@ pub fn compare(job: &CompareJob) -> Result<Report> {
         title: "CoSCo-HSOM and the GMM/GMR baseline on the simulated Nao left arm".into(),
         gesture: None,
         seed: cfg.params().seed,
-        config: super::config_name(job.config.as_deref()),
+        config: config_name(job.config.as_deref()),
         demos: demo_info,
         methods: vec![hsom_result, gmr_result],
         variants: Vec::new(),

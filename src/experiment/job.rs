@@ -1,26 +1,37 @@
-//! The steps that need the simulated arm (feature `sim`): recording demonstrations, and the
-//! main job of `simulate` (train, execute, score, plot, film, report).
+//! The main job of `simulate` (demonstrations, training, reproduction on the simulated arm,
+//! metrics, the GMM/GMR baseline, held-out folds, before/after variants, plots, clip and
+//! report, all written into one directory), `simulate --gesture all`, and `cosco demos`, as
+//! library functions the binaries, the tests and Python can call. Progress is reported
+//! through a callback `(stage, done, total)`; nothing here prints.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 
-use cosco_hsom::demos::{self, write_csv, Demonstration};
-use cosco_hsom::experiment::baseline::GMR_NAME;
-use cosco_hsom::experiment::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
-use cosco_hsom::experiment::report::{level_rows, DemoInfo, Report, Stage};
-use cosco_hsom::experiment::variants::{reference_variants, run_variant, variants};
-use cosco_hsom::experiment::{
+use crate::demos::{self, sample_period, write_csv, Demonstration};
+use crate::gesture::Gesture;
+use crate::plot::BLACK;
+use crate::sim::{NaoArm, JOINT_NAMES};
+use crate::steps::{self, DEFAULT_CONFIG_NAME};
+
+use super::all_gestures::Progress;
+use super::baseline::GMR_NAME;
+use super::compare;
+use super::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
+use super::report::{level_rows, DemoInfo, MethodResult, Report, Stage};
+use super::variants::{reference_variants, run_variant, variants};
+use super::{
     are_arm_joints, check_reachable, demo_wrist_paths, film, hsom_folds, learn_and_reproduce,
-    leave_one_out, sample_period, synthetic_demonstrations, DemoSettings, HeldOutSummary, Training,
+    leave_one_out, synthetic_demonstrations, DemoSettings, HeldOutSummary, Outcome, Training,
     Transition,
 };
-use cosco_hsom::gesture::Gesture;
-use cosco_hsom::plot::BLACK;
-use cosco_hsom::sim::{NaoArm, JOINT_NAMES};
 
-use super::{compare, config_name, hsom_config, progress, read_demos};
+/// How a report names the configuration: its path, or the built-in default's name.
+pub fn config_name(path: Option<&Path>) -> String {
+    path.map_or(DEFAULT_CONFIG_NAME.into(), |p| p.display().to_string())
+}
+
 /// Default encoder noise of synthetic demonstrations, rad (about Nao's encoder resolution).
 pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
 
@@ -45,21 +56,25 @@ pub fn gesture(name: &str) -> Result<Gesture> {
     }
 }
 
-/// Record synthetic demonstrations in the simulator, with a progress bar.
+/// Record synthetic demonstrations in the simulator (stage `demonstrating`).
 pub fn record(
     arm: &NaoArm,
     gesture: &Gesture,
     count: usize,
     seed: u64,
     noise: f64,
+    on_progress: Progress<'_>,
 ) -> Result<Vec<Demonstration>> {
     let settings = DemoSettings {
         encoder_noise: noise,
         ..DemoSettings::default()
     };
-    let pb = progress(count as u64, "demonstrating");
-    let demos = synthetic_demonstrations(arm, gesture, count, seed, &settings, |_| pb.inc(1))?;
-    pb.finish_and_clear();
+    let done = std::cell::Cell::new(0);
+    on_progress("demonstrating", 0, count);
+    let demos = synthetic_demonstrations(arm, gesture, count, seed, &settings, |_| {
+        done.set(done.get() + 1);
+        on_progress("demonstrating", done.get(), count);
+    })?;
     Ok(demos)
 }
 
@@ -83,19 +98,20 @@ pub fn demos(
     out: &Path,
     noise: f64,
     model: Option<&Path>,
+    on_progress: Progress<'_>,
 ) -> Result<Vec<PathBuf>> {
     let arm = load_arm(model)?;
     if gesture_name == "all" {
         // every gesture into its labelled subdirectory: OUT/<gesture>/demo_NN.csv
         let mut files = Vec::new();
-        for g in cosco_hsom::gesture::Gesture::all() {
-            let demos = record(&arm, &g, count, seed, noise)?;
+        for g in Gesture::all() {
+            let demos = record(&arm, &g, count, seed, noise, on_progress)?;
             files.extend(write_demos(&out.join(g.name), &demos)?);
         }
         return Ok(files);
     }
     let g = gesture(gesture_name)?;
-    let demos = record(&arm, &g, count, seed, noise)?;
+    let demos = record(&arm, &g, count, seed, noise, on_progress)?;
     write_demos(out, &demos)
 }
 
@@ -136,13 +152,21 @@ pub struct Stopwatch {
     pub t: Instant,
 }
 
+impl Default for Stopwatch {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl Stopwatch {
+    /// A stopwatch with no stage, started now.
     pub fn new() -> Self {
         Stopwatch {
             stages: Vec::new(),
             t: Instant::now(),
         }
     }
+    /// Close the current stage as `stage`; its seconds.
     pub fn lap(&mut self, stage: &str) -> f64 {
         let s = self.t.elapsed().as_secs_f64();
         self.stages.push(Stage {
@@ -167,26 +191,37 @@ pub const FIG4_JOINTS: [(usize, &str); 4] = [
     (3, "LElbowRoll"),
 ];
 
+/// What the main job produced: the report (also written as `report.md` and `report.json`) and
+/// the warnings to show (the job went on past them).
+#[derive(Debug, Clone)]
+pub struct JobSummary {
+    /// The report.
+    pub report: Report,
+    /// Steps skipped, with the reason.
+    pub warnings: Vec<String>,
+}
+
 /// The main job: demonstrations -> training -> reproduction in the simulator -> report,
 /// plots and clip, all written into `job.out`.
-pub fn main_job(job: &Job) -> Result<Report> {
+pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
+    let mut warnings = Vec::new();
     let mut clock = Stopwatch::new();
     let out = &job.out;
     std::fs::create_dir_all(out.join("demos"))
         .with_context(|| format!("creating {}", out.display()))?;
-    let cfg = hsom_config(job.config.as_deref())?;
+    let cfg = steps::config(job.config.as_deref())?;
     let arm = load_arm(job.model.as_deref())?;
     let mut files = Vec::new();
 
     // 1. Demonstrations.
     let (demos, gesture) = match &job.demos {
         Some(dir) => (
-            read_demos(std::slice::from_ref(dir), Some(cfg.params().state_length))?,
+            steps::read_demos(std::slice::from_ref(dir), Some(cfg.params().state_length))?,
             None,
         ),
         None => {
             let g = gesture(&job.gesture)?;
-            let demos = record(&arm, &g, job.count, job.seed, job.noise)?;
+            let demos = record(&arm, &g, job.count, job.seed, job.noise, on_progress)?;
             (demos, Some(g.name.to_string()))
         }
     };
@@ -215,16 +250,15 @@ pub fn main_job(job: &Job) -> Result<Report> {
     clock.lap("demonstrations (simulate + record)");
 
     // 2-4. Training, reproduction from the initial posture on the simulated arm, metrics.
-    let pb = progress(cfg.params().training_steps as u64, "training");
+    let steps_total = cfg.params().training_steps;
     let run = learn_and_reproduce(
         &arm,
         &cfg,
         &demos,
         Training::Trained,
         job.transition,
-        Some(&|done, _| pb.set_position(done as u64)),
+        Some(&|done, _| on_progress("training", done, steps_total)),
     )?;
-    pb.finish_and_clear();
     clock.stages.push(Stage {
         stage: "training".into(),
         seconds: run.train_s,
@@ -287,7 +321,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
     ) {
         Ok(gmr_result) => methods.push(gmr_result),
         Err(e) => {
-            eprintln!("warning: GMM/GMR baseline skipped: {e:#}");
+            warnings.push(format!("GMM/GMR baseline skipped: {e:#}"));
             methods[0]
                 .notes
                 .push(format!("GMM/GMR baseline not run: {e:#}"));
@@ -322,7 +356,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
     if job.variants {
         let mut vs = reference_variants(&cfg, job.transition)?;
         vs.extend(variants(&cfg, job.transition)?);
-        let pb = progress(vs.len() as u64, "variants");
+        on_progress("variants", 0, vs.len());
         let mut main = methods[0].clone();
         main.name = format!("{} ({})", cfg.source(), job.transition.name());
         if job.heldout && main.heldout.is_none() && demos.len() >= 2 {
@@ -330,11 +364,10 @@ pub fn main_job(job: &Job) -> Result<Report> {
             main.heldout = HeldOutSummary::of(&folds.iter().collect::<Vec<_>>());
         }
         variant_results.push(main);
-        for v in &vs {
+        for (k, v) in vs.iter().enumerate() {
             variant_results.push(run_variant(&arm, v, &demos, job.heldout)?);
-            pb.inc(1);
+            on_progress("variants", k + 1, vs.len());
         }
-        pb.finish_and_clear();
         clock.lap(if job.heldout {
             "before/after variants (train + reproduce + execute + metrics each, in-sample and held-out)"
         } else {
@@ -344,13 +377,12 @@ pub fn main_job(job: &Job) -> Result<Report> {
 
     // 6. Clip.
     if job.render {
-        let opts = cosco_hsom::experiment::film::clip_options();
+        let opts = super::film::clip_options();
         let stride = 2;
-        let pb = progress(executed.len().div_ceil(stride) as u64, "rendering");
+        let frames = executed.len().div_ceil(stride);
         let clip = film(&arm, executed, &opts, stride, |n, _| {
-            pb.set_position(n as u64)
+            on_progress("rendering", n, frames)
         })?;
-        pb.finish_and_clear();
         clip.write_gif(&out.join("clip.gif"))?;
         clip.write_contact_sheet(&out.join("contact_sheet.png"), 8, 4, true)?;
         files.push("clip.gif".into());
@@ -383,7 +415,7 @@ pub fn main_job(job: &Job) -> Result<Report> {
     report
         .write(out)
         .with_context(|| format!("writing the report into {}", out.display()))?;
-    Ok(report)
+    Ok(JobSummary { report, warnings })
 }
 
 /// Save a CoSCo-HSOM run's model (`model.bin`) and executed trajectory (`reproduction.csv`)
@@ -391,10 +423,10 @@ pub fn main_job(job: &Job) -> Result<Report> {
 /// stopped, postures per level, then `notes`).
 pub fn write_hsom_run(
     out: &Path,
-    run: &cosco_hsom::experiment::Outcome,
+    run: &Outcome,
     notes: Vec<String>,
     files: &mut Vec<String>,
-) -> Result<cosco_hsom::experiment::report::MethodResult> {
+) -> Result<MethodResult> {
     let model_path = out.join("model.bin");
     run.model.save(&model_path)?;
     files.push("model.bin".into());
@@ -420,10 +452,10 @@ fn levels_note(by: &[usize]) -> String {
     format!("postures predicted per level: {}", counts.join(", "))
 }
 
-/// `simulate --gesture all`: one hierarchy for every gesture (experiment::all_gestures), with
-/// a progress bar per stage; returns the report's summary lines.
-pub fn all_gestures_job(job: &Job) -> Result<Vec<String>> {
-    use cosco_hsom::experiment::all_gestures::{run_all_gestures, AllSettings};
+/// `simulate --gesture all`: one hierarchy for every gesture ([`super::all_gestures`]);
+/// returns the report's summary lines.
+pub fn all_gestures_job(job: &Job, on_progress: Progress<'_>) -> Result<Vec<String>> {
+    use super::all_gestures::{run_all_gestures, AllSettings};
     if job.demos.is_some() {
         bail!(
             "--gesture all records synthetic demonstrations of every gesture; to learn several gestures from recorded files use `cosco train --demos DIR` with one subdirectory per gesture (DIR/<gesture>/*.csv)"
@@ -431,7 +463,7 @@ pub fn all_gestures_job(job: &Job) -> Result<Vec<String>> {
     }
     let out = &job.out;
     std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
-    let cfg = hsom_config(job.config.as_deref())?;
+    let cfg = steps::config(job.config.as_deref())?;
     let arm = load_arm(job.model.as_deref())?;
     let config_name = config_name(job.config.as_deref());
     let settings = AllSettings {
@@ -441,19 +473,6 @@ pub fn all_gestures_job(job: &Job) -> Result<Vec<String>> {
         transition: job.transition,
         render: job.render,
     };
-    let bar: std::cell::RefCell<Option<(String, indicatif::ProgressBar)>> = Default::default();
-    let on_progress = |stage: &str, done: usize, total: usize| {
-        let mut b = bar.borrow_mut();
-        if b.as_ref().map_or(true, |(s, _)| s != stage) {
-            if let Some((_, old)) = b.take() {
-                old.finish_and_clear();
-            }
-            *b = Some((stage.to_string(), progress(total as u64, stage)));
-        }
-        if let Some((_, pb)) = b.as_ref() {
-            pb.set_position(done as u64);
-        }
-    };
     let report = run_all_gestures(
         &arm,
         &cfg,
@@ -461,11 +480,8 @@ pub fn all_gestures_job(job: &Job) -> Result<Vec<String>> {
         &Gesture::all(),
         &settings,
         out,
-        &on_progress,
+        on_progress,
     )?;
-    if let Some((_, pb)) = bar.borrow_mut().take() {
-        pb.finish_and_clear();
-    }
     let mut lines: Vec<String> = report
         .fidelity
         .iter()

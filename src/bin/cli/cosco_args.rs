@@ -1,0 +1,224 @@
+//! The command line of `cosco` (clap definitions only).
+
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser)]
+#[command(
+    name = "cosco",
+    version,
+    about = "CoSCo-HSOM: learn a gesture from raw demonstrations, reproduce it from the initial posture"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    #[cfg(feature = "sim")]
+    /// Record synthetic, human-like demonstrations of a gesture on the simulated arm (40 Hz encoders).
+    Demos {
+        /// Gesture name (reading-watch, wave, reach-point, salute), or `all`: every gesture,
+        /// each in its own labelled subdirectory of --out (OUT/<gesture>/demo_01.csv, ...).
+        #[arg(long, default_value = "reading-watch")]
+        gesture: String,
+        /// Number of demonstrations.
+        #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = super::parse_count)]
+        count: usize,
+        /// Seed of every random choice.
+        #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = super::parse_seed)]
+        seed: u64,
+        /// Output directory (created if missing); files demo_01.csv, demo_02.csv, ...
+        #[arg(long)]
+        out: PathBuf,
+        /// Standard deviation of the encoder noise, rad.
+        #[arg(long, default_value_t = super::DEFAULT_ENCODER_NOISE, allow_negative_numbers = true, value_parser = super::parse_noise)]
+        noise: f64,
+        /// MJCF model of the arm.
+        #[arg(long)]
+        model: Option<PathBuf>,
+    },
+    /// Train a CoSCo-HSOM hierarchy on demonstration CSV files and save it (.bin or .txt).
+    Train {
+        /// XML configuration (default: the built-in configs/nao-gestures.xml, the recommended events extension).
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Demonstrations: a directory of *.csv files, or files (one gesture); or directories
+        /// whose subdirectories are gesture labels (DIR/<label>/*.csv: several gestures in one
+        /// hierarchy).
+        #[arg(long, num_args = 1.., required = true)]
+        demos: Vec<PathBuf>,
+        /// Where to save the model: `.bin` (binary) or `.txt` (plain text).
+        #[arg(long)]
+        out: PathBuf,
+        /// Take stateLength and actionLength from the demonstrations' columns.
+        #[arg(long)]
+        state_length_from_data: bool,
+    },
+    /// Reproduce a gesture from an initial posture with a saved model; writes `step` then the
+    /// demonstrations' columns.
+    Reproduce {
+        /// A model saved by `cosco train` (.bin or .txt).
+        #[arg(long)]
+        model: PathBuf,
+        /// The initial posture, comma-separated, one value per state variable.
+        #[arg(
+            long,
+            conflicts_with_all = ["initial_from", "prefix_from"],
+            required_unless_present_any = ["initial_from", "prefix_from"]
+        )]
+        initial: Option<String>,
+        /// Take the initial posture from the first row of this demonstration CSV.
+        #[arg(long, conflicts_with = "prefix_from")]
+        initial_from: Option<PathBuf>,
+        /// The gesture to reproduce (required with a model of several gestures).
+        #[arg(long, conflicts_with = "prefix_from")]
+        gesture: Option<String>,
+        /// Continue the gesture begun in this demonstration CSV's first --prefix samples; the
+        /// hierarchy decides which gesture it is.
+        #[arg(long, requires = "prefix")]
+        prefix_from: Option<PathBuf>,
+        /// Samples of --prefix-from to continue from.
+        #[arg(long, requires = "prefix_from")]
+        prefix: Option<usize>,
+        /// Resume the reproduction from the initial posture after part of it was executed:
+        /// this CSV (the model's columns) is what the encoders read meanwhile, possibly
+        /// disturbed; writes the rest, from the reading's last posture (`algorithm = events`).
+        #[arg(long, conflicts_with = "prefix_from")]
+        resume_from: Option<PathBuf>,
+        /// Output CSV.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Recognise demonstrations with a model of several gestures: per file the label (or
+    /// `unknown`), a score per label and the earliest sample from which the decision held.
+    Recognize {
+        /// A model trained on labelled directories (`cosco train --demos DIR`, DIR/<label>/*.csv).
+        #[arg(long)]
+        model: PathBuf,
+        /// A demonstration CSV, a directory of them, or a directory of label subdirectories.
+        #[arg(long)]
+        demos: PathBuf,
+        /// Also write every answer as JSON here.
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
+    /// Held out on your own demonstrations, without the simulator: for each demonstration,
+    /// learn from the others, reproduce from its first sample, score against it; the
+    /// hierarchy beside the nearest sequence, height 1, GMM/GMR and a replay, on the same folds
+    /// (Markdown on stdout).
+    Heldout {
+        /// Demonstrations: a directory of *.csv files or files (one gesture), or directories of
+        /// gesture subdirectories (DIR/<gesture>/*.csv, each gesture on its own); at least 3
+        /// per gesture.
+        #[arg(long, num_args = 1.., required = true)]
+        demos: Vec<PathBuf>,
+        /// XML configuration (default: the built-in configs/nao-gestures.xml).
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Take stateLength and actionLength from the demonstrations' columns.
+        #[arg(long)]
+        state_length_from_data: bool,
+        /// Leave out the configuration at height 1.
+        #[arg(long)]
+        no_height_1: bool,
+        /// Leave out GMM/GMR.
+        #[arg(long)]
+        no_gmr: bool,
+        /// Leave out the in-sample result (learned from all).
+        #[arg(long)]
+        no_in_sample: bool,
+        /// Worker threads (default: every core).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
+        threads: Option<u64>,
+        /// Also write every fold's scores as JSON here.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Also draw one fold per gesture (the first sample's plane) as a PNG here.
+        #[cfg(feature = "plot")]
+        #[arg(long)]
+        png: Option<PathBuf>,
+    },
+    /// Print a saved model's levels, sizes and quality measures.
+    Inspect {
+        /// A model saved by `cosco train` (.bin or .txt).
+        model: PathBuf,
+    },
+    /// Fidelity metrics of a reproduction CSV against demonstrations (docs/METRICS.md).
+    Evaluate {
+        /// Reproduction CSV (`time` or `step` column, then the demonstrations' columns).
+        #[arg(long)]
+        reproduction: PathBuf,
+        /// Demonstrations: a directory of *.csv files, or files.
+        #[arg(long, num_args = 1.., required = true)]
+        demos: Vec<PathBuf>,
+        /// Also write the full report as JSON here.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// MJCF model of the arm, for wrist paths (default: the crate's model).
+        #[cfg(feature = "sim")]
+        #[arg(long)]
+        model: Option<PathBuf>,
+    },
+    #[cfg(feature = "sim")]
+    /// Compare CoSCo-HSOM with the paper's GMM/GMR baseline on the same demonstrations, both
+    /// executed on the simulated arm from the same initial posture (report, csvs, plots).
+    Compare {
+        /// Directory of demonstration CSVs (columns: time, then the arm's six joints).
+        #[arg(long)]
+        demos: PathBuf,
+        /// CoSCo-HSOM configuration (XML); default: the built-in configs/nao-gestures.xml.
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Output directory (created if missing).
+        #[arg(long, default_value = "out-compare")]
+        out: PathBuf,
+        /// GMM components: a number K >= 1, or `bic` (lowest BIC over 1..=16).
+        #[arg(long, default_value = "bic", value_parser = super::compare::parse_components)]
+        components: cosco_hsom::gmr::ComponentChoice,
+        /// How CoSCo-HSOM's postures become servo targets: `linear` (the paper) or
+        /// `min-jerk[:TOL]` (as for `simulate`).
+        #[arg(long, default_value = "linear")]
+        transition: String,
+        /// MJCF model of the arm.
+        #[arg(long)]
+        model: Option<PathBuf>,
+    },
+    #[cfg(feature = "sim")]
+    /// Run a sweep: every combination of the axes of a TOML spec (docs/SWEEPS.md), one JSON
+    /// file per run in DIR/runs, finished runs skipped; `merge` makes the tables and plots.
+    #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+    Sweep {
+        #[command(subcommand)]
+        action: Option<SweepAction>,
+        /// The spec file (TOML).
+        #[arg(long, required = true)]
+        spec: Option<PathBuf>,
+        /// Output directory: DIR/runs/<run-id>.json, then the merged tables and plots.
+        #[arg(long, required = true)]
+        out: Option<PathBuf>,
+        /// Run only the runs whose grid index is I modulo N (default: SLURM_ARRAY_TASK_ID /
+        /// SLURM_ARRAY_TASK_COUNT when set, else all).
+        #[arg(long, value_name = "I/N")]
+        shard: Option<String>,
+        /// Worker threads (default: every core).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Run again the runs whose file records a failure.
+        #[arg(long)]
+        retry_failed: bool,
+    },
+}
+
+#[cfg(feature = "sim")]
+#[derive(Subcommand)]
+pub enum SweepAction {
+    /// Merge the run files of DIR (all shards) into tables.md, tables.csv, wins.csv,
+    /// timing.md and plots/*.png there.
+    Merge {
+        /// The sweep's output directory.
+        dir: PathBuf,
+    },
+}

@@ -1,0 +1,240 @@
+//! The `cosco` subcommands that read and write files without the simulator (`train`,
+//! `reproduce`, `recognize`, `evaluate`): the library's steps ([`crate::steps`]) put together
+//! with the files they read and write, for the binary and the tests. Errors carry the file,
+//! field and value, and what is allowed.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Context, Result};
+
+use crate::demos::sample_period;
+use crate::hsom::{GestureModel, Reproduction};
+use crate::labelled;
+use crate::metrics::{FidelityReport, MetricsParams};
+use crate::steps;
+
+/// Load a model of one or several gestures (.bin or .txt).
+pub fn load_gesture_model(path: &Path) -> Result<GestureModel> {
+    Ok(labelled::load_gesture_model(path)?)
+}
+
+/// `cosco evaluate`: the fidelity metrics of a reproduction CSV against demonstrations, and
+/// the unit of its distances (`rad` for the arm's joints, the data's own units otherwise).
+/// Wrist paths need the arm's kinematics: with the feature `sim` they are computed when the
+/// columns are the arm's joints (`model`: its MJCF file); without it, never.
+pub fn evaluate_files(
+    reproduction: &Path,
+    demo_paths: &[PathBuf],
+    model: Option<&Path>,
+) -> Result<(FidelityReport, &'static str)> {
+    let (rep, demos) = steps::evaluation_inputs(reproduction, demo_paths)?;
+    let params = MetricsParams {
+        sample_period: sample_period(&demos[0]),
+        ..MetricsParams::default()
+    };
+    #[cfg(feature = "sim")]
+    if crate::experiment::are_arm_joints(&rep.columns) {
+        let arm = crate::experiment::job::load_arm(model)?;
+        let report = crate::experiment::evaluate(Some(&arm), &demos, &rep.rows, &params)?;
+        return Ok((report, "rad"));
+    }
+    let _ = model;
+    Ok((
+        steps::evaluate_rows(&demos, &rep.rows, &params)?,
+        "data units",
+    ))
+}
+
+/// Human-readable lines of a fidelity report.
+pub fn fidelity_lines(f: &FidelityReport, unit: &str) -> String {
+    let st = |s: &crate::metrics::Stat| format!("mean {:.4}, worst {:.4}", s.mean, s.worst);
+    let mut out = String::new();
+    let line = |label: String, value: String| format!("{label:<34}{value}\n");
+    out += &line(
+        format!("joint DTW ({unit}/step):"),
+        st(&f.joint_dtw_rad_per_step),
+    );
+    if let Some(w) = &f.wrist_dtw_mm {
+        out += &line("wrist-path DTW (mm/step):".into(), st(w));
+    } else if cfg!(not(feature = "sim")) {
+        out += &line(
+            "wrist-path DTW (mm/step):".into(),
+            "n/a (built without the `sim` feature: no arm kinematics)".into(),
+        );
+    }
+    out += &line(format!("apex error ({unit}):"), st(&f.apex_error_rad));
+    out += &line(
+        format!("final-posture error ({unit}):"),
+        st(&f.final_error_rad),
+    );
+    out += &line("duration ratio:".into(), st(&f.duration_ratio));
+    out += &format!(
+        "smoothness: normalized jerk {}, velocity reversals {} ({:?} per column)\n",
+        f.reproduction_smoothness
+            .normalized_jerk
+            .map_or("n/a".into(), |j| format!("{j:.0}")),
+        f.reproduction_smoothness.total_reversals,
+        f.reproduction_smoothness.reversals
+    );
+    out
+}
+
+/// `cosco train`: read (one gesture, or labelled directories of several), train
+/// (`progress(done, total)`), save atomically.
+pub fn train_files(
+    config: Option<&Path>,
+    demo_paths: &[PathBuf],
+    out: &Path,
+    state_length_from_data: bool,
+    progress: Option<&dyn Fn(usize, usize)>,
+) -> Result<GestureModel> {
+    // where the model goes is checked before any reading or training
+    steps::check_model_output(out)?;
+    let mut cfg = steps::config(config)?;
+    if state_length_from_data {
+        let sets = labelled::read_demo_sets(demo_paths, None)?;
+        let width = match &sets {
+            labelled::DemoSets::Plain(d) => d[0].width(),
+            labelled::DemoSets::Labelled(s) => s[0].1[0].width(),
+        };
+        cfg = cfg.for_width(width)?;
+    }
+    let sets = labelled::read_demo_sets(demo_paths, Some(cfg.params().state_length))?;
+    let model = labelled::train_sets(&cfg, &sets, progress)?;
+    labelled::save_gesture_model(&model, out)?;
+    Ok(model)
+}
+
+/// Write a reproduction CSV atomically (`step`, then the model's columns).
+fn write_reproduction(model: &GestureModel, rep: &Reproduction, out: &Path) -> Result<()> {
+    let bytes = steps::reproduction_csv(&model.branches()[0], rep)?;
+    crate::fsutil::write_atomic(out, &bytes).with_context(|| format!("writing {}", out.display()))
+}
+
+/// `cosco reproduce` with a model of one or several gestures: gesture `label` (required with
+/// several) from the command line's initial posture or a demonstration's first row; with
+/// `resume_from` (an encoder reading of part of that reproduction) the rest of it
+/// ([`Hsom::resume`](crate::hsom::Hsom::resume)). Returns the number of postures and the
+/// gesture.
+pub fn reproduce_gesture_file(
+    model: &Path,
+    label: Option<&str>,
+    initial: Option<&str>,
+    initial_from: Option<&Path>,
+    resume_from: Option<&Path>,
+    out: &Path,
+) -> Result<(usize, Option<String>)> {
+    let m = load_gesture_model(model)?;
+    // the gesture is checked before the initial posture is read
+    let branch = m.branch(label)?;
+    let initial = match (initial, initial_from) {
+        (Some(text), None) => parse_posture(text)?,
+        (None, Some(p)) => steps::initial_from_file(branch, p)?,
+        _ => bail!("give exactly one of --initial and --initial-from"),
+    };
+    let rep = match resume_from {
+        Some(path) => {
+            let reading = steps::rows_from_file(branch, path)?;
+            steps::resume(branch, &model.display().to_string(), &initial, &reading)
+                .with_context(|| format!("resuming after {}", path.display()))?
+        }
+        None => labelled::reproduce_gesture(&m, &model.display().to_string(), label, &initial)?,
+    };
+    write_reproduction(&m, &rep, out)?;
+    Ok((rep.postures.len(), label.map(str::to_string)))
+}
+
+/// `cosco reproduce --prefix-from CSV --prefix N`: continue the gesture the hierarchy
+/// recognises in the file's first N samples.
+pub fn continue_file(
+    model: &Path,
+    prefix_from: &Path,
+    prefix: usize,
+    out: &Path,
+) -> Result<(usize, Option<String>)> {
+    let m = load_gesture_model(model)?;
+    let (label, rep) = labelled::continue_file(&m, prefix_from, prefix)?;
+    write_reproduction(&m, &rep, out)?;
+    Ok((rep.postures.len(), Some(label)))
+}
+
+/// `cosco recognize`: one line per file (label, scores, early decision), an accuracy line
+/// when the files came from label subdirectories; every answer as JSON when asked.
+pub fn recognize_lines(model: &Path, demos: &Path, json: Option<&Path>) -> Result<Vec<String>> {
+    let m = load_gesture_model(model)?;
+    let answers = labelled::recognize_paths(&m, demos)?;
+    let mut lines = Vec::new();
+    for a in &answers {
+        let r = &a.recognition;
+        let scores: Vec<String> = r
+            .scores
+            .iter()
+            .zip(&r.thresholds)
+            .map(|((l, s), t)| format!("{l} {s:.4} (threshold {t:.4})"))
+            .collect();
+        lines.push(format!(
+            "{}: {}{} | decided at sample {} of {} | scores: {}",
+            a.file,
+            r.label.as_deref().unwrap_or("unknown"),
+            a.expected
+                .as_ref()
+                .map_or(String::new(), |e| format!(" (expected {e})")),
+            r.decided_at,
+            r.samples,
+            scores.join(", ")
+        ));
+    }
+    let labelled_files: Vec<_> = answers.iter().filter(|a| a.expected.is_some()).collect();
+    if !labelled_files.is_empty() {
+        let right = labelled_files
+            .iter()
+            .filter(|a| a.expected == a.recognition.label)
+            .count();
+        lines.push(format!(
+            "{right} of {} recognised as their directory's label",
+            labelled_files.len()
+        ));
+    }
+    if let Some(p) = json {
+        let bytes = serde_json::to_vec_pretty(&answers)?;
+        crate::fsutil::write_atomic(p, &bytes)
+            .with_context(|| format!("writing {}", p.display()))?;
+    }
+    Ok(lines)
+}
+
+/// Parse `"v1,v2,..."` into numbers, naming the bad entry.
+pub fn parse_posture(text: &str) -> Result<Vec<f64>> {
+    text.split(',')
+        .enumerate()
+        .map(|(i, v)| {
+            let v = v.trim();
+            match v.parse::<f64>() {
+                Ok(x) if x.is_finite() => Ok(x),
+                _ => bail!("--initial: value {} is '{v}': need a finite number", i + 1),
+            }
+        })
+        .collect()
+}
+
+/// `cosco reproduce`: the initial posture from the command line or a demonstration's first
+/// row, the reproduction written as `step` + the model's column names. Returns the number of
+/// postures.
+pub fn reproduce_file(
+    model: &Path,
+    initial: Option<&str>,
+    initial_from: Option<&Path>,
+    out: &Path,
+) -> Result<usize> {
+    let m = steps::load_model(model)?;
+    let initial = match (initial, initial_from) {
+        (Some(text), None) => parse_posture(text)?,
+        (None, Some(p)) => steps::initial_from_file(&m, p)?,
+        _ => bail!("give exactly one of --initial and --initial-from"),
+    };
+    let rep = steps::reproduce(&m, &model.display().to_string(), &initial)?;
+    let bytes = steps::reproduction_csv(&m, &rep)?;
+    crate::fsutil::write_atomic(out, &bytes)
+        .with_context(|| format!("writing {}", out.display()))?;
+    Ok(rep.postures.len())
+}

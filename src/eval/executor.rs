@@ -1,0 +1,71 @@
+//! Where a method's postures are carried out before they are scored: the executor. The
+//! kinematic one ([`Kinematic`]) takes the postures as they are, with no simulator; the
+//! simulated Nao arm's lives in `experiment::ArmExecutor` (feature `sim`), recording the
+//! executed motion at the demonstration's rate.
+
+use crate::demos::{sample_period, Demonstration};
+use crate::metrics::{FidelityReport, MetricsParams};
+
+use super::method::{peak_speed, Method};
+
+/// What an executor made of a method's postures, scored against the demonstration.
+#[derive(Debug, Clone)]
+pub struct Executed<T> {
+    /// The executed motion (the executor's own record of it).
+    pub trace: T,
+    /// Its fidelity against the demonstration.
+    pub fidelity: FidelityReport,
+    /// Posture values moved into the executor's ranges before execution.
+    pub clamped_values: usize,
+}
+
+/// Carries out a method's postures and scores what was carried out against a demonstration.
+pub trait Executor: Sync {
+    /// The executor's record of an executed motion.
+    type Trace;
+
+    /// Execute `postures` produced by `method` and score the motion against `target` alone,
+    /// at `target`'s sample period. The reason as a line when it cannot.
+    fn execute(
+        &self,
+        method: Method,
+        postures: &[Vec<f64>],
+        target: &Demonstration,
+    ) -> Result<Executed<Self::Trace>, String>;
+
+    /// The peak speed of GMM/GMR's lead-in from the initial posture to its first point, units
+    /// per second, for training demonstrations sampled every `period` seconds.
+    fn gmr_lead_in_speed(&self, train: &[Demonstration], period: f64) -> f64;
+}
+
+/// The postures as they are: no simulator, no ranges, scored in the data's own units. GMM/GMR's
+/// lead-in moves at the training demonstrations' own peak speed ([`peak_speed`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Kinematic;
+
+impl Executor for Kinematic {
+    type Trace = ();
+
+    fn execute(
+        &self,
+        _method: Method,
+        postures: &[Vec<f64>],
+        target: &Demonstration,
+    ) -> Result<Executed<()>, String> {
+        let params = MetricsParams {
+            sample_period: sample_period(target),
+            ..MetricsParams::default()
+        };
+        let fidelity = crate::steps::evaluate_rows(std::slice::from_ref(target), postures, &params)
+            .map_err(|e| crate::steps::error_line(&e))?;
+        Ok(Executed {
+            trace: (),
+            fidelity,
+            clamped_values: 0,
+        })
+    }
+
+    fn gmr_lead_in_speed(&self, train: &[Demonstration], period: f64) -> f64 {
+        peak_speed(train, period)
+    }
+}

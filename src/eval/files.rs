@@ -1,0 +1,67 @@
+//! `cosco heldout`: leave-one-out on demonstration files (read as `cosco train` reads them),
+//! with the outputs it writes.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Context, Result};
+
+use crate::steps;
+
+use super::{
+    failures, json, leave_one_out, markdown, read_gestures, Kinematic, LooSettings, Method,
+};
+
+/// What `cosco heldout` does.
+pub struct HeldoutJob {
+    /// Demonstration paths, as for `cosco train`.
+    pub demos: Vec<PathBuf>,
+    /// Configuration file (default: the built-in recommended one).
+    pub config: Option<PathBuf>,
+    /// Take `stateLength` from the data.
+    pub state_length_from_data: bool,
+    /// Which methods, which results, how many threads.
+    pub settings: LooSettings,
+    /// Where to write every fold's scores as JSON.
+    pub json: Option<PathBuf>,
+    /// Where to draw one fold per gesture.
+    pub png: Option<PathBuf>,
+}
+
+/// `cosco heldout`: leave-one-out on the demonstrations' files with the kinematic executor
+/// (`progress(done, total)` after each fold); the Markdown tables, after writing the JSON and
+/// the figure when asked.
+pub fn heldout(
+    job: &HeldoutJob,
+    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+) -> Result<String> {
+    for p in job.json.iter().chain(&job.png) {
+        steps::check_output(p)?;
+    }
+    let cfg = steps::config(job.config.as_deref())?;
+    let (cfg, gestures) = read_gestures(&job.demos, &cfg, job.state_length_from_data)?;
+    let study = leave_one_out(&cfg, gestures, &job.settings, &Kinematic, progress)?;
+    // nothing to compare when the hierarchy itself never ran: the reason, as an error
+    let ran = |m| {
+        study
+            .iter()
+            .flat_map(|g| &g.held_out)
+            .flat_map(|f| &f.runs)
+            .any(|r| r.method == m && r.score.is_some())
+    };
+    if !ran(Method::Hierarchy) {
+        let why = failures(&study)
+            .into_iter()
+            .find(|(m, _, _)| *m == Method::Hierarchy)
+            .map_or_else(|| "no fold ran".to_string(), |(_, why, _)| why);
+        bail!("the hierarchy produced no reproduction on any fold: {why}");
+    }
+    if let Some(p) = &job.json {
+        crate::fsutil::write_atomic(p, json(&cfg, &study).as_bytes())
+            .with_context(|| format!("writing {}", p.display()))?;
+    }
+    #[cfg(feature = "plot")]
+    if let Some(p) = &job.png {
+        super::png(p, &study, 0)?;
+    }
+    Ok(markdown(&study))
+}

@@ -1,0 +1,301 @@
+//! Leave-one-out, and the in-sample result beside it, over methods x an executor: for each
+//! demonstration of a gesture in turn, learn from the others, reproduce from its first
+//! sample, execute, and score against it alone; in-sample, learn from all.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+use crate::config::HsomConfig;
+use crate::demos::Demonstration;
+
+use super::executor::Executor;
+use super::method::{run_fold, FoldInput, Method};
+use super::results::{Fold, GestureLoo, Run, Score};
+
+/// Gestures by name, each with its demonstrations.
+pub type Gestures = Vec<(String, Vec<Demonstration>)>;
+
+/// Which methods run besides the hierarchy and the nearest sequence, and whether the
+/// in-sample result is computed too.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LooSettings {
+    /// The configuration at height 1.
+    pub height_1: bool,
+    /// GMM/GMR.
+    pub gmr: bool,
+    /// The replay of the nearest training demonstration.
+    pub replay: bool,
+    /// Learn from all and score against each too.
+    pub in_sample: bool,
+    /// Worker threads (at least 1).
+    pub threads: usize,
+}
+
+impl Default for LooSettings {
+    fn default() -> Self {
+        LooSettings {
+            height_1: true,
+            gmr: true,
+            replay: true,
+            in_sample: true,
+            threads: 1,
+        }
+    }
+}
+
+impl LooSettings {
+    /// The methods these settings run; `held_out` false drops the replay (in-sample it would
+    /// replay the demonstration scored against).
+    pub fn methods(&self, held_out: bool) -> Vec<Method> {
+        Method::ALL
+            .into_iter()
+            .filter(|m| match m {
+                Method::Hierarchy | Method::NearestSequence => true,
+                Method::Height1 => self.height_1,
+                Method::GmmGmr => self.gmr,
+                Method::Replay => self.replay && held_out,
+            })
+            .collect()
+    }
+}
+
+/// Errors of the study.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum LooError {
+    /// Too few demonstrations to leave one out.
+    #[error("gesture '{gesture}': leave-one-out needs at least 3 demonstrations (2 to learn from, 1 to score against), got {found}")]
+    TooFew {
+        /// The gesture.
+        gesture: String,
+        /// Demonstrations given.
+        found: usize,
+    },
+    /// No gesture given.
+    #[error("no gesture to evaluate")]
+    Empty,
+    /// A bad setting.
+    #[error("threads = {0}: needs at least 1")]
+    Threads(usize),
+    /// The configuration (at height 1, or for the data's width) is not valid.
+    #[error(transparent)]
+    Config(#[from] crate::config::ConfigError),
+    /// The demonstrations could not be read, or do not fit the configuration.
+    #[error(transparent)]
+    Read(#[from] crate::labelled::LabelledError),
+    /// The demonstrations' width is not the configuration's state length.
+    #[error("{path}: {found} columns but the configuration's stateLength is {expected}; give a configuration for {found} variables, or take stateLength from the data")]
+    Width {
+        /// The first file of another width.
+        path: String,
+        /// The configuration's state length.
+        expected: usize,
+        /// The file's columns.
+        found: usize,
+    },
+    /// A demonstration is not valid (non-finite values, columns that differ within a
+    /// gesture, ...).
+    #[error(transparent)]
+    Demo(#[from] crate::demos::DemoError),
+    /// The figure could not be drawn or written.
+    #[cfg(feature = "plot")]
+    #[error(transparent)]
+    Plot(#[from] crate::plot::PlotError),
+}
+
+/// The diagonal of the bounding box of every sample of `demos`.
+pub fn diagonal(demos: &[Demonstration]) -> f64 {
+    let width = demos.first().map_or(0, |d| d.width());
+    let mut lo = vec![f64::INFINITY; width];
+    let mut hi = vec![f64::NEG_INFINITY; width];
+    for row in demos.iter().flat_map(|d| &d.rows) {
+        for (k, &v) in row.iter().enumerate() {
+            lo[k] = lo[k].min(v);
+            hi[k] = hi[k].max(v);
+        }
+    }
+    lo.iter()
+        .zip(&hi)
+        .map(|(a, b)| (b - a).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Fold `i`'s training demonstrations: all but `demos[i]`.
+pub fn all_but(demos: &[Demonstration], i: usize) -> Vec<Demonstration> {
+    demos
+        .iter()
+        .enumerate()
+        .filter(|&(j, _)| j != i)
+        .map(|(_, d)| d.clone())
+        .collect()
+}
+
+/// The methods of `settings` on one fold ([`run_fold`]), scored in the gesture's diagonal
+/// `diag`.
+fn fold<E: Executor>(
+    input: &FoldInput<'_>,
+    diag: f64,
+    settings: &LooSettings,
+    held_out: bool,
+    executor: &E,
+) -> Fold {
+    let runs = run_fold(&settings.methods(held_out), input, executor)
+        .into_iter()
+        .map(|(method, r)| match r {
+            Ok(r) => Run {
+                method,
+                score: Some(Score::of(&r.executed.fidelity, diag)),
+                error: None,
+                postures: r.postures,
+            },
+            Err(e) => Run {
+                method,
+                score: None,
+                error: Some(e),
+                postures: Vec::new(),
+            },
+        })
+        .collect();
+    Fold {
+        demonstration: input.target.source.clone(),
+        runs,
+    }
+}
+
+/// The gestures of `paths` as `cosco train` reads them: a directory of CSV files or files
+/// (one gesture, named after its directory, else `gesture`), or directories of gesture
+/// subdirectories (`DIR/<gesture>/*.csv`, each gesture on its own). With `from_data` the configuration is
+/// adapted to the data's width ([`HsomConfig::for_width`]); otherwise [`leave_one_out`]
+/// refuses files without the configuration's `stateLength` columns.
+pub fn read_gestures(
+    paths: &[std::path::PathBuf],
+    config: &HsomConfig,
+    from_data: bool,
+) -> Result<(HsomConfig, Gestures), LooError> {
+    let sets = match crate::labelled::read_demo_sets(paths, None)? {
+        crate::labelled::DemoSets::Plain(d) => {
+            let name = match paths {
+                [one] if one.is_dir() => one.file_name().map(|n| n.to_string_lossy().to_string()),
+                _ => None,
+            };
+            vec![(name.unwrap_or_else(|| "gesture".into()), d)]
+        }
+        crate::labelled::DemoSets::Labelled(sets) => sets,
+    };
+    let width = sets[0].1[0].width();
+    let config = if from_data {
+        config.for_width(width)?
+    } else {
+        config.clone()
+    };
+    Ok((config, sets))
+}
+
+/// Leave-one-out on each gesture's demonstrations (`(name, demonstrations)`; each set is
+/// checked first: at least 3, of the configuration's `stateLength`, valid), with the
+/// settings' methods carried out by `executor` ([`Kinematic`](super::Kinematic): the postures
+/// as they are); `progress(done, total)` after each fold when given. Folds run on
+/// `settings.threads` threads; the result does not depend on their number.
+pub fn leave_one_out<E: Executor>(
+    config: &HsomConfig,
+    gestures: Gestures,
+    settings: &LooSettings,
+    executor: &E,
+    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+) -> Result<Vec<GestureLoo>, LooError> {
+    if gestures.is_empty() {
+        return Err(LooError::Empty);
+    }
+    if settings.threads == 0 {
+        return Err(LooError::Threads(0));
+    }
+    if let Some((g, d)) = gestures.iter().find(|(_, d)| d.len() < 3) {
+        return Err(LooError::TooFew {
+            gesture: g.clone(),
+            found: d.len(),
+        });
+    }
+    let expected = config.params().state_length;
+    if let Some(d) = gestures
+        .iter()
+        .flat_map(|(_, d)| d)
+        .find(|d| d.width() != expected)
+    {
+        return Err(LooError::Width {
+            path: d.source.clone(),
+            expected,
+            found: d.width(),
+        });
+    }
+    for (_, demos) in &gestures {
+        crate::demos::validate_set(demos, None)?;
+    }
+    let height_1 = match settings.height_1 {
+        true => Some(config.at_height(1)?),
+        false => None,
+    };
+    // jobs: (gesture, demonstration, held out?)
+    let mut jobs = Vec::new();
+    for (g, (_, demos)) in gestures.iter().enumerate() {
+        for i in 0..demos.len() {
+            jobs.push((g, i, true));
+            if settings.in_sample {
+                jobs.push((g, i, false));
+            }
+        }
+    }
+    let diagonals: Vec<f64> = gestures.iter().map(|(_, d)| diagonal(d)).collect();
+    let results: Mutex<Vec<Option<Fold>>> = Mutex::new(vec![None; jobs.len()]);
+    let (next, done) = (AtomicUsize::new(0), AtomicUsize::new(0));
+    std::thread::scope(|s| {
+        for _ in 0..settings.threads.min(jobs.len()) {
+            s.spawn(|| loop {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                let Some(&(g, i, held)) = jobs.get(k) else {
+                    break;
+                };
+                let demos = &gestures[g].1;
+                let train = if held {
+                    all_but(demos, i)
+                } else {
+                    demos.clone()
+                };
+                let input = FoldInput {
+                    config: Some(config),
+                    height_1: height_1.as_ref(),
+                    train: &train,
+                    target: &demos[i],
+                };
+                let f = fold(&input, diagonals[g], settings, held, executor);
+                results.lock().unwrap_or_else(|p| p.into_inner())[k] = Some(f);
+                let d = done.fetch_add(1, Ordering::Relaxed) + 1;
+                if let Some(p) = progress {
+                    p(d, jobs.len());
+                }
+            });
+        }
+    });
+    let mut folds = results
+        .into_inner()
+        .unwrap_or_else(|p| p.into_inner())
+        .into_iter();
+    let mut out = Vec::new();
+    for (g, (name, demos)) in gestures.into_iter().enumerate() {
+        let (mut held_out, mut in_sample) = (Vec::new(), Vec::new());
+        for _ in 0..demos.len() {
+            held_out.push(folds.next().flatten().expect("every job ran"));
+            if settings.in_sample {
+                in_sample.push(folds.next().flatten().expect("every job ran"));
+            }
+        }
+        out.push(GestureLoo {
+            gesture: name,
+            demonstrations: demos,
+            diagonal: diagonals[g],
+            held_out,
+            in_sample,
+        });
+    }
+    Ok(out)
+}

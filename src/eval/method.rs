@@ -1,0 +1,213 @@
+//! The methods an evaluation compares on the same folds, and how each produces postures from
+//! training demonstrations and an initial posture.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::config::HsomConfig;
+use crate::demos::{sample_period, Demonstration};
+use crate::gmr::{plan_at, ComponentChoice, GmrParams};
+use crate::hsom::Hsom;
+use crate::metrics::median;
+
+use super::executor::{Executed, Executor};
+
+/// The components the GMM/GMR baseline chooses among (lowest BIC): 1..=16, wider than the
+/// library's default 1..=8 (on the four gestures BIC still fell at 8 components; a wave needs
+/// about two per oscillation).
+pub const GMR_COMPONENTS: ComponentChoice = ComponentChoice::Bic { min: 1, max: 16 };
+
+/// A method of an evaluation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// The configuration as given ([`Hsom::reproduce`]).
+    Hierarchy,
+    /// The same trained model's bottom code following the bottom events of the training
+    /// demonstration whose first sample is nearest, no level above
+    /// ([`Hsom::follow_nearest`]): the simpler thing the hierarchy has to beat.
+    NearestSequence,
+    /// The configuration with its bottom level alone ([`HsomConfig::at_height`]).
+    Height1,
+    /// The paper's baseline: GMM/GMR ([`GMR_COMPONENTS`]), a minimum-jerk lead-in from the
+    /// initial posture to GMR's first point at the executor's speed
+    /// ([`Executor::gmr_lead_in_speed`]), then GMR's mean every sample period.
+    GmmGmr,
+    /// The training demonstration whose first sample is nearest, as recorded (no model).
+    Replay,
+}
+
+impl Method {
+    /// Every method, in the order of the tables.
+    pub const ALL: [Method; 5] = [
+        Method::Hierarchy,
+        Method::NearestSequence,
+        Method::Height1,
+        Method::GmmGmr,
+        Method::Replay,
+    ];
+
+    /// The name in tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Hierarchy => "hierarchy",
+            Method::NearestSequence => "nearest sequence",
+            Method::Height1 => "height 1",
+            Method::GmmGmr => "GMM/GMR",
+            Method::Replay => "replay (no model)",
+        }
+    }
+}
+
+/// The peak speed of demonstrations sampled every `period` seconds, units per second: the
+/// median over the demonstrations of their largest speed on any variable, each speed a
+/// difference over 4 samples (so a single noisy sample does not make it; over all of a
+/// demonstration shorter than 5 samples; 0 for one sample). The kinematic executor's GMM/GMR
+/// lead-in moves at most this fast.
+pub fn peak_speed(demos: &[Demonstration], period: f64) -> f64 {
+    let per_demo = demos.iter().map(|d| {
+        // over 4 samples, or all of a shorter demonstration
+        let span = d.rows.len().saturating_sub(1).min(4);
+        if span == 0 {
+            return 0.0;
+        }
+        d.rows
+            .windows(span + 1)
+            .flat_map(|w| w[span].iter().zip(&w[0]).map(|(b, a)| (b - a).abs()))
+            .fold(0.0, f64::max)
+            / (span as f64 * period)
+    });
+    median(per_demo).unwrap_or(0.0)
+}
+
+/// One fold: what the methods learn from and whom they are scored against.
+#[derive(Debug, Clone, Copy)]
+pub struct FoldInput<'a> {
+    /// The configuration of the hierarchy and of the nearest sequence (`None` when neither
+    /// runs).
+    pub config: Option<&'a HsomConfig>,
+    /// The configuration at height 1 ([`Method::Height1`]; `None` when not run).
+    pub height_1: Option<&'a HsomConfig>,
+    /// Demonstrations to learn from.
+    pub train: &'a [Demonstration],
+    /// The demonstration whose first sample the methods start from and which they are scored
+    /// against alone.
+    pub target: &'a Demonstration,
+}
+
+/// A method's run on one fold.
+#[derive(Debug, Clone)]
+pub struct MethodRun<T> {
+    /// The postures the method produced, before execution.
+    pub postures: Vec<Vec<f64>>,
+    /// What the executor made of them.
+    pub executed: Executed<T>,
+    /// Training time, seconds (the hierarchy's for the nearest sequence, which uses its model).
+    pub train_s: f64,
+    /// Time to produce the postures, seconds.
+    pub reproduce_s: f64,
+}
+
+/// Each method of a fold with its run, or the reason it produced none.
+pub type FoldRuns<T> = Vec<(Method, Result<MethodRun<T>, String>)>;
+
+/// The error and its causes on one line.
+fn msg(e: impl std::error::Error + 'static) -> String {
+    crate::steps::error_line(&e)
+}
+
+/// Train with `config`, timed.
+fn fit(config: &HsomConfig, train: &[Demonstration]) -> Result<(Hsom, f64), String> {
+    let t = Instant::now();
+    let model = config.fit(train).map_err(msg)?;
+    Ok((model, t.elapsed().as_secs_f64()))
+}
+
+/// Each of `methods` on one fold: learned from `input.train`, started from `input.target`'s
+/// first sample, executed by `executor` and scored against `input.target`; in `methods`'
+/// order, each with its run or the reason it produced none. The hierarchy and the nearest
+/// sequence share one trained model.
+pub fn run_fold<E: Executor>(
+    methods: &[Method],
+    input: &FoldInput<'_>,
+    executor: &E,
+) -> FoldRuns<E::Trace> {
+    let (train, target) = (input.train, input.target);
+    let Some(initial) = target.rows.first() else {
+        let why = format!("{}: no samples", target.source);
+        return methods.iter().map(|&m| (m, Err(why.clone()))).collect();
+    };
+    let mut model: Option<Result<(Hsom, f64), String>> = None;
+    methods
+        .iter()
+        .map(|&method| {
+            let produced = match method {
+                Method::Hierarchy | Method::NearestSequence => {
+                    let trained = model.get_or_insert_with(|| {
+                        input
+                            .config
+                            .ok_or_else(|| "no configuration of the hierarchy given".to_string())
+                            .and_then(|c| fit(c, train))
+                    });
+                    match trained {
+                        Ok((m, train_s)) => {
+                            let t = Instant::now();
+                            let rep = match method {
+                                Method::Hierarchy => m.reproduce(initial),
+                                _ => m.follow_nearest(train, initial),
+                            };
+                            rep.map(|r| (r.postures, *train_s, t.elapsed().as_secs_f64()))
+                                .map_err(msg)
+                        }
+                        Err(e) => Err(e.clone()),
+                    }
+                }
+                Method::Height1 => input
+                    .height_1
+                    .ok_or_else(|| "no configuration at height 1 given".to_string())
+                    .and_then(|h1| fit(h1, train))
+                    .and_then(|(m, train_s)| {
+                        let t = Instant::now();
+                        let rep = m.reproduce(initial).map_err(msg)?;
+                        Ok((rep.postures, train_s, t.elapsed().as_secs_f64()))
+                    }),
+                Method::GmmGmr => {
+                    let period = sample_period(target);
+                    let t = Instant::now();
+                    GmrParams::new()
+                        .components(GMR_COMPONENTS)
+                        .sample_period(period)
+                        .check()
+                        .and_then(|p| p.fit(train))
+                        .and_then(|m| {
+                            let train_s = t.elapsed().as_secs_f64();
+                            let t = Instant::now();
+                            let speed = executor.gmr_lead_in_speed(train, period);
+                            plan_at(&m, initial, 1.0 / period, speed)
+                                .map(|p| (p.postures, train_s, t.elapsed().as_secs_f64()))
+                        })
+                        .map_err(msg)
+                }
+                Method::Replay => {
+                    let start = |d: &Demonstration| crate::dtw::euclidean(&d.rows[0], initial);
+                    train
+                        .iter()
+                        .min_by(|a, b| start(a).total_cmp(&start(b)))
+                        .map(|d| (d.rows.clone(), 0.0, 0.0))
+                        .ok_or_else(|| "no training demonstration".to_string())
+                }
+            };
+            let run = produced.and_then(|(postures, train_s, reproduce_s)| {
+                let executed = executor.execute(method, &postures, target)?;
+                Ok(MethodRun {
+                    postures,
+                    executed,
+                    train_s,
+                    reproduce_s,
+                })
+            });
+            (method, run)
+        })
+        .collect()
+}

@@ -1,0 +1,30 @@
+//! One evaluator, without the simulator: the methods compared on the same folds
+//! ([`Method`]: the hierarchy, the nearest sequence, height 1, GMM/GMR, the replay of the
+//! training demonstration that starts nearest), an [`Executor`] that carries their postures
+//! out ([`Kinematic`]: as they are; the simulated arm's is `experiment::ArmExecutor`),
+//! leave-one-out with the in-sample result beside it ([`leave_one_out`]), and the results
+//! ([`Score`], [`Fold`], [`GestureLoo`], [`MethodSummary`]).
+//!
+//! Used by `cosco heldout` (any recorded data), the Python package, the simulated held-out
+//! evaluation of `simulate` and the examples (through [`run_fold`] with the arm's executor).
+//!
+//! Reproductions are scored as executed: joint DTW in the data's own units per step and
+//! relative to the diagonal of the gesture's bounding box (comparable across gestures and
+//! units), final-sample error, duration ratio and normalised jerk over the held-out
+//! demonstration's, all after the idle trimming of `docs/METRICS.md`.
+
+mod executor;
+mod files;
+mod loo;
+mod method;
+mod report;
+mod results;
+
+pub use executor::{Executed, Executor, Kinematic};
+pub use files::{heldout, HeldoutJob};
+pub use loo::{all_but, diagonal, leave_one_out, read_gestures, Gestures, LooError, LooSettings};
+pub use method::{peak_speed, run_fold, FoldInput, FoldRuns, Method, MethodRun, GMR_COMPONENTS};
+#[cfg(feature = "plot")]
+pub use report::png;
+pub use report::{json, markdown};
+pub use results::{failures, summary, Fold, GestureLoo, MethodSummary, Run, Score, MIN_DEMO_JERK};

@@ -1,0 +1,187 @@
+//! An evaluation as JSON, Markdown and a figure (`cosco heldout`).
+
+use crate::config::HsomConfig;
+
+#[cfg(feature = "plot")]
+use super::loo::LooError;
+use super::method::Method;
+use super::results::{failures, summary, GestureLoo};
+#[cfg(feature = "plot")]
+use crate::demos::sample_period;
+
+/// The study as a JSON document (what `cosco heldout --json` writes): the configuration's
+/// name, the [`summary`] and every gesture's folds with every method's score.
+pub fn json(config: &HsomConfig, study: &[GestureLoo]) -> String {
+    let doc = serde_json::json!({
+        "config": config.source(),
+        "summary": summary(study),
+        "gestures": study,
+    });
+    // cannot fail: plain numbers (non-finite ones become null), strings and enums
+    serde_json::to_string_pretty(&doc).unwrap_or_default()
+}
+
+/// The study as Markdown: per gesture, each method's mean relative DTW over the folds held
+/// out (and in-sample), then the summary over the gestures.
+pub fn markdown(study: &[GestureLoo]) -> String {
+    use std::fmt::Write as _;
+    let summaries = summary(study);
+    let methods: Vec<Method> = summaries.iter().map(|s| s.method).collect();
+    let cell = |v: Option<f64>| v.map_or("failed".to_string(), |v| format!("{v:.4}"));
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "Relative DTW (per-step DTW / the gesture's bounding-box diagonal), mean over the \
+         leave-one-out folds, held out (in-sample in brackets where learned from all):\n"
+    );
+    let _ = writeln!(
+        out,
+        "| gesture | demos | {} |",
+        methods
+            .iter()
+            .map(|m| m.name())
+            .collect::<Vec<_>>()
+            .join(" | ")
+    );
+    let _ = writeln!(out, "|---|---|{}", "---|".repeat(methods.len()));
+    for g in study {
+        let cells: Vec<String> = methods
+            .iter()
+            .map(|&m| {
+                let h = cell(g.mean(&g.held_out, m, |s| s.relative_dtw));
+                match g.mean(&g.in_sample, m, |s| s.relative_dtw) {
+                    Some(i) => format!("{h} ({i:.4})"),
+                    None => h,
+                }
+            })
+            .collect();
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} |",
+            g.gesture,
+            g.demonstrations.len(),
+            cells.join(" | ")
+        );
+    }
+    let _ = writeln!(
+        out,
+        "\nMedians over the {} gestures (held out; per-gesture means over the folds):\n",
+        study.len()
+    );
+    let _ = writeln!(
+        out,
+        "| method | relative DTW | in-sample | duration ratio | final error / diagonal | jerk ratio | hierarchy / method | hierarchy closer | failed folds |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
+    let opt = |v: Option<f64>, d: usize| v.map_or("-".to_string(), |v| format!("{v:.d$}"));
+    for s in summaries {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} of {} |",
+            s.method.name(),
+            opt(s.relative_dtw, 4),
+            opt(s.relative_dtw_in_sample, 4),
+            opt(s.duration_ratio, 2),
+            opt(s.relative_final_error, 4),
+            opt(s.jerk_ratio, 2),
+            if s.method == Method::Hierarchy {
+                "-".to_string()
+            } else {
+                opt(s.hierarchy_ratio, 3)
+            },
+            if s.method == Method::Hierarchy {
+                "-".to_string()
+            } else {
+                format!("{} of {}", s.hierarchy_closer.0, s.hierarchy_closer.1)
+            },
+            s.failed,
+            s.folds
+        );
+    }
+    let failed = failures(study);
+    if !failed.is_empty() {
+        let _ = writeln!(out, "\nFailed runs (method: reason; where):\n");
+        for (m, why, at) in failed {
+            let shown = at.iter().take(3).cloned().collect::<Vec<_>>().join("; ");
+            let more = match at.len() {
+                n if n > 3 => format!("; and {} more", n - 3),
+                _ => String::new(),
+            };
+            let _ = writeln!(out, "- {}: {why}; {shown}{more}", m.name());
+        }
+    }
+    out
+}
+
+/// A figure of one fold per gesture: the gesture's demonstrations (thin, grey), the held-out
+/// one (black) and the reproductions from its first sample of the hierarchy, the nearest
+/// sequence and GMM/GMR (height 1 and the replay are in the tables only), in the plane of the
+/// first two variables (against time for data of one variable). `fold` picks the held-out
+/// demonstration (0-based; the last one where a gesture has fewer).
+#[cfg(feature = "plot")]
+pub fn png(path: &std::path::Path, study: &[GestureLoo], fold: usize) -> Result<(), LooError> {
+    use crate::plot::{panels_png, Panel, Series, BLACK, PALETTE};
+    use plotters::style::RGBColor;
+    let color = |m: Method| match m {
+        Method::Hierarchy => PALETTE[3],
+        Method::NearestSequence => PALETTE[0],
+        Method::Height1 => PALETTE[4],
+        Method::GmmGmr => RGBColor(200, 0, 130),
+        Method::Replay => PALETTE[2],
+    };
+    let points = |rows: &[Vec<f64>], period: f64| -> Vec<(f64, f64)> {
+        rows.iter()
+            .enumerate()
+            .map(|(k, r)| match r.len() {
+                1 => (k as f64 * period, r[0]),
+                _ => (r[0], r[1]),
+            })
+            .collect()
+    };
+    let mut panels = Vec::new();
+    for g in study {
+        let k = fold.min(g.held_out.len().saturating_sub(1));
+        let (Some(target), Some(f)) = (g.demonstrations.get(k), g.held_out.get(k)) else {
+            continue;
+        };
+        let period = sample_period(target);
+        let (x, y) = match target.columns.len() {
+            1 => ("time (s)".to_string(), target.columns[0].clone()),
+            _ => (target.columns[0].clone(), target.columns[1].clone()),
+        };
+        let mut panel = Panel::new(format!("{} (fold {})", g.gesture, k + 1), x, y);
+        panel.equal_aspect = target.columns.len() > 1;
+        for (j, d) in g.demonstrations.iter().enumerate() {
+            if j != k {
+                let mut s = Series::new("", RGBColor(170, 170, 170), points(&d.rows, period));
+                s.label = (j == usize::from(k == 0)).then(|| "training".to_string());
+                s.width = 1;
+                panel.series.push(s);
+            }
+        }
+        panel
+            .series
+            .push(Series::new("held out", BLACK, points(&target.rows, period)));
+        // GMM/GMR first, the hierarchy last (on top)
+        for r in f.runs.iter().rev().filter(|r| !r.postures.is_empty()) {
+            if r.method == Method::Height1 || r.method == Method::Replay {
+                continue;
+            }
+            panel.series.push(Series::new(
+                r.method.name(),
+                color(r.method),
+                points(&r.postures, period),
+            ));
+        }
+        panels.push(panel);
+    }
+    let cols = (panels.len() as f64).sqrt().ceil().max(1.0) as usize;
+    panels_png(
+        path,
+        "Held out (black), reproduced from its first sample",
+        &panels,
+        cols,
+        (420, 360),
+    )?;
+    Ok(())
+}
