@@ -15,7 +15,7 @@ use super::events::{
     a_part, b_part, bottom_events, chunk_input, chunks, summary, DurationCode, Item, Layout,
 };
 use super::labels::{branch_seed, GestureError, GestureModel};
-use super::reproduce::Reproduction;
+use super::reproduction::Reproduction;
 
 /// What recognition compares a label's matches with: per level, the branch's mean chunk
 /// distance on its training data (index 0, the bottom, unused), and the score above which a

@@ -4,7 +4,7 @@
 use super::encode::Step;
 use super::traces::HALF_PLACES;
 use crate::hsom::algorithm::Hsom;
-use crate::hsom::reproduce::{Reproduction, StopReason};
+use crate::hsom::reproduction::{Reproduction, StopReason};
 
 impl Hsom {
     /// Postures at every sample from the executed events: each event's node posture (its

@@ -7,7 +7,7 @@ use super::consensus::{aligned_samples, MAX_ALIGNED};
 use super::encode::{bottom_events, dist2, observed_durations, Step};
 use crate::hsom::algorithm::{check_series, demo_series, Hsom};
 use crate::hsom::errors::HsomError;
-use crate::hsom::reproduce::{Reproduction, StopReason};
+use crate::hsom::reproduction::{Reproduction, StopReason};
 
 impl Hsom {
     /// The demonstration through the bottom level's own code and back: its events (the

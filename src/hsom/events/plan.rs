@@ -15,7 +15,7 @@ use super::traces::{
 };
 use super::END;
 use crate::hsom::algorithm::Hsom;
-use crate::hsom::reproduce::{Reproduction, StopReason};
+use crate::hsom::reproduction::{Reproduction, StopReason};
 
 impl Hsom {
     pub(crate) fn reproduce_events(&self, y0: &[f64], r: &ReproductionParams) -> Reproduction {

@@ -15,7 +15,7 @@ use super::END;
 use crate::config::HsomParams;
 use crate::hsom::algorithm::Hsom;
 use crate::hsom::errors::HsomError;
-use crate::hsom::reproduce::StopReason;
+use crate::hsom::reproduction::StopReason;
 
 /// A 2-D gesture: hold at the origin, go to (1, 0), hold, come back, hold.
 fn gesture(hold: usize, noise_seed: u64) -> Vec<Vec<f64>> {
