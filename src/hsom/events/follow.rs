@@ -218,7 +218,7 @@ impl Hsom {
             .iter()
             .enumerate()
             .map(|(d, rows)| {
-                let (end, cost) = crate::hsom::recognize::open_end_cost(&norm, rows);
+                let (end, cost) = crate::dtw::open_end_cost(&norm, rows);
                 (d, end, cost)
             })
             .min_by(|a, b| a.2.total_cmp(&b.2))
