@@ -295,6 +295,47 @@ fn backtrack(acc: &[(f64, usize)], dir: &[u8], m: usize, (i, j): (usize, usize))
     }
 }
 
+/// The index of the lowest value (the first among equals; NaN never wins).
+pub(crate) fn argmin(v: &[f64]) -> usize {
+    let mut best = 0;
+    for (i, x) in v.iter().enumerate() {
+        if *x < v[best] || v[best].is_nan() {
+            best = i;
+        }
+    }
+    best
+}
+
+/// Where along `b` the sequence `a` ends (the column of the cheapest warping path that starts
+/// at both starts and covers all of `a`, open end in `b`) and that path's cost per sample of
+/// `a`.
+pub(crate) fn open_end_cost(a: &[Vec<f64>], b: &[Vec<f64>]) -> (usize, f64) {
+    let m = b.len();
+    let mut prev = vec![f64::INFINITY; m];
+    let mut cur = vec![f64::INFINITY; m];
+    for (i, ai) in a.iter().enumerate() {
+        for j in 0..m {
+            let c = euclidean(ai, &b[j]);
+            let best = if i == 0 && j == 0 {
+                0.0
+            } else {
+                let diag = if i > 0 && j > 0 {
+                    prev[j - 1]
+                } else {
+                    f64::INFINITY
+                };
+                let up = if i > 0 { prev[j] } else { f64::INFINITY };
+                let left = if j > 0 { cur[j - 1] } else { f64::INFINITY };
+                diag.min(up).min(left)
+            };
+            cur[j] = best + c;
+        }
+        std::mem::swap(&mut prev, &mut cur);
+    }
+    let end = argmin(&prev);
+    (end, prev[end] / a.len().max(1) as f64)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

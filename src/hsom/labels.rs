@@ -24,7 +24,7 @@ use super::algorithm::{Hsom, Presentation};
 use super::errors::{HsomError, PersistError};
 use super::persist::{ext, fnv1a, Format, FORMAT_VERSION, MAGIC, TEXT_MAGIC};
 use super::recognize::{Calibration, Scoring};
-use super::reproduce::Reproduction;
+use super::reproduction::Reproduction;
 
 /// Format version of a multi-gesture model file (a single-gesture model stays
 /// [`FORMAT_VERSION`]).

@@ -1,7 +1,9 @@
-//! Short-term memory of a level: the activity list (CoSCo-HSOM) and, as the baseline, the
-//! per-node activity levels of the sparse-code HSOM.
+//! Short-term memory: a level's activity list (CoSCo-HSOM) and, as the baseline, the per-node
+//! activity levels of the sparse-code HSOM; the memory of every level ([`Stm`]), shared by the
+//! paper's training and reproduction and by the replay of the training data.
 
-use crate::som::NodeId;
+use crate::config::{HsomConfig, MemoryMode};
+use crate::som::{NodeId, SelfOrganizingMap};
 
 /// A fixed-size FIFO of the IDs of a level's recent best-matching units, newest first.
 /// `push` is O(1): a ring buffer overwrites the oldest entry when full.
@@ -132,6 +134,80 @@ impl ActivityLevels {
     /// The decay per step (1/memory).
     pub fn decrement(&self) -> f64 {
         self.step
+    }
+}
+
+/// The short-term memory of every level, in either mode.
+#[derive(Debug, Clone)]
+pub(crate) enum Memory {
+    Lists(Vec<ActivityList>),
+    Levels(Vec<ActivityLevels>),
+}
+
+#[derive(Debug, Clone)]
+pub(crate) struct Stm {
+    pub(crate) mem: Memory,
+    /// Pushes since the last clear, per level.
+    pub(crate) pushes: Vec<usize>,
+    pub(crate) memory: usize,
+}
+
+impl Stm {
+    pub(crate) fn new(config: &HsomConfig) -> Self {
+        let p = config.params();
+        let mem = match p.memory_mode() {
+            MemoryMode::Lists => {
+                Memory::Lists((0..p.height).map(|_| ActivityList::new(p.memory)).collect())
+            }
+            MemoryMode::Levels => Memory::Levels(
+                p.levels
+                    .iter()
+                    .map(|l| ActivityLevels::new(l.rows * l.cols, p.memory))
+                    .collect(),
+            ),
+        };
+        Stm {
+            mem,
+            pushes: vec![0; p.height],
+            memory: p.memory,
+        }
+    }
+    pub(crate) fn clear(&mut self) {
+        match &mut self.mem {
+            Memory::Lists(v) => v.iter_mut().for_each(|l| l.clear()),
+            Memory::Levels(v) => v.iter_mut().for_each(|l| l.clear()),
+        }
+        self.pushes.iter_mut().for_each(|c| *c = 0);
+    }
+    /// Push a bottom BMU.
+    #[inline]
+    pub(crate) fn push_bottom(&mut self, node: usize, map: &SelfOrganizingMap) {
+        self.push(0, node, map);
+    }
+    #[inline]
+    pub(crate) fn push(&mut self, level: usize, node: usize, map: &SelfOrganizingMap) {
+        match &mut self.mem {
+            Memory::Lists(v) => v[level].push(map.id(node)),
+            Memory::Levels(v) => v[level].push(node),
+        }
+        self.pushes[level] += 1;
+    }
+    /// Input of level `level + 1` from the memory of `level`, for training: false when the
+    /// level above must not train now (the list below is not yet full).
+    #[inline]
+    pub(crate) fn input(&self, level: usize, out: &mut [f64], mask: &mut [bool]) -> bool {
+        let n = self.pushes[level];
+        if n == 0 || n < self.memory {
+            return false;
+        }
+        match &self.mem {
+            Memory::Lists(v) => v[level].encode(self.memory, 0, out, mask),
+            Memory::Levels(v) => {
+                out.copy_from_slice(v[level].levels());
+                mask.iter_mut().for_each(|m| *m = true);
+            }
+        }
+        true
     }
 }
 

@@ -18,9 +18,10 @@ mod errors;
 mod events;
 mod labels;
 mod memory;
+mod paper;
 mod persist;
 mod recognize;
-mod reproduce;
+mod reproduction;
 
 pub use algorithm::{plans_word, Hsom, LevelSummary, ModelSummary};
 pub use errors::{HsomError, PersistError};
@@ -28,4 +29,4 @@ pub use labels::{is_plain_label, GestureError, GestureModel, GESTURES_FORMAT_VER
 pub use memory::{ActivityLevels, ActivityList};
 pub use persist::FORMAT_VERSION;
 pub use recognize::{Recognition, Scoring, PREFIX_BLEND};
-pub use reproduce::{Reproduction, StopReason};
+pub use reproduction::{Reproduction, StopReason};

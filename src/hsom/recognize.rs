@@ -9,13 +9,15 @@
 
 use serde::Serialize;
 
+use crate::dtw::{argmin, open_end_cost};
+
 use super::algorithm::Hsom;
 use super::errors::HsomError;
 use super::events::{
     a_part, b_part, bottom_events, chunk_input, chunks, summary, DurationCode, Item, Layout,
 };
 use super::labels::{branch_seed, GestureError, GestureModel};
-use super::reproduce::Reproduction;
+use super::reproduction::Reproduction;
 
 /// What recognition compares a label's matches with: per level, the branch's mean chunk
 /// distance on its training data (index 0, the bottom, unused), and the score above which a
@@ -473,47 +475,8 @@ impl GestureModel {
 /// recordings' 40 Hz).
 pub const PREFIX_BLEND: usize = 10;
 
-/// The index of the lowest value (the first among equals; NaN never wins).
-fn argmin(v: &[f64]) -> usize {
-    let mut best = 0;
-    for (i, x) in v.iter().enumerate() {
-        if *x < v[best] || v[best].is_nan() {
-            best = i;
-        }
-    }
-    best
-}
-
 /// Where along `b` the sequence `a` ends: the column of the cheapest warping path that
 /// starts at both starts and covers all of `a` (open end in `b`).
 fn open_end(a: &[Vec<f64>], b: &[Vec<f64>]) -> usize {
     open_end_cost(a, b).0
-}
-
-/// [`open_end`] and that path's cost per sample of `a`.
-pub(crate) fn open_end_cost(a: &[Vec<f64>], b: &[Vec<f64>]) -> (usize, f64) {
-    let m = b.len();
-    let mut prev = vec![f64::INFINITY; m];
-    let mut cur = vec![f64::INFINITY; m];
-    for (i, ai) in a.iter().enumerate() {
-        for j in 0..m {
-            let c = crate::dtw::euclidean(ai, &b[j]);
-            let best = if i == 0 && j == 0 {
-                0.0
-            } else {
-                let diag = if i > 0 && j > 0 {
-                    prev[j - 1]
-                } else {
-                    f64::INFINITY
-                };
-                let up = if i > 0 { prev[j] } else { f64::INFINITY };
-                let left = if j > 0 { cur[j - 1] } else { f64::INFINITY };
-                diag.min(up).min(left)
-            };
-            cur[j] = best + c;
-        }
-        std::mem::swap(&mut prev, &mut cur);
-    }
-    let end = argmin(&prev);
-    (end, prev[end] / a.len().max(1) as f64)
 }

@@ -1,0 +1,204 @@
+//! The consensus weighed by the starts: per training demonstration, its placements and how
+//! much its start counts.
+
+use rand::seq::SliceRandom;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+use super::encode::dist2;
+
+/// The consensus weighed by the starts (docs/ALGORITHM.md, passage 6): where each training
+/// demonstration places every bottom node's events (the node's samples, of every
+/// demonstration, replaced by that demonstration's samples aligned to them, smoothed as
+/// [`Hsom::fit_postures`] smooths the consensus), and where each started. A reproduction
+/// weighs the demonstrations by a Gaussian of the distance between their start and its own,
+/// of the width that best predicted each training demonstration's placement from the others'
+/// (leave-one-out); all alike (`width` infinite) is a candidate, and is the plain
+/// [`consensus`].
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct StartKnots {
+    /// Per training demonstration, its first posture (state part, normalised).
+    pub(crate) starts: Vec<Vec<f64>>,
+    /// Per training demonstration, its placement of every bottom node (`stateLength` values
+    /// per node).
+    pub(crate) knots: Vec<Vec<f64>>,
+    /// The Gaussian's width (normalised units); infinite: all alike.
+    pub(crate) width: f64,
+}
+
+/// Widths [`StartKnots`] chooses among, in units of the median distance between two
+/// training demonstrations' starts; all alike (infinite) is tried first and kept on a tie.
+const START_WIDTHS: [f64; 5] = [2.0, 1.0, 0.5, 0.25, 0.125];
+
+/// Every order of `0..n` (`n!` of them, the identity first).
+pub(super) fn all_orders(n: usize) -> Vec<Vec<usize>> {
+    let mut out = vec![Vec::new()];
+    for k in 0..n {
+        out = out
+            .into_iter()
+            .flat_map(|o: Vec<usize>| {
+                (0..=k).map(move |i| {
+                    let mut o = o.clone();
+                    o.insert(i, k);
+                    o
+                })
+            })
+            .collect();
+    }
+    out.sort();
+    out
+}
+
+/// Shuffles of the starts [`StartKnots::fit`] compares the starts' own gain with.
+const START_SHUFFLES: usize = 199;
+
+/// The permutation test's level: the starts are used where at most this fraction of
+/// shuffles (their own order included) predict the placements as well.
+const START_SIGNIFICANCE: f64 = 0.05;
+
+impl StartKnots {
+    /// The weights of demonstrations starting at `starts` for a reproduction starting at
+    /// `x`: `exp(-(d² - d_min²) / (2 width²))` (the nearest counts 1, so some always count);
+    /// all 1 for an infinite width.
+    pub(super) fn weights(starts: &[&Vec<f64>], x: &[f64], width: f64) -> Vec<f64> {
+        if !width.is_finite() {
+            return vec![1.0; starts.len()];
+        }
+        let d2: Vec<f64> = starts.iter().map(|s| dist2(s, x)).collect();
+        let min = d2.iter().cloned().fold(f64::INFINITY, f64::min);
+        d2.iter()
+            .map(|d| (-(d - min) / (2.0 * width * width)).exp())
+            .collect()
+    }
+
+    /// The weighted mean of `knots` (flattened placements) with `weights`.
+    pub(super) fn mean(knots: &[&Vec<f64>], weights: &[f64]) -> Vec<f64> {
+        let total: f64 = weights.iter().sum();
+        let mut out = vec![0.0; knots[0].len()];
+        for (k, w) in knots.iter().zip(weights) {
+            out.iter_mut()
+                .zip(k.iter())
+                .for_each(|(o, v)| *o += w / total * v);
+        }
+        out
+    }
+
+    /// The placement for a reproduction starting at `x` (normalised, state part).
+    pub(crate) fn placed(&self, x: &[f64]) -> Vec<f64> {
+        let starts: Vec<&Vec<f64>> = self.starts.iter().collect();
+        let knots: Vec<&Vec<f64>> = self.knots.iter().collect();
+        Self::mean(
+            &knots,
+            &Self::weights(&starts, &x[..starts[0].len()], self.width),
+        )
+    }
+
+    /// The width that predicts each demonstration's placement best from the others' (the
+    /// squared error per node weighted by the samples on the node, `count`, summed over the
+    /// demonstrations), kept only where the starts are evidence: its gain over all alike must
+    /// be larger than that of the best width for the starts shuffled among the
+    /// demonstrations, in all but [`START_SIGNIFICANCE`] of the orders (a permutation test:
+    /// every order up to 6 demonstrations, else [`START_SHUFFLES`] shuffles drawn from
+    /// `seed`). Infinite (all alike) otherwise, and with identical starts. With three
+    /// demonstrations (six orders) it cannot be.
+    pub(super) fn fit(
+        starts: Vec<Vec<f64>>,
+        knots: Vec<Vec<f64>>,
+        count: &[f64],
+        seed: u64,
+    ) -> Self {
+        let n = starts.len();
+        let s = knots[0].len() / count.len().max(1);
+        let mut dist: Vec<f64> = (0..n)
+            .flat_map(|a| (a + 1..n).map(move |b| (a, b)))
+            .map(|(a, b)| dist2(&starts[a], &starts[b]).sqrt())
+            .filter(|d| *d > 0.0)
+            .collect();
+        dist.sort_by(f64::total_cmp);
+        let Some(&median) = dist.get(dist.len() / 2) else {
+            return StartKnots {
+                starts,
+                knots,
+                width: f64::INFINITY,
+            };
+        };
+        // gram[e][f]: the placements' inner product, each node weighted by its samples, so
+        // that an error below costs n^2 per demonstration whatever the map's size
+        let mut gram = vec![vec![0.0; n]; n];
+        for e in 0..n {
+            for f in e..n {
+                let g: f64 = count
+                    .iter()
+                    .enumerate()
+                    .map(|(j, c)| {
+                        let (x, y) = (&knots[e][j * s..(j + 1) * s], &knots[f][j * s..(j + 1) * s]);
+                        c * x.iter().zip(y).map(|(u, v)| u * v).sum::<f64>()
+                    })
+                    .sum();
+                (gram[e][f], gram[f][e]) = (g, g);
+            }
+        }
+        // the error of predicting each demonstration's placement from the others' weighed
+        // by the starts in the order `order` (demonstration d started at starts[order[d]]):
+        // |sum_e w_e K_e / W - K_d|^2, expanded over `gram`
+        let error = |order: &[usize], width: f64| -> f64 {
+            (0..n)
+                .map(|d| {
+                    let others: Vec<usize> = (0..n).filter(|&o| o != d).collect();
+                    let st: Vec<&Vec<f64>> = others.iter().map(|&o| &starts[order[o]]).collect();
+                    let w = Self::weights(&st, &starts[order[d]], width);
+                    let total: f64 = w.iter().sum();
+                    let mut e = gram[d][d];
+                    for (i, &a) in others.iter().enumerate() {
+                        e -= 2.0 * w[i] / total * gram[a][d];
+                        for (k, &b) in others.iter().enumerate() {
+                            e += w[i] * w[k] / (total * total) * gram[a][b];
+                        }
+                    }
+                    e
+                })
+                .sum()
+        };
+        let alike = error(&(0..n).collect::<Vec<_>>(), f64::INFINITY);
+        let best = |order: &[usize]| -> (f64, f64) {
+            START_WIDTHS
+                .iter()
+                .map(|f| (alike - error(order, f * median), f * median))
+                .fold((0.0, f64::INFINITY), |b, g| if g.0 > b.0 { g } else { b })
+        };
+        let (gain, width) = best(&(0..n).collect::<Vec<_>>());
+        if gain <= 0.0 {
+            return StartKnots {
+                starts,
+                knots,
+                width: f64::INFINITY,
+            };
+        }
+        // every other order where there are at most 720 (exact), else shuffles from the seed
+        let orders: Vec<Vec<usize>> = if n <= 6 {
+            all_orders(n)
+        } else {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            let mut order: Vec<usize> = (0..n).collect();
+            std::iter::once(order.clone())
+                .chain((0..START_SHUFFLES).map(|_| {
+                    order.shuffle(&mut rng);
+                    order.clone()
+                }))
+                .collect()
+        };
+        // the starts' own order counts itself (its gain is `gain`)
+        let as_good = orders.iter().filter(|o| best(o).0 >= gain).count();
+        let p = as_good as f64 / orders.len() as f64;
+        let width = if p <= START_SIGNIFICANCE {
+            width
+        } else {
+            f64::INFINITY
+        };
+        StartKnots {
+            starts,
+            knots,
+            width,
+        }
+    }
+}
