@@ -21,6 +21,9 @@
 //! - [`steps`]: the steps of `cosco train/reproduce/inspect/evaluate`, shared with the Python
 //!   package (same checks, same messages).
 //! - [`fsutil`]: atomic file writes.
+//! - [`export`]: a reproduction to a robot: time scaling, the robot's limits, NAOqi JSON,
+//!   ROS 2 MCAP ([`ros2`], feature `ros2`, on by default, which also imports bags) and CSV.
+//! - [`resample`]: demonstrations at different sampling rates brought to one.
 //!
 //! Feature `sim` (on by default) holds everything that needs MuJoCo or OSMesa: [`mujoco`],
 //! [`render`], [`sim`], [`experiment`] and [`sweep`], and turns on `plot` ([`plot`]: PNG
@@ -34,6 +37,7 @@ pub mod demos;
 pub mod dtw;
 #[cfg(feature = "sim")]
 pub mod experiment;
+pub mod export;
 pub mod fsutil;
 pub mod gesture;
 pub mod gmr;
@@ -48,6 +52,9 @@ pub mod offline;
 pub mod plot;
 #[cfg(feature = "sim")]
 pub mod render;
+pub mod resample;
+#[cfg(feature = "ros2")]
+pub mod ros2;
 #[cfg(feature = "sim")]
 pub mod sim;
 pub mod som;

@@ -40,8 +40,13 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     #[cfg(feature = "sim")]
-    /// Record synthetic, human-like demonstrations of a gesture on the simulated arm (40 Hz encoders).
+    /// Record synthetic, human-like demonstrations of a gesture on the simulated arm (40 Hz
+    /// encoders); `demos import`: from a ROS 2 bag.
+    #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
     Demos {
+        #[cfg(feature = "ros2")]
+        #[command(subcommand)]
+        action: Option<cli::export::DemosAction>,
         /// Gesture name (reading-watch, wave, reach-point, salute), or `all`: every gesture,
         /// each in its own labelled subdirectory of --out (OUT/<gesture>/demo_01.csv, ...).
         #[arg(long, default_value = "reading-watch")]
@@ -53,8 +58,8 @@ enum Command {
         #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = cli::parse_seed)]
         seed: u64,
         /// Output directory (created if missing); files demo_01.csv, demo_02.csv, ...
-        #[arg(long)]
-        out: PathBuf,
+        #[arg(long, required = true)]
+        out: Option<PathBuf>,
         /// Standard deviation of the encoder noise, rad.
         #[arg(long, default_value_t = cli::DEFAULT_ENCODER_NOISE, allow_negative_numbers = true, value_parser = cli::parse_noise)]
         noise: f64,
@@ -62,6 +67,15 @@ enum Command {
         #[arg(long)]
         model: Option<PathBuf>,
     },
+    #[cfg(all(feature = "ros2", not(feature = "sim")))]
+    /// `demos import`: demonstrations from a ROS 2 bag.
+    Demos {
+        #[command(subcommand)]
+        action: cli::export::DemosAction,
+    },
+    /// Export a reproduction for a real robot: NAOqi JSON, ROS 2 MCAP or CSV, time-scaled
+    /// and checked against the robot's joint ranges and velocity limits.
+    Export(cli::export::ExportArgs),
     /// Train a CoSCo-HSOM hierarchy on demonstration CSV files and save it (.bin or .txt).
     Train {
         /// XML configuration (default: the built-in configs/nao-gestures.xml, the recommended events extension).
@@ -78,6 +92,9 @@ enum Command {
         /// Take stateLength and actionLength from the demonstrations' columns.
         #[arg(long)]
         state_length_from_data: bool,
+        /// Resample demonstrations with `time` columns to this rate, Hz (shape-preserving).
+        #[arg(long)]
+        resample: Option<f64>,
     },
     /// Reproduce a gesture from an initial posture with a saved model; writes `step` then the
     /// demonstrations' columns.
@@ -143,6 +160,9 @@ enum Command {
         /// Take stateLength and actionLength from the demonstrations' columns.
         #[arg(long)]
         state_length_from_data: bool,
+        /// Resample demonstrations with `time` columns to this rate, Hz (shape-preserving).
+        #[arg(long)]
+        resample: Option<f64>,
         /// How the consensus weighs the demonstrations, instead of the configuration's:
         /// `start` (by how near each one started, where the starts predict the route),
         /// `all` (alike) or `local` (those that agree at each sample).
@@ -226,6 +246,9 @@ enum Command {
         /// MJCF model of the arm.
         #[arg(long)]
         model: Option<PathBuf>,
+        /// Resample demonstrations with `time` columns to this rate, Hz (shape-preserving).
+        #[arg(long)]
+        resample: Option<f64>,
     },
     #[cfg(feature = "sim")]
     /// Run a sweep: every combination of the axes of a TOML spec (docs/SWEEPS.md), one JSON
@@ -266,6 +289,18 @@ enum SweepAction {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
+        #[cfg(feature = "ros2")]
+        #[cfg(feature = "sim")]
+        Command::Demos {
+            action: Some(a), ..
+        } => cli::export::demos_action(&a)?
+            .iter()
+            .for_each(|l| outln!("{l}")),
+        #[cfg(all(feature = "ros2", not(feature = "sim")))]
+        Command::Demos { action } => cli::export::demos_action(&action)?
+            .iter()
+            .for_each(|l| outln!("{l}")),
+        Command::Export(a) => cli::export::export(&a)?.iter().for_each(|l| outln!("{l}")),
         #[cfg(feature = "sim")]
         Command::Demos {
             gesture,
@@ -274,7 +309,9 @@ fn run(cli: Cli) -> Result<()> {
             out,
             noise,
             model,
+            ..
         } => {
+            let out = out.ok_or_else(|| anyhow::anyhow!("give --out DIR"))?;
             let files = cli::demos(&gesture, count, seed, &out, noise, model.as_deref())?;
             for f in files {
                 outln!("{}", f.display());
@@ -285,8 +322,18 @@ fn run(cli: Cli) -> Result<()> {
             demos,
             out,
             state_length_from_data,
+            resample,
         } => {
-            let model = cli::train_files(config.as_deref(), &demos, &out, state_length_from_data)?;
+            if let Some(l) = cli::export::resample_line(&demos, resample)? {
+                outln!("{l}");
+            }
+            let model = cli::train_files(
+                config.as_deref(),
+                &demos,
+                &out,
+                state_length_from_data,
+                resample,
+            )?;
             if model.labels().is_empty() {
                 out!("{}", model.branches()[0].summary());
             } else {
@@ -333,6 +380,7 @@ fn run(cli: Cli) -> Result<()> {
             demos,
             config,
             state_length_from_data,
+            resample,
             consensus,
             plan,
             alignment,
@@ -351,6 +399,7 @@ fn run(cli: Cli) -> Result<()> {
                 demos,
                 config,
                 state_length_from_data,
+                resample,
                 consensus,
                 plan,
                 alignment,
@@ -365,6 +414,9 @@ fn run(cli: Cli) -> Result<()> {
                 json,
                 png,
             };
+            if let Some(l) = cli::export::resample_line(&job.demos, resample)? {
+                outln!("{l}\n");
+            }
             out!("{}", cli::heldout(&job)?);
         }
         Command::Inspect { model } => {
@@ -403,8 +455,13 @@ fn run(cli: Cli) -> Result<()> {
             components,
             transition,
             model,
+            resample,
         } => {
+            if let Some(l) = cli::export::resample_line(std::slice::from_ref(&demos), resample)? {
+                outln!("{l}");
+            }
             let job = cli::compare::CompareJob {
+                resample,
                 demos,
                 config,
                 out,

@@ -33,6 +33,10 @@ struct Args {
     /// Learn from recorded demonstration CSV files in this directory instead of synthetic ones.
     #[arg(long)]
     demos: Option<PathBuf>,
+    /// With --demos: resample demonstrations with `time` columns to this rate, Hz
+    /// (shape-preserving).
+    #[arg(long, requires = "demos")]
+    resample: Option<f64>,
     /// Seed of every random choice of the job (demonstrations; the model's seed is in the config).
     #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = cli::parse_seed)]
     seed: u64,
@@ -74,6 +78,7 @@ fn run(a: Args) -> Result<()> {
         gesture: a.gesture,
         config: a.config,
         demos: a.demos,
+        resample: a.resample,
         seed: a.seed,
         count: a.count,
         noise: a.noise,
@@ -84,6 +89,11 @@ fn run(a: Args) -> Result<()> {
         variants: !a.no_variants,
         heldout: !a.no_heldout,
     };
+    if let Some(d) = &job.demos {
+        if let Some(l) = cli::export::resample_line(std::slice::from_ref(d), job.resample)? {
+            outln!("{l}");
+        }
+    }
     if job.gesture == "all" {
         for line in cli::all_gestures_job(&job)? {
             outln!("{line}");

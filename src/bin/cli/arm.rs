@@ -20,7 +20,7 @@ use cosco_hsom::gesture::Gesture;
 use cosco_hsom::plot::BLACK;
 use cosco_hsom::sim::{NaoArm, JOINT_NAMES};
 
-use super::{compare, config_name, hsom_config, progress, read_demos};
+use super::{compare, config_name, hsom_config, progress};
 /// Default encoder noise of synthetic demonstrations, rad (about Nao's encoder resolution).
 pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
 
@@ -108,6 +108,8 @@ pub struct Job {
     pub config: Option<PathBuf>,
     /// Directory of recorded demonstrations (None: synthetic).
     pub demos: Option<PathBuf>,
+    /// Resample the recorded demonstrations to this rate, Hz.
+    pub resample: Option<f64>,
     /// Seed of the job.
     pub seed: u64,
     /// Number of synthetic demonstrations.
@@ -181,7 +183,11 @@ pub fn main_job(job: &Job) -> Result<Report> {
     // 1. Demonstrations.
     let (demos, gesture) = match &job.demos {
         Some(dir) => (
-            read_demos(std::slice::from_ref(dir), Some(cfg.params().state_length))?,
+            cosco_hsom::steps::read_demos_at(
+                std::slice::from_ref(dir),
+                Some(cfg.params().state_length),
+                job.resample,
+            )?,
             None,
         ),
         None => {

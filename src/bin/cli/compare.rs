@@ -18,7 +18,7 @@ use cosco_hsom::metrics::MetricsParams;
 use cosco_hsom::plot::BLACK;
 use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
 
-use super::{file_size, hsom_config, load_arm, progress, read_demos, Stopwatch, FIG4_JOINTS};
+use super::{file_size, hsom_config, load_arm, progress, Stopwatch, FIG4_JOINTS};
 
 pub use cosco_hsom::experiment::baseline::DEFAULT_COMPONENTS;
 
@@ -170,6 +170,8 @@ pub struct CompareJob {
     pub model: Option<PathBuf>,
     /// How CoSCo-HSOM's postures become servo targets (the main job's `--transition`).
     pub transition: Transition,
+    /// Resample the demonstrations to this rate, Hz.
+    pub resample: Option<f64>,
 }
 
 /// Train CoSCo-HSOM, reproduce from `demos[0]`'s first posture, execute on the arm with
@@ -208,7 +210,8 @@ pub fn compare(job: &CompareJob) -> Result<Report> {
     let mut clock = Stopwatch::new();
     let out = &job.out;
     let cfg = hsom_config(job.config.as_deref())?;
-    let demos = read_demos(std::slice::from_ref(&job.demos), None)?;
+    let demos =
+        cosco_hsom::steps::read_demos_at(std::slice::from_ref(&job.demos), None, job.resample)?;
     require_arm_joints(&demos)?;
     if demos.len() < MIN_DEMONSTRATIONS {
         bail!(

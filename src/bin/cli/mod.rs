@@ -7,6 +7,7 @@
 pub mod arm;
 #[cfg(feature = "sim")]
 pub mod compare;
+pub mod export;
 #[cfg(feature = "sim")]
 pub mod sweep;
 
@@ -137,19 +138,20 @@ pub fn train_files(
     demo_paths: &[PathBuf],
     out: &Path,
     state_length_from_data: bool,
+    resample: Option<f64>,
 ) -> Result<GestureModel> {
     // where the model goes is checked before any reading or training
     steps::check_model_output(out)?;
     let mut cfg = hsom_config(config)?;
     if state_length_from_data {
-        let sets = labelled::read_demo_sets(demo_paths, None)?;
+        let sets = labelled::read_demo_sets_at(demo_paths, None, resample)?;
         let width = match &sets {
             labelled::DemoSets::Plain(d) => d[0].width(),
             labelled::DemoSets::Labelled(s) => s[0].1[0].width(),
         };
         cfg = cfg.for_width(width)?;
     }
-    let sets = labelled::read_demo_sets(demo_paths, Some(cfg.params().state_length))?;
+    let sets = labelled::read_demo_sets_at(demo_paths, Some(cfg.params().state_length), resample)?;
     let pb = progress(cfg.params().training_steps as u64, "training");
     let model = labelled::train_sets(
         &cfg,
@@ -355,6 +357,8 @@ pub struct HeldoutJob {
     pub config: Option<PathBuf>,
     /// Take `stateLength` from the data.
     pub state_length_from_data: bool,
+    /// Resample the demonstrations to this rate, Hz.
+    pub resample: Option<f64>,
     /// Override the configuration's consensus.
     pub consensus: Option<cosco_hsom::config::Consensus>,
     /// Override the configuration's plan.
@@ -391,7 +395,8 @@ pub fn heldout(job: &HeldoutJob) -> Result<String> {
     if let Some(k) = job.knots {
         cfg = cfg.with_knots(k)?;
     }
-    let (cfg, gestures) = offline::read_gestures(&job.demos, &cfg, job.state_length_from_data)?;
+    let (cfg, gestures) =
+        offline::read_gestures_at(&job.demos, &cfg, job.state_length_from_data, job.resample)?;
     let folds: usize = gestures.iter().map(|(_, d)| d.len()).sum();
     let per = if job.settings.in_sample { 2 } else { 1 };
     let pb = progress((folds * per) as u64, "folds");
