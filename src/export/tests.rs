@@ -183,3 +183,24 @@ fn nao_limits_agree_with_the_arm_model_and_its_joint_table() {
         );
     }
 }
+
+#[cfg(feature = "sim")]
+#[test]
+fn the_simulated_arm_executes_the_export_and_records_its_joints() {
+    let arm = crate::sim::NaoArm::load_default().unwrap();
+    let t = arm_trajectory(2.0);
+    let rec = executed::execute_on_arm(&arm, &t, 40.0).unwrap();
+    assert_eq!(rec.names, t.names);
+    // one sample per tick of the 40 Hz clock over the 2 s motion
+    assert_eq!(rec.times.len(), 80);
+    // the servos follow: the elbow roll within 0.05 rad of the plan at the apex
+    let apex = rec.position_at(1.0)[3];
+    assert!((apex - t.position_at(1.0)[3]).abs() < 0.05, "{apex}");
+    // another robot's joints are refused by name
+    let mut other = t.clone();
+    other.names[0] = "RShoulderPitch".into();
+    let e = executed::execute_on_arm(&arm, &other, 40.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("RShoulderPitch"), "{e}");
+}
