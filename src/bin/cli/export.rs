@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use anyhow::{bail, Result};
-use clap::{Args, Subcommand};
+use clap::Args;
 use cosco_hsom::export::{self, limits, source, ExportOptions, Format, Timing};
 
 /// `cosco export`.
@@ -125,7 +125,7 @@ pub fn export(a: &ExportArgs) -> Result<Vec<String>> {
 
 /// `cosco demos import`: what `cosco demos` does besides recording.
 #[cfg(feature = "ros2")]
-#[derive(Subcommand)]
+#[derive(clap::Subcommand)]
 pub enum DemosAction {
     /// Demonstrations from a ROS 2 bag (MCAP): the sensor_msgs/msg/JointState messages of a
     /// topic, `time` from their stamps, one column per joint; one CSV per bag, or one per
