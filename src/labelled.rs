@@ -113,6 +113,16 @@ pub fn read_demo_sets(
     paths: &[PathBuf],
     state_length: Option<usize>,
 ) -> Result<DemoSets, LabelledError> {
+    read_demo_sets_at(paths, state_length, None)
+}
+
+/// [`read_demo_sets`], each demonstration first resampled to `resample_hz` when given
+/// ([`crate::resample::resample_all`]).
+pub fn read_demo_sets_at(
+    paths: &[PathBuf],
+    state_length: Option<usize>,
+    resample_hz: Option<f64>,
+) -> Result<DemoSets, LabelledError> {
     let subs: Vec<Vec<PathBuf>> = paths
         .iter()
         .map(|p| subdirectories(p))
@@ -123,7 +133,11 @@ pub fn read_demo_sets(
         .map(|(p, s)| !s.is_empty() && !has_csv(p))
         .collect();
     if !labelled.iter().any(|&l| l) {
-        return Ok(DemoSets::Plain(steps::read_demos(paths, state_length)?));
+        return Ok(DemoSets::Plain(steps::read_demos_at(
+            paths,
+            state_length,
+            resample_hz,
+        )?));
     }
     if let Some(i) = labelled.iter().position(|&l| !l) {
         return Err(LabelledError::Layout {
@@ -144,6 +158,7 @@ pub fn read_demo_sets(
             });
         }
         let demos = demos::read_dir_or_files(std::slice::from_ref(dir))?;
+        let demos = crate::resample::resample_all(demos, resample_hz)?;
         demos::validate_set(&demos, state_length)?;
         match sets.iter_mut().find(|(l, _)| *l == label) {
             Some((_, d)) => d.extend(demos),

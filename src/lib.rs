@@ -24,6 +24,9 @@
 //!   recognize, evaluate) on top of [`steps`].
 //! - [`eval`]: one evaluator (methods x an executor, leave-one-out and in-sample, results).
 //! - [`fsutil`]: atomic file writes.
+//! - [`export`]: a reproduction to a robot: time scaling, the robot's limits, NAOqi JSON,
+//!   ROS 2 MCAP ([`ros2`], feature `ros2`, on by default, which also imports bags) and CSV.
+//! - [`resample`]: demonstrations at different sampling rates brought to one.
 //!
 //! Feature `sim` (on by default) holds everything that needs MuJoCo or OSMesa: [`mujoco`],
 //! [`render`], [`sim`], [`experiment`] and [`sweep`], and turns on `plot` ([`plot`]: PNG
@@ -39,6 +42,7 @@ pub mod dtw;
 pub mod eval;
 #[cfg(feature = "sim")]
 pub mod experiment;
+pub mod export;
 pub mod fsutil;
 pub mod gesture;
 pub mod gmr;
@@ -53,6 +57,9 @@ pub mod nearest;
 pub mod plot;
 #[cfg(feature = "sim")]
 pub mod render;
+pub mod resample;
+#[cfg(feature = "ros2")]
+pub mod ros2;
 #[cfg(feature = "sim")]
 pub mod sim;
 pub mod som;

@@ -185,7 +185,17 @@ pub fn read_demos(
     paths: &[PathBuf],
     state_length: Option<usize>,
 ) -> Result<Vec<Demonstration>, StepError> {
-    let demos = demos::read_dir_or_files(paths)?;
+    read_demos_at(paths, state_length, None)
+}
+
+/// [`read_demos`], each demonstration first resampled to `resample_hz` when given
+/// ([`crate::resample::resample_all`]).
+pub fn read_demos_at(
+    paths: &[PathBuf],
+    state_length: Option<usize>,
+    resample_hz: Option<f64>,
+) -> Result<Vec<Demonstration>, StepError> {
+    let demos = crate::resample::resample_all(demos::read_dir_or_files(paths)?, resample_hz)?;
     if demos.is_empty() {
         return Err(StepError::NoDemonstrations {
             paths: paths

@@ -16,6 +16,8 @@ The algorithm of the Rust crate ``cosco-hsom``, built without its simulator:
 - :func:`heldout`: leave-one-out on demonstrations (``cosco heldout``): the hierarchy beside
   its nearest-sequence baseline, height 1, GMM/GMR and a replay, on the same folds.
 - :func:`dtw`: dynamic time warping.
+- :func:`read_demos`: demonstration CSV files as arrays, ``resample=HZ`` bringing files
+  sampled at different rates (their ``time`` columns) to one.
 
 Demonstrations are 2-D numpy arrays (samples x variables). Bad input raises ``ValueError``
 with the message the ``cosco`` CLI prints; for files that cannot be read or written it is
@@ -24,7 +26,7 @@ also a ``FileNotFoundError`` / ``PermissionError`` / ``OSError`` (:class:`Missin
 """
 
 from ._errors import FileAccessError, FileError, MissingFileError
-from ._native import Config, GestureModel, Hsom, Recognition, dtw, heldout
+from ._native import Config, GestureModel, Hsom, Recognition, dtw, heldout, read_demos
 from . import gmr
 
 __all__ = [
@@ -34,6 +36,7 @@ __all__ = [
     "Recognition",
     "dtw",
     "heldout",
+    "read_demos",
     "gmr",
     "MissingFileError",
     "FileAccessError",

@@ -3,6 +3,7 @@ from ._errors import FileAccessError as FileAccessError
 from ._errors import FileError as FileError
 from ._errors import MissingFileError as MissingFileError
 from ._native import Config as Config, Hsom as Hsom, dtw as dtw, heldout as heldout
+from ._native import read_demos as read_demos
 from ._native import GestureModel as GestureModel, Recognition as Recognition
 
 __all__ = [
@@ -12,6 +13,7 @@ __all__ = [
     "Recognition",
     "dtw",
     "heldout",
+    "read_demos",
     "gmr",
     "MissingFileError",
     "FileAccessError",

@@ -180,5 +180,12 @@ def heldout(
 ) -> Dict[str, Any]:
     """Leave-one-out (``cosco heldout``): the JSON document of ``--json`` as a dict."""
 
+def read_demos(
+    paths: Sequence[_Path],
+    *,
+    resample: Optional[float] = None,
+) -> Tuple[List[_Array2], List[str]]:
+    """Demonstration CSV files as arrays and their columns; ``resample`` (Hz) first."""
+
 def dtw(a: _Array2, b: _Array2, per_step: bool = False) -> float:
     """DTW with Euclidean local cost: the summed cost of the cheapest path (or per step)."""

@@ -934,6 +934,30 @@ fn heldout<'py>(
     py.import("json")?.call_method1("loads", (text,))
 }
 
+/// Read demonstration CSV files (a directory of *.csv files, or files), checked as one set
+/// as `cosco train` reads them: `(demos, columns)`, the demonstrations as 2-D arrays
+/// (samples x variables, the `time` column left out). With `resample` (Hz), every file, each
+/// with a `time` column, is first resampled to that rate (shape-preserving cubic), as
+/// `cosco ... --resample HZ` does; pass `sample_period=1/resample` to `heldout`.
+#[pyfunction]
+#[pyo3(signature = (paths, *, resample = None))]
+#[allow(clippy::type_complexity)]
+fn read_demos(
+    py: Python<'_>,
+    paths: Vec<PathBuf>,
+    resample: Option<f64>,
+) -> PyResult<(Vec<Bound<'_, PyArray2<f64>>>, Vec<String>)> {
+    let demos = steps::read_demos_at(&paths, None, resample).map_err(step_err)?;
+    let columns = demos[0].columns.clone();
+    Ok((
+        demos
+            .iter()
+            .map(|d| array2(py, &d.rows, d.width()))
+            .collect(),
+        columns,
+    ))
+}
+
 #[pyfunction]
 #[pyo3(signature = (a, b, per_step = false))]
 fn dtw(a: &Bound<'_, PyAny>, b: &Bound<'_, PyAny>, per_step: bool) -> PyResult<f64> {
@@ -957,5 +981,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<GmrModel>()?;
     m.add_function(wrap_pyfunction!(dtw, m)?)?;
     m.add_function(wrap_pyfunction!(heldout, m)?)?;
+    m.add_function(wrap_pyfunction!(read_demos, m)?)?;
     Ok(())
 }

@@ -32,6 +32,17 @@ use cli::cosco_args::{Cli, Command};
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
+        #[cfg(all(feature = "ros2", feature = "sim"))]
+        Command::Demos {
+            action: Some(a), ..
+        } => cli::export::demos_action(&a)?
+            .iter()
+            .for_each(|l| outln!("{l}")),
+        #[cfg(all(feature = "ros2", not(feature = "sim")))]
+        Command::Demos { action } => cli::export::demos_action(&action)?
+            .iter()
+            .for_each(|l| outln!("{l}")),
+        Command::Export(a) => cli::export::export(&a)?.iter().for_each(|l| outln!("{l}")),
         #[cfg(feature = "sim")]
         Command::Demos {
             gesture,
@@ -40,7 +51,9 @@ fn run(cli: Cli) -> Result<()> {
             out,
             noise,
             model,
+            ..
         } => {
+            let out = out.ok_or_else(|| anyhow::anyhow!("give --out DIR"))?;
             let bars = cli::StageBars::default();
             let on_progress = |stage: &str, done, total| bars.update(stage, done, total);
             let files = cosco_hsom::experiment::job::demos(
@@ -62,7 +75,9 @@ fn run(cli: Cli) -> Result<()> {
             demos,
             out,
             state_length_from_data,
+            resample,
         } => {
+            resample_line(&demos, resample)?;
             let bars = cli::StageBars::default();
             let on_step = |done, total| bars.update("training", done, total);
             let model = commands::train_files(
@@ -70,6 +85,7 @@ fn run(cli: Cli) -> Result<()> {
                 &demos,
                 &out,
                 state_length_from_data,
+                resample,
                 Some(&on_step),
             )?;
             bars.finish();
@@ -119,6 +135,7 @@ fn run(cli: Cli) -> Result<()> {
             demos,
             config,
             state_length_from_data,
+            resample,
             no_height_1,
             no_gmr,
             no_in_sample,
@@ -129,10 +146,14 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             #[cfg(not(feature = "plot"))]
             let png: Option<std::path::PathBuf> = None;
+            if let Some(l) = cosco_hsom::resample::report_line(&demos, resample)? {
+                outln!("{l}\n");
+            }
             let job = cosco_hsom::eval::HeldoutJob {
                 demos,
                 config,
                 state_length_from_data,
+                resample,
                 settings: cosco_hsom::eval::LooSettings {
                     height_1: !no_height_1,
                     gmr: !no_gmr,
@@ -188,8 +209,11 @@ fn run(cli: Cli) -> Result<()> {
             components,
             transition,
             model,
+            resample,
         } => {
+            resample_line(std::slice::from_ref(&demos), resample)?;
             let job = cli::compare::CompareJob {
+                resample,
                 demos,
                 config,
                 out,
@@ -226,6 +250,14 @@ fn run(cli: Cli) -> Result<()> {
                 outln!("{line}");
             }
         }
+    }
+    Ok(())
+}
+
+/// Print the `--resample HZ` report line of `paths` (nothing without it).
+fn resample_line(paths: &[std::path::PathBuf], hz: Option<f64>) -> Result<()> {
+    if let Some(l) = cosco_hsom::resample::report_line(paths, hz)? {
+        outln!("{l}");
     }
     Ok(())
 }

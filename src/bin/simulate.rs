@@ -34,6 +34,10 @@ struct Args {
     /// Learn from recorded demonstration CSV files in this directory instead of synthetic ones.
     #[arg(long)]
     demos: Option<PathBuf>,
+    /// With --demos: resample demonstrations with `time` columns to this rate, Hz
+    /// (shape-preserving).
+    #[arg(long, requires = "demos")]
+    resample: Option<f64>,
     /// Seed of every random choice of the job (demonstrations; the model's seed is in the config).
     #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = cli::parse_seed)]
     seed: u64,
@@ -75,6 +79,7 @@ fn run(a: Args) -> Result<()> {
         gesture: a.gesture,
         config: a.config,
         demos: a.demos,
+        resample: a.resample,
         seed: a.seed,
         count: a.count,
         noise: a.noise,
@@ -85,6 +90,12 @@ fn run(a: Args) -> Result<()> {
         variants: !a.no_variants,
         heldout: !a.no_heldout,
     };
+    if let Some(d) = &job.demos {
+        let line = cosco_hsom::resample::report_line(std::slice::from_ref(d), job.resample)?;
+        if let Some(l) = line {
+            outln!("{l}");
+        }
+    }
     let bars = cli::StageBars::default();
     let on_progress = |stage: &str, done, total| bars.update(stage, done, total);
     if job.gesture == "all" {

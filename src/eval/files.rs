@@ -8,7 +8,7 @@ use anyhow::{bail, Context, Result};
 use crate::steps;
 
 use super::{
-    failures, json, leave_one_out, markdown, read_gestures, Kinematic, LooSettings, Method,
+    failures, json, leave_one_out, markdown, read_gestures_at, Kinematic, LooSettings, Method,
 };
 
 /// What `cosco heldout` does.
@@ -19,6 +19,8 @@ pub struct HeldoutJob {
     pub config: Option<PathBuf>,
     /// Take `stateLength` from the data.
     pub state_length_from_data: bool,
+    /// Resample the demonstrations to this rate, Hz.
+    pub resample: Option<f64>,
     /// Which methods, which results, how many threads.
     pub settings: LooSettings,
     /// Where to write every fold's scores as JSON.
@@ -38,7 +40,8 @@ pub fn heldout(
         steps::check_output(p)?;
     }
     let cfg = steps::config(job.config.as_deref())?;
-    let (cfg, gestures) = read_gestures(&job.demos, &cfg, job.state_length_from_data)?;
+    let (cfg, gestures) =
+        read_gestures_at(&job.demos, &cfg, job.state_length_from_data, job.resample)?;
     let study = leave_one_out(&cfg, gestures, &job.settings, &Kinematic, progress)?;
     // nothing to compare when the hierarchy itself never ran: the reason, as an error
     let ran = |m| {

@@ -173,7 +173,18 @@ pub fn read_gestures(
     config: &HsomConfig,
     from_data: bool,
 ) -> Result<(HsomConfig, Gestures), LooError> {
-    let sets = match crate::labelled::read_demo_sets(paths, None)? {
+    read_gestures_at(paths, config, from_data, None)
+}
+
+/// [`read_gestures`], each demonstration first resampled to `resample_hz` when given
+/// ([`crate::resample::resample_all`]).
+pub fn read_gestures_at(
+    paths: &[std::path::PathBuf],
+    config: &HsomConfig,
+    from_data: bool,
+    resample_hz: Option<f64>,
+) -> Result<(HsomConfig, Gestures), LooError> {
+    let sets = match crate::labelled::read_demo_sets_at(paths, None, resample_hz)? {
         crate::labelled::DemoSets::Plain(d) => {
             let name = match paths {
                 [one] if one.is_dir() => one.file_name().map(|n| n.to_string_lossy().to_string()),

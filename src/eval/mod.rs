@@ -22,7 +22,10 @@ mod results;
 
 pub use executor::{Executed, Executor, Kinematic};
 pub use files::{heldout, HeldoutJob};
-pub use loo::{all_but, diagonal, leave_one_out, read_gestures, Gestures, LooError, LooSettings};
+pub use loo::{
+    all_but, diagonal, leave_one_out, read_gestures, read_gestures_at, Gestures, LooError,
+    LooSettings,
+};
 pub use method::{peak_speed, run_fold, FoldInput, FoldRuns, Method, MethodRun, GMR_COMPONENTS};
 #[cfg(feature = "plot")]
 pub use report::png;

@@ -170,6 +170,8 @@ pub struct CompareJob {
     pub model: Option<PathBuf>,
     /// How CoSCo-HSOM's postures become servo targets (the main job's `--transition`).
     pub transition: Transition,
+    /// Resample the demonstrations to this rate, Hz.
+    pub resample: Option<f64>,
 }
 
 /// Train CoSCo-HSOM, reproduce from `demos[0]`'s first posture, execute on the arm with
@@ -208,7 +210,7 @@ pub fn compare(job: &CompareJob, on_progress: Progress<'_>) -> Result<Report> {
     let mut clock = Stopwatch::new();
     let out = &job.out;
     let cfg = steps::config(job.config.as_deref())?;
-    let demos = steps::read_demos(std::slice::from_ref(&job.demos), None)?;
+    let demos = steps::read_demos_at(std::slice::from_ref(&job.demos), None, job.resample)?;
     require_arm_joints(&demos)?;
     if demos.len() < MIN_DEMONSTRATIONS {
         bail!(

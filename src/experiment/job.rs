@@ -124,6 +124,8 @@ pub struct Job {
     pub config: Option<PathBuf>,
     /// Directory of recorded demonstrations (None: synthetic).
     pub demos: Option<PathBuf>,
+    /// Resample the recorded demonstrations to this rate, Hz.
+    pub resample: Option<f64>,
     /// Seed of the job.
     pub seed: u64,
     /// Number of synthetic demonstrations.
@@ -216,7 +218,11 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     // 1. Demonstrations.
     let (demos, gesture) = match &job.demos {
         Some(dir) => (
-            steps::read_demos(std::slice::from_ref(dir), Some(cfg.params().state_length))?,
+            steps::read_demos_at(
+                std::slice::from_ref(dir),
+                Some(cfg.params().state_length),
+                job.resample,
+            )?,
             None,
         ),
         None => {

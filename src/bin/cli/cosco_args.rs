@@ -18,8 +18,13 @@ pub struct Cli {
 #[derive(Subcommand)]
 pub enum Command {
     #[cfg(feature = "sim")]
-    /// Record synthetic, human-like demonstrations of a gesture on the simulated arm (40 Hz encoders).
+    /// Record synthetic, human-like demonstrations of a gesture on the simulated arm (40 Hz
+    /// encoders); `demos import`: from a ROS 2 bag.
+    #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
     Demos {
+        #[cfg(feature = "ros2")]
+        #[command(subcommand)]
+        action: Option<super::export::DemosAction>,
         /// Gesture name (reading-watch, wave, reach-point, salute), or `all`: every gesture,
         /// each in its own labelled subdirectory of --out (OUT/<gesture>/demo_01.csv, ...).
         #[arg(long, default_value = "reading-watch")]
@@ -31,8 +36,8 @@ pub enum Command {
         #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = super::parse_seed)]
         seed: u64,
         /// Output directory (created if missing); files demo_01.csv, demo_02.csv, ...
-        #[arg(long)]
-        out: PathBuf,
+        #[arg(long, required = true)]
+        out: Option<PathBuf>,
         /// Standard deviation of the encoder noise, rad.
         #[arg(long, default_value_t = super::DEFAULT_ENCODER_NOISE, allow_negative_numbers = true, value_parser = super::parse_noise)]
         noise: f64,
@@ -40,6 +45,15 @@ pub enum Command {
         #[arg(long)]
         model: Option<PathBuf>,
     },
+    #[cfg(all(feature = "ros2", not(feature = "sim")))]
+    /// `demos import`: demonstrations from a ROS 2 bag.
+    Demos {
+        #[command(subcommand)]
+        action: super::export::DemosAction,
+    },
+    /// Export a reproduction for a real robot: NAOqi JSON, ROS 2 MCAP or CSV, time-scaled
+    /// and checked against the robot's joint ranges and velocity limits.
+    Export(super::export::ExportArgs),
     /// Train a CoSCo-HSOM hierarchy on demonstration CSV files and save it (.bin or .txt).
     Train {
         /// XML configuration (default: the built-in configs/nao-gestures.xml, the recommended events extension).
@@ -56,6 +70,9 @@ pub enum Command {
         /// Take stateLength and actionLength from the demonstrations' columns.
         #[arg(long)]
         state_length_from_data: bool,
+        /// Resample demonstrations with `time` columns to this rate, Hz (shape-preserving).
+        #[arg(long)]
+        resample: Option<f64>,
     },
     /// Reproduce a gesture from an initial posture with a saved model; writes `step` then the
     /// demonstrations' columns.
@@ -121,6 +138,9 @@ pub enum Command {
         /// Take stateLength and actionLength from the demonstrations' columns.
         #[arg(long)]
         state_length_from_data: bool,
+        /// Resample demonstrations with `time` columns to this rate, Hz (shape-preserving).
+        #[arg(long)]
+        resample: Option<f64>,
         /// Leave out the configuration at height 1.
         #[arg(long)]
         no_height_1: bool,
@@ -185,6 +205,9 @@ pub enum Command {
         /// MJCF model of the arm.
         #[arg(long)]
         model: Option<PathBuf>,
+        /// Resample demonstrations with `time` columns to this rate, Hz (shape-preserving).
+        #[arg(long)]
+        resample: Option<f64>,
     },
     #[cfg(feature = "sim")]
     /// Run a sweep: every combination of the axes of a TOML spec (docs/SWEEPS.md), one JSON

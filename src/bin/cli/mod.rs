@@ -7,6 +7,7 @@
 pub mod sweep;
 
 pub mod cosco_args;
+pub mod export;
 
 #[cfg(feature = "sim")]
 pub use cosco_hsom::experiment::compare;
