@@ -5,13 +5,69 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Context, Result};
-
 use crate::demos::sample_period;
 use crate::hsom::{GestureModel, Reproduction};
 use crate::labelled;
 use crate::metrics::{FidelityReport, MetricsParams};
 use crate::steps;
+
+/// Errors of the subcommands: the library's own, each naming the file, field or value.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum CommandError {
+    /// A file given to a step could not be read or used.
+    #[error(transparent)]
+    Step(#[from] steps::StepError),
+    /// Demonstrations or a model of several gestures could not be read, trained or used.
+    #[error(transparent)]
+    Labelled(#[from] labelled::LabelledError),
+    /// The gesture asked of a model of several gestures is not one of them.
+    #[error(transparent)]
+    Gesture(#[from] crate::hsom::GestureError),
+    /// The configuration does not fit the data.
+    #[error(transparent)]
+    Config(#[from] crate::config::ConfigError),
+    /// A value given on the command line is not allowed.
+    #[error("{0}")]
+    Usage(String),
+    /// Resuming after an encoder reading failed.
+    #[error("resuming after {}", path.display())]
+    Resume {
+        /// The encoder reading.
+        path: PathBuf,
+        /// The cause.
+        source: Box<steps::StepError>,
+    },
+    /// An output file could not be written.
+    #[error("writing {}", path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The reproduction could not be put as CSV.
+    #[error(transparent)]
+    Csv(#[from] csv::Error),
+    /// The answers could not be put as JSON.
+    #[error(transparent)]
+    Json(#[from] serde_json::Error),
+    /// The arm's model or the arm's metrics failed.
+    #[cfg(feature = "sim")]
+    #[error(transparent)]
+    Experiment(#[from] crate::experiment::ExperimentError),
+}
+
+/// The result of a subcommand.
+pub type Result<T> = std::result::Result<T, CommandError>;
+
+/// Write `bytes` atomically to `path`, naming it on failure.
+fn write(path: &Path, bytes: &[u8]) -> Result<()> {
+    crate::fsutil::write_atomic(path, bytes).map_err(|source| CommandError::Write {
+        path: path.to_path_buf(),
+        source,
+    })
+}
 
 /// Load a model of one or several gestures (.bin or .txt).
 pub fn load_gesture_model(path: &Path) -> Result<GestureModel> {
@@ -110,7 +166,7 @@ pub fn train_files(
 /// Write a reproduction CSV atomically (`step`, then the model's columns).
 fn write_reproduction(model: &GestureModel, rep: &Reproduction, out: &Path) -> Result<()> {
     let bytes = steps::reproduction_csv(&model.branches()[0], rep)?;
-    crate::fsutil::write_atomic(out, &bytes).with_context(|| format!("writing {}", out.display()))
+    write(out, &bytes)
 }
 
 /// `cosco reproduce` with a model of one or several gestures: gesture `label` (required with
@@ -132,13 +188,21 @@ pub fn reproduce_gesture_file(
     let initial = match (initial, initial_from) {
         (Some(text), None) => parse_posture(text)?,
         (None, Some(p)) => steps::initial_from_file(branch, p)?,
-        _ => bail!("give exactly one of --initial and --initial-from"),
+        _ => {
+            return Err(CommandError::Usage(
+                "give exactly one of --initial and --initial-from".into(),
+            ))
+        }
     };
     let rep = match resume_from {
         Some(path) => {
             let reading = steps::rows_from_file(branch, path)?;
-            steps::resume(branch, &model.display().to_string(), &initial, &reading)
-                .with_context(|| format!("resuming after {}", path.display()))?
+            steps::resume(branch, &model.display().to_string(), &initial, &reading).map_err(
+                |source| CommandError::Resume {
+                    path: path.to_path_buf(),
+                    source: Box::new(source),
+                },
+            )?
         }
         None => labelled::reproduce_gesture(&m, &model.display().to_string(), label, &initial)?,
     };
@@ -199,8 +263,7 @@ pub fn recognize_lines(model: &Path, demos: &Path, json: Option<&Path>) -> Resul
     }
     if let Some(p) = json {
         let bytes = serde_json::to_vec_pretty(&answers)?;
-        crate::fsutil::write_atomic(p, &bytes)
-            .with_context(|| format!("writing {}", p.display()))?;
+        write(p, &bytes)?;
     }
     Ok(lines)
 }
@@ -213,7 +276,10 @@ pub fn parse_posture(text: &str) -> Result<Vec<f64>> {
             let v = v.trim();
             match v.parse::<f64>() {
                 Ok(x) if x.is_finite() => Ok(x),
-                _ => bail!("--initial: value {} is '{v}': need a finite number", i + 1),
+                _ => Err(CommandError::Usage(format!(
+                    "--initial: value {} is '{v}': need a finite number",
+                    i + 1
+                ))),
             }
         })
         .collect()
@@ -232,11 +298,14 @@ pub fn reproduce_file(
     let initial = match (initial, initial_from) {
         (Some(text), None) => parse_posture(text)?,
         (None, Some(p)) => steps::initial_from_file(&m, p)?,
-        _ => bail!("give exactly one of --initial and --initial-from"),
+        _ => {
+            return Err(CommandError::Usage(
+                "give exactly one of --initial and --initial-from".into(),
+            ))
+        }
     };
     let rep = steps::reproduce(&m, &model.display().to_string(), &initial)?;
     let bytes = steps::reproduction_csv(&m, &rep)?;
-    crate::fsutil::write_atomic(out, &bytes)
-        .with_context(|| format!("writing {}", out.display()))?;
+    write(out, &bytes)?;
     Ok(rep.postures.len())
 }

@@ -3,12 +3,11 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Context, Result};
-
 use crate::steps;
 
 use super::{
-    failures, json, leave_one_out, markdown, read_gestures_at, Kinematic, LooSettings, Method,
+    failures, json, leave_one_out, markdown, read_gestures_at, Kinematic, LooError, LooSettings,
+    Method,
 };
 
 /// What `cosco heldout` does.
@@ -35,7 +34,7 @@ pub struct HeldoutJob {
 pub fn heldout(
     job: &HeldoutJob,
     progress: Option<&(dyn Fn(usize, usize) + Sync)>,
-) -> Result<String> {
+) -> Result<String, LooError> {
     for p in job.json.iter().chain(&job.png) {
         steps::check_output(p)?;
     }
@@ -56,11 +55,15 @@ pub fn heldout(
             .into_iter()
             .find(|(m, _, _)| *m == Method::Hierarchy)
             .map_or_else(|| "no fold ran".to_string(), |(_, why, _)| why);
-        bail!("the hierarchy produced no reproduction on any fold: {why}");
+        return Err(LooError::NoReproduction(why));
     }
     if let Some(p) = &job.json {
-        crate::fsutil::write_atomic(p, json(&cfg, &study).as_bytes())
-            .with_context(|| format!("writing {}", p.display()))?;
+        crate::fsutil::write_atomic(p, json(&cfg, &study).as_bytes()).map_err(|source| {
+            LooError::Write {
+                path: p.clone(),
+                source,
+            }
+        })?;
     }
     #[cfg(feature = "plot")]
     if let Some(p) = &job.png {

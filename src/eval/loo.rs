@@ -97,6 +97,20 @@ pub enum LooError {
     /// gesture, ...).
     #[error(transparent)]
     Demo(#[from] crate::demos::DemoError),
+    /// A file given to `cosco heldout` could not be used (configuration, output path).
+    #[error(transparent)]
+    Step(#[from] crate::steps::StepError),
+    /// The hierarchy produced no reproduction on any fold: nothing to compare.
+    #[error("the hierarchy produced no reproduction on any fold: {0}")]
+    NoReproduction(String),
+    /// An output file could not be written.
+    #[error("writing {}", path.display())]
+    Write {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
     /// The figure could not be drawn or written.
     #[cfg(feature = "plot")]
     #[error(transparent)]

@@ -4,8 +4,6 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Context, Result};
-
 use crate::demos::{sample_period, validate_set, write_csv, Demonstration};
 use crate::gmr::{load_model, save_model, ComponentChoice, MIN_DEMONSTRATIONS};
 use crate::metrics::MetricsParams;
@@ -18,12 +16,17 @@ use super::baseline::{fig3_png, fig5_png, gmr_params, run_baseline, GMR_COLOR};
 use super::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
 use super::job::{config_name, file_size, load_arm, write_hsom_run, Stopwatch, FIG4_JOINTS};
 use super::report::{DemoInfo, MethodResult, Report};
-use super::{are_arm_joints, demo_wrist_paths, learn_and_reproduce, Training, Transition};
+use super::{
+    are_arm_joints, demo_wrist_paths, learn_and_reproduce, ExperimentError, Training, Transition,
+};
+
+/// The result of a job's step.
+type Result<T> = std::result::Result<T, ExperimentError>;
 
 pub use super::baseline::DEFAULT_COMPONENTS;
 
 /// Parse `--components`: a count `K` (≥ 1) or `bic` (BIC over 1..=16).
-pub fn parse_components(s: &str) -> Result<ComponentChoice, String> {
+pub fn parse_components(s: &str) -> std::result::Result<ComponentChoice, String> {
     let t = s.trim();
     if t.eq_ignore_ascii_case("bic") {
         return Ok(DEFAULT_COMPONENTS);
@@ -40,13 +43,11 @@ pub fn parse_components(s: &str) -> Result<ComponentChoice, String> {
 pub fn require_arm_joints(demos: &[Demonstration]) -> Result<()> {
     if let Some(d) = demos.first() {
         if !are_arm_joints(&d.columns) {
-            bail!(
+            return Err(ExperimentError::Invalid(format!(
                 "{}: the demonstrations' columns are {:?}; comparing needs the simulator to \
                  execute both methods, so the columns must be exactly time (optional) then {:?}",
-                d.source,
-                d.columns,
-                JOINT_NAMES
-            );
+                d.source, d.columns, JOINT_NAMES
+            )));
         }
     }
     Ok(())
@@ -80,10 +81,10 @@ pub fn baseline_section(
     save_model(&model_path, &run.model)?;
     let back = load_model(&model_path)?;
     if back != run.model {
-        bail!(
+        return Err(ExperimentError::Invalid(format!(
             "{}: the reloaded GMR model differs from the saved one",
             model_path.display()
-        );
+        )));
     }
     files.push("gmr_model.txt".into());
     write_csv(
@@ -213,20 +214,20 @@ pub fn compare(job: &CompareJob, on_progress: Progress<'_>) -> Result<Report> {
     let demos = steps::read_demos_at(std::slice::from_ref(&job.demos), None, job.resample)?;
     require_arm_joints(&demos)?;
     if demos.len() < MIN_DEMONSTRATIONS {
-        bail!(
+        return Err(ExperimentError::Invalid(format!(
             "{}: {} demonstration file(s); the GMM/GMR baseline needs at least \
              {MIN_DEMONSTRATIONS} demonstrations to align and to estimate their spread",
             job.demos.display(),
             demos.len()
-        );
+        )));
     }
-    validate_set(&demos, Some(cfg.params().state_length)).with_context(|| {
-        format!(
-            "the configuration's stateLength is {}",
-            cfg.params().state_length
-        )
+    validate_set(&demos, Some(cfg.params().state_length)).map_err(|source| {
+        ExperimentError::StateLength {
+            state_length: cfg.params().state_length,
+            source,
+        }
     })?;
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    std::fs::create_dir_all(out).map_err(ExperimentError::io("creating", out))?;
     let arm = load_arm(job.model.as_deref())?;
     let demo_info: Vec<DemoInfo> = demos
         .iter()
@@ -279,7 +280,7 @@ pub fn compare(job: &CompareJob, on_progress: Progress<'_>) -> Result<Report> {
     };
     report
         .write(out)
-        .with_context(|| format!("writing the report into {}", out.display()))?;
+        .map_err(ExperimentError::io("writing the report into", out))?;
     Ok(report)
 }
 

@@ -7,8 +7,6 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{bail, Context, Result};
-
 use crate::demos::{self, sample_period, write_csv, Demonstration};
 use crate::gesture::Gesture;
 use crate::plot::BLACK;
@@ -23,9 +21,12 @@ use super::report::{level_rows, DemoInfo, MethodResult, Report, Stage};
 use super::variants::{reference_variants, run_variant, variants};
 use super::{
     are_arm_joints, check_reachable, demo_wrist_paths, film, hsom_folds, learn_and_reproduce,
-    leave_one_out, synthetic_demonstrations, DemoSettings, HeldOutSummary, Outcome, Training,
-    Transition,
+    leave_one_out, synthetic_demonstrations, DemoSettings, ExperimentError, HeldOutSummary,
+    Outcome, Training, Transition,
 };
+
+/// The result of a job's step.
+type Result<T> = std::result::Result<T, ExperimentError>;
 
 /// How a report names the configuration: its path, or the built-in default's name.
 pub fn config_name(path: Option<&Path>) -> String {
@@ -38,21 +39,23 @@ pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
 /// Load the arm model from `path` or the default model.
 pub fn load_arm(path: Option<&Path>) -> Result<NaoArm> {
     match path {
-        Some(p) => {
-            NaoArm::load(p).with_context(|| format!("loading the arm model {}", p.display()))
-        }
-        None => NaoArm::load_default().context("loading the default arm model"),
+        Some(p) => NaoArm::load(p),
+        None => NaoArm::load_default(),
     }
+    .map_err(|source| ExperimentError::Arm {
+        path: path.map(Path::to_path_buf),
+        source,
+    })
 }
 
 /// Look a gesture up by name, with the list of known names on failure.
 pub fn gesture(name: &str) -> Result<Gesture> {
     match Gesture::by_name(name) {
         Some(g) => Ok(g),
-        None => bail!(
+        None => Err(ExperimentError::Invalid(format!(
             "unknown gesture '{name}': allowed {}, or all (every gesture)",
             Gesture::names().join(", ")
-        ),
+        ))),
     }
 }
 
@@ -80,7 +83,7 @@ pub fn record(
 
 /// Write demonstrations as `demo_01.csv`, ... in `dir` (created if missing).
 pub fn write_demos(dir: &Path, demos: &[Demonstration]) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    std::fs::create_dir_all(dir).map_err(ExperimentError::io("creating", dir))?;
     let mut files = Vec::new();
     for (i, d) in demos.iter().enumerate() {
         let p = dir.join(format!("demo_{:02}.csv", i + 1));
@@ -209,8 +212,7 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     let mut warnings = Vec::new();
     let mut clock = Stopwatch::new();
     let out = &job.out;
-    std::fs::create_dir_all(out.join("demos"))
-        .with_context(|| format!("creating {}", out.display()))?;
+    std::fs::create_dir_all(out.join("demos")).map_err(ExperimentError::io("creating", out))?;
     let cfg = steps::config(job.config.as_deref())?;
     let arm = load_arm(job.model.as_deref())?;
     let mut files = Vec::new();
@@ -232,11 +234,11 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
         }
     };
     if !are_arm_joints(&demos[0].columns) {
-        bail!(
+        return Err(ExperimentError::Invalid(format!(
             "the demonstrations' columns are {:?}; the simulated arm needs exactly {:?} (use `cosco train` / `cosco reproduce` for other data)",
             demos[0].columns,
             JOINT_NAMES
-        );
+        )));
     }
     // recorded demonstrations far outside the joint ranges are no gesture the arm can make
     for d in &demos {
@@ -420,7 +422,7 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     };
     report
         .write(out)
-        .with_context(|| format!("writing the report into {}", out.display()))?;
+        .map_err(ExperimentError::io("writing the report into", out))?;
     Ok(JobSummary { report, warnings })
 }
 
@@ -463,12 +465,12 @@ fn levels_note(by: &[usize]) -> String {
 pub fn all_gestures_job(job: &Job, on_progress: Progress<'_>) -> Result<Vec<String>> {
     use super::all_gestures::{run_all_gestures, AllSettings};
     if job.demos.is_some() {
-        bail!(
+        return Err(ExperimentError::Invalid(
             "--gesture all records synthetic demonstrations of every gesture; to learn several gestures from recorded files use `cosco train --demos DIR` with one subdirectory per gesture (DIR/<gesture>/*.csv)"
-        );
+        .into()));
     }
     let out = &job.out;
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    std::fs::create_dir_all(out).map_err(ExperimentError::io("creating", out))?;
     let cfg = steps::config(job.config.as_deref())?;
     let arm = load_arm(job.model.as_deref())?;
     let config_name = config_name(job.config.as_deref());

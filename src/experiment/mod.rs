@@ -60,4 +60,66 @@ pub enum ExperimentError {
     /// Training or reproduction failed.
     #[error(transparent)]
     Hsom(#[from] crate::hsom::HsomError),
+    /// A file or directory could not be written or created.
+    #[error("{action} {}", path.display())]
+    Io {
+        /// What was being done ("creating", "writing the report into").
+        action: &'static str,
+        /// The file or directory.
+        path: std::path::PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The arm's model could not be loaded (`path`: its MJCF file, `None` for the default).
+    #[error("loading the {}", path.as_ref().map_or("default arm model".to_string(), |p| format!("arm model {}", p.display())))]
+    Arm {
+        /// The MJCF file given, if any.
+        path: Option<std::path::PathBuf>,
+        /// The cause.
+        source: crate::sim::SimError,
+    },
+    /// The demonstrations do not fit the configuration's `stateLength`.
+    #[error("the configuration's stateLength is {state_length}")]
+    StateLength {
+        /// The configuration's state length.
+        state_length: usize,
+        /// What is wrong with the demonstrations.
+        source: crate::demos::DemoError,
+    },
+    /// A file given to a step could not be read or used.
+    #[error(transparent)]
+    Step(#[from] crate::steps::StepError),
+    /// A demonstration could not be read, written or used.
+    #[error(transparent)]
+    Demo(#[from] crate::demos::DemoError),
+    /// The GMM/GMR baseline failed, or its model could not be written or read back.
+    #[error(transparent)]
+    Gmr(#[from] crate::gmr::GmrError),
+    /// The GMM/GMR baseline's run or figures failed.
+    #[error(transparent)]
+    Baseline(#[from] Box<baseline::BaselineError>),
+    /// A model could not be saved.
+    #[error(transparent)]
+    Persist(#[from] crate::hsom::PersistError),
+    /// A figure could not be drawn or written.
+    #[error(transparent)]
+    Plot(#[from] crate::plot::PlotError),
+}
+
+impl ExperimentError {
+    /// An I/O error while `action` (say "creating") on `path`.
+    pub fn io(action: &'static str, path: &std::path::Path) -> impl FnOnce(std::io::Error) -> Self {
+        let path = path.to_path_buf();
+        move |source| ExperimentError::Io {
+            action,
+            path,
+            source,
+        }
+    }
+}
+
+impl From<baseline::BaselineError> for ExperimentError {
+    fn from(e: baseline::BaselineError) -> Self {
+        ExperimentError::Baseline(Box::new(e))
+    }
 }
