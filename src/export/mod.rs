@@ -19,7 +19,10 @@
 pub mod executed;
 pub mod limits;
 pub mod naoqi;
+mod request;
 pub mod source;
+
+pub use request::{export_request, ExportRequest};
 
 use std::path::Path;
 
@@ -106,6 +109,14 @@ pub enum ExportError {
     /// Loading a model of several gestures or reproducing with it.
     #[error(transparent)]
     Model(#[from] crate::labelled::LabelledError),
+    /// Arguments that do not go together, or a value given on the command line that is not
+    /// allowed (named in the message).
+    #[error("{0}")]
+    Usage(String),
+    /// The simulated arm could not be loaded.
+    #[cfg(feature = "sim")]
+    #[error(transparent)]
+    Arm(Box<crate::experiment::ExperimentError>),
     /// Writing the output.
     #[error("{path}: cannot write it: {source}")]
     Write {

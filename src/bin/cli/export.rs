@@ -3,9 +3,9 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use clap::Args;
-use cosco_hsom::export::{self, limits, source, ExportOptions, Format, Timing};
+use cosco_hsom::export::{self, limits, source, Format};
 
 /// `cosco export`.
 #[derive(Args)]
@@ -66,61 +66,28 @@ pub struct ExportArgs {
 
 /// `cosco export`: the report's lines.
 pub fn export(a: &ExportArgs) -> Result<Vec<String>> {
-    cosco_hsom::steps::check_output(&a.out)?;
-    let t = match (&a.reproduction, &a.model) {
-        (Some(r), _) => source::from_reproduction_file(r, a.step_rate)?,
-        (None, Some(m)) => {
-            let values;
-            let initial = match (&a.initial, &a.initial_from) {
-                (Some(text), None) => {
-                    values = cosco_hsom::commands::parse_posture(text)?;
-                    source::Initial::Values(&values)
-                }
-                (None, Some(p)) => source::Initial::From(p),
-                _ => bail!("with --model, give exactly one of --initial and --initial-from"),
-            };
-            source::from_model(m, a.gesture.as_deref(), initial, a.step_rate)?
-        }
-        (None, None) => bail!("give --reproduction FILE or --model FILE"),
-    };
-    let robot = match (&a.mjcf, &a.velocity_table) {
-        (Some(m), Some(v)) => limits::from_mjcf(m, &limits::read_velocity_table(v)?)?,
-        _ => limits::nao_left_arm(),
-    };
-    let opts = ExportOptions {
+    let request = export::ExportRequest {
+        reproduction: a.reproduction.clone(),
+        model: a.model.clone(),
+        initial: a.initial.clone(),
+        initial_from: a.initial_from.clone(),
+        gesture: a.gesture.clone(),
         format: a.format,
-        timing: match (a.speed, a.duration) {
-            (Some(s), _) => Timing::Speed(s),
-            (None, Some(d)) => Timing::Duration(d),
-            (None, None) => Timing::AsIs,
-        },
+        out: a.out.clone(),
+        speed: a.speed,
+        duration: a.duration,
         velocity_fraction: a.velocity_fraction,
         clamp: a.clamp,
-        rate_hz: a.rate,
+        rate: a.rate,
+        step_rate: a.step_rate,
+        mjcf: a.mjcf.clone(),
+        velocity_table: a.velocity_table.clone(),
+        #[cfg(feature = "sim")]
+        executed: a.executed,
+        #[cfg(not(feature = "sim"))]
+        executed: false,
     };
-    #[cfg(feature = "sim")]
-    let arm = if a.executed {
-        if a.format != Format::Ros2 {
-            bail!("--executed goes with --format ros2");
-        }
-        Some(cosco_hsom::experiment::job::load_arm(None)?)
-    } else {
-        None
-    };
-    #[cfg(feature = "sim")]
-    let run = arm.as_ref().map(|arm| {
-        move |t: &export::Trajectory| {
-            export::executed::execute_on_arm(arm, t, cosco_hsom::sim::DEFAULT_RECORD_RATE_HZ)
-        }
-    });
-    #[cfg(feature = "sim")]
-    let execute = run.as_ref().map(|f| f as export::Execute<'_>);
-    #[cfg(not(feature = "sim"))]
-    let execute = None;
-    let report = export::export_to(&t, &robot, &opts, execute, &a.out)?;
-    let mut lines = report.lines();
-    lines.push(format!("written {}", a.out.display()));
-    Ok(lines)
+    Ok(export::export_request(&request)?)
 }
 
 /// `cosco demos import`: what `cosco demos` does besides recording.
