@@ -106,31 +106,22 @@ pub fn export_request(r: &ExportRequest) -> Result<Vec<String>, ExportError> {
     Ok(lines)
 }
 
-/// [`export_to`], executing on the simulated arm when `r.executed`.
-#[cfg(feature = "sim")]
+/// [`export_to`], executing on the simulated arm when `r.executed` (with the feature `sim`;
+/// without it nothing is executed).
 fn export_executed(
     r: &ExportRequest,
     t: &Trajectory,
     robot: &limits::RobotLimits,
     opts: &ExportOptions,
 ) -> Result<super::ExportReport, ExportError> {
-    if !r.executed {
-        return export_to(t, robot, opts, None, &r.out);
+    #[cfg(feature = "sim")]
+    if r.executed {
+        let arm =
+            crate::experiment::job::load_arm(None).map_err(|e| ExportError::Arm(Box::new(e)))?;
+        let run = |t: &Trajectory| {
+            super::executed::execute_on_arm(&arm, t, crate::sim::DEFAULT_RECORD_RATE_HZ)
+        };
+        return export_to(t, robot, opts, Some(&run), &r.out);
     }
-    let arm = crate::experiment::job::load_arm(None).map_err(|e| ExportError::Arm(Box::new(e)))?;
-    let run = |t: &Trajectory| {
-        super::executed::execute_on_arm(&arm, t, crate::sim::DEFAULT_RECORD_RATE_HZ)
-    };
-    export_to(t, robot, opts, Some(&run), &r.out)
-}
-
-/// [`export_to`]: without the simulator nothing is executed.
-#[cfg(not(feature = "sim"))]
-fn export_executed(
-    r: &ExportRequest,
-    t: &Trajectory,
-    robot: &limits::RobotLimits,
-    opts: &ExportOptions,
-) -> Result<super::ExportReport, ExportError> {
     export_to(t, robot, opts, None, &r.out)
 }
