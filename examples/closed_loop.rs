@@ -19,6 +19,8 @@
 //! cargo run --release --example closed_loop -- --seeds 12 --gestures wave --png docs/figures
 //! ```
 
+#[path = "common/closed_loop.rs"]
+mod closed_loop;
 mod common;
 
 use std::path::PathBuf;
@@ -27,11 +29,10 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::Parser;
 
-use cosco_hsom::experiment::closed_loop::{
-    closed_loop_folds, closed_loop_png, ClosedLoop, ClosedLoopFold, ClosedLoopGrab,
-};
-use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};
+use closed_loop::{closed_loop_folds, closed_loop_png, ClosedLoop, ClosedLoopFold, ClosedLoopGrab};
+use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{synthetic_demonstrations, FoldScores, Transition};
+use cosco_hsom::metrics::median;
 
 /// A grab during execution: the hierarchy's and the nearest sequence's closed loops, and
 /// every method by its clock.

@@ -22,9 +22,10 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::Parser;
 
+use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::heldout::{continuation_folds, Disturbance};
-use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{synthetic_demonstrations, FoldScores, Transition};
+use cosco_hsom::metrics::median;
 
 /// Continuing a held-out demonstration's prefix: the hierarchy and the nearest sequence.
 #[derive(Parser, Debug)]

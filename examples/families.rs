@@ -28,7 +28,8 @@ use clap::Parser;
 
 use cosco_hsom::config::{HsomConfig, HsomParams};
 use cosco_hsom::demos::Demonstration;
-use cosco_hsom::experiment::study::{median, parse_seeds};
+use cosco_hsom::experiment::demonstrate::parse_seeds;
+use cosco_hsom::metrics::median;
 use hsom_common::{diagonal, dtw, figure_eight, handwriting, joints6, recommended_for, stroke};
 
 /// Leave-one-out on the synthetic families.

@@ -7,6 +7,8 @@
 //! ```
 
 mod common;
+#[path = "common/study.rs"]
+mod study;
 
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -17,9 +19,10 @@ use anyhow::{Context, Result};
 use clap::Parser;
 
 use cosco_hsom::config::load_config;
-use cosco_hsom::experiment::study::{parse_gestures, parse_seeds, run_study, StudySettings};
+use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::Transition;
 use cosco_hsom::sim::NaoArm;
+use study::{run_study, StudySettings};
 
 /// Leave-one-out evaluation of CoSCo-HSOM and GMM/GMR on synthetic demonstrations.
 #[derive(Parser, Debug)]

@@ -8,6 +8,8 @@
 //! ```
 
 mod common;
+#[path = "common/multi.rs"]
+mod multi;
 
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -17,9 +19,9 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use clap::Parser;
 
-use cosco_hsom::experiment::multi::{run_seed, to_markdown, MultiSettings};
-use cosco_hsom::experiment::study::{parse_gestures, parse_seeds};
+use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::Transition;
+use multi::{run_seed, to_markdown, MultiSettings};
 
 /// Held-out study of one hierarchy on several gestures.
 #[derive(Parser, Debug)]

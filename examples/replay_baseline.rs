@@ -15,8 +15,9 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::Parser;
 
-use cosco_hsom::experiment::study::{median, parse_gestures, parse_seeds};
+use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{evaluate, record_demonstrations, DemoSettings};
+use cosco_hsom::metrics::median;
 use cosco_hsom::metrics::MetricsParams;
 use cosco_hsom::sim::NaoArm;
 

@@ -17,9 +17,9 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::Parser;
 
+use cosco_hsom::experiment::demonstrate::parse_seeds;
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
 use cosco_hsom::experiment::heldout::{swing_folds, swing_folds_png};
-use cosco_hsom::experiment::study::parse_seeds;
 use cosco_hsom::experiment::Transition;
 
 /// Leave-one-out folds of one gesture, drawn.

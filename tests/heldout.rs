@@ -10,7 +10,9 @@ use rand_chacha::ChaCha8Rng;
 
 use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::{sample_period, Demonstration};
-use cosco_hsom::experiment::closed_loop::{closed_loop_folds, closed_loop_png, ClosedLoopGrab};
+#[path = "../examples/common/closed_loop.rs"]
+mod closed_loop;
+use closed_loop::{closed_loop_folds, closed_loop_png, ClosedLoopGrab};
 use cosco_hsom::experiment::heldout::{
     continuation_folds, swing_folds, swing_folds_png, Disturbance, SWING_JOINT,
     SWING_MIN_AMPLITUDE_RAD,

@@ -15,7 +15,7 @@ use assert_cmd::cargo::CommandCargoExt;
 use cosco_hsom::sweep::merge::{TABLES_CSV, TABLES_MD, WINS_CSV};
 use cosco_hsom::sweep::runner::{run_files, RUNS_DIR};
 use cosco_hsom::sweep::{
-    merge, run_sweep, Progress, RunRecord, Shard, SweepError, SweepOptions, SweepSpec,
+    merge, method_name, run_sweep, Progress, RunRecord, Shard, SweepError, SweepOptions, SweepSpec,
 };
 
 const CONFIG: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/configs/nao-gestures.xml");
@@ -145,7 +145,7 @@ fn merge_tables_hold_the_statistics_of_the_run_files_and_the_paired_wins() {
         assert!(r.error.is_none(), "{}", r.run_id);
         assert_eq!(r.config_sha256.len(), 64);
         for m in r.methods {
-            dtw.entry(m.method.name())
+            dtw.entry(method_name(m.method))
                 .or_default()
                 .push(m.metrics["joint_dtw_rad_per_step"]);
         }
@@ -230,12 +230,16 @@ fn a_failed_run_is_recorded_the_sweep_goes_on_and_merge_lists_it() {
     sweep(&spec, &out, Shard::ALL).unwrap();
     let r = RunRecord::read(&run_files(&out).unwrap()[0]).unwrap();
     assert!(r.failed());
-    let gmr = r.methods.iter().find(|m| m.method.name() == "gmr").unwrap();
+    let gmr = r
+        .methods
+        .iter()
+        .find(|m| method_name(m.method) == "gmr")
+        .unwrap();
     assert!(gmr.error.as_deref().unwrap().contains("no fold"), "{gmr:?}");
     let hsom = r
         .methods
         .iter()
-        .find(|m| m.method.name() == "cosco-hsom")
+        .find(|m| method_name(m.method) == "cosco-hsom")
         .unwrap();
     assert!(hsom.error.is_none() && hsom.metrics.contains_key("joint_dtw_rad_per_step"));
     let summary = merge(&out).unwrap();

@@ -61,7 +61,7 @@ pub fn config_and_arm(config: &Path) -> anyhow::Result<(HsomConfig, NaoArm)> {
 /// The one gesture `--gesture` names (a list of more, or none, is refused).
 #[allow(dead_code)] // used by the examples that draw one gesture
 pub fn one_gesture(names: &str) -> anyhow::Result<cosco_hsom::gesture::Gesture> {
-    let mut gestures = cosco_hsom::experiment::study::parse_gestures(names)?;
+    let mut gestures = cosco_hsom::experiment::demonstrate::parse_gestures(names)?;
     if gestures.len() != 1 {
         anyhow::bail!(
             "--gesture '{names}': name exactly one gesture ({} given)",

@@ -19,7 +19,7 @@ use super::executor::{Executed, Executor};
 pub const GMR_COMPONENTS: ComponentChoice = ComponentChoice::Bic { min: 1, max: 16 };
 
 /// A method of an evaluation.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Method {
     /// The configuration as given ([`Hsom::reproduce`]).

@@ -27,11 +27,10 @@ use crate::sim::{NaoArm, Recording};
 
 use super::demonstrate::{synthetic_demonstrations, DemoSettings};
 use super::film::{clip_options, film};
-use super::multi::{confusion_counts, confusion_markdown};
 use super::pipeline::execute_and_score;
-use super::study::median;
 use super::{ExperimentError, Transition};
 use crate::demos::sample_period;
+use crate::metrics::median;
 
 /// Frames of each gesture on the contact sheet (one row per gesture).
 const SHEET_COLUMNS: usize = 4;
@@ -536,4 +535,36 @@ fn sheet_frames(rec: &Recording, stride: usize, frames: usize) -> Vec<usize> {
         .iter()
         .map(|&i| (i / stride.max(1)).min(frames.saturating_sub(1)))
         .collect()
+}
+
+/// Confusion counts from (shown, answer) pairs: rows the labels, columns the labels then
+/// `unknown` (an answer of `None` or of no label).
+pub fn confusion_counts<'a>(
+    labels: &[String],
+    pairs: impl Iterator<Item = (&'a String, Option<&'a String>)>,
+) -> Vec<Vec<usize>> {
+    let mut m = vec![vec![0usize; labels.len() + 1]; labels.len()];
+    for (shown, answer) in pairs {
+        if let Some(r) = labels.iter().position(|l| l == shown) {
+            let c = answer
+                .and_then(|a| labels.iter().position(|l| l == a))
+                .unwrap_or(labels.len());
+            m[r][c] += 1;
+        }
+    }
+    m
+}
+
+/// A confusion matrix as a Markdown table; with `unknown`, its last column is `unknown`
+/// (a classifier that never answers it, such as 1-NN DTW, leaves it out).
+pub fn confusion_markdown(m: &[Vec<usize>], labels: &[String], unknown: bool) -> String {
+    let n = labels.len() + usize::from(unknown);
+    let mut s = format!("| gesture | {}", labels.join(" | "));
+    s += if unknown { " | unknown |\n" } else { " |\n" };
+    s += &format!("|---|{}\n", "---|".repeat(n));
+    for (l, row) in labels.iter().zip(m) {
+        let cells: Vec<String> = row.iter().take(n).map(|c| c.to_string()).collect();
+        s += &format!("| {l} | {} |\n", cells.join(" | "));
+    }
+    s
 }

@@ -104,3 +104,82 @@ pub fn synthetic_demonstrations(
         })
         .collect())
 }
+
+/// Parse seeds: a comma-separated list of numbers and inclusive ranges `A-B` (`1-5`,
+/// `1,3,7-9`). An empty entry, a bad number or a range with `A > B` is an error naming it.
+pub fn parse_seeds(text: &str) -> Result<Vec<u64>, ExperimentError> {
+    let bad = |entry: &str, why: &str| {
+        ExperimentError::Invalid(format!(
+            "seeds '{text}': entry '{entry}' {why}; give numbers and ranges A-B separated by \
+             commas, e.g. 1-5 or 1,3,7-9"
+        ))
+    };
+    let number = |entry: &str, v: &str| {
+        v.trim()
+            .parse::<u64>()
+            .map_err(|_| bad(entry, "is not a whole number >= 0"))
+    };
+    let mut out = Vec::new();
+    for entry in text.split(',') {
+        let e = entry.trim();
+        if e.is_empty() {
+            return Err(bad(entry, "is empty"));
+        }
+        match e.split_once('-') {
+            Some((a, b)) => {
+                let (a, b) = (number(e, a)?, number(e, b)?);
+                if a > b {
+                    return Err(bad(e, "is a range whose start exceeds its end"));
+                }
+                out.extend(a..=b);
+            }
+            None => out.push(number(e, e)?),
+        }
+    }
+    Ok(out)
+}
+
+/// Parse comma-separated gesture names; an unknown name is an error listing the known ones.
+pub fn parse_gestures(text: &str) -> Result<Vec<Gesture>, ExperimentError> {
+    text.split(',')
+        .map(|name| {
+            let name = name.trim();
+            Gesture::by_name(name).ok_or_else(|| {
+                ExperimentError::Invalid(format!(
+                    "unknown gesture '{name}' in '{text}': allowed {}",
+                    Gesture::names().join(", ")
+                ))
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn seeds_parse_lists_and_ranges_and_name_bad_entries() {
+        assert_eq!(parse_seeds("1-5").unwrap(), vec![1, 2, 3, 4, 5]);
+        assert_eq!(parse_seeds("1, 3,7-9").unwrap(), vec![1, 3, 7, 8, 9]);
+        assert_eq!(parse_seeds("4").unwrap(), vec![4]);
+        for (bad, named) in [
+            ("1,,2", "''"),
+            ("x", "'x'"),
+            ("5-2", "'5-2'"),
+            ("-3", "'-3'"),
+        ] {
+            let e = parse_seeds(bad).unwrap_err().to_string();
+            assert!(e.contains(named), "{bad}: {e}");
+        }
+    }
+
+    #[test]
+    fn gestures_parse_and_unknown_names_list_the_known_ones() {
+        let g = parse_gestures("wave,salute").unwrap();
+        assert_eq!(g.len(), 2);
+        assert_eq!(g[0].name, "wave");
+        let e = parse_gestures("wave,dance").unwrap_err().to_string();
+        assert!(e.contains("'dance'") && e.contains("reading-watch"), "{e}");
+    }
+}

@@ -247,7 +247,7 @@ impl HeldOut {
 }
 
 /// Check that leave-one-out can run on `demos`: at least 2, the arm's joints.
-pub(crate) fn check_demos(demos: &[Demonstration]) -> Result<(), ExperimentError> {
+pub fn check_demos(demos: &[Demonstration]) -> Result<(), ExperimentError> {
     if demos.len() < 2 {
         return Err(ExperimentError::Invalid(format!(
             "leave-one-out needs at least 2 demonstrations (one to hold out, one to learn \
@@ -266,10 +266,9 @@ pub(crate) fn check_demos(demos: &[Demonstration]) -> Result<(), ExperimentError
     Ok(())
 }
 
-pub(crate) fn swings(
-    executed: &Recording,
-    held_out: &Demonstration,
-) -> Result<Swings, ExperimentError> {
+/// The large swings of [`SWING_JOINT`] in an executed reproduction and in the held-out
+/// demonstration it is scored against.
+pub fn swings(executed: &Recording, held_out: &Demonstration) -> Result<Swings, ExperimentError> {
     Ok(Swings {
         joint: JOINT_NAMES[SWING_JOINT].to_string(),
         min_amplitude_rad: SWING_MIN_AMPLITUDE_RAD,
@@ -625,7 +624,7 @@ pub fn swing_folds(
 }
 
 /// `(time s, value rad)` of [`SWING_JOINT`] in an executed recording.
-pub(crate) fn joint_trace(rec: &Recording) -> Vec<(f64, f64)> {
+pub fn joint_trace(rec: &Recording) -> Vec<(f64, f64)> {
     rec.time
         .iter()
         .zip(&rec.qpos)
@@ -635,7 +634,7 @@ pub(crate) fn joint_trace(rec: &Recording) -> Vec<(f64, f64)> {
 
 /// `(time s, value rad)` of [`SWING_JOINT`] in a demonstration (its own times, or its rows at
 /// its sample period).
-pub(crate) fn demo_trace(demo: &Demonstration) -> Vec<(f64, f64)> {
+pub fn demo_trace(demo: &Demonstration) -> Vec<(f64, f64)> {
     let period = sample_period(demo);
     demo.rows
         .iter()

@@ -5,7 +5,6 @@
 pub mod all_gestures;
 pub mod arm_executor;
 pub mod baseline;
-pub mod closed_loop;
 pub mod compare;
 pub mod demonstrate;
 pub mod evaluate;
@@ -14,10 +13,8 @@ pub mod figures;
 pub mod film;
 pub mod heldout;
 pub mod job;
-pub mod multi;
 pub mod pipeline;
 pub mod report;
-pub mod study;
 pub mod variants;
 
 pub use arm_executor::ArmExecutor;

@@ -16,8 +16,9 @@ use crate::plot::{boxplots_png, quantile, BoxPanel};
 
 use super::run::RunRecord;
 use super::runner::{run_files, Manifest};
-use super::spec::{AxisValues, Method};
+use super::spec::{method_name, AxisValues};
 use super::SweepError;
+use crate::eval::Method;
 
 /// Which way a metric is better.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -214,7 +215,7 @@ pub fn merge(dir: &Path) -> Result<MergeSummary, SweepError> {
             let methods = r.methods.iter().filter_map(move |m| {
                 m.error
                     .as_ref()
-                    .map(|e| format!("{} ({}): {e}", r.run_id, m.method.name()))
+                    .map(|e| format!("{} ({}): {e}", r.run_id, method_name(m.method)))
             });
             whole.chain(methods)
         })
@@ -349,9 +350,9 @@ fn wins(samples: &[Sample], metric: &Metric, row: &(&str, String)) -> Option<Win
     let mut pairs: BTreeMap<String, [Option<f64>; 2]> = BTreeMap::new();
     for s in samples.iter().filter(|s| in_row(s.axes, row)) {
         let slot = match s.method {
-            Method::CoscoHsom => 0,
-            Method::Gmr => 1,
-            Method::Both => continue,
+            Method::Hierarchy => 0,
+            Method::GmmGmr => 1,
+            _ => continue,
         };
         pairs.entry(pair_key(s.axes)).or_default()[slot] = s.metrics.get(metric.key).copied();
     }
@@ -421,7 +422,7 @@ fn tables_md(
          runs of the row, `n` runs. Paired wins: the two methods on the same demonstrations \
          (every axis equal), CoSCo-HSOM wins - GMM/GMR wins - ties.\n"
     );
-    let has_pairs = methods.contains(&Method::CoscoHsom) && methods.contains(&Method::Gmr);
+    let has_pairs = methods.contains(&Method::Hierarchy) && methods.contains(&Method::GmmGmr);
     for m in &METRICS {
         let better = match m.better {
             Better::Lower => ", lower is better",
@@ -431,7 +432,7 @@ fn tables_md(
         let _ = writeln!(md, "## {}{better}\n", m.label);
         md.push_str("| axis | value |");
         for me in methods {
-            let _ = write!(md, " {} (n) |", me.name());
+            let _ = write!(md, " {} (n) |", method_name(*me));
         }
         let pairs = has_pairs && m.better != Better::Neither;
         if pairs {
@@ -519,7 +520,7 @@ fn tables_csv(
                         m.key.to_string(),
                         row.0.to_string(),
                         row.1.clone(),
-                        me.name().to_string(),
+                        method_name(me).to_string(),
                         s.n.to_string(),
                         s.median.to_string(),
                         s.mean.to_string(),
@@ -588,7 +589,7 @@ fn timing_md(manifest: &Manifest, runs: &[RunRecord]) -> String {
         let _ = writeln!(md, "| {s} | {n} | {t:.1} |");
     }
     md.push_str("\n| method | fits timed | training, median (s) | reproduction, median (ms) |\n|---|---|---|---|\n");
-    for method in [Method::CoscoHsom, Method::Gmr] {
+    for method in [Method::Hierarchy, Method::GmmGmr] {
         let of = |key: &str| {
             Stats::of(runs.iter().flat_map(|r| {
                 r.methods
@@ -602,7 +603,7 @@ fn timing_md(manifest: &Manifest, runs: &[RunRecord]) -> String {
             let _ = writeln!(
                 md,
                 "| {} | {} | {:.3} | {:.2} |",
-                method.name(),
+                method_name(method),
                 t.n,
                 t.median,
                 r.median * 1e3
@@ -645,7 +646,7 @@ fn box_plot(
         .filter(|&i| combos.iter().any(|c| c[i] != combos[0][i]))
         .collect();
     let color = |m: Method| match m {
-        Method::Gmr => GMR_COLOR,
+        Method::GmmGmr => GMR_COLOR,
         _ => RGBColor(31, 119, 180),
     };
     let panels: Vec<BoxPanel> = combos
@@ -693,7 +694,7 @@ fn box_plot(
                 categories: gestures.clone(),
                 series: methods
                     .iter()
-                    .map(|&m| (m.name().to_string(), color(m)))
+                    .map(|&m| (method_name(m).to_string(), color(m)))
                     .collect(),
                 values,
             }

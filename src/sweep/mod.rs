@@ -21,7 +21,7 @@ pub use merge::{merge, MergeSummary, Stats, METRICS};
 pub use run::{execute_run, MethodRecord, RunRecord};
 pub use runner::{run_sweep, Manifest, Progress, SweepOptions, SweepSummary};
 pub use shard::Shard;
-pub use spec::{AxisValues, Evaluation, Height, Method, RunPlan, SweepSpec, AXES};
+pub use spec::{method_name, AxisValues, Evaluation, Height, MethodAxis, RunPlan, SweepSpec, AXES};
 
 /// Why a sweep or a merge refused to start or stopped. Every message names the file, field
 /// or value and what is allowed.

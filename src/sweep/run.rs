@@ -21,8 +21,9 @@ use crate::gesture::Gesture;
 use crate::metrics::{column_swings, FidelityReport};
 use crate::sim::{NaoArm, Recording};
 
-use super::spec::{AxisValues, Evaluation, Method, RunPlan, SweepSpec};
+use super::spec::{AxisValues, Evaluation, RunPlan, SweepSpec};
 use super::SweepError;
+use crate::eval::Method;
 
 /// Version of the run-file format.
 pub const RUN_FORMAT: u32 = 1;
@@ -30,7 +31,8 @@ pub const RUN_FORMAT: u32 = 1;
 /// One method's result in a run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MethodRecord {
-    /// `cosco-hsom` or `gmr`.
+    /// `cosco-hsom` or `gmr` ([`super::spec::method_name`]).
+    #[serde(with = "super::spec::method_serde")]
     pub method: Method,
     /// Fidelity metrics (names in [`super::merge::METRICS`]); a metric that is undefined for
     /// this run is absent.
@@ -180,7 +182,7 @@ fn run_methods(spec: &SweepSpec, plan: &RunPlan) -> Result<Vec<MethodRecord>, St
         .iter()
         .map(|&method| {
             let r = match (method, a.evaluation) {
-                (Method::Gmr, Evaluation::InSample) => run_baseline_in_sample(&arm, &demos)
+                (Method::GmmGmr, Evaluation::InSample) => run_baseline_in_sample(&arm, &demos)
                     .map_err(|e| e.to_string())
                     .and_then(|r| {
                         in_sample(&r.fidelity, &r.executed, &demos, r.train_s, r.reproduce_s)
@@ -197,7 +199,7 @@ fn run_methods(spec: &SweepSpec, plan: &RunPlan) -> Result<Vec<MethodRecord>, St
                 .and_then(|r| {
                     in_sample(&r.fidelity, &r.executed, &demos, r.train_s, r.reproduce_s)
                 }),
-                (Method::Gmr, Evaluation::LeaveOneOut) => gmr_folds(&arm, &demos)
+                (Method::GmmGmr, Evaluation::LeaveOneOut) => gmr_folds(&arm, &demos)
                     .map_err(|e| e.to_string())
                     .and_then(|folds| {
                         let (ran, failed): (Vec<_>, Vec<_>) =

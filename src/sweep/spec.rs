@@ -10,7 +10,8 @@ use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
 use crate::config::{load_config, HsomConfig};
-use crate::experiment::study::parse_seeds;
+use crate::eval::Method;
+use crate::experiment::demonstrate::parse_seeds;
 use crate::experiment::variants::at_height;
 use crate::experiment::Transition;
 use crate::gesture::Gesture;
@@ -32,41 +33,71 @@ pub const AXES: [&str; 8] = [
     "seed",
 ];
 
-/// Which method(s) a run executes.
+/// Which method(s) a run executes: a selection of the evaluator's methods
+/// ([`eval::Method`]), spelt as in spec files.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum Method {
-    /// CoSCo-HSOM alone.
+pub enum MethodAxis {
+    /// CoSCo-HSOM alone ([`eval::Method::Hierarchy`]).
     CoscoHsom,
-    /// The GMM/GMR baseline alone.
+    /// The GMM/GMR baseline alone ([`eval::Method::GmmGmr`]).
     Gmr,
     /// Both, on the same demonstrations.
     Both,
 }
 
-impl Method {
+impl MethodAxis {
     /// The name in spec files and tables.
     pub fn name(self) -> &'static str {
         match self {
-            Method::CoscoHsom => "cosco-hsom",
-            Method::Gmr => "gmr",
-            Method::Both => "both",
+            MethodAxis::CoscoHsom => "cosco-hsom",
+            MethodAxis::Gmr => "gmr",
+            MethodAxis::Both => "both",
         }
     }
 
-    /// The single methods this value runs, in order.
+    /// The evaluator's methods this value runs, in order.
     pub fn singles(self) -> &'static [Method] {
         match self {
-            Method::CoscoHsom => &[Method::CoscoHsom],
-            Method::Gmr => &[Method::Gmr],
-            Method::Both => &[Method::CoscoHsom, Method::Gmr],
+            MethodAxis::CoscoHsom => &[Method::Hierarchy],
+            MethodAxis::Gmr => &[Method::GmmGmr],
+            MethodAxis::Both => &[Method::Hierarchy, Method::GmmGmr],
         }
     }
 
-    fn parse(s: &str) -> Option<Method> {
-        [Method::CoscoHsom, Method::Gmr, Method::Both]
+    fn parse(s: &str) -> Option<MethodAxis> {
+        [MethodAxis::CoscoHsom, MethodAxis::Gmr, MethodAxis::Both]
             .into_iter()
             .find(|m| m.name() == s)
+    }
+}
+
+/// A single method's name in run files and tables: the spec file's spelling
+/// (`cosco-hsom`, `gmr`) for the two a sweep runs, the evaluator's otherwise.
+pub fn method_name(m: Method) -> &'static str {
+    match m {
+        Method::Hierarchy => MethodAxis::CoscoHsom.name(),
+        Method::GmmGmr => MethodAxis::Gmr.name(),
+        other => other.name(),
+    }
+}
+
+/// [`Method`] in run files, by [`method_name`].
+pub(crate) mod method_serde {
+    use super::{method_name, Method};
+
+    /// Write the method's name.
+    pub fn serialize<S: serde::Serializer>(m: &Method, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(method_name(*m))
+    }
+
+    /// Read a method's name back.
+    pub fn deserialize<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Method, D::Error> {
+        let text = <String as serde::Deserialize>::deserialize(d)?;
+        Method::ALL
+            .into_iter()
+            .find(|&m| method_name(m) == text)
+            .ok_or_else(|| serde::de::Error::custom(format!("unknown method '{text}'")))
     }
 }
 
@@ -142,7 +173,7 @@ pub struct AxisValues {
     /// In-sample or leave-one-out.
     pub evaluation: Evaluation,
     /// Method(s).
-    pub method: Method,
+    pub method: MethodAxis,
 }
 
 impl AxisValues {
@@ -215,7 +246,7 @@ pub struct Axes {
     /// Evaluations.
     pub evaluation: Vec<Evaluation>,
     /// Methods.
-    pub method: Vec<Method>,
+    pub method: Vec<MethodAxis>,
 }
 
 impl Axes {
@@ -426,9 +457,14 @@ impl SweepSpec {
         .map_err(bad)?;
         let method = a.method.unwrap_or_else(|| vec!["both".into()]);
         axis("method", method.len())?;
-        let method =
-            words("method", &method, Method::parse, "cosco-hsom, gmr, both").map_err(bad)?;
-        if method.contains(&Method::Both) && method.len() > 1 {
+        let method = words(
+            "method",
+            &method,
+            MethodAxis::parse,
+            "cosco-hsom, gmr, both",
+        )
+        .map_err(bad)?;
+        if method.contains(&MethodAxis::Both) && method.len() > 1 {
             return Err(bad(
                 "axis `method`: `both` already runs cosco-hsom and gmr; give either `both` or \
                  the single methods"

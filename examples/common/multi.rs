@@ -12,19 +12,20 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
 
-use crate::config::HsomConfig;
-use crate::demos::Demonstration;
-use crate::dtw::Band;
-use crate::gesture::Gesture;
-use crate::hsom::{GestureModel, Scoring};
-use crate::metrics::MetricsParams;
-use crate::nearest::NearestNeighbour;
-use crate::sim::NaoArm;
+use cosco_hsom::config::HsomConfig;
+use cosco_hsom::demos::Demonstration;
+use cosco_hsom::dtw::Band;
+use cosco_hsom::gesture::Gesture;
+use cosco_hsom::hsom::{GestureModel, Scoring};
+use cosco_hsom::metrics::MetricsParams;
+use cosco_hsom::nearest::NearestNeighbour;
+use cosco_hsom::sim::NaoArm;
 
-use super::demonstrate::{synthetic_demonstrations, DemoSettings};
-use super::pipeline::execute_and_score;
-use super::{ExperimentError, Transition};
-use crate::demos::sample_period;
+use cosco_hsom::demos::sample_period;
+use cosco_hsom::experiment::all_gestures::{confusion_counts, confusion_markdown};
+use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
+use cosco_hsom::experiment::pipeline::execute_and_score;
+use cosco_hsom::experiment::{ExperimentError, Transition};
 
 /// What the study does.
 #[derive(Debug, Clone)]
@@ -184,7 +185,7 @@ fn answers(
     Ok(a)
 }
 
-fn gerr(e: crate::hsom::GestureError) -> ExperimentError {
+fn gerr(e: cosco_hsom::hsom::GestureError) -> ExperimentError {
     ExperimentError::Invalid(e.to_string())
 }
 
@@ -346,7 +347,7 @@ pub fn run_seed(
 
 /// The median of values (NaN-free); `None` when empty.
 fn median(mut v: Vec<f64>) -> Option<f64> {
-    super::study::median(std::mem::take(&mut v))
+    cosco_hsom::metrics::median(std::mem::take(&mut v))
 }
 
 /// Markdown tables of the results over seeds.
@@ -505,36 +506,4 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
 /// Confusion counts: rows = expected label, columns = the labels then `unknown`.
 pub fn confusion(q: &[&Query], labels: &[String]) -> Vec<Vec<usize>> {
     confusion_counts(labels, q.iter().map(|x| (&x.expected, x.hsom.as_ref())))
-}
-
-/// Confusion counts from (shown, answer) pairs: rows the labels, columns the labels then
-/// `unknown` (an answer of `None` or of no label).
-pub fn confusion_counts<'a>(
-    labels: &[String],
-    pairs: impl Iterator<Item = (&'a String, Option<&'a String>)>,
-) -> Vec<Vec<usize>> {
-    let mut m = vec![vec![0usize; labels.len() + 1]; labels.len()];
-    for (shown, answer) in pairs {
-        if let Some(r) = labels.iter().position(|l| l == shown) {
-            let c = answer
-                .and_then(|a| labels.iter().position(|l| l == a))
-                .unwrap_or(labels.len());
-            m[r][c] += 1;
-        }
-    }
-    m
-}
-
-/// A confusion matrix as a Markdown table; with `unknown`, its last column is `unknown`
-/// (a classifier that never answers it, such as 1-NN DTW, leaves it out).
-pub fn confusion_markdown(m: &[Vec<usize>], labels: &[String], unknown: bool) -> String {
-    let n = labels.len() + usize::from(unknown);
-    let mut s = format!("| gesture | {}", labels.join(" | "));
-    s += if unknown { " | unknown |\n" } else { " |\n" };
-    s += &format!("|---|{}\n", "---|".repeat(n));
-    for (l, row) in labels.iter().zip(m) {
-        let cells: Vec<String> = row.iter().take(n).map(|c| c.to_string()).collect();
-        s += &format!("| {l} | {} |\n", cells.join(" | "));
-    }
-    s
 }

@@ -6,19 +6,21 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::config::HsomConfig;
-use crate::demos::Demonstration;
-use crate::eval::all_but;
-use crate::gmr::MIN_DEMONSTRATIONS;
-use crate::metrics::MetricsParams;
-use crate::sim::{NaoArm, Recording, JOINT_NAMES};
+use cosco_hsom::config::HsomConfig;
+use cosco_hsom::demos::Demonstration;
+use cosco_hsom::eval::all_but;
+use cosco_hsom::gmr::MIN_DEMONSTRATIONS;
+use cosco_hsom::metrics::MetricsParams;
+use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
 
-use super::baseline::{gmr_params, plan as gmr_plan, DEFAULT_COMPONENTS};
-use super::evaluate::evaluate;
-use super::execute::{execute_grabbed, ReadingNoise, Replan};
-use super::heldout::{check_demos, demo_trace, joint_trace, swings, FoldScores, SWING_JOINT};
-use super::pipeline::{execute_and_score, Split};
-use super::{ExperimentError, Transition};
+use cosco_hsom::experiment::baseline::{gmr_params, plan as gmr_plan, DEFAULT_COMPONENTS};
+use cosco_hsom::experiment::evaluate::evaluate;
+use cosco_hsom::experiment::execute::{execute_grabbed, ReadingNoise, Replan};
+use cosco_hsom::experiment::heldout::{
+    check_demos, demo_trace, joint_trace, swings, FoldScores, SWING_JOINT,
+};
+use cosco_hsom::experiment::pipeline::{execute_and_score, Split};
+use cosco_hsom::experiment::{ExperimentError, Transition};
 
 /// One method on one fold of [`closed_loop_folds`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -44,16 +46,16 @@ pub struct ClosedLoopFold {
 /// [`closed_loop_folds`]: one [`ClosedLoopFold`] per demonstration for each method.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ClosedLoop {
-    /// CoSCo-HSOM: resumes its own plan with [`Hsom::resume`](crate::hsom::Hsom::resume)
+    /// CoSCo-HSOM: resumes its own plan with [`Hsom::resume`](cosco_hsom::hsom::Hsom::resume)
     /// (the reading aligned with the plan, the plan's events executed so far pushed up the
     /// lists, the levels plan the rest).
     pub hsom: Vec<ClosedLoopFold>,
     /// CoSCo-HSOM re-planning from the reading encoded again by its bottom, with
-    /// [`Hsom::continue_events`](crate::hsom::Hsom::continue_events) (as a prefix of a new
+    /// [`Hsom::continue_events`](cosco_hsom::hsom::Hsom::continue_events) (as a prefix of a new
     /// demonstration is); its undisturbed and by-the-clock runs are `hsom`'s.
     pub hsom_reencoded: Vec<ClosedLoopFold>,
     /// The nearest-sequence baseline: re-aligns with
-    /// [`Hsom::follow_nearest_from`](crate::hsom::Hsom::follow_nearest_from).
+    /// [`Hsom::follow_nearest_from`](cosco_hsom::hsom::Hsom::follow_nearest_from).
     pub sequence: Vec<ClosedLoopFold>,
     /// GMM/GMR by its clock (no re-plan), or why the fold could not run it.
     pub gmr: Vec<Result<ClosedLoopFold, String>>,
@@ -190,6 +192,7 @@ pub struct ClosedLoopGrab {
 
 impl ClosedLoopGrab {
     /// Half-way, 1 s at 40 Hz, exact readings.
+    #[allow(dead_code)] // tests/heldout.rs grabs with it; the example takes its flags
     pub const DEFAULT: ClosedLoopGrab = ClosedLoopGrab {
         at: 0.5,
         ticks: 40,
@@ -223,15 +226,15 @@ impl ClosedLoopGrab {
 /// every demonstration but `demos[i]` and plans from `demos[i]`'s first posture; the plan is
 /// executed on the simulated arm and at `grab.at` of `demos[i]`'s duration (the same
 /// moment for every method) a hand holds the arm still for `grab.ticks` ticks while the servo
-/// targets go on ([`execute_grabbed`](super::execute_grabbed)). Each method is executed
+/// targets go on ([`execute_grabbed`](cosco_hsom::experiment::execute_grabbed)). Each method is executed
 /// undisturbed; grabbed, its plan going on by the clock; grabbed, then re-planned on release
 /// from the encoders' reading of its own execution and the grab (the closed loop); and, as
 /// that re-plan's control, re-planned at the same moment from the reading of its undisturbed
 /// execution (no grab). CoSCo-HSOM resumes its plan with
-/// [`Hsom::resume`](crate::hsom::Hsom::resume) (and, measured beside it, re-plans from the
-/// reading encoded again with [`Hsom::continue_events`](crate::hsom::Hsom::continue_events)),
+/// [`Hsom::resume`](cosco_hsom::hsom::Hsom::resume) (and, measured beside it, re-plans from the
+/// reading encoded again with [`Hsom::continue_events`](cosco_hsom::hsom::Hsom::continue_events)),
 /// the nearest-sequence baseline re-aligns with
-/// [`Hsom::follow_nearest_from`](crate::hsom::Hsom::follow_nearest_from);
+/// [`Hsom::follow_nearest_from`](cosco_hsom::hsom::Hsom::follow_nearest_from);
 /// GMM/GMR is time-driven: by its clock only. Every executed motion, the grab included, is
 /// scored against `demos[i]` alone.
 pub fn closed_loop_folds(
@@ -324,7 +327,11 @@ pub fn closed_loop_folds(
             let train_s = t.elapsed().as_secs_f64();
             let t = Instant::now();
             let plan = gmr_plan(&model, initial, rate)?;
-            Ok::<_, super::baseline::BaselineError>((plan, train_s, t.elapsed().as_secs_f64()))
+            Ok::<_, cosco_hsom::experiment::baseline::BaselineError>((
+                plan,
+                train_s,
+                t.elapsed().as_secs_f64(),
+            ))
         })();
         out.gmr.push(match gmr {
             Ok((plan, train_s, reproduce_s)) => {
@@ -345,8 +352,8 @@ pub fn closed_loop_png(
     title: &str,
     demos: &[Demonstration],
     c: &ClosedLoop,
-) -> Result<(), crate::plot::PlotError> {
-    use crate::plot::{Band, Panel, Series, BLACK, PALETTE};
+) -> Result<(), cosco_hsom::plot::PlotError> {
+    use cosco_hsom::plot::{Band, Panel, Series, BLACK, PALETTE};
     use plotters::style::RGBColor;
     let joint = JOINT_NAMES[SWING_JOINT];
     let cost = |f: Option<&FoldScores>| {
@@ -428,5 +435,5 @@ pub fn closed_loop_png(
             p
         })
         .collect();
-    crate::plot::panels_png(path, title, &panels, 2, (760, 420))
+    cosco_hsom::plot::panels_png(path, title, &panels, 2, (760, 420))
 }

@@ -12,19 +12,21 @@ use std::sync::Mutex;
 
 use serde::Serialize;
 
-use crate::config::HsomConfig;
-use crate::demos::Demonstration;
-use crate::fsutil::write_atomic;
-use crate::gesture::Gesture;
-pub use crate::metrics::median;
-use crate::metrics::FidelityReport;
-use crate::sim::NaoArm;
+use cosco_hsom::config::HsomConfig;
+use cosco_hsom::demos::Demonstration;
+use cosco_hsom::fsutil::write_atomic;
+use cosco_hsom::gesture::Gesture;
+pub use cosco_hsom::metrics::median;
+use cosco_hsom::metrics::FidelityReport;
+use cosco_hsom::sim::NaoArm;
 
-use super::baseline::run_baseline_in_sample;
-use super::heldout::{gmr_folds, hsom_and_sequence_folds, HeldOut, HeldOutSummary};
-use super::pipeline::{learn_and_reproduce, Training};
-use super::report::{level_rows, LevelRow};
-use super::{synthetic_demonstrations, DemoSettings, ExperimentError, Transition};
+use cosco_hsom::experiment::baseline::run_baseline_in_sample;
+use cosco_hsom::experiment::heldout::{
+    gmr_folds, hsom_and_sequence_folds, HeldOut, HeldOutSummary,
+};
+use cosco_hsom::experiment::pipeline::{learn_and_reproduce, Training};
+use cosco_hsom::experiment::report::{level_rows, LevelRow};
+use cosco_hsom::experiment::{synthetic_demonstrations, DemoSettings, ExperimentError, Transition};
 
 /// Demonstrations the per-level accuracy is measured on (the first ones of each set).
 pub const LEVEL_DEMOS: usize = 3;
@@ -92,55 +94,6 @@ pub struct Study {
     pub transition: String,
     /// One entry per configuration, in the order given.
     pub configs: Vec<ConfigStudy>,
-}
-
-/// Parse seeds: a comma-separated list of numbers and inclusive ranges `A-B` (`1-5`,
-/// `1,3,7-9`). An empty entry, a bad number or a range with `A > B` is an error naming it.
-pub fn parse_seeds(text: &str) -> Result<Vec<u64>, ExperimentError> {
-    let bad = |entry: &str, why: &str| {
-        ExperimentError::Invalid(format!(
-            "seeds '{text}': entry '{entry}' {why}; give numbers and ranges A-B separated by \
-             commas, e.g. 1-5 or 1,3,7-9"
-        ))
-    };
-    let number = |entry: &str, v: &str| {
-        v.trim()
-            .parse::<u64>()
-            .map_err(|_| bad(entry, "is not a whole number >= 0"))
-    };
-    let mut out = Vec::new();
-    for entry in text.split(',') {
-        let e = entry.trim();
-        if e.is_empty() {
-            return Err(bad(entry, "is empty"));
-        }
-        match e.split_once('-') {
-            Some((a, b)) => {
-                let (a, b) = (number(e, a)?, number(e, b)?);
-                if a > b {
-                    return Err(bad(e, "is a range whose start exceeds its end"));
-                }
-                out.extend(a..=b);
-            }
-            None => out.push(number(e, e)?),
-        }
-    }
-    Ok(out)
-}
-
-/// Parse comma-separated gesture names; an unknown name is an error listing the known ones.
-pub fn parse_gestures(text: &str) -> Result<Vec<Gesture>, ExperimentError> {
-    text.split(',')
-        .map(|name| {
-            let name = name.trim();
-            Gesture::by_name(name).ok_or_else(|| {
-                ExperimentError::Invalid(format!(
-                    "unknown gesture '{name}' in '{text}': allowed {}",
-                    Gesture::names().join(", ")
-                ))
-            })
-        })
-        .collect()
 }
 
 /// Everything one (gesture, seed) job computes: one row per configuration.
@@ -844,4 +797,5 @@ impl Study {
 }
 
 #[cfg(test)]
+#[path = "study/tests.rs"]
 mod tests;
