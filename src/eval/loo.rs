@@ -291,6 +291,7 @@ pub fn leave_one_out<E: Executor>(
                     height_1: height_1.as_ref(),
                     train: &train,
                     target: &demos[i],
+                    training: super::Training::Trained,
                 };
                 let f = fold(&input, diagonals[g], settings, held, executor);
                 results.lock().unwrap_or_else(|p| p.into_inner())[k] = Some(f);

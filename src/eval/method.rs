@@ -81,6 +81,17 @@ pub fn peak_speed(demos: &[Demonstration], period: f64) -> f64 {
     median(per_demo).unwrap_or(0.0)
 }
 
+/// Whether the hierarchy learns (the real thing) or keeps its seeded initial weights (the
+/// negative control of every fidelity check).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Training {
+    /// Train as configured.
+    #[default]
+    Trained,
+    /// Initial weights only.
+    Untrained,
+}
+
 /// One fold: what the methods learn from and whom they are scored against.
 #[derive(Debug, Clone, Copy)]
 pub struct FoldInput<'a> {
@@ -94,6 +105,8 @@ pub struct FoldInput<'a> {
     /// The demonstration whose first sample the methods start from and which they are scored
     /// against alone.
     pub target: &'a Demonstration,
+    /// Whether the hierarchy (and height 1) learn, or keep their initial weights.
+    pub training: Training,
 }
 
 /// A method's run on one fold.
@@ -117,10 +130,18 @@ fn msg(e: impl std::error::Error + 'static) -> String {
     crate::steps::error_line(&e)
 }
 
-/// Train with `config`, timed.
-fn fit(config: &HsomConfig, train: &[Demonstration]) -> Result<(Hsom, f64), String> {
+/// Train with `config` (or only initialise, the negative control), timed.
+fn fit(
+    config: &HsomConfig,
+    train: &[Demonstration],
+    training: Training,
+) -> Result<(Hsom, f64), String> {
     let t = Instant::now();
-    let model = config.fit(train).map_err(msg)?;
+    let model = match training {
+        Training::Trained => config.fit(train),
+        Training::Untrained => config.initialise(train),
+    }
+    .map_err(msg)?;
     Ok((model, t.elapsed().as_secs_f64()))
 }
 
@@ -148,7 +169,7 @@ pub fn run_fold<E: Executor>(
                         input
                             .config
                             .ok_or_else(|| "no configuration of the hierarchy given".to_string())
-                            .and_then(|c| fit(c, train))
+                            .and_then(|c| fit(c, train, input.training))
                     });
                     match trained {
                         Ok((m, train_s)) => {
@@ -166,7 +187,7 @@ pub fn run_fold<E: Executor>(
                 Method::Height1 => input
                     .height_1
                     .ok_or_else(|| "no configuration at height 1 given".to_string())
-                    .and_then(|h1| fit(h1, train))
+                    .and_then(|h1| fit(h1, train, input.training))
                     .and_then(|(m, train_s)| {
                         let t = Instant::now();
                         let rep = m.reproduce(initial).map_err(msg)?;

@@ -26,7 +26,9 @@ pub use loo::{
     all_but, diagonal, leave_one_out, read_gestures, read_gestures_at, Gestures, LooError,
     LooSettings,
 };
-pub use method::{peak_speed, run_fold, FoldInput, FoldRuns, Method, MethodRun, GMR_COMPONENTS};
+pub use method::{
+    peak_speed, run_fold, FoldInput, FoldRuns, Method, MethodRun, Training, GMR_COMPONENTS,
+};
 #[cfg(feature = "plot")]
 pub use report::png;
 pub use report::{json, markdown};

@@ -10,12 +10,12 @@ use serde::Serialize;
 
 use crate::config::HsomConfig;
 use crate::demos::{sample_period, Demonstration};
-use crate::eval::{all_but, run_fold, FoldInput, Method, MethodRun};
+use crate::eval::{all_but, run_fold, Executor, FoldInput, Method, MethodRun};
 use crate::gmr::MIN_DEMONSTRATIONS;
 use crate::metrics::{column_swings, FidelityReport};
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
 
-use super::pipeline::{execute_and_score, learn_and_score, Outcome, Split, Training};
+use super::pipeline::Training;
 use super::{are_arm_joints, ArmExecutor, ExperimentError, Transition};
 
 /// The joint whose large swings are counted (column 3, `LElbowRoll`: the wave's joint).
@@ -277,9 +277,41 @@ pub fn swings(executed: &Recording, held_out: &Demonstration) -> Result<Swings, 
     })
 }
 
+/// Fold `i` of `demos` on the arm ([`run_fold`] with [`ArmExecutor`]): `methods` learn from
+/// every demonstration but `demos[i]` (the hierarchy with `config` and `training`), start from
+/// its first posture, are executed and scored against it alone; each method's run, in
+/// `methods`' order.
+fn arm_fold(
+    executor: &ArmExecutor<'_>,
+    methods: &[Method],
+    config: Option<&HsomConfig>,
+    training: Training,
+    demos: &[Demonstration],
+    i: usize,
+) -> Vec<Result<MethodRun<Recording>, String>> {
+    let train = all_but(demos, i);
+    let input = FoldInput {
+        config,
+        height_1: None,
+        train: &train,
+        target: &demos[i],
+        training,
+    };
+    run_fold(methods, &input, executor)
+        .into_iter()
+        .map(|(_, run)| run)
+        .collect()
+}
+
+/// The run of the one method asked of [`arm_fold`].
+fn only(runs: Vec<Result<MethodRun<Recording>, String>>) -> Result<MethodRun<Recording>, String> {
+    runs.into_iter().next().unwrap_or_else(|| Err(no_run()))
+}
+
 /// CoSCo-HSOM on every fold: `result[i]` learned from all demonstrations but `demos[i]`
 /// (with `training`), reproduced from `demos[i]`'s first posture, executed with
-/// `transition`, scored against `demos[i]` only.
+/// `transition`, scored against `demos[i]` only (the evaluator's [`run_fold`] on the arm's
+/// executor).
 pub fn hsom_folds(
     arm: &NaoArm,
     config: &HsomConfig,
@@ -288,44 +320,20 @@ pub fn hsom_folds(
     transition: Transition,
 ) -> Result<Vec<FoldScores>, ExperimentError> {
     check_demos(demos)?;
+    let executor = ArmExecutor { arm, transition };
     (0..demos.len())
         .map(|i| {
-            let (run, swings) = hsom_fold(arm, config, demos, i, training, transition)?;
-            Ok(fold_scores(run, swings))
+            let run = only(arm_fold(
+                &executor,
+                &[Method::Hierarchy],
+                Some(config),
+                training,
+                demos,
+                i,
+            ));
+            scores_of(run.map_err(ExperimentError::Invalid)?, &demos[i])
         })
         .collect()
-}
-
-/// A CoSCo-HSOM fold's scores from its run and swings.
-fn fold_scores(run: Outcome, swings: Swings) -> FoldScores {
-    FoldScores {
-        swings,
-        postures: run.reproduction.postures.len(),
-        clamped_values: run.clamped_values,
-        train_s: run.train_s,
-        reproduce_s: run.reproduce_s,
-        fidelity: run.fidelity,
-    }
-}
-
-/// Fold `i` of [`hsom_folds`]: learned from all demonstrations but `demos[i]`, reproduced
-/// from its first posture, executed, scored against it; with the swings counted.
-fn hsom_fold(
-    arm: &NaoArm,
-    config: &HsomConfig,
-    demos: &[Demonstration],
-    i: usize,
-    training: Training,
-    transition: Transition,
-) -> Result<(Outcome, Swings), ExperimentError> {
-    let train = all_but(demos, i);
-    let split = Split {
-        train: &train,
-        test: std::slice::from_ref(&demos[i]),
-    };
-    let run = learn_and_score(arm, config, split, training, transition, None)?;
-    let swings = swings(&run.executed, &demos[i])?;
-    Ok((run, swings))
 }
 
 /// A method's run on the arm ([`run_fold`] with [`ArmExecutor`]) as the fold's scores against
@@ -349,9 +357,8 @@ fn scores_of(
 /// the training demonstration whose first posture is nearest `demos[i]`'s
 /// ([`Hsom::follow_nearest`](crate::hsom::Hsom::follow_nearest)), executed with
 /// `transition` and scored against `demos[i]` only: what the upper levels add over following
-/// one whole demonstrated sequence through the same bottom code. The evaluator's
-/// [`run_fold`] on the arm's executor. Returns (CoSCo-HSOM's folds, the baseline's), one per
-/// demonstration each.
+/// one whole demonstrated sequence through the same bottom code. Returns (CoSCo-HSOM's
+/// folds, the baseline's), one per demonstration each.
 pub fn hsom_and_sequence_folds(
     arm: &NaoArm,
     config: &HsomConfig,
@@ -360,21 +367,23 @@ pub fn hsom_and_sequence_folds(
 ) -> Result<(Vec<FoldScores>, Vec<FoldScores>), ExperimentError> {
     check_demos(demos)?;
     let executor = ArmExecutor { arm, transition };
+    let methods = [Method::Hierarchy, Method::NearestSequence];
     (0..demos.len())
         .map(|i| {
-            let train = all_but(demos, i);
-            let input = FoldInput {
-                config: Some(config),
-                height_1: None,
-                train: &train,
-                target: &demos[i],
-            };
-            let methods = [Method::Hierarchy, Method::NearestSequence];
-            let mut scores = run_fold(&methods, &input, &executor)
+            let runs = arm_fold(
+                &executor,
+                &methods,
+                Some(config),
+                Training::Trained,
+                demos,
+                i,
+            );
+            let mut scores = runs
                 .into_iter()
-                .map(|(_, run)| scores_of(run.map_err(ExperimentError::Invalid)?, &demos[i]));
-            let hsom = scores.next().unwrap_or_else(|| Err(no_run()))?;
-            let sequence = scores.next().unwrap_or_else(|| Err(no_run()))?;
+                .map(|run| scores_of(run.map_err(ExperimentError::Invalid)?, &demos[i]));
+            let no_run = || Err(ExperimentError::Invalid(no_run()));
+            let hsom = scores.next().unwrap_or_else(no_run)?;
+            let sequence = scores.next().unwrap_or_else(no_run)?;
             Ok((hsom, sequence))
         })
         .collect::<Result<Vec<_>, ExperimentError>>()
@@ -382,8 +391,8 @@ pub fn hsom_and_sequence_folds(
 }
 
 /// A method asked of [`run_fold`] that it did not answer (cannot happen: it answers each).
-fn no_run() -> ExperimentError {
-    ExperimentError::Invalid("the evaluator returned no run for a method".into())
+fn no_run() -> String {
+    "the evaluator returned no run for a method".into()
 }
 
 /// What happens to the arm at the end of a shown prefix, before the continuation takes over
@@ -477,16 +486,11 @@ pub fn continuation_folds(
         )));
     }
     let needed = config.params().action_horizon() + 1;
+    let executor = ArmExecutor { arm, transition };
     (0..demos.len())
         .map(|i| {
             let train = all_but(demos, i);
             let held = &demos[i];
-            let test = std::slice::from_ref(held);
-            let metrics = Split {
-                train: &train,
-                test,
-            }
-            .metrics()?;
             let k = ((held.rows.len() as f64 * fraction).round() as usize)
                 .max(needed)
                 .min(held.rows.len() - 1);
@@ -500,15 +504,18 @@ pub fn continuation_folds(
                     .chain(rep.postures.iter().skip(1))
                     .cloned()
                     .collect();
-                let run = execute_and_score(arm, &postures, transition, test, &metrics)?;
-                Ok::<_, ExperimentError>(FoldScores {
-                    swings: swings(&run.executed, held)?,
-                    fidelity: run.fidelity,
-                    postures: postures.len(),
-                    clamped_values: run.clamped_values,
-                    train_s,
-                    reproduce_s,
-                })
+                let executed = executor
+                    .execute(Method::Hierarchy, &postures, held)
+                    .map_err(ExperimentError::Invalid)?;
+                scores_of(
+                    MethodRun {
+                        postures,
+                        executed,
+                        train_s,
+                        reproduce_s,
+                    },
+                    held,
+                )
             };
             let t = Instant::now();
             let rep = model.continue_events(prefix)?;
@@ -537,26 +544,23 @@ pub fn gmr_folds(
     };
     Ok((0..demos.len())
         .map(|i| {
-            let train = all_but(demos, i);
-            if train.len() < MIN_DEMONSTRATIONS {
+            let learn_from = demos.len() - 1;
+            if learn_from < MIN_DEMONSTRATIONS {
                 return Err(format!(
                     "fold {}: GMM/GMR needs at least {MIN_DEMONSTRATIONS} demonstrations to \
-                     learn from, this fold has {}",
+                     learn from, this fold has {learn_from}",
                     i + 1,
-                    train.len()
                 ));
             }
-            let input = FoldInput {
-                config: None,
-                height_1: None,
-                train: &train,
-                target: &demos[i],
-            };
-            let run = run_fold(&[Method::GmmGmr], &input, &executor)
-                .pop()
-                .ok_or_else(|| no_run().to_string())
-                .and_then(|(_, run)| run)
-                .and_then(|run| scores_of(run, &demos[i]).map_err(|e| e.to_string()));
+            let run = only(arm_fold(
+                &executor,
+                &[Method::GmmGmr],
+                None,
+                Training::Trained,
+                demos,
+                i,
+            ))
+            .and_then(|run| scores_of(run, &demos[i]).map_err(|e| e.to_string()));
             run.map_err(|e| format!("fold {}: GMM/GMR: {e}", i + 1))
         })
         .collect())
@@ -607,16 +611,25 @@ pub fn swing_folds(
     transition: Transition,
 ) -> Result<Vec<SwingFold>, ExperimentError> {
     check_demos(demos)?;
+    let executor = ArmExecutor { arm, transition };
     (0..demos.len())
         .map(|i| {
-            let (run, swings) = hsom_fold(arm, config, demos, i, Training::Trained, transition)?;
+            let run = only(arm_fold(
+                &executor,
+                &[Method::Hierarchy],
+                Some(config),
+                Training::Trained,
+                demos,
+                i,
+            ))
+            .map_err(ExperimentError::Invalid)?;
             let demo = &demos[i];
             Ok(SwingFold {
                 held_out: i,
-                swings,
-                joint_dtw: run.fidelity.joint_dtw_rad_per_step.mean,
-                duration_ratio: run.fidelity.duration_ratio.mean,
-                reproduction: joint_trace(&run.executed),
+                swings: swings(&run.executed.trace, demo)?,
+                joint_dtw: run.executed.fidelity.joint_dtw_rad_per_step.mean,
+                duration_ratio: run.executed.fidelity.duration_ratio.mean,
+                reproduction: joint_trace(&run.executed.trace),
                 demo: demo_trace(demo),
             })
         })

@@ -18,15 +18,7 @@ use super::{clamp_to_ranges, evaluate, execute_postures, ExperimentError, Transi
 /// What CoSCo-HSOM needs as input (the report's "needs as input" row).
 pub const HSOM_NEEDS: &str = "raw demonstrations; the initial posture";
 
-/// Whether the hierarchy learns (the real thing) or keeps its seeded initial weights (the
-/// negative control of every fidelity check).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Training {
-    /// Train as configured.
-    Trained,
-    /// Initial weights only.
-    Untrained,
-}
+pub use crate::eval::Training;
 
 /// Which demonstrations a run learns from and which it is scored against. The reproduction
 /// starts from the first posture of `test[0]`.
