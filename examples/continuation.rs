@@ -15,6 +15,8 @@
 //! ```
 
 mod common;
+#[path = "common/continuation.rs"]
+mod continuation;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -22,8 +24,8 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::Parser;
 
+use continuation::{continuation_folds, Disturbance};
 use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
-use cosco_hsom::experiment::heldout::{continuation_folds, Disturbance};
 use cosco_hsom::experiment::{synthetic_demonstrations, FoldScores, Transition};
 use cosco_hsom::metrics::median;
 

@@ -10,6 +10,8 @@
 //! ```
 
 mod common;
+#[path = "common/swing_folds.rs"]
+mod swing;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -19,8 +21,8 @@ use clap::Parser;
 
 use cosco_hsom::experiment::demonstrate::parse_seeds;
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
-use cosco_hsom::experiment::heldout::{swing_folds, swing_folds_png};
 use cosco_hsom::experiment::Transition;
+use swing::{swing_folds, swing_folds_png};
 
 /// Leave-one-out folds of one gesture, drawn.
 #[derive(Parser, Debug)]

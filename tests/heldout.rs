@@ -13,10 +13,12 @@ use cosco_hsom::demos::{sample_period, Demonstration};
 #[path = "../examples/common/closed_loop.rs"]
 mod closed_loop;
 use closed_loop::{closed_loop_folds, closed_loop_png, ClosedLoopGrab};
-use cosco_hsom::experiment::heldout::{
-    continuation_folds, swing_folds, swing_folds_png, Disturbance, SWING_JOINT,
-    SWING_MIN_AMPLITUDE_RAD,
-};
+#[path = "../examples/common/continuation.rs"]
+mod continuation;
+#[path = "../examples/common/swing_folds.rs"]
+mod swing;
+use continuation::{continuation_folds, Disturbance};
+use cosco_hsom::experiment::heldout::{SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
 use cosco_hsom::experiment::{
     hsom_folds, leave_one_out, synthetic_demonstrations, DemoSettings, HeldOut, HeldOutSummary,
     Training, Transition,
@@ -25,6 +27,7 @@ use cosco_hsom::gesture::Gesture;
 use cosco_hsom::gmr::{active_range, IdleTrim};
 use cosco_hsom::metrics::{column_swings, large_swings};
 use cosco_hsom::sim::NaoArm;
+use swing::{swing_folds, swing_folds_png};
 
 const COUNT: usize = 4;
 const SEED: u64 = 11;

@@ -14,13 +14,14 @@ use cosco_hsom::metrics::MetricsParams;
 use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
 
 use cosco_hsom::experiment::baseline::{gmr_params, plan as gmr_plan, DEFAULT_COMPONENTS};
+use cosco_hsom::experiment::clamp_to_ranges;
 use cosco_hsom::experiment::evaluate::evaluate;
-use cosco_hsom::experiment::execute::{execute_grabbed, ReadingNoise, Replan};
 use cosco_hsom::experiment::heldout::{
     check_demos, demo_trace, joint_trace, swings, FoldScores, SWING_JOINT,
 };
 use cosco_hsom::experiment::pipeline::{execute_and_score, Split};
 use cosco_hsom::experiment::{ExperimentError, Transition};
+use cosco_hsom::sim::{Controller, ControllerConfig, Grab, TargetTrajectory};
 
 /// One method on one fold of [`closed_loop_folds`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -226,7 +227,7 @@ impl ClosedLoopGrab {
 /// every demonstration but `demos[i]` and plans from `demos[i]`'s first posture; the plan is
 /// executed on the simulated arm and at `grab.at` of `demos[i]`'s duration (the same
 /// moment for every method) a hand holds the arm still for `grab.ticks` ticks while the servo
-/// targets go on ([`execute_grabbed`](cosco_hsom::experiment::execute_grabbed)). Each method is executed
+/// targets go on ([`execute_grabbed`]). Each method is executed
 /// undisturbed; grabbed, its plan going on by the clock; grabbed, then re-planned on release
 /// from the encoders' reading of its own execution and the grab (the closed loop); and, as
 /// that re-plan's control, re-planned at the same moment from the reading of its undisturbed
@@ -436,4 +437,113 @@ pub fn closed_loop_png(
         })
         .collect();
     cosco_hsom::plot::panels_png(path, title, &panels, 2, (760, 420))
+}
+
+/// A method's continuation after a grab: given what the encoders read so far (one row per
+/// tick, ending at the release), the postures to go on with, the first being the last read.
+pub type Replan<'a> = dyn FnMut(&[Vec<f64>]) -> Result<Vec<Vec<f64>>, ExperimentError> + 'a;
+
+/// Gaussian noise on what a method reads of the encoders when it continues after a grab
+/// (rad; not on the recording that is scored), drawn from `seed`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ReadingNoise {
+    /// Standard deviation, rad (0: exact readings).
+    pub std: f64,
+    /// Seed of the noise stream (ChaCha8).
+    pub seed: u64,
+}
+
+impl ReadingNoise {
+    /// Refuse a standard deviation that is not a finite number >= 0, naming it.
+    pub fn check(&self) -> Result<(), ExperimentError> {
+        if self.std.is_finite() && self.std >= 0.0 {
+            Ok(())
+        } else {
+            Err(ExperimentError::Invalid(format!(
+                "reading noise {}: needs a finite standard deviation >= 0 (rad)",
+                self.std
+            )))
+        }
+    }
+
+    /// `rows` as read with this noise ([`ReadingNoise::check`]ed).
+    pub fn apply(&self, rows: &[Vec<f64>]) -> Result<Vec<Vec<f64>>, ExperimentError> {
+        use rand::SeedableRng;
+        use rand_distr::Distribution;
+        self.check()?;
+        if self.std == 0.0 {
+            return Ok(rows.to_vec());
+        }
+        let normal = rand_distr::Normal::new(0.0, self.std)
+            .map_err(|e| ExperimentError::Invalid(format!("reading noise {}: {e}", self.std)))?;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(self.seed);
+        Ok(rows
+            .iter()
+            .map(|r| r.iter().map(|v| v + normal.sample(&mut rng)).collect())
+            .collect())
+    }
+}
+
+/// Execute `postures` (one per tick of `rate_hz`, the first the initial posture; clamped into
+/// the joint ranges and shaped by `transition`) on the simulated arm while a hand grabs it
+/// at tick `from` and holds it still for `ticks` ticks ([`Controller::follow_grabbed`](cosco_hsom::sim::Controller::follow_grabbed); the
+/// servo targets go on meanwhile). Without `replan` the plan simply goes on by its clock: on
+/// release the servos pull the arm to wherever the plan has got to. With `replan` the plan
+/// stops at the release and the method is given what the encoders read so far (with the
+/// reading `noise`); its postures (clamped and shaped likewise) are executed from where the
+/// arm is. Returns the recording of the whole motion and the number of posture values
+/// clamped.
+pub fn execute_grabbed(
+    arm: &NaoArm,
+    postures: &[Vec<f64>],
+    transition: Transition,
+    rate_hz: f64,
+    (from, ticks): (usize, usize),
+    replan: Option<(&mut Replan<'_>, ReadingNoise)>,
+) -> Result<(Recording, usize), ExperimentError> {
+    let (postures, mut clamped) = clamp_to_ranges(postures)?;
+    let mut postures = transition.shape(&postures);
+    let Some(first) = postures.first().cloned() else {
+        return Err(ExperimentError::Invalid("no postures to execute".into()));
+    };
+    let controller = Controller::new(ControllerConfig {
+        record_rate_hz: rate_hz,
+        ..ControllerConfig::default()
+    })?;
+    let grab = Grab {
+        start_s: from as f64 / rate_hz,
+        seconds: ticks as f64 / rate_hz,
+    };
+    let release = from + ticks;
+    if release == 0 && replan.is_some() {
+        return Err(ExperimentError::Invalid(
+            "a re-plan after a grab needs at least one tick read before it (grab of 0 ticks \
+             at tick 0)"
+                .into(),
+        ));
+    }
+    // the plan holds its last posture until the release at least
+    if let Some(last) = postures.last().cloned() {
+        postures.resize(postures.len().max(release + 1), last);
+    }
+    let mut sim = arm.sim()?;
+    sim.set_posture(&first)?;
+    let Some((replan, noise)) = replan else {
+        let trajectory = TargetTrajectory::at_rate(rate_hz, &postures)?;
+        return Ok((
+            controller.follow_grabbed(&mut sim, &trajectory, grab)?,
+            clamped,
+        ));
+    };
+    let trajectory = TargetTrajectory::at_rate(rate_hz, &postures[..release])?;
+    let mut recording = controller.follow_grabbed(&mut sim, &trajectory, grab)?;
+    let next = replan(&noise.apply(&recording.qpos)?)?;
+    let (next, c) = clamp_to_ranges(&next)?;
+    clamped += c;
+    let targets: Vec<Vec<f64>> = std::iter::once(sim.posture().to_vec())
+        .chain(transition.shape(&next).into_iter().skip(1))
+        .collect();
+    let trajectory = TargetTrajectory::at_rate(rate_hz, &targets)?;
+    recording.append(controller.follow(&mut sim, &trajectory)?)?;
+    Ok((recording, clamped))
 }

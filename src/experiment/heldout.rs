@@ -4,13 +4,11 @@
 //! in-sample result (learn from all, score against all) says how well a method reproduces
 //! what it saw; this says how well it reproduces the gesture from a start it has not seen.
 
-use std::time::Instant;
-
 use serde::Serialize;
 
 use crate::config::HsomConfig;
 use crate::demos::{sample_period, Demonstration};
-use crate::eval::{all_but, run_fold, Executor, FoldInput, Method, MethodRun};
+use crate::eval::{all_but, run_fold, FoldInput, Method, MethodRun};
 use crate::gmr::MIN_DEMONSTRATIONS;
 use crate::metrics::{column_swings, FidelityReport};
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
@@ -52,6 +50,24 @@ pub struct FoldScores {
     pub train_s: f64,
     /// Time to produce the postures, seconds.
     pub reproduce_s: f64,
+}
+
+impl FoldScores {
+    /// A method's run on the arm ([`run_fold`] with [`ArmExecutor`]) as its scores against
+    /// the held-out demonstration `held`.
+    pub fn of(
+        run: MethodRun<Recording>,
+        held: &Demonstration,
+    ) -> Result<FoldScores, ExperimentError> {
+        Ok(FoldScores {
+            swings: swings(&run.executed.trace, held)?,
+            postures: run.postures.len(),
+            clamped_values: run.executed.clamped_values,
+            train_s: run.train_s,
+            reproduce_s: run.reproduce_s,
+            fidelity: run.executed.fidelity,
+        })
+    }
 }
 
 /// One fold: a demonstration held out.
@@ -281,7 +297,7 @@ pub fn swings(executed: &Recording, held_out: &Demonstration) -> Result<Swings, 
 /// every demonstration but `demos[i]` (the hierarchy with `config` and `training`), start from
 /// its first posture, are executed and scored against it alone; each method's run, in
 /// `methods`' order.
-fn arm_fold(
+pub fn arm_fold(
     executor: &ArmExecutor<'_>,
     methods: &[Method],
     config: Option<&HsomConfig>,
@@ -308,10 +324,34 @@ fn only(runs: Vec<Result<MethodRun<Recording>, String>>) -> Result<MethodRun<Rec
     runs.into_iter().next().unwrap_or_else(|| Err(no_run()))
 }
 
-/// CoSCo-HSOM on every fold: `result[i]` learned from all demonstrations but `demos[i]`
-/// (with `training`), reproduced from `demos[i]`'s first posture, executed with
-/// `transition`, scored against `demos[i]` only (the evaluator's [`run_fold`] on the arm's
-/// executor).
+/// The hierarchy on every fold: `result[i]` learned from all demonstrations but `demos[i]`
+/// (with `training`), reproduced from `demos[i]`'s first posture, executed with `transition`
+/// and scored against `demos[i]` only (the evaluator's [`run_fold`] on the arm's executor).
+pub fn hierarchy_runs(
+    arm: &NaoArm,
+    config: &HsomConfig,
+    demos: &[Demonstration],
+    training: Training,
+    transition: Transition,
+) -> Result<Vec<MethodRun<Recording>>, ExperimentError> {
+    check_demos(demos)?;
+    let executor = ArmExecutor { arm, transition };
+    (0..demos.len())
+        .map(|i| {
+            only(arm_fold(
+                &executor,
+                &[Method::Hierarchy],
+                Some(config),
+                training,
+                demos,
+                i,
+            ))
+            .map_err(ExperimentError::Invalid)
+        })
+        .collect()
+}
+
+/// CoSCo-HSOM's scores on every fold ([`hierarchy_runs`]).
 pub fn hsom_folds(
     arm: &NaoArm,
     config: &HsomConfig,
@@ -319,37 +359,11 @@ pub fn hsom_folds(
     training: Training,
     transition: Transition,
 ) -> Result<Vec<FoldScores>, ExperimentError> {
-    check_demos(demos)?;
-    let executor = ArmExecutor { arm, transition };
-    (0..demos.len())
-        .map(|i| {
-            let run = only(arm_fold(
-                &executor,
-                &[Method::Hierarchy],
-                Some(config),
-                training,
-                demos,
-                i,
-            ));
-            scores_of(run.map_err(ExperimentError::Invalid)?, &demos[i])
-        })
+    hierarchy_runs(arm, config, demos, training, transition)?
+        .into_iter()
+        .zip(demos)
+        .map(|(run, held)| FoldScores::of(run, held))
         .collect()
-}
-
-/// A method's run on the arm ([`run_fold`] with [`ArmExecutor`]) as the fold's scores against
-/// the held-out demonstration `held`.
-fn scores_of(
-    run: MethodRun<Recording>,
-    held: &Demonstration,
-) -> Result<FoldScores, ExperimentError> {
-    Ok(FoldScores {
-        swings: swings(&run.executed.trace, held)?,
-        postures: run.postures.len(),
-        clamped_values: run.executed.clamped_values,
-        train_s: run.train_s,
-        reproduce_s: run.reproduce_s,
-        fidelity: run.executed.fidelity,
-    })
 }
 
 /// CoSCo-HSOM's folds as [`hsom_folds`] (trained), and on each fold, from the same trained
@@ -380,7 +394,7 @@ pub fn hsom_and_sequence_folds(
             );
             let mut scores = runs
                 .into_iter()
-                .map(|run| scores_of(run.map_err(ExperimentError::Invalid)?, &demos[i]));
+                .map(|run| FoldScores::of(run.map_err(ExperimentError::Invalid)?, &demos[i]));
             let no_run = || Err(ExperimentError::Invalid(no_run()));
             let hsom = scores.next().unwrap_or_else(no_run)?;
             let sequence = scores.next().unwrap_or_else(no_run)?;
@@ -393,140 +407,6 @@ pub fn hsom_and_sequence_folds(
 /// A method asked of [`run_fold`] that it did not answer (cannot happen: it answers each).
 fn no_run() -> String {
     "the evaluator returned no run for a method".into()
-}
-
-/// What happens to the arm at the end of a shown prefix, before the continuation takes over
-/// ([`continuation_folds`]): nothing, held still for a number of samples, or pushed back
-/// along its own path by a number of samples (so the prefix ends at an earlier posture of
-/// the gesture).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Disturbance {
-    /// The prefix as demonstrated.
-    None,
-    /// The last posture held for this many more samples.
-    Hold(usize),
-    /// The prefix's last samples retraced backwards, this many.
-    Rewind(usize),
-}
-
-impl Disturbance {
-    /// Parse `none`, `hold:N` or `rewind:N` (N samples, at least 1).
-    pub fn parse(text: &str) -> Result<Disturbance, ExperimentError> {
-        let bad = || {
-            ExperimentError::Invalid(format!(
-                "disturbance '{text}': allowed none, hold:N or rewind:N (N samples, at least 1)"
-            ))
-        };
-        if text == "none" {
-            return Ok(Disturbance::None);
-        }
-        let (kind, n) = text.split_once(':').ok_or_else(bad)?;
-        let n: usize = n.parse().map_err(|_| bad())?;
-        if n == 0 {
-            return Err(bad());
-        }
-        match kind {
-            "hold" => Ok(Disturbance::Hold(n)),
-            "rewind" => Ok(Disturbance::Rewind(n)),
-            _ => Err(bad()),
-        }
-    }
-
-    /// `prefix` as the encoders read it after the disturbance (a rewind is at most the
-    /// prefix's length less one; an empty prefix stays empty).
-    pub fn apply(self, prefix: &[Vec<f64>]) -> Vec<Vec<f64>> {
-        let mut rows = prefix.to_vec();
-        if prefix.is_empty() {
-            return rows;
-        }
-        match self {
-            Disturbance::None => {}
-            Disturbance::Hold(n) => {
-                let last = rows[rows.len() - 1].clone();
-                rows.extend(std::iter::repeat(last).take(n));
-            }
-            Disturbance::Rewind(n) => {
-                let n = n.min(prefix.len() - 1);
-                rows.extend(
-                    prefix[prefix.len() - 1 - n..prefix.len() - 1]
-                        .iter()
-                        .rev()
-                        .cloned(),
-                );
-            }
-        }
-        rows
-    }
-}
-
-/// Continuing a prefix, held out: on fold `i` CoSCo-HSOM learns from every demonstration but
-/// `demos[i]` (with `config`), is shown the first `fraction` of `demos[i]`'s samples (at
-/// least `actionHorizon + 1`, at most all but one) and continues it
-/// ([`Hsom::continue_events`](crate::hsom::Hsom::continue_events): the prefix pushed up the
-/// lists, the levels plan the rest), and the nearest-sequence baseline continues it from the
-/// same model ([`Hsom::follow_nearest_from`](crate::hsom::Hsom::follow_nearest_from): the
-/// training demonstration along which the prefix runs closest, after the prefix's end).
-/// With a `disturbance` the prefix is what the encoders read after it (held still, or
-/// pushed back along its path), and both continue from there. The prefix followed by each
-/// continuation is executed with `transition` and scored against `demos[i]` alone (the
-/// prefix is the same for both, so the difference is the continuation's). Returns (the
-/// hierarchy's folds, the baseline's).
-pub fn continuation_folds(
-    arm: &NaoArm,
-    config: &HsomConfig,
-    demos: &[Demonstration],
-    fraction: f64,
-    disturbance: Disturbance,
-    transition: Transition,
-) -> Result<(Vec<FoldScores>, Vec<FoldScores>), ExperimentError> {
-    check_demos(demos)?;
-    if !(fraction > 0.0 && fraction < 1.0) {
-        return Err(ExperimentError::Invalid(format!(
-            "prefix fraction {fraction}: needs a number strictly between 0 and 1"
-        )));
-    }
-    let needed = config.params().action_horizon() + 1;
-    let executor = ArmExecutor { arm, transition };
-    (0..demos.len())
-        .map(|i| {
-            let train = all_but(demos, i);
-            let held = &demos[i];
-            let k = ((held.rows.len() as f64 * fraction).round() as usize)
-                .max(needed)
-                .min(held.rows.len() - 1);
-            let prefix = &disturbance.apply(&held.rows[..k])[..];
-            let t = Instant::now();
-            let model = config.fit(&train)?;
-            let train_s = t.elapsed().as_secs_f64();
-            let score = |rep: crate::hsom::Reproduction, reproduce_s: f64| {
-                let postures: Vec<Vec<f64>> = prefix
-                    .iter()
-                    .chain(rep.postures.iter().skip(1))
-                    .cloned()
-                    .collect();
-                let executed = executor
-                    .execute(Method::Hierarchy, &postures, held)
-                    .map_err(ExperimentError::Invalid)?;
-                scores_of(
-                    MethodRun {
-                        postures,
-                        executed,
-                        train_s,
-                        reproduce_s,
-                    },
-                    held,
-                )
-            };
-            let t = Instant::now();
-            let rep = model.continue_events(prefix)?;
-            let hsom = score(rep, t.elapsed().as_secs_f64())?;
-            let t = Instant::now();
-            let rep = model.follow_nearest_from(&train, prefix)?;
-            let sequence = score(rep, t.elapsed().as_secs_f64())?;
-            Ok((hsom, sequence))
-        })
-        .collect::<Result<Vec<_>, ExperimentError>>()
-        .map(|v| v.into_iter().unzip())
 }
 
 /// GMM/GMR ([`DEFAULT_COMPONENTS`](super::baseline::DEFAULT_COMPONENTS)) on every fold, as [`hsom_folds`] (the evaluator's
@@ -560,7 +440,7 @@ pub fn gmr_folds(
                 demos,
                 i,
             ))
-            .and_then(|run| scores_of(run, &demos[i]).map_err(|e| e.to_string()));
+            .and_then(|run| FoldScores::of(run, &demos[i]).map_err(|e| e.to_string()));
             run.map_err(|e| format!("fold {}: GMM/GMR: {e}", i + 1))
         })
         .collect())
@@ -581,59 +461,6 @@ pub fn leave_one_out(
     let (hsom, sequence) = hsom_and_sequence_folds(arm, config, demos, transition)?;
     let gmr = gmr_folds(arm, demos)?;
     HeldOut::new(demos, hsom, gmr)?.with_sequence(sequence)
-}
-
-/// One fold of [`swing_folds`]: the large swings of [`SWING_JOINT`] in the executed
-/// reproduction and in the held-out demonstration, and both traces to draw.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SwingFold {
-    /// 0-based index of the held-out demonstration.
-    pub held_out: usize,
-    /// The swings counted.
-    pub swings: Swings,
-    /// Joint DTW of the fold, rad per step.
-    pub joint_dtw: f64,
-    /// Duration ratio of the fold (reproduction / demonstration, active parts).
-    pub duration_ratio: f64,
-    /// `(time s, value rad)` of [`SWING_JOINT`] in the executed reproduction.
-    pub reproduction: Vec<(f64, f64)>,
-    /// `(time s, value rad)` of [`SWING_JOINT`] in the held-out demonstration.
-    pub demo: Vec<(f64, f64)>,
-}
-
-/// CoSCo-HSOM's leave-one-out folds as [`hsom_folds`] (learned with `config`, executed with
-/// `transition`), keeping for each the trace of [`SWING_JOINT`] beside the held-out
-/// demonstration's: what a swing count means, to look at ([`swing_folds_png`]).
-pub fn swing_folds(
-    arm: &NaoArm,
-    config: &HsomConfig,
-    demos: &[Demonstration],
-    transition: Transition,
-) -> Result<Vec<SwingFold>, ExperimentError> {
-    check_demos(demos)?;
-    let executor = ArmExecutor { arm, transition };
-    (0..demos.len())
-        .map(|i| {
-            let run = only(arm_fold(
-                &executor,
-                &[Method::Hierarchy],
-                Some(config),
-                Training::Trained,
-                demos,
-                i,
-            ))
-            .map_err(ExperimentError::Invalid)?;
-            let demo = &demos[i];
-            Ok(SwingFold {
-                held_out: i,
-                swings: swings(&run.executed.trace, demo)?,
-                joint_dtw: run.executed.fidelity.joint_dtw_rad_per_step.mean,
-                duration_ratio: run.executed.fidelity.duration_ratio.mean,
-                reproduction: joint_trace(&run.executed.trace),
-                demo: demo_trace(demo),
-            })
-        })
-        .collect()
 }
 
 /// `(time s, value rad)` of [`SWING_JOINT`] in an executed recording.
@@ -661,43 +488,4 @@ pub fn demo_trace(demo: &Demonstration) -> Vec<(f64, f64)> {
             (t, r[SWING_JOINT])
         })
         .collect()
-}
-
-/// One panel per fold of [`swing_folds`]: the held-out demonstration (in the palette's
-/// colour of its index) and the executed reproduction (black), [`SWING_JOINT`] against time,
-/// the counts and the fold's joint DTW in each panel's title. Written atomically to `path`.
-pub fn swing_folds_png(
-    path: &std::path::Path,
-    title: &str,
-    folds: &[SwingFold],
-) -> Result<(), crate::plot::PlotError> {
-    use crate::plot::{demo_color, Panel, Series};
-    let joint = JOINT_NAMES[SWING_JOINT];
-    let panels: Vec<Panel> = folds
-        .iter()
-        .map(|f| {
-            let mut p = Panel::new(
-                format!(
-                    "demonstration {} held out: {} of {} swings, {:.3} rad/step, duration {:.2}",
-                    f.held_out + 1,
-                    f.swings.reproduction,
-                    f.swings.demo,
-                    f.joint_dtw,
-                    f.duration_ratio
-                ),
-                "time (s)",
-                format!("{joint} (rad)"),
-            );
-            p.series.push(Series::new(
-                format!("demonstration {}", f.held_out + 1),
-                demo_color(f.held_out),
-                f.demo.clone(),
-            ));
-            let mut r = Series::new("reproduction", crate::plot::BLACK, f.reproduction.clone());
-            r.width = 3;
-            p.series.push(r);
-            p
-        })
-        .collect();
-    crate::plot::panels_png(path, title, &panels, 2, (620, 380))
 }

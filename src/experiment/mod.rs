@@ -25,13 +25,11 @@ pub use evaluate::{
     are_arm_joints, check_reachable, demo_wrist_paths, evaluate, trajectory, wrist_path,
     RANGE_TOLERANCE_RAD,
 };
-pub use execute::{
-    clamp_to_ranges, execute_grabbed, execute_postures, ReadingNoise, Replan, Transition,
-};
+pub use execute::{clamp_to_ranges, execute_postures, Transition};
 pub use film::film;
 pub use heldout::{
-    continuation_folds, gmr_folds, hsom_and_sequence_folds, hsom_folds, leave_one_out, Fold,
-    FoldScores, HeldOut, HeldOutSummary, Swings,
+    gmr_folds, hsom_and_sequence_folds, hsom_folds, leave_one_out, Fold, FoldScores, HeldOut,
+    HeldOutSummary, Swings,
 };
 pub use pipeline::{
     execute_and_score, learn_and_reproduce, learn_and_score, reproduce_variant, Executed, Outcome,
