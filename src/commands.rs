@@ -284,28 +284,3 @@ pub fn parse_posture(text: &str) -> Result<Vec<f64>> {
         })
         .collect()
 }
-
-/// `cosco reproduce`: the initial posture from the command line or a demonstration's first
-/// row, the reproduction written as `step` + the model's column names. Returns the number of
-/// postures.
-pub fn reproduce_file(
-    model: &Path,
-    initial: Option<&str>,
-    initial_from: Option<&Path>,
-    out: &Path,
-) -> Result<usize> {
-    let m = steps::load_model(model)?;
-    let initial = match (initial, initial_from) {
-        (Some(text), None) => parse_posture(text)?,
-        (None, Some(p)) => steps::initial_from_file(&m, p)?,
-        _ => {
-            return Err(CommandError::Usage(
-                "give exactly one of --initial and --initial-from".into(),
-            ))
-        }
-    };
-    let rep = steps::reproduce(&m, &model.display().to_string(), &initial)?;
-    let bytes = steps::reproduction_csv(&m, &rep)?;
-    write(out, &bytes)?;
-    Ok(rep.postures.len())
-}

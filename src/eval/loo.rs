@@ -71,6 +71,9 @@ pub enum LooError {
         /// Demonstrations given.
         found: usize,
     },
+    /// Per-fold results that do not go together (named in the message).
+    #[error("{0}")]
+    Folds(String),
     /// No gesture given.
     #[error("no gesture to evaluate")]
     Empty,

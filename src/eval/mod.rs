@@ -32,4 +32,7 @@ pub use method::{
 #[cfg(feature = "plot")]
 pub use report::png;
 pub use report::{json, markdown};
-pub use results::{failures, summary, Fold, GestureLoo, MethodSummary, Run, Score, MIN_DEMO_JERK};
+pub use results::{
+    failures, summary, ArmFold, Fold, FoldScores, GestureLoo, HeldOut, HeldOutSummary,
+    MethodSummary, Run, Score, Swings, MIN_DEMO_JERK,
+};

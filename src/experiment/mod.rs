@@ -90,6 +90,9 @@ pub enum ExperimentError {
     /// The GMM/GMR baseline failed, or its model could not be written or read back.
     #[error(transparent)]
     Gmr(#[from] crate::gmr::GmrError),
+    /// Per-fold results could not be put together.
+    #[error(transparent)]
+    Loo(#[from] crate::eval::LooError),
     /// The GMM/GMR baseline's run or figures failed.
     #[error(transparent)]
     Baseline(#[from] Box<baseline::BaselineError>),
