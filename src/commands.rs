@@ -90,7 +90,7 @@ pub fn evaluate_files(
     };
     #[cfg(feature = "sim")]
     if crate::experiment::are_arm_joints(&rep.columns) {
-        let arm = crate::experiment::job::load_arm(model)?;
+        let arm = crate::experiment::load_arm(model)?;
         let report = crate::experiment::evaluate(Some(&arm), &demos, &rep.rows, &params)?;
         return Ok((report, "rad"));
     }

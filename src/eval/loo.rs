@@ -9,7 +9,8 @@ use crate::config::HsomConfig;
 use crate::demos::Demonstration;
 
 use super::executor::Executor;
-use super::method::{run_fold, FoldInput, Method};
+use super::fold::{run_fold, FoldInput};
+use super::method::Method;
 use super::results::{Fold, GestureLoo, Run, Score};
 
 /// Gestures by name, each with its demonstrations.
@@ -71,9 +72,6 @@ pub enum LooError {
         /// Demonstrations given.
         found: usize,
     },
-    /// Per-fold results that do not go together (named in the message).
-    #[error("{0}")]
-    Folds(String),
     /// No gesture given.
     #[error("no gesture to evaluate")]
     Empty,

@@ -15,6 +15,7 @@
 
 mod executor;
 mod files;
+mod fold;
 mod loo;
 mod method;
 mod report;
@@ -22,17 +23,16 @@ mod results;
 
 pub use executor::{Executed, Executor, Kinematic};
 pub use files::{heldout, HeldoutJob};
+pub use fold::{run_fold, FoldInput, FoldRuns, MethodRun, Training};
 pub use loo::{
     all_but, diagonal, leave_one_out, read_gestures, read_gestures_at, Gestures, LooError,
     LooSettings,
 };
-pub use method::{
-    peak_speed, run_fold, FoldInput, FoldRuns, Method, MethodRun, Training, GMR_COMPONENTS,
-};
+pub use method::{peak_speed, Method, GMR_COMPONENTS};
 #[cfg(feature = "plot")]
 pub use report::png;
 pub use report::{json, markdown};
 pub use results::{
-    failures, summary, ArmFold, Fold, FoldScores, GestureLoo, HeldOut, HeldOutSummary,
+    failures, summary, ArmFold, Fold, FoldScores, FoldsError, GestureLoo, HeldOut, HeldOutSummary,
     MethodSummary, Run, Score, Swings, MIN_DEMO_JERK,
 };

@@ -8,7 +8,6 @@ use serde::Serialize;
 use crate::demos::Demonstration;
 use crate::metrics::{median, FidelityReport};
 
-use super::loo::LooError;
 use super::method::Method;
 
 /// The smallest normalised jerk of a held-out demonstration for which the jerk ratio is
@@ -232,6 +231,11 @@ pub fn failures(study: &[GestureLoo]) -> Vec<(Method, String, Vec<String>)> {
 // The simulated arm's held-out results (`experiment::heldout`, `simulate`'s report): every
 // fidelity metric of a fold executed on the arm, and their means over the folds.
 
+/// Per-fold results that do not go together (named in the message).
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct FoldsError(pub String);
+
 /// Large swings of the swing joint (`experiment::heldout::SWING_JOINT`; see
 /// [`crate::metrics::large_swings`]): the reproduction's
 /// and the held-out demonstration's.
@@ -380,9 +384,9 @@ impl HeldOut {
         demos: &[Demonstration],
         hsom: Vec<FoldScores>,
         gmr: Vec<Result<FoldScores, String>>,
-    ) -> Result<HeldOut, LooError> {
+    ) -> Result<HeldOut, FoldsError> {
         if hsom.len() != demos.len() || gmr.len() != demos.len() {
-            return Err(LooError::Folds(format!(
+            return Err(FoldsError(format!(
                 "held-out results: {} CoSCo-HSOM and {} GMM/GMR folds for {} demonstrations; \
                  need one per demonstration",
                 hsom.len(),
@@ -410,9 +414,8 @@ impl HeldOut {
             })
             .collect();
         let all: Vec<&FoldScores> = folds.iter().map(|f| &f.hsom).collect();
-        let hsom = HeldOutSummary::of(&all).ok_or_else(|| {
-            LooError::Folds("held-out results: no folds (no demonstrations)".into())
-        })?;
+        let hsom = HeldOutSummary::of(&all)
+            .ok_or_else(|| FoldsError("held-out results: no folds (no demonstrations)".into()))?;
         let ran: Vec<&FoldScores> = folds.iter().filter_map(|f| f.gmr.as_ref()).collect();
         Ok(HeldOut {
             gmr: HeldOutSummary::of(&ran),
@@ -424,9 +427,9 @@ impl HeldOut {
 
     /// Add the nearest-sequence baseline's folds (`experiment::hsom_and_sequence_folds`): `sequence[i]` is fold
     /// `i`'s, one per fold.
-    pub fn with_sequence(mut self, sequence: Vec<FoldScores>) -> Result<HeldOut, LooError> {
+    pub fn with_sequence(mut self, sequence: Vec<FoldScores>) -> Result<HeldOut, FoldsError> {
         if sequence.len() != self.folds.len() {
-            return Err(LooError::Folds(format!(
+            return Err(FoldsError(format!(
                 "held-out results: {} nearest-sequence folds for {} folds; need one per fold",
                 sequence.len(),
                 self.folds.len()

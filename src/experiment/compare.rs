@@ -14,7 +14,7 @@ use crate::steps;
 use super::all_gestures::Progress;
 use super::baseline::{fig3_png, fig5_png, gmr_params, run_baseline, GMR_COLOR};
 use super::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
-use super::job::{config_name, file_size, load_arm, write_hsom_run, Stopwatch, FIG4_JOINTS};
+use super::output::{config_name, file_size, load_arm, write_hsom_run, Stopwatch, FIG4_JOINTS};
 use super::report::{DemoInfo, MethodResult, Report};
 use super::{
     are_arm_joints, demo_wrist_paths, learn_and_reproduce, ExperimentError, Training, Transition,

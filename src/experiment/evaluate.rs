@@ -7,6 +7,11 @@ use crate::sim::{NaoArm, JOINT_NAMES};
 
 use super::ExperimentError;
 
+/// The joint whose large swings are counted (column 3, `LElbowRoll`: the wave's joint).
+pub const SWING_JOINT: usize = 3;
+/// Smallest excursion between turning points that counts as a swing, rad.
+pub const SWING_MIN_AMPLITUDE_RAD: f64 = 0.3;
+
 /// The `l_wrist` position (m, torso frame) at each posture, from the simulated arm's kinematics.
 /// Postures are clamped into the joint ranges first: encoders (and their simulated noise) can
 /// read a hair beyond a limit the joint itself cannot pass; NaN is still an error.

@@ -15,10 +15,7 @@ use crate::sim::{NaoArm, Recording, JOINT_NAMES};
 use super::pipeline::Training;
 use super::{are_arm_joints, ArmExecutor, ExperimentError, Transition};
 
-/// The joint whose large swings are counted (column 3, `LElbowRoll`: the wave's joint).
-pub const SWING_JOINT: usize = 3;
-/// Smallest excursion between turning points that counts as a swing, rad.
-pub const SWING_MIN_AMPLITUDE_RAD: f64 = 0.3;
+pub use super::evaluate::{SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
 
 impl FoldScores {
     /// A method's run on the arm ([`run_fold`] with [`ArmExecutor`]) as its scores against

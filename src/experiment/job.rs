@@ -7,46 +7,30 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use crate::demos::{self, sample_period, write_csv, Demonstration};
+use crate::demos::{self, sample_period, Demonstration};
 use crate::gesture::Gesture;
 use crate::plot::BLACK;
 use crate::sim::{NaoArm, JOINT_NAMES};
-use crate::steps::{self, DEFAULT_CONFIG_NAME};
+use crate::steps;
 
 use super::all_gestures::Progress;
 use super::baseline::GMR_NAME;
 use super::compare;
 use super::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
-use super::report::{level_rows, DemoInfo, MethodResult, Report, Stage};
+use super::output::{config_name, load_arm, write_hsom_run, Stopwatch, FIG4_JOINTS};
+use super::report::{level_rows, DemoInfo, Report, Stage};
 use super::variants::{reference_variants, run_variant, variants};
 use super::{
     are_arm_joints, check_reachable, demo_wrist_paths, film, hsom_folds, learn_and_reproduce,
     leave_one_out, synthetic_demonstrations, DemoSettings, ExperimentError, HeldOutSummary,
-    Outcome, Training, Transition,
+    Training, Transition,
 };
 
 /// The result of a job's step.
 type Result<T> = std::result::Result<T, ExperimentError>;
 
-/// How a report names the configuration: its path, or the built-in default's name.
-pub fn config_name(path: Option<&Path>) -> String {
-    path.map_or(DEFAULT_CONFIG_NAME.into(), |p| p.display().to_string())
-}
-
 /// Default encoder noise of synthetic demonstrations, rad (about Nao's encoder resolution).
 pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
-
-/// Load the arm model from `path` or the default model.
-pub fn load_arm(path: Option<&Path>) -> Result<NaoArm> {
-    match path {
-        Some(p) => NaoArm::load(p),
-        None => NaoArm::load_default(),
-    }
-    .map_err(|source| ExperimentError::Arm {
-        path: path.map(Path::to_path_buf),
-        source,
-    })
-}
 
 /// Look a gesture up by name, with the list of known names on failure.
 pub fn gesture(name: &str) -> Result<Gesture> {
@@ -148,53 +132,6 @@ pub struct Job {
     /// Also run the held-out (leave-one-out) evaluation of both methods.
     pub heldout: bool,
 }
-
-/// Wall time of the main job's stages.
-pub struct Stopwatch {
-    /// The stages timed so far.
-    pub stages: Vec<Stage>,
-    /// Start of the current stage.
-    pub t: Instant,
-}
-
-impl Default for Stopwatch {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-impl Stopwatch {
-    /// A stopwatch with no stage, started now.
-    pub fn new() -> Self {
-        Stopwatch {
-            stages: Vec::new(),
-            t: Instant::now(),
-        }
-    }
-    /// Close the current stage as `stage`; its seconds.
-    pub fn lap(&mut self, stage: &str) -> f64 {
-        let s = self.t.elapsed().as_secs_f64();
-        self.stages.push(Stage {
-            stage: stage.to_string(),
-            seconds: s,
-        });
-        self.t = Instant::now();
-        s
-    }
-}
-
-/// File size in bytes (0 when it cannot be read).
-pub fn file_size(p: &Path) -> u64 {
-    std::fs::metadata(p).map(|m| m.len()).unwrap_or(0)
-}
-
-/// The four joints of the paper's Fig. 4.
-pub const FIG4_JOINTS: [(usize, &str); 4] = [
-    (0, "LShoulderPitch"),
-    (1, "LShoulderRoll"),
-    (2, "LElbowYaw"),
-    (3, "LElbowRoll"),
-];
 
 /// What the main job produced: the report (also written as `report.md` and `report.json`) and
 /// the warnings to show (the job went on past them).
@@ -424,40 +361,6 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
         .write(out)
         .map_err(ExperimentError::io("writing the report into", out))?;
     Ok(JobSummary { report, warnings })
-}
-
-/// Save a CoSCo-HSOM run's model (`model.bin`) and executed trajectory (`reproduction.csv`)
-/// into `out`, list them in `files`, and return its column of the report (notes: why it
-/// stopped, postures per level, then `notes`).
-pub fn write_hsom_run(
-    out: &Path,
-    run: &Outcome,
-    notes: Vec<String>,
-    files: &mut Vec<String>,
-) -> Result<MethodResult> {
-    let model_path = out.join("model.bin");
-    run.model.save(&model_path)?;
-    files.push("model.bin".into());
-    write_csv(
-        &out.join("reproduction.csv"),
-        &run.executed.to_demonstration("CoSCo-HSOM reproduction"),
-    )?;
-    files.push("reproduction.csv".into());
-    let mut all = vec![
-        format!("stopped: {:?}", run.reproduction.stop),
-        levels_note(&run.reproduction.predicted_by),
-    ];
-    all.extend(notes);
-    Ok(run.method_result("CoSCo-HSOM", file_size(&model_path), all))
-}
-
-/// "predicted by level": how many postures each level produced.
-fn levels_note(by: &[usize]) -> String {
-    let top = by.iter().copied().max().unwrap_or(0);
-    let counts: Vec<String> = (0..=top)
-        .map(|l| format!("L{l}: {}", by.iter().filter(|&&b| b == l).count()))
-        .collect();
-    format!("postures predicted per level: {}", counts.join(", "))
 }
 
 /// `simulate --gesture all`: one hierarchy for every gesture ([`super::all_gestures`]);

@@ -13,6 +13,7 @@ pub mod figures;
 pub mod film;
 pub mod heldout;
 pub mod job;
+pub mod output;
 pub mod pipeline;
 pub mod report;
 pub mod variants;
@@ -31,6 +32,7 @@ pub use heldout::{
     gmr_folds, hsom_and_sequence_folds, hsom_folds, leave_one_out, Fold, FoldScores, HeldOut,
     HeldOutSummary, Swings,
 };
+pub use output::load_arm;
 pub use pipeline::{
     execute_and_score, learn_and_reproduce, learn_and_score, reproduce_variant, Executed, Outcome,
     Split, Training,
@@ -92,7 +94,7 @@ pub enum ExperimentError {
     Gmr(#[from] crate::gmr::GmrError),
     /// Per-fold results could not be put together.
     #[error(transparent)]
-    Loo(#[from] crate::eval::LooError),
+    Folds(#[from] crate::eval::FoldsError),
     /// The GMM/GMR baseline's run or figures failed.
     #[error(transparent)]
     Baseline(#[from] Box<baseline::BaselineError>),

@@ -9,7 +9,8 @@ use serde::Serialize;
 use crate::fsutil::write_atomic;
 use crate::metrics::{FidelityReport, Smoothness, Stat};
 
-use super::heldout::{HeldOut, HeldOutSummary, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
+use super::evaluate::{SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
+use crate::eval::{FoldScores, HeldOut, HeldOutSummary};
 use crate::hsom::Hsom;
 use crate::sim::JOINT_NAMES;
 
@@ -355,7 +356,7 @@ pub fn folds_table(h: &HeldOut) -> String {
          |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for f in &h.folds {
-        let scores = |s: &super::heldout::FoldScores| {
+        let scores = |s: &FoldScores| {
             let r = &s.fidelity;
             format!(
                 "{:.4} | {} | {:.3} | {:.3} | {:.2}",

@@ -1,0 +1,112 @@
+//! What the main job and `cosco compare` both write and time: the report's name of the
+//! configuration, the arm they load, the stopwatch of their stages, the hierarchy's model and
+//! executed trajectory with its column of the report.
+
+use std::path::Path;
+use std::time::Instant;
+
+use crate::demos::write_csv;
+use crate::sim::NaoArm;
+use crate::steps::DEFAULT_CONFIG_NAME;
+
+use super::pipeline::Outcome;
+use super::report::{MethodResult, Stage};
+use super::ExperimentError;
+
+/// How a report names the configuration: its path, or the built-in default's name.
+pub fn config_name(path: Option<&Path>) -> String {
+    path.map_or(DEFAULT_CONFIG_NAME.into(), |p| p.display().to_string())
+}
+
+/// Load the arm model from `path` or the default model.
+pub fn load_arm(path: Option<&Path>) -> Result<NaoArm, ExperimentError> {
+    match path {
+        Some(p) => NaoArm::load(p),
+        None => NaoArm::load_default(),
+    }
+    .map_err(|source| ExperimentError::Arm {
+        path: path.map(Path::to_path_buf),
+        source,
+    })
+}
+
+/// Wall time of the main job's stages.
+pub struct Stopwatch {
+    /// The stages timed so far.
+    pub stages: Vec<Stage>,
+    /// Start of the current stage.
+    pub t: Instant,
+}
+
+impl Default for Stopwatch {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Stopwatch {
+    /// A stopwatch with no stage, started now.
+    pub fn new() -> Self {
+        Stopwatch {
+            stages: Vec::new(),
+            t: Instant::now(),
+        }
+    }
+    /// Close the current stage as `stage`; its seconds.
+    pub fn lap(&mut self, stage: &str) -> f64 {
+        let s = self.t.elapsed().as_secs_f64();
+        self.stages.push(Stage {
+            stage: stage.to_string(),
+            seconds: s,
+        });
+        self.t = Instant::now();
+        s
+    }
+}
+
+/// File size in bytes (0 when it cannot be read).
+pub fn file_size(p: &Path) -> u64 {
+    std::fs::metadata(p).map(|m| m.len()).unwrap_or(0)
+}
+
+/// The four joints of the paper's Fig. 4.
+pub const FIG4_JOINTS: [(usize, &str); 4] = [
+    (0, "LShoulderPitch"),
+    (1, "LShoulderRoll"),
+    (2, "LElbowYaw"),
+    (3, "LElbowRoll"),
+];
+
+/// Save a CoSCo-HSOM run's model (`model.bin`) and executed trajectory (`reproduction.csv`)
+/// into `out`, list them in `files`, and return its column of the report (notes: why it
+/// stopped, postures per level, then `notes`).
+pub fn write_hsom_run(
+    out: &Path,
+    run: &Outcome,
+    notes: Vec<String>,
+    files: &mut Vec<String>,
+) -> Result<MethodResult, ExperimentError> {
+    let model_path = out.join("model.bin");
+    run.model.save(&model_path)?;
+    files.push("model.bin".into());
+    write_csv(
+        &out.join("reproduction.csv"),
+        &run.executed.to_demonstration("CoSCo-HSOM reproduction"),
+    )?;
+    files.push("reproduction.csv".into());
+    let mut all = vec![
+        format!("stopped: {:?}", run.reproduction.stop),
+        levels_note(&run.reproduction.predicted_by),
+    ];
+    all.extend(notes);
+    Ok(run.method_result("CoSCo-HSOM", file_size(&model_path), all))
+}
+
+/// "predicted by level": how many postures each level produced.
+fn levels_note(by: &[usize]) -> String {
+    let top = by.iter().copied().max().unwrap_or(0);
+    let counts: Vec<String> = (0..=top)
+        .map(|l| format!("L{l}: {}", by.iter().filter(|&&b| b == l).count()))
+        .collect();
+    format!("postures predicted per level: {}", counts.join(", "))
+}
