@@ -1,6 +1,6 @@
-//! The steps shared by the `simulate` and `cosco` binaries: progress bars, printing, and the
-//! library's steps ([`cosco_hsom::steps`]) with `anyhow` errors (binaries only); the library's
-//! typed errors carry the file, field and value. What needs the simulated arm is in [`arm`].
+//! What the `simulate` and `cosco` binaries share: progress bars, the one-line error, and the
+//! parsers of their numeric flags; the work is the library's, whose typed errors carry the
+//! file, field and value (`anyhow` only here, in the binaries).
 #![allow(dead_code)]
 
 #[cfg(feature = "sim")]
@@ -14,14 +14,8 @@ pub use cosco_hsom::experiment::compare;
 #[cfg(feature = "sim")]
 pub use cosco_hsom::experiment::job::DEFAULT_ENCODER_NOISE;
 
-use std::path::{Path, PathBuf};
-
-use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 
-use cosco_hsom::config::HsomConfig;
-use cosco_hsom::demos::Demonstration;
-use cosco_hsom::hsom::Hsom;
 use cosco_hsom::steps;
 
 /// A progress bar on stderr (hidden when stderr is not a terminal).
@@ -64,33 +58,6 @@ impl StageBars {
             pb.finish_and_clear();
         }
     }
-}
-
-/// Load a CoSCo-HSOM configuration file, or the built-in recommended configuration.
-pub fn hsom_config(path: Option<&Path>) -> Result<HsomConfig> {
-    Ok(steps::config(path)?)
-}
-
-/// Read demonstration files (a directory of *.csv or explicit files), checked as a set.
-pub fn read_demos(paths: &[PathBuf], state_length: Option<usize>) -> Result<Vec<Demonstration>> {
-    Ok(steps::read_demos(paths, state_length)?)
-}
-
-/// Train with a progress bar.
-pub fn train(cfg: &HsomConfig, demos: &[Demonstration]) -> Result<Hsom> {
-    let pb = progress(cfg.params().training_steps as u64, "training");
-    let model = steps::train(
-        cfg,
-        demos,
-        Some(&|done, _total| pb.set_position(done as u64)),
-    )?;
-    pb.finish_and_clear();
-    Ok(model)
-}
-
-/// Load a saved model (.bin or .txt).
-pub fn load_model(path: &Path) -> Result<Hsom> {
-    Ok(steps::load_model(path)?)
 }
 
 /// The error and its causes on one line ([`steps::error_line`]).
