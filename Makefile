@@ -9,7 +9,7 @@ PYTHON ?= python3
 # The Python package's virtual environment (git-ignored, under target/).
 PY_VENV := target/py-venv
 
-.PHONY: deps demo test test-python bench bench-som bindings fmt clippy clean
+.PHONY: deps demo test test-python doc-commands results bench bench-som bindings fmt clippy clean
 
 ## deps: install the Debian packages (MuJoCo 2.2.2, OSMesa) when any is missing
 deps:
@@ -34,6 +34,7 @@ test: deps
 	$(CARGO) test --no-default-features --all-targets
 	$(CARGO) test --no-default-features --doc
 	$(MAKE) test-python
+	$(MAKE) doc-commands
 
 ## test-python: build the Python package (python/) into a local virtual environment and run
 ## its tests against the `cosco` binary (without the simulator, with ROS 2 bags: the export
@@ -48,6 +49,16 @@ test-python:
 	$(CARGO) build --no-default-features --features ros2 --bin cosco; \
 	PATH="$(CURDIR)/$(PY_VENV)/bin:$$PATH" CARGO_TARGET_DIR=$(CURDIR)/target $(PY_VENV)/bin/pip install -q --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python; \
 	COSCO_BIN=$(CURDIR)/target/debug/cosco $(PY_VENV)/bin/python -m pytest -q python/tests
+
+## doc-commands: run every command block of README.md, CONTRIBUTING.md and docs/ as written,
+## in a clean clone (blocks fenced ```sh long are skipped; Python blocks need test-python)
+doc-commands:
+	$(CARGO) build --bins
+	$(PYTHON) scripts/doc_commands.py
+
+## results: rerun every study and rewrite docs/RESULTS.md and README.md's headline table
+results: deps
+	scripts/results.sh
 
 ## bench: criterion benchmarks (figures go to docs/BENCHMARKS.md by hand)
 bench: deps

@@ -282,7 +282,7 @@ fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
 }
 
 /// Negative or impossible numbers for `--count`, `--noise`, `--seed` are answered with what is
-/// allowed (they used to get clap's "unexpected argument '-1'"); nothing is recorded.
+/// allowed (not clap's "unexpected argument '-1'"); nothing is recorded.
 #[cfg(feature = "sim")]
 #[test]
 fn negative_numbers_are_named_with_what_is_allowed() {
@@ -309,7 +309,7 @@ fn negative_numbers_are_named_with_what_is_allowed() {
 }
 
 /// `train` checks where the model goes before reading or training: a missing directory is
-/// named at once (it used to be found only after training).
+/// named at once, not after training.
 #[test]
 fn train_refuses_a_missing_output_directory_before_training() {
     let dir = tempfile::tempdir().unwrap();
@@ -331,7 +331,7 @@ fn train_refuses_a_missing_output_directory_before_training() {
 }
 
 /// `reproduce --initial` with an arm posture far outside a joint's range is refused, naming
-/// the joint and its range (it used to run).
+/// the joint and its range.
 #[cfg(feature = "sim")]
 #[test]
 fn reproduce_refuses_an_initial_posture_far_outside_the_joint_ranges() {

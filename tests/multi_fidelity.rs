@@ -3,7 +3,7 @@
 //! posture within 1.2x of the same gesture learned alone (joint DTW, executed on the arm).
 //! Negative controls that must fail it: the untrained hierarchy, and the trained one cued
 //! with another gesture's label. Demonstration seeds 21-22 (no rule was chosen on them).
-//! Figures over seeds 11-15: docs/COMPARISON.md.
+//! Figures over seeds 11-15: docs/RESULTS.md.
 #![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use cosco_hsom::config::load_config;

@@ -1,0 +1,100 @@
+#!/usr/bin/env python3
+"""Run every command block of README.md, CONTRIBUTING.md and docs/*.md as written, in a clean
+clone of this repository, one file at a time and its blocks in order.
+
+A block is a fenced ```sh or ```python block; ```sh long (or ```python long) marks one that is
+not run here (a build, a study of many minutes, a network install). Shell blocks run in bash
+with the built binaries (--bin-dir, default target/debug) first on the PATH; Python blocks
+run with --python (default target/py-venv/bin/python, where `make test-python` installs the
+package) and are skipped, said so, when it cannot import cosco_hsom. Each block has a time
+limit. Exit status 1 when any block fails.
+
+Usage: scripts/doc_commands.py [--bin-dir DIR] [--python EXE] [--timeout S] [FILE ...]
+"""
+
+import argparse
+import glob
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+FENCE = re.compile(r"^```(sh|python)(\s+long)?\s*$")
+
+
+def blocks(path):
+    """(line, language, long, text) of every ```sh / ```python block of `path`."""
+    out, current = [], None
+    with open(path, encoding="utf-8") as f:
+        for n, line in enumerate(f, 1):
+            if current is None:
+                m = FENCE.match(line.rstrip("\n"))
+                if m:
+                    current = (n, m.group(1), bool(m.group(2)), [])
+            elif line.startswith("```"):
+                out.append((current[0], current[1], current[2], "".join(current[3])))
+                current = None
+            else:
+                current[3].append(line)
+    return out
+
+
+def main():
+    root = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--bin-dir", default=os.path.join(root, "target", "debug"))
+    ap.add_argument("--python", default=os.path.join(root, "target", "py-venv", "bin", "python"))
+    ap.add_argument("--timeout", type=float, default=600.0, help="seconds per block")
+    ap.add_argument("files", nargs="*")
+    a = ap.parse_args()
+    files = a.files or ["README.md", "CONTRIBUTING.md"] + sorted(glob.glob("docs/*.md", root_dir=root))
+    bin_dir = os.path.abspath(a.bin_dir)
+    for exe in ("cosco",):
+        if not os.access(os.path.join(bin_dir, exe), os.X_OK):
+            sys.exit(f"error: {bin_dir}/{exe} not found: build first (cargo build --bins)")
+    python_ok = (
+        os.access(a.python, os.X_OK)
+        and subprocess.run([a.python, "-c", "import cosco_hsom"], capture_output=True).returncode == 0
+    )
+    env = dict(os.environ, PATH=bin_dir + os.pathsep + os.environ.get("PATH", ""))
+    failed = ran = skipped = 0
+    with tempfile.TemporaryDirectory(prefix="doc-commands-") as tmp:
+        clone = os.path.join(tmp, "clone")
+        subprocess.run(["git", "clone", "-q", root, clone], check=True)
+        for rel in files:
+            path = os.path.join(root, rel)
+            if not os.path.exists(path):
+                continue
+            work = os.path.join(tmp, rel.replace("/", "_"))
+            shutil.copytree(clone, work, symlinks=True, ignore=shutil.ignore_patterns(".git"))
+            for line, lang, long, text in blocks(path):
+                where = f"{rel}:{line}"
+                if long:
+                    skipped += 1
+                    print(f"skip  {where} (marked long)")
+                    continue
+                if lang == "python" and not python_ok:
+                    skipped += 1
+                    print(f"skip  {where} (no cosco_hsom in {a.python}: make test-python)")
+                    continue
+                cmd = ["bash", "-euo", "pipefail", "-c", text] if lang == "sh" else [a.python, "-c", text]
+                t0 = time.monotonic()
+                try:
+                    r = subprocess.run(cmd, cwd=work, env=env, capture_output=True, text=True, timeout=a.timeout)
+                    ok, detail = r.returncode == 0, (r.stderr or r.stdout)[-2000:]
+                except subprocess.TimeoutExpired:
+                    ok, detail = False, f"timed out after {a.timeout:.0f} s"
+                ran += 1
+                print(f"{'ok' if ok else 'FAIL':5} {where} ({time.monotonic() - t0:.1f} s)")
+                if not ok:
+                    failed += 1
+                    print("      " + detail.replace("\n", "\n      "))
+    print(f"{ran} blocks run, {failed} failed, {skipped} skipped")
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()

