@@ -11,13 +11,13 @@ use super::errors::HsomError;
 use super::memory::{Memory, Stm};
 
 /// A trained CoSCo-HSOM: one Kohonen map per level plus the few per-node statistics used by
-/// reproduction. Its size depends on the configuration only, never on the length of the
-/// training data; with `consensus = start`, where the starts are used, it also keeps one
-/// placement of the bottom nodes per training demonstration.
-#[derive(Debug, Clone, PartialEq)]
+/// reproduction. Its size is bounded by the configuration and never grows with the length of
+/// the training data: the events extension keeps at most a few training chunks per node
+/// ([`super::events::Traces`]) and, with the consensus weighed by the starts where the starts
+/// are used, one placement of the bottom nodes per training demonstration.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Hsom {
     pub(crate) config: HsomConfig,
-    pub(crate) maps: Vec<SelfOrganizingMap>,
     /// Per-variable offset and scale: the bottom level sees (x - offset) / scale.
     pub(crate) offset: Vec<f64>,
     pub(crate) scale: Vec<f64>,
@@ -40,6 +40,7 @@ pub struct Hsom {
     /// it never had such a run.
     pub(crate) dwell: Vec<f64>,
     /// Names of the demonstrations' columns (`x0`, `x1`, ... for plain series).
+    #[serde(with = "super::record::strings")]
     pub(crate) columns: Vec<String>,
     /// Per level: how often its partial match predicted the next entry of the level below
     /// exactly during the replay of the training data (0 for level 0).
@@ -92,6 +93,8 @@ pub struct Hsom {
     /// node's exemplar is (`algorithm = events`): a plan replays the demonstrated chunk its
     /// node stands for ([`super::events::Traces`]).
     pub(crate) traces: Option<super::events::Traces>,
+    /// The maps, bottom first (last in a model file).
+    pub(crate) maps: Vec<SelfOrganizingMap>,
 }
 
 /// Quality of one level, as reported by [`Hsom::summary`].

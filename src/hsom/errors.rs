@@ -114,6 +114,26 @@ pub enum PersistError {
         /// Supported version.
         expected: u32,
     },
+    /// A model file of a newer format version than this program reads.
+    #[error("{path}: model format version {found} was written by a newer version of cosco-hsom; this program reads version {expected}: update it, or retrain the model with this version (`cosco train`)")]
+    Newer {
+        /// The file.
+        path: PathBuf,
+        /// Version in the file.
+        found: u32,
+        /// Supported version.
+        expected: u32,
+    },
+    /// A model file of another kind than asked for (one gesture, several).
+    #[error("{path}: the file holds a model of kind {found}; {expected} expected (a model of several gestures loads with GestureModel::load and the `cosco` commands)")]
+    Kind {
+        /// The file.
+        path: PathBuf,
+        /// The kind in the file's header.
+        found: String,
+        /// The kinds accepted.
+        expected: String,
+    },
     /// The file ends early.
     #[error("{path}: truncated model file ({what})")]
     Truncated {

@@ -21,12 +21,13 @@ mod memory;
 mod paper;
 mod persist;
 mod recognize;
+mod record;
 mod reproduction;
 
 pub use algorithm::{plans_word, Hsom, LevelSummary, ModelSummary};
 pub use errors::{HsomError, PersistError};
 pub use labels::{is_plain_label, GestureError, GestureModel, GESTURES_FORMAT_VERSION, MAX_LABELS};
 pub use memory::{ActivityLevels, ActivityList};
-pub use persist::FORMAT_VERSION;
+pub use persist::{FilePart, FORMAT_VERSION};
 pub use recognize::{Recognition, Scoring, PREFIX_BLEND};
 pub use reproduction::{Reproduction, StopReason};

@@ -22,29 +22,22 @@ use super::reproduction::Reproduction;
 /// What recognition compares a label's matches with: per level, the branch's mean chunk
 /// distance on its training data (index 0, the bottom, unused), and the score above which a
 /// sequence is not this gesture.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub(crate) struct Calibration {
     pub(crate) reference: Vec<f64>,
     pub(crate) threshold: f64,
 }
 
 impl Calibration {
-    /// Flat form for the model file: the references, then the threshold.
-    pub(crate) fn values(&self) -> Vec<f64> {
-        let mut v = self.reference.clone();
-        v.push(self.threshold);
-        v
-    }
-
-    /// From the flat form of a model of `height` levels; `None` when it does not fit.
-    pub(crate) fn from_values(v: &[f64], height: usize) -> Option<Calibration> {
-        if v.len() != height + 1 || v.iter().any(|x| !x.is_finite() || *x < 0.0) {
-            return None;
-        }
-        Some(Calibration {
-            reference: v[..height].to_vec(),
-            threshold: v[height],
-        })
+    /// Whether it fits a model of `height` levels (loaded, untrusted): one reference per
+    /// level, every value finite and not negative.
+    pub(crate) fn fits(&self, height: usize) -> bool {
+        self.reference.len() == height
+            && self
+                .reference
+                .iter()
+                .chain([&self.threshold])
+                .all(|x| x.is_finite() && *x >= 0.0)
     }
 }
 

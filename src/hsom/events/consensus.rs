@@ -3,7 +3,7 @@
 
 use super::encode::bottom_events;
 use super::start::StartKnots;
-use super::traces::{trace_places, trace_postures_at, trace_width, TRACE_HEAD};
+use super::traces::{trace_places, trace_postures_at, TRACE_HEAD};
 use crate::hsom::algorithm::Hsom;
 
 /// Longest sequence [`aligned_samples`] aligns sample by sample: a longer demonstration is aligned
@@ -413,13 +413,10 @@ impl Hsom {
             self.config.params().memory,
             trace_places(self.config.params()),
         );
-        for (l, words) in traces.levels.iter_mut().enumerate().skip(1) {
-            let Some(width) = trace_width(k, l, s).filter(|_| !words.is_empty()) else {
-                continue;
-            };
+        for (l, chunks) in traces.levels.iter_mut().enumerate().skip(1) {
             let span = k.pow(l as u32);
             let postures = trace_postures_at(k, l);
-            for slot in words.chunks_exact_mut(width).filter(|w| w[0] != u32::MAX) {
+            for slot in chunks.iter_mut().map(|c| &mut c.words) {
                 let (q, d) = (slot[0] as usize, slot[2] as usize);
                 for i in 0..span {
                     let e = slot[TRACE_HEAD + i];

@@ -9,8 +9,8 @@ use super::encode::{
 };
 use super::followers::{follower_positions, followers_table, lookup_accuracy, lookup_counts};
 use super::traces::{
-    trace_bmus_at, trace_places, trace_width, trace_words, Decoder, Traces, TRACED_CHUNKS,
-    TRACE_HEAD,
+    trace_bmus_at, trace_places, trace_width, trace_words, Decoder, TracedChunk, Traces,
+    TRACED_CHUNKS, TRACE_HEAD,
 };
 use super::END;
 use crate::hsom::algorithm::Hsom;
@@ -308,7 +308,16 @@ impl Hsom {
                     at += count;
                 }
             }
-            levels.push(w);
+            levels.push(
+                w.chunks_exact(width)
+                    .enumerate()
+                    .filter(|(_, slot)| slot[0] != u32::MAX)
+                    .map(|(i, slot)| TracedChunk {
+                        node: (i / TRACED_CHUNKS) as u32,
+                        words: slot.to_vec(),
+                    })
+                    .collect(),
+            );
         }
         Traces { levels }
     }

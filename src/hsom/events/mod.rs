@@ -44,7 +44,7 @@ pub(super) use encode::{
 };
 pub(super) use followers::{followers_table, most_frequent, FOLLOWERS};
 pub(super) use start::StartKnots;
-pub(super) use traces::{trace_places, Traces};
+pub(super) use traces::{trace_places, trace_width, trace_words, Traces, TRACED_CHUNKS};
 
 /// A node index that stands for the end of the gesture in item sequences and successors.
 pub(crate) const END: u32 = u32::MAX - 1;

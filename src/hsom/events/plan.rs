@@ -10,9 +10,7 @@ use super::encode::{
 };
 use super::followers::most_frequent;
 use super::levels::used;
-use super::traces::{
-    trace_bmus_at, trace_places, trace_postures_at, trace_width, Decoder, TRACED_CHUNKS, TRACE_HEAD,
-};
+use super::traces::{trace_bmus_at, trace_places, trace_postures_at, Decoder, TRACE_HEAD};
 use super::END;
 use crate::hsom::algorithm::Hsom;
 use crate::hsom::reproduction::{Reproduction, StopReason};
@@ -218,7 +216,7 @@ impl Hsom {
         plan: &mut VecDeque<Step<u32>>,
         expected: &mut [VecDeque<u32>],
     ) -> bool {
-        let Some(words) = self
+        let Some(chunks) = self
             .traces
             .as_ref()
             .and_then(|t| t.levels.get(level))
@@ -228,9 +226,6 @@ impl Hsom {
         };
         let (k, s, pw) = (ctx.lay.k, ctx.lay.s, trace_places(self.config.params()));
         let n0 = self.maps[0].len();
-        let Some(width) = trace_width(k, level, pw) else {
-            return false;
-        };
         let postures = trace_postures_at(k, level);
         let span = k.pow(level as u32);
         let n = ctx.matched[level];
@@ -240,18 +235,19 @@ impl Hsom {
         let followed = *follow;
         // the demonstration followed goes on; otherwise the node matched, otherwise any;
         // nearest first, then nearest the node's weights (the first of equals)
-        let best = words
-            .chunks_exact(width)
-            .enumerate()
-            .filter(|(_, slot)| {
+        let best = chunks
+            .iter()
+            .filter(|c| {
+                let slot = &c.words;
                 slot[0] as usize == index
                     && off < span
                     && slot[TRACE_HEAD + off] != u32::MAX
                     && (slot[1] as usize) < n0
             })
-            .map(|(i, slot)| {
+            .map(|c| {
+                let slot = &c.words[..];
                 let d = dist2(&self.maps[0].weights(slot[1] as usize)[..s], ctx.here);
-                (slot, Some(slot[2]) != followed, i / TRACED_CHUNKS != n, d)
+                (slot, Some(slot[2]) != followed, c.node as usize != n, d)
             })
             .min_by(|a, b| a.1.cmp(&b.1).then(a.2.cmp(&b.2)).then(a.3.total_cmp(&b.3)));
         let Some((slot, ..)) = best else {

@@ -15,7 +15,7 @@ use super::encode::dist2;
 /// of the width that best predicted each training demonstration's placement from the others'
 /// (leave-one-out); all alike (`width` infinite) is a candidate, and is the plain
 /// [`consensus`].
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub(crate) struct StartKnots {
     /// Per training demonstration, its first posture (state part, normalised).
     pub(crate) starts: Vec<Vec<f64>>,

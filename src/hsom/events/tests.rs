@@ -517,9 +517,8 @@ fn at_nodes(m: &Hsom) -> Hsom {
     let mut cleared = m.clone();
     let (k, s) = (m.config.params().memory, trace_places(m.config.params()));
     let at = trace_postures_at(k, 1);
-    let width = trace_width(k, 1, s).unwrap();
-    for slot in cleared.traces.as_mut().unwrap().levels[1].chunks_exact_mut(width) {
-        slot[at..trace_bmus_at(k, 1, s)].fill(u32::MAX);
+    for c in cleared.traces.as_mut().unwrap().levels[1].iter_mut() {
+        c.words[at..trace_bmus_at(k, 1, s)].fill(u32::MAX);
     }
     cleared
 }
@@ -557,7 +556,7 @@ fn following_the_nearest_demonstration_keeps_its_number_of_excursions() {
 /// the same demonstration across chunks: from each demonstration's start the hierarchy
 /// executes exactly that demonstration's bottom events (one excursion, or two, counted
 /// with each event at its node), at its nodes' learned durations. The traces have a size
-/// set by the configuration alone. The control: with every traced chunk of the first
+/// bounded by the configuration alone (at most `TRACED_CHUNKS` chunks a node). The control: with every traced chunk of the first
 /// demonstration marked as the second's and its events made the second's, its start makes
 /// the second's number of excursions, so the plan is the traces' and not the levels'
 /// decoding.
@@ -568,7 +567,9 @@ fn a_traced_plan_replays_the_demonstration_its_node_stands_for() {
     let r = &m.config.params().reproduction;
     let tr = m.traces.as_ref().unwrap();
     let (k, s) = (m.config.params().memory, trace_places(m.config.params()));
-    assert_eq!(tr.levels[1].len(), trace_words(k, 1, s, m.maps[1].len()));
+    let width = trace_width(k, 1, s).unwrap();
+    assert!(tr.levels[1].len() <= m.maps[1].len() * TRACED_CHUNKS);
+    assert!(tr.levels[1].iter().all(|c| c.words.len() == width));
     for d in &demos {
         let y0 = m.normalise(&d.rows[0]);
         let (executed, stop) = m.plan_event_list(&y0, &[], &[], r);
@@ -590,14 +591,17 @@ fn a_traced_plan_replays_the_demonstration_its_node_stands_for() {
     }
     // the control: the first demonstration's traced chunks replaced by the second's
     let mut other = m.clone();
-    let width = trace_width(k, 1, s).unwrap();
-    let words = &mut other.traces.as_mut().unwrap().levels[1];
-    let second: Vec<Vec<u32>> = words
-        .chunks_exact(width)
-        .filter(|c| c[2] == 1)
-        .map(|c| c.to_vec())
+    let chunks = &mut other.traces.as_mut().unwrap().levels[1];
+    let second: Vec<Vec<u32>> = chunks
+        .iter()
+        .filter(|c| c.words[2] == 1)
+        .map(|c| c.words.clone())
         .collect();
-    for slot in words.chunks_exact_mut(width).filter(|c| c[2] == 0) {
+    for slot in chunks
+        .iter_mut()
+        .map(|c| &mut c.words)
+        .filter(|c| c[2] == 0)
+    {
         if let Some(theirs) = second.iter().find(|c| c[0] == slot[0]) {
             slot[TRACE_HEAD..].copy_from_slice(&theirs[TRACE_HEAD..]);
         }
@@ -738,9 +742,8 @@ fn two_knots_per_event_keep_the_swings() {
         let mut cleared = m.clone();
         let (k, pw) = (m.config.params().memory, trace_places(m.config.params()));
         let at = trace_postures_at(k, 1);
-        let width = trace_width(k, 1, pw).unwrap();
-        for slot in cleared.traces.as_mut().unwrap().levels[1].chunks_exact_mut(width) {
-            slot[at..trace_bmus_at(k, 1, pw)].fill(u32::MAX);
+        for c in cleared.traces.as_mut().unwrap().levels[1].iter_mut() {
+            c.words[at..trace_bmus_at(k, 1, pw)].fill(u32::MAX);
         }
         for (i, model) in [&m, &cleared].into_iter().enumerate() {
             let r = model.reproduce(&all[out][0]).unwrap().postures;
