@@ -308,19 +308,23 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     let path = dir.path().join("m.txt");
     let text = std::fs::read_to_string(&path).unwrap();
     assert!(text.contains("\"width\":"));
-    let bad = edit_model_text(&text, |m| m["start_knots"]["width"] = (-1.0).into());
+    let bad = edit_model_text(&text, |m| {
+        m["algo"]["Events"]["start_knots"]["width"] = (-1.0).into()
+    });
     std::fs::write(&path, bad).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("start-weighted postures"), "{e}");
     // so is a negative count of demonstrations that ended on a node
-    let bad = edit_model_text(&text, |m| m["end_postures"][0] = (-1.0).into());
+    let bad = edit_model_text(&text, |m| {
+        m["algo"]["Events"]["end_postures"][0] = (-1.0).into()
+    });
     std::fs::write(&path, bad).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("end-posture values"), "{e}");
     // the model keeps its traced chunks (seven places per event: the event, its halves, each
     // half's extremes) in both forms (above); a chunk one word short is refused
     let chunk = |m: &mut serde_json::Value| -> Vec<serde_json::Value> {
-        m["traces"]["levels"][1][0]["words"]
+        m["algo"]["Events"]["traces"]["levels"][1][0]["words"]
             .as_array()
             .unwrap()
             .clone()
@@ -328,7 +332,7 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     let short = edit_model_text(&text, |m| {
         let mut words = chunk(m);
         words.pop();
-        m["traces"]["levels"][1][0]["words"] = words.into();
+        m["algo"]["Events"]["traces"]["levels"][1][0]["words"] = words.into();
     });
     std::fs::write(&path, short).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
@@ -338,7 +342,7 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     let path = dir.path().join("p.txt");
     paper.save(&path).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
-    assert!(text.contains("\"traces\":null"));
+    assert!(!text.contains("\"traces\"") && text.contains("\"end_hits\""));
     let path = dir.path().join("t.txt");
     m.save(&path).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
@@ -346,7 +350,7 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     let bad_traces = edit_model_text(&text, |m| {
         let mut words = chunk(m);
         words[3] = 999999.into();
-        m["traces"]["levels"][1][0]["words"] = words.into();
+        m["algo"]["Events"]["traces"]["levels"][1][0]["words"] = words.into();
     });
     std::fs::write(&path, bad_traces).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
@@ -356,7 +360,7 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     let bad_traces = edit_model_text(&text, |m| {
         let mut words = chunk(m);
         words[3 + 4] = 2143289344u32.into();
-        m["traces"]["levels"][1][0]["words"] = words.into();
+        m["algo"]["Events"]["traces"]["levels"][1][0]["words"] = words.into();
     });
     std::fs::write(&path, bad_traces).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
@@ -365,7 +369,9 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
         "{e}"
     );
     // and a traced model whose traces are gone
-    let gone = edit_model_text(&text, |m| m["traces"] = serde_json::Value::Null);
+    let gone = edit_model_text(&text, |m| {
+        m["algo"]["Events"]["traces"] = serde_json::Value::Null
+    });
     std::fs::write(&path, gone).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("traces missing"), "{e}");

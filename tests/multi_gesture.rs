@@ -236,16 +236,25 @@ fn save_and_load_keep_the_model_and_its_size_does_not_grow_with_the_demonstratio
         std::fs::write(&p, hsom_common::edit_model_text(&single_text, edit)).unwrap();
         p
     };
-    let p = tampered(&|m| m["knots"] = vec![1.0, 2.0, 3.0].into(), "short.txt");
+    let p = tampered(
+        &|m| m["algo"]["Events"]["knots"] = vec![1.0, 2.0, 3.0].into(),
+        "short.txt",
+    );
     let e = GestureModel::load(&p).unwrap_err().to_string();
     assert!(e.contains("3 posture values"), "{e}");
     // a held-out accuracy above 1 (with a valid checksum): refused
-    let p = tampered(&|m| m["heldout_accuracy"][1] = 1.5.into(), "accuracy.txt");
+    let p = tampered(
+        &|m| m["algo"]["Events"]["heldout_accuracy"][1] = 1.5.into(),
+        "accuracy.txt",
+    );
     assert!(GestureModel::load(&p).is_err());
     let e = cosco_hsom::hsom::Hsom::load(&p).unwrap_err().to_string();
     assert!(e.contains("accuracy outside [0, 1]"), "{e}");
     // a follower position that is negative (valid checksum): refused
-    let p = tampered(&|m| m["follower_at"][0] = (-1.0).into(), "position.txt");
+    let p = tampered(
+        &|m| m["algo"]["Events"]["follower_at"][0] = (-1.0).into(),
+        "position.txt",
+    );
     let e = cosco_hsom::hsom::Hsom::load(&p).unwrap_err().to_string();
     assert!(e.contains("position negative or non-finite"), "{e}");
     // a corrupted byte is refused

@@ -19,10 +19,11 @@ use rand_chacha::ChaCha8Rng;
 use crate::config::{Algorithm, HsomConfig};
 use crate::demos::Demonstration;
 
-use super::algorithm::{Hsom, Presentation};
-use super::errors::{HsomError, PersistError};
+use super::algorithm::Presentation;
+use super::errors::{GestureError, HsomError, PersistError};
+use super::model::{GestureModel, Hsom, Scoring};
 use super::persist::{encode, load, open, save, text, Format, Kind, ModelFile, FORMAT_VERSION};
-use super::recognize::{Calibration, Scoring};
+use super::recognize::branch_seed;
 use super::reproduction::Reproduction;
 
 /// Format version of a multi-gesture model file: the one version of model files (the header
@@ -32,100 +33,12 @@ pub const GESTURES_FORMAT_VERSION: u32 = FORMAT_VERSION;
 /// Most gesture labels a model may hold (a bound on what a file may make us allocate).
 pub const MAX_LABELS: usize = 1024;
 
-/// Why a multi-gesture step was refused.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum GestureError {
-    /// A label the model does not hold.
-    #[error("no gesture {label:?} in the model; it holds: {labels}")]
-    UnknownLabel {
-        /// The label asked for.
-        label: String,
-        /// The model's labels, comma-separated.
-        labels: String,
-    },
-    /// A multi-gesture model asked to reproduce without a label.
-    #[error("the model holds several gestures ({labels}): choose one with --gesture NAME (or gesture=NAME)")]
-    LabelNeeded {
-        /// The model's labels, comma-separated.
-        labels: String,
-    },
-    /// Recognition asked of a model without labels.
-    #[error("a single-gesture model has no labels to recognise: train on labelled directories (demos/<label>/*.csv)")]
-    NoLabels,
-    /// A label that is not a plain word.
-    #[error("gesture label {label:?} (from {source_dir}) is not a plain word: use letters, digits, '_' and '-' only")]
-    BadLabel {
-        /// The label.
-        label: String,
-        /// Where it came from (a directory, or `in memory`).
-        source_dir: String,
-    },
-    /// The same label given twice.
-    #[error("gesture label {label:?} is given twice")]
-    DuplicateLabel {
-        /// The label.
-        label: String,
-    },
-    /// A label without demonstrations.
-    #[error("gesture {label:?} has no demonstrations")]
-    EmptyLabel {
-        /// The label.
-        label: String,
-    },
-    /// Labels whose demonstrations have different columns.
-    #[error("gesture {label:?} has columns {found:?}, but gesture {first_label:?} has {expected:?}: every gesture must record the same variables")]
-    ColumnsDiffer {
-        /// The label that differs.
-        label: String,
-        /// Its columns.
-        found: Vec<String>,
-        /// The first label.
-        first_label: String,
-        /// The first label's columns.
-        expected: Vec<String>,
-    },
-    /// Several gestures need the events extension (the paper's procedure trains every level
-    /// at once, so its upper levels cannot be split by label).
-    #[error("several gestures need algorithm = events (configs/nao-gestures.xml); this configuration uses the paper's algorithm")]
-    NeedsEvents,
-    /// A prefix shorter than one sample or longer than its file.
-    #[error("--prefix {prefix}: the demonstration has {len} samples; give 1 to {len}")]
-    Prefix {
-        /// The prefix asked for.
-        prefix: usize,
-        /// The demonstration's samples.
-        len: usize,
-    },
-    /// Training or reproduction was refused.
-    #[error(transparent)]
-    Hsom(#[from] HsomError),
-    /// A model file could not be saved or loaded.
-    #[error(transparent)]
-    Persist(#[from] PersistError),
-}
-
 /// True for a plain word: `[A-Za-z0-9_-]+`.
 pub fn is_plain_label(label: &str) -> bool {
     !label.is_empty()
         && label
             .chars()
             .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
-}
-
-/// One hierarchy for one or several gestures: a shared bottom level, one branch of upper
-/// levels per label (every branch is an [`Hsom`] whose bottom is the shared one).
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct GestureModel {
-    /// Empty for a single-gesture model (one unlabelled branch).
-    #[serde(with = "super::record::strings")]
-    pub(crate) labels: Vec<String>,
-    /// Per label, what recognition compares with (empty without labels).
-    pub(crate) calibration: Vec<Calibration>,
-    pub(crate) branches: Vec<Hsom>,
-    /// How recognition scores (not stored: the default on load).
-    #[serde(skip)]
-    pub(crate) scoring: Scoring,
 }
 
 impl From<Hsom> for GestureModel {
@@ -258,14 +171,6 @@ impl HsomConfig {
     }
 }
 
-/// The seed of branch `g` (`held_out`: of its leave-one-out variant without that
-/// demonstration).
-pub(crate) fn branch_seed(seed: u64, g: usize, held_out: Option<usize>) -> u64 {
-    let h = held_out.map_or(0, |i| i as u64 + 1);
-    seed.wrapping_add(0x9e37_79b9_7f4a_7c15u64.wrapping_mul(g as u64 + 1))
-        .wrapping_add(h.wrapping_mul(0x2545_f491_4f6c_dd1d))
-}
-
 impl Hsom {
     /// Normalised rows.
     pub(crate) fn normalise_rows(&self, rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
@@ -279,7 +184,6 @@ impl Hsom {
         let mut b = self.clone();
         let h = b.maps.len();
         b.hits.iter_mut().for_each(|v| v.fill(0));
-        b.end_hits.fill(0);
         b.qe.fill(0.0);
         b.te.fill(0.0);
         b.trained[1..].iter_mut().for_each(|t| *t = 0);
@@ -293,12 +197,18 @@ impl Hsom {
         b.dwell.fill(0.0);
         b.accuracy = vec![0.0; h];
         b.lookup = vec![0.0; h];
-        b.threshold = vec![0.0; h];
-        b.heldout_accuracy = vec![0.0; h];
-        b.heldout_lookup = vec![0.0; h];
-        b.followers.iter_mut().for_each(|f| f.fill(u32::MAX));
-        b.follower_at.fill(0.0);
-        b.exemplars.iter_mut().for_each(|e| e.fill(u32::MAX));
+        b.ev_mut().threshold = vec![0.0; h];
+        b.ev_mut().heldout_accuracy = vec![0.0; h];
+        b.ev_mut().heldout_lookup = vec![0.0; h];
+        b.ev_mut()
+            .followers
+            .iter_mut()
+            .for_each(|f| f.fill(u32::MAX));
+        b.ev_mut().follower_at.fill(0.0);
+        b.ev_mut()
+            .exemplars
+            .iter_mut()
+            .for_each(|e| e.fill(u32::MAX));
         b.replay(norm);
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         b.fit_events(norm, learn, &mut rng);

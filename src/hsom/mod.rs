@@ -16,18 +16,21 @@
 mod algorithm;
 mod errors;
 mod events;
+mod followers;
 mod labels;
 mod memory;
+mod model;
 mod paper;
 mod persist;
 mod recognize;
 mod record;
 mod reproduction;
 
-pub use algorithm::{plans_word, Hsom, LevelSummary, ModelSummary};
-pub use errors::{HsomError, PersistError};
-pub use labels::{is_plain_label, GestureError, GestureModel, GESTURES_FORMAT_VERSION, MAX_LABELS};
+pub use algorithm::{plans_word, LevelSummary, ModelSummary};
+pub use errors::{GestureError, HsomError, PersistError};
+pub use labels::{is_plain_label, GESTURES_FORMAT_VERSION, MAX_LABELS};
 pub use memory::{ActivityLevels, ActivityList};
+pub use model::{GestureModel, Hsom, Scoring};
 pub use persist::{FilePart, FORMAT_VERSION};
-pub use recognize::{Recognition, Scoring, PREFIX_BLEND};
+pub use recognize::{Recognition, PREFIX_BLEND};
 pub use reproduction::{Reproduction, StopReason};

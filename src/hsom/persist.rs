@@ -18,9 +18,10 @@ use serde::{Deserialize, Serialize};
 use crate::config::Algorithm;
 use crate::fsutil::write_atomic;
 
-use super::algorithm::{input_dim, Hsom};
 use super::errors::PersistError;
-use super::events::{trace_places, FOLLOWERS};
+use super::events::trace_places;
+use super::followers::FOLLOWERS;
+use super::model::{input_dim, Algo, Hsom};
 
 /// Magic bytes opening a binary model file.
 const MAGIC: &[u8; 8] = b"COSCOHSM";
@@ -344,13 +345,12 @@ impl Hsom {
         const NODES: &str = "per-node statistics (hits, ends, dwell, followers, exemplars)";
         const LEVELS: &str = "per-level statistics, normalisation, lengths, columns";
         const PLACES: &str = "postures and end postures";
-        let fields = [
+        let mut fields = vec![
             ("configuration (XML)", binary_len(&self.config)),
             (LEVELS, binary_len(&self.offset)),
             (LEVELS, binary_len(&self.scale)),
             (LEVELS, binary_len(&self.trained)),
             (NODES, binary_len(&self.hits)),
-            (NODES, binary_len(&self.end_hits)),
             (LEVELS, binary_len(&self.qe)),
             (LEVELS, binary_len(&self.te)),
             (LEVELS, binary_len(&self.demo_len)),
@@ -359,19 +359,26 @@ impl Hsom {
             (LEVELS, binary_len(&self.columns)),
             (LEVELS, binary_len(&self.accuracy)),
             (LEVELS, binary_len(&self.lookup)),
-            (LEVELS, binary_len(&self.threshold)),
-            (LEVELS, binary_len(&self.heldout_accuracy)),
-            (LEVELS, binary_len(&self.heldout_lookup)),
-            (NODES, binary_len(&self.followers)),
-            (NODES, binary_len(&self.follower_at)),
-            (NODES, binary_len(&self.exemplar_phase)),
-            (NODES, binary_len(&self.exemplars)),
-            (PLACES, binary_len(&self.knots)),
-            ("start placements", binary_len(&self.start_knots)),
-            (PLACES, binary_len(&self.end_postures)),
-            ("traced chunks", binary_len(&self.traces)),
-            ("weights", binary_len(&self.maps)),
+            // the algorithm's tag
+            (LEVELS, 4),
         ];
+        match &self.algo {
+            Algo::Paper(m) => fields.push((NODES, binary_len(&m.end_hits))),
+            Algo::Events(e) => fields.extend([
+                (LEVELS, binary_len(&e.threshold)),
+                (LEVELS, binary_len(&e.heldout_accuracy)),
+                (LEVELS, binary_len(&e.heldout_lookup)),
+                (NODES, binary_len(&e.followers)),
+                (NODES, binary_len(&e.follower_at)),
+                (NODES, binary_len(&e.exemplar_phase)),
+                (NODES, binary_len(&e.exemplars)),
+                (PLACES, binary_len(&e.knots)),
+                ("start placements", binary_len(&e.start_knots)),
+                (PLACES, binary_len(&e.end_postures)),
+                ("traced chunks", binary_len(&e.traces)),
+            ]),
+        }
+        fields.push(("weights", binary_len(&self.maps)));
         let mut parts = vec![FilePart {
             part: "header and checksum",
             bytes: MAGIC.len() + 4 + 2 + 8,
@@ -389,8 +396,8 @@ impl Hsom {
     /// traced level with all its chunks, a bound set by the configuration alone.
     pub fn traced_ceiling(&self) -> usize {
         let p = self.config.params();
-        let Some(t) = &self.traces else {
-            return binary_len(&self.traces);
+        let Some(t) = &self.ev().traces else {
+            return 0;
         };
         let (k, s) = (p.memory, trace_places(p));
         let chunks: usize = (1..t.levels.len())
@@ -503,6 +510,17 @@ impl Hsom {
                 p.kind().name()
             ));
         }
+        let holds = match self.algo {
+            Algo::Paper(_) => Algorithm::Paper,
+            Algo::Events(_) => Algorithm::Events,
+        };
+        if holds != p.kind() {
+            return bad(format!(
+                "the model holds the {} algorithm's part, the configuration algorithm {}",
+                holds.name(),
+                p.kind().name()
+            ));
+        }
         let height = p.levels.len();
         if self.maps.len() != height {
             return bad(format!(
@@ -544,46 +562,56 @@ impl Hsom {
         fn lens<T>(v: &[Vec<T>]) -> Vec<usize> {
             v.iter().map(Vec::len).collect()
         }
-        let mut sizes: Vec<(String, usize, usize)> = [
+        let mut sizes: Vec<(&str, usize, usize)> = vec![
             ("training counts", self.trained.len(), height),
             ("quantization errors", self.qe.len(), height),
             ("topographic errors", self.te.len(), height),
             ("hit counts", self.hits.len(), height),
-            ("end nodes", self.end_hits.len(), n0),
             ("offset", self.offset.len(), state),
             ("scale", self.scale.len(), state),
             ("dwell", self.dwell.len(), n0),
             ("accuracy", self.accuracy.len(), height),
             ("lookup accuracy", self.lookup.len(), height),
-            ("match thresholds", self.threshold.len(), height),
-            ("held-out accuracy", self.heldout_accuracy.len(), height),
-            (
-                "held-out lookup accuracy",
-                self.heldout_lookup.len(),
-                height,
-            ),
-            (
-                "follower positions",
-                self.follower_at.len(),
-                (n0 + 1) * FOLLOWERS,
-            ),
-            ("followers", self.followers.len(), height),
-            ("exemplars", self.exemplars.len(), height),
-            ("exemplar positions", self.exemplar_phase.len(), height),
             ("column names", self.columns.len(), state),
-        ]
-        .into_iter()
-        .map(|(n, a, b)| (n.to_string(), a, b))
-        .collect();
+        ];
+        let mut sizes: Vec<(String, usize, usize)> = match &self.algo {
+            Algo::Paper(m) => {
+                sizes.push(("end nodes", m.end_hits.len(), n0));
+                sizes
+                    .into_iter()
+                    .map(|(n, a, b)| (n.to_string(), a, b))
+                    .collect()
+            }
+            Algo::Events(e) => {
+                sizes.extend([
+                    ("match thresholds", e.threshold.len(), height),
+                    ("held-out accuracy", e.heldout_accuracy.len(), height),
+                    ("held-out lookup accuracy", e.heldout_lookup.len(), height),
+                    (
+                        "follower positions",
+                        e.follower_at.len(),
+                        (n0 + 1) * FOLLOWERS,
+                    ),
+                    ("followers", e.followers.len(), height),
+                    ("exemplars", e.exemplars.len(), height),
+                    ("exemplar positions", e.exemplar_phase.len(), height),
+                ]);
+                let mut s: Vec<(String, usize, usize)> = sizes
+                    .into_iter()
+                    .map(|(n, a, b)| (n.to_string(), a, b))
+                    .collect();
+                s.extend(per_level("followers", lens(&e.followers), FOLLOWERS, 1));
+                s.extend(per_level("exemplars", lens(&e.exemplars), k, 0));
+                s.extend(per_level(
+                    "exemplar positions",
+                    lens(&e.exemplar_phase),
+                    1,
+                    0,
+                ));
+                s
+            }
+        };
         sizes.extend(per_level("hit counts", lens(&self.hits), 1, 0));
-        sizes.extend(per_level("followers", lens(&self.followers), FOLLOWERS, 1));
-        sizes.extend(per_level("exemplars", lens(&self.exemplars), k, 0));
-        sizes.extend(per_level(
-            "exemplar positions",
-            lens(&self.exemplar_phase),
-            1,
-            0,
-        ));
         if let Some((name, found, want)) = sizes.iter().find(|(_, a, b)| a != b) {
             return bad(format!("{found} values of {name}, {want} expected"));
         }
@@ -596,6 +624,8 @@ impl Hsom {
         let bad = |what: String| Err(corrupted(path, what));
         let p = self.config.params();
         let maps = &self.maps;
+        // the events extension's part (empty for the paper's algorithm)
+        let e = self.ev();
         let n0 = maps[0].len();
         let state = p.state_length;
         let demo_len = self.demo_len;
@@ -624,21 +654,19 @@ impl Hsom {
                 .accuracy
                 .iter()
                 .chain(&self.lookup)
-                .chain(&self.heldout_accuracy)
-                .chain(&self.heldout_lookup)
+                .chain(&e.heldout_accuracy)
+                .chain(&e.heldout_lookup)
                 .all(|v| v.is_finite() && (0.0..=1.0).contains(v))
-            && self.threshold.iter().all(|v| v.is_finite() && *v >= 0.0)
-            && self
-                .follower_at
+            && e.threshold.iter().all(|v| v.is_finite() && *v >= 0.0)
+            && e.follower_at
                 .iter()
-                .chain(self.exemplar_phase.iter().flatten())
+                .chain(e.exemplar_phase.iter().flatten())
                 .all(|v| v.is_finite() && (0.0..=MAX_DEMO_SAMPLES).contains(v))
-            && self
-                .followers
+            && e.followers
                 .iter()
                 .zip(maps)
                 .all(|(f, m)| f.iter().all(|&v| index_ok(v, m.len())))
-            && self.exemplars.iter().enumerate().all(|(l, e)| {
+            && e.exemplars.iter().enumerate().all(|(l, e)| {
                 // level l's exemplars are entries of level l - 1 (none at the bottom)
                 let below = if l == 0 { 0 } else { maps[l - 1].len() };
                 e.iter().all(|&v| index_ok(v, below))
@@ -660,7 +688,7 @@ impl Hsom {
             return bad("non-finite weight or statistic (or a non-positive scale)".into());
         }
         let want = n0 * state;
-        if let Some(knots) = &self.knots {
+        if let Some(knots) = &e.knots {
             if knots.len() != want {
                 return bad(format!(
                     "{} posture values, the bottom level needs {want} (nodes x stateLength) or none",
@@ -672,7 +700,7 @@ impl Hsom {
             }
         }
         let want_ends = n0 + state;
-        if let Some(ends) = &self.end_postures {
+        if let Some(ends) = &e.end_postures {
             let sound = ends.len() == want_ends
                 && ends.iter().all(|v| v.is_finite())
                 && ends[..n0]
@@ -686,7 +714,7 @@ impl Hsom {
                 ));
             }
         }
-        if let Some(s) = &self.start_knots {
+        if let Some(s) = &e.start_knots {
             let sound = s.width.is_finite()
                 && s.width > 0.0
                 && s.starts.len() >= 3
@@ -698,7 +726,7 @@ impl Hsom {
                     .chain(&s.knots)
                     .flatten()
                     .all(|v| v.is_finite())
-                && self.knots.is_some();
+                && e.knots.is_some();
             if !sound {
                 return bad(format!(
                     "start-weighted postures of {} demonstrations (width {}): at least 3 \
@@ -710,7 +738,7 @@ impl Hsom {
             }
         }
         let traced = p.kind() == Algorithm::Events;
-        match (&self.traces, traced) {
+        match (&e.traces, traced) {
             (None, false) => Ok(()),
             (Some(t), true) => {
                 let nodes: Vec<usize> = maps.iter().map(|m| m.len()).collect();

@@ -6,13 +6,13 @@ use std::collections::VecDeque;
 use crate::config::ReproductionParams;
 
 use super::encode::{
-    a_part, b_part, chunk_input, dist2, event_content, summary, DurationCode, Item, Layout, Step,
+    a_part, b_part, chunk_input, dist2, event_content, summary, DurationCode, Item, Step,
 };
-use super::followers::most_frequent;
 use super::levels::used;
 use super::traces::{trace_bmus_at, trace_places, trace_postures_at, Decoder, TRACE_HEAD};
 use super::END;
-use crate::hsom::algorithm::Hsom;
+use crate::hsom::followers::most_frequent;
+use crate::hsom::model::{Hsom, Layout};
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
 impl Hsom {
@@ -102,7 +102,7 @@ impl Hsom {
                     if l > 1
                         && (!self.level_trusted(l)
                             || (d2 / known as f64).sqrt()
-                                > self.threshold[l] * (1.0 + 1e-9) + 1e-12)
+                                > self.ev().threshold[l] * (1.0 + 1e-9) + 1e-12)
                     {
                         break;
                     }
@@ -115,7 +115,7 @@ impl Hsom {
                     let next = if first {
                         n_init as u32
                     } else {
-                        most_frequent(&self.followers[0], self.maps[0].len(), last as u32)
+                        most_frequent(&self.ev().followers[0], self.maps[0].len(), last as u32)
                     };
                     if next == u32::MAX || next == END {
                         stop = StopReason::EndEvent;
@@ -146,7 +146,7 @@ impl Hsom {
                     let pos = if self.exemplar(level, matched[level], 0) == u32::MAX {
                         f64::NAN
                     } else {
-                        self.exemplar_phase[level][matched[level]]
+                        self.ev().exemplar_phase[level][matched[level]]
                     };
                     let traced =
                         self.traced_plan(&ctx, level, &mut follow, &mut plan, &mut lists.expected);
@@ -217,6 +217,7 @@ impl Hsom {
         expected: &mut [VecDeque<u32>],
     ) -> bool {
         let Some(chunks) = self
+            .ev()
             .traces
             .as_ref()
             .and_then(|t| t.levels.get(level))

@@ -1,10 +1,10 @@
 //! Traces: the training chunks a node keeps for traced plans, and the decoder of a node's
 //! content.
 
-use super::encode::{b_part, dist2, entry_content, DurationCode, Layout};
-use super::followers::{follower_row, FOLLOWERS};
+use super::encode::{b_part, dist2, entry_content, DurationCode};
 use super::END;
-use crate::hsom::algorithm::Hsom;
+use crate::hsom::followers::{follower_row, FOLLOWERS};
+use crate::hsom::model::{Hsom, Layout, Traces};
 
 /// How many of the training chunks a node was the BMU of it keeps for traced plans (those
 /// nearest its weights first): a bound on the model's size, not a tuned value.
@@ -68,26 +68,6 @@ pub(crate) fn trace_words(k: usize, l: usize, s: usize, nodes: usize) -> usize {
         .and_then(|w| w.checked_mul(nodes * TRACED_CHUNKS))
         .filter(|&n| n <= TRACE_BUDGET)
         .unwrap_or(0)
-}
-
-/// What the levels were trained on, kept so a plan can replay it (`plan = traced`): per
-/// level l >= 1, per node, up to [`TRACED_CHUNKS`] of the training chunks it was the BMU of,
-/// nearest its weights first (the exemplar first), each as [`trace_width`] words (`u32::MAX`
-/// pads what is not there), by node. At most nodes x [`TRACED_CHUNKS`] chunks a level, a bound
-/// set by the configuration alone; level 0, and a level over [`TRACE_BUDGET`], keeps none.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub(crate) struct Traces {
-    pub(crate) levels: Vec<Vec<TracedChunk>>,
-}
-
-/// One traced training chunk of a node ([`Traces`]).
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub(crate) struct TracedChunk {
-    /// The node it was the BMU of.
-    pub(crate) node: u32,
-    /// [`trace_width`] words: its head, bottom events, their places and the lower levels'
-    /// BMUs.
-    pub(crate) words: Vec<u32>,
 }
 
 impl Traces {
@@ -218,7 +198,7 @@ impl Decoder<'_> {
         let below = level - 1;
         let n = model.maps[below].len();
         let row = follower_row(n, prev);
-        let table = &model.followers[below];
+        let table = &model.ev().followers[below];
         let cands: Vec<u32> = table[row * FOLLOWERS..(row + 1) * FOLLOWERS]
             .iter()
             .copied()
@@ -231,7 +211,7 @@ impl Decoder<'_> {
                 .iter()
                 .position(|&f| f == m)?;
             (level == 1 && position.is_finite())
-                .then(|| (position - model.follower_at[row * FOLLOWERS + k]).abs())
+                .then(|| (position - model.ev().follower_at[row * FOLLOWERS + k]).abs())
         };
         // the plan nearer where the demonstrations ended after `prev` than where any other
         // follower came: "end here", not "start again", even when the reproduction came home
