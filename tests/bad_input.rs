@@ -151,12 +151,8 @@ fn model_statistics_that_would_size_the_reproduction_without_bound_are_refused()
     let dir = tempfile::tempdir().unwrap();
     let p = dir.path().join("m.txt");
     // a node held longer than the longest demonstration
-    let bad = replace_line(&text, "dwell ", |v| {
-        let mut v = v;
-        v[0] = 1e300;
-        v
-    });
-    std::fs::write(&p, hsom_common::with_checksum(&bad)).unwrap();
+    let bad = hsom_common::edit_model_text(&text, |m| m["dwell"][0] = 1e300.into());
+    std::fs::write(&p, bad).unwrap();
     let e = Hsom::load(&p).unwrap_err();
     assert!(matches!(e, PersistError::Corrupted { .. }), "{e}");
     assert!(
@@ -167,25 +163,6 @@ fn model_statistics_that_would_size_the_reproduction_without_bound_are_refused()
     // the model as trained loads (saving refuses what loading would: src/hsom/persist.rs)
     std::fs::write(&p, &text).unwrap();
     assert_eq!(Hsom::load(&p).unwrap().to_text(), text);
-}
-
-/// `text` with the values of the line starting with `key` replaced by `f` of them.
-fn replace_line(text: &str, key: &str, f: impl Fn(Vec<f64>) -> Vec<f64>) -> String {
-    text.lines()
-        .map(|l| match l.strip_prefix(key) {
-            Some(rest) => {
-                let v: Vec<f64> = rest
-                    .split_whitespace()
-                    .map(|t| t.parse().unwrap())
-                    .collect();
-                let v: Vec<String> = f(v).iter().map(|x| format!("{x:e}")).collect();
-                format!("{key}{}", v.join(" "))
-            }
-            None => l.to_string(),
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
-        + "\n"
 }
 
 const NAO: &str = include_str!("../configs/nao-gestures.xml");

@@ -70,10 +70,10 @@ fn small_model() -> Hsom {
     small_model_of(cosco_hsom::config::Algorithm::Paper)
 }
 
-/// The same with the events extension: it stores its postures (a `postures` line).
+/// The same with the events extension: it stores its postures (`knots`).
 fn small_events_model() -> Hsom {
     let m = small_model_of(cosco_hsom::config::Algorithm::Events);
-    assert!(m.to_text().lines().any(|l| l.starts_with("postures ")));
+    assert!(m.to_text().contains("\"knots\":["));
     m
 }
 

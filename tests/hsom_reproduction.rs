@@ -142,9 +142,10 @@ fn model_size_depends_on_the_configuration_not_on_the_data_length() {
         std::fs::metadata(&pb).unwrap().len(),
     );
     assert_eq!(sa, sb);
+    // the text form's structure: its lines and the values of its JSON
     let count = |m: &Hsom| {
         let t = m.to_text();
-        (t.lines().count(), t.split_whitespace().count())
+        (t.lines().count(), t.matches(',').count())
     };
     assert_eq!(count(&a), count(&b));
 }
@@ -186,6 +187,22 @@ fn corrupted_truncated_and_other_version_files_are_refused() {
         "{e}"
     );
     assert!(e.to_string().contains("retrain"), "{e}");
+    // a newer version: said so, before the checksum (left as it was)
+    let mut b = bytes.clone();
+    b[8..12].copy_from_slice(&(cosco_hsom::hsom::FORMAT_VERSION + 1).to_le_bytes());
+    std::fs::write(&p, &b).unwrap();
+    let e = Hsom::load(&p).unwrap_err();
+    assert!(matches!(e, PersistError::Newer { .. }), "{e}");
+    assert!(e.to_string().contains("written by a newer version"), "{e}");
+    let t = dir.path().join("x.txt");
+    let newer = m.to_text().replacen(
+        &format!("version {}", cosco_hsom::hsom::FORMAT_VERSION),
+        &format!("version {}", cosco_hsom::hsom::FORMAT_VERSION + 1),
+        1,
+    );
+    std::fs::write(&t, newer).unwrap();
+    let e = Hsom::load(&t).unwrap_err();
+    assert!(matches!(e, PersistError::Newer { .. }), "{e}");
     // not a model
     std::fs::write(&p, b"hello world, not a model").unwrap();
     assert!(matches!(Hsom::load(&p), Err(PersistError::BadMagic { .. })));
@@ -236,18 +253,20 @@ fn corrupted_truncated_and_other_version_text_files_are_refused() {
         Hsom::load(&p),
         Err(PersistError::Version { found: 7, .. })
     ));
-    let i = text.find("\nnode ").unwrap() + 6;
+    // a changed digit in the weights
+    let i = text.find("\"weights\":[").unwrap();
+    let i = i + text[i..].find(|c: char| c.is_ascii_digit()).unwrap();
     let mut t = text.clone();
-    t.replace_range(i..i + 1, "9");
+    let digit = if &t[i..i + 1] == "9" { "8" } else { "9" };
+    t.replace_range(i..i + 1, digit);
     std::fs::write(&p, &t).unwrap();
     let e = Hsom::load(&p).unwrap_err();
     assert!(matches!(e, PersistError::Corrupted { .. }), "{e}");
-    // a node line with a missing value
-    let j = text.find("\nnode ").unwrap() + 1;
-    let end = j + text[j..].find('\n').unwrap();
-    let line = &text[j..end];
-    let shorter = line[..line.rfind(' ').unwrap()].to_string();
-    std::fs::write(&p, text.replacen(line, &shorter, 1)).unwrap();
+    // a map with a missing value
+    let shorter = edit_model_text(&text, |m| {
+        m["maps"][0]["weights"].as_array_mut().unwrap().pop();
+    });
+    std::fs::write(&p, shorter).unwrap();
     let e = Hsom::load(&p).unwrap_err();
     assert!(
         matches!(e, PersistError::Corrupted { .. }) && e.to_string().contains("values"),
@@ -288,73 +307,72 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     // a corrupted width is refused, naming the start-weighted postures
     let path = dir.path().join("m.txt");
     let text = std::fs::read_to_string(&path).unwrap();
-    let width = text
-        .lines()
-        .find(|l| l.starts_with("start-width "))
-        .unwrap()
-        .to_string();
-    let bad = with_checksum(&text.replace(&width, "start-width -1"));
+    assert!(text.contains("\"width\":"));
+    let bad = edit_model_text(&text, |m| {
+        m["algo"]["Events"]["start_knots"]["width"] = (-1.0).into()
+    });
     std::fs::write(&path, bad).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("start-weighted postures"), "{e}");
     // so is a negative count of demonstrations that ended on a node
-    let ends = text
-        .lines()
-        .find(|l| l.starts_with("end-postures "))
-        .unwrap()
-        .to_string();
-    let first = ends.split_whitespace().nth(1).unwrap();
-    let bad_ends = ends.replacen(&format!(" {first} "), " -1 ", 1);
-    std::fs::write(&path, with_checksum(&text.replace(&ends, &bad_ends))).unwrap();
+    let bad = edit_model_text(&text, |m| {
+        m["algo"]["Events"]["end_postures"][0] = (-1.0).into()
+    });
+    std::fs::write(&path, bad).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("end-posture values"), "{e}");
     // the model keeps its traced chunks (seven places per event: the event, its halves, each
-    // half's extremes) in both formats (above); traces one word short are refused
-    let path = dir.path().join("m.txt");
-    m.save(&path).unwrap();
-    let text = std::fs::read_to_string(&path).unwrap();
-    let traces = text
-        .lines()
-        .find(|l| l.starts_with("traces "))
-        .unwrap()
-        .to_string();
-    let short = &traces[..traces.rfind(' ').unwrap()];
-    std::fs::write(&path, with_checksum(&text.replace(&traces, short))).unwrap();
+    // half's extremes) in both forms (above); a chunk one word short is refused
+    let chunk = |m: &mut serde_json::Value| -> Vec<serde_json::Value> {
+        m["algo"]["Events"]["traces"]["levels"][1][0]["words"]
+            .as_array()
+            .unwrap()
+            .clone()
+    };
+    let short = edit_model_text(&text, |m| {
+        let mut words = chunk(m);
+        words.pop();
+        m["algo"]["Events"]["traces"]["levels"][1][0]["words"] = words.into();
+    });
+    std::fs::write(&path, short).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("traces end before a word"), "{e}");
-    // a model of the paper algorithm holds none: an empty traces line
+    // a model of the paper algorithm holds none
     let paper = table1_for(2).fit(&demos).unwrap();
     let path = dir.path().join("p.txt");
     paper.save(&path).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
-    assert!(text.lines().any(|l| l == "traces"));
+    assert!(!text.contains("\"traces\"") && text.contains("\"end_hits\""));
     let path = dir.path().join("t.txt");
     m.save(&path).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
-    let traces = text
-        .lines()
-        .find(|l| l.starts_with("traces "))
-        .unwrap()
-        .to_string();
-    let last = traces.rsplit(' ').next().unwrap();
-    let bad_traces = format!("{} 999999", &traces[..traces.len() - last.len() - 1]);
-    std::fs::write(&path, with_checksum(&text.replace(&traces, &bad_traces))).unwrap();
+    // a chunk's first bottom event (after its head of 3 words) outside the bottom level
+    let bad_traces = edit_model_text(&text, |m| {
+        let mut words = chunk(m);
+        words[3] = 999999.into();
+        m["algo"]["Events"]["traces"]["levels"][1][0]["words"] = words.into();
+    });
+    std::fs::write(&path, bad_traces).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("traces") && e.contains("999999"), "{e}");
     // so are traces whose first chunk places an event at a non-finite value (NaN's bits):
-    // after the level count, the bottom's and level 1's lengths, the chunk's head (3 words)
-    // and its memory (4) bottom events
-    let mut words: Vec<&str> = traces.split(' ').collect();
-    words[1 + 3 + 3 + 4] = "2143289344";
-    let bad_traces = words.join(" ");
-    std::fs::write(&path, with_checksum(&text.replace(&traces, &bad_traces))).unwrap();
+    // after the chunk's head (3 words) and its memory (4) bottom events
+    let bad_traces = edit_model_text(&text, |m| {
+        let mut words = chunk(m);
+        words[3 + 4] = 2143289344u32.into();
+        m["algo"]["Events"]["traces"]["levels"][1][0]["words"] = words.into();
+    });
+    std::fs::write(&path, bad_traces).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(
         e.contains("traces") && e.contains("posture value 2143289344"),
         "{e}"
     );
     // and a traced model whose traces are gone
-    std::fs::write(&path, with_checksum(&text.replace(&traces, "traces"))).unwrap();
+    let gone = edit_model_text(&text, |m| {
+        m["algo"]["Events"]["traces"] = serde_json::Value::Null
+    });
+    std::fs::write(&path, gone).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("traces missing"), "{e}");
 }

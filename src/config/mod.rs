@@ -12,4 +12,5 @@ pub use hyperparams::{
     MemoryMode, Normalisation, PaperParams, ReproductionParams, StopRule,
     PAPER_MIN_LENGTH_FRACTION, PAPER_STATIONARY_STEPS, PAPER_STATIONARY_TOLERANCE,
 };
+pub(crate) use xml::Text;
 pub use xml::{load_config, parse_config};

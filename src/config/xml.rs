@@ -656,6 +656,52 @@ fn parse_levels(
     Ok(levels.into_iter().flatten().collect())
 }
 
+/// Largest embedded configuration a model file may hold (bytes).
+const MAX_EMBEDDED: usize = 1 << 20;
+
+/// A model file describes its configuration as the XML document [`HsomConfig::to_xml`]
+/// writes: the one description of the settings, read back with every check of
+/// [`parse_config`].
+impl serde::Serialize for HsomConfig {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&self.to_xml())
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for HsomConfig {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let xml = Text::deserialize(d)?.0;
+        if xml.len() > MAX_EMBEDDED {
+            return Err(D::Error::custom(format!(
+                "configuration length {} is implausible",
+                xml.len()
+            )));
+        }
+        parse_config(&xml, "embedded configuration").map_err(D::Error::custom)
+    }
+}
+
+/// Text read from a file, copied from its bytes where the deserializer borrows them (the
+/// binary model form): a length a file claims sizes nothing before the bytes are there.
+pub(crate) struct Text(pub(crate) String);
+
+impl<'de> serde::Deserialize<'de> for Text {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl serde::de::Visitor<'_> for V {
+            type Value = Text;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a string")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Text, E> {
+                Ok(Text(v.to_string()))
+            }
+        }
+        d.deserialize_str(V)
+    }
+}
+
 impl HsomConfig {
     /// The configuration as an XML document that [`parse_config`] reads back to an equal
     /// configuration (every setting its algorithm reads written out).

@@ -1,4 +1,6 @@
-//! The trained hierarchy ([`Hsom`]), training (paper III-C.1) and its quality summary.
+//! Training a hierarchy (paper III-C.1): the bottom level and, with the paper's algorithm,
+//! every level at once; the replay of the training data; the quality summary. The model it
+//! makes is described in [`super::model`].
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -9,90 +11,10 @@ use crate::som::{SelfOrganizingMap, Topology};
 
 use super::errors::HsomError;
 use super::memory::{Memory, Stm};
-
-/// A trained CoSCo-HSOM: one Kohonen map per level plus the few per-node statistics used by
-/// reproduction. Its size depends on the configuration only, never on the length of the
-/// training data; with `consensus = start`, where the starts are used, it also keeps one
-/// placement of the bottom nodes per training demonstration.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Hsom {
-    pub(crate) config: HsomConfig,
-    pub(crate) maps: Vec<SelfOrganizingMap>,
-    /// Per-variable offset and scale: the bottom level sees (x - offset) / scale.
-    pub(crate) offset: Vec<f64>,
-    pub(crate) scale: Vec<f64>,
-    /// Number of times each level was trained.
-    pub(crate) trained: Vec<u64>,
-    /// Per level, per node: how often the node is the BMU when the training data are replayed.
-    pub(crate) hits: Vec<Vec<u32>>,
-    /// Per bottom node: how many demonstrations end on it.
-    pub(crate) end_hits: Vec<u32>,
-    /// Per level quantization and topographic error on the training data.
-    pub(crate) qe: Vec<f64>,
-    pub(crate) te: Vec<f64>,
-    /// Shortest, mean and longest demonstration (samples).
-    pub(crate) demo_len: [f64; 3],
-    /// Shortest, mean and longest demonstration in runs of the same bottom BMU (the length
-    /// of its sequence of distinct bottom nodes).
-    pub(crate) demo_runs: [f64; 3],
-    /// Per bottom node: mean length (steps) of its runs as the BMU inside the demonstrations
-    /// (first and last run of each demonstration, the idle start and end, excluded); 0 when
-    /// it never had such a run.
-    pub(crate) dwell: Vec<f64>,
-    /// Names of the demonstrations' columns (`x0`, `x1`, ... for plain series).
-    pub(crate) columns: Vec<String>,
-    /// Per level: how often its partial match predicted the next entry of the level below
-    /// exactly during the replay of the training data (0 for level 0).
-    pub(crate) accuracy: Vec<f64>,
-    /// Per level: how often a lookup table of "next entry given the last entry" of the level
-    /// below, counted on the same replay, predicted that entry (0 for level 0): the simple
-    /// baseline every level must beat.
-    pub(crate) lookup: Vec<f64>,
-    /// Per level (`algorithm = events`): the largest partial-match distance (RMS per known
-    /// coordinate) seen when the training data were replayed; a level whose match in
-    /// reproduction is farther is "confused". 0 with the paper's algorithm.
-    pub(crate) threshold: Vec<f64>,
-    /// Per level (`algorithm = events`): `accuracy` and `lookup` measured held out, on each
-    /// training demonstration's entries by the levels trained on the others (the bottom
-    /// kept; [`Hsom::level_trusted`]). Equal to the in-sample figures when there is a
-    /// single demonstration; 0 with the paper's algorithm.
-    pub(crate) heldout_accuracy: Vec<f64>,
-    pub(crate) heldout_lookup: Vec<f64>,
-    /// Per level (`algorithm = events`): up to `FOLLOWERS` entries that most often followed
-    /// each node (and, in the last row, the begin) in training; `u32::MAX` pads. Decoding
-    /// by content chooses among them.
-    pub(crate) followers: Vec<Vec<u32>>,
-    /// Per entry of the bottom's follower table (`algorithm = events`): the mean position
-    /// (bottom events before it / the mean number of events per demonstration) at which
-    /// that follower came after its row's entry in training; level 1 decodes among
-    /// followers by content and position.
-    pub(crate) follower_at: Vec<f64>,
-    /// Per level >= 1, per node: the position of its exemplar chunk in its demonstration
-    /// (the phase of the chunk's context: bottom events before it / the mean number per
-    /// demonstration). Expanding a plan, each slot's position follows from its top node's
-    /// exemplar and the tiling, and level 1 decodes by content and that position.
-    pub(crate) exemplar_phase: Vec<Vec<f64>>,
-    /// Per level >= 1, per node, the lower entries of its exemplar (`memory` each).
-    pub(crate) exemplars: Vec<Vec<u32>>,
-    /// Per bottom node, where a reproduction places its events (state part, normalised,
-    /// `stateLength` values per node): the consensus of the demonstrations it was trained on
-    /// (a branch of a model of several gestures: its own gesture's; [`Hsom::fit_postures`]);
-    /// `None`: the nodes' weights.
-    pub(crate) knots: Option<Vec<f64>>,
-    /// With `consensus = start`: each training demonstration's own placement of the bottom
-    /// nodes and its first posture, weighed at reproduction by the start
-    /// ([`super::events::StartKnots`]).
-    pub(crate) start_knots: Option<super::events::StartKnots>,
-    /// Where the demonstrations ended (`algorithm = events`): per bottom node, how many had
-    /// their last event on it, then the mean of their last postures (`stateLength` values,
-    /// normalised). A reproduction whose end is decoded after a node no demonstration ended
-    /// after ends there (docs/ALGORITHM.md, passage 4).
-    pub(crate) end_postures: Option<Vec<f64>>,
-    /// The training demonstrations' entries at every level and which training chunk each
-    /// node's exemplar is (`algorithm = events`): a plan replays the demonstrated chunk its
-    /// node stands for ([`super::events::Traces`]).
-    pub(crate) traces: Option<super::events::Traces>,
-}
+use super::model::{
+    check_series, demo_series, input_dim, Algo, EventsModel, Hsom, PaperModel, Series,
+    MAX_NORMALISED,
+};
 
 /// Quality of one level, as reported by [`Hsom::summary`].
 #[derive(Debug, Clone, PartialEq)]
@@ -218,81 +140,8 @@ impl std::fmt::Display for ModelSummary {
     }
 }
 
-/// A demonstration as borrowed rows with a name for messages.
-pub(crate) struct Series<'a> {
-    pub(crate) source: &'a str,
-    pub(crate) rows: &'a [Vec<f64>],
-}
-
-/// The largest magnitude of a normalised training value: squared distances over thousands
-/// of inputs stay far from overflowing.
-const MAX_NORMALISED: f64 = 1e100;
-
-pub(crate) fn check_series(
-    series: &[Series<'_>],
-    state: usize,
-    horizon: usize,
-) -> Result<(), HsomError> {
-    if series.is_empty() {
-        return Err(HsomError::NoDemonstrations);
-    }
-    let needed = (horizon + 1).max(2);
-    for s in series {
-        if s.rows.len() < needed {
-            return Err(HsomError::TooShort {
-                demo: s.source.to_string(),
-                rows: s.rows.len(),
-                needed,
-            });
-        }
-        for (i, r) in s.rows.iter().enumerate() {
-            if r.len() != state {
-                return Err(HsomError::DimensionMismatch {
-                    demo: s.source.to_string(),
-                    row: i,
-                    expected: state,
-                    found: r.len(),
-                });
-            }
-            if let Some(c) = r.iter().position(|v| !v.is_finite()) {
-                return Err(HsomError::NonFinite {
-                    demo: s.source.to_string(),
-                    row: i,
-                    column: c,
-                });
-            }
-        }
-    }
-    Ok(())
-}
-
-/// The demonstrations as borrowed series for training.
-pub(crate) fn demo_series(demos: &[Demonstration]) -> Vec<Series<'_>> {
-    demos
-        .iter()
-        .map(|d| Series {
-            source: &d.source,
-            rows: &d.rows,
-        })
-        .collect()
-}
-
 fn demo_columns(demos: &[Demonstration]) -> Vec<String> {
     demos.first().map(|d| d.columns.clone()).unwrap_or_default()
-}
-
-pub(crate) fn input_dim(config: &HsomConfig, level: usize) -> usize {
-    let p = config.params();
-    if level == 0 {
-        p.state_length + p.action_length
-    } else if p.kind() == crate::config::Algorithm::Events {
-        super::events::Layout::of(config).dim()
-    } else {
-        match p.memory_mode() {
-            MemoryMode::Lists => 2 * p.memory,
-            MemoryMode::Levels => p.levels[level - 1].rows * p.levels[level - 1].cols,
-        }
-    }
 }
 
 /// The order in which the bottom level sees its training samples.
@@ -610,7 +459,6 @@ impl HsomConfig {
             scale,
             trained,
             hits: p.levels.iter().map(|l| vec![0; l.rows * l.cols]).collect(),
-            end_hits: vec![0; p.levels[0].rows * p.levels[0].cols],
             qe: vec![0.0; p.height],
             te: vec![0.0; p.height],
             demo_len: [
@@ -623,32 +471,13 @@ impl HsomConfig {
             columns,
             accuracy: vec![0.0; p.height],
             lookup: vec![0.0; p.height],
-            threshold: vec![0.0; p.height],
-            heldout_accuracy: vec![0.0; p.height],
-            heldout_lookup: vec![0.0; p.height],
-            knots: None,
-            start_knots: None,
-            end_postures: None,
-            traces: None,
-            followers: p
-                .levels
-                .iter()
-                .map(|l| vec![u32::MAX; (l.rows * l.cols + 1) * super::events::FOLLOWERS])
-                .collect(),
-            exemplar_phase: p
-                .levels
-                .iter()
-                .map(|l| vec![0.0; l.rows * l.cols])
-                .collect(),
-            follower_at: vec![
-                0.0;
-                (p.levels[0].rows * p.levels[0].cols + 1) * super::events::FOLLOWERS
-            ],
-            exemplars: p
-                .levels
-                .iter()
-                .map(|l| vec![u32::MAX; l.rows * l.cols * p.memory])
-                .collect(),
+            algo: if events {
+                Algo::Events(Box::new(EventsModel::untrained(p)))
+            } else {
+                Algo::Paper(PaperModel {
+                    end_hits: vec![0; p.levels[0].rows * p.levels[0].cols],
+                })
+            },
         };
         model.replay(&norm);
         if events {
@@ -727,8 +556,8 @@ impl Hsom {
                     usize::from(self.maps[0].len() > 1 && !self.maps[0].are_neighbours(a, b));
                 count[0] += 1;
                 self.hits[0][a] = self.hits[0][a].saturating_add(1);
-                if pos + 2 == demo.len() {
-                    self.end_hits[a] = self.end_hits[a].saturating_add(1);
+                if let (true, Algo::Paper(m)) = (pos + 2 == demo.len(), &mut self.algo) {
+                    m.end_hits[a] = m.end_hits[a].saturating_add(1);
                 }
                 let guess = if events {
                     None
@@ -807,11 +636,11 @@ impl Hsom {
         if !events {
             for l in 1..p.height {
                 let nodes = self.maps[l - 1].len();
-                let table = super::events::followers_table(nodes, &seqs[l - 1]);
+                let table = super::followers::followers_table(nodes, &seqs[l - 1]);
                 let ok = scored[l]
                     .iter()
                     .filter(|&&(prev, actual)| {
-                        super::events::most_frequent(&table, nodes, prev) == actual
+                        super::followers::most_frequent(&table, nodes, prev) == actual
                     })
                     .count();
                 self.lookup[l] = if scored[l].is_empty() {
@@ -933,6 +762,12 @@ impl Hsom {
     /// the training data when the model was trained).
     pub fn summary(&self) -> ModelSummary {
         let p = self.config.params();
+        // the events extension's held-out figures (0 with the paper's algorithm)
+        let held_out = |f: fn(&EventsModel) -> &Vec<f64>, l: usize| {
+            self.events()
+                .and_then(|e| f(e).get(l).copied())
+                .unwrap_or(0.0)
+        };
         ModelSummary {
             memory_mode: p.memory_mode(),
             memory: p.memory,
@@ -958,12 +793,8 @@ impl Hsom {
                     topographic_error: self.te[l],
                     prediction_accuracy: self.accuracy.get(l).copied().unwrap_or(0.0),
                     lookup_accuracy: self.lookup.get(l).copied().unwrap_or(0.0),
-                    heldout_prediction_accuracy: self
-                        .heldout_accuracy
-                        .get(l)
-                        .copied()
-                        .unwrap_or(0.0),
-                    heldout_lookup_accuracy: self.heldout_lookup.get(l).copied().unwrap_or(0.0),
+                    heldout_prediction_accuracy: held_out(|e| &e.heldout_accuracy, l),
+                    heldout_lookup_accuracy: held_out(|e| &e.heldout_lookup, l),
                     used_in_reproduction: self.level_trusted(l),
                 })
                 .collect(),

@@ -114,6 +114,26 @@ pub enum PersistError {
         /// Supported version.
         expected: u32,
     },
+    /// A model file of a newer format version than this program reads.
+    #[error("{path}: model format version {found} was written by a newer version of cosco-hsom; this program reads version {expected}: update it, or retrain the model with this version (`cosco train`)")]
+    Newer {
+        /// The file.
+        path: PathBuf,
+        /// Version in the file.
+        found: u32,
+        /// Supported version.
+        expected: u32,
+    },
+    /// A model file of another kind than asked for (one gesture, several).
+    #[error("{path}: the file holds a model of kind {found}; {expected} expected (a model of several gestures loads with GestureModel::load and the `cosco` commands)")]
+    Kind {
+        /// The file.
+        path: PathBuf,
+        /// The kind in the file's header.
+        found: String,
+        /// The kinds accepted.
+        expected: String,
+    },
     /// The file ends early.
     #[error("{path}: truncated model file ({what})")]
     Truncated {
@@ -130,4 +150,77 @@ pub enum PersistError {
         /// What is wrong.
         what: String,
     },
+}
+
+/// Why a multi-gesture step was refused.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum GestureError {
+    /// A label the model does not hold.
+    #[error("no gesture {label:?} in the model; it holds: {labels}")]
+    UnknownLabel {
+        /// The label asked for.
+        label: String,
+        /// The model's labels, comma-separated.
+        labels: String,
+    },
+    /// A multi-gesture model asked to reproduce without a label.
+    #[error("the model holds several gestures ({labels}): choose one with --gesture NAME (or gesture=NAME)")]
+    LabelNeeded {
+        /// The model's labels, comma-separated.
+        labels: String,
+    },
+    /// Recognition asked of a model without labels.
+    #[error("a single-gesture model has no labels to recognise: train on labelled directories (demos/<label>/*.csv)")]
+    NoLabels,
+    /// A label that is not a plain word.
+    #[error("gesture label {label:?} (from {source_dir}) is not a plain word: use letters, digits, '_' and '-' only")]
+    BadLabel {
+        /// The label.
+        label: String,
+        /// Where it came from (a directory, or `in memory`).
+        source_dir: String,
+    },
+    /// The same label given twice.
+    #[error("gesture label {label:?} is given twice")]
+    DuplicateLabel {
+        /// The label.
+        label: String,
+    },
+    /// A label without demonstrations.
+    #[error("gesture {label:?} has no demonstrations")]
+    EmptyLabel {
+        /// The label.
+        label: String,
+    },
+    /// Labels whose demonstrations have different columns.
+    #[error("gesture {label:?} has columns {found:?}, but gesture {first_label:?} has {expected:?}: every gesture must record the same variables")]
+    ColumnsDiffer {
+        /// The label that differs.
+        label: String,
+        /// Its columns.
+        found: Vec<String>,
+        /// The first label.
+        first_label: String,
+        /// The first label's columns.
+        expected: Vec<String>,
+    },
+    /// Several gestures need the events extension (the paper's procedure trains every level
+    /// at once, so its upper levels cannot be split by label).
+    #[error("several gestures need algorithm = events (configs/nao-gestures.xml); this configuration uses the paper's algorithm")]
+    NeedsEvents,
+    /// A prefix shorter than one sample or longer than its file.
+    #[error("--prefix {prefix}: the demonstration has {len} samples; give 1 to {len}")]
+    Prefix {
+        /// The prefix asked for.
+        prefix: usize,
+        /// The demonstration's samples.
+        len: usize,
+    },
+    /// Training or reproduction was refused.
+    #[error(transparent)]
+    Hsom(#[from] HsomError),
+    /// A model file could not be saved or loaded.
+    #[error(transparent)]
+    Persist(#[from] PersistError),
 }

@@ -5,11 +5,11 @@
 //! events extension's own training, unchanged); the label primes the top of the hierarchy on
 //! reproduction, and recognition ([`super::recognize`]) pushes a sequence up every branch.
 //!
-//! A single-gesture model (format 8, no label) loads as a [`GestureModel`] with one unlabelled
-//! branch, and is saved exactly as before; a multi-gesture model is format 9: the labels,
-//! their recognition calibration and every branch in format 8 (which holds the branch's own
-//! postures of the shared bottom nodes, [`Hsom::fit_postures`]). Older files (formats 5-7)
-//! get the "retrain" error.
+//! A single-gesture model (no label) loads as a [`GestureModel`] with one unlabelled branch,
+//! and is saved as an [`Hsom`]; a file of several gestures holds the labels, their
+//! recognition calibration and every branch (which holds the branch's own postures of the
+//! shared bottom nodes, [`Hsom::fit_postures`]), in the one description of
+//! [`super::persist`], its header saying the kind. Older files get the "retrain" error.
 
 use std::path::{Path, PathBuf};
 
@@ -18,93 +18,20 @@ use rand_chacha::ChaCha8Rng;
 
 use crate::config::{Algorithm, HsomConfig};
 use crate::demos::Demonstration;
-use crate::fsutil::write_atomic;
 
-use super::algorithm::{Hsom, Presentation};
-use super::errors::{HsomError, PersistError};
-use super::persist::{ext, fnv1a, Format, FORMAT_VERSION, MAGIC, TEXT_MAGIC};
-use super::recognize::{Calibration, Scoring};
+use super::algorithm::Presentation;
+use super::errors::{GestureError, HsomError, PersistError};
+use super::model::{GestureModel, Hsom, Scoring};
+use super::persist::{encode, load, open, save, text, Format, Kind, ModelFile, FORMAT_VERSION};
+use super::recognize::branch_seed;
 use super::reproduction::Reproduction;
 
-/// Format version of a multi-gesture model file (a single-gesture model stays
-/// [`FORMAT_VERSION`]).
-pub const GESTURES_FORMAT_VERSION: u32 = 21;
+/// Format version of a multi-gesture model file: the one version of model files (the header
+/// says the kind).
+pub const GESTURES_FORMAT_VERSION: u32 = FORMAT_VERSION;
 
 /// Most gesture labels a model may hold (a bound on what a file may make us allocate).
 pub const MAX_LABELS: usize = 1024;
-
-/// Why a multi-gesture step was refused.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum GestureError {
-    /// A label the model does not hold.
-    #[error("no gesture {label:?} in the model; it holds: {labels}")]
-    UnknownLabel {
-        /// The label asked for.
-        label: String,
-        /// The model's labels, comma-separated.
-        labels: String,
-    },
-    /// A multi-gesture model asked to reproduce without a label.
-    #[error("the model holds several gestures ({labels}): choose one with --gesture NAME (or gesture=NAME)")]
-    LabelNeeded {
-        /// The model's labels, comma-separated.
-        labels: String,
-    },
-    /// Recognition asked of a model without labels.
-    #[error("a single-gesture model has no labels to recognise: train on labelled directories (demos/<label>/*.csv)")]
-    NoLabels,
-    /// A label that is not a plain word.
-    #[error("gesture label {label:?} (from {source_dir}) is not a plain word: use letters, digits, '_' and '-' only")]
-    BadLabel {
-        /// The label.
-        label: String,
-        /// Where it came from (a directory, or `in memory`).
-        source_dir: String,
-    },
-    /// The same label given twice.
-    #[error("gesture label {label:?} is given twice")]
-    DuplicateLabel {
-        /// The label.
-        label: String,
-    },
-    /// A label without demonstrations.
-    #[error("gesture {label:?} has no demonstrations")]
-    EmptyLabel {
-        /// The label.
-        label: String,
-    },
-    /// Labels whose demonstrations have different columns.
-    #[error("gesture {label:?} has columns {found:?}, but gesture {first_label:?} has {expected:?}: every gesture must record the same variables")]
-    ColumnsDiffer {
-        /// The label that differs.
-        label: String,
-        /// Its columns.
-        found: Vec<String>,
-        /// The first label.
-        first_label: String,
-        /// The first label's columns.
-        expected: Vec<String>,
-    },
-    /// Several gestures need the events extension (the paper's procedure trains every level
-    /// at once, so its upper levels cannot be split by label).
-    #[error("several gestures need algorithm = events (configs/nao-gestures.xml); this configuration uses the paper's algorithm")]
-    NeedsEvents,
-    /// A prefix shorter than one sample or longer than its file.
-    #[error("--prefix {prefix}: the demonstration has {len} samples; give 1 to {len}")]
-    Prefix {
-        /// The prefix asked for.
-        prefix: usize,
-        /// The demonstration's samples.
-        len: usize,
-    },
-    /// Training or reproduction was refused.
-    #[error(transparent)]
-    Hsom(#[from] HsomError),
-    /// A model file could not be saved or loaded.
-    #[error(transparent)]
-    Persist(#[from] PersistError),
-}
 
 /// True for a plain word: `[A-Za-z0-9_-]+`.
 pub fn is_plain_label(label: &str) -> bool {
@@ -112,19 +39,6 @@ pub fn is_plain_label(label: &str) -> bool {
         && label
             .chars()
             .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
-}
-
-/// One hierarchy for one or several gestures: a shared bottom level, one branch of upper
-/// levels per label (every branch is an [`Hsom`] whose bottom is the shared one).
-#[derive(Debug, Clone, PartialEq)]
-pub struct GestureModel {
-    /// Empty for a single-gesture model (one unlabelled branch).
-    pub(crate) labels: Vec<String>,
-    pub(crate) branches: Vec<Hsom>,
-    /// Per label, what recognition compares with (empty without labels).
-    pub(crate) calibration: Vec<Calibration>,
-    /// How recognition scores (not stored: the default on load).
-    pub(crate) scoring: Scoring,
 }
 
 impl From<Hsom> for GestureModel {
@@ -257,14 +171,6 @@ impl HsomConfig {
     }
 }
 
-/// The seed of branch `g` (`held_out`: of its leave-one-out variant without that
-/// demonstration).
-pub(crate) fn branch_seed(seed: u64, g: usize, held_out: Option<usize>) -> u64 {
-    let h = held_out.map_or(0, |i| i as u64 + 1);
-    seed.wrapping_add(0x9e37_79b9_7f4a_7c15u64.wrapping_mul(g as u64 + 1))
-        .wrapping_add(h.wrapping_mul(0x2545_f491_4f6c_dd1d))
-}
-
 impl Hsom {
     /// Normalised rows.
     pub(crate) fn normalise_rows(&self, rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
@@ -278,7 +184,6 @@ impl Hsom {
         let mut b = self.clone();
         let h = b.maps.len();
         b.hits.iter_mut().for_each(|v| v.fill(0));
-        b.end_hits.fill(0);
         b.qe.fill(0.0);
         b.te.fill(0.0);
         b.trained[1..].iter_mut().for_each(|t| *t = 0);
@@ -292,16 +197,39 @@ impl Hsom {
         b.dwell.fill(0.0);
         b.accuracy = vec![0.0; h];
         b.lookup = vec![0.0; h];
-        b.threshold = vec![0.0; h];
-        b.heldout_accuracy = vec![0.0; h];
-        b.heldout_lookup = vec![0.0; h];
-        b.followers.iter_mut().for_each(|f| f.fill(u32::MAX));
-        b.follower_at.fill(0.0);
-        b.exemplars.iter_mut().for_each(|e| e.fill(u32::MAX));
+        b.ev_mut().threshold = vec![0.0; h];
+        b.ev_mut().heldout_accuracy = vec![0.0; h];
+        b.ev_mut().heldout_lookup = vec![0.0; h];
+        b.ev_mut()
+            .followers
+            .iter_mut()
+            .for_each(|f| f.fill(u32::MAX));
+        b.ev_mut().follower_at.fill(0.0);
+        b.ev_mut()
+            .exemplars
+            .iter_mut()
+            .for_each(|e| e.fill(u32::MAX));
         b.replay(norm);
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         b.fit_events(norm, learn, &mut rng);
         b
+    }
+}
+
+impl ModelFile for GestureModel {
+    fn file_kind(&self) -> Kind {
+        Kind::Several
+    }
+
+    fn read_form(bytes: &[u8], fmt: Format, path: &Path) -> Result<GestureModel, PersistError> {
+        let file = open(bytes, fmt, path)?;
+        if file.kind != Kind::Several {
+            return Ok(Hsom::read_form(bytes, fmt, path)?.into());
+        }
+        let model: GestureModel = file.decode()?;
+        model.check(path)?;
+        file.verify()?;
+        Ok(model)
     }
 }
 
@@ -361,282 +289,64 @@ impl GestureModel {
         Ok(self.branch(label)?.reproduce(initial)?)
     }
 
-    /// Save: a single-gesture model exactly as [`Hsom::save`] (format 8); several gestures as
-    /// format 9 (`.bin` or `.txt`), read back with every check first, written atomically.
+    /// Save: a single-gesture model exactly as [`Hsom::save`]; several gestures (`.bin` or
+    /// `.txt`) as a file of that kind, read back with every check first, written atomically.
     pub fn save(&self, path: &Path) -> Result<(), PersistError> {
         if self.labels.is_empty() {
             return self.branches[0].save(path);
         }
-        let bytes = match ext(path)? {
-            Format::Bin => {
-                let b = self.to_bytes();
-                GestureModel::from_bytes(&b, path)?;
-                b
-            }
-            Format::Txt => {
-                let t = self.to_text();
-                GestureModel::from_text(&t, path)?;
-                t.into_bytes()
-            }
-        };
-        write_atomic(path, &bytes).map_err(|source| PersistError::Io {
-            path: path.to_path_buf(),
-            source,
-        })
+        save(self, path)
     }
 
-    /// Load a model saved by [`GestureModel::save`] or [`Hsom::save`] (format 8 or 9).
+    /// Load a model saved by [`GestureModel::save`] or [`Hsom::save`] (the header says which
+    /// kind).
     pub fn load(path: &Path) -> Result<GestureModel, PersistError> {
-        let fmt = ext(path)?;
-        let bytes = std::fs::read(path).map_err(|source| PersistError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        match fmt {
-            Format::Bin => {
-                let version = bytes
-                    .get(8..12)
-                    .map(|v| u32::from_le_bytes(v.try_into().unwrap_or([0; 4])));
-                // a multi-gesture file of any version (an old one gets the "retrain" error)
-                if bytes.len() >= 12
-                    && &bytes[..8] == MAGIC
-                    && version.is_some_and(|v| v > FORMAT_VERSION && v < 1000)
-                {
-                    GestureModel::from_bytes(&bytes, path)
-                } else {
-                    Ok(Hsom::from_bytes(&bytes, path)?.into())
-                }
-            }
-            Format::Txt => {
-                let t = std::str::from_utf8(&bytes).map_err(|_| PersistError::BadMagic {
-                    path: path.to_path_buf(),
-                })?;
-                // a multi-gesture file of any version (an old one gets the "retrain" error)
-                let version = t
-                    .strip_prefix(&format!("{TEXT_MAGIC}\nversion "))
-                    .and_then(|r| r.lines().next())
-                    .and_then(|v| v.trim().parse::<u32>().ok());
-                if version.is_some_and(|v| v > FORMAT_VERSION && v < 1000) {
-                    GestureModel::from_text(t, path)
-                } else {
-                    Ok(Hsom::from_text(t, path)?.into())
-                }
-            }
-        }
+        load(path)
     }
 
-    /// Format 9, binary: magic, version, label count, per label its name, calibration and
-    /// branch (format 8 bytes), then an FNV-1a checksum of everything before it.
+    /// The binary form of several gestures (header, model, checksum).
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut b = Vec::new();
-        b.extend_from_slice(MAGIC);
-        b.extend_from_slice(&GESTURES_FORMAT_VERSION.to_le_bytes());
-        b.extend_from_slice(&(self.labels.len() as u32).to_le_bytes());
-        for ((label, cal), branch) in self
-            .labels
-            .iter()
-            .zip(&self.calibration)
-            .zip(&self.branches)
-        {
-            b.extend_from_slice(&(label.len() as u32).to_le_bytes());
-            b.extend_from_slice(label.as_bytes());
-            let values = cal.values();
-            b.extend_from_slice(&(values.len() as u32).to_le_bytes());
-            for v in values {
-                b.extend_from_slice(&v.to_le_bytes());
-            }
-            let inner = branch.to_bytes();
-            b.extend_from_slice(&(inner.len() as u64).to_le_bytes());
-            b.extend_from_slice(&inner);
-        }
-        let sum = fnv1a(&b);
-        b.extend_from_slice(&sum.to_le_bytes());
-        b
+        encode(Kind::Several, self, Format::Bin)
     }
 
-    /// Read format 9, binary; `path` only names the file in errors.
+    /// Read the binary form (one gesture or several); `path` only names the file in errors.
     pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<GestureModel, PersistError> {
-        let p = path.to_path_buf();
-        if bytes.len() < 8 + 4 + 4 + 8 || &bytes[..8] != MAGIC {
-            return Err(PersistError::BadMagic { path: p });
-        }
-        let body = &bytes[..bytes.len() - 8];
-        let stored = u64::from_le_bytes(bytes[bytes.len() - 8..].try_into().unwrap_or([0; 8]));
-        if fnv1a(body) != stored {
-            return Err(corrupted(&p, "checksum mismatch".into()));
-        }
-        let mut r = Cursor {
-            b: body,
-            pos: 8,
-            path: &p,
-        };
-        let version = r.u32("version")?;
-        if version != GESTURES_FORMAT_VERSION {
-            return Err(PersistError::Version {
-                path: p.clone(),
-                found: version,
-                expected: GESTURES_FORMAT_VERSION,
-            });
-        }
-        let n = r.u32("label count")? as usize;
-        if n == 0 || n > MAX_LABELS {
-            return Err(corrupted(&p, format!("{n} gesture labels")));
-        }
-        let (mut labels, mut calibration, mut branches) = (Vec::new(), Vec::new(), Vec::new());
-        for _ in 0..n {
-            let len = r.u32("label length")? as usize;
-            let label = String::from_utf8(r.take(len, "label")?.to_vec())
-                .map_err(|_| corrupted(&p, "a label is not UTF-8".into()))?;
-            let nv = r.u32("calibration length")? as usize;
-            let raw = r.take(nv.saturating_mul(8), "calibration")?;
-            let values: Vec<f64> = raw
-                .chunks_exact(8)
-                .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
-                .collect();
-            let blen = r.u64("branch length")?;
-            let inner = r.take(usize::try_from(blen).unwrap_or(usize::MAX), "branch")?;
-            let branch = Hsom::from_bytes(inner, &p.join(format!("[gesture {label}]")))?;
-            labels.push(label);
-            calibration.push(values);
-            branches.push(branch);
-        }
-        if r.pos != body.len() {
-            return Err(corrupted(&p, "bytes after the last gesture".into()));
-        }
-        GestureModel::assemble(labels, calibration, branches, &p)
+        GestureModel::read_form(bytes, Format::Bin, path)
     }
 
-    /// Format 9, text: the format line, `version 9`, `gestures N`, then per label a
-    /// `gesture NAME` line, a `calibration ...` line, a `lines K` line and its branch's text
-    /// (format 8, K lines); a final checksum line.
+    /// The text form of several gestures (header lines, JSON, checksum line).
     pub fn to_text(&self) -> String {
-        use std::fmt::Write;
-        let mut s = String::new();
-        let _ = writeln!(s, "{TEXT_MAGIC}");
-        let _ = writeln!(s, "version {GESTURES_FORMAT_VERSION}");
-        let _ = writeln!(s, "gestures {}", self.labels.len());
-        for ((label, cal), branch) in self
-            .labels
-            .iter()
-            .zip(&self.calibration)
-            .zip(&self.branches)
-        {
-            let _ = writeln!(s, "gesture {label}");
-            let vals: Vec<String> = cal.values().iter().map(|v| format!("{v:e}")).collect();
-            let _ = writeln!(s, "calibration {}", vals.join(" "));
-            let inner = branch.to_text();
-            let _ = writeln!(s, "lines {}", inner.lines().count());
-            s.push_str(&inner);
-        }
-        let sum = fnv1a(s.as_bytes());
-        let _ = writeln!(s, "checksum {sum:016x}");
-        s
+        text(self)
     }
 
-    /// Read format 9, text; `path` only names the file in errors.
+    /// Read the text form (one gesture or several); `path` only names the file in errors.
     pub fn from_text(text: &str, path: &Path) -> Result<GestureModel, PersistError> {
-        let p = path.to_path_buf();
-        let body_end = text
-            .trim_end_matches('\n')
-            .rfind('\n')
-            .map(|i| i + 1)
-            .ok_or_else(|| PersistError::Truncated {
-                path: p.clone(),
-                what: "checksum line".into(),
-            })?;
-        let (body, last) = text.split_at(body_end);
-        let stored = last
-            .trim()
-            .strip_prefix("checksum ")
-            .and_then(|h| u64::from_str_radix(h, 16).ok())
-            .ok_or_else(|| corrupted(&p, format!("bad checksum line {:.40?}", last.trim())))?;
-        if fnv1a(body.as_bytes()) != stored {
-            return Err(corrupted(&p, "checksum mismatch".into()));
-        }
-        let lines: Vec<&str> = body.lines().collect();
-        let mut at = 0usize;
-        let mut next = |key: &str| -> Result<&str, PersistError> {
-            let l = lines.get(at).ok_or_else(|| PersistError::Truncated {
-                path: p.clone(),
-                what: format!("{key} line"),
-            })?;
-            at += 1;
-            Ok(l)
-        };
-        if next("format")?.trim_end() != TEXT_MAGIC {
-            return Err(PersistError::BadMagic { path: p.clone() });
-        }
-        let v = next("version")?;
-        let found: u32 = v
-            .strip_prefix("version ")
-            .and_then(|x| x.trim().parse().ok())
-            .ok_or_else(|| corrupted(&p, format!("bad version line {v:.40?}")))?;
-        if found != GESTURES_FORMAT_VERSION {
-            return Err(PersistError::Version {
-                path: p.clone(),
-                found,
-                expected: GESTURES_FORMAT_VERSION,
-            });
-        }
-        let g = next("gestures")?;
-        let n: usize = g
-            .strip_prefix("gestures ")
-            .and_then(|x| x.trim().parse().ok())
-            .filter(|&n| (1..=MAX_LABELS).contains(&n))
-            .ok_or_else(|| corrupted(&p, format!("bad gestures line {g:.40?}")))?;
-        let (mut labels, mut calibration, mut branches) = (Vec::new(), Vec::new(), Vec::new());
-        for _ in 0..n {
-            let gl = next("gesture")?;
-            let label = gl
-                .strip_prefix("gesture ")
-                .ok_or_else(|| corrupted(&p, format!("expected a gesture line, found {gl:.40?}")))?
-                .to_string();
-            let cl = next("calibration")?;
-            let values: Vec<f64> = cl
-                .strip_prefix("calibration")
-                .ok_or_else(|| {
-                    corrupted(&p, format!("expected a calibration line, found {cl:.40?}"))
-                })?
-                .split_whitespace()
-                .map(|t| t.parse::<f64>())
-                .collect::<Result<_, _>>()
-                .map_err(|_| corrupted(&p, format!("bad number in {cl:.40?}")))?;
-            let ll = next("lines")?;
-            let k: usize = ll
-                .strip_prefix("lines ")
-                .and_then(|x| x.trim().parse().ok())
-                .ok_or_else(|| corrupted(&p, format!("bad lines line {ll:.40?}")))?;
-            let mut inner = String::new();
-            for _ in 0..k {
-                inner.push_str(next("branch")?);
-                inner.push('\n');
-            }
-            let branch = Hsom::from_text(&inner, &p.join(format!("[gesture {label}]")))?;
-            labels.push(label);
-            calibration.push(values);
-            branches.push(branch);
-        }
-        if at != lines.len() {
-            return Err(corrupted(&p, "lines after the last gesture".into()));
-        }
-        GestureModel::assemble(labels, calibration, branches, &p)
+        GestureModel::read_form(text.as_bytes(), Format::Txt, path)
     }
 
-    /// Check what was read: plain, distinct labels, a valid calibration each, branches of the
+    /// Check what was read: at least one and at most [`MAX_LABELS`] plain, distinct labels,
+    /// a branch and a valid calibration each, branches sound ([`Hsom::load`]'s checks) of the
     /// same configuration, columns, normalisation and bottom level.
-    fn assemble(
-        labels: Vec<String>,
-        calibration: Vec<Vec<f64>>,
-        branches: Vec<Hsom>,
-        p: &Path,
-    ) -> Result<GestureModel, PersistError> {
-        for (i, l) in labels.iter().enumerate() {
-            if !is_plain_label(l) || labels[..i].contains(l) {
+    fn check(&self, p: &Path) -> Result<(), PersistError> {
+        let n = self.labels.len();
+        if n == 0 || n > MAX_LABELS || self.branches.len() != n || self.calibration.len() != n {
+            return Err(corrupted(
+                p,
+                format!(
+                    "{n} gesture labels, {} branches, {} calibrations: 1 to {MAX_LABELS}, one each",
+                    self.branches.len(),
+                    self.calibration.len()
+                ),
+            ));
+        }
+        for (i, l) in self.labels.iter().enumerate() {
+            if !is_plain_label(l) || self.labels[..i].contains(l) {
                 return Err(corrupted(p, format!("gesture label {l:?}")));
             }
         }
-        let first = &branches[0];
-        for (l, b) in labels.iter().zip(&branches) {
+        let first = &self.branches[0];
+        for (l, b) in self.labels.iter().zip(&self.branches) {
+            b.check(Kind::Several, &p.join(format!("[gesture {l}]")))?;
             let same = b.config == first.config
                 && b.columns == first.columns
                 && b.offset == first.offset
@@ -648,21 +358,19 @@ impl GestureModel {
                     format!("gesture {l:?} does not share the first gesture's bottom level"),
                 ));
             }
+            if b.config.params().kind() != Algorithm::Events {
+                return Err(corrupted(
+                    p,
+                    format!("gesture {l:?}: several gestures need algorithm = events"),
+                ));
+            }
         }
-        let calibration = labels
-            .iter()
-            .zip(calibration)
-            .map(|(l, v)| {
-                Calibration::from_values(&v, first.maps.len())
-                    .ok_or_else(|| corrupted(p, format!("gesture {l:?}: bad calibration")))
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        Ok(GestureModel {
-            labels,
-            branches,
-            calibration,
-            scoring: Scoring::default(),
-        })
+        for (l, c) in self.labels.iter().zip(&self.calibration) {
+            if !c.fits(first.maps.len()) {
+                return Err(corrupted(p, format!("gesture {l:?}: bad calibration")));
+            }
+        }
+        Ok(())
     }
 }
 
@@ -672,35 +380,3 @@ fn corrupted(p: &Path, what: String) -> PersistError {
         what,
     }
 }
-
-/// A bounds-checked reader of the format-6 container.
-struct Cursor<'a> {
-    b: &'a [u8],
-    pos: usize,
-    path: &'a PathBuf,
-}
-
-impl<'a> Cursor<'a> {
-    fn take(&mut self, n: usize, what: &str) -> Result<&'a [u8], PersistError> {
-        if self.b.len() - self.pos < n {
-            return Err(PersistError::Truncated {
-                path: self.path.clone(),
-                what: what.to_string(),
-            });
-        }
-        let s = &self.b[self.pos..self.pos + n];
-        self.pos += n;
-        Ok(s)
-    }
-    fn u32(&mut self, what: &str) -> Result<u32, PersistError> {
-        let s = self.take(4, what)?;
-        Ok(u32::from_le_bytes(s.try_into().unwrap_or([0; 4])))
-    }
-    fn u64(&mut self, what: &str) -> Result<u64, PersistError> {
-        let s = self.take(8, what)?;
-        Ok(u64::from_le_bytes(s.try_into().unwrap_or([0; 8])))
-    }
-}
-
-#[allow(dead_code)]
-const _: () = assert!(FORMAT_VERSION < GESTURES_FORMAT_VERSION);

@@ -2,6 +2,13 @@
 //! as activity lists (or, as the baseline, activity levels), sequential training with the
 //! exponential update schedule, reproduction from an initial posture, save and load.
 //!
+//! Where to look: `model.rs` describes the trained model once (the part both algorithms read,
+//! and the paper's or the events extension's own part); `algorithm.rs` trains it; `paper.rs`
+//! holds the paper's reproduction, and [`Hsom::reproduce`] starts there for both algorithms,
+//! handing the events extension's models to `events/` (its plans in `events/plan.rs`, the
+//! executed curve in `events/curve.rs`); `labels.rs` and `recognize.rs` are several gestures
+//! and their recognition; `persist.rs` writes and reads model files.
+//!
 //! ```no_run
 //! use cosco_hsom::config::load_config;
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -16,17 +23,21 @@
 mod algorithm;
 mod errors;
 mod events;
+mod followers;
 mod labels;
 mod memory;
+mod model;
 mod paper;
 mod persist;
 mod recognize;
+mod record;
 mod reproduction;
 
-pub use algorithm::{plans_word, Hsom, LevelSummary, ModelSummary};
-pub use errors::{HsomError, PersistError};
-pub use labels::{is_plain_label, GestureError, GestureModel, GESTURES_FORMAT_VERSION, MAX_LABELS};
+pub use algorithm::{plans_word, LevelSummary, ModelSummary};
+pub use errors::{GestureError, HsomError, PersistError};
+pub use labels::{is_plain_label, GESTURES_FORMAT_VERSION, MAX_LABELS};
 pub use memory::{ActivityLevels, ActivityList};
-pub use persist::FORMAT_VERSION;
-pub use recognize::{Recognition, Scoring, PREFIX_BLEND};
+pub use model::{GestureModel, Hsom, Scoring};
+pub use persist::{FilePart, FORMAT_VERSION};
+pub use recognize::{Recognition, PREFIX_BLEND};
 pub use reproduction::{Reproduction, StopReason};

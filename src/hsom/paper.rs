@@ -9,13 +9,15 @@ use crate::config::{
     PAPER_STATIONARY_STEPS, PAPER_STATIONARY_TOLERANCE,
 };
 
-use super::algorithm::{input_dim, Hsom};
 use super::errors::HsomError;
 use super::memory::{Memory, Stm};
+use super::model::{input_dim, Algo, Hsom, PaperModel};
 use super::reproduction::{Reproduction, StopReason};
 
 struct Gen<'a> {
     m: &'a Hsom,
+    /// Per bottom node, how many demonstrations end on it ([`PaperModel`]).
+    ends: &'a [u32],
     r: &'a ReproductionParams,
     q: &'a PaperParams,
     stm: Stm,
@@ -233,7 +235,7 @@ impl Gen<'_> {
             let state = self.m.config.params().state_length;
             let y = &self.out[t - 1];
             let (near, _) = self.m.maps[0].bmu_range(y, state..2 * state);
-            if self.m.end_hits[self.last_node] > 0 || self.m.end_hits[near] > 0 {
+            if self.ends[self.last_node] > 0 || self.ends[near] > 0 {
                 return Some(StopReason::EndNode);
             }
             let k = PAPER_STATIONARY_STEPS;
@@ -313,8 +315,13 @@ impl Hsom {
             rep.truncate(r.max_length);
             return Ok(rep);
         };
+        let ends: &[u32] = match &self.algo {
+            Algo::Paper(PaperModel { end_hits }) => end_hits,
+            Algo::Events(_) => &[],
+        };
         let mut g = Gen {
             m: self,
+            ends,
             r,
             q,
             stm: Stm::new(&self.config),

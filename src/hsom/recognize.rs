@@ -7,45 +7,22 @@
 //! label's threshold, calibrated on the training data alone (leave-one-out), the answer is
 //! `unknown`.
 
-use serde::Serialize;
-
 use crate::dtw::{argmin, open_end_cost};
 
-use super::algorithm::Hsom;
+use super::errors::GestureError;
 use super::errors::HsomError;
 use super::events::{
-    a_part, b_part, bottom_events, chunk_input, chunks, summary, DurationCode, Item, Layout,
+    a_part, b_part, bottom_events, chunk_input, chunks, summary, DurationCode, Item,
 };
-use super::labels::{branch_seed, GestureError, GestureModel};
+use super::model::{Calibration, GestureModel, Hsom, Layout, Scoring};
 use super::reproduction::Reproduction;
 
-/// What recognition compares a label's matches with: per level, the branch's mean chunk
-/// distance on its training data (index 0, the bottom, unused), and the score above which a
-/// sequence is not this gesture.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Calibration {
-    pub(crate) reference: Vec<f64>,
-    pub(crate) threshold: f64,
-}
-
-impl Calibration {
-    /// Flat form for the model file: the references, then the threshold.
-    pub(crate) fn values(&self) -> Vec<f64> {
-        let mut v = self.reference.clone();
-        v.push(self.threshold);
-        v
-    }
-
-    /// From the flat form of a model of `height` levels; `None` when it does not fit.
-    pub(crate) fn from_values(v: &[f64], height: usize) -> Option<Calibration> {
-        if v.len() != height + 1 || v.iter().any(|x| !x.is_finite() || *x < 0.0) {
-            return None;
-        }
-        Some(Calibration {
-            reference: v[..height].to_vec(),
-            threshold: v[height],
-        })
-    }
+/// The seed of branch `g` (`held_out`: of its leave-one-out variant without that
+/// demonstration).
+pub(crate) fn branch_seed(seed: u64, g: usize, held_out: Option<usize>) -> u64 {
+    let h = held_out.map_or(0, |i| i as u64 + 1);
+    seed.wrapping_add(0x9e37_79b9_7f4a_7c15u64.wrapping_mul(g as u64 + 1))
+        .wrapping_add(h.wrapping_mul(0x2545_f491_4f6c_dd1d))
 }
 
 /// Per sample of `norm` (normalised rows; its bottom inputs: the posture and the posture
@@ -148,24 +125,6 @@ pub(crate) fn level_distances(
         items = next;
     }
     out
-}
-
-/// How a label's matches become its score (lower is better).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
-pub enum Scoring {
-    /// The mean over every level of its mean distance (the bottom's postures and the levels'
-    /// chunks), in the shared normalised units of every branch.
-    Raw,
-    /// Level 1's mean chunk distance alone.
-    Level1,
-    /// The bottom alone: the mean distance of the events' postures to the nearest posture
-    /// the gesture used (its branch's statistics). The default: measured best on the
-    /// development seeds (docs/ALGORITHM.md "Several gestures in one hierarchy").
-    #[default]
-    Postures,
-    /// The mean over levels of distance / the label's held-out reference (the same mean on
-    /// its own demonstrations held out, leave-one-out).
-    Relative,
 }
 
 impl Scoring {
@@ -281,7 +240,7 @@ pub(crate) fn calibrate(
 }
 
 /// The answer of recognition for one sequence.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Recognition {
     /// The recognised label, or `None` (unknown) when the best score is above its threshold.
     pub label: Option<String>,

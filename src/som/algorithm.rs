@@ -126,7 +126,8 @@ impl std::ops::Deref for NodeWeights {
 /// The weights are stored in blocks of `LANES` = 8 nodes, dimension by dimension (value
 /// `d` of node `i` at `((i / 8) * dim + d) * 8 + i % 8`): a scan over the nodes reads one
 /// contiguous array and computes 8 nodes at a time in vector registers.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(into = "MapRecord", try_from = "MapRecord")]
 pub struct SelfOrganizingMap {
     rows: usize,
     cols: usize,
@@ -137,6 +138,45 @@ pub struct SelfOrganizingMap {
     /// Grid position of every node (for neighbourhood distances).
     pos: Vec<(f64, f64)>,
     scratch: Scratch,
+}
+
+/// A map as model files describe it: its grid, topology and weights, node by node.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct MapRecord {
+    rows: u32,
+    cols: u32,
+    dim: u32,
+    topology: Topology,
+    weights: Vec<f64>,
+}
+
+impl From<SelfOrganizingMap> for MapRecord {
+    fn from(m: SelfOrganizingMap) -> Self {
+        MapRecord {
+            rows: m.rows as u32,
+            cols: m.cols as u32,
+            dim: m.dim as u32,
+            topology: m.topology,
+            weights: m.all_weights(),
+        }
+    }
+}
+
+impl TryFrom<MapRecord> for SelfOrganizingMap {
+    type Error = String;
+    /// A map read from a file: at least one node of at least one value, and exactly
+    /// `rows x cols x dim` weight values (checked before anything is sized by the grid).
+    fn try_from(r: MapRecord) -> Result<Self, String> {
+        let (rows, cols, dim) = (r.rows as usize, r.cols as usize, r.dim as usize);
+        let expected = rows.checked_mul(cols).and_then(|n| n.checked_mul(dim));
+        if rows == 0 || cols == 0 || dim == 0 || expected != Some(r.weights.len()) {
+            return Err(format!(
+                "a map of {rows}x{cols} nodes of dimension {dim} with {} weight values",
+                r.weights.len()
+            ));
+        }
+        Self::from_weights(rows, cols, dim, r.topology, r.weights).map_err(|e| e.to_string())
+    }
 }
 
 pub(crate) fn positions(rows: usize, cols: usize, topology: Topology) -> Vec<(f64, f64)> {

@@ -229,3 +229,12 @@ pub fn fuzz_config(cases: u32) -> proptest::test_runner::Config {
         ..proptest::test_runner::Config::default()
     }
 }
+
+/// A plain-text model file (three header lines, the model as one line of JSON, the checksum
+/// line) with its model edited by `edit` and the checksum recomputed, as anyone can.
+pub fn edit_model_text(text: &str, edit: impl FnOnce(&mut serde_json::Value)) -> String {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut model: serde_json::Value = serde_json::from_str(lines[3]).unwrap();
+    edit(&mut model);
+    with_checksum(&format!("{}\n{model}\nchecksum 0\n", lines[..3].join("\n")))
+}

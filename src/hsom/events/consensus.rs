@@ -2,9 +2,8 @@
 //! nodes' postures and offsets.
 
 use super::encode::bottom_events;
-use super::start::StartKnots;
-use super::traces::{trace_places, trace_postures_at, trace_width, TRACE_HEAD};
-use crate::hsom::algorithm::Hsom;
+use super::traces::{trace_places, trace_postures_at, TRACE_HEAD};
+use crate::hsom::model::{Hsom, StartKnots};
 
 /// Longest sequence [`aligned_samples`] aligns sample by sample: a longer demonstration is aligned
 /// in blocks of consecutive samples (their means), so that an alignment never takes more
@@ -207,10 +206,11 @@ impl Hsom {
     /// weights (state part).
     pub(super) fn placement(&self, start: &[f64]) -> Vec<f64> {
         let s = self.config.params().state_length;
-        if let Some(k) = &self.start_knots {
+        let e = self.events();
+        if let Some(k) = e.and_then(|e| e.start_knots.as_ref()) {
             return k.placed(start);
         }
-        match &self.knots {
+        match e.and_then(|e| e.knots.as_ref()) {
             Some(k) => k.clone(),
             None => (0..self.maps[0].len())
                 .flat_map(|n| self.maps[0].weights(n)[..s].to_vec())
@@ -272,9 +272,13 @@ impl Hsom {
     /// neighbourhood pulled its weights. With one demonstration there is nothing to agree
     /// on: the weights (and no stored postures).
     pub(crate) fn fit_postures(&mut self, norm: &[Vec<Vec<f64>>]) {
-        self.knots = None;
-        self.start_knots = None;
-        self.end_postures = Some(self.ends(norm));
+        let ends = self.ends(norm);
+        let Some(e) = self.events_mut() else {
+            return;
+        };
+        e.knots = None;
+        e.start_knots = None;
+        e.end_postures = Some(ends);
         let aligned = aligned_samples(norm, MAX_ALIGNED);
         self.fit_node_postures(norm, &aligned);
         self.place_traced_events(norm, &aligned);
@@ -303,12 +307,15 @@ impl Hsom {
             })
             .collect();
         let all: Vec<&Vec<f64>> = knots.iter().collect();
-        self.knots = Some(StartKnots::mean(&all, &vec![1.0; all.len()]));
+        let mean = StartKnots::mean(&all, &vec![1.0; all.len()]);
         let starts = norm.iter().map(|d| d[0][..s].to_vec()).collect();
         let seed = self.config.params().seed;
         let weighed = StartKnots::fit(starts, knots, &count.count, seed);
-        // all alike is the mean already stored: nothing more to keep
-        self.start_knots = weighed.width.is_finite().then_some(weighed);
+        if let Some(e) = self.events_mut() {
+            e.knots = Some(mean);
+            // all alike is the mean already stored: nothing more to keep
+            e.start_knots = weighed.width.is_finite().then_some(weighed);
+        }
     }
 
     /// Per demonstration of `norm` (normalised), per bottom event, where that event lies in
@@ -330,7 +337,7 @@ impl Hsom {
         aligned: &Aligned,
     ) -> Vec<Vec<(usize, Vec<f64>)>> {
         let s = self.config.params().state_length;
-        let agreed: Vec<Vec<Vec<f64>>> = match &self.start_knots {
+        let agreed: Vec<Vec<Vec<f64>>> = match self.events().and_then(|e| e.start_knots.as_ref()) {
             Some(k) => {
                 let starts: Vec<Vec<f64>> = norm.iter().map(|d| d[0][..s].to_vec()).collect();
                 let refs: Vec<&Vec<f64>> = starts.iter().collect();
@@ -405,7 +412,7 @@ impl Hsom {
     /// traced event's offset from its node's place; where the demonstration's events do not
     /// match the traced ones (other demonstrations), none.
     fn place_traced_events(&mut self, norm: &[Vec<Vec<f64>>], aligned: &Aligned) {
-        let Some(mut traces) = self.traces.take() else {
+        let Some(mut traces) = self.events_mut().and_then(|e| e.traces.take()) else {
             return;
         };
         let own = self.event_offsets(norm, aligned);
@@ -413,13 +420,10 @@ impl Hsom {
             self.config.params().memory,
             trace_places(self.config.params()),
         );
-        for (l, words) in traces.levels.iter_mut().enumerate().skip(1) {
-            let Some(width) = trace_width(k, l, s).filter(|_| !words.is_empty()) else {
-                continue;
-            };
+        for (l, chunks) in traces.levels.iter_mut().enumerate().skip(1) {
             let span = k.pow(l as u32);
             let postures = trace_postures_at(k, l);
-            for slot in words.chunks_exact_mut(width).filter(|w| w[0] != u32::MAX) {
+            for slot in chunks.iter_mut().map(|c| &mut c.words) {
                 let (q, d) = (slot[0] as usize, slot[2] as usize);
                 for i in 0..span {
                     let e = slot[TRACE_HEAD + i];
@@ -436,7 +440,9 @@ impl Hsom {
                 }
             }
         }
-        self.traces = Some(traces);
+        if let Some(e) = self.events_mut() {
+            e.traces = Some(traces);
+        }
     }
 
     /// Where the demonstrations `norm` (normalised) ended: per bottom node, how many had
@@ -465,7 +471,7 @@ impl Hsom {
     /// all of them ended. `None` after a node one ended after (its last event's learned
     /// action leads there, from the mean of many samples) and without end postures.
     pub(super) fn end_posture(&self, n: usize) -> Option<Vec<f64>> {
-        let ends = self.end_postures.as_ref()?;
+        let ends = self.events()?.end_postures.as_ref()?;
         let n0 = self.maps[0].len();
         (ends[n] == 0.0 && ends[..n0].iter().any(|&c| c > 0.0)).then(|| ends[n0..].to_vec())
     }

@@ -3,7 +3,7 @@
 
 use super::encode::Step;
 use super::traces::HALF_PLACES;
-use crate::hsom::algorithm::Hsom;
+use crate::hsom::model::Hsom;
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
 impl Hsom {

@@ -1,45 +1,9 @@
 //! Events and their encoding: the bottom level's runs of BMUs, and the slots, chunks and
 //! summaries every level above reads.
 
-use crate::config::HsomConfig;
 use crate::som::SelfOrganizingMap;
 
-use crate::hsom::algorithm::Hsom;
-
-/// Sizes of the event encoding.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Layout {
-    /// stateLength.
-    pub(crate) s: usize,
-    /// memory: entries per chunk.
-    pub(crate) k: usize,
-}
-
-impl Layout {
-    pub(crate) fn of(config: &HsomConfig) -> Self {
-        let p = config.params();
-        Layout {
-            s: p.state_length,
-            k: p.memory,
-        }
-    }
-    /// Values of one slot.
-    pub(crate) fn slot(&self) -> usize {
-        2 * self.s + 2
-    }
-    /// Values of the context.
-    pub(crate) fn ctx(&self) -> usize {
-        self.s + 2
-    }
-    /// Input length of a level above the bottom.
-    pub(crate) fn dim(&self) -> usize {
-        self.ctx() + self.k * self.slot()
-    }
-    pub(super) fn slot_range(&self, j: usize) -> std::ops::Range<usize> {
-        let o = self.ctx() + j * self.slot();
-        o..o + self.slot()
-    }
-}
+use crate::hsom::model::{Hsom, Layout};
 
 /// Encoded durations: `scale * ln(1 + samples)`.
 #[derive(Debug, Clone, Copy)]

@@ -5,8 +5,8 @@ use crate::demos::Demonstration;
 
 use super::consensus::{aligned_samples, MAX_ALIGNED};
 use super::encode::{bottom_events, dist2, observed_durations, Step};
-use crate::hsom::algorithm::{check_series, demo_series, Hsom};
 use crate::hsom::errors::HsomError;
+use crate::hsom::model::{check_series, demo_series, Hsom};
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
 impl Hsom {
@@ -73,8 +73,8 @@ impl Hsom {
         after: Option<f64>,
     ) -> Vec<Step<usize>> {
         let own = self
-            .traces
-            .is_some()
+            .events()
+            .is_some_and(|e| e.traces.is_some())
             .then(|| self.event_offsets(norm, &aligned_samples(norm, MAX_ALIGNED)));
         let mut begun = 0.0;
         bottom_events(self, &norm[d])
@@ -102,7 +102,7 @@ impl Hsom {
     ) -> Result<Vec<Vec<f64>>, HsomError> {
         let p = self.config.params();
         check_series(
-            &[crate::hsom::algorithm::Series {
+            &[crate::hsom::model::Series {
                 source,
                 rows: prefix,
             }],

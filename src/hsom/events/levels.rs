@@ -5,15 +5,14 @@ use rand::{Rng, SeedableRng};
 
 use super::encode::{
     b_part, bottom_events, chunks, dist2, end_content, event_content, summary, Chunk, DurationCode,
-    Item, Layout,
+    Item,
 };
-use super::followers::{follower_positions, followers_table, lookup_accuracy, lookup_counts};
 use super::traces::{
-    trace_bmus_at, trace_places, trace_width, trace_words, Decoder, Traces, TRACED_CHUNKS,
-    TRACE_HEAD,
+    trace_bmus_at, trace_places, trace_width, trace_words, Decoder, TRACED_CHUNKS, TRACE_HEAD,
 };
 use super::END;
-use crate::hsom::algorithm::Hsom;
+use crate::hsom::followers::{follower_positions, followers_table, lookup_accuracy, lookup_counts};
+use crate::hsom::model::{Hsom, Layout, TracedChunk, Traces};
 
 /// What [`Hsom::replay_level`] measured.
 struct LevelReplay {
@@ -45,8 +44,8 @@ impl Hsom {
     pub(crate) fn fit_events<R: Rng>(&mut self, norm: &[Vec<Vec<f64>>], learn: bool, rng: &mut R) {
         self.fit_levels(norm, learn, rng);
         let (acc, lookup) = self.heldout_levels(norm, learn, rng.gen());
-        self.heldout_accuracy = acc;
-        self.heldout_lookup = lookup;
+        self.ev_mut().heldout_accuracy = acc;
+        self.ev_mut().heldout_lookup = lookup;
     }
 
     /// Each level's prediction accuracy and its lookup table's, held out: for every
@@ -82,7 +81,7 @@ impl Hsom {
             for (l, c) in counts.iter_mut().enumerate().skip(1) {
                 let seq: Vec<u32> = items.iter().map(|i| i.node).collect();
                 let (n, ok) = lookup_counts(
-                    &fold.followers[l - 1],
+                    &fold.ev().followers[l - 1],
                     fold.maps[l - 1].len(),
                     std::slice::from_ref(&seq),
                 );
@@ -114,9 +113,18 @@ impl Hsom {
         let n0 = self.maps[0].len();
         // what a previous fit of the levels left (a held-out fold starts from a clone)
         self.hits[1..].iter_mut().for_each(|v| v.fill(0));
-        self.exemplars.iter_mut().for_each(|e| e.fill(u32::MAX));
-        self.exemplar_phase.iter_mut().for_each(|e| e.fill(0.0));
-        self.followers.iter_mut().for_each(|f| f.fill(u32::MAX));
+        self.ev_mut()
+            .exemplars
+            .iter_mut()
+            .for_each(|e| e.fill(u32::MAX));
+        self.ev_mut()
+            .exemplar_phase
+            .iter_mut()
+            .for_each(|e| e.fill(0.0));
+        self.ev_mut()
+            .followers
+            .iter_mut()
+            .for_each(|f| f.fill(u32::MAX));
         // 1. bottom events, their durations and the bottom's own lookup table
         let events: Vec<Vec<(usize, f64)>> = norm.iter().map(|d| bottom_events(self, d)).collect();
         let mut dsum = vec![0.0; n0];
@@ -147,8 +155,9 @@ impl Hsom {
             .collect();
         // the bottom's followers: its lookup table (the reflex at height 1) and the candidates
         // level 1 decodes among
-        self.followers[0] = followers_table(n0, &seqs0);
-        self.follower_at = follower_positions(n0, &seqs0, &self.followers[0], self.demo_runs[1]);
+        self.ev_mut().followers[0] = followers_table(n0, &seqs0);
+        self.ev_mut().follower_at =
+            follower_positions(n0, &seqs0, &self.ev().followers[0], self.demo_runs[1]);
         let code = DurationCode::from_dwell(&self.dwell);
         let mean_events = self.demo_runs[1];
         // 2. level by level
@@ -168,7 +177,7 @@ impl Hsom {
             seqs_by_level.push(seqs.clone());
             let nodes_below = self.maps[l - 1].len();
             if l > 1 {
-                self.followers[l - 1] = followers_table(nodes_below, &seqs);
+                self.ev_mut().followers[l - 1] = followers_table(nodes_below, &seqs);
             }
             let per_item = (lay.k as f64).powi(l as i32 - 1);
             let demo_chunks: Vec<_> = items
@@ -224,10 +233,10 @@ impl Hsom {
                     if d2 < best[b] {
                         best[b] = d2;
                         for j in 0..lay.k {
-                            self.exemplars[l][b * lay.k + j] =
+                            self.ev_mut().exemplars[l][b * lay.k + j] =
                                 items[di].get(ci * lay.k + j).map_or(END, |i| i.node);
                         }
-                        self.exemplar_phase[l][b] = ch.phase;
+                        self.ev_mut().exemplar_phase[l][b] = ch.phase;
                     }
                 }
             }
@@ -240,17 +249,17 @@ impl Hsom {
             let chunks = r.chunks.max(1) as f64;
             self.qe[l] = r.qe / chunks;
             self.te[l] = r.te as f64 / chunks;
-            self.threshold[l] = r.threshold;
+            self.ev_mut().threshold[l] = r.threshold;
             self.accuracy[l] = if r.predicted > 0 {
                 r.correct as f64 / r.predicted as f64
             } else {
                 0.0
             };
-            self.lookup[l] = lookup_accuracy(&self.followers[l - 1], nodes_below, &seqs);
+            self.lookup[l] = lookup_accuracy(&self.ev().followers[l - 1], nodes_below, &seqs);
             items = r.next_items;
             chunk_bmus.push(bmus);
         }
-        self.traces = Some(self.traced_chunks(&seqs_by_level, chunk_bmus));
+        self.ev_mut().traces = Some(self.traced_chunks(&seqs_by_level, chunk_bmus));
     }
 
     /// The traced chunks ([`Traces`]) from the entries per demonstration of every level below
@@ -308,7 +317,16 @@ impl Hsom {
                     at += count;
                 }
             }
-            levels.push(w);
+            levels.push(
+                w.chunks_exact(width)
+                    .enumerate()
+                    .filter(|(_, slot)| slot[0] != u32::MAX)
+                    .map(|(i, slot)| TracedChunk {
+                        node: (i / TRACED_CHUNKS) as u32,
+                        words: slot.to_vec(),
+                    })
+                    .collect(),
+            );
         }
         Traces { levels }
     }
@@ -413,7 +431,7 @@ impl Hsom {
     /// Entry `j` of the exemplar of node `n` of `level` (`u32::MAX`: none).
     pub(super) fn exemplar(&self, level: usize, n: usize, j: usize) -> u32 {
         let k = self.config.params().memory;
-        self.exemplars[level]
+        self.ev().exemplars[level]
             .get(n * k + j)
             .copied()
             .unwrap_or(u32::MAX)

@@ -16,7 +16,6 @@
 //! - [`encode`]: the bottom level's events and the slots, chunks and summaries every level
 //!   above encodes them as;
 //! - [`levels`]: training the levels above the bottom, level by level;
-//! - [`followers`]: the follower tables each level must beat (the lookup baseline);
 //! - [`traces`]: the training chunks a node keeps so that a traced plan replays them, and
 //!   the decoder of a node's content;
 //! - [`plan`]: a reproduction: climbing the levels, the highest confident level's plan
@@ -30,7 +29,6 @@ mod consensus;
 mod curve;
 mod encode;
 mod follow;
-mod followers;
 mod levels;
 mod plan;
 mod start;
@@ -40,11 +38,8 @@ mod traces;
 mod tests;
 
 pub(super) use encode::{
-    a_part, b_part, bottom_events, chunk_input, chunks, summary, DurationCode, Item, Layout,
+    a_part, b_part, bottom_events, chunk_input, chunks, summary, DurationCode, Item,
 };
-pub(super) use followers::{followers_table, most_frequent, FOLLOWERS};
-pub(super) use start::StartKnots;
-pub(super) use traces::{trace_places, Traces};
+pub(super) use traces::{trace_places, trace_width, trace_words, TRACED_CHUNKS};
 
-/// A node index that stands for the end of the gesture in item sequences and successors.
-pub(crate) const END: u32 = u32::MAX - 1;
+pub(crate) use super::followers::END;

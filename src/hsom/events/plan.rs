@@ -6,15 +6,13 @@ use std::collections::VecDeque;
 use crate::config::ReproductionParams;
 
 use super::encode::{
-    a_part, b_part, chunk_input, dist2, event_content, summary, DurationCode, Item, Layout, Step,
+    a_part, b_part, chunk_input, dist2, event_content, summary, DurationCode, Item, Step,
 };
-use super::followers::most_frequent;
 use super::levels::used;
-use super::traces::{
-    trace_bmus_at, trace_places, trace_postures_at, trace_width, Decoder, TRACED_CHUNKS, TRACE_HEAD,
-};
+use super::traces::{trace_bmus_at, trace_places, trace_postures_at, Decoder, TRACE_HEAD};
 use super::END;
-use crate::hsom::algorithm::Hsom;
+use crate::hsom::followers::most_frequent;
+use crate::hsom::model::{Hsom, Layout};
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
 impl Hsom {
@@ -104,7 +102,7 @@ impl Hsom {
                     if l > 1
                         && (!self.level_trusted(l)
                             || (d2 / known as f64).sqrt()
-                                > self.threshold[l] * (1.0 + 1e-9) + 1e-12)
+                                > self.ev().threshold[l] * (1.0 + 1e-9) + 1e-12)
                     {
                         break;
                     }
@@ -117,7 +115,7 @@ impl Hsom {
                     let next = if first {
                         n_init as u32
                     } else {
-                        most_frequent(&self.followers[0], self.maps[0].len(), last as u32)
+                        most_frequent(&self.ev().followers[0], self.maps[0].len(), last as u32)
                     };
                     if next == u32::MAX || next == END {
                         stop = StopReason::EndEvent;
@@ -148,7 +146,7 @@ impl Hsom {
                     let pos = if self.exemplar(level, matched[level], 0) == u32::MAX {
                         f64::NAN
                     } else {
-                        self.exemplar_phase[level][matched[level]]
+                        self.ev().exemplar_phase[level][matched[level]]
                     };
                     let traced =
                         self.traced_plan(&ctx, level, &mut follow, &mut plan, &mut lists.expected);
@@ -218,7 +216,8 @@ impl Hsom {
         plan: &mut VecDeque<Step<u32>>,
         expected: &mut [VecDeque<u32>],
     ) -> bool {
-        let Some(words) = self
+        let Some(chunks) = self
+            .ev()
             .traces
             .as_ref()
             .and_then(|t| t.levels.get(level))
@@ -228,9 +227,6 @@ impl Hsom {
         };
         let (k, s, pw) = (ctx.lay.k, ctx.lay.s, trace_places(self.config.params()));
         let n0 = self.maps[0].len();
-        let Some(width) = trace_width(k, level, pw) else {
-            return false;
-        };
         let postures = trace_postures_at(k, level);
         let span = k.pow(level as u32);
         let n = ctx.matched[level];
@@ -240,18 +236,19 @@ impl Hsom {
         let followed = *follow;
         // the demonstration followed goes on; otherwise the node matched, otherwise any;
         // nearest first, then nearest the node's weights (the first of equals)
-        let best = words
-            .chunks_exact(width)
-            .enumerate()
-            .filter(|(_, slot)| {
+        let best = chunks
+            .iter()
+            .filter(|c| {
+                let slot = &c.words;
                 slot[0] as usize == index
                     && off < span
                     && slot[TRACE_HEAD + off] != u32::MAX
                     && (slot[1] as usize) < n0
             })
-            .map(|(i, slot)| {
+            .map(|c| {
+                let slot = &c.words[..];
                 let d = dist2(&self.maps[0].weights(slot[1] as usize)[..s], ctx.here);
-                (slot, Some(slot[2]) != followed, i / TRACED_CHUNKS != n, d)
+                (slot, Some(slot[2]) != followed, c.node as usize != n, d)
             })
             .min_by(|a, b| a.1.cmp(&b.1).then(a.2.cmp(&b.2)).then(a.3.total_cmp(&b.3)));
         let Some((slot, ..)) = best else {

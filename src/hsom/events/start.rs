@@ -6,25 +6,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 use super::encode::dist2;
-
-/// The consensus weighed by the starts (docs/ALGORITHM.md, passage 6): where each training
-/// demonstration places every bottom node's events (the node's samples, of every
-/// demonstration, replaced by that demonstration's samples aligned to them, smoothed as
-/// [`Hsom::fit_postures`] smooths the consensus), and where each started. A reproduction
-/// weighs the demonstrations by a Gaussian of the distance between their start and its own,
-/// of the width that best predicted each training demonstration's placement from the others'
-/// (leave-one-out); all alike (`width` infinite) is a candidate, and is the plain
-/// [`consensus`].
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct StartKnots {
-    /// Per training demonstration, its first posture (state part, normalised).
-    pub(crate) starts: Vec<Vec<f64>>,
-    /// Per training demonstration, its placement of every bottom node (`stateLength` values
-    /// per node).
-    pub(crate) knots: Vec<Vec<f64>>,
-    /// The Gaussian's width (normalised units); infinite: all alike.
-    pub(crate) width: f64,
-}
+use crate::hsom::model::StartKnots;
 
 /// Widths [`StartKnots`] chooses among, in units of the median distance between two
 /// training demonstrations' starts; all alike (infinite) is tried first and kept on a tie.

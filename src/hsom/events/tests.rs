@@ -6,15 +6,15 @@ use crate::demos::Demonstration;
 use super::consensus::*;
 use super::curve::*;
 use super::encode::*;
-use super::followers::*;
 use super::levels::*;
 use super::plan::*;
 use super::start::*;
 use super::traces::*;
 use super::END;
 use crate::config::HsomParams;
-use crate::hsom::algorithm::Hsom;
 use crate::hsom::errors::HsomError;
+use crate::hsom::followers::*;
+use crate::hsom::model::{Hsom, Layout, StartKnots};
 use crate::hsom::reproduction::StopReason;
 
 /// A 2-D gesture: hold at the origin, go to (1, 0), hold, come back, hold.
@@ -79,7 +79,8 @@ fn bottom_error(m: &Hsom, rows: &[Vec<f64>], horizon: usize) -> f64 {
 
 #[test]
 fn a_shared_bottom_drawn_at_random_keeps_the_first_gesture() {
-    use crate::hsom::algorithm::{Presentation, Series};
+    use crate::hsom::algorithm::Presentation;
+    use crate::hsom::model::Series;
     // two gestures in different places, presented first one, then the other
     let a: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
     let b: Vec<Vec<Vec<f64>>> = (0..3)
@@ -167,15 +168,14 @@ fn each_branch_executes_its_own_gesture_on_the_shared_nodes() {
         e / set.len() as f64
     };
     let (ba, bb) = (&m.branches[0], &m.branches[1]);
-    assert!(ba.knots.is_some() && bb.knots.is_some());
-    let weights_only = |br: &Hsom| Hsom {
-        knots: None,
-        ..br.clone()
+    assert!(ba.ev().knots.is_some() && bb.ev().knots.is_some());
+    let weights_only = |br: &Hsom| {
+        let mut m = br.clone();
+        m.ev_mut().knots = None;
+        m
     };
-    let other = Hsom {
-        knots: bb.knots.clone(),
-        ..ba.clone()
-    };
+    let mut other = ba.clone();
+    other.ev_mut().knots = bb.ev().knots.clone();
     let (own, plain, wrong) = (
         err(ba, &sets[0].1),
         err(&weights_only(ba), &sets[0].1),
@@ -190,11 +190,15 @@ fn each_branch_executes_its_own_gesture_on_the_shared_nodes() {
     // one gesture through fit_gestures places them as fit does; an untrained model, or one
     // demonstration (nothing to agree on), executes the nodes' weights
     let alone = cfg.fit_gestures(&sets[..1], None).unwrap();
-    assert_eq!(alone.branches[0].knots, cfg.fit(&sets[0].1).unwrap().knots);
+    assert_eq!(
+        alone.branches[0].ev().knots,
+        cfg.fit(&sets[0].1).unwrap().ev().knots
+    );
     assert!(cfg.initialise_gestures(&sets).unwrap().branches[0]
+        .ev()
         .knots
         .is_none());
-    assert!(cfg.fit(&sets[0].1[..1]).unwrap().knots.is_none());
+    assert!(cfg.fit(&sets[0].1[..1]).unwrap().ev().knots.is_none());
 }
 
 #[test]
@@ -325,10 +329,8 @@ fn each_node_is_placed_where_the_demonstrations_agree() {
     };
     // the control: each node at its own samples' mean, each demonstration its own apex
     let norm: Vec<Vec<Vec<f64>>> = series.iter().map(|d| m.normalise_rows(d)).collect();
-    let own = Hsom {
-        knots: Some(m.own_postures(&norm)),
-        ..m.clone()
-    };
+    let mut own = m.clone();
+    own.ev_mut().knots = Some(m.own_postures(&norm));
     for d in &series {
         let amplitude = d.iter().map(|r| r[0]).fold(f64::MIN, f64::max);
         let toward_mean = |h: &Hsom| (apex(h, d) - 1.0).abs() < 0.7 * (amplitude - 1.0).abs();
@@ -414,7 +416,7 @@ fn decoding_by_content_picks_the_nearest_follower() {
     let lay = Layout::of(&m.config);
     let code = DurationCode::from_dwell(&m.dwell);
     // the first follower of the begin, decoded from its own content
-    let first = m.followers[0][m.maps[0].len() * FOLLOWERS];
+    let first = m.ev().followers[0][m.maps[0].len() * FOLLOWERS];
     assert_ne!(first, u32::MAX);
     let c = entry_content(&m, lay, 0, first as usize, code);
     let dec = Decoder {
@@ -435,7 +437,7 @@ fn decoding_by_content_picks_the_nearest_follower() {
     );
     // an exemplar entry that followed the previous one wins over content; one that never
     // followed it is ignored
-    let row = &m.followers[0][m.maps[0].len() * FOLLOWERS..][..FOLLOWERS];
+    let row = &m.ev().followers[0][m.maps[0].len() * FOLLOWERS..][..FOLLOWERS];
     let never = (0..m.maps[0].len() as u32)
         .find(|n| !row.contains(n))
         .unwrap();
@@ -472,9 +474,14 @@ fn decoding_prefers_the_follower_seen_at_the_planned_position() {
     let lay = Layout::of(&m.config);
     let code = DurationCode::from_dwell(&m.dwell);
     let (p, a, b) = (0usize, 1u32, 2u32);
-    m.followers[0][p * FOLLOWERS..(p + 1) * FOLLOWERS].copy_from_slice(&[a, b, u32::MAX, u32::MAX]);
-    m.follower_at[p * FOLLOWERS] = 0.1;
-    m.follower_at[p * FOLLOWERS + 1] = 0.9;
+    m.ev_mut().followers[0][p * FOLLOWERS..(p + 1) * FOLLOWERS].copy_from_slice(&[
+        a,
+        b,
+        u32::MAX,
+        u32::MAX,
+    ]);
+    m.ev_mut().follower_at[p * FOLLOWERS] = 0.1;
+    m.ev_mut().follower_at[p * FOLLOWERS + 1] = 0.9;
     // a slot halfway between a and b: content alone cannot choose
     let ca = entry_content(&m, lay, 0, a as usize, code);
     let cb = entry_content(&m, lay, 0, b as usize, code);
@@ -517,9 +524,8 @@ fn at_nodes(m: &Hsom) -> Hsom {
     let mut cleared = m.clone();
     let (k, s) = (m.config.params().memory, trace_places(m.config.params()));
     let at = trace_postures_at(k, 1);
-    let width = trace_width(k, 1, s).unwrap();
-    for slot in cleared.traces.as_mut().unwrap().levels[1].chunks_exact_mut(width) {
-        slot[at..trace_bmus_at(k, 1, s)].fill(u32::MAX);
+    for c in cleared.ev_mut().traces.as_mut().unwrap().levels[1].iter_mut() {
+        c.words[at..trace_bmus_at(k, 1, s)].fill(u32::MAX);
     }
     cleared
 }
@@ -541,7 +547,7 @@ fn following_the_nearest_demonstration_keeps_its_number_of_excursions() {
     assert_ne!(excursions(&demos[0].rows), excursions(&demos[1].rows));
     // without traces, the followed events are placed at their nodes
     let mut nodes = m.clone();
-    nodes.traces = None;
+    nodes.ev_mut().traces = None;
     for d in &demos {
         let r = nodes.follow_nearest(&demos, &d.rows[0]).unwrap();
         assert_eq!(excursions(&r.postures), excursions(&d.rows), "{}", d.source);
@@ -557,7 +563,7 @@ fn following_the_nearest_demonstration_keeps_its_number_of_excursions() {
 /// the same demonstration across chunks: from each demonstration's start the hierarchy
 /// executes exactly that demonstration's bottom events (one excursion, or two, counted
 /// with each event at its node), at its nodes' learned durations. The traces have a size
-/// set by the configuration alone. The control: with every traced chunk of the first
+/// bounded by the configuration alone (at most `TRACED_CHUNKS` chunks a node). The control: with every traced chunk of the first
 /// demonstration marked as the second's and its events made the second's, its start makes
 /// the second's number of excursions, so the plan is the traces' and not the levels'
 /// decoding.
@@ -566,9 +572,11 @@ fn a_traced_plan_replays_the_demonstration_its_node_stands_for() {
     let (demos, _) = once_and_twice();
     let m = config(2).fit(&demos).unwrap();
     let r = &m.config.params().reproduction;
-    let tr = m.traces.as_ref().unwrap();
+    let tr = m.ev().traces.as_ref().unwrap();
     let (k, s) = (m.config.params().memory, trace_places(m.config.params()));
-    assert_eq!(tr.levels[1].len(), trace_words(k, 1, s, m.maps[1].len()));
+    let width = trace_width(k, 1, s).unwrap();
+    assert!(tr.levels[1].len() <= m.maps[1].len() * TRACED_CHUNKS);
+    assert!(tr.levels[1].iter().all(|c| c.words.len() == width));
     for d in &demos {
         let y0 = m.normalise(&d.rows[0]);
         let (executed, stop) = m.plan_event_list(&y0, &[], &[], r);
@@ -590,14 +598,17 @@ fn a_traced_plan_replays_the_demonstration_its_node_stands_for() {
     }
     // the control: the first demonstration's traced chunks replaced by the second's
     let mut other = m.clone();
-    let width = trace_width(k, 1, s).unwrap();
-    let words = &mut other.traces.as_mut().unwrap().levels[1];
-    let second: Vec<Vec<u32>> = words
-        .chunks_exact(width)
-        .filter(|c| c[2] == 1)
-        .map(|c| c.to_vec())
+    let chunks = &mut other.ev_mut().traces.as_mut().unwrap().levels[1];
+    let second: Vec<Vec<u32>> = chunks
+        .iter()
+        .filter(|c| c.words[2] == 1)
+        .map(|c| c.words.clone())
         .collect();
-    for slot in words.chunks_exact_mut(width).filter(|c| c[2] == 0) {
+    for slot in chunks
+        .iter_mut()
+        .map(|c| &mut c.words)
+        .filter(|c| c[2] == 0)
+    {
         if let Some(theirs) = second.iter().find(|c| c[0] == slot[0]) {
             slot[TRACE_HEAD..].copy_from_slice(&theirs[TRACE_HEAD..]);
         }
@@ -738,9 +749,8 @@ fn two_knots_per_event_keep_the_swings() {
         let mut cleared = m.clone();
         let (k, pw) = (m.config.params().memory, trace_places(m.config.params()));
         let at = trace_postures_at(k, 1);
-        let width = trace_width(k, 1, pw).unwrap();
-        for slot in cleared.traces.as_mut().unwrap().levels[1].chunks_exact_mut(width) {
-            slot[at..trace_bmus_at(k, 1, pw)].fill(u32::MAX);
+        for c in cleared.ev_mut().traces.as_mut().unwrap().levels[1].iter_mut() {
+            c.words[at..trace_bmus_at(k, 1, pw)].fill(u32::MAX);
         }
         for (i, model) in [&m, &cleared].into_iter().enumerate() {
             let r = model.reproduce(&all[out][0]).unwrap().postures;
@@ -954,14 +964,14 @@ fn a_plan_ends_at_home_where_its_position_is_nearer_the_end() {
     let lay = Layout::of(&m.config);
     let code = DurationCode::from_dwell(&m.dwell);
     let (home, start) = (0usize, 1u32);
-    m.followers[0][home * FOLLOWERS..(home + 1) * FOLLOWERS].copy_from_slice(&[
+    m.ev_mut().followers[0][home * FOLLOWERS..(home + 1) * FOLLOWERS].copy_from_slice(&[
         start,
         END,
         u32::MAX,
         u32::MAX,
     ]);
-    m.follower_at[home * FOLLOWERS] = 0.0;
-    m.follower_at[home * FOLLOWERS + 1] = 1.0;
+    m.ev_mut().follower_at[home * FOLLOWERS] = 0.0;
+    m.ev_mut().follower_at[home * FOLLOWERS + 1] = 1.0;
     // a slot that reads as the start of the gesture: content says "start again"
     let mut c = entry_content(&m, lay, 0, start as usize, code);
     c[2 * lay.s + 1] = 0.0;
@@ -997,7 +1007,7 @@ fn exemplar_positions_are_phases_of_training_chunks() {
     let m = trained(3);
     for l in 1..m.maps.len() {
         for n in (0..m.maps[l].len()).filter(|&n| m.hits[l][n] > 0) {
-            let p = m.exemplar_phase[l][n];
+            let p = m.ev().exemplar_phase[l][n];
             assert!(
                 p.is_finite() && (0.0..=2.0).contains(&p),
                 "level {l} node {n}: {p}"
@@ -1005,7 +1015,7 @@ fn exemplar_positions_are_phases_of_training_chunks() {
         }
     }
     // the begin chunk's node is at 0
-    assert!((1..m.maps.len()).all(|l| m.exemplar_phase[l].contains(&0.0)));
+    assert!((1..m.maps.len()).all(|l| m.ev().exemplar_phase[l].contains(&0.0)));
 }
 
 /// Every used node of a level above the bottom has an exemplar: the entries below of a
@@ -1087,7 +1097,7 @@ fn a_plan_that_ends_after_a_node_no_demonstration_ended_after_ends_where_they_en
     };
     let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| stroke(30 + 5 * i, i as u64)).collect();
     let m = config(3).fit_series(&series).unwrap();
-    let ends = m.end_postures.as_ref().unwrap();
+    let ends = m.ev().end_postures.as_ref().unwrap();
     assert_eq!(ends[..m.maps[0].len()].iter().sum::<f64>(), 3.0);
     let end_node = bottom_events(&m, &m.normalise_rows(&series[0]))
         .last()

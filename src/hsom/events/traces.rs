@@ -1,10 +1,10 @@
 //! Traces: the training chunks a node keeps for traced plans, and the decoder of a node's
 //! content.
 
-use super::encode::{b_part, dist2, entry_content, DurationCode, Layout};
-use super::followers::{follower_row, FOLLOWERS};
+use super::encode::{b_part, dist2, entry_content, DurationCode};
 use super::END;
-use crate::hsom::algorithm::Hsom;
+use crate::hsom::followers::{follower_row, FOLLOWERS};
+use crate::hsom::model::{Hsom, Layout, Traces};
 
 /// How many of the training chunks a node was the BMU of it keeps for traced plans (those
 /// nearest its weights first): a bound on the model's size, not a tuned value.
@@ -70,109 +70,93 @@ pub(crate) fn trace_words(k: usize, l: usize, s: usize, nodes: usize) -> usize {
         .unwrap_or(0)
 }
 
-/// What the levels were trained on, kept so a plan can replay it (`plan = traced`; a fixed
-/// size, set by the configuration alone): per level l >= 1, per node, up to
-/// [`TRACED_CHUNKS`] of the training chunks it was the BMU of, nearest its weights first (the
-/// exemplar first), each as [`trace_width`] words; `u32::MAX` pads what is not there. Level
-/// 0, and a level over [`TRACE_BUDGET`], keeps none.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Traces {
-    pub(crate) levels: Vec<Vec<u32>>,
-}
-
 impl Traces {
-    /// Flat form for the model file: the number of levels, then per level its word count and
-    /// words.
-    pub(crate) fn to_words(&self) -> Vec<u32> {
-        let mut w = vec![self.levels.len() as u32];
-        for l in &self.levels {
-            w.push(l.len() as u32);
-            w.extend_from_slice(l);
-        }
-        w
-    }
-
-    /// The traces of a model with memory `k` and `s` values placing each event
-    /// ([`trace_places`]) whose levels have `nodes` nodes each, from [`Traces::to_words`]
-    /// (loaded, untrusted): every level sized as the configuration sizes it
-    /// ([`trace_words`]), every bottom node before a chunk a node, every bottom event a node
-    /// or the end, every upper entry a node of its level (or the padding), every event's
-    /// place `s` finite values (or all padding); otherwise what is wrong.
-    pub(crate) fn from_words(
-        w: &[u32],
-        k: usize,
-        s: usize,
-        nodes: &[usize],
-    ) -> Result<Traces, String> {
-        let mut it = w.iter().copied();
-        let mut next = |what: &str| it.next().ok_or_else(|| format!("traces end before {what}"));
-        let levels = next("the level count")? as usize;
-        if levels != nodes.len() {
+    /// Check traces loaded from a file (untrusted) for a model with memory `k` and `s`
+    /// values placing each event ([`trace_places`]) whose levels have `nodes` nodes each:
+    /// chunks only where the configuration keeps them ([`trace_words`]), by node, at most
+    /// [`TRACED_CHUNKS`] a node, each [`trace_width`] words; every bottom node before a chunk
+    /// a node, every bottom event a node or the end, every upper entry a node of its level
+    /// (or the padding), every event's place `s` finite values (or all padding); otherwise
+    /// what is wrong.
+    pub(crate) fn check(&self, k: usize, s: usize, nodes: &[usize]) -> Result<(), String> {
+        if self.levels.len() != nodes.len() {
             return Err(format!(
-                "traces of {levels} levels, the model has {}",
+                "traces of {} levels, the model has {}",
+                self.levels.len(),
                 nodes.len()
             ));
         }
         let n0 = nodes[0];
-        let mut out = Vec::with_capacity(levels);
-        for (l, &n) in nodes.iter().enumerate() {
-            let len = next("a level's length")? as usize;
-            let want = if l == 0 { 0 } else { trace_words(k, l, s, n) };
-            if len != want {
-                return Err(format!("level {l} holds {len} words, {want} expected"));
+        for (l, (chunks, &n)) in self.levels.iter().zip(nodes).enumerate() {
+            let kept = l > 0 && trace_words(k, l, s, n) > 0;
+            if !kept && !chunks.is_empty() {
+                return Err(format!("level {l} holds traced chunks, none expected"));
             }
-            let words = (0..len)
-                .map(|_| next("a word"))
-                .collect::<Result<Vec<u32>, String>>()?;
-            if len > 0 {
-                let width = trace_width(k, l, s).unwrap_or(usize::MAX);
-                let span = k.pow(l as u32);
-                let postures = trace_postures_at(k, l);
-                for (i, slot) in words.chunks(width).enumerate() {
-                    let bad = |what: &str, v: u32| {
-                        format!(
-                            "level {l} node {} chunk {}: {what} {v}",
-                            i / TRACED_CHUNKS,
-                            i % TRACED_CHUNKS
-                        )
-                    };
-                    if slot[1] != u32::MAX && slot[1] as usize >= n0 {
-                        return Err(bad("bottom node before it", slot[1]));
-                    }
-                    if let Some(&e) = slot[TRACE_HEAD..TRACE_HEAD + span]
+            let (Some(width), true) = (trace_width(k, l, s), kept) else {
+                continue;
+            };
+            let span = k.pow(l as u32);
+            let postures = trace_postures_at(k, l);
+            for (i, c) in chunks.iter().enumerate() {
+                let bad =
+                    |what: &str, v: u32| format!("level {l} node {} chunk {i}: {what} {v}", c.node);
+                let slot = &c.words;
+                if slot.len() < width {
+                    return Err(format!(
+                        "traces end before a word: level {l} chunk {i} holds {} words, {width} expected",
+                        slot.len()
+                    ));
+                }
+                if slot.len() > width {
+                    return Err(bad("words beyond its width", slot.len() as u32));
+                }
+                let earlier = chunks[..i]
+                    .iter()
+                    .rev()
+                    .take_while(|e| e.node == c.node)
+                    .count();
+                if c.node as usize >= n
+                    || chunks[..i].last().is_some_and(|e| e.node > c.node)
+                    || earlier >= TRACED_CHUNKS
+                {
+                    return Err(bad(
+                        "node out of order, outside its map or over its chunks",
+                        c.node,
+                    ));
+                }
+                if slot[0] == u32::MAX {
+                    return Err(bad("chunk index", slot[0]));
+                }
+                if slot[1] != u32::MAX && slot[1] as usize >= n0 {
+                    return Err(bad("bottom node before it", slot[1]));
+                }
+                if let Some(&e) = slot[TRACE_HEAD..TRACE_HEAD + span]
+                    .iter()
+                    .find(|&&e| e != u32::MAX && e != END && e as usize >= n0)
+                {
+                    return Err(bad("bottom event", e));
+                }
+                let mut at = trace_bmus_at(k, l, s);
+                for (m, &nm) in nodes.iter().enumerate().take(l).skip(1) {
+                    let count = k.pow((l - m) as u32);
+                    if let Some(&e) = slot[at..at + count]
                         .iter()
-                        .find(|&&e| e != u32::MAX && e != END && e as usize >= n0)
+                        .find(|&&e| e != u32::MAX && e as usize >= nm)
                     {
-                        return Err(bad("bottom event", e));
+                        return Err(bad(&format!("level {m} entry"), e));
                     }
-                    let mut at = trace_bmus_at(k, l, s);
-                    for (m, &nm) in nodes.iter().enumerate().take(l).skip(1) {
-                        let count = k.pow((l - m) as u32);
-                        if let Some(&e) = slot[at..at + count]
-                            .iter()
-                            .find(|&&e| e != u32::MAX && e as usize >= nm)
-                        {
-                            return Err(bad(&format!("level {m} entry"), e));
-                        }
-                        at += count;
-                    }
-                    let places = &slot[postures..trace_bmus_at(k, l, s)];
-                    for (j, p) in places.chunks(s.max(1)).enumerate() {
-                        let none = p.iter().all(|&v| v == u32::MAX);
-                        if let Some(&v) =
-                            p.iter().find(|&&v| !none && !f32::from_bits(v).is_finite())
-                        {
-                            return Err(bad(&format!("event {j}'s posture value"), v));
-                        }
+                    at += count;
+                }
+                let places = &slot[postures..trace_bmus_at(k, l, s)];
+                for (j, p) in places.chunks(s.max(1)).enumerate() {
+                    let none = p.iter().all(|&v| v == u32::MAX);
+                    if let Some(&v) = p.iter().find(|&&v| !none && !f32::from_bits(v).is_finite()) {
+                        return Err(bad(&format!("event {j}'s posture value"), v));
                     }
                 }
             }
-            out.push(words);
         }
-        if it.next().is_some() {
-            return Err("traces go on past their last level".into());
-        }
-        Ok(Traces { levels: out })
+        Ok(())
     }
 }
 
@@ -214,7 +198,7 @@ impl Decoder<'_> {
         let below = level - 1;
         let n = model.maps[below].len();
         let row = follower_row(n, prev);
-        let table = &model.followers[below];
+        let table = &model.ev().followers[below];
         let cands: Vec<u32> = table[row * FOLLOWERS..(row + 1) * FOLLOWERS]
             .iter()
             .copied()
@@ -227,7 +211,7 @@ impl Decoder<'_> {
                 .iter()
                 .position(|&f| f == m)?;
             (level == 1 && position.is_finite())
-                .then(|| (position - model.follower_at[row * FOLLOWERS + k]).abs())
+                .then(|| (position - model.ev().follower_at[row * FOLLOWERS + k]).abs())
         };
         // the plan nearer where the demonstrations ended after `prev` than where any other
         // follower came: "end here", not "start again", even when the reproduction came home

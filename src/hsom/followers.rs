@@ -3,7 +3,8 @@
 
 use std::collections::BTreeMap;
 
-use super::END;
+/// A node index that stands for the end of the gesture in item sequences and successors.
+pub(crate) const END: u32 = u32::MAX - 1;
 
 /// Followers kept per entry (fixed, so the model's size does not depend on the data).
 pub(crate) const FOLLOWERS: usize = 4;

@@ -1,0 +1,408 @@
+//! The trained model, described once: the types a model file is generated from
+//! ([`super::persist`]), each holding only what its algorithm reads. [`Hsom`] holds what both
+//! algorithms share (the maps, normalisation, training counts, hits, quality figures,
+//! columns, demonstration lengths and the bottom's dwell times) and [`Algo`], the part of its
+//! algorithm: [`PaperModel`] (the paper's, Table I) or [`EventsModel`] (the events
+//! extension). [`GestureModel`] is several gestures over one shared bottom level. Training
+//! lives in [`super::algorithm`] and [`super::events`], reproduction in [`super::paper`] and
+//! [`super::events`], recognition in [`super::recognize`].
+
+use serde::{Deserialize, Serialize};
+
+use crate::config::{HsomConfig, MemoryMode};
+use crate::demos::Demonstration;
+use crate::som::SelfOrganizingMap;
+
+use super::errors::HsomError;
+use super::followers::FOLLOWERS;
+
+/// A trained CoSCo-HSOM: one Kohonen map per level plus the few per-node statistics used by
+/// reproduction, and its algorithm's own part. Its size is bounded by the configuration and
+/// never grows with the length of the training data: the events extension keeps at most a
+/// few training chunks per node (its traces) and, with the consensus weighed by the starts
+/// where the starts are used, one placement of the bottom nodes per training demonstration.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Hsom {
+    pub(crate) config: HsomConfig,
+    /// Per-variable offset and scale: the bottom level sees (x - offset) / scale.
+    pub(crate) offset: Vec<f64>,
+    pub(crate) scale: Vec<f64>,
+    /// Number of times each level was trained.
+    pub(crate) trained: Vec<u64>,
+    /// Per level, per node: how often the node is the BMU when the training data are replayed.
+    pub(crate) hits: Vec<Vec<u32>>,
+    /// Per level quantization and topographic error on the training data.
+    pub(crate) qe: Vec<f64>,
+    pub(crate) te: Vec<f64>,
+    /// Shortest, mean and longest demonstration (samples).
+    pub(crate) demo_len: [f64; 3],
+    /// Shortest, mean and longest demonstration in runs of the same bottom BMU (the length
+    /// of its sequence of distinct bottom nodes).
+    pub(crate) demo_runs: [f64; 3],
+    /// Per bottom node: mean length (steps) of its runs as the BMU inside the demonstrations
+    /// (first and last run of each demonstration, the idle start and end, excluded); 0 when
+    /// it never had such a run.
+    pub(crate) dwell: Vec<f64>,
+    /// Names of the demonstrations' columns (`x0`, `x1`, ... for plain series).
+    #[serde(with = "super::record::strings")]
+    pub(crate) columns: Vec<String>,
+    /// Per level: how often its partial match predicted the next entry of the level below
+    /// exactly during the replay of the training data (0 for level 0).
+    pub(crate) accuracy: Vec<f64>,
+    /// Per level: how often a lookup table of "next entry given the last entry" of the level
+    /// below, counted on the same replay, predicted that entry (0 for level 0): the simple
+    /// baseline every level must beat.
+    pub(crate) lookup: Vec<f64>,
+    /// What only its algorithm reads.
+    pub(crate) algo: Algo,
+    /// The maps, bottom first (last in a model file).
+    pub(crate) maps: Vec<SelfOrganizingMap>,
+}
+
+/// The part of a model only its algorithm reads.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub(crate) enum Algo {
+    /// The paper's procedure (`algorithm = paper`).
+    Paper(PaperModel),
+    /// The events extension (`algorithm = events`).
+    Events(Box<EventsModel>),
+}
+
+/// What the paper's reproduction reads beyond the shared part.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub(crate) struct PaperModel {
+    /// Per bottom node: how many demonstrations end on it.
+    pub(crate) end_hits: Vec<u32>,
+}
+
+/// What the events extension reads beyond the shared part: its levels' match thresholds
+/// and held-out figures, the follower tables and exemplars it decodes with, where it places
+/// bottom events, and the traced training chunks its plans replay.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub(crate) struct EventsModel {
+    /// Per level: the largest partial-match distance (RMS per known
+    /// coordinate) seen when the training data were replayed; a level whose match in
+    /// reproduction is farther is "confused".
+    pub(crate) threshold: Vec<f64>,
+    /// Per level: `accuracy` and `lookup` measured held out, on each
+    /// training demonstration's entries by the levels trained on the others (the bottom
+    /// kept; [`Hsom::level_trusted`]). Equal to the in-sample figures when there is a
+    /// single demonstration.
+    pub(crate) heldout_accuracy: Vec<f64>,
+    pub(crate) heldout_lookup: Vec<f64>,
+    /// Per level: up to `FOLLOWERS` entries that most often followed
+    /// each node (and, in the last row, the begin) in training; `u32::MAX` pads. Decoding
+    /// by content chooses among them.
+    pub(crate) followers: Vec<Vec<u32>>,
+    /// Per entry of the bottom's follower table: the mean position
+    /// (bottom events before it / the mean number of events per demonstration) at which
+    /// that follower came after its row's entry in training; level 1 decodes among
+    /// followers by content and position.
+    pub(crate) follower_at: Vec<f64>,
+    /// Per level >= 1, per node: the position of its exemplar chunk in its demonstration
+    /// (the phase of the chunk's context: bottom events before it / the mean number per
+    /// demonstration). Expanding a plan, each slot's position follows from its top node's
+    /// exemplar and the tiling, and level 1 decodes by content and that position.
+    pub(crate) exemplar_phase: Vec<Vec<f64>>,
+    /// Per level >= 1, per node, the lower entries of its exemplar (`memory` each).
+    pub(crate) exemplars: Vec<Vec<u32>>,
+    /// Per bottom node, where a reproduction places its events (state part, normalised,
+    /// `stateLength` values per node): the consensus of the demonstrations it was trained on
+    /// (a branch of a model of several gestures: its own gesture's; [`Hsom::fit_postures`]);
+    /// `None`: the nodes' weights.
+    pub(crate) knots: Option<Vec<f64>>,
+    /// With `consensus = start`: each training demonstration's own placement of the bottom
+    /// nodes and its first posture, weighed at reproduction by the start
+    /// ([`StartKnots`]).
+    pub(crate) start_knots: Option<StartKnots>,
+    /// Where the demonstrations ended: per bottom node, how many had
+    /// their last event on it, then the mean of their last postures (`stateLength` values,
+    /// normalised). A reproduction whose end is decoded after a node no demonstration ended
+    /// after ends there (docs/ALGORITHM.md, passage 4).
+    pub(crate) end_postures: Option<Vec<f64>>,
+    /// The training demonstrations' entries at every level and which training chunk each
+    /// node's exemplar is: a plan replays the demonstrated chunk its
+    /// node stands for ([`Traces`]).
+    pub(crate) traces: Option<Traces>,
+}
+
+/// What [`Hsom::ev`] reads for a model of the paper's algorithm: nothing.
+static NO_EVENTS: EventsModel = EventsModel {
+    threshold: Vec::new(),
+    heldout_accuracy: Vec::new(),
+    heldout_lookup: Vec::new(),
+    followers: Vec::new(),
+    follower_at: Vec::new(),
+    exemplar_phase: Vec::new(),
+    exemplars: Vec::new(),
+    knots: None,
+    start_knots: None,
+    end_postures: None,
+    traces: None,
+};
+
+impl EventsModel {
+    /// The events part of an untrained model configured by `p`: nothing placed, nothing
+    /// traced, every follower and exemplar the padding.
+    pub(crate) fn untrained(p: &crate::config::HsomParams) -> Self {
+        let nodes = |l: &crate::config::LevelParams| l.rows * l.cols;
+        EventsModel {
+            threshold: vec![0.0; p.height],
+            heldout_accuracy: vec![0.0; p.height],
+            heldout_lookup: vec![0.0; p.height],
+            followers: p
+                .levels
+                .iter()
+                .map(|l| vec![u32::MAX; (nodes(l) + 1) * FOLLOWERS])
+                .collect(),
+            follower_at: vec![0.0; (nodes(&p.levels[0]) + 1) * FOLLOWERS],
+            exemplar_phase: p.levels.iter().map(|l| vec![0.0; nodes(l)]).collect(),
+            exemplars: p
+                .levels
+                .iter()
+                .map(|l| vec![u32::MAX; nodes(l) * p.memory])
+                .collect(),
+            knots: None,
+            start_knots: None,
+            end_postures: None,
+            traces: None,
+        }
+    }
+}
+
+impl Hsom {
+    /// The events extension's part (`None` for a model of the paper's algorithm).
+    pub(crate) fn events(&self) -> Option<&EventsModel> {
+        match &self.algo {
+            Algo::Events(e) => Some(e),
+            Algo::Paper(_) => None,
+        }
+    }
+
+    /// The events extension's part, to train it (`None` for the paper's algorithm).
+    pub(crate) fn events_mut(&mut self) -> Option<&mut EventsModel> {
+        match &mut self.algo {
+            Algo::Events(e) => Some(e),
+            Algo::Paper(_) => None,
+        }
+    }
+
+    /// The events extension's part where only a model of the events extension gets (its
+    /// training, planning and decoding); a model of the paper's algorithm reads an empty one.
+    pub(crate) fn ev(&self) -> &EventsModel {
+        self.events().unwrap_or(&NO_EVENTS)
+    }
+
+    /// The events extension's part to train, made untrained where the model has none.
+    pub(crate) fn ev_mut(&mut self) -> &mut EventsModel {
+        if let Algo::Paper(_) = self.algo {
+            self.algo = Algo::Events(Box::new(EventsModel::untrained(self.config.params())));
+        }
+        match &mut self.algo {
+            Algo::Events(e) => e,
+            Algo::Paper(_) => unreachable!("the events part was made above"),
+        }
+    }
+}
+
+/// The consensus weighed by the starts (docs/ALGORITHM.md, passage 6): where each training
+/// demonstration places every bottom node's events (the node's samples, of every
+/// demonstration, replaced by that demonstration's samples aligned to them, smoothed as
+/// [`Hsom::fit_postures`] smooths the consensus), and where each started. A reproduction
+/// weighs the demonstrations by a Gaussian of the distance between their start and its own,
+/// of the width that best predicted each training demonstration's placement from the others'
+/// (leave-one-out); all alike (`width` infinite) is a candidate, and is the plain
+/// [`consensus`].
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub(crate) struct StartKnots {
+    /// Per training demonstration, its first posture (state part, normalised).
+    pub(crate) starts: Vec<Vec<f64>>,
+    /// Per training demonstration, its placement of every bottom node (`stateLength` values
+    /// per node).
+    pub(crate) knots: Vec<Vec<f64>>,
+    /// The Gaussian's width (normalised units); infinite: all alike.
+    pub(crate) width: f64,
+}
+
+/// What the levels were trained on, kept so a plan can replay it (`plan = traced`): per
+/// level l >= 1, per node, up to [`TRACED_CHUNKS`] of the training chunks it was the BMU of,
+/// nearest its weights first (the exemplar first), each as [`trace_width`] words (`u32::MAX`
+/// pads what is not there), by node. At most nodes x [`TRACED_CHUNKS`] chunks a level, a bound
+/// set by the configuration alone; level 0, and a level over [`TRACE_BUDGET`], keeps none.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub(crate) struct Traces {
+    pub(crate) levels: Vec<Vec<TracedChunk>>,
+}
+
+/// One traced training chunk of a node ([`Traces`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub(crate) struct TracedChunk {
+    /// The node it was the BMU of.
+    pub(crate) node: u32,
+    /// [`trace_width`] words: its head, bottom events, their places and the lower levels'
+    /// BMUs.
+    pub(crate) words: Vec<u32>,
+}
+
+/// One hierarchy for one or several gestures: a shared bottom level, one branch of upper
+/// levels per label (every branch is an [`Hsom`] whose bottom is the shared one).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct GestureModel {
+    /// Empty for a single-gesture model (one unlabelled branch).
+    #[serde(with = "super::record::strings")]
+    pub(crate) labels: Vec<String>,
+    /// Per label, what recognition compares with (empty without labels).
+    pub(crate) calibration: Vec<Calibration>,
+    pub(crate) branches: Vec<Hsom>,
+    /// How recognition scores (not stored: the default on load).
+    #[serde(skip)]
+    pub(crate) scoring: Scoring,
+}
+
+/// What recognition compares a label's matches with: per level, the branch's mean chunk
+/// distance on its training data (index 0, the bottom, unused), and the score above which a
+/// sequence is not this gesture.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub(crate) struct Calibration {
+    pub(crate) reference: Vec<f64>,
+    pub(crate) threshold: f64,
+}
+
+impl Calibration {
+    /// Whether it fits a model of `height` levels (loaded, untrusted): one reference per
+    /// level, every value finite and not negative.
+    pub(crate) fn fits(&self, height: usize) -> bool {
+        self.reference.len() == height
+            && self
+                .reference
+                .iter()
+                .chain([&self.threshold])
+                .all(|x| x.is_finite() && *x >= 0.0)
+    }
+}
+
+/// How a label's matches become its score (lower is better).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub enum Scoring {
+    /// The mean over every level of its mean distance (the bottom's postures and the levels'
+    /// chunks), in the shared normalised units of every branch.
+    Raw,
+    /// Level 1's mean chunk distance alone.
+    Level1,
+    /// The bottom alone: the mean distance of the events' postures to the nearest posture
+    /// the gesture used (its branch's statistics). The default: measured best on the
+    /// development seeds (docs/ALGORITHM.md "Several gestures in one hierarchy").
+    #[default]
+    Postures,
+    /// The mean over levels of distance / the label's held-out reference (the same mean on
+    /// its own demonstrations held out, leave-one-out).
+    Relative,
+}
+
+/// Sizes of the event encoding.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Layout {
+    /// stateLength.
+    pub(crate) s: usize,
+    /// memory: entries per chunk.
+    pub(crate) k: usize,
+}
+
+impl Layout {
+    pub(crate) fn of(config: &HsomConfig) -> Self {
+        let p = config.params();
+        Layout {
+            s: p.state_length,
+            k: p.memory,
+        }
+    }
+    /// Values of one slot.
+    pub(crate) fn slot(&self) -> usize {
+        2 * self.s + 2
+    }
+    /// Values of the context.
+    pub(crate) fn ctx(&self) -> usize {
+        self.s + 2
+    }
+    /// Input length of a level above the bottom.
+    pub(crate) fn dim(&self) -> usize {
+        self.ctx() + self.k * self.slot()
+    }
+    pub(super) fn slot_range(&self, j: usize) -> std::ops::Range<usize> {
+        let o = self.ctx() + j * self.slot();
+        o..o + self.slot()
+    }
+}
+
+/// A demonstration as borrowed rows with a name for messages.
+pub(crate) struct Series<'a> {
+    pub(crate) source: &'a str,
+    pub(crate) rows: &'a [Vec<f64>],
+}
+
+/// The largest magnitude of a normalised training value: squared distances over thousands
+/// of inputs stay far from overflowing.
+pub(crate) const MAX_NORMALISED: f64 = 1e100;
+
+pub(crate) fn check_series(
+    series: &[Series<'_>],
+    state: usize,
+    horizon: usize,
+) -> Result<(), HsomError> {
+    if series.is_empty() {
+        return Err(HsomError::NoDemonstrations);
+    }
+    let needed = (horizon + 1).max(2);
+    for s in series {
+        if s.rows.len() < needed {
+            return Err(HsomError::TooShort {
+                demo: s.source.to_string(),
+                rows: s.rows.len(),
+                needed,
+            });
+        }
+        for (i, r) in s.rows.iter().enumerate() {
+            if r.len() != state {
+                return Err(HsomError::DimensionMismatch {
+                    demo: s.source.to_string(),
+                    row: i,
+                    expected: state,
+                    found: r.len(),
+                });
+            }
+            if let Some(c) = r.iter().position(|v| !v.is_finite()) {
+                return Err(HsomError::NonFinite {
+                    demo: s.source.to_string(),
+                    row: i,
+                    column: c,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The demonstrations as borrowed series for training.
+pub(crate) fn demo_series(demos: &[Demonstration]) -> Vec<Series<'_>> {
+    demos
+        .iter()
+        .map(|d| Series {
+            source: &d.source,
+            rows: &d.rows,
+        })
+        .collect()
+}
+
+pub(crate) fn input_dim(config: &HsomConfig, level: usize) -> usize {
+    let p = config.params();
+    if level == 0 {
+        p.state_length + p.action_length
+    } else if p.kind() == crate::config::Algorithm::Events {
+        Layout::of(config).dim()
+    } else {
+        match p.memory_mode() {
+            MemoryMode::Lists => 2 * p.memory,
+            MemoryMode::Levels => p.levels[level - 1].rows * p.levels[level - 1].cols,
+        }
+    }
+}
