@@ -42,7 +42,7 @@ struct Args {
     /// CoSCo-HSOM configuration (XML).
     #[arg(long, default_value = "configs/nao-gestures.xml")]
     config: PathBuf,
-    /// Also the ceiling through a bottom shared by all the gestures given (issue 9: one
+    /// Also the ceiling through a bottom shared by all the gestures given (one
     /// hierarchy, one branch per gesture), beside the gesture learned alone.
     #[arg(long)]
     shared: bool,

@@ -1,4 +1,4 @@
-//! Several gestures in one hierarchy, held out (issue 9): recognition beside 1-NN DTW, early
+//! Several gestures in one hierarchy, held out: recognition beside 1-NN DTW, early
 //! recognition, fidelity shared vs alone, unknown gestures and negative controls; Markdown
 //! on stdout, every number with `--json FILE`.
 //!

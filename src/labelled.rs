@@ -1,4 +1,4 @@
-//! The steps of several gestures (issue 9), shared by `cosco` and the Python package:
+//! The steps of several gestures, shared by `cosco` and the Python package:
 //! labelled demonstration directories (`demos/<label>/*.csv`), training one hierarchy on
 //! them, reproduction on cue, continuation of a prefix, and recognition of files.
 //!

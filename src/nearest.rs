@@ -1,4 +1,4 @@
-//! The baseline of recognition (issue 9): a 1-nearest-neighbour classifier under dynamic time
+//! The baseline of recognition: a 1-nearest-neighbour classifier under dynamic time
 //! warping ([`crate::dtw`]), the strong standard for time-series classification. A query
 //! takes the label of the training sequence at the smallest DTW distance per path step.
 

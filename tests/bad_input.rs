@@ -1,4 +1,4 @@
-//! Bad input never crashes, hangs or is silently "fixed" (the classes of issue 11 answered in
+//! Bad input never crashes, hangs or is silently "fixed" (the classes of bad input answered in
 //! the library; docs/RELIABILITY.md): an MJCF model whose time step the controller cannot run,
 //! a model lacking an actuator, a configuration whose root is not `<hsom>`, demonstrations
 //! too short for the action horizon or too large to train on, and model files whose

@@ -336,7 +336,7 @@ fn a_grab_during_execution_is_scored_against_the_held_out_demonstration() {
     // of the plan (reading-watch's apex) holds still where the plan would have, and can
     // then lie nearer a held-out demonstration that held longer; measured at 0.3, 0.5 and
     // 0.7 of the demonstration, some fold of every method does so somewhere, GMM/GMR's
-    // included (docs/ALGORITHM.md, "In a closed loop")
+    // included (docs/ALGORITHM.md, section 3.10)
     let dtw = |r: &cosco_hsom::experiment::FoldScores| r.fidelity.joint_dtw_rad_per_step.mean;
     for (method, folds) in [
         (

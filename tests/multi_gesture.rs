@@ -1,4 +1,4 @@
-//! Several gestures in one hierarchy (issue 9), on small 2-D gestures that train in well
+//! Several gestures in one hierarchy, on small 2-D gestures that train in well
 //! under a second: recognition held out beside its negative controls (shuffled labels, an
 //! unknown gesture), reproduction on cue, save and load (a single-gesture file still loads
 //! as one gesture), and bad input through `cosco` with errors naming the directory or label.

@@ -1,4 +1,4 @@
-//! `simulate --gesture all` (issue 9): one hierarchy for every gesture on the simulated arm,
+//! `simulate --gesture all`: one hierarchy for every gesture on the simulated arm,
 //! end to end: the files, the report's sections and numbers that agree with each other, the
 //! saved model, and the refusals.
 #![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)

@@ -1,4 +1,4 @@
-//! Several gestures in one hierarchy on the simulated arm (issue 9), held out: per seed,
+//! Several gestures in one hierarchy on the simulated arm, held out: per seed,
 //! every gesture is recorded `train + test` times; one hierarchy learns the first `train` of
 //! each, and is measured on the others against each gesture learned alone (fidelity of the
 //! executed reproduction) and against a 1-nearest-neighbour DTW classifier (recognition,

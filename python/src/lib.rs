@@ -428,7 +428,7 @@ impl Hsom {
         self.postures(py, |m| steps::reproduce(m, &self.name, &initial))
     }
 
-    /// The nearest-sequence baseline (docs/ALGORITHM.md, "A simpler thing does as well"): of
+    /// The nearest-sequence baseline (docs/ALGORITHM.md, section 3.6): of
     /// `demos` (a list of 2-D arrays as for `fit`, normally the training demonstrations), the
     /// one whose first posture is nearest `initial`, its bottom events executed through this
     /// model's bottom code from `initial`, with no level above. A 2-D array as `reproduce`

@@ -1,4 +1,4 @@
-//! `simulate --gesture all` (issue 9): one hierarchy learns every gesture of the library, each
+//! `simulate --gesture all`: one hierarchy learns every gesture of the library, each
 //! is reproduced on cue and executed on the simulated arm, and the report sets the shared
 //! hierarchy's per-gesture fidelity beside the same gesture learned alone, with the
 //! recognition of held-out demonstrations (confusion matrices of CoSCo-HSOM and of the 1-NN
@@ -156,8 +156,7 @@ impl AllReport {
             "Configuration {}; {} demonstrations per gesture (seed {}, encoder noise {} rad), \
              leave-one-out: each fold learns from {} of every gesture and is scored on the \
              remaining one of each. One hierarchy: a shared bottom level (postures) and one \
-             branch of upper levels per gesture (docs/ALGORITHM.md, \"Several gestures in one \
-             hierarchy\").\n",
+             branch of upper levels per gesture (docs/ALGORITHM.md, section 4).\n",
             self.config,
             self.count,
             self.seed,

@@ -154,7 +154,7 @@ pub(crate) enum Presentation {
     /// configuration's seed). For a bottom shared by several gestures: in order, the map
     /// follows each gesture's demonstrations in turn and the next gesture pulls away the nodes
     /// the last one placed; drawn at random, every gesture keeps its share to the end of
-    /// training (docs/ALGORITHM.md, "Several gestures in one hierarchy"). Only with the events
+    /// training (docs/ALGORITHM.md, section 4). Only with the events
     /// extension, whose upper levels are trained afterwards on the events.
     Shuffled,
 }

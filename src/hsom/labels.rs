@@ -1,5 +1,5 @@
-//! Several gestures in one hierarchy (issue 9; docs/ALGORITHM.md "Several gestures in one
-//! hierarchy"): a [`GestureModel`] is one bottom level (the postures) shared by every gesture
+//! Several gestures in one hierarchy (docs/ALGORITHM.md, section
+//! 4): a [`GestureModel`] is one bottom level (the postures) shared by every gesture
 //! and, above it, one branch of upper levels per gesture label. Training fits the bottom on
 //! every demonstration, then each label's upper levels on that label's demonstrations (the
 //! events extension's own training, unchanged); the label primes the top of the hierarchy on
@@ -129,7 +129,7 @@ impl HsomConfig {
             self.clone()
         };
         let shared = if learn {
-            // drawn at random when shared (docs/ALGORITHM.md, "Several gestures")
+            // drawn at random when shared (docs/ALGORITHM.md, section 4)
             let order = if sets.len() > 1 {
                 Presentation::Shuffled
             } else {

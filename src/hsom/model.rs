@@ -118,7 +118,7 @@ pub(crate) struct EventsModel {
     /// Where the demonstrations ended: per bottom node, how many had
     /// their last event on it, then the mean of their last postures (`stateLength` values,
     /// normalised). A reproduction whose end is decoded after a node no demonstration ended
-    /// after ends there (docs/ALGORITHM.md, passage 4).
+    /// after ends there (docs/ALGORITHM.md, section 3.4).
     pub(crate) end_postures: Option<Vec<f64>>,
     /// The training demonstrations' entries at every level and which training chunk each
     /// node's exemplar is: a plan replays the demonstrated chunk its
@@ -205,7 +205,7 @@ impl Hsom {
     }
 }
 
-/// The consensus weighed by the starts (docs/ALGORITHM.md, passage 6): where each training
+/// The consensus weighed by the starts (docs/ALGORITHM.md, section 3.7): where each training
 /// demonstration places every bottom node's events (the node's samples, of every
 /// demonstration, replaced by that demonstration's samples aligned to them, smoothed as
 /// [`Hsom::fit_postures`] smooths the consensus), and where each started. A reproduction
@@ -291,7 +291,7 @@ pub enum Scoring {
     Level1,
     /// The bottom alone: the mean distance of the events' postures to the nearest posture
     /// the gesture used (its branch's statistics). The default: measured best on the
-    /// development seeds (docs/ALGORITHM.md "Several gestures in one hierarchy").
+    /// development seeds (docs/ALGORITHM.md, section 4).
     #[default]
     Postures,
     /// The mean over levels of distance / the label's held-out reference (the same mean on

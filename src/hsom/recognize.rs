@@ -1,5 +1,5 @@
-//! Recognition with a multi-gesture hierarchy (docs/ALGORITHM.md "Several gestures in one
-//! hierarchy"): a sequence's bottom events are pushed up every label's branch exactly as in
+//! Recognition with a multi-gesture hierarchy (docs/ALGORITHM.md, section
+//! 4): a sequence's bottom events are pushed up every label's branch exactly as in
 //! training; at each level above the bottom, each chunk is matched by the branch's map and
 //! its RMS distance (per coordinate) taken. A label's score is the mean over levels of the
 //! level's mean distance divided by the same mean on the branch's own training data: 1 is

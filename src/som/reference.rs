@@ -1,10 +1,11 @@
-//! The map's loops as they were before the blocked layout (issue 13), kept as a reference.
+//! The map's loops node by node, without the blocked layout: the reference the kernels are
+//! tested and benchmarked against.
 
 use super::algorithm::positions;
 use super::{Neighbourhood, SelfOrganizingMap};
 
-/// The node-major map of this crate before the blocked layout (issue 13), its loops kept
-/// verbatim: the reference the kernels are tested against, and the "before" of the benchmarks.
+/// A node-major map with plain loops: the reference the blocked kernels are tested against,
+/// and the comparison of the benchmarks.
 /// Not for use in the algorithm.
 #[derive(Debug, Clone)]
 pub struct NodeMajorMap {

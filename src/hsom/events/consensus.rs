@@ -18,7 +18,7 @@ pub(crate) const MAX_ALIGNED: usize = 2000;
 /// lane a little to the side) it is their average at that point of the gesture, as
 /// GMM/GMR's regression is, with no time axis: a wave's turning points are aligned with
 /// each other whatever their tempo. `aligned`: the demonstrations' alignments
-/// ([`aligned_samples`] of `norm`). docs/ALGORITHM.md, passage 6 of the events extension.
+/// ([`aligned_samples`] of `norm`). docs/ALGORITHM.md, section 3.7.
 pub(crate) fn consensus(norm: &[Vec<Vec<f64>>], aligned: &Aligned) -> Vec<Vec<Vec<f64>>> {
     let n = norm.len();
     let mut out: Vec<Vec<Vec<f64>>> = norm.to_vec();
@@ -106,8 +106,8 @@ pub(super) fn aligned_samples(norm: &[Vec<Vec<f64>>], max_aligned: usize) -> Ali
 /// values at the ends), and `b` is read there, linearly between its samples. Where the other
 /// sequence is slower than `b`, its samples then move on through `b` at an even pace instead
 /// of all taking one sample of `b` (a stair that a traced plan's short events, each the mean
-/// of a few samples, would carry into its knots as uneven steps: docs/ALGORITHM.md, passage
-/// 6, "A consensus without stairs").
+/// of a few samples, would carry into its knots as uneven steps: docs/ALGORITHM.md, section
+/// 3.7).
 pub(super) fn smooth_warp(warp: &[f64], b: &[Vec<f64>]) -> Vec<Vec<f64>> {
     let n = warp.len();
     if n == 0 || b.is_empty() {
@@ -234,8 +234,8 @@ impl Hsom {
     /// i.e. per node the mean of the values of the events on it, weighted by the map's
     /// neighbourhood at its final radius around each event's node. A node no event is on
     /// keeps its weights. Flattened, `stateLength` values per node. [`Hsom::fit_postures`]
-    /// gives it the demonstrations' consensus (docs/ALGORITHM.md, passage 6 of the events
-    /// extension, and "Several gestures").
+    /// gives it the demonstrations' consensus (docs/ALGORITHM.md, sections 3.7
+    /// and 4).
     fn smoothed_postures(&self, sums: &NodeSums) -> Vec<f64> {
         let p = self.config.params();
         let s = p.state_length;
@@ -326,7 +326,7 @@ impl Hsom {
     /// used, weighed by that demonstration's start as [`StartKnots`] weighs them; otherwise
     /// all alike ([`consensus`]). A plan
     /// that follows a demonstration places its events at their node's place plus this offset
-    /// (docs/ALGORITHM.md, passage 6, "Traced events"): the demonstrations' agreement at that
+    /// (docs/ALGORITHM.md, section 3.7): the demonstrations' agreement at that
     /// event of that demonstration, where a node's place pools every visit to the node, from
     /// wherever in the gesture it came. Per event the model keeps, in the traced chunks, this
     /// offset, each half's, and each half's lowest and highest consensus values per variable

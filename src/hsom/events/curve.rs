@@ -311,7 +311,7 @@ fn on_segment(t: &[f64], v: &[f64], m: &[f64], seg: usize, ti: f64) -> f64 {
 /// knots (`knots = halves`): a half of one sample puts its knot at one sample of the
 /// consensus, whose unevenness from sample to sample then shows as speed (salute seed 2 at
 /// 2.11x the demonstrations' jerk with halves from two samples); from two samples on, each
-/// knot's place is a mean. Measured: docs/ALGORITHM.md, passage 6, "Two knots per event".
+/// knot's place is a mean. docs/ALGORITHM.md, section 3.7.
 const HALF_SAMPLES: f64 = 2.0;
 
 /// Most corrections [`turning_points_kept`] makes (it converges in 3-4 on gestures; the cap
@@ -342,7 +342,7 @@ const TURNING_ITERATIONS: usize = 20;
 /// 0.02 rad deeper and its return home counted as a swing). A decoded knot's target is its node's place, a mean
 /// over every event of that node, not over this span, so only turning points move there.
 /// Elsewhere a span's mean is its middle value: moving those knots too, measured, amplified
-/// the unevenness between them (jerk; docs/ALGORITHM.md, passage 6).
+/// the unevenness between them (jerk; docs/ALGORITHM.md, section 3.7).
 ///
 /// A turning knot of a traced half whose span's extremes are known (`reach[i]`: the lowest
 /// and highest values of the followed demonstration's consensus over the span) is placed at
@@ -353,8 +353,8 @@ const TURNING_ITERATIONS: usize = 20;
 /// demonstrations' deeper trough to one sample of the followed one, the consensus has a
 /// one-sample tip that the half's mean, and the curve whose mean matches it, average away
 /// (wave seed 13, fold 3: the last trough 0.11 rad short of the consensus and the rise after
-/// it 0.28 rad, under the swing count's 0.3; docs/ALGORITHM.md, passage 6, "Where a turn
-/// reaches").
+/// it 0.28 rad, under the swing count's 0.3; docs/ALGORITHM.md, section
+/// 3.8).
 pub(super) fn turning_points_kept(
     t: &[f64],
     target: &[f64],

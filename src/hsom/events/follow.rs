@@ -31,7 +31,7 @@ impl Hsom {
         Ok(self.timed_postures(&norm[0], &norm[0], &executed, StopReason::EndEvent))
     }
 
-    /// The *nearest-sequence* baseline (docs/ALGORITHM.md, "A simpler thing"): of the
+    /// The *nearest-sequence* baseline (docs/ALGORITHM.md, section 3.6): of the
     /// demonstrations `demos` (a model's training demonstrations), the one whose first
     /// posture is nearest `initial` (in the model's normalised units), its bottom events
     /// executed from `initial` exactly as a reproduction's planned events are: each event's
@@ -116,7 +116,7 @@ impl Hsom {
     /// `actionHorizon + 1` of them) with the events extension's own machinery: the prefix's
     /// bottom events are pushed up the lists exactly as executed events are (each level's
     /// context, phase and completed entries become the prefix's), and the levels plan the rest
-    /// from there (docs/ALGORITHM.md, "Continuing a prefix"). The postures start at the
+    /// from there (docs/ALGORITHM.md, section 3.10). The postures start at the
     /// prefix's last posture and hold only the continuation. Needs `algorithm = events`.
     pub fn continue_events(&self, prefix: &[Vec<f64>]) -> Result<Reproduction, HsomError> {
         let p = self.config.params();
@@ -138,8 +138,8 @@ impl Hsom {
     /// Resume this model's own reproduction from `initial` after part of it was executed:
     /// `reading` is what the encoders read meanwhile (in the data's units, from `initial`; at
     /// least `actionHorizon + 1` samples), possibly disturbed (held still, slowed, pushed).
-    /// The closed loop of passage 5 on the plan's own events (docs/ALGORITHM.md, "In a closed
-    /// loop"): the reproduction is planned again from `initial` (it is deterministic), the
+    /// The closed loop on the plan's own events (docs/ALGORITHM.md, section
+    /// 3.10): the reproduction is planned again from `initial` (it is deterministic), the
     /// reading is aligned with its postures by DTW (open end, the model's normalised units),
     /// so each planned event begun by the reading's end has an observed duration (the reading
     /// samples aligned with it); the plan is then made again with those events executed for

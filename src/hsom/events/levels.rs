@@ -442,7 +442,7 @@ impl Hsom {
     /// (the lowest level with a sequence); a level above only if it and every level between
     /// it and level 1, on their own training data, predicted the next entry of the level
     /// below more often than the lookup table of "next entry given the last one" counted on
-    /// the same data (docs/ALGORITHM.md, passage 5). Always true with the paper's algorithm
+    /// the same data (docs/ALGORITHM.md, section 3.5). Always true with the paper's algorithm
     /// and for the bottom.
     pub fn level_trusted(&self, l: usize) -> bool {
         if self.config.params().kind() != crate::config::Algorithm::Events {

@@ -1,5 +1,5 @@
-//! The events extension (`algorithm = events`, docs/ALGORITHM.md "The hierarchy as the sequence
-//! model"): activity lists of events (a bottom node and how long it was held), levels whose
+//! The events extension (`algorithm = events`, docs/ALGORITHM.md, section
+//! 3): activity lists of events (a bottom node and how long it was held), levels whose
 //! nodes tile `memory` consecutive entries of the level below, lists encoded by content, a
 //! learned begin and end, and a reproduction that climbs while the levels' matches lie within
 //! what they saw in training, expands the highest confident level's prediction down to timed

@@ -199,7 +199,7 @@ impl Hsom {
     }
 
     /// The plan of the demonstrated stretch node `matched[level]` stands for, from where the
-    /// reproduction is in its chunk (docs/ALGORITHM.md, passage 5, `plan = traced`): of the
+    /// reproduction is in its chunk (docs/ALGORITHM.md, section 3.6): of the
     /// training chunks the node keeps ([`Traces`]) at the reproduction's place in the gesture
     /// (the same chunk index), the one whose bottom event before it was nearest where the
     /// reproduction is (`ctx.here`: the last executed event's node, or the start; for a
