@@ -34,6 +34,7 @@ run multi $ex/multi_heldout --seeds 11-15 --json "$out/multi.json"
 run lasa $bin/cosco heldout --demos "$out/lasa" --state-length-from-data --json "$out/lasa.json"
 run families $ex/families --seeds 1-6
 run closed_loop $ex/closed_loop --seeds 11-15
+run swing_folds $ex/swing_folds --seeds 12 --out docs/figures
 run replay $ex/replay_baseline --seeds 11-15
 run ceiling $ex/encoding_ceiling --seeds 11-15
 run sweep $bin/cosco sweep --spec configs/sweeps/paper-comparison.toml --out "$out/sweep"
