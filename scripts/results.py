@@ -39,7 +39,7 @@ def section_of(markdown, heading):
 def command(out, name):
     cmd = read(os.path.join(out, name + ".cmd")).strip()
     cmd = cmd.replace(out.rstrip("/") + "/", "OUT/")
-    return f"```sh\nscripts/results.sh   # runs, among the others:\n{cmd}\n```"
+    return f"```sh long\n{cmd}\n```"
 
 
 def median(values):
@@ -234,7 +234,7 @@ def main():
         "",
         "![Joint DTW by gesture and method, held out, seeds 11-15](figures/paper-comparison-joint-dtw.png)",
         "",
-        demoted(sweep_tables, 1),
+        demoted(sweep_tables, 2),
         "",
         "## Cost",
         "",
