@@ -213,7 +213,7 @@ pub fn train_sets(
     })
 }
 
-/// Save a model (`.bin` or `.txt`, atomically): format 8 without labels, 9 with.
+/// Save a model (`.bin` or `.txt`, atomically): one gesture without labels, several with.
 pub fn save_gesture_model(model: &GestureModel, path: &Path) -> Result<(), LabelledError> {
     steps::check_model_extension(path)?;
     model
@@ -221,7 +221,7 @@ pub fn save_gesture_model(model: &GestureModel, path: &Path) -> Result<(), Label
         .map_err(|e| LabelledError::Step(StepError::Persist(e)))
 }
 
-/// Load a model of one or several gestures (`.bin` or `.txt`, format 8 or 9).
+/// Load a model of one or several gestures (`.bin` or `.txt`).
 pub fn load_gesture_model(path: &Path) -> Result<GestureModel, LabelledError> {
     steps::check_model_extension(path)?;
     GestureModel::load(path).map_err(|e| LabelledError::Step(StepError::Persist(e)))

@@ -292,7 +292,7 @@ fn save_and_load_keep_the_model_and_its_size_does_not_grow_with_the_demonstratio
         let total: usize = pa.iter().map(|p| p.bytes).sum();
         assert_eq!(total, a.to_bytes().len());
     }
-    // a single-gesture model (format 10) loads as one unlabelled gesture, byte for byte
+    // a single-gesture model loads as one unlabelled gesture, byte for byte
     let single = config().fit_series(&[gesture([1.0, 0.0], 1)]).unwrap();
     let p = dir.path().join("single.bin");
     single.save(&p).unwrap();

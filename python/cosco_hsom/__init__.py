@@ -10,7 +10,7 @@ The algorithm of the Rust crate ``cosco-hsom``, built without its simulator:
   ``GestureModel.fit(config, {"wave": [...], "salute": [...]})``, ``.reproduce(label, initial)``,
   ``.recognize(sequence)`` (a :class:`Recognition`: the label or None for unknown, per-label
   scores, the sample the decision held from), ``.scores(sequence)``,
-  ``.continue_prefix(prefix)``, ``.save(path)`` / ``GestureModel.load(path)`` (format 11, the
+  ``.continue_prefix(prefix)``, ``.save(path)`` / ``GestureModel.load(path)`` (the
   files of ``cosco train`` on labelled directories).
 - :mod:`cosco_hsom.gmr`: the paper's GMM/GMR baseline.
 - :func:`heldout`: leave-one-out on demonstrations (``cosco heldout``): the hierarchy beside

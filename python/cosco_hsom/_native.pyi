@@ -97,7 +97,7 @@ class GestureModel:
         demonstrations 2-D, samples x variables); needs the events algorithm; releases the GIL."""
     @staticmethod
     def load(path: _Path) -> "GestureModel":
-        """Load a model saved by GestureModel.save or `cosco train` (format 11; format 10 loads
+        """Load a model saved by GestureModel.save or `cosco train` (a single-gesture file loads
         as one unlabelled gesture)."""
     def save(self, path: _Path) -> None:
         """Save the model (.bin or .txt, atomically): the bytes `cosco train` writes."""

@@ -584,8 +584,8 @@ impl GestureModel {
         })
     }
 
-    /// Load a model saved by `GestureModel.save` or `cosco train` (format 11 with labels;
-    /// a single-gesture file of format 10 loads too, without labels).
+    /// Load a model saved by `GestureModel.save` or `cosco train` (with labels;
+    /// a single-gesture file loads too, without labels).
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
         Ok(GestureModel {

@@ -226,7 +226,7 @@ impl AllReport {
         );
         let _ = writeln!(
             s,
-            "## The saved model's reproductions on cue\n\n`model.bin` (format 9) learned from \
+            "## The saved model's reproductions on cue\n\n`model.bin` learned from \
              the first {} demonstrations of each gesture; each gesture reproduced from its \
              held-out demonstration's first posture and executed on the arm \
              (`reproduction_<gesture>.csv`; `clip.gif` plays them in turn).\n",
