@@ -84,13 +84,14 @@ LASA_METHODS = {
     "nearest_sequence": "nearest sequence (same bottom, no level above)",
     "gmm_gmr": "GMM/GMR (the paper's baseline)",
     "replay": "replay of the training demonstration that starts nearest",
+    "promp": "ProMP conditioned on the initial posture",
 }
 
 
 def headline(out):
     nao = nao_headline(json.loads(read(os.path.join(out, "heldout.json"))))
-    lasa = {LASA_METHODS[s["method"]]: s for s in json.loads(read(os.path.join(out, "lasa.json")))["summary"]}
-    labels = list(nao) + [m for m in LASA_METHODS.values() if m not in nao]
+    lasa = {LASA_METHODS.get(s["method"], s["method"]): s for s in json.loads(read(os.path.join(out, "lasa.json")))["summary"]}
+    labels = list(nao) + [m for m in lasa if m not in nao]
     head = (
         "| method | Nao joint DTW (rad/step) | Nao wrist DTW (mm/step) | wave folds keeping the swing count "
         "| LASA relative DTW | LASA jerk ratio | LASA final error (of the diagonal) |\n"
