@@ -7,7 +7,6 @@ import json
 import os
 import re
 import statistics
-import subprocess
 import sys
 
 
@@ -129,9 +128,8 @@ def main():
     if len(sys.argv) != 2:
         sys.exit("usage: scripts/results.py OUT_DIR (the directory scripts/results.sh wrote)")
     out = sys.argv[1]
-    commit = subprocess.run(
-        ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, check=False
-    ).stdout.strip() or "unknown"
+    commit_file = os.path.join(out, "commit")
+    commit = read(commit_file).strip() if os.path.exists(commit_file) else "unknown"
     today = datetime.date.today().isoformat()
     report = read(os.path.join(out, "simulate", "report.md"))
     model_bytes = os.path.getsize(os.path.join(out, "simulate", "model.bin"))

@@ -9,6 +9,7 @@ mkdir -p "$out"
 log() { printf '%s\n' "$*" >&2; }
 
 cargo build --release --bins --examples
+git rev-parse --short HEAD > "$out/commit"
 bin=target/release
 ex=target/release/examples
 
