@@ -7,11 +7,14 @@
 //! a weighted sum of the same `basis` normalised Gaussian radial basis functions of the phase
 //! ([`basis_row`]). Per demonstration the weights of each dimension are fitted by ridge
 //! regression and stacked into one vector (dimension-major); the weight distribution is the
-//! Gaussian of those vectors over the demonstrations (mean and full sample covariance) plus
-//! [`PrompSettings::prior_variance`] on the diagonal, so that it stays positive definite with
-//! the 3-7 demonstrations that are the normal case, and so that a start no demonstration had
-//! can still be reached (the diagonal term moves the weights of the first basis functions
-//! most). [`Promp::reproduce`] conditions that distribution on the postures at z = 0 equal
+//! Gaussian of those vectors over the demonstrations (mean and full sample covariance) plus a
+//! diagonal term ([`PrompSettings::regulariser`] times the sample covariance's mean diagonal,
+//! at least [`MIN_PRIOR_VARIANCE`]). With the 3-7 demonstrations that are the normal case the
+//! sample covariance has rank 2-6 in a space of `basis` x `stateLength` weights: the diagonal
+//! term keeps it positive definite, and it keeps conditioning from reading spurious
+//! correlations into a few demonstrations (where the starts differ only by noise, the sample
+//! covariance alone would bend the whole trajectory to meet a new start; the diagonal term
+//! moves mostly the weights of the first basis functions). [`Promp::reproduce`] conditions that distribution on the postures at z = 0 equal
 //! to the given initial posture (Gaussian conditioning with observation noise
 //! [`PrompSettings::observation_noise`]) and returns the conditioned mean trajectory.
 
@@ -86,12 +89,17 @@ pub enum PrompError {
     },
     /// A matrix that should be positive definite is not (values too large for the
     /// regularisers).
-    #[error("ProMP: the {what} is not positive definite; raise `ridge` or `prior_variance`")]
+    #[error("ProMP: the {what} is not positive definite; raise `ridge` or `regulariser`")]
     NotPositiveDefinite {
         /// Which matrix.
         what: &'static str,
     },
 }
+
+/// The least variance added to the diagonal of the weights' covariance, in the data's units
+/// squared: demonstrations that agree exactly still give a positive definite covariance, and
+/// a start none of them had can still be reached.
+pub const MIN_PRIOR_VARIANCE: f64 = 1e-6;
 
 /// The settings of a ProMP; [`PrompSettings::check`] validates them.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -102,11 +110,12 @@ pub struct PrompSettings {
     /// `ridge` x the demonstration's sample count, so it does not depend on its length);
     /// finite, > 0.
     pub ridge: f64,
-    /// Variance added to the diagonal of the weights' covariance, in the data's units
-    /// squared; finite, > 0.
-    pub prior_variance: f64,
+    /// Added to the diagonal of the weights' covariance, as a fraction of the sample
+    /// covariance's mean diagonal; finite, > 0.
+    pub regulariser: f64,
     /// Variance of the observation of the initial posture when conditioning, in the data's
-    /// units squared; finite, > 0. Small: the reproduction starts at the given posture.
+    /// units squared; finite, > 0. Small against [`MIN_PRIOR_VARIANCE`]: the reproduction
+    /// starts at the given posture.
     pub observation_noise: f64,
 }
 
@@ -115,8 +124,8 @@ impl Default for PrompSettings {
         PrompSettings {
             basis: 20,
             ridge: 1e-6,
-            prior_variance: 1e-4,
-            observation_noise: 1e-8,
+            regulariser: 0.1,
+            observation_noise: 1e-9,
         }
     }
 }
@@ -134,7 +143,7 @@ impl PrompSettings {
         }
         for (name, value) in [
             ("ridge", self.ridge),
-            ("prior_variance", self.prior_variance),
+            ("regulariser", self.regulariser),
             ("observation_noise", self.observation_noise),
         ] {
             if !(value.is_finite() && value > 0.0) {
@@ -161,8 +170,9 @@ impl PrompSettings {
             let c = w - &mean;
             acc + &c * c.transpose()
         }) / (m - 1.0);
+        let prior = (s.regulariser * cov.trace() / dim as f64).max(MIN_PRIOR_VARIANCE);
         for i in 0..dim {
-            cov[(i, i)] += s.prior_variance;
+            cov[(i, i)] += prior;
         }
         let samples = (demos.iter().map(|d| d.rows.len() as f64).sum::<f64>() / m).round() as usize;
         Ok(Promp {

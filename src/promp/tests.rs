@@ -101,10 +101,10 @@ fn bad_settings_name_the_field_and_the_range() {
         (PrompSettings { ridge: 0.0, ..s }, "ridge"),
         (
             PrompSettings {
-                prior_variance: f64::NAN,
+                regulariser: f64::NAN,
                 ..s
             },
-            "prior_variance",
+            "regulariser",
         ),
         (
             PrompSettings {
