@@ -82,6 +82,7 @@ LASA_METHODS = {
     "height1": "the same at height 1 (the bottom level alone)",
     "nearest_sequence": "nearest sequence (same bottom, no level above)",
     "gmm_gmr": "GMM/GMR (the paper's baseline)",
+    "promp": "ProMP conditioned on the initial posture",
     "replay": "replay of the training demonstration that starts nearest",
     "promp": "ProMP conditioned on the initial posture",
 }

@@ -12,6 +12,7 @@
 //! - [`demos`]: demonstration CSV files.
 //! - [`dtw`]: dynamic time warping.
 //! - [`gmr`]: the baseline, GMM/GMR.
+//! - [`promp`]: a second baseline, ProMP conditioned on the initial posture.
 //! - [`gesture`]: synthetic human-like demonstrations.
 //! - [`metrics`]: fidelity metrics.
 //! - [`plot`]: PNG plots.
@@ -52,6 +53,7 @@ pub mod metrics;
 #[cfg(feature = "sim")]
 pub mod mujoco;
 pub mod nearest;
+pub mod promp;
 
 #[cfg(feature = "plot")]
 pub mod plot;

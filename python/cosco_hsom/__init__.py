@@ -14,7 +14,7 @@ The algorithm of the Rust crate ``cosco-hsom``, built without its simulator:
   files of ``cosco train`` on labelled directories).
 - :mod:`cosco_hsom.gmr`: the paper's GMM/GMR baseline.
 - :func:`heldout`: leave-one-out on demonstrations (``cosco heldout``): the hierarchy beside
-  its nearest-sequence baseline, height 1, GMM/GMR and a replay, on the same folds.
+  its nearest-sequence baseline, height 1, GMM/GMR, ProMP and a replay, on the same folds.
 - :func:`dtw`: dynamic time warping.
 - :func:`read_demos`: demonstration CSV files as arrays, ``resample=HZ`` bringing files
   sampled at different rates (their ``time`` columns) to one.

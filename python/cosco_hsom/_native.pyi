@@ -175,6 +175,7 @@ def heldout(
     sample_period: float = 0.025,
     height_1: bool = True,
     gmr: bool = True,
+    promp: bool = True,
     in_sample: bool = True,
     threads: int = 1,
 ) -> Dict[str, Any]:

@@ -883,11 +883,12 @@ impl GmrModel {
 /// mean cost per path step with `per_step=True`.
 /// Leave-one-out on demonstrations (`cosco heldout`): for each demonstration of a gesture,
 /// learn from the others, reproduce from its first sample, score against it alone; the
-/// hierarchy beside the nearest sequence, height 1, GMM/GMR and a replay on the same folds.
+/// hierarchy beside the nearest sequence, height 1, GMM/GMR, ProMP and a replay on the same
+/// folds.
 /// `gestures`: a list of 2-D arrays (one gesture) or a mapping label -> list. Returns the
 /// JSON document of `cosco heldout --json` as a dict. The GIL is released while it runs.
 #[pyfunction]
-#[pyo3(signature = (config, gestures, *, columns = None, sample_period = 0.025, height_1 = true, gmr = true, in_sample = true, threads = 1))]
+#[pyo3(signature = (config, gestures, *, columns = None, sample_period = 0.025, height_1 = true, gmr = true, promp = true, in_sample = true, threads = 1))]
 #[allow(clippy::too_many_arguments)]
 fn heldout<'py>(
     py: Python<'py>,
@@ -897,6 +898,7 @@ fn heldout<'py>(
     sample_period: f64,
     height_1: bool,
     gmr: bool,
+    promp: bool,
     in_sample: bool,
     threads: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
@@ -921,6 +923,7 @@ fn heldout<'py>(
     let settings = eval::LooSettings {
         height_1,
         gmr,
+        promp,
         replay: true,
         in_sample,
         threads,

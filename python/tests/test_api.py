@@ -167,7 +167,7 @@ def test_heldout_scores_every_method_on_the_same_folds(demos):
     assert g["gesture"] == "gesture"
     assert len(g["held_out"]) == 4 and len(g["in_sample"]) == 4
     methods = [r["method"] for r in g["held_out"][0]["runs"]]
-    assert methods == ["hierarchy", "nearest_sequence", "height1", "gmm_gmr", "replay"]
+    assert methods == ["hierarchy", "nearest_sequence", "height1", "gmm_gmr", "promp", "replay"]
     for fold in g["held_out"]:
         for run in fold["runs"]:
             assert run["error"] is None, run
@@ -180,10 +180,16 @@ def test_heldout_scores_every_method_on_the_same_folds(demos):
         {"a": demos[:3], "b": demos[3:6]},
         height_1=False,
         gmr=False,
+        promp=False,
         in_sample=False,
     )
     assert [g["gesture"] for g in two["gestures"]] == ["a", "b"]
     assert all(len(g["in_sample"]) == 0 for g in two["gestures"])
+    assert [r["method"] for r in two["gestures"][0]["held_out"][0]["runs"]] == [
+        "hierarchy",
+        "nearest_sequence",
+        "replay",
+    ]
     for retired in ("consensus", "plan", "alignment", "knots"):
         with pytest.raises(TypeError):
             cfg.replace(**{retired: "all"})

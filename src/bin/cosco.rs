@@ -138,6 +138,7 @@ fn run(cli: Cli) -> Result<()> {
             resample,
             no_height_1,
             no_gmr,
+            no_promp,
             no_in_sample,
             threads,
             json,
@@ -157,6 +158,7 @@ fn run(cli: Cli) -> Result<()> {
                 settings: cosco_hsom::eval::LooSettings {
                     height_1: !no_height_1,
                     gmr: !no_gmr,
+                    promp: !no_promp,
                     replay: true,
                     in_sample: !no_in_sample,
                     threads: threads.map_or_else(cli::cores, |t| t as usize),

@@ -8,6 +8,7 @@ use crate::config::HsomConfig;
 use crate::demos::{sample_period, Demonstration};
 use crate::gmr::{plan_at, GmrParams};
 use crate::hsom::Hsom;
+use crate::promp::PrompSettings;
 
 use super::executor::{Executed, Executor};
 use super::method::{Method, GMR_COMPONENTS};
@@ -138,6 +139,18 @@ pub fn run_fold<E: Executor>(
                             let speed = executor.gmr_lead_in_speed(train, period);
                             plan_at(&m, initial, 1.0 / period, speed)
                                 .map(|p| (p.postures, train_s, t.elapsed().as_secs_f64()))
+                        })
+                        .map_err(msg)
+                }
+                Method::ProMP => {
+                    let t = Instant::now();
+                    PrompSettings::default()
+                        .fit(train)
+                        .and_then(|m| {
+                            let train_s = t.elapsed().as_secs_f64();
+                            let t = Instant::now();
+                            m.reproduce(initial)
+                                .map(|p| (p, train_s, t.elapsed().as_secs_f64()))
                         })
                         .map_err(msg)
                 }

@@ -24,6 +24,8 @@ pub struct LooSettings {
     pub height_1: bool,
     /// GMM/GMR.
     pub gmr: bool,
+    /// ProMP conditioned on the initial posture.
+    pub promp: bool,
     /// The replay of the nearest training demonstration.
     pub replay: bool,
     /// Learn from all and score against each too.
@@ -37,6 +39,7 @@ impl Default for LooSettings {
         LooSettings {
             height_1: true,
             gmr: true,
+            promp: true,
             replay: true,
             in_sample: true,
             threads: 1,
@@ -54,6 +57,7 @@ impl LooSettings {
                 Method::Hierarchy | Method::NearestSequence => true,
                 Method::Height1 => self.height_1,
                 Method::GmmGmr => self.gmr,
+                Method::ProMP => self.promp,
                 Method::Replay => self.replay && held_out,
             })
             .collect()

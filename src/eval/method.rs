@@ -27,17 +27,25 @@ pub enum Method {
     /// initial posture to GMR's first point at the executor's speed
     /// ([`Executor::gmr_lead_in_speed`]), then GMR's mean every sample period.
     GmmGmr,
+    /// The second baseline: ProMP ([`crate::promp`], default [`PrompSettings`]) conditioned on
+    /// the initial posture, its conditioned mean at every sample period for the training
+    /// demonstrations' mean duration; it starts at the initial posture, so no lead-in.
+    ///
+    /// [`PrompSettings`]: crate::promp::PrompSettings
+    #[serde(rename = "promp")]
+    ProMP,
     /// The training demonstration whose first sample is nearest, as recorded (no model).
     Replay,
 }
 
 impl Method {
     /// Every method, in the order of the tables.
-    pub const ALL: [Method; 5] = [
+    pub const ALL: [Method; 6] = [
         Method::Hierarchy,
         Method::NearestSequence,
         Method::Height1,
         Method::GmmGmr,
+        Method::ProMP,
         Method::Replay,
     ];
 
@@ -48,6 +56,7 @@ impl Method {
             Method::NearestSequence => "nearest sequence",
             Method::Height1 => "height 1",
             Method::GmmGmr => "GMM/GMR",
+            Method::ProMP => "ProMP",
             Method::Replay => "replay (no model)",
         }
     }

@@ -127,6 +127,7 @@ pub fn png(path: &std::path::Path, study: &[GestureLoo], fold: usize) -> Result<
         Method::NearestSequence => PALETTE[0],
         Method::Height1 => PALETTE[4],
         Method::GmmGmr => RGBColor(200, 0, 130),
+        Method::ProMP => PALETTE[1],
         Method::Replay => PALETTE[2],
     };
     let points = |rows: &[Vec<f64>], period: f64| -> Vec<(f64, f64)> {

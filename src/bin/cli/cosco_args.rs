@@ -124,8 +124,8 @@ pub enum Command {
     },
     /// Held out on your own demonstrations, without the simulator: for each demonstration,
     /// learn from the others, reproduce from its first sample, score against it; the
-    /// hierarchy beside the nearest sequence, height 1, GMM/GMR and a replay, on the same folds
-    /// (Markdown on stdout).
+    /// hierarchy beside the nearest sequence, height 1, GMM/GMR, ProMP and a replay, on the same
+    /// folds (Markdown on stdout).
     Heldout {
         /// Demonstrations: a directory of *.csv files or files (one gesture), or directories of
         /// gesture subdirectories (DIR/<gesture>/*.csv, each gesture on its own); at least 3
@@ -147,6 +147,9 @@ pub enum Command {
         /// Leave out GMM/GMR.
         #[arg(long)]
         no_gmr: bool,
+        /// Leave out ProMP.
+        #[arg(long)]
+        no_promp: bool,
         /// Leave out the in-sample result (learned from all).
         #[arg(long)]
         no_in_sample: bool,
