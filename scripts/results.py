@@ -2,7 +2,6 @@
 """Write docs/RESULTS.md (and README.md's headline table) from the outputs of
 scripts/results.sh. Usage: scripts/results.py OUT_DIR. Standard library only."""
 
-import datetime
 import json
 import os
 import re
@@ -131,7 +130,6 @@ def main():
     out = sys.argv[1]
     commit_file = os.path.join(out, "commit")
     commit = read(commit_file).strip() if os.path.exists(commit_file) else "unknown"
-    today = datetime.date.today().isoformat()
     report = read(os.path.join(out, "simulate", "report.md"))
     model_bytes = os.path.getsize(os.path.join(out, "simulate", "model.bin"))
     table = headline(out)
@@ -147,7 +145,7 @@ def main():
         "from the others, reproduces from the held-out demonstration's initial posture and is",
         "scored against it alone; in-sample figures stand beside them where a table has them.",
         "",
-        f"Measured on {today} at commit {commit} ({os.cpu_count()} cores).",
+        f"Measured at commit {commit} ({os.cpu_count()} cores).",
         "",
         "## Headline",
         "",

@@ -74,6 +74,24 @@ pub fn load_gesture_model(path: &Path) -> Result<GestureModel> {
     Ok(labelled::load_gesture_model(path)?)
 }
 
+/// The binary model file of `model` by part (`Hsom::file_parts`), as `cosco inspect` prints
+/// it: one line a part, its bytes, then the total and the configuration's ceiling for the
+/// traced chunks (docs/BENCHMARKS.md, "The model file").
+pub fn file_parts_lines(model: &crate::hsom::Hsom) -> String {
+    let parts = model.file_parts();
+    let total: usize = parts.iter().map(|p| p.bytes).sum();
+    let mut s = String::from("binary model file by part (bytes):\n");
+    for p in &parts {
+        s.push_str(&format!("  {:>9}  {}\n", p.bytes, p.part));
+    }
+    s.push_str(&format!("  {total:>9}  total\n"));
+    s.push_str(&format!(
+        "  {:>9}  ceiling of the traced chunks this configuration allows\n",
+        model.traced_ceiling()
+    ));
+    s
+}
+
 /// `cosco evaluate`: the fidelity metrics of a reproduction CSV against demonstrations, and
 /// the unit of its distances (`rad` for the arm's joints, the data's own units otherwise).
 /// Wrist paths need the arm's kinematics: with the feature `sim` they are computed when the

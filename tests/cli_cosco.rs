@@ -49,7 +49,9 @@ fn demos_train_inspect_reproduce_evaluate() {
         .stdout(
             predicate::str::contains("4 levels")
                 .and(predicate::str::contains("QE"))
-                .and(predicate::str::contains("lookup")),
+                .and(predicate::str::contains("lookup"))
+                .and(predicate::str::contains("binary model file by part"))
+                .and(predicate::str::contains("traced chunks")),
         );
     let rep = d.join("rep.csv");
     cosco()

@@ -180,6 +180,7 @@ fn run(cli: Cli) -> Result<()> {
             outln!("{}", model.display());
             if m.labels().is_empty() {
                 out!("{}", m.branches()[0].summary());
+                out!("{}", commands::file_parts_lines(&m.branches()[0]));
             }
             for (l, b) in m.labels().iter().zip(m.branches()) {
                 outln!("gesture {l}:");
