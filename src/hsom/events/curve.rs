@@ -322,11 +322,11 @@ const TURNING_ITERATIONS: usize = 20;
 /// of its neighbours (the initial posture and the end are never moved) is moved until the
 /// monotone cubic's mean over its event's samples (`spans[i - 1]` for knot i) equals the
 /// node's posture (`target[i]`). A node's posture is the mean of the samples of its events
-/// (the consensus, passage 6); at a turning point those samples lie on both sides of the
+/// (the consensus, docs/ALGORITHM.md section 3.7); at a turning point those samples lie on both sides of the
 /// turn, so their mean lies inside it, and a curve that merely passes through the mean turns
 /// short (the wave's troughs 0.05-0.15 rad). Elsewhere the mean of a segment is its middle
 /// value and the knot stays. A fixed point, reached in a few corrections; docs/ALGORITHM.md,
-/// passage 6 of the events extension.
+/// section 3.8.
 ///
 /// Only the samples the knot moves count: those strictly between its neighbours' times. The
 /// first event's first sample is the initial posture itself, which no knot moves; counting it

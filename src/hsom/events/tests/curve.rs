@@ -1,0 +1,184 @@
+//! Unit tests of the events extension: the executed curve (turning points, the monotone cubic).
+
+use super::*;
+
+#[test]
+fn turning_points_are_kept_and_holds_are_not_moved() {
+    // four events of 5 samples: knots at their middles, the initial posture and the end
+    let t = [0.0, 2.5, 7.5, 12.5, 17.5, 20.0];
+    let spans = [(0, 5), (5, 10), (10, 15), (15, 20)];
+    let mean = |c: &[f64], (a, b): (usize, usize)| c[a..b].iter().sum::<f64>() / (b - a) as f64;
+    let peak = [0.0, 0.3, 1.0, 0.3, 0.0, 0.0];
+    let kept = turning_points_kept(&t, &peak, &spans, &[], &[]);
+    let c = monotone_cubic(&t, &kept, 21);
+    // the turn's event has the node's posture as its mean, so the curve turns beyond it
+    assert!(
+        (mean(&c, spans[1]) - 1.0).abs() < 1e-6,
+        "{}",
+        mean(&c, spans[1])
+    );
+    assert!(c.iter().cloned().fold(f64::MIN, f64::max) > 1.0);
+    // only the turning point moved
+    assert!(kept[2] > 1.0);
+    assert_eq!((kept[0], kept[1], kept[3], kept[4]), (0.0, 0.3, 0.3, 0.0));
+    // the control: through the knots alone, the turn's mean falls short of the posture
+    let plain = monotone_cubic(&t, &peak, 21);
+    assert!(mean(&plain, spans[1]) < 0.97, "{}", mean(&plain, spans[1]));
+    // a hold (no strict extremum) is held where it is: nothing moves
+    let hold = [0.0, 1.0, 1.0, 1.0, 0.0, 0.0];
+    assert_eq!(
+        turning_points_kept(&t, &hold, &spans, &[], &[]),
+        hold.to_vec()
+    );
+}
+
+/// A traced half whose consensus dips for a sample or two (DTW's pile-up of the other
+/// demonstrations' deeper trough): its turning knot goes to that dip, so the curve turns
+/// there; matching the half's mean instead (the control, no extremes known) turns well
+/// inside it. A peak goes to its highest value, a knot that is no turning point stays,
+/// and an extreme inside the knot's own place never pulls it back.
+#[test]
+fn a_traced_turn_reaches_the_extreme_of_its_span() {
+    let t = [0.0, 5.0, 15.0, 25.0, 30.0];
+    let spans = [(0, 10), (10, 20), (20, 30)];
+    let traced = [false, true, true, true, false];
+    let trough = [0.0, -0.3, -0.6, -0.3, 0.0];
+    let reach = [
+        None,
+        Some((-0.5, -0.1)),
+        Some((-1.0, -0.4)),
+        Some((-0.5, -0.1)),
+        None,
+    ];
+    let min = |v: &[f64]| {
+        monotone_cubic(&t, v, 31)
+            .into_iter()
+            .fold(f64::MAX, f64::min)
+    };
+    let kept = turning_points_kept(&t, &trough, &spans, &traced, &reach);
+    assert_eq!(kept[2], -1.0);
+    assert!((min(&kept) + 1.0).abs() < 1e-9, "{}", min(&kept));
+    // the control: the mean matched, the curve turns 0.2 rad inside the dip
+    let mean_kept = turning_points_kept(&t, &trough, &spans, &traced, &[]);
+    assert!(min(&mean_kept) > -0.8, "{}", min(&mean_kept));
+    // a peak reaches its highest value
+    let peak: Vec<f64> = trough.iter().map(|v| -v).collect();
+    let up = [None, None, Some((0.4, 1.0)), None, None];
+    assert_eq!(turning_points_kept(&t, &peak, &spans, &traced, &up)[2], 1.0);
+    // knots that are no turning point ignore their extremes
+    let slope = [0.0, -0.3, -0.6, -0.9, -1.0];
+    let kept = turning_points_kept(&t, &slope, &spans, &traced, &reach);
+    assert_eq!(kept, slope.to_vec());
+    // an extreme inside the knot's place (not one of the span's samples) never moves
+    // the turn inward
+    let inside = [None, None, Some((-0.5, -0.4)), None, None];
+    assert_eq!(
+        turning_points_kept(&t, &trough, &spans, &traced, &inside)[2],
+        -0.6
+    );
+}
+
+#[test]
+fn a_turn_at_the_first_sample_is_not_thrown_away_from_the_start() {
+    // a first event of one sample at a turn: its only sample is the initial posture,
+    // which no knot moves, so the knot stays at the node's posture
+    let t = [0.0, 0.5, 5.0, 10.0];
+    let spans = [(0, 1), (1, 9)];
+    let v = [0.0, 0.01, -0.5, -0.5];
+    let kept = turning_points_kept(&t, &v, &spans, &[], &[]);
+    assert_eq!(kept, v.to_vec());
+    let c = monotone_cubic(&t, &kept, 11);
+    assert!(c.iter().all(|&x| x <= 0.01), "{c:?}");
+    // a longer first event at a turn is still kept, on its samples after the start
+    let t = [0.0, 2.5, 7.5, 10.0];
+    let spans = [(0, 5), (5, 10)];
+    let v = [0.0, 0.3, 0.0, 0.0];
+    let kept = turning_points_kept(&t, &v, &spans, &[], &[]);
+    let c = monotone_cubic(&t, &kept, 11);
+    let mean = c[1..5].iter().sum::<f64>() / 4.0;
+    assert!(
+        (mean - 0.3).abs() < 1e-6 && kept[1] < 0.6,
+        "{mean} {kept:?}"
+    );
+}
+
+#[test]
+fn a_turn_in_the_span_beside_its_turning_knot_is_kept_by_both() {
+    // a slow descent to a trough at 20.3 samples, a fast rise, a hold: the trough lies at
+    // the start of the span 20..25, whose mean the rise lifts above the mean of 15..20,
+    // so the knot of 15..20 is the turning point and the one holding the trough is not
+    let c0 = 20.3;
+    let y = |j: f64| {
+        use std::f64::consts::PI;
+        if j < c0 {
+            (PI * (j - (c0 - 20.0)) / 20.0).cos()
+        } else if j < c0 + 12.0 {
+            -(PI * (j - c0) / 12.0).cos()
+        } else {
+            1.0
+        }
+    };
+    let spans: Vec<(usize, usize)> = (0..8).map(|i| (5 * i, 5 * i + 5)).collect();
+    let mut t = vec![0.0];
+    let mut v = vec![y(0.0)];
+    for &(a, b) in &spans {
+        t.push((a + b) as f64 / 2.0);
+        v.push((a..b).map(|j| y(j as f64)).sum::<f64>() / (b - a) as f64);
+    }
+    t.push(40.0);
+    v.push(y(40.0));
+    let n = t.len();
+    assert!(v[4] < v[5] && v[5] < v[6] && v[4] < v[3], "{v:?}");
+    let mean = |c: &[f64], (a, b): (usize, usize)| c[a..b].iter().sum::<f64>() / (b - a) as f64;
+    // the control, decoded knots: only the turning point moves; the span holding the
+    // trough keeps its knot at its mean, and the curve's mean over it is off
+    let plain = turning_points_kept(&t, &v, &spans, &vec![false; n], &[]);
+    assert_eq!(plain[5], v[5]);
+    let c = monotone_cubic(&t, &plain, 41);
+    assert!(mean(&c, spans[4]) > v[5] + 0.01, "{}", mean(&c, spans[4]));
+    // traced knots: the turning point's neighbours keep their spans' means too
+    let mut traced = vec![true; n];
+    (traced[0], traced[n - 1]) = (false, false);
+    let kept = turning_points_kept(&t, &v, &spans, &traced, &[]);
+    let c = monotone_cubic(&t, &kept, 41);
+    for i in [3, 4, 5] {
+        assert!((mean(&c, spans[i - 1]) - v[i]).abs() < 1e-3, "knot {i}");
+    }
+    // and the curve is nearer the one the means were taken from around the turn
+    let off = |c: &[f64]| {
+        let e2: f64 = (10..30).map(|j| (c[j] - y(j as f64)).powi(2)).sum();
+        (e2 / 20.0).sqrt()
+    };
+    let plain_curve = monotone_cubic(&t, &plain, 41);
+    assert!(
+        off(&c) < off(&plain_curve),
+        "{} against {}",
+        off(&c),
+        off(&plain_curve)
+    );
+    // knots away from the turn stay where they are (the ends, the slopes, the hold)
+    for i in [0, 1, 2, 6, 7, 8, 9] {
+        assert_eq!(kept[i], v[i], "knot {i}");
+    }
+    // one trough, no new turn
+    let turns = c
+        .windows(3)
+        .filter(|w| (w[1] - w[0]) * (w[2] - w[1]) < 0.0)
+        .count();
+    assert_eq!(turns, 1, "{c:?}");
+}
+
+#[test]
+fn monotone_cubic_holds_and_does_not_overshoot() {
+    let t = [0.0, 10.0, 20.0, 30.0];
+    let v = [0.0, 1.0, 1.0, 0.0];
+    let m = monotone_tangents(&t, &v);
+    assert_eq!(m[1], 0.0);
+    assert_eq!(m[2], 0.0);
+    for (i, x) in monotone_cubic(&t, &v, 31).into_iter().enumerate() {
+        assert!((0.0..=1.0).contains(&x), "{i}: {x}");
+        if (10..=20).contains(&i) {
+            assert!((x - 1.0).abs() < 1e-12, "the hold is held");
+        }
+    }
+}
