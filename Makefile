@@ -53,6 +53,7 @@ test-python:
 ## doc-commands: run every command block of README.md, CONTRIBUTING.md and docs/ as written,
 ## in a clean clone (blocks fenced ```sh long are skipped; Python blocks need test-python)
 doc-commands:
+	@command -v $(PYTHON) >/dev/null 2>&1 || { $(SUDO) apt-get update && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y --no-install-recommends python3; }
 	$(CARGO) build --bins
 	$(PYTHON) scripts/doc_commands.py
 
