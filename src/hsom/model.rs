@@ -193,14 +193,14 @@ impl Hsom {
         self.events().unwrap_or(&NO_EVENTS)
     }
 
-    /// The events extension's part to train, made untrained where the model has none.
+    /// The events extension's part, to train. Only the events extension's training calls it,
+    /// on a model built with that part from its configuration (`fit_inner`, and the branches
+    /// of a `GestureModel`, which refuses any other algorithm): a paper model is never turned
+    /// into an events model behind its configuration's back.
     pub(crate) fn ev_mut(&mut self) -> &mut EventsModel {
-        if let Algo::Paper(_) = self.algo {
-            self.algo = Algo::Events(Box::new(EventsModel::untrained(self.config.params())));
-        }
         match &mut self.algo {
             Algo::Events(e) => e,
-            Algo::Paper(_) => unreachable!("the events part was made above"),
+            Algo::Paper(_) => unreachable!("events training on a model of the paper's algorithm"),
         }
     }
 }
