@@ -87,6 +87,22 @@ pub enum PrompError {
         /// Values needed.
         expected: usize,
     },
+    /// More weights than the covariance may hold: variables x basis functions above
+    /// [`MAX_WEIGHTS`] (its covariance alone would take more than 128 MiB).
+    #[error(
+        "ProMP: {width} variables x {basis} basis functions = {weights} weights, more than the \
+         {max} a weight covariance may hold; use fewer basis functions or variables"
+    )]
+    TooManyWeights {
+        /// Variables per sample.
+        width: usize,
+        /// Basis functions per variable.
+        basis: usize,
+        /// Their product.
+        weights: usize,
+        /// [`MAX_WEIGHTS`].
+        max: usize,
+    },
     /// A matrix that should be positive definite is not (values too large for the
     /// regularisers).
     #[error("ProMP: the {what} is not positive definite; raise `ridge` or `regulariser`")]
@@ -95,6 +111,10 @@ pub enum PrompError {
         what: &'static str,
     },
 }
+
+/// The most weights (variables x basis functions) a model may have: the full covariance of
+/// 4,096 weights takes 128 MiB, and a wide file must get an error, not exhaust the memory.
+pub const MAX_WEIGHTS: usize = 4096;
 
 /// The least variance added to the diagonal of the weights' covariance, in the data's units
 /// squared: demonstrations that agree exactly still give a positive definite covariance, and
@@ -159,6 +179,15 @@ impl PrompSettings {
         let s = self.check()?;
         let width = check_demos(demos)?;
         let n = s.basis;
+        let weights = width.saturating_mul(n);
+        if weights > MAX_WEIGHTS {
+            return Err(PrompError::TooManyWeights {
+                width,
+                basis: n,
+                weights,
+                max: MAX_WEIGHTS,
+            });
+        }
         let weights: Vec<DVector<f64>> = demos
             .iter()
             .map(|d| demo_weights(&d.rows, width, n, s.ridge))

@@ -168,6 +168,28 @@ fn bad_demonstrations_give_named_errors() {
         "{e}"
     );
     assert!(e.to_string().contains("sine 1"), "{e}");
+    // 300 variables x 20 basis functions: refused before any covariance is allocated; at the
+    // bound it fits
+    let wide = |cols: usize| Demonstration {
+        source: format!("wide {cols}"),
+        columns: (0..cols).map(|c| format!("x{c}")).collect(),
+        time: None,
+        rows: (0..10).map(|i| vec![i as f64; cols]).collect(),
+    };
+    let e = fit(vec![wide(300), wide(300)]);
+    assert!(
+        matches!(
+            e,
+            PrompError::TooManyWeights {
+                weights: 6000,
+                max: MAX_WEIGHTS,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("6000 weights"), "{e}");
+    assert!(PrompSettings::default().fit(&[wide(2), wide(2)]).is_ok());
     let model = PrompSettings::default().fit(&family()).unwrap();
     for bad in [vec![0.0], vec![0.0, f64::NAN], vec![0.0; 3]] {
         assert!(matches!(
