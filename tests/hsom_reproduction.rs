@@ -314,13 +314,22 @@ fn start_weighted_postures_survive_save_and_load_in_both_formats() {
     std::fs::write(&path, bad).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("start-weighted postures"), "{e}");
-    // so is a negative count of demonstrations that ended on a node
+    // so is an end posture of another width, and a negative demonstrations' jerk
     let bad = edit_model_text(&text, |m| {
-        m["algo"]["Events"]["end_postures"][0] = (-1.0).into()
+        m["algo"]["Events"]["end_posture"]
+            .as_array_mut()
+            .unwrap()
+            .push(0.0.into())
     });
     std::fs::write(&path, bad).unwrap();
     let e = Hsom::load(&path).unwrap_err().to_string();
     assert!(e.contains("end-posture values"), "{e}");
+    let bad = edit_model_text(&text, |m| {
+        m["algo"]["Events"]["demo_smoothness"]["jerk"] = (-1.0).into()
+    });
+    std::fs::write(&path, bad).unwrap();
+    let e = Hsom::load(&path).unwrap_err().to_string();
+    assert!(e.contains("demonstrations' jerk"), "{e}");
     // the model keeps its traced chunks (seven places per event: the event, its halves, each
     // half's extremes) in both forms (above); a chunk one word short is refused
     let chunk = |m: &mut serde_json::Value| -> Vec<serde_json::Value> {

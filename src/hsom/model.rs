@@ -115,11 +115,19 @@ pub(crate) struct EventsModel {
     /// nodes and its first posture, weighed at reproduction by the start
     /// ([`StartKnots`]).
     pub(crate) start_knots: Option<StartKnots>,
-    /// Where the demonstrations ended: per bottom node, how many had
-    /// their last event on it, then the mean of their last postures (`stateLength` values,
-    /// normalised). A reproduction whose end is decoded after a node no demonstration ended
-    /// after ends there (docs/ALGORITHM.md, section 3.4).
-    pub(crate) end_postures: Option<Vec<f64>>,
+    /// Where the training demonstrations began: the mean of their first postures (state
+    /// part, normalised). A reproduction's plan begins there (or where the demonstrations
+    /// weighed by its start began, [`StartKnots`]) and is joined from the given posture
+    /// (docs/ALGORITHM.md, section 3.8). `None`: untrained.
+    pub(crate) start_posture: Option<Vec<f64>>,
+    /// How smooth the training demonstrations are: a reproduction's curve is smoothed until
+    /// it is as smooth (docs/ALGORITHM.md, section 3.8). `None`: untrained, or too short to
+    /// tell.
+    pub(crate) demo_smoothness: Option<DemoSmoothness>,
+    /// Where the training demonstrations ended: the mean of their last postures (state part,
+    /// normalised). A reproduction that ends by its end event ends there (docs/ALGORITHM.md,
+    /// section 3.8). `None`: untrained.
+    pub(crate) end_posture: Option<Vec<f64>>,
     /// The training demonstrations' entries at every level and which training chunk each
     /// node's exemplar is: a plan replays the demonstrated chunk its
     /// node stands for ([`Traces`]).
@@ -137,7 +145,9 @@ static NO_EVENTS: EventsModel = EventsModel {
     exemplars: Vec::new(),
     knots: None,
     start_knots: None,
-    end_postures: None,
+    start_posture: None,
+    demo_smoothness: None,
+    end_posture: None,
     traces: None,
 };
 
@@ -164,7 +174,9 @@ impl EventsModel {
                 .collect(),
             knots: None,
             start_knots: None,
-            end_postures: None,
+            start_posture: None,
+            demo_smoothness: None,
+            end_posture: None,
             traces: None,
         }
     }
@@ -203,6 +215,16 @@ impl Hsom {
             Algo::Paper(_) => unreachable!("events training on a model of the paper's algorithm"),
         }
     }
+}
+
+/// How smooth the training demonstrations are (normalised units, per sample).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub(crate) struct DemoSmoothness {
+    /// Their median normalised jerk.
+    pub(crate) jerk: f64,
+    /// Their largest first step (the distance from the first posture to the second): how
+    /// fast they leave their start.
+    pub(crate) start_step: f64,
 }
 
 /// The consensus weighed by the starts (docs/ALGORITHM.md, section 3.7): where each training

@@ -28,7 +28,7 @@ const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of model files, of one gesture or several (the header says which).
-pub const FORMAT_VERSION: u32 = 22;
+pub const FORMAT_VERSION: u32 = 23;
 /// The most bytes a model file may hold (what bincode may be asked to read).
 const MAX_MODEL_BYTES: usize = 1 << 30;
 /// The longest demonstration a model file may record, samples (a day at 1 kHz): the
@@ -374,7 +374,9 @@ impl Hsom {
                 (NODES, binary_len(&e.exemplars)),
                 (PLACES, binary_len(&e.knots)),
                 ("start placements", binary_len(&e.start_knots)),
-                (PLACES, binary_len(&e.end_postures)),
+                ("start placements", binary_len(&e.start_posture)),
+                (LEVELS, binary_len(&e.demo_smoothness)),
+                (PLACES, binary_len(&e.end_posture)),
                 ("traced chunks", binary_len(&e.traces)),
             ]),
         }
@@ -699,20 +701,24 @@ impl Hsom {
                 return bad("a non-finite posture value".into());
             }
         }
-        let want_ends = n0 + state;
-        if let Some(ends) = &e.end_postures {
-            let sound = ends.len() == want_ends
-                && ends.iter().all(|v| v.is_finite())
-                && ends[..n0]
-                    .iter()
-                    .all(|&c| c >= 0.0 && c.fract() == 0.0 && c <= MAX_DEMO_SAMPLES);
-            if !sound {
-                return bad(format!(
-                    "{} end-posture values: none or {want_ends} (a count of demonstrations per \
-                     node, each a whole number >= 0, then stateLength finite values)",
-                    ends.len()
-                ));
+        for (what, p) in [("start", &e.start_posture), ("end", &e.end_posture)] {
+            if let Some(p) = p {
+                if p.len() != state || !p.iter().all(|v| v.is_finite()) {
+                    return bad(format!(
+                        "{} {what}-posture values: none or stateLength = {state} finite values",
+                        p.len()
+                    ));
+                }
             }
+        }
+        if e.demo_smoothness.is_some_and(|d| {
+            ![d.jerk, d.start_step]
+                .iter()
+                .all(|v| v.is_finite() && *v >= 0.0)
+        }) {
+            return bad(
+                "the demonstrations' jerk and first step: none or finite values >= 0".into(),
+            );
         }
         if let Some(s) = &e.start_knots {
             let sound = s.width.is_finite()

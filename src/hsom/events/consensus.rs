@@ -2,8 +2,9 @@
 //! nodes' postures and offsets.
 
 use super::encode::bottom_events;
+use super::encode::dist2;
 use super::traces::{trace_places, trace_postures_at, TRACE_HEAD};
-use crate::hsom::model::{Hsom, StartKnots};
+use crate::hsom::model::{DemoSmoothness, Hsom, StartKnots};
 
 /// Longest sequence [`aligned_samples`] aligns sample by sample: a longer demonstration is aligned
 /// in blocks of consecutive samples (their means), so that an alignment never takes more
@@ -272,13 +273,32 @@ impl Hsom {
     /// neighbourhood pulled its weights. With one demonstration there is nothing to agree
     /// on: the weights (and no stored postures).
     pub(crate) fn fit_postures(&mut self, norm: &[Vec<Vec<f64>>]) {
-        let ends = self.ends(norm);
+        let s = self.config.params().state_length;
+        // the mean of one posture of each demonstration (state part)
+        let mean = |at: fn(&Vec<Vec<f64>>) -> Option<&Vec<f64>>| {
+            let rows: Vec<&Vec<f64>> = norm.iter().filter_map(at).collect();
+            (!rows.is_empty())
+                .then(|| StartKnots::mean(&rows, &vec![1.0; rows.len()])[..s].to_vec())
+        };
+        let (start, end) = (mean(|d| d.first()), mean(|d| d.last()));
+        let jerk = crate::metrics::median(
+            norm.iter()
+                .filter_map(|d| crate::metrics::normalized_jerk(&state_rows(d, s), 1.0)),
+        );
+        let start_step = norm
+            .iter()
+            .filter(|d| d.len() >= 2)
+            .map(|d| dist2(&d[1][..s], &d[0][..s]).sqrt())
+            .fold(0.0, f64::max);
+        let smoothness = jerk.map(|jerk| DemoSmoothness { jerk, start_step });
         let Some(e) = self.events_mut() else {
             return;
         };
+        e.demo_smoothness = smoothness;
         e.knots = None;
         e.start_knots = None;
-        e.end_postures = Some(ends);
+        e.start_posture = start;
+        e.end_posture = end;
         let aligned = aligned_samples(norm, MAX_ALIGNED);
         self.fit_node_postures(norm, &aligned);
         self.place_traced_events(norm, &aligned);
@@ -444,35 +464,9 @@ impl Hsom {
             e.traces = Some(traces);
         }
     }
+}
 
-    /// Where the demonstrations `norm` (normalised) ended: per bottom node, how many had
-    /// their last event on it, then the mean of their last postures (`stateLength` values;
-    /// [`Hsom::end_postures`](crate::hsom::algorithm::Hsom)).
-    pub(super) fn ends(&self, norm: &[Vec<Vec<f64>>]) -> Vec<f64> {
-        let (n0, s) = (self.maps[0].len(), self.config.params().state_length);
-        let mut out = vec![0.0; n0 + s];
-        let mut k = 0.0;
-        for demo in norm {
-            let (Some(&(node, _)), Some(last)) = (bottom_events(self, demo).last(), demo.last())
-            else {
-                continue;
-            };
-            out[node] += 1.0;
-            k += 1.0;
-            for (m, v) in out[n0..].iter_mut().zip(last) {
-                *m += (v - *m) / k;
-            }
-        }
-        out
-    }
-
-    /// Where a reproduction whose last event is on node `n` ends by its end event, when no
-    /// demonstration ended after `n` (the end decoded by content after another node): where
-    /// all of them ended. `None` after a node one ended after (its last event's learned
-    /// action leads there, from the mean of many samples) and without end postures.
-    pub(super) fn end_posture(&self, n: usize) -> Option<Vec<f64>> {
-        let ends = self.events()?.end_postures.as_ref()?;
-        let n0 = self.maps[0].len();
-        (ends[n] == 0.0 && ends[..n0].iter().any(|&c| c > 0.0)).then(|| ends[n0..].to_vec())
-    }
+/// The state part (the first `s` values) of each of `rows`.
+fn state_rows(rows: &[Vec<f64>], s: usize) -> Vec<&[f64]> {
+    rows.iter().map(|r| &r[..s]).collect()
 }

@@ -1,21 +1,23 @@
-//! The executed curve: knots at the placed, timed events and a monotone cubic through
-//! them.
+//! The executed curve: knots at the placed, timed events, a monotone cubic through them,
+//! the given initial posture joined to it, and the whole made as smooth as the
+//! demonstrations (docs/ALGORITHM.md, section 3.8).
 
 use super::encode::Step;
 use super::traces::HALF_PLACES;
-use crate::hsom::model::Hsom;
+use crate::hsom::model::{DemoSmoothness, Hsom};
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
 impl Hsom {
-    /// Postures at every sample from the executed events: each event's node posture (its
-    /// state half) is reached at the middle of the event, the initial posture is the first
-    /// knot, and the last event ends where its node's learned action leads (its action half,
-    /// the posture `actionHorizon` samples later, reached in proportion to the event's
-    /// second half: a gesture that ends in motion is not cut at the middle of its last
-    /// event; one that ends in a hold ends there, action and state being equal); in between a monotone cubic
-    /// (Fritsch-Carlson) per variable, so holds are held and the motion starts and ends at
-    /// rest; a knot at a turning point is moved so that the event's mean is its node's posture
-    /// ([`turning_points_kept`]), the only place the curve goes beyond its knots.
+    /// Postures at every sample from the executed events ([`Hsom::curve`] of
+    /// [`Hsom::timed_knots`]): each event's place is reached at the middle of the event; the
+    /// first knot is where the plan begins and the last where it ends ([`Hsom::knot_places`]).
+    ///
+    /// A reproduction from its own start (`start` is `y0`) begins where the training
+    /// demonstrations weighed by that start began ([`Hsom::plan_start`]), the mean their
+    /// placements are weighed with, and the given posture's offset from there is joined to
+    /// the plan over the whole reproduction ([`Timed::offset`]): a start away from every
+    /// demonstration's is neither snapped to the plan in its first steps nor kept to the end.
+    /// A continuation (`y0` the posture reached) starts at `y0`.
     pub(super) fn timed_postures(
         &self,
         start: &[f64],
@@ -23,9 +25,23 @@ impl Hsom {
         executed: &[Step<usize>],
         stop: StopReason,
     ) -> Reproduction {
-        let timed = self.timed_knots(start, y0, executed, stop);
+        let begun = (start == y0).then(|| self.plan_start(start)).flatten();
+        let first = begun.as_deref().unwrap_or(y0);
+        let mut timed = self.timed_knots(start, first, executed, stop);
         let samples = timed.total.floor() as usize + 1;
+        timed.offset = begun.map(|p0| y0.iter().zip(&p0).map(|(a, b)| a - b).collect());
         self.curve(&timed, &vec![0.0; y0.len()], samples, stop)
+    }
+
+    /// Where the training demonstrations weighed by `start` began (normalised, state part):
+    /// the mean of their first postures with the weights of their placements
+    /// ([`StartKnots`](crate::hsom::model::StartKnots)); `None` without them.
+    fn plan_start(&self, start: &[f64]) -> Option<Vec<f64>> {
+        let e = self.events()?;
+        match &e.start_knots {
+            Some(k) => Some(k.placed_start(start)),
+            None => e.start_posture.clone(),
+        }
     }
 
     /// The knots of [`Hsom::timed_postures`]: their times, their values per variable (turning
@@ -54,6 +70,7 @@ impl Hsom {
             values,
             by: p.by,
             total: p.total,
+            offset: None,
         }
     }
 
@@ -117,11 +134,13 @@ impl Hsom {
         }
         if let Some(&(n, d, l, ref at)) = executed.last() {
             t.push(now);
-            // the last event's second half goes on along its node's learned action (the
-            // posture actionHorizon samples later), as far as that half lasts; but a
-            // reproduction that ends by its end event after a node no demonstration ended
-            // after ends where they ended
-            let ended = self.end_posture(n).filter(|_| stop == StopReason::EndEvent);
+            // a reproduction that ends by its end event ends where the demonstrations ended;
+            // one cut short goes on along its last node's learned action (the posture
+            // actionHorizon samples later), as far as that event's second half lasts
+            let ended = self
+                .events()
+                .and_then(|e| e.end_posture.clone())
+                .filter(|_| stop == StopReason::EndEvent);
             let end = ended.unwrap_or_else(|| {
                 let mut end = at.as_ref().map_or_else(|| knot(n), |a| traced(n, a));
                 let w = self.maps[0].weights(n);
@@ -147,9 +166,13 @@ impl Hsom {
         }
     }
 
-    /// The postures at `samples` samples along the knots `timed`, the curve leaving the first
-    /// knot at the slope `m0` per variable (within the monotone limits of
-    /// [`monotone_cubic_from`]).
+    /// The postures at `samples` samples along the knots `timed`: per variable the monotone
+    /// cubic through them ([`monotone_cubic_from`]: holds are held, turns are at knots),
+    /// leaving the first knot at the slope `m0` (within its monotone limits); plus the
+    /// offset of the given posture from the first knot ([`Timed::offset`]) fading from 1 to 0
+    /// along a minimum-jerk profile over the samples; then smoothed as the training
+    /// demonstrations are smooth ([`as_smooth_as`]): the cubic is continuous in velocity
+    /// only, and its steps of acceleration at the knots are what the smoothing takes away.
     pub(super) fn curve(
         &self,
         timed: &Timed,
@@ -159,12 +182,37 @@ impl Hsom {
     ) -> Reproduction {
         let s = timed.values.len();
         let mut out = vec![vec![0.0; s]; samples];
-        for (d, knots) in timed.values.iter().enumerate() {
-            for (row, y) in out
-                .iter_mut()
-                .zip(monotone_cubic_from(&timed.t, knots, samples, m0[d]))
-            {
-                row[d] = y;
+        // the offset fades over the whole reproduction, at rest at both ends
+        let horizon = (samples.max(2) - 1) as f64;
+        let columns: Vec<Vec<f64>> = timed
+            .values
+            .iter()
+            .enumerate()
+            .map(|(d, knots)| {
+                let mut y = monotone_cubic_from(&timed.t, knots, samples, m0[d]);
+                if let Some(off) = &timed.offset {
+                    for (i, v) in y.iter_mut().enumerate() {
+                        *v += off[d] * (1.0 - minimum_jerk(i as f64 / horizon));
+                    }
+                }
+                y
+            })
+            .collect();
+        // a reproduction from its start leaves it no faster than the demonstrations left theirs
+        let target = self
+            .events()
+            .and_then(|e| e.demo_smoothness)
+            .map(|d| DemoSmoothness {
+                start_step: if timed.offset.is_some() {
+                    d.start_step
+                } else {
+                    f64::INFINITY
+                },
+                ..d
+            });
+        for (d, y) in as_smooth_as(&columns, m0, target).into_iter().enumerate() {
+            for (row, v) in out.iter_mut().zip(y) {
+                row[d] = v;
             }
         }
         let (t, by) = (&timed.t, &timed.by);
@@ -219,6 +267,9 @@ pub(super) struct Timed {
     pub(super) by: Vec<usize>,
     /// The events' total duration, samples.
     pub(super) total: f64,
+    /// The given initial posture's offset from the first knot (normalised), faded over the
+    /// whole reproduction ([`Hsom::curve`]); `None`: the curve starts at its first knot.
+    pub(super) offset: Option<Vec<f64>>,
 }
 
 impl Timed {
@@ -246,6 +297,7 @@ impl Timed {
                 .chain(keep.iter().map(|&i| self.by[i]))
                 .collect(),
             total: (self.total - now).max(0.0),
+            offset: None,
         }
     }
 }
@@ -453,3 +505,149 @@ fn hermite(t0: f64, t1: f64, v0: f64, v1: f64, m0: f64, m1: f64, t: f64) -> f64 
         + (-2.0 * u3 + 3.0 * u2) * v1
         + (u3 - u2) * h * m1
 }
+
+/// The minimum-jerk profile from 0 to 1 at `u` in [0, 1] (`10u³ − 15u⁴ + 6u⁵`): at rest, with
+/// no acceleration, at both ends.
+fn minimum_jerk(u: f64) -> f64 {
+    let u = u.clamp(0.0, 1.0);
+    u * u * u * (10.0 + u * (-15.0 + 6.0 * u))
+}
+
+/// The smoothing weights [`as_smooth_as`] tries, least first: the cut-off period of
+/// [`jerk_smoothed`] (`2π λ^(1/6)` samples) goes from 6 to 20 samples.
+const SMOOTHING: [f64; 7] = [1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0];
+
+/// The columns `y` (one variable each, sampled, moving at `slope` per sample before their
+/// first sample), smoothed by [`jerk_smoothed`] with the least weight of [`SMOOTHING`] that
+/// makes them as smooth as `target` (the training demonstrations'): their normalised jerk
+/// at most the demonstrations' and their first step at most the largest of theirs. As they
+/// are where they already are (or without a target), the most smoothed where none does.
+fn as_smooth_as(y: &[Vec<f64>], slope: &[f64], target: Option<DemoSmoothness>) -> Vec<Vec<f64>> {
+    let Some(target) = target else {
+        return y.to_vec();
+    };
+    let smooth = |cols: &[Vec<f64>]| {
+        let n = cols.first().map_or(0, Vec::len);
+        let rows: Vec<Vec<f64>> = (0..n)
+            .map(|i| cols.iter().map(|c| c[i]).collect())
+            .collect();
+        let first = rows
+            .get(1)
+            .map_or(0.0, |r| crate::dtw::euclidean(r, &rows[0]));
+        crate::metrics::normalized_jerk(&rows, 1.0).map_or(true, |j| j <= target.jerk)
+            && first <= target.start_step
+    };
+    if smooth(y) {
+        return y.to_vec();
+    }
+    let mut out = Vec::new();
+    for lambda in SMOOTHING {
+        out = y
+            .iter()
+            .zip(slope)
+            .map(|(c, &m)| jerk_smoothed(c, lambda, m))
+            .collect();
+        if smooth(&out) {
+            break;
+        }
+    }
+    out
+}
+
+/// The curve nearest `c` (sampled) whose jerk is least: `x` minimising
+/// `Σ_{i≥1} (x_i − c_i)² + λ Σ_i (x_{i+3} − 3x_{i+2} + 3x_{i+1} − x_i)²` with `x_0 = c_0`
+/// (Whittaker-Henderson smoothing with third differences), the third differences reaching
+/// back before the start over [`BEFORE`] samples where the arm moved at `slope` per sample
+/// (0: at rest), so the curve leaves `c_0` as the arm was moving, and `x_{n−1} = c_{n−1}`
+/// with the arm at rest there after (the curve ends where and as it ends). Its normal equations are
+/// banded (three diagonals each side), solved by a banded Cholesky factorisation in O(n).
+pub(super) fn jerk_smoothed(c: &[f64], lambda: f64, slope: f64) -> Vec<f64> {
+    if c.len() < 5 || lambda <= 0.0 {
+        return c.to_vec();
+    }
+    // the samples before the curve and its first one, its last one and the samples at rest
+    // after it: known values
+    let known = BEFORE + 1;
+    let last = c[c.len() - 1];
+    let full: Vec<f64> = (0..BEFORE)
+        .map(|k| c[0] - (BEFORE - k) as f64 * slope)
+        .chain(c.iter().copied())
+        .chain(std::iter::repeat(last).take(BEFORE))
+        .collect();
+    let n = full.len();
+    const D: [f64; 4] = [-1.0, 3.0, -3.0, 1.0];
+    // a[i][k]: the normal matrix's entry (i, i - k) over every sample, k = 0..=3
+    let mut a = vec![[0.0f64; 4]; n];
+    for row in a.iter_mut() {
+        row[0] = 1.0;
+    }
+    for j in 0..n - 3 {
+        for p in 0..4 {
+            for q in 0..=p {
+                a[j + p][p - q] += lambda * D[p] * D[q];
+            }
+        }
+    }
+    // the unknowns are x_known..n - known; their right-hand side without the known values'
+    // terms (the normal matrix is symmetric: entry (i, i + k) is a[i + k][k])
+    let m = n - 2 * known;
+    let mut b: Vec<f64> = full[known..n - known].to_vec();
+    for (u, bu) in b.iter_mut().enumerate() {
+        let i = u + known;
+        for k in 1..=3usize {
+            if i - k < known {
+                *bu -= a[i][k] * full[i - k];
+            }
+            if i + k >= n - known {
+                *bu -= a[i + k][k] * full[i + k];
+            }
+        }
+    }
+    // banded Cholesky of the unknowns' block: l[i][k] = L(i, i - k)
+    let mut l = vec![[0.0f64; 4]; m];
+    for i in 0..m {
+        for k in (0..=3.min(i)).rev() {
+            let j = i - k;
+            let mut sum = a[i + known][k];
+            for r in 1..=3usize {
+                // L(i, j - r) L(j, j - r)
+                if r + k <= 3 && r <= j {
+                    sum -= l[i][k + r] * l[j][r];
+                }
+            }
+            if k == 0 {
+                l[i][0] = sum.max(f64::MIN_POSITIVE).sqrt();
+            } else {
+                l[i][k] = sum / l[j][0];
+            }
+        }
+    }
+    // L y = b, then Lᵀ x = y
+    let mut y = vec![0.0; m];
+    for i in 0..m {
+        let mut sum = b[i];
+        for k in 1..=3.min(i) {
+            sum -= l[i][k] * y[i - k];
+        }
+        y[i] = sum / l[i][0];
+    }
+    let mut x = vec![0.0; m];
+    for i in (0..m).rev() {
+        let mut sum = y[i];
+        for k in 1..=3usize {
+            if i + k < m {
+                sum -= l[i + k][k] * x[i + k];
+            }
+        }
+        x[i] = sum / l[i][0];
+    }
+    std::iter::once(c[0])
+        .chain(x)
+        .chain(std::iter::once(last))
+        .collect()
+}
+
+/// Samples before the curve (and after it) that [`jerk_smoothed`]'s third differences reach:
+/// three, so the curve's first velocity and acceleration continue the arm's (and its last
+/// come to rest).
+const BEFORE: usize = 3;

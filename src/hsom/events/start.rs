@@ -75,6 +75,16 @@ impl StartKnots {
         )
     }
 
+    /// Where the demonstrations weighed by a reproduction starting at `x` began: the mean of
+    /// their first postures with [`StartKnots::placed`]'s weights (normalised, state part).
+    pub(crate) fn placed_start(&self, x: &[f64]) -> Vec<f64> {
+        let starts: Vec<&Vec<f64>> = self.starts.iter().collect();
+        Self::mean(
+            &starts,
+            &Self::weights(&starts, &x[..starts[0].len()], self.width),
+        )
+    }
+
     /// The width that predicts each demonstration's placement best from the others' (the
     /// squared error per node weighted by the samples on the node, `count`, summed over the
     /// demonstrations), kept only where the starts are evidence: its gain over all alike must

@@ -1,4 +1,5 @@
-//! Unit tests of the events extension: the executed curve (turning points, the monotone cubic).
+//! Unit tests of the events extension: the executed curve (turning points, the monotone
+//! cubic, the join from the initial posture, the smoothing).
 
 use super::*;
 
@@ -181,4 +182,137 @@ fn monotone_cubic_holds_and_does_not_overshoot() {
             assert!((x - 1.0).abs() < 1e-12, "the hold is held");
         }
     }
+}
+
+/// Third differences of `c`: the jerk per sample cubed.
+fn third_differences(c: &[f64]) -> Vec<f64> {
+    c.windows(4)
+        .map(|w| w[3] - 3.0 * w[2] + 3.0 * w[1] - w[0])
+        .collect()
+}
+
+fn largest(v: &[f64]) -> f64 {
+    v.iter().map(|x| x.abs()).fold(0.0, f64::max)
+}
+
+/// The monotone cubic's acceleration steps at every knot (its third differences spike
+/// there); the smoothed curve's are spread out: the largest under half the cubic's
+/// (the control), its first and last values kept, leaving from rest and coming to rest, a
+/// hold still a hold, and nothing changed with no weight.
+#[test]
+fn the_smoothed_curve_is_continuous_in_acceleration() {
+    // uneven knots, as a plan's are: events of 3 to 9 samples, places a little off a line
+    let t = [0.0, 2.0, 5.0, 9.5, 12.0, 18.0, 21.0, 26.0, 30.0];
+    let v = [0.0, 0.05, 0.22, 0.41, 0.47, 0.75, 0.83, 0.97, 1.0];
+    let c = monotone_cubic(&t, &v, 31);
+    let smooth = jerk_smoothed(&c, 10.0, 0.0);
+    let (raw, smoothed) = (
+        largest(&third_differences(&c)),
+        largest(&third_differences(&smooth)),
+    );
+    assert!(2.0 * smoothed < raw, "{smoothed} against the cubic's {raw}");
+    assert_eq!((smooth[0], smooth[30]), (c[0], c[30]));
+    // from rest and to rest: the first and last steps no larger than the cubic's
+    assert!((smooth[1] - smooth[0]).abs() <= (c[1] - c[0]).abs() + 1e-12);
+    assert!((smooth[30] - smooth[29]).abs() <= (c[30] - c[29]).abs() + 1e-3);
+    // still close to the cubic: within 2 % of the motion
+    let off = c
+        .iter()
+        .zip(&smooth)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(off < 0.02, "{off}");
+    // a hold is held exactly; no weight, no change
+    let hold = vec![0.4; 20];
+    assert!(jerk_smoothed(&hold, 100.0, 0.0)
+        .iter()
+        .all(|x| (x - 0.4).abs() < 1e-12));
+    assert_eq!(jerk_smoothed(&c, 0.0, 0.0), c);
+}
+
+/// A curve that starts in motion (a continuation) goes on at the arm's speed: smoothed as if
+/// at rest before it (the control), its first step slows down.
+#[test]
+fn a_continuation_is_smoothed_from_the_arm_s_motion() {
+    let c: Vec<f64> = (0..40)
+        .map(|i| 0.02 * i as f64 + 0.001 * (i % 3) as f64)
+        .collect();
+    let moving = jerk_smoothed(&c, 30.0, 0.02);
+    let resting = jerk_smoothed(&c, 30.0, 0.0);
+    let step = |x: &[f64]| x[1] - x[0];
+    assert!((step(&moving) - 0.02).abs() < 0.005, "{}", step(&moving));
+    assert!(step(&resting) < 0.01, "{} (the control)", step(&resting));
+}
+
+/// Strokes of a family that start at different heights and end at one point, each from rest
+/// along a minimum-jerk profile (as LASA's drawings do), read with a little sensor noise:
+/// demonstration `i` of 5.
+fn from_elsewhere(i: usize) -> Vec<Vec<f64>> {
+    use rand::SeedableRng;
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(i as u64);
+    let n = 70 + 6 * i;
+    let y0 = 0.1 * (i as f64 - 2.0);
+    (0..n)
+        .map(|j| {
+            let u = j as f64 / (n - 1) as f64;
+            let s = u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+            let mut noise = || 0.0005 * (rng.gen::<f64>() - 0.5);
+            vec![
+                s + noise(),
+                y0 * (1.0 - s) + 0.25 * (std::f64::consts::PI * s).sin() + noise(),
+            ]
+        })
+        .collect()
+}
+
+/// A start away from every demonstration's is joined to the plan: the reproduction starts
+/// exactly there, no faster than the demonstrations start, as smooth as they are, and ends
+/// where they end. The control: the plan with the given posture as its first knot and no
+/// smoothing (the curve as it is without the join) leaves it faster than any demonstration.
+#[test]
+fn a_start_away_from_the_demonstrations_is_joined_smoothly() {
+    let train: Vec<Vec<Vec<f64>>> = (0..5).map(from_elsewhere).collect();
+    let m = config(2).fit_series(&train).unwrap();
+    let speed = |r: &[Vec<f64>]| crate::dtw::euclidean(&r[1], &r[0]);
+    let fastest_start = train.iter().map(|d| speed(d)).fold(0.0, f64::max);
+    let y0 = [0.02, 0.33];
+    let rep = m.reproduce(&y0).unwrap();
+    assert!(rep.postures[0]
+        .iter()
+        .zip(y0)
+        .all(|(a, b)| (a - b).abs() < 1e-12));
+    assert!(
+        speed(&rep.postures) <= fastest_start,
+        "first step {} against the demonstrations' {fastest_start}",
+        speed(&rep.postures)
+    );
+    let mut jerks: Vec<f64> = train
+        .iter()
+        .filter_map(|d| crate::metrics::normalized_jerk(d, 1.0))
+        .collect();
+    jerks.sort_by(f64::total_cmp);
+    let jerk = crate::metrics::normalized_jerk(&rep.postures, 1.0).unwrap();
+    assert!(
+        jerk <= 1.5 * jerks[2],
+        "{jerk} against the demonstrations' {jerks:?}"
+    );
+    let last = rep.postures.last().unwrap();
+    assert!(
+        (last[0] - 1.0).abs() < 1e-6 && last[1].abs() < 1e-6,
+        "{last:?}"
+    );
+    // the control
+    let mut plain = m.clone();
+    plain.ev_mut().demo_smoothness = None;
+    let y = m.normalise(&y0);
+    let r = &m.config.params().reproduction;
+    let (executed, stop) = plain.plan_event_list(&y, &[], &[], r);
+    let timed = plain.timed_knots(&y, &y, &executed, stop);
+    let samples = timed.total.floor() as usize + 1;
+    let snapped = plain.curve(&timed, &[0.0, 0.0], samples, stop);
+    assert!(
+        speed(&snapped.postures) > fastest_start,
+        "first step {} (the control) against the demonstrations' {fastest_start}",
+        speed(&snapped.postures)
+    );
 }
