@@ -218,13 +218,15 @@ impl Hsom {
 }
 
 /// How smooth the training demonstrations are (normalised units, per sample).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub(crate) struct DemoSmoothness {
     /// Their median normalised jerk.
     pub(crate) jerk: f64,
     /// Their largest first step (the distance from the first posture to the second): how
     /// fast they leave their start.
     pub(crate) start_step: f64,
+    /// Per variable, their largest step from one sample to the next: how fast they move.
+    pub(crate) peak_step: Vec<f64>,
 }
 
 /// The consensus weighed by the starts (docs/ALGORITHM.md, section 3.7): where each training

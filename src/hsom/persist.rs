@@ -711,14 +711,17 @@ impl Hsom {
                 }
             }
         }
-        if e.demo_smoothness.is_some_and(|d| {
-            ![d.jerk, d.start_step]
-                .iter()
-                .all(|v| v.is_finite() && *v >= 0.0)
+        if e.demo_smoothness.as_ref().is_some_and(|d| {
+            d.peak_step.len() != state
+                || ![d.jerk, d.start_step]
+                    .iter()
+                    .chain(&d.peak_step)
+                    .all(|v| v.is_finite() && *v >= 0.0)
         }) {
-            return bad(
-                "the demonstrations' jerk and first step: none or finite values >= 0".into(),
-            );
+            return bad(format!(
+                "the demonstrations' jerk, first step and stateLength = {state} largest steps: \
+                 none or finite values >= 0"
+            ));
         }
         if let Some(s) = &e.start_knots {
             let sound = s.width.is_finite()

@@ -290,7 +290,18 @@ impl Hsom {
             .filter(|d| d.len() >= 2)
             .map(|d| dist2(&d[1][..s], &d[0][..s]).sqrt())
             .fold(0.0, f64::max);
-        let smoothness = jerk.map(|jerk| DemoSmoothness { jerk, start_step });
+        let peak_step = (0..s)
+            .map(|j| {
+                norm.iter()
+                    .flat_map(|d| d.windows(2).map(move |w| (w[1][j] - w[0][j]).abs()))
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        let smoothness = jerk.map(|jerk| DemoSmoothness {
+            jerk,
+            start_step,
+            peak_step,
+        });
         let Some(e) = self.events_mut() else {
             return;
         };

@@ -201,7 +201,7 @@ impl Hsom {
         // a reproduction from its start leaves it no faster than the demonstrations left theirs
         let target = self
             .events()
-            .and_then(|e| e.demo_smoothness)
+            .and_then(|e| e.demo_smoothness.clone())
             .map(|d| DemoSmoothness {
                 start_step: if timed.offset.is_some() {
                     d.start_step
@@ -520,13 +520,17 @@ const SMOOTHING: [f64; 7] = [1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0];
 /// The columns `y` (one variable each, sampled, moving at `slope` per sample before their
 /// first sample), smoothed by [`jerk_smoothed`] with the least weight of [`SMOOTHING`] that
 /// makes them as smooth as `target` (the training demonstrations'): their normalised jerk
-/// at most the demonstrations' and their first step at most the largest of theirs. As they
-/// are where they already are (or without a target), the most smoothed where none does.
+/// at most the demonstrations', their first step at most the largest of theirs, and no
+/// variable moving faster than in any of them. Where no weight slows a variable down
+/// enough (a plan whose events are shorter than the demonstrations'), the least weight that
+/// meets the rest: smoothing more would flatten the motion, not slow it. As they are where
+/// they already are (or without a target), the most smoothed where none does.
 fn as_smooth_as(y: &[Vec<f64>], slope: &[f64], target: Option<DemoSmoothness>) -> Vec<Vec<f64>> {
     let Some(target) = target else {
         return y.to_vec();
     };
-    let smooth = |cols: &[Vec<f64>]| {
+    // (smooth and slow enough, smooth enough)
+    let judge = |cols: &[Vec<f64>]| {
         let n = cols.first().map_or(0, Vec::len);
         let rows: Vec<Vec<f64>> = (0..n)
             .map(|i| cols.iter().map(|c| c[i]).collect())
@@ -534,24 +538,33 @@ fn as_smooth_as(y: &[Vec<f64>], slope: &[f64], target: Option<DemoSmoothness>) -
         let first = rows
             .get(1)
             .map_or(0.0, |r| crate::dtw::euclidean(r, &rows[0]));
-        crate::metrics::normalized_jerk(&rows, 1.0).map_or(true, |j| j <= target.jerk)
-            && first <= target.start_step
-    };
-    if smooth(y) {
-        return y.to_vec();
-    }
-    let mut out = Vec::new();
-    for lambda in SMOOTHING {
-        out = y
+        let smooth = crate::metrics::normalized_jerk(&rows, 1.0).map_or(true, |j| j <= target.jerk)
+            && first <= target.start_step;
+        let slow = cols
             .iter()
+            .zip(&target.peak_step)
+            .all(|(c, &peak)| c.windows(2).all(|w| (w[1] - w[0]).abs() <= peak));
+        (smooth && slow, smooth)
+    };
+    let candidates = std::iter::once(y.to_vec()).chain(SMOOTHING.iter().map(|&lambda| {
+        y.iter()
             .zip(slope)
             .map(|(c, &m)| jerk_smoothed(c, lambda, m))
-            .collect();
-        if smooth(&out) {
-            break;
+            .collect::<Vec<_>>()
+    }));
+    let mut smooth_only: Option<Vec<Vec<f64>>> = None;
+    let mut last = Vec::new();
+    for c in candidates {
+        let (all, smooth) = judge(&c);
+        if all {
+            return c;
         }
+        if smooth && smooth_only.is_none() {
+            smooth_only = Some(c.clone());
+        }
+        last = c;
     }
-    out
+    smooth_only.unwrap_or(last)
 }
 
 /// The curve nearest `c` (sampled) whose jerk is least: `x` minimising
