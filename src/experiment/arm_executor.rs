@@ -51,7 +51,13 @@ impl Executor for ArmExecutor<'_> {
             trace: run.executed,
             fidelity: run.fidelity,
             clamped_values: run.clamped_values,
+            commanded: run.commanded,
         })
+    }
+
+    /// The encoders' record.
+    fn motion<'a>(&self, executed: &'a Executed<Recording>) -> &'a [Vec<f64>] {
+        &executed.trace.qpos
     }
 
     /// [`LEAD_IN_PEAK_SPEED`]: the arm's, whatever the demonstrations.

@@ -6,10 +6,11 @@
 
 use crate::config::HsomConfig;
 use crate::demos::{sample_period, Demonstration};
-use crate::eval::{all_but, run_fold, FoldInput, Method, MethodRun};
+use crate::dtw::euclidean;
+use crate::eval::{all_but, diagonal, run_fold, Commanded, FoldInput, Method, MethodRun};
 pub use crate::eval::{ArmFold as Fold, FoldScores, HeldOut, HeldOutSummary, Swings};
 use crate::gmr::MIN_DEMONSTRATIONS;
-use crate::metrics::column_swings;
+use crate::metrics::{column_swings, trimmed_normalized_jerk, MetricsParams, StartEndReference};
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
 
 use super::pipeline::Training;
@@ -18,18 +19,51 @@ use super::{are_arm_joints, ArmExecutor, ExperimentError, Transition};
 pub use super::evaluate::{SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
 
 impl FoldScores {
-    /// A method's run on the arm ([`run_fold`] with [`ArmExecutor`]) as its scores against
-    /// the held-out demonstration `held`.
+    /// A method's run on the arm ([`run_fold`] with [`ArmExecutor`]) on fold `i` of `demos`
+    /// as its scores against the held-out demonstration `demos[i]`: the executed motion's and
+    /// the commanded postures' start and end against the other demonstrations (docs/METRICS.md,
+    /// "Start and end"), in the diagonal of all of them.
     pub fn of(
         run: MethodRun<Recording>,
-        held: &Demonstration,
+        demos: &[Demonstration],
+        i: usize,
     ) -> Result<FoldScores, ExperimentError> {
+        let held = demos.get(i).ok_or_else(|| {
+            ExperimentError::Invalid(format!(
+                "fold {}: no such demonstration (there are {})",
+                i + 1,
+                demos.len()
+            ))
+        })?;
+        let others = demos.iter().enumerate().filter(|&(j, _)| j != i);
+        let reference = StartEndReference::of(others.map(|(_, d)| d), diagonal(demos));
+        let metrics = MetricsParams {
+            sample_period: sample_period(held),
+            ..MetricsParams::default()
+        };
+        let dt = metrics.sample_period;
+        let executed = &run.executed;
+        let start_end = reference.judge(
+            &executed.trace.qpos,
+            dt,
+            executed.fidelity.final_error_rad.mean,
+        );
+        let commanded = match (executed.commanded.last(), held.rows.last()) {
+            (Some(c), Some(h)) => Some(Commanded {
+                postures: executed.commanded.len(),
+                normalized_jerk: trimmed_normalized_jerk(&executed.commanded, &metrics),
+                start_end: reference.judge(&executed.commanded, dt, euclidean(c, h)),
+            }),
+            _ => None,
+        };
         Ok(FoldScores {
-            swings: swings(&run.executed.trace, held)?,
+            swings: swings(&executed.trace, held)?,
             postures: run.postures.len(),
-            clamped_values: run.executed.clamped_values,
+            clamped_values: executed.clamped_values,
             train_s: run.train_s,
             reproduce_s: run.reproduce_s,
+            start_end: Some(start_end),
+            commanded,
             fidelity: run.executed.fidelity,
         })
     }
@@ -134,8 +168,8 @@ pub fn hsom_folds(
 ) -> Result<Vec<FoldScores>, ExperimentError> {
     hierarchy_runs(arm, config, demos, training, transition)?
         .into_iter()
-        .zip(demos)
-        .map(|(run, held)| FoldScores::of(run, held))
+        .enumerate()
+        .map(|(i, run)| FoldScores::of(run, demos, i))
         .collect()
 }
 
@@ -167,7 +201,7 @@ pub fn hsom_and_sequence_folds(
             );
             let mut scores = runs
                 .into_iter()
-                .map(|run| FoldScores::of(run.map_err(ExperimentError::Invalid)?, &demos[i]));
+                .map(|run| FoldScores::of(run.map_err(ExperimentError::Invalid)?, demos, i));
             let no_run = || Err(ExperimentError::Invalid(no_run()));
             let hsom = scores.next().unwrap_or_else(no_run)?;
             let sequence = scores.next().unwrap_or_else(no_run)?;
@@ -213,7 +247,7 @@ pub fn gmr_folds(
                 demos,
                 i,
             ))
-            .and_then(|run| FoldScores::of(run, &demos[i]).map_err(|e| e.to_string()));
+            .and_then(|run| FoldScores::of(run, demos, i).map_err(|e| e.to_string()));
             run.map_err(|e| format!("fold {}: GMM/GMR: {e}", i + 1))
         })
         .collect())

@@ -345,6 +345,37 @@ pub fn heldout_table(results: &[MethodResult]) -> String {
     t
 }
 
+/// A markdown table with one row per `(name, held-out summary)`: where the reproductions start
+/// and end against the folds' training demonstrations and how smooth they are, the motion the
+/// arm executed beside the postures the method handed the servos (docs/METRICS.md, "Start and
+/// end"). `n/a` where a figure was not computed.
+pub fn start_end_table(rows: &[(&str, &HeldOutSummary)]) -> String {
+    let pct = |v: Option<f64>| v.map_or("n/a".into(), |v| format!("{:.0} %", 100.0 * v));
+    let mut t = String::from(
+        "| method (executed / commanded) | folds | start speed (rad/s) | training demos' \
+         largest start speed (rad/s) | start in range | end within spread | normalized jerk \
+         (held-out demos') |\n|---|---|---|---|---|---|---|\n",
+    );
+    for (name, h) in rows {
+        let _ = writeln!(
+            t,
+            "| {name} | {} | {} / {} | {} | {} / {} | {} / {} | {} / {} ({}) |",
+            h.folds,
+            num(h.start_speed, 3),
+            num(h.commanded_start_speed, 3),
+            num(h.demo_start_speed_max, 3),
+            pct(h.start_in_range),
+            pct(h.commanded_start_in_range),
+            pct(h.end_within_spread),
+            pct(h.commanded_end_within_spread),
+            num(h.normalized_jerk, 0),
+            num(h.commanded_normalized_jerk, 0),
+            num(h.demo_normalized_jerk, 0),
+        );
+    }
+    t
+}
+
 /// A markdown table of every fold: the held-out demonstration and both methods' scores
 /// against it, and the nearest-sequence baseline's joint DTW and swings (`n/a` when it was
 /// not run).
@@ -477,6 +508,19 @@ impl Report {
                         num(Some(s.demo_swings), 1)
                     );
                 }
+                let _ = writeln!(
+                    md,
+                    "\nStart, end and smoothness, held out: the motion the arm executed beside \
+                     the postures the method handed the servos (clamped into the joint ranges, \
+                     shaped by the transition). Start in range: the first step no faster than \
+                     the fastest first step of the fold's training demonstrations; end within \
+                     spread: the final error at most 2 x the mean distance between their last \
+                     postures, or 1 % of the gesture's diagonal.\n"
+                );
+                let mut rows: Vec<(&str, &HeldOutSummary)> = vec![("CoSCo-HSOM", &h.hsom)];
+                rows.extend(h.gmr.as_ref().map(|g| ("GMM/GMR", g)));
+                rows.extend(h.sequence.as_ref().map(|s| ("nearest sequence", s)));
+                md.push_str(&start_end_table(&rows));
                 let _ = writeln!(md);
                 md.push_str(&folds_table(h));
             }
@@ -506,6 +550,13 @@ impl Report {
             if self.variants.iter().any(|v| v.heldout.is_some()) {
                 let _ = writeln!(md, "In-sample / held-out (leave-one-out) means:\n");
                 md.push_str(&heldout_table(&self.variants));
+                let _ = writeln!(md, "\nHeld out, start, end and smoothness:\n");
+                let rows: Vec<(&str, &HeldOutSummary)> = self
+                    .variants
+                    .iter()
+                    .filter_map(|v| v.heldout.as_ref().map(|h| (v.name.as_str(), h)))
+                    .collect();
+                md.push_str(&start_end_table(&rows));
                 let _ = writeln!(md, "\nIn-sample, every metric:\n");
             }
             md.push_str(&comparison_table(&self.variants));
