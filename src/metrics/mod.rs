@@ -19,7 +19,7 @@ pub use smoothness::{
 };
 pub use start_end::{
     end_spread, end_tolerance, start_speed, StartEnd, StartEndReference, END_DIAGONAL_FRACTION,
-    END_SPREAD_FACTOR,
+    END_SPREAD_FACTOR, START_SPEED_RTOL,
 };
 
 /// The median of the finite values (`None` when there are none).

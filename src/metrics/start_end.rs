@@ -15,6 +15,12 @@ pub const END_SPREAD_FACTOR: f64 = 2.0;
 /// (demonstrations that all end at one point, as LASA's at the attractor, have no spread).
 pub const END_DIAGONAL_FRACTION: f64 = 0.01;
 
+/// A start speed counts as at most the demonstrations' largest up to this relative rounding:
+/// periods computed from `time` columns (span / intervals) differ in the last bit between
+/// recordings at one rate, so a training demonstration replayed at the held-out one's period
+/// can start one unit in the last place faster than itself.
+pub const START_SPEED_RTOL: f64 = 1e-9;
+
 /// The start speed of evenly sampled positions (period `dt` seconds): the first step's
 /// Euclidean speed `‖q₁ − q₀‖ / dt`, data units per second. `None` with fewer than 2 samples
 /// (no step).
@@ -92,7 +98,10 @@ impl StartEndReference {
         StartEnd {
             start_speed: speed,
             demo_start_speed_max: self.demo_start_speed_max,
-            start_in_range: matches!((speed, self.demo_start_speed_max), (Some(s), Some(m)) if s <= m),
+            start_in_range: matches!(
+                (speed, self.demo_start_speed_max),
+                (Some(s), Some(m)) if s <= m * (1.0 + START_SPEED_RTOL)
+            ),
             end_spread: self.end_spread,
             final_error,
             end_tolerance: tolerance,
@@ -177,6 +186,10 @@ mod tests {
         assert!(judge(0.2).start_in_range); // 2 units/s: the largest itself
         assert!(judge(0.0).start_in_range); // at rest: slower than the slowest
         assert!(!judge(0.21).start_in_range);
+        // the rounding of a period computed from a time column is no jump; a millionth is
+        let ulp = r.judge(&[vec![0.0], vec![0.2]], 0.1 * (1.0 - f64::EPSILON), 0.0);
+        assert!(ulp.start_speed.unwrap() > 2.0 && ulp.start_in_range);
+        assert!(!judge(0.2 * (1.0 + 1e-6)).start_in_range);
         assert!(!r.judge(&[vec![0.0]], 0.1, 0.0).start_in_range); // no step to judge
                                                                   // end: within 2 x 0.5 = 1.0 (1 % of the diagonal is 0.1)
         assert!(r.judge(&[vec![0.0]], 0.1, 1.0).end_within_spread);
