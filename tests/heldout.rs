@@ -87,7 +87,12 @@ fn start_and_end_are_judged_against_each_folds_training_demonstrations() {
             .fold(0.0, f64::max);
         let ends: Vec<&Vec<f64>> = train.iter().filter_map(|d| d.rows.last()).collect();
         let sequence = fold.sequence.as_ref().unwrap();
-        for (method, s) in [("CoSCo-HSOM", &fold.hsom), ("nearest-sequence", sequence)] {
+        let promp = fold.promp.as_ref().unwrap();
+        for (method, s) in [
+            ("CoSCo-HSOM", &fold.hsom),
+            ("nearest-sequence", sequence),
+            ("ProMP", promp),
+        ] {
             let e = s.start_end.as_ref().unwrap();
             assert_eq!(e.demo_start_speed_max, Some(fastest), "{method} fold {i}");
             assert!(
@@ -126,6 +131,7 @@ fn one_fold_per_demonstration_each_scored_against_it_alone() {
     assert_eq!(h.hsom.folds, COUNT);
     assert_eq!(h.gmr.as_ref().map(|g| g.folds), Some(COUNT));
     assert_eq!(h.sequence.as_ref().map(|s| s.folds), Some(COUNT));
+    assert_eq!(h.promp.as_ref().map(|p| p.folds), Some(COUNT));
     let durations: Vec<f64> = f.demos.iter().map(trimmed_duration).collect();
     // the demonstrations differ in tempo, so scoring against the wrong one would show
     for w in durations.windows(2) {
@@ -142,10 +148,15 @@ fn one_fold_per_demonstration_each_scored_against_it_alone() {
             .sequence
             .as_ref()
             .expect("the nearest-sequence baseline ran");
+        let promp = fold
+            .promp
+            .as_ref()
+            .unwrap_or_else(|| panic!("fold {i}: ProMP did not run: {:?}", fold.promp_error));
         for (method, s) in [
             ("CoSCo-HSOM", &fold.hsom),
             ("GMM/GMR", gmr),
             ("nearest-sequence", sequence),
+            ("ProMP", promp),
         ] {
             let r = &s.fidelity;
             assert_eq!(r.per_demo.len(), 1, "{method} fold {i}");
@@ -505,12 +516,14 @@ fn two_demonstrations_run_without_the_baseline_and_one_is_refused() {
     let f = fixture();
     let h = leave_one_out(&f.arm, &f.config, &f.demos[..2], Transition::Linear).unwrap();
     assert_eq!(h.folds.len(), 2);
-    assert!(h.gmr.is_none());
+    assert!(h.gmr.is_none() && h.promp.is_none());
     // the nearest-sequence baseline needs one demonstration to follow: it runs
     assert_eq!(h.sequence.as_ref().map(|s| s.folds), Some(2));
     for fold in &h.folds {
         let e = fold.gmr_error.as_deref().unwrap();
         assert!(e.contains("at least 2"), "{e}");
+        let e = fold.promp_error.as_deref().unwrap();
+        assert!(e.contains("ProMP needs at least 2"), "{e}");
     }
     let e = leave_one_out(&f.arm, &f.config, &f.demos[..1], Transition::Linear)
         .unwrap_err()

@@ -345,6 +345,11 @@ pub struct ArmFold {
     /// The nearest-sequence baseline on the same fold (`experiment::hsom_and_sequence_folds`), when it
     /// was run.
     pub sequence: Option<FoldScores>,
+    /// ProMP conditioned on the initial posture, trained on the other demonstrations, when it
+    /// was run and could run ([`HeldOut::with_promp`]).
+    pub promp: Option<FoldScores>,
+    /// Why ProMP did not run on this fold (`None` when it ran or was not asked for).
+    pub promp_error: Option<String>,
 }
 
 /// Means over folds of one method.
@@ -455,7 +460,8 @@ impl HeldOutSummary {
     }
 }
 
-/// The held-out evaluation of CoSCo-HSOM and GMM/GMR on one set of demonstrations.
+/// The held-out evaluation of CoSCo-HSOM, GMM/GMR, and when run the nearest sequence and
+/// ProMP, on one set of demonstrations.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct HeldOut {
     /// One fold per demonstration, in order.
@@ -467,6 +473,9 @@ pub struct HeldOut {
     /// The nearest-sequence baseline: means over all folds (`None` when it was not run:
     /// [`HeldOut::with_sequence`]).
     pub sequence: Option<HeldOutSummary>,
+    /// ProMP: means over the folds where it ran (`None` when it was not run,
+    /// [`HeldOut::with_promp`], or ran on none).
+    pub promp: Option<HeldOutSummary>,
 }
 
 impl HeldOut {
@@ -502,6 +511,8 @@ impl HeldOut {
                     gmr,
                     gmr_error,
                     sequence: None,
+                    promp: None,
+                    promp_error: None,
                 }
             })
             .collect();
@@ -514,6 +525,7 @@ impl HeldOut {
             hsom,
             folds,
             sequence: None,
+            promp: None,
         })
     }
 
@@ -539,13 +551,46 @@ impl HeldOut {
         Ok(self)
     }
 
+    /// Add ProMP's folds: `promp[i]` is fold `i`'s scores, or the reason ProMP did not run on
+    /// it; one per fold.
+    pub fn with_promp(
+        mut self,
+        promp: Vec<Result<FoldScores, String>>,
+    ) -> Result<HeldOut, FoldsError> {
+        if promp.len() != self.folds.len() {
+            return Err(FoldsError(format!(
+                "held-out results: {} ProMP folds for {} folds; need one per fold",
+                promp.len(),
+                self.folds.len()
+            )));
+        }
+        for (f, p) in self.folds.iter_mut().zip(promp) {
+            (f.promp, f.promp_error) = match p {
+                Ok(s) => (Some(s), None),
+                Err(e) => (None, Some(e)),
+            };
+        }
+        let ran: Vec<&FoldScores> = self.folds.iter().filter_map(|f| f.promp.as_ref()).collect();
+        self.promp = HeldOutSummary::of(&ran);
+        Ok(self)
+    }
+
     /// Both methods averaged over the same folds (those where GMM/GMR ran): (CoSCo-HSOM,
     /// GMM/GMR); `None` when GMM/GMR ran on none.
     pub fn paired(&self) -> Option<(HeldOutSummary, HeldOutSummary)> {
+        self.paired_with(|f| f.gmr.as_ref())
+    }
+
+    /// CoSCo-HSOM and another method (`other` of a fold: its scores, when it ran) averaged over
+    /// the same folds, those where the other ran; `None` when it ran on none.
+    pub fn paired_with(
+        &self,
+        other: fn(&ArmFold) -> Option<&FoldScores>,
+    ) -> Option<(HeldOutSummary, HeldOutSummary)> {
         let (h, g): (Vec<&FoldScores>, Vec<&FoldScores>) = self
             .folds
             .iter()
-            .filter_map(|f| f.gmr.as_ref().map(|g| (&f.hsom, g)))
+            .filter_map(|f| other(f).map(|g| (&f.hsom, g)))
             .unzip();
         Some((HeldOutSummary::of(&h)?, HeldOutSummary::of(&g)?))
     }

@@ -1,6 +1,6 @@
 //! Held-out evaluation (leave-one-out): for each demonstration `i`, learn from all the others,
 //! reproduce from demonstration `i`'s first posture, execute on the simulated arm and score
-//! against demonstration `i` only, for CoSCo-HSOM and the GMM/GMR baseline alike. The
+//! against demonstration `i` only, for CoSCo-HSOM and the GMM/GMR and ProMP baselines alike. The
 //! in-sample result (learn from all, score against all) says how well a method reproduces
 //! what it saw; this says how well it reproduces the gesture from a start it has not seen.
 
@@ -224,6 +224,26 @@ pub fn gmr_folds(
     arm: &NaoArm,
     demos: &[Demonstration],
 ) -> Result<Vec<Result<FoldScores, String>>, ExperimentError> {
+    baseline_folds(arm, demos, Method::GmmGmr)
+}
+
+/// ProMP conditioned on the initial posture ([`Method::ProMP`]) on every fold, as
+/// [`gmr_folds`]: posture to posture; a fold where it cannot run (fewer than
+/// [`MIN_DEMONSTRATIONS`] to learn from, a failed fit) gives the reason.
+pub fn promp_folds(
+    arm: &NaoArm,
+    demos: &[Demonstration],
+) -> Result<Vec<Result<FoldScores, String>>, ExperimentError> {
+    baseline_folds(arm, demos, Method::ProMP)
+}
+
+/// A baseline `method` that learns from demonstrations alone on every fold (the evaluator's
+/// [`run_fold`] on the arm's executor, posture to posture), or the fold's reason.
+fn baseline_folds(
+    arm: &NaoArm,
+    demos: &[Demonstration],
+    method: Method,
+) -> Result<Vec<Result<FoldScores, String>>, ExperimentError> {
     check_demos(demos)?;
     let executor = ArmExecutor {
         arm,
@@ -234,31 +254,32 @@ pub fn gmr_folds(
             let learn_from = demos.len() - 1;
             if learn_from < MIN_DEMONSTRATIONS {
                 return Err(format!(
-                    "fold {}: GMM/GMR needs at least {MIN_DEMONSTRATIONS} demonstrations to \
+                    "fold {}: {} needs at least {MIN_DEMONSTRATIONS} demonstrations to \
                      learn from, this fold has {learn_from}",
                     i + 1,
+                    method.name(),
                 ));
             }
             let run = only(arm_fold(
                 &executor,
-                &[Method::GmmGmr],
+                &[method],
                 None,
                 Training::Trained,
                 demos,
                 i,
             ))
             .and_then(|run| FoldScores::of(run, demos, i).map_err(|e| e.to_string()));
-            run.map_err(|e| format!("fold {}: GMM/GMR: {e}", i + 1))
+            run.map_err(|e| format!("fold {}: {}: {e}", i + 1, method.name()))
         })
         .collect())
 }
 
 /// Leave-one-out for CoSCo-HSOM (trained with `config`, executed with `transition`),
-/// GMM/GMR and the nearest-sequence baseline ([`hsom_and_sequence_folds`]): fold `i` learns from
-/// every demonstration but `demos[i]`, reproduces from `demos[i]`'s first posture, executes
-/// on `arm` and is scored against `demos[i]` only. Needs at least 2 demonstrations of the
-/// arm's joints; GMM/GMR needs 2 to learn from, so with 2 demonstrations its folds hold the
-/// reason instead.
+/// GMM/GMR, ProMP and the nearest-sequence baseline ([`hsom_and_sequence_folds`]): fold `i`
+/// learns from every demonstration but `demos[i]`, reproduces from `demos[i]`'s first posture,
+/// executes on `arm` and is scored against `demos[i]` only. Needs at least 2 demonstrations of
+/// the arm's joints; GMM/GMR and ProMP need 2 to learn from, so with 2 demonstrations their
+/// folds hold the reason instead.
 pub fn leave_one_out(
     arm: &NaoArm,
     config: &HsomConfig,
@@ -267,7 +288,10 @@ pub fn leave_one_out(
 ) -> Result<HeldOut, ExperimentError> {
     let (hsom, sequence) = hsom_and_sequence_folds(arm, config, demos, transition)?;
     let gmr = gmr_folds(arm, demos)?;
-    Ok(HeldOut::new(demos, hsom, gmr)?.with_sequence(sequence)?)
+    let promp = promp_folds(arm, demos)?;
+    Ok(HeldOut::new(demos, hsom, gmr)?
+        .with_sequence(sequence)?
+        .with_promp(promp)?)
 }
 
 /// `(time s, value rad)` of [`SWING_JOINT`] in an executed recording.
