@@ -455,7 +455,7 @@ fn cell(c: &Column, rows: &[&StudyRow], median_of: bool) -> String {
 
 impl ConfigStudy {
     /// The held-out table: one row per (gesture, seed), the medians per gesture, the overall
-    /// medians; CoSCo-HSOM's means over folds, GMM/GMR's on the same folds.
+    /// medians; CoSCo-HSOM's means over folds, GMM/GMR's and ProMP's on the same folds.
     pub fn table(&self, in_sample: bool) -> String {
         let cols = columns(in_sample);
         let mut t = String::from("| gesture | seed |");
@@ -786,8 +786,8 @@ impl Study {
             let _ = writeln!(
                 md,
                 "## {}\n\nHeld-out (leave-one-out over {} demonstrations, encoder noise {} rad, \
-                 transition {}): CoSCo-HSOM's means over the folds; GMM/GMR on the same \
-                 folds.\n",
+                 transition {}): CoSCo-HSOM's means over the folds; GMM/GMR and ProMP on \
+                 the same folds (those where each ran).\n",
                 c.config, self.count, self.noise, self.transition
             );
             md.push_str(&c.table(in_sample));
