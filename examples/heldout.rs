@@ -1,5 +1,5 @@
-//! Held-out (leave-one-out) study of CoSCo-HSOM beside GMM/GMR over gestures, seeds and
-//! configurations; Markdown tables on stdout, every number with `--json FILE`.
+//! Held-out (leave-one-out) study of CoSCo-HSOM beside GMM/GMR and ProMP over gestures, seeds
+//! and configurations; Markdown tables on stdout, every number with `--json FILE`.
 //!
 //! ```sh
 //! cargo run --release --example heldout -- --gestures reading-watch,wave --seeds 1-5 \

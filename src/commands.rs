@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use crate::demos::sample_period;
 use crate::hsom::{GestureModel, Reproduction};
 use crate::labelled;
-use crate::metrics::{FidelityReport, MetricsParams};
+use crate::metrics::{FidelityReport, MetricsParams, StartEnd, StartEndReference};
 use crate::steps;
 
 /// Errors of the subcommands: the library's own, each naming the file, field or value.
@@ -92,31 +92,88 @@ pub fn file_parts_lines(model: &crate::hsom::Hsom) -> String {
     s
 }
 
+/// What `cosco evaluate` found (its `--json` document): the fidelity report's fields, and
+/// the reproduction's start and end against the demonstrations given.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Evaluation {
+    /// The fidelity metrics against the demonstrations.
+    #[serde(flatten)]
+    pub fidelity: FidelityReport,
+    /// Its start speed against theirs and its mean final error against their end spread,
+    /// in the diagonal of their bounding box (docs/METRICS.md, "Start and end").
+    pub start_end: StartEnd,
+    /// The unit of the distances: `rad` for the arm's joints, the data's own units otherwise.
+    #[serde(skip)]
+    pub unit: &'static str,
+}
+
 /// `cosco evaluate`: the fidelity metrics of a reproduction CSV against demonstrations, and
-/// the unit of its distances (`rad` for the arm's joints, the data's own units otherwise).
-/// Wrist paths need the arm's kinematics: with the feature `sim` they are computed when the
-/// columns are the arm's joints (`model`: its MJCF file); without it, never.
+/// its start and end against theirs. Wrist paths need the arm's kinematics: with the feature
+/// `sim` they are computed when the columns are the arm's joints (`model`: its MJCF file);
+/// without it, never.
 pub fn evaluate_files(
     reproduction: &Path,
     demo_paths: &[PathBuf],
     model: Option<&Path>,
-) -> Result<(FidelityReport, &'static str)> {
+) -> Result<Evaluation> {
     let (rep, demos) = steps::evaluation_inputs(reproduction, demo_paths)?;
     let params = MetricsParams {
         sample_period: sample_period(&demos[0]),
         ..MetricsParams::default()
     };
+    let judged = |fidelity: FidelityReport, unit| {
+        let reference = StartEndReference::of(&demos, crate::eval::diagonal(&demos));
+        let start_end = reference.judge(
+            &rep.rows,
+            params.sample_period,
+            fidelity.final_error_rad.mean,
+        );
+        Evaluation {
+            fidelity,
+            start_end,
+            unit,
+        }
+    };
     #[cfg(feature = "sim")]
     if crate::experiment::are_arm_joints(&rep.columns) {
         let arm = crate::experiment::load_arm(model)?;
         let report = crate::experiment::evaluate(Some(&arm), &demos, &rep.rows, &params)?;
-        return Ok((report, "rad"));
+        return Ok(judged(report, "rad"));
     }
     let _ = model;
-    Ok((
+    Ok(judged(
         steps::evaluate_rows(&demos, &rep.rows, &params)?,
         "data units",
     ))
+}
+
+/// Human-readable lines of a reproduction's start and end against the demonstrations.
+pub fn start_end_lines(s: &StartEnd, unit: &str) -> String {
+    let num = |v: Option<f64>| v.map_or("n/a".to_string(), |v| format!("{v:.4}"));
+    let line = |label: String, value: String| format!("{label:<34}{value}\n");
+    let verdict = |ok: bool, yes: &str, no: &str| if ok { yes } else { no }.to_string();
+    line(
+        format!("start speed ({unit}/s):"),
+        format!(
+            "{}; demonstrations' largest {}: {}",
+            num(s.start_speed),
+            num(s.demo_start_speed_max),
+            verdict(
+                s.start_in_range,
+                "in range",
+                "FASTER than every demonstration's start"
+            )
+        ),
+    ) + &line(
+        format!("final error ({unit}):"),
+        format!(
+            "{:.4}; demonstrations' end spread {:.4}, tolerance {:.4}: {}",
+            s.final_error,
+            s.end_spread,
+            s.end_tolerance,
+            verdict(s.end_within_spread, "within", "OUTSIDE the spread")
+        ),
+    )
 }
 
 /// Human-readable lines of a fidelity report.

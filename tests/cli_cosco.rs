@@ -83,6 +83,17 @@ fn demos_train_inspect_reproduce_evaluate() {
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert!(v["joint_dtw_rad_per_step"]["mean"].as_f64().unwrap() < 0.2);
+    // the start and end against the demonstrations given
+    let start_end = &v["start_end"];
+    assert!(start_end["start_in_range"].is_boolean(), "{start_end}");
+    assert!(
+        start_end["end_spread"].as_f64().unwrap() > 0.0,
+        "{start_end}"
+    );
+    assert_eq!(
+        start_end["final_error"].as_f64(),
+        v["final_error_rad"]["mean"].as_f64()
+    );
     // the same model from --initial
     cosco()
         .arg("reproduce")
@@ -275,6 +286,8 @@ fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
         .success()
         .stdout(predicate::str::contains("joint DTW (data units/step):"));
     let out = String::from_utf8_lossy(&eval.get_output().stdout).to_string();
+    assert!(out.contains("start speed (data units/s):"), "{out}");
+    assert!(out.contains("demonstrations' end spread"), "{out}");
     // Without the arm's kinematics the wrist path is said to be missing, not silently dropped.
     assert_eq!(
         out.contains("wrist-path DTW (mm/step):"),

@@ -18,6 +18,7 @@ mod continuation;
 #[path = "../examples/common/swing_folds.rs"]
 mod swing;
 use continuation::{continuation_folds, Disturbance};
+use cosco_hsom::eval::{all_but, diagonal};
 use cosco_hsom::experiment::heldout::{SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
 use cosco_hsom::experiment::{
     hsom_folds, leave_one_out, synthetic_demonstrations, DemoSettings, HeldOut, HeldOutSummary,
@@ -25,7 +26,7 @@ use cosco_hsom::experiment::{
 };
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::gmr::{active_range, IdleTrim};
-use cosco_hsom::metrics::{column_swings, large_swings};
+use cosco_hsom::metrics::{column_swings, end_spread, end_tolerance, large_swings, start_speed};
 use cosco_hsom::sim::NaoArm;
 use swing::{swing_folds, swing_folds_png};
 
@@ -73,6 +74,56 @@ fn trimmed_duration(d: &Demonstration) -> f64 {
 }
 
 #[test]
+fn start_and_end_are_judged_against_each_folds_training_demonstrations() {
+    let f = fixture();
+    let h = &f.heldout;
+    let diag = diagonal(&f.demos);
+    let mut judged = (0, 0);
+    for (i, fold) in h.folds.iter().enumerate() {
+        let train = all_but(&f.demos, i);
+        let fastest = train
+            .iter()
+            .filter_map(|d| start_speed(&d.rows, sample_period(d)))
+            .fold(0.0, f64::max);
+        let ends: Vec<&Vec<f64>> = train.iter().filter_map(|d| d.rows.last()).collect();
+        let sequence = fold.sequence.as_ref().unwrap();
+        let promp = fold.promp.as_ref().unwrap();
+        for (method, s) in [
+            ("CoSCo-HSOM", &fold.hsom),
+            ("nearest-sequence", sequence),
+            ("ProMP", promp),
+        ] {
+            let e = s.start_end.as_ref().unwrap();
+            assert_eq!(e.demo_start_speed_max, Some(fastest), "{method} fold {i}");
+            assert!(
+                (e.end_spread - end_spread(&ends)).abs() < 1e-15,
+                "{method} fold {i}"
+            );
+            assert_eq!(e.end_tolerance, end_tolerance(e.end_spread, diag));
+            assert_eq!(e.final_error, s.fidelity.final_error_rad.mean);
+            assert_eq!(e.end_within_spread, e.final_error <= e.end_tolerance);
+            // linear: every posture goes to the servos as it is
+            let c = s.commanded.as_ref().unwrap();
+            assert_eq!(c.postures, s.postures, "{method} fold {i}");
+            assert_eq!(c.start_end.demo_start_speed_max, Some(fastest));
+            assert!(
+                c.normalized_jerk.is_some_and(|j| j > 0.0),
+                "{method} fold {i}"
+            );
+            assert_eq!(c.start_end.end_tolerance, e.end_tolerance);
+        }
+        judged.0 += usize::from(fold.hsom.start_end.unwrap().start_in_range);
+        judged.1 += 1;
+    }
+    // the summary's fraction counts the folds
+    assert_eq!(
+        h.hsom.start_in_range,
+        Some(judged.0 as f64 / judged.1 as f64)
+    );
+    assert!(h.hsom.commanded_normalized_jerk.is_some());
+}
+
+#[test]
 fn one_fold_per_demonstration_each_scored_against_it_alone() {
     let f = fixture();
     let h = &f.heldout;
@@ -80,6 +131,7 @@ fn one_fold_per_demonstration_each_scored_against_it_alone() {
     assert_eq!(h.hsom.folds, COUNT);
     assert_eq!(h.gmr.as_ref().map(|g| g.folds), Some(COUNT));
     assert_eq!(h.sequence.as_ref().map(|s| s.folds), Some(COUNT));
+    assert_eq!(h.promp.as_ref().map(|p| p.folds), Some(COUNT));
     let durations: Vec<f64> = f.demos.iter().map(trimmed_duration).collect();
     // the demonstrations differ in tempo, so scoring against the wrong one would show
     for w in durations.windows(2) {
@@ -96,10 +148,15 @@ fn one_fold_per_demonstration_each_scored_against_it_alone() {
             .sequence
             .as_ref()
             .expect("the nearest-sequence baseline ran");
+        let promp = fold
+            .promp
+            .as_ref()
+            .unwrap_or_else(|| panic!("fold {i}: ProMP did not run: {:?}", fold.promp_error));
         for (method, s) in [
             ("CoSCo-HSOM", &fold.hsom),
             ("GMM/GMR", gmr),
             ("nearest-sequence", sequence),
+            ("ProMP", promp),
         ] {
             let r = &s.fidelity;
             assert_eq!(r.per_demo.len(), 1, "{method} fold {i}");
@@ -459,12 +516,14 @@ fn two_demonstrations_run_without_the_baseline_and_one_is_refused() {
     let f = fixture();
     let h = leave_one_out(&f.arm, &f.config, &f.demos[..2], Transition::Linear).unwrap();
     assert_eq!(h.folds.len(), 2);
-    assert!(h.gmr.is_none());
+    assert!(h.gmr.is_none() && h.promp.is_none());
     // the nearest-sequence baseline needs one demonstration to follow: it runs
     assert_eq!(h.sequence.as_ref().map(|s| s.folds), Some(2));
     for fold in &h.folds {
         let e = fold.gmr_error.as_deref().unwrap();
         assert!(e.contains("at least 2"), "{e}");
+        let e = fold.promp_error.as_deref().unwrap();
+        assert!(e.contains("ProMP needs at least 2"), "{e}");
     }
     let e = leave_one_out(&f.arm, &f.config, &f.demos[..1], Transition::Linear)
         .unwrap_err()

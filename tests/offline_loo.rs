@@ -85,6 +85,13 @@ fn a_copy_among_the_training_demonstrations_is_replayed_exactly() {
     let replay = study[0].held_out[0].score(Method::Replay).unwrap();
     assert_eq!(replay.relative_dtw, 0.0);
     assert!((replay.duration_ratio - 1.0).abs() < 1e-12);
+    // its copy is a training demonstration: it starts no faster than the fastest of them and
+    // ends where the held-out one does
+    assert!(
+        replay.start_in_range && replay.end_within_spread,
+        "{replay:?}"
+    );
+    assert_eq!(replay.final_error, 0.0);
     // not so for a demonstration without a copy
     let other = study[0].held_out[1].score(Method::Replay).unwrap();
     assert!(other.relative_dtw > 0.005, "{}", other.relative_dtw);
@@ -118,7 +125,19 @@ fn threads_do_not_change_the_result_and_every_method_runs_on_every_fold() {
     for m in &s {
         assert_eq!((m.folds, m.failed), (7, 0), "{:?}", m.method);
         assert!(m.relative_dtw.is_some_and(|v| v > 0.0 && v < 0.2), "{m:?}");
+        assert!(
+            m.start_in_range.is_some_and(|v| (0.0..=1.0).contains(&v)),
+            "{m:?}"
+        );
+        assert!(
+            m.end_within_spread
+                .is_some_and(|v| (0.0..=1.0).contains(&v)),
+            "{m:?}"
+        );
     }
+    // a replayed training demonstration never starts faster than the fastest of them
+    let replay = s.iter().find(|m| m.method == Method::Replay).unwrap();
+    assert_eq!(replay.start_in_range, Some(1.0));
     // the hierarchy compared with every other method on both gestures
     assert!(s[1..].iter().all(|m| m.hierarchy_closer.1 == 2));
 }

@@ -97,6 +97,8 @@ impl GrabbedFold<'_> {
             clamped_values,
             train_s,
             reproduce_s,
+            start_end: None,
+            commanded: None,
         })
     }
 
@@ -118,6 +120,8 @@ impl GrabbedFold<'_> {
             clamped_values: still.clamped_values,
             train_s,
             reproduce_s,
+            start_end: None,
+            commanded: None,
         };
         let (rec, c) = self.execute(plan, self.grab.1, None)?;
         let fold = ClosedLoopFold {

@@ -131,7 +131,8 @@ pub fn continuation_folds(
                         train_s,
                         reproduce_s,
                     },
-                    held,
+                    demos,
+                    i,
                 )
             };
             let t = Instant::now();

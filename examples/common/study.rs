@@ -1,7 +1,7 @@
 //! A held-out study over gestures, seeds and configurations (`examples/heldout.rs`):
 //! demonstrations recorded once per (gesture, seed) and reused for every configuration,
-//! leave-one-out for CoSCo-HSOM and GMM/GMR (GMM/GMR does not depend on the configuration:
-//! run once per set), optionally the in-sample result, and the per-level accuracy of a
+//! leave-one-out for CoSCo-HSOM, GMM/GMR and ProMP (the baselines do not depend on the
+//! configuration: run once per set), optionally the in-sample result, and the per-level accuracy of a
 //! hierarchy trained on the first three demonstrations. (gesture, seed) jobs run on worker
 //! threads sharing one arm model.
 
@@ -22,7 +22,7 @@ use cosco_hsom::sim::NaoArm;
 
 use cosco_hsom::experiment::baseline::run_baseline_in_sample;
 use cosco_hsom::experiment::heldout::{
-    gmr_folds, hsom_and_sequence_folds, HeldOut, HeldOutSummary,
+    gmr_folds, hsom_and_sequence_folds, promp_folds, HeldOut, HeldOutSummary,
 };
 use cosco_hsom::experiment::pipeline::{learn_and_reproduce, Training};
 use cosco_hsom::experiment::report::{level_rows, LevelRow};
@@ -111,6 +111,7 @@ fn run_job(
     let demos =
         synthetic_demonstrations(arm, gesture, settings.count, seed, &demo_settings, |_| {})?;
     let gmr = gmr_folds(arm, &demos)?;
+    let promp = promp_folds(arm, &demos)?;
     let gmr_in_sample = if settings.in_sample {
         Some(gmr_in_sample(arm, &demos))
     } else {
@@ -122,7 +123,9 @@ fn run_job(
         .map(|config| {
             let (hsom, sequence) =
                 hsom_and_sequence_folds(arm, config, &demos, settings.transition)?;
-            let heldout = HeldOut::new(&demos, hsom, gmr.clone())?.with_sequence(sequence)?;
+            let heldout = HeldOut::new(&demos, hsom, gmr.clone())?
+                .with_sequence(sequence)?
+                .with_promp(promp.clone())?;
             let in_sample = match &gmr_in_sample {
                 Some(g) => {
                     let run = learn_and_reproduce(
@@ -276,6 +279,11 @@ fn paired(r: &StudyRow) -> Option<(HeldOutSummary, HeldOutSummary)> {
     r.heldout.paired()
 }
 
+/// (CoSCo-HSOM, ProMP) over the folds where ProMP ran.
+fn paired_promp(r: &StudyRow) -> Option<(HeldOutSummary, HeldOutSummary)> {
+    r.heldout.paired_with(|f| f.promp.as_ref())
+}
+
 fn columns(in_sample: bool) -> Vec<Column> {
     let mut c = vec![
         col(
@@ -345,6 +353,30 @@ fn columns(in_sample: bool) -> Vec<Column> {
             "HSOM/GMR wrist",
             2,
             vec![|r| paired(r).and_then(|(h, g)| ratio(h.wrist_dtw_mm, g.wrist_dtw_mm))],
+        ),
+        col(
+            "ProMP joint DTW",
+            4,
+            vec![|r| paired_promp(r).map(|(_, p)| p.joint_dtw_rad_per_step)],
+        ),
+        col(
+            "HSOM/ProMP joint",
+            2,
+            vec![|r| {
+                paired_promp(r).and_then(|(h, p)| {
+                    ratio(
+                        Some(h.joint_dtw_rad_per_step),
+                        Some(p.joint_dtw_rad_per_step),
+                    )
+                })
+            }],
+        ),
+        col(
+            "ProMP jerk ratio (rep / demos)",
+            2,
+            vec![|r| {
+                paired_promp(r).and_then(|(_, p)| ratio(p.normalized_jerk, p.demo_normalized_jerk))
+            }],
         ),
     ];
     if in_sample {
@@ -423,7 +455,7 @@ fn cell(c: &Column, rows: &[&StudyRow], median_of: bool) -> String {
 
 impl ConfigStudy {
     /// The held-out table: one row per (gesture, seed), the medians per gesture, the overall
-    /// medians; CoSCo-HSOM's means over folds, GMM/GMR's on the same folds.
+    /// medians; CoSCo-HSOM's means over folds, GMM/GMR's and ProMP's on the same folds.
     pub fn table(&self, in_sample: bool) -> String {
         let cols = columns(in_sample);
         let mut t = String::from("| gesture | seed |");
@@ -754,8 +786,8 @@ impl Study {
             let _ = writeln!(
                 md,
                 "## {}\n\nHeld-out (leave-one-out over {} demonstrations, encoder noise {} rad, \
-                 transition {}): CoSCo-HSOM's means over the folds; GMM/GMR on the same \
-                 folds.\n",
+                 transition {}): CoSCo-HSOM's means over the folds; GMM/GMR and ProMP on \
+                 the same folds (those where each ran).\n",
                 c.config, self.count, self.noise, self.transition
             );
             md.push_str(&c.table(in_sample));

@@ -174,6 +174,12 @@ def test_heldout_scores_every_method_on_the_same_folds(demos):
             assert 0 < run["score"]["relative_dtw"] < 0.5
     summary = {s["method"]: s for s in doc["summary"]}
     assert summary["hierarchy"]["folds"] == 4
+    # where each reproduction starts and ends against the fold's training demonstrations
+    score = g["held_out"][0]["runs"][0]["score"]
+    assert score["start_speed"] > 0 and score["demo_start_speed_max"] > 0
+    assert isinstance(score["start_in_range"], bool) and isinstance(score["end_within_spread"], bool)
+    assert summary["replay"]["start_in_range"] == 1.0
+    assert 0.0 <= summary["hierarchy"]["end_within_spread"] <= 1.0
     # several gestures, by label; a retired setting is no keyword of replace
     two = cosco_hsom.heldout(
         cfg,

@@ -196,10 +196,11 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             #[cfg(not(feature = "sim"))]
             let model: Option<std::path::PathBuf> = None;
-            let (report, unit) = commands::evaluate_files(&reproduction, &demos, model.as_deref())?;
-            out!("{}", commands::fidelity_lines(&report, unit));
+            let e = commands::evaluate_files(&reproduction, &demos, model.as_deref())?;
+            out!("{}", commands::fidelity_lines(&e.fidelity, e.unit));
+            out!("{}", commands::start_end_lines(&e.start_end, e.unit));
             if let Some(p) = json {
-                let bytes = serde_json::to_vec_pretty(&report)?;
+                let bytes = serde_json::to_vec_pretty(&e)?;
                 cosco_hsom::fsutil::write_atomic(&p, &bytes)
                     .with_context(|| format!("writing {}", p.display()))?;
             }

@@ -17,6 +17,10 @@ pub struct Executed<T> {
     pub fidelity: FidelityReport,
     /// Posture values moved into the executor's ranges before execution.
     pub clamped_values: usize,
+    /// What the executor handed its actuators, one posture per sample period of the
+    /// demonstration (the method's postures as they are, or moved into the ranges and
+    /// shaped for the servos).
+    pub commanded: Vec<Vec<f64>>,
 }
 
 /// Carries out a method's postures and scores what was carried out against a demonstration.
@@ -32,6 +36,10 @@ pub trait Executor: Sync {
         postures: &[Vec<f64>],
         target: &Demonstration,
     ) -> Result<Executed<Self::Trace>, String>;
+
+    /// The executed motion of `executed`, one row per sample period of the demonstration it
+    /// was scored against (what its fidelity was computed on).
+    fn motion<'a>(&self, executed: &'a Executed<Self::Trace>) -> &'a [Vec<f64>];
 
     /// The peak speed of GMM/GMR's lead-in from the initial posture to its first point, units
     /// per second, for training demonstrations sampled every `period` seconds.
@@ -62,7 +70,13 @@ impl Executor for Kinematic {
             trace: (),
             fidelity,
             clamped_values: 0,
+            commanded: postures.to_vec(),
         })
+    }
+
+    /// The postures themselves.
+    fn motion<'a>(&self, executed: &'a Executed<()>) -> &'a [Vec<f64>] {
+        &executed.commanded
     }
 
     fn gmr_lead_in_speed(&self, train: &[Demonstration], period: f64) -> f64 {

@@ -6,7 +6,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 use crate::config::HsomConfig;
-use crate::demos::Demonstration;
+use crate::demos::{sample_period, Demonstration};
+use crate::metrics::StartEndReference;
 
 use super::executor::Executor;
 use super::fold::{run_fold, FoldInput};
@@ -151,7 +152,7 @@ pub fn all_but(demos: &[Demonstration], i: usize) -> Vec<Demonstration> {
 }
 
 /// The methods of `settings` on one fold ([`run_fold`]), scored in the gesture's diagonal
-/// `diag`.
+/// `diag`, their start and end against the fold's training demonstrations.
 fn fold<E: Executor>(
     input: &FoldInput<'_>,
     diag: f64,
@@ -159,15 +160,22 @@ fn fold<E: Executor>(
     held_out: bool,
     executor: &E,
 ) -> Fold {
+    let reference = StartEndReference::of(input.train, diag);
+    let period = sample_period(input.target);
     let runs = run_fold(&settings.methods(held_out), input, executor)
         .into_iter()
         .map(|(method, r)| match r {
-            Ok(r) => Run {
-                method,
-                score: Some(Score::of(&r.executed.fidelity, diag)),
-                error: None,
-                postures: r.postures,
-            },
+            Ok(r) => {
+                let f = &r.executed.fidelity;
+                let motion = executor.motion(&r.executed);
+                let start_end = reference.judge(motion, period, f.final_error_rad.mean);
+                Run {
+                    method,
+                    score: Some(Score::of(f, diag, &start_end)),
+                    error: None,
+                    postures: r.postures,
+                }
+            }
             Err(e) => Run {
                 method,
                 score: None,

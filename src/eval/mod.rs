@@ -11,7 +11,8 @@
 //! Reproductions are scored as executed: joint DTW in the data's own units per step and
 //! relative to the diagonal of the gesture's bounding box (comparable across gestures and
 //! units), final-sample error, duration ratio and normalised jerk over the held-out
-//! demonstration's, all after the idle trimming of `docs/METRICS.md`.
+//! demonstration's, all after the idle trimming of `docs/METRICS.md`; and the start speed and
+//! final error against the training demonstrations' start speeds and end spread.
 
 mod executor;
 mod files;
@@ -33,6 +34,6 @@ pub use method::{peak_speed, Method, GMR_COMPONENTS};
 pub use report::png;
 pub use report::{json, markdown};
 pub use results::{
-    failures, summary, ArmFold, Fold, FoldScores, FoldsError, GestureLoo, HeldOut, HeldOutSummary,
-    MethodSummary, Run, Score, Swings, MIN_DEMO_JERK,
+    failures, passed, summary, ArmFold, Commanded, Fold, FoldScores, FoldsError, GestureLoo,
+    HeldOut, HeldOutSummary, MethodSummary, Run, Score, Swings, MIN_DEMO_JERK,
 };

@@ -5,7 +5,7 @@ use crate::config::HsomConfig;
 #[cfg(feature = "plot")]
 use super::loo::LooError;
 use super::method::Method;
-use super::results::{failures, summary, GestureLoo};
+use super::results::{failures, passed, summary, GestureLoo, Score};
 #[cfg(feature = "plot")]
 use crate::demos::sample_period;
 
@@ -65,25 +65,33 @@ pub fn markdown(study: &[GestureLoo]) -> String {
     }
     let _ = writeln!(
         out,
-        "\nMedians over the {} gestures (held out; per-gesture means over the folds):\n",
+        "\nMedians over the {} gestures (held out; per-gesture means over the folds); start in \
+         range and end within spread count the held-out folds (docs/METRICS.md, \"Start and \
+         end\"):\n",
         study.len()
     );
     let _ = writeln!(
         out,
-        "| method | relative DTW | in-sample | duration ratio | final error / diagonal | jerk ratio | hierarchy / method | hierarchy closer | failed folds |"
+        "| method | relative DTW | in-sample | duration ratio | final error / diagonal | jerk ratio | start in range | end within spread | hierarchy / method | hierarchy closer | failed folds |"
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|---|---|");
+    let folds = |m: Method, pass: fn(&Score) -> bool| {
+        let (k, n) = passed(study, m, pass);
+        format!("{k} of {n}")
+    };
     let opt = |v: Option<f64>, d: usize| v.map_or("-".to_string(), |v| format!("{v:.d$}"));
     for s in summaries {
         let _ = writeln!(
             out,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} of {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} of {} |",
             s.method.name(),
             opt(s.relative_dtw, 4),
             opt(s.relative_dtw_in_sample, 4),
             opt(s.duration_ratio, 2),
             opt(s.relative_final_error, 4),
             opt(s.jerk_ratio, 2),
+            folds(s.method, |s| s.start_in_range),
+            folds(s.method, |s| s.end_within_spread),
             if s.method == Method::Hierarchy {
                 "-".to_string()
             } else {

@@ -6,7 +6,7 @@
 use serde::Serialize;
 
 use crate::demos::Demonstration;
-use crate::metrics::{median, FidelityReport};
+use crate::metrics::{median, FidelityReport, StartEnd};
 
 use super::method::Method;
 
@@ -30,6 +30,18 @@ pub struct Score {
     /// Normalised jerk of the reproduction over the demonstration's (`None` when either has
     /// none, or the demonstration's is below [`MIN_DEMO_JERK`]).
     pub jerk_ratio: Option<f64>,
+    /// The reproduction's first step's speed, data units/s (`None` with one sample;
+    /// docs/METRICS.md, "Start and end").
+    pub start_speed: Option<f64>,
+    /// The largest first-step speed of the demonstrations it learned from, data units/s.
+    pub demo_start_speed_max: Option<f64>,
+    /// Whether `start_speed` is at most `demo_start_speed_max`.
+    pub start_in_range: bool,
+    /// The mean pairwise distance between the last samples of the demonstrations it learned
+    /// from, data units (0 for one).
+    pub end_spread: f64,
+    /// Whether `final_error` is at most 2 x `end_spread` or 1 % of the gesture's diagonal.
+    pub end_within_spread: bool,
 }
 
 /// A method's result on one fold.
@@ -95,8 +107,9 @@ impl GestureLoo {
 
 impl Score {
     /// The score of a reproduction whose fidelity against one demonstration is `f`, in a
-    /// gesture whose bounding box has the diagonal `diag`.
-    pub fn of(f: &FidelityReport, diag: f64) -> Score {
+    /// gesture whose bounding box has the diagonal `diag`, and whose start and end against the
+    /// demonstrations it learned from are `start_end`.
+    pub fn of(f: &FidelityReport, diag: f64, start_end: &StartEnd) -> Score {
         let jerk = match (
             f.reproduction_smoothness.normalized_jerk,
             f.demo_smoothness.first().and_then(|d| d.normalized_jerk),
@@ -114,6 +127,11 @@ impl Score {
             duration_ratio: f.duration_ratio.mean,
             final_error: f.final_error_rad.mean,
             jerk_ratio: jerk,
+            start_speed: start_end.start_speed,
+            demo_start_speed_max: start_end.demo_start_speed_max,
+            start_in_range: start_end.start_in_range,
+            end_spread: start_end.end_spread,
+            end_within_spread: start_end.end_within_spread,
         }
     }
 }
@@ -142,6 +160,29 @@ pub struct MethodSummary {
     pub hierarchy_ratio: Option<f64>,
     /// Gestures where the hierarchy's mean DTW is below this method's, of those both ran on.
     pub hierarchy_closer: (usize, usize),
+    /// Fraction of the held-out folds it ran on whose reproduction starts in range
+    /// ([`Score::start_in_range`]; a fold without a reproduction counts as not).
+    pub start_in_range: Option<f64>,
+    /// The same for ending within the spread ([`Score::end_within_spread`]).
+    pub end_within_spread: Option<f64>,
+}
+
+/// The held-out folds of `method` in `study` where it produced a reproduction whose score
+/// passes `pass`, and the held-out folds it ran on.
+pub fn passed(study: &[GestureLoo], method: Method, pass: fn(&Score) -> bool) -> (usize, usize) {
+    let runs = study
+        .iter()
+        .flat_map(|g| &g.held_out)
+        .flat_map(|f| &f.runs)
+        .filter(|r| r.method == method);
+    runs.fold((0, 0), |(k, n), r| {
+        (k + usize::from(r.score.as_ref().is_some_and(pass)), n + 1)
+    })
+}
+
+/// `k / n` of a [`passed`] count (`None` when `n` is 0).
+fn fraction((k, n): (usize, usize)) -> Option<f64> {
+    (n > 0).then(|| k as f64 / n as f64)
 }
 
 fn held(g: &GestureLoo) -> &[Fold] {
@@ -202,6 +243,8 @@ pub fn summary(study: &[GestureLoo]) -> Vec<MethodSummary> {
                 ),
                 hierarchy_ratio: median(pairs.iter().map(|(h, x)| h / x)),
                 hierarchy_closer: (pairs.iter().filter(|(h, x)| h < x).count(), pairs.len()),
+                start_in_range: fraction(passed(study, m, |s| s.start_in_range)),
+                end_within_spread: fraction(passed(study, m, |s| s.end_within_spread)),
             }
         })
         .collect()
@@ -266,6 +309,24 @@ pub struct FoldScores {
     pub train_s: f64,
     /// Time to produce the postures, seconds.
     pub reproduce_s: f64,
+    /// The executed motion's start and end against the fold's training demonstrations
+    /// (docs/METRICS.md, "Start and end"; `None` where not judged).
+    pub start_end: Option<StartEnd>,
+    /// The postures handed to the servos, scored the same way (`None` where not judged).
+    pub commanded: Option<Commanded>,
+}
+
+/// What a method handed the servos on one fold (the postures clamped into the joint ranges and
+/// shaped by the transition, one per tick), scored without the servos' filtering.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Commanded {
+    /// Postures handed over.
+    pub postures: usize,
+    /// Their normalised jerk, trimmed as the executed motion's
+    /// ([`crate::metrics::trimmed_normalized_jerk`]).
+    pub normalized_jerk: Option<f64>,
+    /// Their start and end against the fold's training demonstrations.
+    pub start_end: StartEnd,
 }
 
 /// One fold on the arm: a demonstration held out.
@@ -284,6 +345,11 @@ pub struct ArmFold {
     /// The nearest-sequence baseline on the same fold (`experiment::hsom_and_sequence_folds`), when it
     /// was run.
     pub sequence: Option<FoldScores>,
+    /// ProMP conditioned on the initial posture, trained on the other demonstrations, when it
+    /// was run and could run ([`HeldOut::with_promp`]).
+    pub promp: Option<FoldScores>,
+    /// Why ProMP did not run on this fold (`None` when it ran or was not asked for).
+    pub promp_error: Option<String>,
 }
 
 /// Means over folds of one method.
@@ -318,6 +384,22 @@ pub struct HeldOutSummary {
     pub hold_s: f64,
     /// The same for the held-out demonstrations.
     pub demo_hold_s: f64,
+    /// Mean start speed of the executed motions, rad/s (over the folds where judged).
+    pub start_speed: Option<f64>,
+    /// Mean over the folds of the training demonstrations' largest start speed, rad/s.
+    pub demo_start_speed_max: Option<f64>,
+    /// Fraction of the judged folds whose executed motion starts in range.
+    pub start_in_range: Option<f64>,
+    /// Fraction of the judged folds whose executed motion ends within the spread.
+    pub end_within_spread: Option<f64>,
+    /// Mean normalised jerk of the commanded postures (over the folds where it is defined).
+    pub commanded_normalized_jerk: Option<f64>,
+    /// Mean start speed of the commanded postures, rad/s.
+    pub commanded_start_speed: Option<f64>,
+    /// Fraction of the judged folds whose commanded postures start in range.
+    pub commanded_start_in_range: Option<f64>,
+    /// Fraction of the judged folds whose commanded postures end within the spread.
+    pub commanded_end_within_spread: Option<f64>,
 }
 
 fn mean(values: impl Iterator<Item = f64>) -> Option<f64> {
@@ -325,11 +407,18 @@ fn mean(values: impl Iterator<Item = f64>) -> Option<f64> {
     (n > 0).then(|| sum / n as f64)
 }
 
+/// The fraction of `flags` that are true (`None` when there are none).
+fn share(flags: impl Iterator<Item = bool>) -> Option<f64> {
+    mean(flags.map(|b| f64::from(u8::from(b))))
+}
+
 impl HeldOutSummary {
     /// Means over `folds`; `None` when there are none.
     pub fn of(folds: &[&FoldScores]) -> Option<HeldOutSummary> {
         let m = |f: &dyn Fn(&FoldScores) -> f64| mean(folds.iter().map(|s| f(s)));
         let demo_smoothness = |s: &FoldScores| s.fidelity.demo_smoothness.first().cloned();
+        let executed = || folds.iter().filter_map(|s| s.start_end.as_ref());
+        let commanded = || folds.iter().filter_map(|s| s.commanded.as_ref());
         Some(HeldOutSummary {
             folds: folds.len(),
             joint_dtw_rad_per_step: m(&|s| s.fidelity.joint_dtw_rad_per_step.mean)?,
@@ -359,11 +448,20 @@ impl HeldOutSummary {
             demo_swings: m(&|s| s.swings.demo as f64)?,
             hold_s: m(&|s| s.fidelity.reproduction_hold_s)?,
             demo_hold_s: m(&|s| s.fidelity.demo_hold_s.first().copied().unwrap_or(f64::NAN))?,
+            start_speed: mean(executed().filter_map(|e| e.start_speed)),
+            demo_start_speed_max: mean(executed().filter_map(|e| e.demo_start_speed_max)),
+            start_in_range: share(executed().map(|e| e.start_in_range)),
+            end_within_spread: share(executed().map(|e| e.end_within_spread)),
+            commanded_normalized_jerk: mean(commanded().filter_map(|c| c.normalized_jerk)),
+            commanded_start_speed: mean(commanded().filter_map(|c| c.start_end.start_speed)),
+            commanded_start_in_range: share(commanded().map(|c| c.start_end.start_in_range)),
+            commanded_end_within_spread: share(commanded().map(|c| c.start_end.end_within_spread)),
         })
     }
 }
 
-/// The held-out evaluation of CoSCo-HSOM and GMM/GMR on one set of demonstrations.
+/// The held-out evaluation of CoSCo-HSOM, GMM/GMR, and when run the nearest sequence and
+/// ProMP, on one set of demonstrations.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct HeldOut {
     /// One fold per demonstration, in order.
@@ -375,6 +473,9 @@ pub struct HeldOut {
     /// The nearest-sequence baseline: means over all folds (`None` when it was not run:
     /// [`HeldOut::with_sequence`]).
     pub sequence: Option<HeldOutSummary>,
+    /// ProMP: means over the folds where it ran (`None` when it was not run,
+    /// [`HeldOut::with_promp`], or ran on none).
+    pub promp: Option<HeldOutSummary>,
 }
 
 impl HeldOut {
@@ -410,6 +511,8 @@ impl HeldOut {
                     gmr,
                     gmr_error,
                     sequence: None,
+                    promp: None,
+                    promp_error: None,
                 }
             })
             .collect();
@@ -422,6 +525,7 @@ impl HeldOut {
             hsom,
             folds,
             sequence: None,
+            promp: None,
         })
     }
 
@@ -447,13 +551,46 @@ impl HeldOut {
         Ok(self)
     }
 
+    /// Add ProMP's folds: `promp[i]` is fold `i`'s scores, or the reason ProMP did not run on
+    /// it; one per fold.
+    pub fn with_promp(
+        mut self,
+        promp: Vec<Result<FoldScores, String>>,
+    ) -> Result<HeldOut, FoldsError> {
+        if promp.len() != self.folds.len() {
+            return Err(FoldsError(format!(
+                "held-out results: {} ProMP folds for {} folds; need one per fold",
+                promp.len(),
+                self.folds.len()
+            )));
+        }
+        for (f, p) in self.folds.iter_mut().zip(promp) {
+            (f.promp, f.promp_error) = match p {
+                Ok(s) => (Some(s), None),
+                Err(e) => (None, Some(e)),
+            };
+        }
+        let ran: Vec<&FoldScores> = self.folds.iter().filter_map(|f| f.promp.as_ref()).collect();
+        self.promp = HeldOutSummary::of(&ran);
+        Ok(self)
+    }
+
     /// Both methods averaged over the same folds (those where GMM/GMR ran): (CoSCo-HSOM,
     /// GMM/GMR); `None` when GMM/GMR ran on none.
     pub fn paired(&self) -> Option<(HeldOutSummary, HeldOutSummary)> {
+        self.paired_with(|f| f.gmr.as_ref())
+    }
+
+    /// CoSCo-HSOM and another method (`other` of a fold: its scores, when it ran) averaged over
+    /// the same folds, those where the other ran; `None` when it ran on none.
+    pub fn paired_with(
+        &self,
+        other: fn(&ArmFold) -> Option<&FoldScores>,
+    ) -> Option<(HeldOutSummary, HeldOutSummary)> {
         let (h, g): (Vec<&FoldScores>, Vec<&FoldScores>) = self
             .folds
             .iter()
-            .filter_map(|f| f.gmr.as_ref().map(|g| (&f.hsom, g)))
+            .filter_map(|f| other(f).map(|g| (&f.hsom, g)))
             .unzip();
         Some((HeldOutSummary::of(&h)?, HeldOutSummary::of(&g)?))
     }

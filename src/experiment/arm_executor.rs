@@ -1,6 +1,6 @@
 //! The simulated Nao arm as an executor of the evaluator ([`crate::eval::Executor`]): a
 //! method's postures clamped into the joint ranges, shaped by the transition (the hierarchy's
-//! and the nearest sequence's; GMM/GMR's and the replay's go posture to posture), executed by
+//! and the nearest sequence's; GMM/GMR's, ProMP's and the replay's go posture to posture), executed by
 //! the position controller and recorded at the demonstration's rate (40 Hz), then scored
 //! against the demonstration with the wrist paths.
 
@@ -36,7 +36,7 @@ impl Executor for ArmExecutor<'_> {
             ..MetricsParams::default()
         };
         let transition = match method {
-            Method::GmmGmr | Method::Replay => Transition::Linear,
+            Method::GmmGmr | Method::ProMP | Method::Replay => Transition::Linear,
             _ => self.transition,
         };
         let run = execute_and_score(
@@ -51,7 +51,13 @@ impl Executor for ArmExecutor<'_> {
             trace: run.executed,
             fidelity: run.fidelity,
             clamped_values: run.clamped_values,
+            commanded: run.commanded,
         })
+    }
+
+    /// The encoders' record.
+    fn motion<'a>(&self, executed: &'a Executed<Recording>) -> &'a [Vec<f64>] {
+        &executed.trace.qpos
     }
 
     /// [`LEAD_IN_PEAK_SPEED`]: the arm's, whatever the demonstrations.

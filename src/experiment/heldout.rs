@@ -1,15 +1,16 @@
 //! Held-out evaluation (leave-one-out): for each demonstration `i`, learn from all the others,
 //! reproduce from demonstration `i`'s first posture, execute on the simulated arm and score
-//! against demonstration `i` only, for CoSCo-HSOM and the GMM/GMR baseline alike. The
+//! against demonstration `i` only, for CoSCo-HSOM and the GMM/GMR and ProMP baselines alike. The
 //! in-sample result (learn from all, score against all) says how well a method reproduces
 //! what it saw; this says how well it reproduces the gesture from a start it has not seen.
 
 use crate::config::HsomConfig;
 use crate::demos::{sample_period, Demonstration};
-use crate::eval::{all_but, run_fold, FoldInput, Method, MethodRun};
+use crate::dtw::euclidean;
+use crate::eval::{all_but, diagonal, run_fold, Commanded, FoldInput, Method, MethodRun};
 pub use crate::eval::{ArmFold as Fold, FoldScores, HeldOut, HeldOutSummary, Swings};
 use crate::gmr::MIN_DEMONSTRATIONS;
-use crate::metrics::column_swings;
+use crate::metrics::{column_swings, trimmed_normalized_jerk, MetricsParams, StartEndReference};
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
 
 use super::pipeline::Training;
@@ -18,18 +19,51 @@ use super::{are_arm_joints, ArmExecutor, ExperimentError, Transition};
 pub use super::evaluate::{SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
 
 impl FoldScores {
-    /// A method's run on the arm ([`run_fold`] with [`ArmExecutor`]) as its scores against
-    /// the held-out demonstration `held`.
+    /// A method's run on the arm ([`run_fold`] with [`ArmExecutor`]) on fold `i` of `demos`
+    /// as its scores against the held-out demonstration `demos[i]`: the executed motion's and
+    /// the commanded postures' start and end against the other demonstrations (docs/METRICS.md,
+    /// "Start and end"), in the diagonal of all of them.
     pub fn of(
         run: MethodRun<Recording>,
-        held: &Demonstration,
+        demos: &[Demonstration],
+        i: usize,
     ) -> Result<FoldScores, ExperimentError> {
+        let held = demos.get(i).ok_or_else(|| {
+            ExperimentError::Invalid(format!(
+                "fold {}: no such demonstration (there are {})",
+                i + 1,
+                demos.len()
+            ))
+        })?;
+        let others = demos.iter().enumerate().filter(|&(j, _)| j != i);
+        let reference = StartEndReference::of(others.map(|(_, d)| d), diagonal(demos));
+        let metrics = MetricsParams {
+            sample_period: sample_period(held),
+            ..MetricsParams::default()
+        };
+        let dt = metrics.sample_period;
+        let executed = &run.executed;
+        let start_end = reference.judge(
+            &executed.trace.qpos,
+            dt,
+            executed.fidelity.final_error_rad.mean,
+        );
+        let commanded = match (executed.commanded.last(), held.rows.last()) {
+            (Some(c), Some(h)) => Some(Commanded {
+                postures: executed.commanded.len(),
+                normalized_jerk: trimmed_normalized_jerk(&executed.commanded, &metrics),
+                start_end: reference.judge(&executed.commanded, dt, euclidean(c, h)),
+            }),
+            _ => None,
+        };
         Ok(FoldScores {
-            swings: swings(&run.executed.trace, held)?,
+            swings: swings(&executed.trace, held)?,
             postures: run.postures.len(),
-            clamped_values: run.executed.clamped_values,
+            clamped_values: executed.clamped_values,
             train_s: run.train_s,
             reproduce_s: run.reproduce_s,
+            start_end: Some(start_end),
+            commanded,
             fidelity: run.executed.fidelity,
         })
     }
@@ -134,8 +168,8 @@ pub fn hsom_folds(
 ) -> Result<Vec<FoldScores>, ExperimentError> {
     hierarchy_runs(arm, config, demos, training, transition)?
         .into_iter()
-        .zip(demos)
-        .map(|(run, held)| FoldScores::of(run, held))
+        .enumerate()
+        .map(|(i, run)| FoldScores::of(run, demos, i))
         .collect()
 }
 
@@ -167,7 +201,7 @@ pub fn hsom_and_sequence_folds(
             );
             let mut scores = runs
                 .into_iter()
-                .map(|run| FoldScores::of(run.map_err(ExperimentError::Invalid)?, &demos[i]));
+                .map(|run| FoldScores::of(run.map_err(ExperimentError::Invalid)?, demos, i));
             let no_run = || Err(ExperimentError::Invalid(no_run()));
             let hsom = scores.next().unwrap_or_else(no_run)?;
             let sequence = scores.next().unwrap_or_else(no_run)?;
@@ -190,6 +224,26 @@ pub fn gmr_folds(
     arm: &NaoArm,
     demos: &[Demonstration],
 ) -> Result<Vec<Result<FoldScores, String>>, ExperimentError> {
+    baseline_folds(arm, demos, Method::GmmGmr)
+}
+
+/// ProMP conditioned on the initial posture ([`Method::ProMP`]) on every fold, as
+/// [`gmr_folds`]: posture to posture; a fold where it cannot run (fewer than
+/// [`MIN_DEMONSTRATIONS`] to learn from, a failed fit) gives the reason.
+pub fn promp_folds(
+    arm: &NaoArm,
+    demos: &[Demonstration],
+) -> Result<Vec<Result<FoldScores, String>>, ExperimentError> {
+    baseline_folds(arm, demos, Method::ProMP)
+}
+
+/// A baseline `method` that learns from demonstrations alone on every fold (the evaluator's
+/// [`run_fold`] on the arm's executor, posture to posture), or the fold's reason.
+fn baseline_folds(
+    arm: &NaoArm,
+    demos: &[Demonstration],
+    method: Method,
+) -> Result<Vec<Result<FoldScores, String>>, ExperimentError> {
     check_demos(demos)?;
     let executor = ArmExecutor {
         arm,
@@ -200,31 +254,32 @@ pub fn gmr_folds(
             let learn_from = demos.len() - 1;
             if learn_from < MIN_DEMONSTRATIONS {
                 return Err(format!(
-                    "fold {}: GMM/GMR needs at least {MIN_DEMONSTRATIONS} demonstrations to \
+                    "fold {}: {} needs at least {MIN_DEMONSTRATIONS} demonstrations to \
                      learn from, this fold has {learn_from}",
                     i + 1,
+                    method.name(),
                 ));
             }
             let run = only(arm_fold(
                 &executor,
-                &[Method::GmmGmr],
+                &[method],
                 None,
                 Training::Trained,
                 demos,
                 i,
             ))
-            .and_then(|run| FoldScores::of(run, &demos[i]).map_err(|e| e.to_string()));
-            run.map_err(|e| format!("fold {}: GMM/GMR: {e}", i + 1))
+            .and_then(|run| FoldScores::of(run, demos, i).map_err(|e| e.to_string()));
+            run.map_err(|e| format!("fold {}: {}: {e}", i + 1, method.name()))
         })
         .collect())
 }
 
 /// Leave-one-out for CoSCo-HSOM (trained with `config`, executed with `transition`),
-/// GMM/GMR and the nearest-sequence baseline ([`hsom_and_sequence_folds`]): fold `i` learns from
-/// every demonstration but `demos[i]`, reproduces from `demos[i]`'s first posture, executes
-/// on `arm` and is scored against `demos[i]` only. Needs at least 2 demonstrations of the
-/// arm's joints; GMM/GMR needs 2 to learn from, so with 2 demonstrations its folds hold the
-/// reason instead.
+/// GMM/GMR, ProMP and the nearest-sequence baseline ([`hsom_and_sequence_folds`]): fold `i`
+/// learns from every demonstration but `demos[i]`, reproduces from `demos[i]`'s first posture,
+/// executes on `arm` and is scored against `demos[i]` only. Needs at least 2 demonstrations of
+/// the arm's joints; GMM/GMR and ProMP need 2 to learn from, so with 2 demonstrations their
+/// folds hold the reason instead.
 pub fn leave_one_out(
     arm: &NaoArm,
     config: &HsomConfig,
@@ -233,7 +288,10 @@ pub fn leave_one_out(
 ) -> Result<HeldOut, ExperimentError> {
     let (hsom, sequence) = hsom_and_sequence_folds(arm, config, demos, transition)?;
     let gmr = gmr_folds(arm, demos)?;
-    Ok(HeldOut::new(demos, hsom, gmr)?.with_sequence(sequence)?)
+    let promp = promp_folds(arm, demos)?;
+    Ok(HeldOut::new(demos, hsom, gmr)?
+        .with_sequence(sequence)?
+        .with_promp(promp)?)
 }
 
 /// `(time s, value rad)` of [`SWING_JOINT`] in an executed recording.

@@ -29,8 +29,8 @@ pub use evaluate::{
 pub use execute::{clamp_to_ranges, execute_postures, Transition};
 pub use film::film;
 pub use heldout::{
-    gmr_folds, hsom_and_sequence_folds, hsom_folds, leave_one_out, Fold, FoldScores, HeldOut,
-    HeldOutSummary, Swings,
+    gmr_folds, hsom_and_sequence_folds, hsom_folds, leave_one_out, promp_folds, Fold, FoldScores,
+    HeldOut, HeldOutSummary, Swings,
 };
 pub use output::load_arm;
 pub use pipeline::{

@@ -115,6 +115,8 @@ pub struct Executed {
     pub executed: Recording,
     /// Its fidelity against the test demonstrations.
     pub fidelity: FidelityReport,
+    /// The servo targets, one per tick: the postures clamped and shaped by the transition.
+    pub commanded: Vec<Vec<f64>>,
 }
 
 /// Clamp `postures` into the joint ranges, shape them with `transition`, execute them on
@@ -134,16 +136,14 @@ pub fn execute_and_score(
         )));
     }
     let (postures, clamped_values) = clamp_to_ranges(postures)?;
-    let executed = execute_postures(
-        arm,
-        &transition.shape(&postures),
-        1.0 / metrics.sample_period,
-    )?;
+    let commanded = transition.shape(&postures);
+    let executed = execute_postures(arm, &commanded, 1.0 / metrics.sample_period)?;
     let fidelity = evaluate(Some(arm), test, &executed.qpos, metrics)?;
     Ok(Executed {
         clamped_values,
         executed,
         fidelity,
+        commanded,
     })
 }
 

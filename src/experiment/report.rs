@@ -294,66 +294,113 @@ pub fn heldout_table(results: &[MethodResult]) -> String {
         JOINT_NAMES[SWING_JOINT], SWING_MIN_AMPLITUDE_RAD
     );
     for r in results {
-        let f = &r.fidelity;
-        let h = r.heldout.as_ref();
-        let pair = |a: Option<f64>, b: Option<f64>, digits: usize| {
-            format!("{} / {}", num(a, digits), num(b, digits))
-        };
-        let demo_jerk = demo_mean(&f.demo_smoothness, |s| s.normalized_jerk);
-        let demo_rev = demo_mean(&f.demo_smoothness, |s| Some(s.total_reversals as f64));
+        t.push_str(&heldout_row(&r.name, Some(&r.fidelity), r.heldout.as_ref()));
+    }
+    t
+}
+
+/// One row of [`heldout_table`]: `name`'s in-sample fidelity `f` (`n/a` without one: a method
+/// evaluated held out only) beside its held-out means `h`.
+pub fn heldout_row(name: &str, f: Option<&FidelityReport>, h: Option<&HeldOutSummary>) -> String {
+    let pair = |a: Option<f64>, b: Option<f64>, digits: usize| {
+        format!("{} / {}", num(a, digits), num(b, digits))
+    };
+    let fm = |g: fn(&FidelityReport) -> Option<f64>| f.and_then(g);
+    let demo_jerk = f.and_then(|f| demo_mean(&f.demo_smoothness, |s| s.normalized_jerk));
+    let demo_rev =
+        f.and_then(|f| demo_mean(&f.demo_smoothness, |s| Some(s.total_reversals as f64)));
+    format!(
+        "| {} | {} | {} | {} | {} | {} | {} | {} ({}) | {} ({}) | {} |\n",
+        name,
+        h.map_or("n/a".into(), |h| h.folds.to_string()),
+        pair(
+            fm(|f| Some(f.joint_dtw_rad_per_step.mean)),
+            h.map(|h| h.joint_dtw_rad_per_step),
+            4
+        ),
+        pair(
+            fm(|f| f.wrist_dtw_mm.map(|w| w.mean)),
+            h.and_then(|h| h.wrist_dtw_mm),
+            1
+        ),
+        pair(
+            fm(|f| Some(f.apex_error_rad.mean)),
+            h.map(|h| h.apex_error_rad),
+            3
+        ),
+        pair(
+            fm(|f| Some(f.final_error_rad.mean)),
+            h.map(|h| h.final_error_rad),
+            3
+        ),
+        pair(
+            fm(|f| Some(f.duration_ratio.mean)),
+            h.map(|h| h.duration_ratio),
+            2
+        ),
+        pair(
+            fm(|f| f.reproduction_smoothness.normalized_jerk),
+            h.and_then(|h| h.normalized_jerk),
+            0
+        ),
+        pair(demo_jerk, h.and_then(|h| h.demo_normalized_jerk), 0),
+        pair(
+            fm(|f| Some(f.reproduction_smoothness.total_reversals as f64)),
+            h.map(|h| h.velocity_reversals),
+            1
+        ),
+        pair(demo_rev, h.map(|h| h.demo_velocity_reversals), 1),
+        h.map_or("n/a".into(), |h| format!(
+            "{} ({})",
+            num(Some(h.swings), 1),
+            num(Some(h.demo_swings), 1)
+        )),
+    )
+}
+
+/// ProMP's name in the report's tables (held out only: no in-sample column).
+pub const PROMP_NAME: &str = "ProMP (held out only)";
+
+/// A markdown table with one row per `(name, held-out summary)`: where the reproductions start
+/// and end against the folds' training demonstrations and how smooth they are, the motion the
+/// arm executed beside the postures the method handed the servos (docs/METRICS.md, "Start and
+/// end"). `n/a` where a figure was not computed.
+pub fn start_end_table(rows: &[(&str, &HeldOutSummary)]) -> String {
+    let pct = |v: Option<f64>| v.map_or("n/a".into(), |v| format!("{:.0} %", 100.0 * v));
+    let mut t = String::from(
+        "| method (executed / commanded) | folds | start speed (rad/s) | training demos' \
+         largest start speed (rad/s) | start in range | end within spread | normalized jerk \
+         (held-out demos') |\n|---|---|---|---|---|---|---|\n",
+    );
+    for (name, h) in rows {
         let _ = writeln!(
             t,
-            "| {} | {} | {} | {} | {} | {} | {} | {} ({}) | {} ({}) | {} |",
-            r.name,
-            h.map_or("n/a".into(), |h| h.folds.to_string()),
-            pair(
-                Some(f.joint_dtw_rad_per_step.mean),
-                h.map(|h| h.joint_dtw_rad_per_step),
-                4
-            ),
-            pair(
-                f.wrist_dtw_mm.map(|w| w.mean),
-                h.and_then(|h| h.wrist_dtw_mm),
-                1
-            ),
-            pair(Some(f.apex_error_rad.mean), h.map(|h| h.apex_error_rad), 3),
-            pair(
-                Some(f.final_error_rad.mean),
-                h.map(|h| h.final_error_rad),
-                3
-            ),
-            pair(Some(f.duration_ratio.mean), h.map(|h| h.duration_ratio), 2),
-            pair(
-                f.reproduction_smoothness.normalized_jerk,
-                h.and_then(|h| h.normalized_jerk),
-                0
-            ),
-            pair(demo_jerk, h.and_then(|h| h.demo_normalized_jerk), 0),
-            pair(
-                Some(f.reproduction_smoothness.total_reversals as f64),
-                h.map(|h| h.velocity_reversals),
-                1
-            ),
-            pair(demo_rev, h.map(|h| h.demo_velocity_reversals), 1),
-            h.map_or("n/a".into(), |h| format!(
-                "{} ({})",
-                num(Some(h.swings), 1),
-                num(Some(h.demo_swings), 1)
-            )),
+            "| {name} | {} | {} / {} | {} | {} / {} | {} / {} | {} / {} ({}) |",
+            h.folds,
+            num(h.start_speed, 3),
+            num(h.commanded_start_speed, 3),
+            num(h.demo_start_speed_max, 3),
+            pct(h.start_in_range),
+            pct(h.commanded_start_in_range),
+            pct(h.end_within_spread),
+            pct(h.commanded_end_within_spread),
+            num(h.normalized_jerk, 0),
+            num(h.commanded_normalized_jerk, 0),
+            num(h.demo_normalized_jerk, 0),
         );
     }
     t
 }
 
 /// A markdown table of every fold: the held-out demonstration and both methods' scores
-/// against it, and the nearest-sequence baseline's joint DTW and swings (`n/a` when it was
-/// not run).
+/// against it, the nearest-sequence baseline's joint DTW and swings, and ProMP's joint DTW,
+/// final error and swings (`n/a` when one was not run).
 pub fn folds_table(h: &HeldOut) -> String {
     let mut t = String::from(
         "| fold | held out | CoSCo-HSOM joint DTW | wrist DTW | apex | final | duration ratio \
          | swings (demo) | GMM/GMR joint DTW | wrist DTW | apex | final | duration ratio \
-         | swings | nearest-sequence joint DTW | swings \
-         |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+         | swings | nearest-sequence joint DTW | swings | ProMP joint DTW | final | swings \
+         |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for f in &h.folds {
         let scores = |s: &FoldScores| {
@@ -380,9 +427,19 @@ pub fn folds_table(h: &HeldOut) -> String {
                 s.fidelity.joint_dtw_rad_per_step.mean, s.swings.reproduction
             )
         });
+        let promp = match (&f.promp, &f.promp_error) {
+            (Some(p), _) => format!(
+                "{:.4} | {:.3} | {}",
+                p.fidelity.joint_dtw_rad_per_step.mean,
+                p.fidelity.final_error_rad.mean,
+                p.swings.reproduction
+            ),
+            (None, Some(e)) => format!("not run: {e} | | "),
+            (None, None) => "n/a | n/a | n/a".into(),
+        };
         let _ = writeln!(
             t,
-            "| {} | {} | {} | {} ({}) | {gmr} | {sequence} |",
+            "| {} | {} | {} | {} ({}) | {gmr} | {sequence} | {promp} |",
             f.held_out + 1,
             f.source,
             scores(&f.hsom),
@@ -460,6 +517,9 @@ impl Report {
                      scored against all (the table above). Means; held-out over the folds.\n"
                 );
                 md.push_str(&heldout_table(&self.methods));
+                if let Some(p) = &h.promp {
+                    md.push_str(&heldout_row(PROMP_NAME, None, Some(p)));
+                }
                 if let Some(s) = &h.sequence {
                     let _ = writeln!(
                         md,
@@ -477,6 +537,20 @@ impl Report {
                         num(Some(s.demo_swings), 1)
                     );
                 }
+                let _ = writeln!(
+                    md,
+                    "\nStart, end and smoothness, held out: the motion the arm executed beside \
+                     the postures the method handed the servos (clamped into the joint ranges, \
+                     shaped by the transition). Start in range: the first step no faster than \
+                     the fastest first step of the fold's training demonstrations; end within \
+                     spread: the final error at most 2 x the mean distance between their last \
+                     postures, or 1 % of the gesture's diagonal.\n"
+                );
+                let mut rows: Vec<(&str, &HeldOutSummary)> = vec![("CoSCo-HSOM", &h.hsom)];
+                rows.extend(h.gmr.as_ref().map(|g| ("GMM/GMR", g)));
+                rows.extend(h.promp.as_ref().map(|p| (PROMP_NAME, p)));
+                rows.extend(h.sequence.as_ref().map(|s| ("nearest sequence", s)));
+                md.push_str(&start_end_table(&rows));
                 let _ = writeln!(md);
                 md.push_str(&folds_table(h));
             }
@@ -506,6 +580,13 @@ impl Report {
             if self.variants.iter().any(|v| v.heldout.is_some()) {
                 let _ = writeln!(md, "In-sample / held-out (leave-one-out) means:\n");
                 md.push_str(&heldout_table(&self.variants));
+                let _ = writeln!(md, "\nHeld out, start, end and smoothness:\n");
+                let rows: Vec<(&str, &HeldOutSummary)> = self
+                    .variants
+                    .iter()
+                    .filter_map(|v| v.heldout.as_ref().map(|h| (v.name.as_str(), h)))
+                    .collect();
+                md.push_str(&start_end_table(&rows));
                 let _ = writeln!(md, "\nIn-sample, every metric:\n");
             }
             md.push_str(&comparison_table(&self.variants));

@@ -186,6 +186,15 @@ pub struct FidelityReport {
     pub settings: MetricsParams,
 }
 
+/// The normalised jerk ([`super::normalized_jerk`]) of `rows` trimmed as a reproduction is
+/// in [`fidelity`]: on its active range (`params.trim`, at `params.sample_period`), or on all
+/// of it when it never moves.
+pub fn trimmed_normalized_jerk<R: AsRef<[f64]>>(rows: &[R], params: &MetricsParams) -> Option<f64> {
+    let dt = params.sample_period;
+    let range = active_range(rows, None, dt, &params.trim).unwrap_or(0..rows.len());
+    super::normalized_jerk(&rows[range], dt)
+}
+
 fn check_trajectory(t: &Trajectory, which: &str, width: usize) -> Result<(), MetricsError> {
     if t.joints.is_empty() || width == 0 {
         return Err(MetricsError::Empty {

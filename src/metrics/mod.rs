@@ -1,19 +1,25 @@
-//! Fidelity metrics: how closely a reproduction follows the demonstrations, and how smooth
-//! it is. Pure functions over joint trajectories sampled at a fixed rate (40 Hz) with
+//! Fidelity metrics: how closely a reproduction follows the demonstrations, how smooth it
+//! is, and where it starts and ends against them. Pure functions over joint trajectories sampled at a fixed rate (40 Hz) with
 //! optional wrist positions; the simulator supplies the data. Definitions, formulas, units
 //! and thresholds: `docs/METRICS.md`.
 
 mod errors;
 mod fidelity;
 mod smoothness;
+mod start_end;
 
 pub use errors::MetricsError;
 pub use fidelity::{
-    fidelity, fidelity_named, DemoScores, FidelityReport, MetricsParams, Stat, Trajectory,
+    fidelity, fidelity_named, trimmed_normalized_jerk, DemoScores, FidelityReport, MetricsParams,
+    Stat, Trajectory,
 };
 pub use smoothness::{
     apex_dwell, column_swings, key_pose, large_swings, normalized_jerk, smoothness,
     velocity_reversals, Smoothness, APEX_RADIUS,
+};
+pub use start_end::{
+    end_spread, end_tolerance, start_speed, StartEnd, StartEndReference, END_DIAGONAL_FRACTION,
+    END_SPREAD_FACTOR, START_SPEED_RTOL,
 };
 
 /// The median of the finite values (`None` when there are none).

@@ -18,6 +18,14 @@ fn summary(dtw: f64, rev: (f64, f64), jerk: (f64, f64)) -> HeldOutSummary {
         demo_swings: 0.0,
         hold_s: 1.0,
         demo_hold_s: 1.1,
+        start_speed: None,
+        demo_start_speed_max: None,
+        start_in_range: None,
+        end_within_spread: None,
+        commanded_normalized_jerk: None,
+        commanded_start_speed: None,
+        commanded_start_in_range: None,
+        commanded_end_within_spread: None,
     }
 }
 

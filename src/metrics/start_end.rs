@@ -1,0 +1,199 @@
+//! Where a reproduction starts and ends against the demonstrations it learned from: its first
+//! step's speed against theirs, its final error against the spread of their ends
+//! (docs/METRICS.md, "Start and end").
+
+use serde::Serialize;
+
+use crate::demos::{sample_period, Demonstration};
+use crate::dtw::euclidean;
+
+/// A reproduction ends within the demonstrations' spread when its final error is at most this
+/// many times their end spread ([`end_tolerance`]).
+pub const END_SPREAD_FACTOR: f64 = 2.0;
+
+/// ... or at most this fraction of the gesture's bounding-box diagonal, whichever is larger
+/// (demonstrations that all end at one point, as LASA's at the attractor, have no spread).
+pub const END_DIAGONAL_FRACTION: f64 = 0.01;
+
+/// A start speed counts as at most the demonstrations' largest up to this relative rounding:
+/// periods computed from `time` columns (span / intervals) differ in the last bit between
+/// recordings at one rate, so a training demonstration replayed at the held-out one's period
+/// can start one unit in the last place faster than itself.
+pub const START_SPEED_RTOL: f64 = 1e-9;
+
+/// The start speed of evenly sampled positions (period `dt` seconds): the first step's
+/// Euclidean speed `‖q₁ − q₀‖ / dt`, data units per second. `None` with fewer than 2 samples
+/// (no step).
+pub fn start_speed<R: AsRef<[f64]>>(rows: &[R], dt: f64) -> Option<f64> {
+    match rows {
+        [q0, q1, ..] => Some(euclidean(q1.as_ref(), q0.as_ref()) / dt),
+        _ => None,
+    }
+}
+
+/// The end spread of trajectories whose last samples are `ends`: the mean Euclidean distance
+/// over every pair of them, data units; 0 for fewer than two.
+pub fn end_spread<R: AsRef<[f64]>>(ends: &[R]) -> f64 {
+    let (mut sum, mut pairs) = (0.0, 0usize);
+    for (i, a) in ends.iter().enumerate() {
+        for b in &ends[i + 1..] {
+            sum += euclidean(a.as_ref(), b.as_ref());
+            pairs += 1;
+        }
+    }
+    if pairs == 0 {
+        0.0
+    } else {
+        sum / pairs as f64
+    }
+}
+
+/// The largest final error that still ends within the demonstrations' spread:
+/// `max(END_SPREAD_FACTOR · end_spread, END_DIAGONAL_FRACTION · diagonal)`.
+pub fn end_tolerance(end_spread: f64, diagonal: f64) -> f64 {
+    (END_SPREAD_FACTOR * end_spread).max(END_DIAGONAL_FRACTION * diagonal)
+}
+
+/// The demonstrations a reproduction's start and end are judged against (a held-out fold's
+/// training demonstrations; `cosco evaluate`'s demonstrations).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StartEndReference {
+    /// The largest start speed ([`start_speed`], each at its own sample period) of the
+    /// demonstrations, data units/s; `None` when none has two samples.
+    pub demo_start_speed_max: Option<f64>,
+    /// The [`end_spread`] of their last samples, data units.
+    pub end_spread: f64,
+    /// The gesture's bounding-box diagonal, data units.
+    pub diagonal: f64,
+}
+
+impl StartEndReference {
+    /// The reference of `demos` in a gesture whose bounding box has the diagonal `diagonal`.
+    pub fn of<'a>(
+        demos: impl IntoIterator<Item = &'a Demonstration>,
+        diagonal: f64,
+    ) -> StartEndReference {
+        let mut max: Option<f64> = None;
+        let mut ends: Vec<&[f64]> = Vec::new();
+        for d in demos {
+            if let Some(s) = start_speed(&d.rows, sample_period(d)) {
+                max = Some(max.map_or(s, |m| m.max(s)));
+            }
+            if let Some(last) = d.rows.last() {
+                ends.push(last);
+            }
+        }
+        StartEndReference {
+            demo_start_speed_max: max,
+            end_spread: end_spread(&ends),
+            diagonal,
+        }
+    }
+
+    /// A reproduction's start and end: `rows` sampled every `dt` seconds, `final_error` the
+    /// distance of its last sample from the demonstration it is scored against.
+    pub fn judge<R: AsRef<[f64]>>(&self, rows: &[R], dt: f64, final_error: f64) -> StartEnd {
+        let speed = start_speed(rows, dt);
+        let tolerance = end_tolerance(self.end_spread, self.diagonal);
+        StartEnd {
+            start_speed: speed,
+            demo_start_speed_max: self.demo_start_speed_max,
+            start_in_range: matches!(
+                (speed, self.demo_start_speed_max),
+                (Some(s), Some(m)) if s <= m * (1.0 + START_SPEED_RTOL)
+            ),
+            end_spread: self.end_spread,
+            final_error,
+            end_tolerance: tolerance,
+            end_within_spread: final_error <= tolerance,
+        }
+    }
+}
+
+/// A reproduction's start and end against a [`StartEndReference`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StartEnd {
+    /// Its [`start_speed`], data units/s (`None` with one sample).
+    pub start_speed: Option<f64>,
+    /// The demonstrations' largest start speed, data units/s.
+    pub demo_start_speed_max: Option<f64>,
+    /// Whether its start speed is at most theirs (slower than the slowest counts as in range:
+    /// it is no jump).
+    pub start_in_range: bool,
+    /// The demonstrations' [`end_spread`], data units.
+    pub end_spread: f64,
+    /// The distance of its last sample from the scored demonstration's last, data units.
+    pub final_error: f64,
+    /// [`end_tolerance`] of the spread and the gesture's diagonal, data units.
+    pub end_tolerance: f64,
+    /// Whether `final_error <= end_tolerance`.
+    pub end_within_spread: bool,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn demo(rows: Vec<Vec<f64>>, period: f64) -> Demonstration {
+        Demonstration {
+            source: "d.csv".into(),
+            columns: (0..rows[0].len()).map(|k| format!("q{k}")).collect(),
+            time: Some((0..rows.len()).map(|k| k as f64 * period).collect()),
+            rows,
+        }
+    }
+
+    #[test]
+    fn start_speed_is_the_first_steps_euclidean_speed() {
+        let rows = [vec![0.0, 0.0], vec![0.3, 0.4], vec![5.0, 5.0]];
+        assert_eq!(start_speed(&rows, 0.1), Some(5.0));
+        assert_eq!(start_speed(&rows[..1], 0.1), None);
+        let none: [Vec<f64>; 0] = [];
+        assert_eq!(start_speed(&none, 0.1), None);
+    }
+
+    #[test]
+    fn end_spread_is_the_mean_pairwise_distance() {
+        // a 3-4-5 triangle: (3 + 4 + 5) / 3
+        let ends = [vec![0.0, 0.0], vec![3.0, 0.0], vec![0.0, 4.0]];
+        assert!((end_spread(&ends) - 4.0).abs() < 1e-12);
+        assert_eq!(end_spread(&ends[..1]), 0.0);
+        assert_eq!(end_tolerance(4.0, 100.0), 8.0);
+        // no spread: 1 % of the diagonal
+        assert_eq!(end_tolerance(0.0, 100.0), 1.0);
+    }
+
+    #[test]
+    fn the_reference_takes_each_demonstrations_own_period() {
+        // 0.1 per step at 10 Hz is 1 unit/s; 0.1 per step at 40 Hz is 4 units/s
+        let slow = demo(vec![vec![0.0], vec![0.1], vec![1.0]], 0.1);
+        let fast = demo(vec![vec![0.0], vec![0.1], vec![2.0]], 0.025);
+        let r = StartEndReference::of([&slow, &fast], 10.0);
+        assert!((r.demo_start_speed_max.unwrap() - 4.0).abs() < 1e-9);
+        assert!((r.end_spread - 1.0).abs() < 1e-12);
+        let one = StartEndReference::of([&slow], 10.0);
+        assert_eq!(one.end_spread, 0.0);
+    }
+
+    #[test]
+    fn a_slower_start_is_in_range_a_faster_one_is_not() {
+        let r = StartEndReference {
+            demo_start_speed_max: Some(2.0),
+            end_spread: 0.5,
+            diagonal: 10.0,
+        };
+        let judge = |first_step: f64| r.judge(&[vec![0.0], vec![first_step]], 0.1, 0.0);
+        assert!(judge(0.2).start_in_range); // 2 units/s: the largest itself
+        assert!(judge(0.0).start_in_range); // at rest: slower than the slowest
+        assert!(!judge(0.21).start_in_range);
+        // the rounding of a period computed from a time column is no jump; a millionth is
+        let ulp = r.judge(&[vec![0.0], vec![0.2]], 0.1 * (1.0 - f64::EPSILON), 0.0);
+        assert!(ulp.start_speed.unwrap() > 2.0 && ulp.start_in_range);
+        assert!(!judge(0.2 * (1.0 + 1e-6)).start_in_range);
+        assert!(!r.judge(&[vec![0.0]], 0.1, 0.0).start_in_range); // no step to judge
+                                                                  // end: within 2 x 0.5 = 1.0 (1 % of the diagonal is 0.1)
+        assert!(r.judge(&[vec![0.0]], 0.1, 1.0).end_within_spread);
+        assert!(!r.judge(&[vec![0.0]], 0.1, 1.01).end_within_spread);
+        assert_eq!(r.judge(&[vec![0.0]], 0.1, 0.3).end_tolerance, 1.0);
+    }
+}
