@@ -33,11 +33,19 @@ run heldout $ex/heldout --seeds 11-15 --config configs/nao-gestures.xml \
 run simulate $bin/simulate --out "$out/simulate"
 run multi $ex/multi_heldout --seeds 11-15 --json "$out/multi.json"
 run lasa $bin/cosco heldout --demos "$out/lasa" --state-length-from-data --json "$out/lasa.json"
+for seed in 11 12 13 14 15; do
+  [ -d "$out/nao-demos/$seed" ] || $bin/cosco demos --gesture all --count 4 --seed $seed --out "$out/nao-demos/$seed" > /dev/null
+  for g in "$out/nao-demos/$seed"/*/; do
+    mkdir -p "$out/nao-curves"; ln -sfn "$(cd "$g" && pwd)" "$out/nao-curves/$(basename "$g")-$seed"
+  done
+done
+run nao_curves $bin/cosco heldout --demos "$out/nao-curves" --json "$out/nao_curves.json"
 run families $ex/families --seeds 1-6
 run closed_loop $ex/closed_loop --seeds 11-15
 run swing_folds $ex/swing_folds --seeds 12 --out docs/figures
 run replay $ex/replay_baseline --seeds 11-15
 run ceiling $ex/encoding_ceiling --seeds 11-15
+rm -rf "$out/sweep" # finished runs are skipped: measure this commit's
 run sweep $bin/cosco sweep --spec configs/sweeps/paper-comparison.toml --out "$out/sweep"
 mkdir -p docs/figures
 cp "$out/sweep/plots/joint_dtw_rad_per_step.png" docs/figures/paper-comparison-joint-dtw.png
