@@ -12,12 +12,15 @@
 //! relative to the diagonal of the gesture's bounding box (comparable across gestures and
 //! units), final-sample error, duration ratio and normalised jerk over the held-out
 //! demonstration's, all after the idle trimming of `docs/METRICS.md`.
+//!
+//! Recognition of several gestures, held out likewise: [`recognition`] (`cosco recognition`).
 
 mod executor;
 mod files;
 mod fold;
 mod loo;
 mod method;
+pub mod recognition;
 mod report;
 mod results;
 
