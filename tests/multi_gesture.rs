@@ -6,91 +6,14 @@
 use std::path::Path;
 
 use assert_cmd::Command;
-use predicates::prelude::*;
-use rand::{Rng, SeedableRng};
-
-use cosco_hsom::config::{AlgorithmParams, EventsParams, HsomConfig, HsomParams, LevelParams};
 use cosco_hsom::demos::{write_csv, Demonstration};
 use cosco_hsom::hsom::{GestureError, GestureModel, GESTURES_FORMAT_VERSION};
-use cosco_hsom::som::Topology;
+use predicates::prelude::*;
 
 mod hsom_common;
-
-/// A gesture: hold at the origin, go to `apex` and back, hold; `seed` varies the holds, the
-/// amplitude and the encoder noise.
-fn gesture(apex: [f64; 2], seed: u64) -> Vec<Vec<f64>> {
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    let hold = 20 + rng.gen_range(0..10);
-    let amp = 1.0 + rng.gen_range(-0.05..0.05);
-    let mut rows = Vec::new();
-    let mut push = |t: f64, rng: &mut rand_chacha::ChaCha8Rng| {
-        rows.push(vec![
-            amp * apex[0] * t + 0.002 * rng.gen::<f64>(),
-            amp * apex[1] * t + 0.002 * rng.gen::<f64>(),
-        ]);
-    };
-    for _ in 0..hold {
-        push(0.0, &mut rng);
-    }
-    for i in 0..40 {
-        push(i as f64 / 40.0, &mut rng);
-    }
-    for _ in 0..hold {
-        push(1.0, &mut rng);
-    }
-    for i in 0..40 {
-        push(1.0 - i as f64 / 40.0, &mut rng);
-    }
-    for _ in 0..hold {
-        push(0.0, &mut rng);
-    }
-    rows
-}
-
-const APEXES: [(&str, [f64; 2]); 3] = [
-    ("up", [0.0, 1.0]),
-    ("right", [1.0, 0.0]),
-    ("diag", [-0.7, 0.7]),
-];
-
-fn config() -> HsomConfig {
-    let mut p = HsomParams::table1();
-    p.algorithm = AlgorithmParams::Events(EventsParams {
-        change_ratio: 0.6,
-        action_horizon: 5,
-    });
-    p.state_length = 2;
-    p.action_length = 2;
-    p.height = 3;
-    p.levels.truncate(3);
-    p.levels[0] = LevelParams::new(10, 10, Topology::Orthogonal, 0.1);
-    for l in 1..3 {
-        p.levels[l] = LevelParams::new(6, 6, Topology::Orthogonal, 0.5);
-    }
-    p.training_steps = 3000;
-    p.check("test").unwrap()
-}
-
-fn demo(name: &str, rows: Vec<Vec<f64>>) -> Demonstration {
-    Demonstration {
-        source: name.to_string(),
-        columns: vec!["x0".into(), "x1".into()],
-        time: None,
-        rows,
-    }
-}
-
-fn sets(labels: &[(&str, [f64; 2])]) -> Vec<(String, Vec<Demonstration>)> {
-    labels
-        .iter()
-        .map(|(l, a)| {
-            (
-                l.to_string(),
-                (0..3).map(|i| demo(l, gesture(*a, i))).collect(),
-            )
-        })
-        .collect()
-}
+use hsom_common::{
+    apex_config as config, apex_demo as demo, apex_gesture as gesture, apex_sets as sets, APEXES,
+};
 
 /// Held-out accuracy of `model` over 4 new demonstrations of each of `labels`.
 fn accuracy(model: &GestureModel, labels: &[(&str, [f64; 2])]) -> f64 {

@@ -1,6 +1,6 @@
 //! `cosco`: the steps of the main job one at a time, for scripting. Without the feature `sim`
-//! only `train`, `reproduce`, `recognize`, `inspect`, `evaluate` and `heldout` (which need no
-//! simulator; `heldout --png` needs the feature `plot`).
+//! only `train`, `reproduce`, `recognize`, `recognition`, `inspect`, `evaluate` and `heldout`
+//! (which need no simulator; `heldout --png` needs the feature `plot`).
 
 use std::process::ExitCode;
 
@@ -131,11 +131,39 @@ fn run(cli: Cli) -> Result<()> {
                 outln!("{line}");
             }
         }
+        Command::Recognition {
+            taught,
+            untaught,
+            data,
+            no_control,
+            threads,
+            json,
+        } => {
+            use cosco_hsom::eval::recognition::{recognition, RecognitionJob, RecognitionSettings};
+            let job = RecognitionJob {
+                taught,
+                untaught,
+                config: data.config,
+                state_length_from_data: data.state_length_from_data,
+                resample: data.resample,
+                settings: RecognitionSettings {
+                    control: !no_control,
+                    threads: threads.map_or_else(cli::cores, |t| t as usize),
+                },
+                json,
+            };
+            let pb = cli::progress(0, "models");
+            let on_model = |done: usize, total: usize| {
+                pb.set_length(total as u64);
+                pb.set_position(done as u64);
+            };
+            let tables = recognition(&job, Some(&on_model))?;
+            pb.finish_and_clear();
+            out!("{tables}");
+        }
         Command::Heldout {
             demos,
-            config,
-            state_length_from_data,
-            resample,
+            data,
             no_height_1,
             no_gmr,
             no_promp,
@@ -147,14 +175,14 @@ fn run(cli: Cli) -> Result<()> {
         } => {
             #[cfg(not(feature = "plot"))]
             let png: Option<std::path::PathBuf> = None;
-            if let Some(l) = cosco_hsom::resample::report_line(&demos, resample)? {
+            if let Some(l) = cosco_hsom::resample::report_line(&demos, data.resample)? {
                 outln!("{l}\n");
             }
             let job = cosco_hsom::eval::HeldoutJob {
                 demos,
-                config,
-                state_length_from_data,
-                resample,
+                config: data.config,
+                state_length_from_data: data.state_length_from_data,
+                resample: data.resample,
                 settings: cosco_hsom::eval::LooSettings {
                     height_1: !no_height_1,
                     gmr: !no_gmr,

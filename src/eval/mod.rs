@@ -13,12 +13,15 @@
 //! units), final-sample error, duration ratio and normalised jerk over the held-out
 //! demonstration's, all after the idle trimming of `docs/METRICS.md`; and the start speed and
 //! final error against the training demonstrations' start speeds and end spread.
+//!
+//! Recognition of several gestures, held out likewise: [`recognition`] (`cosco recognition`).
 
 mod executor;
 mod files;
 mod fold;
 mod loo;
 mod method;
+pub mod recognition;
 mod report;
 mod results;
 

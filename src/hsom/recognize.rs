@@ -175,13 +175,53 @@ fn level_means(dists: &[Vec<Option<f64>>], h: usize) -> Vec<f64> {
         .collect()
 }
 
+/// The one-sided 95 % quantile of Student's t with `df` degrees of freedom (a table to 30,
+/// the Cornish-Fisher expansion beyond, within 1e-3 of the exact value there).
+fn t95(df: usize) -> f64 {
+    const TABLE: [f64; 30] = [
+        6.314, 2.920, 2.353, 2.132, 2.015, 1.943, 1.895, 1.860, 1.833, 1.812, 1.796, 1.782, 1.771,
+        1.761, 1.753, 1.746, 1.740, 1.734, 1.729, 1.725, 1.721, 1.717, 1.714, 1.711, 1.708, 1.706,
+        1.703, 1.701, 1.699, 1.697,
+    ];
+    if (1..=30).contains(&df) {
+        return TABLE[df - 1];
+    }
+    let (z, v) = (1.644_853_6_f64, df.max(1) as f64);
+    z + (z.powi(3) + z) / (4.0 * v)
+        + (5.0 * z.powi(5) + 16.0 * z.powi(3) + 3.0 * z) / (96.0 * v * v)
+}
+
+/// What a new demonstration of a gesture may score: the upper 95 % prediction bound of one
+/// more score from `own` (its demonstrations' held-out scores), the scores taken as
+/// log-normal (distances, whose spread grows with their size), and never below
+/// the worst of them. With one score there is no spread to estimate: twice it.
+pub(crate) fn new_demonstration_bound(own: &[f64]) -> f64 {
+    let worst = own.iter().cloned().fold(0.0, f64::max);
+    let n = own.len();
+    if n < 2 {
+        return 2.0 * worst;
+    }
+    // a score of 0 (a demonstration repeated exactly) would make the log spread infinite
+    let floor = worst * 1e-6;
+    let logs: Vec<f64> = own.iter().map(|&s| s.max(floor).ln()).collect();
+    let mean = logs.iter().sum::<f64>() / n as f64;
+    let var = logs.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    let bound = (mean + t95(n - 1) * (var * (1.0 + 1.0 / n as f64)).sqrt()).exp();
+    if bound.is_finite() {
+        bound.max(worst)
+    } else {
+        worst
+    }
+}
+
 /// The calibration of every label: its held-out references (each own demonstration scored
 /// by a branch trained without it: leave-one-out; in-sample for a label with one
-/// demonstration), and its threshold between those own held-out scores and the scores the
-/// other labels' training demonstrations get from it. When every own score is below every
-/// other one, the threshold is their geometric midpoint (the widest margin in log score);
-/// when they overlap, the worst own score; with a single label (nothing to tell it from),
-/// twice the worst own score.
+/// demonstration), and its threshold from those own held-out scores (what a new
+/// demonstration of the gesture scores, [`new_demonstration_bound`]) and the scores the other
+/// labels' training demonstrations get from it: the geometric midpoint of the bound and the
+/// best other score when every other scores above the bound (the widest margin in log score),
+/// else the bound itself (a new demonstration of the gesture accepted before another gesture
+/// is refused); with a single label, the bound.
 pub(crate) fn calibrate(
     shared: &Hsom,
     branches: &[Hsom],
@@ -214,22 +254,21 @@ pub(crate) fn calibrate(
             };
             let reference = level_means(&own, h);
             let scoring = Scoring::default();
-            let worst_own = own
+            let own_scores: Vec<f64> = own
                 .iter()
                 .map(|d| scoring.score(d, &reference))
                 .filter(|v| v.is_finite())
-                .fold(0.0, f64::max);
+                .collect();
+            let bound = new_demonstration_bound(&own_scores);
             let best_other = (0..branches.len())
                 .filter(|&o| o != g)
                 .flat_map(|o| norm[o].iter().zip(&events[o]))
                 .map(|(n, ev)| scoring.score(&all_distances(&branches[g], n, ev), &reference))
                 .fold(f64::INFINITY, f64::min);
-            let threshold = if branches.len() == 1 {
-                2.0 * worst_own
-            } else if best_other > worst_own && best_other.is_finite() {
-                (worst_own * best_other).sqrt()
+            let threshold = if best_other > bound && best_other.is_finite() {
+                (bound * best_other).sqrt()
             } else {
-                worst_own
+                bound
             };
             Calibration {
                 reference,
@@ -438,4 +477,30 @@ pub const PREFIX_BLEND: usize = 10;
 /// starts at both starts and covers all of `a` (open end in `b`).
 fn open_end(a: &[Vec<f64>], b: &[Vec<f64>]) -> usize {
     open_end_cost(a, b).0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{new_demonstration_bound, t95};
+
+    #[test]
+    fn the_bound_of_a_new_demonstration_widens_with_the_spread_and_the_fewness_of_scores() {
+        // Student's t: the table, and the expansion beyond it (exact: 1.6839 at 40)
+        assert_eq!(t95(1), 6.314);
+        assert_eq!(t95(6), 1.943);
+        assert!((t95(40) - 1.6839).abs() < 1e-3, "{}", t95(40));
+        assert!(t95(31) < t95(30) && t95(31) > t95(40));
+        // equal scores: no spread, the bound is the score
+        assert!((new_demonstration_bound(&[0.2; 6]) - 0.2).abs() < 1e-12);
+        // never below the worst own score; above it when the scores spread
+        let own = [0.02, 0.025, 0.03, 0.022, 0.028, 0.035];
+        let b = new_demonstration_bound(&own);
+        assert!(b > 0.035 && b < 0.06, "{b}");
+        // fewer scores of the same spread: a wider bound
+        assert!(new_demonstration_bound(&own[..3]) > new_demonstration_bound(&own[..3].repeat(2)));
+        // one score: twice it; none: 0; a zero score: finite
+        assert_eq!(new_demonstration_bound(&[0.1]), 0.2);
+        assert_eq!(new_demonstration_bound(&[]), 0.0);
+        assert!(new_demonstration_bound(&[0.0, 0.1, 0.12]).is_finite());
+    }
 }

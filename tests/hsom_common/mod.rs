@@ -1,8 +1,9 @@
 //! Synthetic demonstration families and a plain DTW distance, shared by the hsom tests.
 #![allow(dead_code)]
 
-use cosco_hsom::config::{HsomConfig, HsomParams};
+use cosco_hsom::config::{AlgorithmParams, EventsParams, HsomConfig, HsomParams, LevelParams};
 use cosco_hsom::demos::Demonstration;
+use cosco_hsom::som::Topology;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
@@ -237,4 +238,85 @@ pub fn edit_model_text(text: &str, edit: impl FnOnce(&mut serde_json::Value)) ->
     let mut model: serde_json::Value = serde_json::from_str(lines[3]).unwrap();
     edit(&mut model);
     with_checksum(&format!("{}\n{model}\nchecksum 0\n", lines[..3].join("\n")))
+}
+
+/// A small 2-D gesture (several gestures in one hierarchy): hold at the origin, go to `apex`
+/// and back, hold; `seed` varies the holds, the amplitude and the encoder noise.
+pub fn apex_gesture(apex: [f64; 2], seed: u64) -> Vec<Vec<f64>> {
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let hold = 20 + rng.gen_range(0..10);
+    let amp = 1.0 + rng.gen_range(-0.05..0.05);
+    let mut rows = Vec::new();
+    let mut push = |t: f64, rng: &mut rand_chacha::ChaCha8Rng| {
+        rows.push(vec![
+            amp * apex[0] * t + 0.002 * rng.gen::<f64>(),
+            amp * apex[1] * t + 0.002 * rng.gen::<f64>(),
+        ]);
+    };
+    for _ in 0..hold {
+        push(0.0, &mut rng);
+    }
+    for i in 0..40 {
+        push(i as f64 / 40.0, &mut rng);
+    }
+    for _ in 0..hold {
+        push(1.0, &mut rng);
+    }
+    for i in 0..40 {
+        push(1.0 - i as f64 / 40.0, &mut rng);
+    }
+    for _ in 0..hold {
+        push(0.0, &mut rng);
+    }
+    rows
+}
+
+/// Three gestures of [`apex_gesture`]: their labels and apexes.
+pub const APEXES: [(&str, [f64; 2]); 3] = [
+    ("up", [0.0, 1.0]),
+    ("right", [1.0, 0.0]),
+    ("diag", [-0.7, 0.7]),
+];
+
+/// A configuration of the events extension for [`apex_gesture`] that trains in well under a
+/// second.
+pub fn apex_config() -> HsomConfig {
+    let mut p = HsomParams::table1();
+    p.algorithm = AlgorithmParams::Events(EventsParams {
+        change_ratio: 0.6,
+        action_horizon: 5,
+    });
+    p.state_length = 2;
+    p.action_length = 2;
+    p.height = 3;
+    p.levels.truncate(3);
+    p.levels[0] = LevelParams::new(10, 10, Topology::Orthogonal, 0.1);
+    for l in 1..3 {
+        p.levels[l] = LevelParams::new(6, 6, Topology::Orthogonal, 0.5);
+    }
+    p.training_steps = 3000;
+    p.check("test").unwrap()
+}
+
+/// A demonstration of two columns `x0`, `x1`.
+pub fn apex_demo(name: &str, rows: Vec<Vec<f64>>) -> Demonstration {
+    Demonstration {
+        source: name.to_string(),
+        columns: vec!["x0".into(), "x1".into()],
+        time: None,
+        rows,
+    }
+}
+
+/// Labelled sets: three demonstrations (seeds 0-2) of each gesture.
+pub fn apex_sets(labels: &[(&str, [f64; 2])]) -> Vec<(String, Vec<Demonstration>)> {
+    labels
+        .iter()
+        .map(|(l, a)| {
+            (
+                l.to_string(),
+                (0..3).map(|i| apex_demo(l, apex_gesture(*a, i))).collect(),
+            )
+        })
+        .collect()
 }

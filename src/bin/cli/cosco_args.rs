@@ -122,6 +122,31 @@ pub enum Command {
         #[arg(long)]
         json: Option<PathBuf>,
     },
+    /// Recognition held out on your own demonstrations: for each taught demonstration, one
+    /// hierarchy learns every other taught one and recognises it (accepted: its own label);
+    /// every untaught demonstration is recognised by the hierarchy taught all (right:
+    /// `unknown`); the untrained hierarchy beside it as the control (Markdown on stdout).
+    Recognition {
+        /// Taught gestures: directories of *.csv files (one gesture each, named after the
+        /// directory) or of gesture subdirectories (DIR/<gesture>/*.csv); at least 3
+        /// demonstrations per gesture.
+        #[arg(long, num_args = 1.., required = true)]
+        taught: Vec<PathBuf>,
+        /// Untaught gestures, given the same way (each should be called `unknown`).
+        #[arg(long, num_args = 1..)]
+        untaught: Vec<PathBuf>,
+        #[command(flatten)]
+        data: DataArgs,
+        /// Leave out the untrained hierarchy (the negative control).
+        #[arg(long)]
+        no_control: bool,
+        /// Worker threads (default: every core).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
+        threads: Option<u64>,
+        /// Also write every answer as JSON here.
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
     /// Held out on your own demonstrations, without the simulator: for each demonstration,
     /// learn from the others, reproduce from its first sample, score against it; the
     /// hierarchy beside the nearest sequence, height 1, GMM/GMR, ProMP and a replay, on the same
@@ -132,15 +157,8 @@ pub enum Command {
         /// per gesture.
         #[arg(long, num_args = 1.., required = true)]
         demos: Vec<PathBuf>,
-        /// XML configuration (default: the built-in configs/nao-gestures.xml).
-        #[arg(long)]
-        config: Option<PathBuf>,
-        /// Take stateLength and actionLength from the demonstrations' columns.
-        #[arg(long)]
-        state_length_from_data: bool,
-        /// Resample demonstrations with `time` columns to this rate, Hz (shape-preserving).
-        #[arg(long)]
-        resample: Option<f64>,
+        #[command(flatten)]
+        data: DataArgs,
         /// Leave out the configuration at height 1.
         #[arg(long)]
         no_height_1: bool,
@@ -247,4 +265,18 @@ pub enum SweepAction {
         /// The sweep's output directory.
         dir: PathBuf,
     },
+}
+
+/// How a held-out study reads demonstrations: the configuration and its fit to the data.
+#[derive(clap::Args)]
+pub struct DataArgs {
+    /// XML configuration (default: the built-in configs/nao-gestures.xml).
+    #[arg(long)]
+    pub config: Option<PathBuf>,
+    /// Take stateLength and actionLength from the demonstrations' columns.
+    #[arg(long)]
+    pub state_length_from_data: bool,
+    /// Resample demonstrations with `time` columns to this rate, Hz (shape-preserving).
+    #[arg(long)]
+    pub resample: Option<f64>,
 }

@@ -1,0 +1,577 @@
+//! Recognition held out (docs/ALGORITHM.md, section 4): one hierarchy taught several
+//! labelled gestures, asked about demonstrations it did not learn from. For each taught
+//! demonstration in turn, the model of several gestures is trained on every other taught
+//! demonstration and recognises it (accepted: its own label, not `unknown`; also whether its
+//! label scores lowest); every untaught demonstration is recognised by the model trained on
+//! all taught ones (right: `unknown`). The untrained model (seeded initial weights,
+//! calibrated the same way) answers the same questions: the negative control, which must
+//! fail the gates ([`ACCEPT_GATE`], [`UNKNOWN_GATE`]).
+//!
+//! Used by `cosco recognition` (any recorded data, [`recognition`]) and the tests
+//! ([`recognition_study`]).
+
+mod report;
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+use serde::Serialize;
+
+use crate::config::HsomConfig;
+use crate::demos::Demonstration;
+use crate::hsom::{is_plain_label, GestureError, GestureModel};
+use crate::labelled::{read_demo_sets_at, DemoSets};
+use crate::steps;
+
+pub use report::{recognition_json, recognition_markdown};
+
+/// Labelled sets of demonstrations: `(label, demonstrations)`.
+pub type LabelledSets = Vec<(String, Vec<Demonstration>)>;
+
+/// The gate on held-out demonstrations of taught gestures: at least this fraction accepted
+/// (recognised as their own label).
+pub const ACCEPT_GATE: f64 = 0.97;
+
+/// The gate on demonstrations of untaught gestures: at least this fraction called `unknown`.
+pub const UNKNOWN_GATE: f64 = 0.90;
+
+/// Fewest demonstrations of a taught label: one held out leaves two to learn from, so that
+/// the label's threshold is still calibrated held out.
+pub const MIN_TAUGHT_DEMOS: usize = 3;
+
+/// What the study runs besides the trained model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RecognitionSettings {
+    /// Also the untrained model (the negative control).
+    pub control: bool,
+    /// Worker threads (at least 1); the result does not depend on their number.
+    pub threads: usize,
+}
+
+impl Default for RecognitionSettings {
+    fn default() -> Self {
+        RecognitionSettings {
+            control: true,
+            threads: 1,
+        }
+    }
+}
+
+/// Why the study was refused.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum RecognitionError {
+    /// No taught gesture given.
+    #[error("no taught gesture: give at least one directory of demonstrations to teach")]
+    NoTaught,
+    /// A taught label with too few demonstrations to hold one out.
+    #[error("taught gesture '{label}': recognition held out needs at least {MIN_TAUGHT_DEMOS} demonstrations (one held out, two to learn from), got {found}")]
+    TooFew {
+        /// The label.
+        label: String,
+        /// Demonstrations given.
+        found: usize,
+    },
+    /// A label given twice (taught twice, untaught twice, or both).
+    #[error("gesture label '{label}' is given twice ({first} and {second}): each label once, taught or untaught")]
+    DuplicateLabel {
+        /// The label.
+        label: String,
+        /// Where it was first given: `taught` or `untaught`.
+        first: &'static str,
+        /// Where it was given again.
+        second: &'static str,
+    },
+    /// A path that is not a directory.
+    #[error("{path}: not a directory; give a directory of CSV files (one gesture, named after the directory) or of gesture subdirectories (DIR/<gesture>/*.csv)")]
+    NotADirectory {
+        /// The path.
+        path: String,
+    },
+    /// A label (a directory's name) that is not a plain word.
+    #[error("{path}: the gesture label {label:?} is not a plain word: name the directory with letters, digits, '_' and '-' only")]
+    BadLabel {
+        /// The directory.
+        path: String,
+        /// The label.
+        label: String,
+    },
+    /// A demonstration whose columns are not the first taught demonstration's.
+    #[error("{path}: columns {found:?}, but the first taught demonstration ({first}) has {expected:?}; every gesture must record the same variables")]
+    Columns {
+        /// The demonstration.
+        path: String,
+        /// Its columns.
+        found: Vec<String>,
+        /// The first taught demonstration.
+        first: String,
+        /// Its columns.
+        expected: Vec<String>,
+    },
+    /// The demonstrations' width is not the configuration's state length.
+    #[error("{path}: {found} columns but the configuration's stateLength is {expected}; give a configuration for {found} variables, or take stateLength from the data")]
+    Width {
+        /// The first file of another width.
+        path: String,
+        /// The configuration's state length.
+        expected: usize,
+        /// The file's columns.
+        found: usize,
+    },
+    /// A bad setting.
+    #[error("threads = {0}: needs at least 1")]
+    Threads(usize),
+    /// The demonstrations could not be read.
+    #[error(transparent)]
+    Read(#[from] crate::labelled::LabelledError),
+    /// A demonstration is not valid (too short, non-finite values, ...).
+    #[error(transparent)]
+    Demo(#[from] crate::demos::DemoError),
+    /// The configuration is not valid for the data.
+    #[error(transparent)]
+    Config(#[from] crate::config::ConfigError),
+    /// A file given to the study could not be used (configuration, output path).
+    #[error(transparent)]
+    Step(#[from] steps::StepError),
+    /// Training or recognition refused (`what`: the model of which fold).
+    #[error("{what}: {source}")]
+    Gesture {
+        /// Which model: the fold's held-out demonstration, or the model of all.
+        what: String,
+        /// The cause.
+        source: Box<GestureError>,
+    },
+    /// An output file could not be written.
+    #[error("writing {}", path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+}
+
+/// One demonstration recognised.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Answer {
+    /// Its own gesture label (taught or untaught).
+    pub label: String,
+    /// The demonstration (its file).
+    pub demonstration: String,
+    /// The model's answer (`None`: unknown).
+    pub answer: Option<String>,
+    /// The label with the lowest score.
+    pub best: String,
+    /// The lowest score.
+    pub best_score: f64,
+    /// The threshold of the label with the lowest score.
+    pub threshold: f64,
+    /// The score of its own label (`None` for an untaught gesture).
+    pub own_score: Option<f64>,
+}
+
+/// The answers of one model (trained, or the untrained control).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Answers {
+    /// Every taught demonstration, recognised by the model trained without it.
+    pub held_out: Vec<Answer>,
+    /// Every untaught demonstration, recognised by the model trained on all taught ones.
+    pub untaught: Vec<Answer>,
+}
+
+fn fraction<'a>(answers: &'a [Answer], right: impl Fn(&'a Answer) -> bool) -> Option<f64> {
+    (!answers.is_empty())
+        .then(|| answers.iter().filter(|a| right(a)).count() as f64 / answers.len() as f64)
+}
+
+impl Answers {
+    /// The held-out demonstrations of `label` (all when `None`).
+    pub fn held_out_of(&self, label: Option<&str>) -> Vec<Answer> {
+        of_label(&self.held_out, label)
+    }
+
+    /// The untaught demonstrations of `label` (all when `None`).
+    pub fn untaught_of(&self, label: Option<&str>) -> Vec<Answer> {
+        of_label(&self.untaught, label)
+    }
+
+    /// Fraction of held-out taught demonstrations recognised as their own label.
+    pub fn accepted(&self) -> Option<f64> {
+        accepted(&self.held_out)
+    }
+
+    /// Fraction of held-out taught demonstrations whose own label scores lowest (whether or
+    /// not it is below its threshold).
+    pub fn right_by_best(&self) -> Option<f64> {
+        right_by_best(&self.held_out)
+    }
+
+    /// Fraction of untaught demonstrations called `unknown` (`None` without any).
+    pub fn unknown(&self) -> Option<f64> {
+        unknown(&self.untaught)
+    }
+
+    /// Whether both gates pass: held-out accepted at least [`ACCEPT_GATE`] and, when there
+    /// are untaught demonstrations, `unknown` for at least [`UNKNOWN_GATE`] of them.
+    pub fn passes(&self) -> bool {
+        self.accepted().is_some_and(|a| a >= ACCEPT_GATE)
+            && self.unknown().map_or(true, |u| u >= UNKNOWN_GATE)
+    }
+}
+
+fn of_label(answers: &[Answer], label: Option<&str>) -> Vec<Answer> {
+    answers
+        .iter()
+        .filter(|a| label.map_or(true, |l| a.label == l))
+        .cloned()
+        .collect()
+}
+
+/// Fraction recognised as their own label.
+pub(crate) fn accepted(a: &[Answer]) -> Option<f64> {
+    fraction(a, |a| a.answer.as_ref() == Some(&a.label))
+}
+
+/// Fraction whose own label scores lowest.
+pub(crate) fn right_by_best(a: &[Answer]) -> Option<f64> {
+    fraction(a, |a| a.best == a.label)
+}
+
+/// Fraction called `unknown`.
+pub(crate) fn unknown(a: &[Answer]) -> Option<f64> {
+    fraction(a, |a| a.answer.is_none())
+}
+
+/// The study: the taught and untaught labels, the trained model's answers and the control's.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RecognitionStudy {
+    /// The taught labels, in the model's order.
+    pub taught: Vec<String>,
+    /// The untaught labels.
+    pub untaught: Vec<String>,
+    /// The trained model's answers.
+    pub model: Answers,
+    /// The untrained model's answers (`None` without the control).
+    pub control: Option<Answers>,
+}
+
+/// One unit of work: a fold (taught label, demonstration held out) or the model of all
+/// taught demonstrations (for the untaught ones); trained or untrained.
+#[derive(Debug, Clone, Copy)]
+enum Job {
+    Fold { g: usize, i: usize, learn: bool },
+    All { learn: bool },
+}
+
+/// What a job answered.
+enum Done {
+    Fold(Answer),
+    All(Vec<Answer>),
+}
+
+fn answer(
+    model: &GestureModel,
+    label: &str,
+    demo: &Demonstration,
+    what: &str,
+) -> Result<Answer, RecognitionError> {
+    let r = model
+        .recognize(&demo.rows)
+        .map_err(|e| RecognitionError::Gesture {
+            what: format!("{what}, recognising {}", demo.source),
+            source: Box::new(e),
+        })?;
+    let b = model
+        .labels()
+        .iter()
+        .position(|l| *l == r.best)
+        .unwrap_or(0);
+    Ok(Answer {
+        label: label.to_string(),
+        demonstration: demo.source.clone(),
+        answer: r.label,
+        best: r.best,
+        best_score: r.scores[b].1,
+        threshold: r.thresholds[b],
+        own_score: r.scores.iter().find(|(l, _)| l == label).map(|s| s.1),
+    })
+}
+
+fn train(
+    config: &HsomConfig,
+    sets: &[(String, Vec<Demonstration>)],
+    learn: bool,
+    what: &str,
+) -> Result<GestureModel, RecognitionError> {
+    let r = match learn {
+        true => config.fit_gestures(sets, None),
+        false => config.initialise_gestures(sets),
+    };
+    r.map_err(|e| RecognitionError::Gesture {
+        what: what.to_string(),
+        source: Box::new(e),
+    })
+}
+
+fn run_job(
+    config: &HsomConfig,
+    taught: &[(String, Vec<Demonstration>)],
+    untaught: &[(String, Vec<Demonstration>)],
+    job: Job,
+) -> Result<Done, RecognitionError> {
+    match job {
+        Job::Fold { g, i, learn } => {
+            let (label, demos) = &taught[g];
+            let mut sets = taught.to_vec();
+            sets[g].1.remove(i);
+            let what = format!("the model trained without {}", demos[i].source);
+            let m = train(config, &sets, learn, &what)?;
+            Ok(Done::Fold(answer(&m, label, &demos[i], &what)?))
+        }
+        Job::All { learn } => {
+            let what = "the model trained on every taught demonstration";
+            let m = train(config, taught, learn, what)?;
+            untaught
+                .iter()
+                .flat_map(|(l, ds)| ds.iter().map(move |d| (l, d)))
+                .map(|(l, d)| answer(&m, l, d, what))
+                .collect::<Result<_, _>>()
+                .map(Done::All)
+        }
+    }
+}
+
+/// Check the sets: at least one taught label, each with at least [`MIN_TAUGHT_DEMOS`]
+/// demonstrations, labels plain and distinct, every demonstration valid and of the first
+/// taught demonstration's columns, `stateLength` of them.
+fn check_sets(
+    config: &HsomConfig,
+    taught: &[(String, Vec<Demonstration>)],
+    untaught: &[(String, Vec<Demonstration>)],
+) -> Result<(), RecognitionError> {
+    let first = taught
+        .first()
+        .and_then(|(_, d)| d.first())
+        .ok_or(RecognitionError::NoTaught)?;
+    let named = taught
+        .iter()
+        .map(|s| (s, "taught"))
+        .chain(untaught.iter().map(|s| (s, "untaught")));
+    let mut seen: Vec<(&str, &'static str)> = Vec::new();
+    for ((label, demos), kind) in named {
+        if !is_plain_label(label) {
+            return Err(RecognitionError::BadLabel {
+                path: demos.first().map_or_else(String::new, |d| d.source.clone()),
+                label: label.clone(),
+            });
+        }
+        if let Some(&(_, first)) = seen.iter().find(|(l, _)| l == label) {
+            return Err(RecognitionError::DuplicateLabel {
+                label: label.clone(),
+                first,
+                second: kind,
+            });
+        }
+        seen.push((label, kind));
+        if kind == "taught" && demos.len() < MIN_TAUGHT_DEMOS {
+            return Err(RecognitionError::TooFew {
+                label: label.clone(),
+                found: demos.len(),
+            });
+        }
+        crate::demos::validate_set(demos, None)?;
+        if let Some(d) = demos.iter().find(|d| d.columns != first.columns) {
+            return Err(RecognitionError::Columns {
+                path: d.source.clone(),
+                found: d.columns.clone(),
+                first: first.source.clone(),
+                expected: first.columns.clone(),
+            });
+        }
+    }
+    let expected = config.params().state_length;
+    if first.width() != expected {
+        return Err(RecognitionError::Width {
+            path: first.source.clone(),
+            expected,
+            found: first.width(),
+        });
+    }
+    Ok(())
+}
+
+/// Run `jobs` on `threads` threads, `progress(done, total)` after each; the results in the
+/// jobs' order.
+fn run_all<J: Sync, T: Send>(
+    jobs: &[J],
+    threads: usize,
+    work: impl Fn(&J) -> T + Sync,
+    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+) -> Vec<T> {
+    let results: Mutex<Vec<Option<T>>> = Mutex::new((0..jobs.len()).map(|_| None).collect());
+    let (next, done) = (AtomicUsize::new(0), AtomicUsize::new(0));
+    std::thread::scope(|s| {
+        for _ in 0..threads.min(jobs.len()) {
+            s.spawn(|| loop {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                let Some(job) = jobs.get(k) else {
+                    break;
+                };
+                let r = work(job);
+                results.lock().unwrap_or_else(|p| p.into_inner())[k] = Some(r);
+                let d = done.fetch_add(1, Ordering::Relaxed) + 1;
+                if let Some(p) = progress {
+                    p(d, jobs.len());
+                }
+            });
+        }
+    });
+    results
+        .into_inner()
+        .unwrap_or_else(|p| p.into_inner())
+        .into_iter()
+        .map(|r| r.expect("every job ran"))
+        .collect()
+}
+
+/// The study on labelled sets (`taught`: at least one label, each with at least
+/// [`MIN_TAUGHT_DEMOS`] demonstrations; `untaught`: any, possibly none), with `config` (the
+/// events extension, of the data's `stateLength`); `progress(done, total)` after each model
+/// trained and asked.
+pub fn recognition_study(
+    config: &HsomConfig,
+    taught: &[(String, Vec<Demonstration>)],
+    untaught: &[(String, Vec<Demonstration>)],
+    settings: &RecognitionSettings,
+    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+) -> Result<RecognitionStudy, RecognitionError> {
+    if settings.threads == 0 {
+        return Err(RecognitionError::Threads(0));
+    }
+    check_sets(config, taught, untaught)?;
+    let mut jobs = Vec::new();
+    for learn in [true, false] {
+        if !learn && !settings.control {
+            break;
+        }
+        for (g, (_, demos)) in taught.iter().enumerate() {
+            jobs.extend((0..demos.len()).map(|i| Job::Fold { g, i, learn }));
+        }
+        if !untaught.is_empty() {
+            jobs.push(Job::All { learn });
+        }
+    }
+    let done = run_all(
+        &jobs,
+        settings.threads,
+        |&j| run_job(config, taught, untaught, j),
+        progress,
+    );
+    let (mut model, mut control) = (Answers::default(), Answers::default());
+    for (job, d) in jobs.iter().zip(done) {
+        let learn = match job {
+            Job::Fold { learn, .. } | Job::All { learn } => *learn,
+        };
+        let to = if learn { &mut model } else { &mut control };
+        match d? {
+            Done::Fold(a) => to.held_out.push(a),
+            Done::All(a) => to.untaught = a,
+        }
+    }
+    Ok(RecognitionStudy {
+        taught: taught.iter().map(|(l, _)| l.clone()).collect(),
+        untaught: untaught.iter().map(|(l, _)| l.clone()).collect(),
+        model,
+        control: settings.control.then_some(control),
+    })
+}
+
+/// The labelled sets of `paths`: each a directory of CSV files (one gesture, named after the
+/// directory) or of gesture subdirectories (`DIR/<gesture>/*.csv`), resampled to
+/// `resample_hz` when given.
+pub fn read_labelled_dirs(
+    paths: &[PathBuf],
+    resample_hz: Option<f64>,
+) -> Result<LabelledSets, RecognitionError> {
+    let mut sets = Vec::new();
+    for p in paths {
+        if !p.is_dir() {
+            return Err(RecognitionError::NotADirectory {
+                path: p.display().to_string(),
+            });
+        }
+        match read_demo_sets_at(std::slice::from_ref(p), None, resample_hz)? {
+            DemoSets::Plain(d) => {
+                let label = p
+                    .canonicalize()
+                    .ok()
+                    .and_then(|c| c.file_name().map(|n| n.to_string_lossy().to_string()))
+                    .unwrap_or_default();
+                if !is_plain_label(&label) {
+                    return Err(RecognitionError::BadLabel {
+                        path: p.display().to_string(),
+                        label,
+                    });
+                }
+                sets.push((label, d));
+            }
+            DemoSets::Labelled(s) => sets.extend(s),
+        }
+    }
+    Ok(sets)
+}
+
+/// What `cosco recognition` does.
+#[derive(Debug, Clone)]
+pub struct RecognitionJob {
+    /// Directories of the taught gestures (see [`read_labelled_dirs`]).
+    pub taught: Vec<PathBuf>,
+    /// Directories of the untaught gestures.
+    pub untaught: Vec<PathBuf>,
+    /// Configuration file (default: the built-in recommended one).
+    pub config: Option<PathBuf>,
+    /// Take `stateLength` from the data.
+    pub state_length_from_data: bool,
+    /// Resample the demonstrations to this rate, Hz.
+    pub resample: Option<f64>,
+    /// The control, the threads.
+    pub settings: RecognitionSettings,
+    /// Where to write every answer as JSON.
+    pub json: Option<PathBuf>,
+}
+
+/// `cosco recognition`: the study on directories of demonstration files; the Markdown
+/// tables, after writing the JSON when asked.
+pub fn recognition(
+    job: &RecognitionJob,
+    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+) -> Result<String, RecognitionError> {
+    if let Some(p) = &job.json {
+        steps::check_output(p)?;
+    }
+    let cfg = steps::config(job.config.as_deref())?;
+    let taught = read_labelled_dirs(&job.taught, job.resample)?;
+    let untaught = read_labelled_dirs(&job.untaught, job.resample)?;
+    let width = taught
+        .first()
+        .and_then(|(_, d)| d.first())
+        .ok_or(RecognitionError::NoTaught)?
+        .width();
+    let cfg = match job.state_length_from_data {
+        true => cfg.for_width(width)?,
+        false => cfg,
+    };
+    let study = recognition_study(&cfg, &taught, &untaught, &job.settings, progress)?;
+    if let Some(p) = &job.json {
+        write(p, recognition_json(&study).as_bytes())?;
+    }
+    Ok(recognition_markdown(&study))
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), RecognitionError> {
+    crate::fsutil::write_atomic(path, bytes).map_err(|source| RecognitionError::Write {
+        path: path.to_path_buf(),
+        source,
+    })
+}

@@ -1,0 +1,128 @@
+//! The recognition study as Markdown and JSON (`cosco recognition`).
+
+use std::fmt::Write as _;
+
+use super::{accepted, right_by_best, unknown, Answer, Answers, RecognitionStudy};
+use super::{ACCEPT_GATE, UNKNOWN_GATE};
+
+/// A fraction as a percentage, `-` when there is nothing to count.
+fn pct(v: Option<f64>) -> String {
+    v.map_or("-".to_string(), |v| format!("{:.1} %", 100.0 * v))
+}
+
+/// A fraction with its counts: `97.9 % (47 of 48)`.
+fn counted(v: Option<f64>, n: usize) -> String {
+    match v {
+        Some(v) => format!(
+            "{:.1} % ({} of {n})",
+            100.0 * v,
+            (v * n as f64).round() as usize
+        ),
+        None => "-".to_string(),
+    }
+}
+
+/// The summary of one model's answers (what `--json` holds beside every answer).
+fn summary(a: &Answers) -> serde_json::Value {
+    serde_json::json!({
+        "accepted": a.accepted(),
+        "right_by_best": a.right_by_best(),
+        "unknown": a.unknown(),
+        "held_out": a.held_out.len(),
+        "untaught": a.untaught.len(),
+        "passes": a.passes(),
+    })
+}
+
+/// The study as a JSON document: the gates, each model's summary and every answer.
+pub fn recognition_json(study: &RecognitionStudy) -> String {
+    let doc = serde_json::json!({
+        "gates": { "accepted": ACCEPT_GATE, "unknown": UNKNOWN_GATE },
+        "summary": {
+            "model": summary(&study.model),
+            "control": study.control.as_ref().map(summary),
+        },
+        "study": study,
+    });
+    // cannot fail: plain numbers (non-finite ones become null), strings and options
+    serde_json::to_string_pretty(&doc).unwrap_or_default()
+}
+
+fn model_row(out: &mut String, name: &str, a: &Answers) {
+    let _ = writeln!(
+        out,
+        "| {name} | {} | {} | {} | {} |",
+        counted(a.accepted(), a.held_out.len()),
+        pct(a.right_by_best()),
+        counted(a.unknown(), a.untaught.len()),
+        if a.passes() { "pass" } else { "fail" }
+    );
+}
+
+/// Fraction answered with a label (taught) other than their own.
+fn other_label(a: &[Answer]) -> Option<f64> {
+    (!a.is_empty()).then(|| {
+        a.iter()
+            .filter(|x| x.answer.as_ref().is_some_and(|l| *l != x.label))
+            .count() as f64
+            / a.len() as f64
+    })
+}
+
+/// The study as Markdown: the trained model beside the control against the gates, then per
+/// gesture.
+pub fn recognition_markdown(study: &RecognitionStudy) -> String {
+    let mut out = String::new();
+    let (m, c) = (&study.model, study.control.as_ref());
+    let _ = writeln!(
+        out,
+        "Recognition held out: {} taught gestures (each demonstration recognised by the model \
+         trained on all the others), {} untaught (recognised by the model trained on every \
+         taught demonstration).\n",
+        study.taught.len(),
+        study.untaught.len()
+    );
+    let _ = writeln!(
+        out,
+        "| model | held-out accepted (gate {:.0} %) | lowest score right | untaught called unknown (gate {:.0} %) | gates |",
+        100.0 * ACCEPT_GATE,
+        100.0 * UNKNOWN_GATE
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|");
+    model_row(&mut out, "trained", m);
+    if let Some(c) = c {
+        model_row(&mut out, "untrained (control, must fail)", c);
+    }
+    let _ = writeln!(
+        out,
+        "\n| gesture | taught | demos | accepted | lowest score right | called unknown | another label | control: accepted | control: unknown |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
+    let control = |f: &dyn Fn(&Answers) -> Option<f64>| c.map_or("-".to_string(), |c| pct(f(c)));
+    for l in &study.taught {
+        let a = m.held_out_of(Some(l));
+        let _ = writeln!(
+            out,
+            "| {l} | yes | {} | {} | {} | {} | {} | {} | {} |",
+            a.len(),
+            pct(accepted(&a)),
+            pct(right_by_best(&a)),
+            pct(unknown(&a)),
+            pct(other_label(&a)),
+            control(&|c| accepted(&c.held_out_of(Some(l)))),
+            control(&|c| unknown(&c.held_out_of(Some(l)))),
+        );
+    }
+    for l in &study.untaught {
+        let a = m.untaught_of(Some(l));
+        let _ = writeln!(
+            out,
+            "| {l} | no | {} | - | - | {} | {} | - | {} |",
+            a.len(),
+            pct(unknown(&a)),
+            pct(other_label(&a)),
+            control(&|c| unknown(&c.untaught_of(Some(l)))),
+        );
+    }
+    out
+}

@@ -1,0 +1,254 @@
+//! Recognition held out (`eval::recognition`, `cosco recognition`) on small 2-D gestures:
+//! each taught demonstration, recognised by the hierarchy trained on all the others, is
+//! accepted; untaught gestures are called unknown; the untrained hierarchy (the negative
+//! control) fails the gates; bad input is refused naming the label, file or directory.
+
+use std::path::Path;
+
+use assert_cmd::Command;
+use predicates::prelude::*;
+use rand::{Rng, SeedableRng};
+
+use cosco_hsom::demos::{write_csv, Demonstration};
+use cosco_hsom::eval::recognition::{
+    recognition_json, recognition_markdown, recognition_study, RecognitionError,
+    RecognitionSettings, ACCEPT_GATE, UNKNOWN_GATE,
+};
+
+mod hsom_common;
+use hsom_common::{apex_config, apex_demo};
+
+/// A LASA-like stroke: hold at a start on the unit circle (at `angle` degrees), move to the
+/// origin along a path bent sideways by `bend` (a fraction of the radius), hold; `seed`
+/// varies the holds, the speed, the size, the bend and the pen noise.
+fn stroke(angle: f64, bend: f64, seed: u64) -> Vec<Vec<f64>> {
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let hold = 20 + rng.gen_range(0..10);
+    let n = 80 + rng.gen_range(0..20);
+    let size = 1.0 + rng.gen_range(-0.05..0.05);
+    let bend = bend * (1.0 + rng.gen_range(-0.1..0.1));
+    let (c, s) = (angle.to_radians().cos(), angle.to_radians().sin());
+    (0..2 * hold + n)
+        .map(|i| {
+            let u = ((i as f64 - hold as f64) / n as f64).clamp(0.0, 1.0);
+            let side = bend * (std::f64::consts::PI * u).sin();
+            vec![
+                size * (c * (1.0 - u) - s * side) + 0.002 * rng.gen::<f64>(),
+                size * (s * (1.0 - u) + c * side) + 0.002 * rng.gen::<f64>(),
+            ]
+        })
+        .collect()
+}
+
+/// Taught gestures, two pairs that share their start and end: (label, start angle, bend).
+const TAUGHT: [(&str, f64, f64); 4] = [
+    ("down", 90.0, 0.0),
+    ("down_arc", 90.0, 0.3),
+    ("left", 0.0, 0.0),
+    ("left_arc", 0.0, -0.3),
+];
+
+/// Gestures never taught: the same starts, bent the other way.
+const UNTAUGHT: [(&str, f64, f64); 2] =
+    [("down_other_arc", 90.0, -0.3), ("left_other_arc", 0.0, 0.3)];
+
+/// `n` demonstrations (seeds 10, 11, ...) of each gesture.
+fn labelled(gestures: &[(&str, f64, f64)], n: u64) -> Vec<(String, Vec<Demonstration>)> {
+    gestures
+        .iter()
+        .map(|&(l, angle, bend)| {
+            let demos = (10..10 + n)
+                .map(|s| apex_demo(&format!("{l}/demo{s}.csv"), stroke(angle, bend, s)))
+                .collect();
+            (l.to_string(), demos)
+        })
+        .collect()
+}
+
+fn settings() -> RecognitionSettings {
+    RecognitionSettings {
+        control: true,
+        threads: 2,
+    }
+}
+
+#[test]
+fn held_out_demonstrations_are_accepted_untaught_ones_unknown_and_the_untrained_control_fails() {
+    let taught = labelled(&TAUGHT, 4);
+    let untaught = labelled(&UNTAUGHT, 3);
+    let s = recognition_study(&apex_config(), &taught, &untaught, &settings(), None).unwrap();
+    assert_eq!(s.taught, ["down", "down_arc", "left", "left_arc"]);
+    assert_eq!(s.untaught, ["down_other_arc", "left_other_arc"]);
+    let m = &s.model;
+    assert_eq!((m.held_out.len(), m.untaught.len()), (16, 6));
+    let report = recognition_markdown(&s);
+    // every held-out demonstration of a taught gesture: its own label, not unknown
+    for a in &m.held_out {
+        assert_eq!(
+            a.answer.as_deref(),
+            Some(a.label.as_str()),
+            "{a:?}\n{report}"
+        );
+        assert!(a.best_score <= a.threshold, "{a:?}");
+    }
+    // every untaught one: unknown
+    for a in &m.untaught {
+        assert_eq!(a.answer, None, "{a:?}\n{report}");
+    }
+    assert!(m.accepted().unwrap() >= ACCEPT_GATE && m.right_by_best() == Some(1.0));
+    assert!(m.unknown().unwrap() >= UNKNOWN_GATE);
+    assert!(m.passes(), "{report}");
+    // the negative control: the untrained hierarchy, calibrated the same way, fails
+    let c = s.control.as_ref().unwrap();
+    assert_eq!((c.held_out.len(), c.untaught.len()), (16, 6));
+    assert!(!c.passes(), "the untrained control passes:\n{report}");
+    // the report and the JSON say the same
+    assert!(
+        report.contains("| trained | 100.0 % (16 of 16) |"),
+        "{report}"
+    );
+    assert!(
+        report.contains("| untrained (control, must fail) |"),
+        "{report}"
+    );
+    let doc: serde_json::Value = serde_json::from_str(&recognition_json(&s)).unwrap();
+    assert_eq!(doc["summary"]["model"]["passes"], true);
+    assert_eq!(doc["summary"]["control"]["passes"], false);
+    assert_eq!(
+        doc["study"]["model"]["held_out"].as_array().unwrap().len(),
+        16
+    );
+}
+
+#[test]
+fn the_study_refuses_bad_input_naming_the_label_or_file() {
+    let cfg = apex_config();
+    let run = |taught: &[(String, Vec<Demonstration>)],
+               untaught: &[(String, Vec<Demonstration>)],
+               settings: RecognitionSettings| {
+        recognition_study(&cfg, taught, untaught, &settings, None).unwrap_err()
+    };
+    let no_control = RecognitionSettings {
+        control: false,
+        threads: 1,
+    };
+    assert!(matches!(
+        run(&[], &[], no_control),
+        RecognitionError::NoTaught
+    ));
+    // too few to hold one out and still calibrate held out
+    let mut few = labelled(&TAUGHT[..2], 3);
+    few[1].1.truncate(2);
+    let e = run(&few, &[], no_control).to_string();
+    assert!(
+        e.contains("'down_arc'") && e.contains("at least 3") && e.contains("got 2"),
+        "{e}"
+    );
+    // a label both taught and untaught
+    let taught = labelled(&TAUGHT[..2], 3);
+    let e = run(&taught, &labelled(&TAUGHT[1..2], 1), no_control).to_string();
+    assert!(
+        e.contains("'down_arc'") && e.contains("taught and untaught"),
+        "{e}"
+    );
+    // an untaught demonstration of other columns: named
+    let mut wide = labelled(&UNTAUGHT[..1], 1);
+    wide[0].1[0].columns.push("x2".into());
+    wide[0].1[0].rows.iter_mut().for_each(|r| r.push(0.0));
+    let e = run(&taught, &wide, no_control).to_string();
+    assert!(
+        e.contains("down_other_arc/demo10.csv") && e.contains("x2"),
+        "{e}"
+    );
+    // a label that is not a plain word
+    let mut bad = taught.clone();
+    bad[0].0 = "two words".into();
+    let e = run(&bad, &[], no_control).to_string();
+    assert!(
+        e.contains("\"two words\"") && e.contains("plain word"),
+        "{e}"
+    );
+    // no threads
+    let e = run(
+        &taught,
+        &[],
+        RecognitionSettings {
+            control: false,
+            threads: 0,
+        },
+    );
+    assert!(e.to_string().contains("threads = 0"), "{e}");
+}
+
+fn write_label(root: &Path, (label, angle, bend): (&str, f64, f64), n: u64) {
+    let d = root.join(label);
+    std::fs::create_dir_all(&d).unwrap();
+    for s in 10..10 + n {
+        let demo = apex_demo("", stroke(angle, bend, s));
+        write_csv(&d.join(format!("demo_{s}.csv")), &demo).unwrap();
+    }
+}
+
+#[test]
+fn cosco_recognition_runs_on_directories_and_names_bad_ones() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = dir.path().join("c.xml");
+    std::fs::write(&cfg, apex_config().to_xml()).unwrap();
+    let taught = dir.path().join("taught");
+    write_label(&taught, TAUGHT[0], 3);
+    write_label(&taught, TAUGHT[2], 3);
+    let other = dir.path().join(UNTAUGHT[0].0);
+    write_label(dir.path(), UNTAUGHT[0], 2);
+    let json = dir.path().join("r.json");
+    let cosco = || {
+        let mut c = Command::cargo_bin("cosco").unwrap();
+        c.args(["recognition", "--config"]).arg(&cfg);
+        c
+    };
+    // a directory of label subdirectories taught, a directory of CSV files untaught
+    cosco()
+        .arg("--taught")
+        .arg(&taught)
+        .arg("--untaught")
+        .arg(&other)
+        .args(["--no-control", "--threads", "2", "--json"])
+        .arg(&json)
+        .assert()
+        .success()
+        .stdout(
+            predicate::str::contains("2 taught gestures")
+                .and(predicate::str::contains("| down_other_arc | no | 2 |"))
+                .and(predicate::str::contains("| trained |")),
+        );
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(doc["study"]["untaught"][0], "down_other_arc");
+    assert!(doc["study"]["control"].is_null());
+    // a file where a directory is needed; a directory that does not exist
+    let file = other.join("demo_10.csv");
+    cosco()
+        .arg("--taught")
+        .arg(&file)
+        .assert()
+        .failure()
+        .stderr(
+            predicate::str::contains("demo_10.csv")
+                .and(predicate::str::contains("not a directory")),
+        );
+    cosco()
+        .arg("--taught")
+        .arg(dir.path().join("missing"))
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("missing"));
+    // an untaught gesture of two demonstrations is fine, a taught one is too few
+    cosco()
+        .arg("--taught")
+        .arg(&other)
+        .assert()
+        .failure()
+        .stderr(
+            predicate::str::contains("'down_other_arc'")
+                .and(predicate::str::contains("at least 3")),
+        );
+}
