@@ -124,6 +124,11 @@ pub(crate) struct EventsModel {
     /// it is as smooth (docs/ALGORITHM.md, section 3.8). `None`: untrained, or too short to
     /// tell.
     pub(crate) demo_smoothness: Option<DemoSmoothness>,
+    /// How long a start's offset from the demonstrations' lasts, as a fraction of the
+    /// gesture: the fade that best describes how the training demonstrations' own offsets
+    /// from their mean start carried on (`events::start::start_fade`;
+    /// docs/ALGORITHM.md, section 3.8). `None`: untrained.
+    pub(crate) start_fade: Option<f64>,
     /// Where the training demonstrations ended: the mean of their last postures (state part,
     /// normalised). A reproduction that ends by its end event ends there (docs/ALGORITHM.md,
     /// section 3.8). `None`: untrained.
@@ -147,6 +152,7 @@ static NO_EVENTS: EventsModel = EventsModel {
     start_knots: None,
     start_posture: None,
     demo_smoothness: None,
+    start_fade: None,
     end_posture: None,
     traces: None,
 };
@@ -176,6 +182,7 @@ impl EventsModel {
             start_knots: None,
             start_posture: None,
             demo_smoothness: None,
+            start_fade: None,
             end_posture: None,
             traces: None,
         }

@@ -376,6 +376,7 @@ impl Hsom {
                 ("start placements", binary_len(&e.start_knots)),
                 ("start placements", binary_len(&e.start_posture)),
                 (LEVELS, binary_len(&e.demo_smoothness)),
+                (LEVELS, binary_len(&e.start_fade)),
                 (PLACES, binary_len(&e.end_posture)),
                 ("traced chunks", binary_len(&e.traces)),
             ]),
@@ -722,6 +723,9 @@ impl Hsom {
                 "the demonstrations' jerk, first step and stateLength = {state} largest steps: \
                  none or finite values >= 0"
             ));
+        }
+        if e.start_fade.is_some_and(|f| !(0.0..=1.0).contains(&f)) {
+            return bad("the start's fade: none or a fraction in [0, 1]".into());
         }
         if let Some(s) = &e.start_knots {
             let sound = s.width.is_finite()

@@ -297,6 +297,7 @@ impl Hsom {
                     .fold(0.0, f64::max)
             })
             .collect();
+        let fade = super::start::start_fade(norm, s);
         let smoothness = jerk.map(|jerk| DemoSmoothness {
             jerk,
             start_step,
@@ -306,6 +307,7 @@ impl Hsom {
             return;
         };
         e.demo_smoothness = smoothness;
+        e.start_fade = fade;
         e.knots = None;
         e.start_knots = None;
         e.start_posture = start;

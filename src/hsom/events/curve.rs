@@ -183,7 +183,22 @@ impl Hsom {
         let s = timed.values.len();
         let mut out = vec![vec![0.0; s]; samples];
         // the offset fades over the whole reproduction, at rest at both ends
-        let horizon = (samples.max(2) - 1) as f64;
+        let whole = (samples.max(2) - 1) as f64;
+        // as long as the demonstrations' own offsets lasted, and no faster than they move (a
+        // minimum-jerk move of d in H samples peaks at 1.875 d / H)
+        let e = self.events();
+        let horizon = match (&timed.offset, e.and_then(|e| e.demo_smoothness.as_ref())) {
+            (Some(off), Some(d)) => off
+                .iter()
+                .zip(&d.peak_step)
+                .map(|(o, p)| if *p > 0.0 { 1.875 * o.abs() / p } else { whole })
+                .fold(
+                    e.and_then(|e| e.start_fade).unwrap_or(1.0) * whole,
+                    f64::max,
+                )
+                .clamp(1.0, whole),
+            _ => whole,
+        };
         let columns: Vec<Vec<f64>> = timed
             .values
             .iter()
@@ -508,7 +523,7 @@ fn hermite(t0: f64, t1: f64, v0: f64, v1: f64, m0: f64, m1: f64, t: f64) -> f64 
 
 /// The minimum-jerk profile from 0 to 1 at `u` in [0, 1] (`10u³ − 15u⁴ + 6u⁵`): at rest, with
 /// no acceleration, at both ends.
-fn minimum_jerk(u: f64) -> f64 {
+pub(super) fn minimum_jerk(u: f64) -> f64 {
     let u = u.clamp(0.0, 1.0);
     u * u * u * (10.0 + u * (-15.0 + 6.0 * u))
 }

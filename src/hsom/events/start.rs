@@ -194,3 +194,73 @@ impl StartKnots {
         }
     }
 }
+
+/// Fractions of the gesture [`start_fade`] chooses among.
+const START_FADES: [f64; 5] = [0.0, 0.125, 0.25, 0.5, 1.0];
+
+/// Phases at which [`start_fade`] compares the demonstrations.
+const FADE_PHASES: usize = 50;
+
+/// How long a start's offset lasts, as a fraction of the gesture: of [`START_FADES`], the
+/// minimum-jerk fade `1 - s(u / f)` (`s` the minimum-jerk profile, `u` the phase) that best
+/// predicts each training demonstration's offset from their mean at every phase from its
+/// offset at the start (least squares over `norm`'s demonstrations, each read at
+/// [`FADE_PHASES`] phases, state part `s`). Drawings of nested curves keep their offset to the
+/// end (1); demonstrations that start apart by chance meet at once (0). `None` with fewer
+/// than two demonstrations.
+pub(crate) fn start_fade(norm: &[Vec<Vec<f64>>], s: usize) -> Option<f64> {
+    if norm.len() < 2 || norm.iter().any(|d| d.is_empty()) {
+        return None;
+    }
+    let at = |d: &[Vec<f64>], u: f64, j: usize| {
+        let x = u * (d.len() - 1) as f64;
+        let (i, w) = (x.floor() as usize, x.fract());
+        let next = (i + 1).min(d.len() - 1);
+        d[i][j] * (1.0 - w) + d[next][j] * w
+    };
+    let phases: Vec<f64> = (0..FADE_PHASES)
+        .map(|k| k as f64 / (FADE_PHASES - 1) as f64)
+        .collect();
+    // offsets[d][k][j]: demonstration d's offset from the mean at phase k
+    let n = norm.len() as f64;
+    let offsets: Vec<Vec<Vec<f64>>> = norm
+        .iter()
+        .map(|d| {
+            phases
+                .iter()
+                .map(|&u| {
+                    (0..s)
+                        .map(|j| at(d, u, j) - norm.iter().map(|e| at(e, u, j)).sum::<f64>() / n)
+                        .collect()
+                })
+                .collect()
+        })
+        .collect();
+    let error = |f: f64| -> f64 {
+        offsets
+            .iter()
+            .map(|o| {
+                phases
+                    .iter()
+                    .zip(o)
+                    .map(|(&u, x)| {
+                        let keep = if u >= f {
+                            0.0
+                        } else {
+                            1.0 - super::curve::minimum_jerk(u / f)
+                        };
+                        x.iter()
+                            .zip(&o[0])
+                            .map(|(v, v0)| (v - v0 * keep).powi(2))
+                            .sum::<f64>()
+                    })
+                    .sum::<f64>()
+            })
+            .sum()
+    };
+    START_FADES
+        .iter()
+        .map(|&f| (error(f), f))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, f)| f)
+}

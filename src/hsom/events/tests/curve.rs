@@ -316,3 +316,25 @@ fn a_start_away_from_the_demonstrations_is_joined_smoothly() {
         speed(&snapped.postures)
     );
 }
+
+/// Nested curves keep their offset from one another to the end, so a start's offset lasts
+/// the whole gesture; curves that start apart and meet within the first steps let it go at
+/// once (the control).
+#[test]
+fn a_start_s_offset_lasts_as_long_as_the_demonstrations_own_did() {
+    let curve = |k: usize, lasting: bool| -> Vec<Vec<f64>> {
+        let offset = 0.1 * (k as f64 - 2.0);
+        (0..60)
+            .map(|i| {
+                let u = i as f64 / 59.0;
+                let keep = if lasting { 1.0 } else { (1.0 - 10.0 * u).max(0.0) };
+                vec![u, (std::f64::consts::PI * u).sin() + offset * keep]
+            })
+            .collect()
+    };
+    let nested: Vec<Vec<Vec<f64>>> = (0..5).map(|k| curve(k, true)).collect();
+    let meeting: Vec<Vec<Vec<f64>>> = (0..5).map(|k| curve(k, false)).collect();
+    assert_eq!(start_fade(&nested, 2), Some(1.0));
+    assert!(start_fade(&meeting, 2).unwrap() <= 0.125, "{:?}", start_fade(&meeting, 2));
+    assert_eq!(start_fade(&nested[..1], 2), None);
+}
