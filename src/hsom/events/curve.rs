@@ -15,7 +15,7 @@ impl Hsom {
     /// A reproduction from its own start (`start` is `y0`) begins where the training
     /// demonstrations weighed by that start began ([`Hsom::plan_start`]), the mean their
     /// placements are weighed with, and the given posture's offset from there is joined to
-    /// the plan over the whole reproduction ([`Timed::offset`]): a start away from every
+    /// the plan ([`Timed::joined_from`]): a start away from every
     /// demonstration's is neither snapped to the plan in its first steps nor kept to the end.
     /// A continuation (`y0` the posture reached) starts at `y0`.
     pub(super) fn timed_postures(
@@ -29,7 +29,7 @@ impl Hsom {
         let first = begun.as_deref().unwrap_or(y0);
         let mut timed = self.timed_knots(start, first, executed, stop);
         let samples = timed.total.floor() as usize + 1;
-        timed.offset = begun.map(|p0| y0.iter().zip(&p0).map(|(a, b)| a - b).collect());
+        timed.joined_from = begun.map(|_| y0.to_vec());
         self.curve(&timed, &vec![0.0; y0.len()], samples, stop)
     }
 
@@ -70,7 +70,7 @@ impl Hsom {
             values,
             by: p.by,
             total: p.total,
-            offset: None,
+            joined_from: None,
         }
     }
 
@@ -169,7 +169,7 @@ impl Hsom {
     /// The postures at `samples` samples along the knots `timed`: per variable the monotone
     /// cubic through them ([`monotone_cubic_from`]: holds are held, turns are at knots),
     /// leaving the first knot at the slope `m0` (within its monotone limits); plus the
-    /// offset of the given posture from the first knot ([`Timed::offset`]) fading from 1 to 0
+    /// offset of the given posture from the first knot ([`Timed::joined_from`]) fading from 1 to 0
     /// along a minimum-jerk profile over the samples; then smoothed as the training
     /// demonstrations are smooth ([`as_smooth_as`]): the cubic is continuous in velocity
     /// only, and its steps of acceleration at the knots are what the smoothing takes away.
@@ -182,12 +182,18 @@ impl Hsom {
     ) -> Reproduction {
         let s = timed.values.len();
         let mut out = vec![vec![0.0; s]; samples];
-        // the offset fades over the whole reproduction, at rest at both ends
+        // the offset fades to nothing, at rest at both ends of the fade
         let whole = (samples.max(2) - 1) as f64;
         // as long as the demonstrations' own offsets lasted, and no faster than they move (a
         // minimum-jerk move of d in H samples peaks at 1.875 d / H)
         let e = self.events();
-        let horizon = match (&timed.offset, e.and_then(|e| e.demo_smoothness.as_ref())) {
+        let offset: Option<Vec<f64>> = timed.joined_from.as_ref().map(|from| {
+            from.iter()
+                .zip(&timed.values)
+                .map(|(f, v)| f - v[0])
+                .collect()
+        });
+        let horizon = match (&offset, e.and_then(|e| e.demo_smoothness.as_ref())) {
             (Some(off), Some(d)) => off
                 .iter()
                 .zip(&d.peak_step)
@@ -205,10 +211,12 @@ impl Hsom {
             .enumerate()
             .map(|(d, knots)| {
                 let mut y = monotone_cubic_from(&timed.t, knots, samples, m0[d]);
-                if let Some(off) = &timed.offset {
+                if let (Some(off), Some(from)) = (&offset, &timed.joined_from) {
                     for (i, v) in y.iter_mut().enumerate() {
                         *v += off[d] * (1.0 - minimum_jerk(i as f64 / horizon));
                     }
+                    // exactly the given posture, not the first knot plus its offset
+                    y[0] = from[d];
                 }
                 y
             })
@@ -218,7 +226,7 @@ impl Hsom {
             .events()
             .and_then(|e| e.demo_smoothness.clone())
             .map(|d| DemoSmoothness {
-                start_step: if timed.offset.is_some() {
+                start_step: if timed.joined_from.is_some() {
                     d.start_step
                 } else {
                     f64::INFINITY
@@ -282,9 +290,10 @@ pub(super) struct Timed {
     pub(super) by: Vec<usize>,
     /// The events' total duration, samples.
     pub(super) total: f64,
-    /// The given initial posture's offset from the first knot (normalised), faded over the
-    /// whole reproduction ([`Hsom::curve`]); `None`: the curve starts at its first knot.
-    pub(super) offset: Option<Vec<f64>>,
+    /// The given initial posture (normalised) the curve starts at: its offset from the first
+    /// knot fades along the reproduction ([`Hsom::curve`]); `None`: the curve starts at its
+    /// first knot.
+    pub(super) joined_from: Option<Vec<f64>>,
 }
 
 impl Timed {
@@ -312,7 +321,7 @@ impl Timed {
                 .chain(keep.iter().map(|&i| self.by[i]))
                 .collect(),
             total: (self.total - now).max(0.0),
-            offset: None,
+            joined_from: None,
         }
     }
 }

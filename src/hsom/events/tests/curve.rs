@@ -327,7 +327,11 @@ fn a_start_s_offset_lasts_as_long_as_the_demonstrations_own_did() {
         (0..60)
             .map(|i| {
                 let u = i as f64 / 59.0;
-                let keep = if lasting { 1.0 } else { (1.0 - 10.0 * u).max(0.0) };
+                let keep = if lasting {
+                    1.0
+                } else {
+                    (1.0 - 10.0 * u).max(0.0)
+                };
                 vec![u, (std::f64::consts::PI * u).sin() + offset * keep]
             })
             .collect()
@@ -335,6 +339,10 @@ fn a_start_s_offset_lasts_as_long_as_the_demonstrations_own_did() {
     let nested: Vec<Vec<Vec<f64>>> = (0..5).map(|k| curve(k, true)).collect();
     let meeting: Vec<Vec<Vec<f64>>> = (0..5).map(|k| curve(k, false)).collect();
     assert_eq!(start_fade(&nested, 2), Some(1.0));
-    assert!(start_fade(&meeting, 2).unwrap() <= 0.125, "{:?}", start_fade(&meeting, 2));
+    assert!(
+        start_fade(&meeting, 2).unwrap() <= 0.125,
+        "{:?}",
+        start_fade(&meeting, 2)
+    );
     assert_eq!(start_fade(&nested[..1], 2), None);
 }
