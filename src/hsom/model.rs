@@ -178,13 +178,8 @@ impl EventsModel {
                 .iter()
                 .map(|l| vec![u32::MAX; nodes(l) * p.memory])
                 .collect(),
-            knots: None,
-            start_knots: None,
-            start_posture: None,
-            demo_smoothness: None,
-            start_fade: None,
-            end_posture: None,
-            traces: None,
+            // nothing learned from the demonstrations
+            ..NO_EVENTS.clone()
         }
     }
 }
