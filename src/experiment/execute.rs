@@ -118,7 +118,7 @@ pub fn min_jerk_through_key_poses(postures: &[Vec<f64>], tolerance: f64) -> Vec<
         let (i, j) = (w[0], w[1]);
         for k in i..j {
             let s = (k - i) as f64 / (j - i) as f64;
-            let m = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
+            let m = crate::gmr::minimum_jerk_at(s);
             out.push(
                 postures[i]
                     .iter()

@@ -7,6 +7,7 @@
 //! present only while the person moves the arm. Idle time before and after varies widely
 //! (the paper's footnote 3), overall speed by about +-20 %, key poses by a few degrees.
 
+use crate::gmr::minimum_jerk_at;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
@@ -114,11 +115,6 @@ struct Oscillation {
     amplitude: f64,
     period: f64,
     cycles: f64,
-}
-
-fn min_jerk(s: f64) -> f64 {
-    let s = s.clamp(0.0, 1.0);
-    s * s * s * (10.0 - 15.0 * s + 6.0 * s * s)
 }
 
 fn smoothstep(s: f64) -> f64 {
@@ -258,7 +254,7 @@ impl HumanTrajectory {
         let mut q = self.initial;
         for m in &self.moves {
             for ((v, d), s) in q.iter_mut().zip(&m.delta).zip(&m.start) {
-                *v += d * min_jerk((t - s) / m.duration);
+                *v += d * minimum_jerk_at((t - s) / m.duration);
             }
         }
         for o in &self.oscillations {

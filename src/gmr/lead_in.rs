@@ -9,13 +9,19 @@ use super::{GmrError, GmrModel, Prediction};
 /// Shortest lead-in, seconds.
 pub const LEAD_IN_MIN_S: f64 = 0.1;
 
+/// The minimum-jerk profile from 0 to 1 at `s` (clamped to [0, 1]): `10s³ − 15s⁴ + 6s⁵`, at
+/// rest and without acceleration at both ends.
+pub fn minimum_jerk_at(s: f64) -> f64 {
+    let s = s.clamp(0.0, 1.0);
+    s * s * s * (10.0 - 15.0 * s + 6.0 * s * s)
+}
+
 /// Minimum-jerk samples from `from` to `to` at `s = k / n`, `k = 0 … n−1` (`to` itself is
 /// not included: it is the next posture of the plan). `n = 0` gives nothing.
 pub fn minimum_jerk(from: &[f64], to: &[f64], n: usize) -> Vec<Vec<f64>> {
     (0..n)
         .map(|k| {
-            let s = k as f64 / n as f64;
-            let h = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
+            let h = minimum_jerk_at(k as f64 / n as f64);
             from.iter().zip(to).map(|(a, b)| a + (b - a) * h).collect()
         })
         .collect()

@@ -213,7 +213,7 @@ impl Hsom {
                 let mut y = monotone_cubic_from(&timed.t, knots, samples, m0[d]);
                 if let (Some(off), Some(from)) = (&offset, &timed.joined_from) {
                     for (i, v) in y.iter_mut().enumerate() {
-                        *v += off[d] * (1.0 - minimum_jerk(i as f64 / horizon));
+                        *v += off[d] * (1.0 - crate::gmr::minimum_jerk_at(i as f64 / horizon));
                     }
                     // exactly the given posture, not the first knot plus its offset
                     y[0] = from[d];
@@ -528,13 +528,6 @@ fn hermite(t0: f64, t1: f64, v0: f64, v1: f64, m0: f64, m1: f64, t: f64) -> f64 
         + (u3 - 2.0 * u2 + u) * h * m0
         + (-2.0 * u3 + 3.0 * u2) * v1
         + (u3 - u2) * h * m1
-}
-
-/// The minimum-jerk profile from 0 to 1 at `u` in [0, 1] (`10u³ − 15u⁴ + 6u⁵`): at rest, with
-/// no acceleration, at both ends.
-pub(super) fn minimum_jerk(u: f64) -> f64 {
-    let u = u.clamp(0.0, 1.0);
-    u * u * u * (10.0 + u * (-15.0 + 6.0 * u))
 }
 
 /// The smoothing weights [`as_smooth_as`] tries, least first: the cut-off period of

@@ -221,18 +221,24 @@ pub(crate) fn start_fade(norm: &[Vec<Vec<f64>>], s: usize) -> Option<f64> {
     let phases: Vec<f64> = (0..FADE_PHASES)
         .map(|k| k as f64 / (FADE_PHASES - 1) as f64)
         .collect();
-    // offsets[d][k][j]: demonstration d's offset from the mean at phase k
+    // mean[k][j]: the demonstrations' mean at phase k; offsets[d][k][j]: demonstration d's
+    // offset from it
     let n = norm.len() as f64;
+    let mean: Vec<Vec<f64>> = phases
+        .iter()
+        .map(|&u| {
+            (0..s)
+                .map(|j| norm.iter().map(|e| at(e, u, j)).sum::<f64>() / n)
+                .collect()
+        })
+        .collect();
     let offsets: Vec<Vec<Vec<f64>>> = norm
         .iter()
         .map(|d| {
             phases
                 .iter()
-                .map(|&u| {
-                    (0..s)
-                        .map(|j| at(d, u, j) - norm.iter().map(|e| at(e, u, j)).sum::<f64>() / n)
-                        .collect()
-                })
+                .zip(&mean)
+                .map(|(&u, m)| (0..s).map(|j| at(d, u, j) - m[j]).collect())
                 .collect()
         })
         .collect();
@@ -247,7 +253,7 @@ pub(crate) fn start_fade(norm: &[Vec<Vec<f64>>], s: usize) -> Option<f64> {
                         let keep = if u >= f {
                             0.0
                         } else {
-                            1.0 - super::curve::minimum_jerk(u / f)
+                            1.0 - crate::gmr::minimum_jerk_at(u / f)
                         };
                         x.iter()
                             .zip(&o[0])
