@@ -41,7 +41,7 @@ for seed in 11 12 13 14 15; do
 done
 run nao_curves $bin/cosco heldout --demos "$out/nao-curves" --json "$out/nao_curves.json"
 # Recognition held out on LASA: seven shapes taught together, every other shape untaught;
-# groups not used to choose the unknown threshold's calibration (docs/ALGORITHM.md, 4).
+# groups not used to choose the score or the unknown threshold (docs/ALGORITHM.md, 4).
 lasa_group() { # lasa_group NAME SHAPE...: the shapes taught, the others untaught
   local name=$1 d s; shift
   local taught=() untaught=()

@@ -194,8 +194,19 @@ const INF: (f64, usize) = (f64::INFINITY, 0);
 /// distance and step count as [`dtw`].
 pub fn dtw_distance<R: AsRef<[f64]>>(a: &[R], b: &[R], band: Band) -> Result<DtwCost, DtwError> {
     check(a, b)?;
-    let (n, m) = (a.len(), b.len());
-    let w = band.width(n, m)?;
+    let w = band.width(a.len(), b.len())?;
+    Ok(by_rows(a, b, w, |_, _| {}))
+}
+
+/// The DTW cost row by row in two rows of memory, inside the band of half-width `w`;
+/// `row(i, costs)` sees each row's accumulated (cost, steps) once it is complete.
+fn by_rows<R: AsRef<[f64]>>(
+    a: &[R],
+    b: &[R],
+    w: Option<usize>,
+    mut row: impl FnMut(usize, &[(f64, usize)]),
+) -> DtwCost {
+    let m = b.len();
     let mut prev = vec![INF; m];
     let mut cur = vec![INF; m];
     for (i, ai) in a.iter().enumerate() {
@@ -215,9 +226,10 @@ pub fn dtw_distance<R: AsRef<[f64]>>(a: &[R], b: &[R], band: Band) -> Result<Dtw
             cur[j] = (d + c, s + 1);
         }
         std::mem::swap(&mut prev, &mut cur);
+        row(i, &prev);
     }
     let (distance, steps) = prev[m - 1];
-    Ok(DtwCost { distance, steps })
+    DtwCost { distance, steps }
 }
 
 /// DTW with the warping path, `O(n·m)` memory.
@@ -304,6 +316,23 @@ pub(crate) fn argmin(v: &[f64]) -> usize {
         }
     }
     best
+}
+
+/// DTW of `a` against `b` ([`dtw_distance`], unconstrained), and on the way, for every prefix
+/// of `a` (its first `i + 1` samples, at index `i`), the cost per sample of the cheapest
+/// warping path that starts at both starts, covers the prefix and ends anywhere in `b` (an
+/// open end): how well each part of `a` seen so far follows the start of `b`.
+pub(crate) fn dtw_with_prefixes(
+    a: &[Vec<f64>],
+    b: &[Vec<f64>],
+) -> Result<(DtwCost, Vec<f64>), DtwError> {
+    check(a, b)?;
+    let mut prefixes = Vec::with_capacity(a.len());
+    let whole = by_rows(a, b, None, |i, costs| {
+        let open = costs.iter().map(|c| c.0).fold(f64::INFINITY, f64::min);
+        prefixes.push(open / (i + 1) as f64);
+    });
+    Ok((whole, prefixes))
 }
 
 /// Where along `b` the sequence `a` ends (the column of the cheapest warping path that starts

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use assert_cmd::Command;
 use cosco_hsom::demos::{write_csv, Demonstration};
-use cosco_hsom::hsom::{GestureError, GestureModel, GESTURES_FORMAT_VERSION};
+use cosco_hsom::hsom::{GestureError, GestureModel, Scoring, GESTURES_FORMAT_VERSION};
 use predicates::prelude::*;
 
 mod hsom_common;
@@ -63,6 +63,45 @@ fn a_gesture_never_taught_is_unknown_and_the_taught_ones_are_not() {
         assert_eq!(r.label, None, "{r:?}");
     }
     assert!(accuracy(&m, taught) >= 0.95);
+}
+
+/// A gesture that only goes part of the way along a taught one's path (up to half the apex
+/// and back, or up and staying there) is not that gesture: the reproduction from its start
+/// goes all the way, so it scores far above new demonstrations of the taught one and is
+/// `unknown`. The control: the nearest-posture score cannot tell them apart, since every
+/// sample lies on the taught path.
+#[test]
+fn part_of_a_taught_path_is_unknown() {
+    let taught = &APEXES[..2];
+    let m = config().fit_gestures(&sets(taught), None).unwrap();
+    let by_postures = m.clone().with_scoring(Scoring::Postures);
+    let up = |model: &GestureModel, rows: &[Vec<f64>]| model.scores(rows).unwrap()[0];
+    let new_up: Vec<Vec<Vec<f64>>> = (100..104).map(|s| gesture(APEXES[0].1, s)).collect();
+    let worst = |model: &GestureModel| new_up.iter().map(|g| up(model, g)).fold(0.0, f64::max);
+    let half = gesture([0.0, 0.5], 7);
+    let mut one_way = gesture(APEXES[0].1, 8);
+    let back = one_way.len() - (one_way.len() - 40) / 3 - 40;
+    let top = one_way[back - 1].clone();
+    one_way[back..].iter_mut().for_each(|r| *r = top.clone());
+    for part in [&half, &one_way] {
+        let r = m.recognize(part).unwrap();
+        assert_eq!(r.label, None, "{r:?}");
+        assert!(
+            up(&m, part) > 3.0 * worst(&m),
+            "{} vs {}",
+            up(&m, part),
+            worst(&m)
+        );
+        assert!(
+            up(&by_postures, part) < 1.5 * worst(&by_postures),
+            "the control: {} vs {}",
+            up(&by_postures, part),
+            worst(&by_postures)
+        );
+    }
+    for g in &new_up {
+        assert_eq!(m.recognize(g).unwrap().label.as_deref(), Some("up"));
+    }
 }
 
 #[test]

@@ -32,3 +32,24 @@ fn band_is_widened_to_length_difference() {
     assert_eq!(*al.path.last().unwrap(), (2, 9));
     assert_eq!(Band::Samples(0).width(3, 10).unwrap(), Some(7));
 }
+
+/// The whole cost is [`dtw_distance`]'s; every prefix of a sequence that follows the start of
+/// `b` costs nothing, and a sequence that turns away costs more from where it turns (the
+/// control: against the whole of `b`, the closed end, it is never free).
+#[test]
+fn prefixes_cost_what_they_have_followed_so_far() {
+    let b: Vec<Vec<f64>> = (0..20).map(|i| vec![i as f64, 0.0]).collect();
+    let a: Vec<Vec<f64>> = (0..10)
+        .map(|i| vec![i.min(5) as f64, (i as f64 - 5.0).max(0.0)])
+        .collect();
+    let (whole, prefixes) = dtw_with_prefixes(&a, &b).unwrap();
+    assert_eq!(whole, dtw_distance(&a, &b, Band::None).unwrap());
+    assert_eq!(prefixes.len(), a.len());
+    assert!(prefixes[..6].iter().all(|&p| p == 0.0), "{prefixes:?}");
+    assert!(
+        prefixes[6..].windows(2).all(|w| w[1] > w[0]),
+        "{prefixes:?}"
+    );
+    assert!(whole.per_step() > prefixes[5]);
+    assert!(dtw_with_prefixes(&a, &[]).is_err());
+}

@@ -316,10 +316,13 @@ pub enum Scoring {
     /// Level 1's mean chunk distance alone.
     Level1,
     /// The bottom alone: the mean distance of the events' postures to the nearest posture
-    /// the gesture used (its branch's statistics). The default: measured best on the
-    /// development seeds (docs/ALGORITHM.md, section 4).
-    #[default]
+    /// the gesture used (its branch's statistics).
     Postures,
+    /// The gesture reproduced from the sequence's first posture, and the sequence's DTW
+    /// distance per step from it (a prefix: open-ended). The default (docs/ALGORITHM.md,
+    /// section 4).
+    #[default]
+    Reproduction,
     /// The mean over levels of distance / the label's held-out reference (the same mean on
     /// its own demonstrations held out, leave-one-out).
     Relative,

@@ -28,7 +28,7 @@ const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of model files, of one gesture or several (the header says which).
-pub const FORMAT_VERSION: u32 = 23;
+pub const FORMAT_VERSION: u32 = 24;
 /// The most bytes a model file may hold (what bincode may be asked to read).
 const MAX_MODEL_BYTES: usize = 1 << 30;
 /// The longest demonstration a model file may record, samples (a day at 1 kHz): the

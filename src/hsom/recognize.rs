@@ -7,7 +7,7 @@
 //! label's threshold, calibrated on the training data alone (leave-one-out), the answer is
 //! `unknown`.
 
-use crate::dtw::{argmin, open_end_cost};
+use crate::dtw::{argmin, dtw_distance, dtw_with_prefixes, open_end_cost, Band};
 
 use super::errors::GestureError;
 use super::errors::HsomError;
@@ -45,6 +45,21 @@ pub(crate) fn posture_distances(model: &Hsom, norm: &[Vec<f64>]) -> Vec<f64> {
             (d2 / (2 * s) as f64).sqrt()
         })
         .collect()
+}
+
+/// `model`'s gesture reproduced from the first posture of `norm` (normalised rows), normalised;
+/// `None` when it cannot be reproduced from there.
+fn reproduction_from(model: &Hsom, norm: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
+    let rep = model.reproduce(&model.denormalise(norm.first()?)).ok()?;
+    (!rep.postures.is_empty()).then(|| model.normalise_rows(&rep.postures))
+}
+
+/// The DTW distance per step between `norm` and `model`'s gesture reproduced from its first
+/// posture (infinite when it cannot be reproduced).
+fn reproduction_distance(model: &Hsom, norm: &[Vec<f64>]) -> f64 {
+    reproduction_from(model, norm)
+        .and_then(|r| dtw_distance(norm, &r, Band::None).ok())
+        .map_or(f64::INFINITY, |c| c.per_step())
 }
 
 /// The mean of the first `n` values (`None` when there are none).
@@ -175,53 +190,76 @@ fn level_means(dists: &[Vec<Option<f64>>], h: usize) -> Vec<f64> {
         .collect()
 }
 
-/// The one-sided 95 % quantile of Student's t with `df` degrees of freedom (a table to 30,
+/// The one-sided 99 % quantile of Student's t with `df` degrees of freedom (a table to 30,
 /// the Cornish-Fisher expansion beyond, within 1e-3 of the exact value there).
-fn t95(df: usize) -> f64 {
+fn t99(df: usize) -> f64 {
+    #[allow(clippy::approx_constant)] // 2.718 is t at 11 degrees of freedom, not e
     const TABLE: [f64; 30] = [
-        6.314, 2.920, 2.353, 2.132, 2.015, 1.943, 1.895, 1.860, 1.833, 1.812, 1.796, 1.782, 1.771,
-        1.761, 1.753, 1.746, 1.740, 1.734, 1.729, 1.725, 1.721, 1.717, 1.714, 1.711, 1.708, 1.706,
-        1.703, 1.701, 1.699, 1.697,
+        31.821, 6.965, 4.541, 3.747, 3.365, 3.143, 2.998, 2.896, 2.821, 2.764, 2.718, 2.681, 2.650,
+        2.624, 2.602, 2.583, 2.567, 2.552, 2.539, 2.528, 2.518, 2.508, 2.500, 2.492, 2.485, 2.479,
+        2.473, 2.467, 2.462, 2.457,
     ];
     if (1..=30).contains(&df) {
         return TABLE[df - 1];
     }
-    let (z, v) = (1.644_853_6_f64, df.max(1) as f64);
+    let (z, v) = (2.326_347_9_f64, df.max(1) as f64);
     z + (z.powi(3) + z) / (4.0 * v)
         + (5.0 * z.powi(5) + 16.0 * z.powi(3) + 3.0 * z) / (96.0 * v * v)
 }
 
-/// What a new demonstration of a gesture may score: the upper 95 % prediction bound of one
-/// more score from `own` (its demonstrations' held-out scores), the scores taken as
-/// log-normal (distances, whose spread grows with their size), and never below
-/// the worst of them. With one score there is no spread to estimate: twice it.
-pub(crate) fn new_demonstration_bound(own: &[f64]) -> f64 {
-    let worst = own.iter().cloned().fold(0.0, f64::max);
-    let n = own.len();
-    if n < 2 {
-        return 2.0 * worst;
-    }
+/// What a new demonstration of each gesture may score: from `own` (per label, its
+/// demonstrations' held-out scores), the upper 99 % prediction bound of one more score,
+/// never below the label's worst. The scores are taken as log-normal (distances, whose spread
+/// grows with their size) with the label's own mean and one spread pooled over every label
+/// (how much one person's drawings of a gesture vary, estimated from all of them rather than
+/// from a handful each). 99 %: the bound must let through more new demonstrations than the
+/// acceptance gate asks (97 %). Without any spread to estimate (one score per label), twice
+/// the worst.
+pub(crate) fn new_demonstration_bounds(own: &[Vec<f64>]) -> Vec<f64> {
+    let worst: Vec<f64> = own
+        .iter()
+        .map(|o| o.iter().cloned().fold(0.0, f64::max))
+        .collect();
     // a score of 0 (a demonstration repeated exactly) would make the log spread infinite
-    let floor = worst * 1e-6;
-    let logs: Vec<f64> = own.iter().map(|&s| s.max(floor).ln()).collect();
-    let mean = logs.iter().sum::<f64>() / n as f64;
-    let var = logs.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
-    let bound = (mean + t95(n - 1) * (var * (1.0 + 1.0 / n as f64)).sqrt()).exp();
-    if bound.is_finite() {
-        bound.max(worst)
-    } else {
-        worst
+    let logs: Vec<Vec<f64>> = own
+        .iter()
+        .zip(&worst)
+        .map(|(o, w)| o.iter().map(|&s| s.max(w * 1e-6).ln()).collect())
+        .collect();
+    let means: Vec<f64> = logs
+        .iter()
+        .map(|l| l.iter().sum::<f64>() / l.len().max(1) as f64)
+        .collect();
+    let scores: usize = own.iter().map(Vec::len).sum();
+    let labels = own.iter().filter(|o| !o.is_empty()).count();
+    if scores <= labels {
+        return worst.iter().map(|w| 2.0 * w).collect();
     }
+    let df = scores - labels;
+    let squares: f64 = logs
+        .iter()
+        .zip(&means)
+        .flat_map(|(l, m)| l.iter().map(move |x| (x - m).powi(2)))
+        .sum();
+    let spread = (squares / df as f64).sqrt();
+    own.iter()
+        .zip(means.iter().zip(&worst))
+        .map(|(o, (m, &w))| {
+            let n = o.len().max(1) as f64;
+            let bound = (m + t99(df) * spread * (1.0 + 1.0 / n).sqrt()).exp();
+            if bound.is_finite() {
+                bound.max(w)
+            } else {
+                w
+            }
+        })
+        .collect()
 }
 
 /// The calibration of every label: its held-out references (each own demonstration scored
 /// by a branch trained without it: leave-one-out; in-sample for a label with one
-/// demonstration), and its threshold from those own held-out scores (what a new
-/// demonstration of the gesture scores, [`new_demonstration_bound`]) and the scores the other
-/// labels' training demonstrations get from it: the geometric midpoint of the bound and the
-/// best other score when every other scores above the bound (the widest margin in log score),
-/// else the bound itself (a new demonstration of the gesture accepted before another gesture
-/// is refused); with a single label, the bound.
+/// demonstration), and its threshold: what a new demonstration of the gesture may score, from
+/// those own held-out scores ([`new_demonstration_bounds`]).
 pub(crate) fn calibrate(
     shared: &Hsom,
     branches: &[Hsom],
@@ -234,9 +272,10 @@ pub(crate) fn calibrate(
         .iter()
         .map(|n| n.iter().map(|d| bottom_events(shared, d)).collect())
         .collect();
-    (0..branches.len())
+    let per: Vec<(Vec<f64>, Vec<f64>)> = (0..branches.len())
         .map(|g| {
-            let own: Vec<Vec<Option<f64>>> = if norm[g].len() >= 2 {
+            // each own demonstration's branch: trained without it (with it, when alone)
+            let loo: Vec<Hsom> = if norm[g].len() >= 2 {
                 (0..norm[g].len())
                     .map(|i| {
                         let rest: Vec<Vec<Vec<f64>>> = norm[g]
@@ -245,35 +284,42 @@ pub(crate) fn calibrate(
                             .filter(|&(j, _)| j != i)
                             .map(|(_, d)| d.clone())
                             .collect();
-                        let loo = shared.branch(&rest, learn, branch_seed(seed, g, Some(i)));
-                        all_distances(&loo, &norm[g][i], &events[g][i])
+                        let mut b = shared.branch(&rest, learn, branch_seed(seed, g, Some(i)));
+                        if learn {
+                            b.fit_postures(&rest);
+                        }
+                        b
                     })
                     .collect()
             } else {
-                vec![all_distances(&branches[g], &norm[g][0], &events[g][0])]
+                vec![branches[g].clone()]
             };
+            let own: Vec<Vec<Option<f64>>> = loo
+                .iter()
+                .zip(&norm[g])
+                .zip(&events[g])
+                .map(|((b, n), ev)| all_distances(b, n, ev))
+                .collect();
             let reference = level_means(&own, h);
             let scoring = Scoring::default();
-            let own_scores: Vec<f64> = own
-                .iter()
-                .map(|d| scoring.score(d, &reference))
-                .filter(|v| v.is_finite())
-                .collect();
-            let bound = new_demonstration_bound(&own_scores);
-            let best_other = (0..branches.len())
-                .filter(|&o| o != g)
-                .flat_map(|o| norm[o].iter().zip(&events[o]))
-                .map(|(n, ev)| scoring.score(&all_distances(&branches[g], n, ev), &reference))
-                .fold(f64::INFINITY, f64::min);
-            let threshold = if best_other > bound && best_other.is_finite() {
-                (bound * best_other).sqrt()
-            } else {
-                bound
+            let own_scores: Vec<f64> = match scoring {
+                Scoring::Reproduction => loo
+                    .iter()
+                    .zip(&norm[g])
+                    .map(|(b, n)| reproduction_distance(b, n))
+                    .collect(),
+                _ => own.iter().map(|d| scoring.score(d, &reference)).collect(),
             };
-            Calibration {
-                reference,
-                threshold,
-            }
+            let own_scores: Vec<f64> = own_scores.into_iter().filter(|v| v.is_finite()).collect();
+            (reference, own_scores)
+        })
+        .collect();
+    let own: Vec<Vec<f64>> = per.iter().map(|p| p.1.clone()).collect();
+    per.into_iter()
+        .zip(new_demonstration_bounds(&own))
+        .map(|((reference, _), threshold)| Calibration {
+            reference,
+            threshold,
         })
         .collect()
 }
@@ -303,6 +349,19 @@ impl Recognition {
     pub fn decided_fraction(&self) -> f64 {
         self.decided_at as f64 / self.samples.max(1) as f64
     }
+}
+
+/// What a sequence is scored on against one label.
+struct Evidence {
+    /// Per sample, the distance to the nearest posture the gesture used (scoring by postures
+    /// or levels).
+    postures: Vec<f64>,
+    /// The whole sequence's DTW distance per step from the reproduction (scoring by
+    /// reproduction).
+    whole: f64,
+    /// Per prefix (index: its samples - 1), its open-ended DTW cost per sample against the
+    /// reproduction (scoring by reproduction).
+    prefix: Vec<f64>,
 }
 
 impl GestureModel {
@@ -349,19 +408,35 @@ impl GestureModel {
         Ok((norm, ev))
     }
 
-    /// Per label, the per-sample posture distances of a normalised sequence.
-    fn postures_of(&self, norm: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    /// Per label, what a normalised sequence is scored on: its per-sample posture distances,
+    /// or (scoring by reproduction) the gesture reproduced from its first posture.
+    fn evidence_of(&self, norm: &[Vec<f64>]) -> Vec<Evidence> {
         self.branches
             .iter()
-            .map(|b| posture_distances(b, norm))
+            .map(|b| match self.scoring {
+                Scoring::Reproduction => {
+                    let d =
+                        reproduction_from(b, norm).and_then(|r| dtw_with_prefixes(norm, &r).ok());
+                    Evidence {
+                        postures: Vec::new(),
+                        whole: d.as_ref().map_or(f64::INFINITY, |(c, _)| c.per_step()),
+                        prefix: d.map_or_else(|| vec![f64::INFINITY; norm.len()], |(_, p)| p),
+                    }
+                }
+                _ => Evidence {
+                    postures: posture_distances(b, norm),
+                    whole: f64::INFINITY,
+                    prefix: Vec::new(),
+                },
+            })
             .collect()
     }
 
-    /// Per label, the score of the first `samples` samples (their posture distances
-    /// `postures`) and the bottom events `events`; `complete`: the sequence ends there.
+    /// Per label, the score of the first `samples` samples (`evidence`) and the bottom events
+    /// `events`; `complete`: the sequence ends there.
     fn scores_of(
         &self,
-        postures: &[Vec<f64>],
+        evidence: &[Evidence],
         samples: usize,
         events: &[(usize, f64)],
         complete: bool,
@@ -369,15 +444,19 @@ impl GestureModel {
         self.branches
             .iter()
             .zip(&self.calibration)
-            .zip(postures)
-            .map(|((b, c), p)| {
-                let mut d = if self.scoring == Scoring::Postures {
-                    vec![None; b.maps.len()]
-                } else {
-                    level_distances(b, events, complete)
-                };
-                d[0] = mean_of(p, samples);
-                self.scoring.score(&d, &c.reference)
+            .zip(evidence)
+            .map(|((b, c), e)| match self.scoring {
+                Scoring::Reproduction if complete => e.whole,
+                Scoring::Reproduction => e.prefix[samples.clamp(1, e.prefix.len()) - 1],
+                _ => {
+                    let mut d = if self.scoring == Scoring::Postures {
+                        vec![None; b.maps.len()]
+                    } else {
+                        level_distances(b, events, complete)
+                    };
+                    d[0] = mean_of(&e.postures, samples);
+                    self.scoring.score(&d, &c.reference)
+                }
             })
             .collect()
     }
@@ -387,7 +466,7 @@ impl GestureModel {
     /// [`Scoring::Relative`]; the default scores postures' distances).
     pub fn scores(&self, rows: &[Vec<f64>]) -> Result<Vec<f64>, GestureError> {
         let (norm, ev) = self.checked_events(rows)?;
-        let p = self.postures_of(&norm);
+        let p = self.evidence_of(&norm);
         Ok(self.scores_of(&p, rows.len(), &ev, true))
     }
 
@@ -396,7 +475,7 @@ impl GestureModel {
     /// events it has completed, available `actionHorizon` samples after they end).
     pub fn recognize(&self, rows: &[Vec<f64>]) -> Result<Recognition, GestureError> {
         let (norm, ev) = self.checked_events(rows)?;
-        let post = self.postures_of(&norm);
+        let post = self.evidence_of(&norm);
         let fin = self.scores_of(&post, rows.len(), &ev, true);
         let best = argmin(&fin);
         let horizon = self.branches[0].config.params().action_horizon();
@@ -436,7 +515,7 @@ impl GestureModel {
         prefix: &[Vec<f64>],
     ) -> Result<(String, Reproduction), GestureError> {
         let (norm, ev) = self.checked_events(prefix)?;
-        let post = self.postures_of(&norm);
+        let post = self.evidence_of(&norm);
         let g = argmin(&self.scores_of(&post, prefix.len(), &ev, false));
         let rep = self.branches[g].reproduce(&prefix[0])?;
         let j = open_end(prefix, &rep.postures);
@@ -481,26 +560,34 @@ fn open_end(a: &[Vec<f64>], b: &[Vec<f64>]) -> usize {
 
 #[cfg(test)]
 mod tests {
-    use super::{new_demonstration_bound, t95};
+    use super::{new_demonstration_bounds, t99};
 
     #[test]
     fn the_bound_of_a_new_demonstration_widens_with_the_spread_and_the_fewness_of_scores() {
-        // Student's t: the table, and the expansion beyond it (exact: 1.6839 at 40)
-        assert_eq!(t95(1), 6.314);
-        assert_eq!(t95(6), 1.943);
-        assert!((t95(40) - 1.6839).abs() < 1e-3, "{}", t95(40));
-        assert!(t95(31) < t95(30) && t95(31) > t95(40));
+        // Student's t: the table, and the expansion beyond it (exact: 2.4233 at 40)
+        assert_eq!(t99(1), 31.821);
+        assert_eq!(t99(6), 3.143);
+        assert!((t99(40) - 2.4233).abs() < 1e-3, "{}", t99(40));
+        assert!(t99(31) < t99(30) && t99(31) > t99(40));
+        let bound = |own: &[f64]| new_demonstration_bounds(&[own.to_vec()])[0];
         // equal scores: no spread, the bound is the score
-        assert!((new_demonstration_bound(&[0.2; 6]) - 0.2).abs() < 1e-12);
+        assert!((bound(&[0.2; 6]) - 0.2).abs() < 1e-12);
         // never below the worst own score; above it when the scores spread
         let own = [0.02, 0.025, 0.03, 0.022, 0.028, 0.035];
-        let b = new_demonstration_bound(&own);
-        assert!(b > 0.035 && b < 0.06, "{b}");
+        let b = bound(&own);
+        assert!(b > 0.035 && b < 0.07, "{b}");
         // fewer scores of the same spread: a wider bound
-        assert!(new_demonstration_bound(&own[..3]) > new_demonstration_bound(&own[..3].repeat(2)));
+        assert!(bound(&own[..3]) > bound(&own[..3].repeat(2)));
         // one score: twice it; none: 0; a zero score: finite
-        assert_eq!(new_demonstration_bound(&[0.1]), 0.2);
-        assert_eq!(new_demonstration_bound(&[]), 0.0);
-        assert!(new_demonstration_bound(&[0.0, 0.1, 0.12]).is_finite());
+        assert_eq!(bound(&[0.1]), 0.2);
+        assert_eq!(bound(&[]), 0.0);
+        assert!(bound(&[0.0, 0.1, 0.12]).is_finite());
+        // the spread is pooled: a label whose few scores happen to agree gets the spread
+        // the other labels show, at its own level
+        let tight = [0.0100, 0.0101, 0.0102];
+        let alone = bound(&tight);
+        let pooled = new_demonstration_bounds(&[tight.to_vec(), own.to_vec()]);
+        assert!(pooled[0] > 1.2 * alone, "{pooled:?} against {alone}");
+        assert!(pooled[0] < pooled[1], "{pooled:?}");
     }
 }
