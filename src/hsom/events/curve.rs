@@ -24,10 +24,12 @@ impl Hsom {
         y0: &[f64],
         executed: &[Step<usize>],
         stop: StopReason,
+        timing: Timing,
     ) -> Reproduction {
         let begun = (start == y0).then(|| self.plan_start(start)).flatten();
         let first = begun.as_deref().unwrap_or(y0);
         let mut timed = self.timed_knots(start, first, executed, stop);
+        timed.timing = timing;
         let samples = timed.total.floor() as usize + 1;
         timed.joined_from = begun.map(|_| y0.to_vec());
         self.curve(&timed, &vec![0.0; y0.len()], samples, stop)
@@ -71,7 +73,26 @@ impl Hsom {
             by: p.by,
             total: p.total,
             joined_from: None,
+            timing: Timing::Planned,
         }
+    }
+
+    /// `timed` (a plan's knots, from rest) retimed where its curve moves faster than the
+    /// demonstrations ever did ([`no_faster_than`]), marked so that its curve keeps them.
+    pub(super) fn retimed(&self, timed: Timed) -> Timed {
+        let peak = self
+            .events()
+            .and_then(|e| e.demo_smoothness.as_ref())
+            .map(|d| d.peak_step.clone());
+        let mut out = match peak {
+            Some(peak) => {
+                let samples = timed.total.floor() as usize + 1;
+                no_faster_than(&timed, &vec![0.0; timed.values.len()], samples, &peak).0
+            }
+            None => timed,
+        };
+        out.timing = Timing::Kept;
+        out
     }
 
     /// The knots of [`Hsom::timed_knots`] where the plan places them, before the turning
@@ -167,7 +188,9 @@ impl Hsom {
     }
 
     /// The postures at `samples` samples along the knots `timed`: per variable the monotone
-    /// cubic through them ([`monotone_cubic_from`]: holds are held, turns are at knots),
+    /// cubic through them ([`monotone_cubic_from`]: holds are held, turns are at knots), the
+    /// knots retimed where it moves faster than the demonstrations ever did
+    /// ([`no_faster_than`]; the samples grow by what they gained),
     /// leaving the first knot at the slope `m0` (within its monotone limits); plus the
     /// offset of the given posture from the first knot ([`Timed::joined_from`]) fading from 1 to 0
     /// along a minimum-jerk profile over the samples; then smoothed as the training
@@ -180,6 +203,17 @@ impl Hsom {
         samples: usize,
         stop: StopReason,
     ) -> Reproduction {
+        let peak = self
+            .events()
+            .and_then(|e| e.demo_smoothness.as_ref())
+            .map(|d| d.peak_step.as_slice());
+        let slowed = peak
+            .filter(|_| timed.timing == Timing::Planned)
+            .map(|peak| no_faster_than(timed, m0, samples, peak));
+        let (timed, samples) = match &slowed {
+            Some((t, n)) => (t, *n),
+            None => (timed, samples),
+        };
         let s = timed.values.len();
         let mut out = vec![vec![0.0; s]; samples];
         // the offset fades to nothing, at rest at both ends of the fade
@@ -294,6 +328,19 @@ pub(super) struct Timed {
     /// knot fades along the reproduction ([`Hsom::curve`]); `None`: the curve starts at its
     /// first knot.
     pub(super) joined_from: Option<Vec<f64>>,
+    /// Whose the events' durations are.
+    pub(super) timing: Timing,
+}
+
+/// Whose the events' durations are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Timing {
+    /// A plan's (its nodes' mean durations): where the curve moves faster than the
+    /// demonstrations ever did, the knots are retimed ([`no_faster_than`]).
+    Planned,
+    /// Kept as they are: a demonstration's own (re-encoding it, sample for sample), or knots
+    /// already retimed (the rest of a resumed plan, [`Hsom::retimed`]).
+    Kept,
 }
 
 impl Timed {
@@ -322,8 +369,76 @@ impl Timed {
                 .collect(),
             total: (self.total - now).max(0.0),
             joined_from: None,
+            timing: self.timing,
         }
     }
+}
+
+/// Rounds of [`no_faster_than`]: each stretches every segment still too fast by its excess;
+/// the tangents change with the times, so a segment may need another.
+const RETIME_ROUNDS: usize = 4;
+
+/// The knots `timed` (sampled over `samples`, leaving the first at slopes `m0`) retimed so
+/// that between no two knots does the cubic move a variable faster than `peak` (per
+/// variable, the training demonstrations' largest step, normalised): each segment whose
+/// samples step further than that, in any variable, lasts longer by the ratio, and the
+/// knots after it come later; the knots' values stay. A plan whose events are shorter than
+/// the demonstrations' is slowed where it is too fast, not flattened; the samples grow by
+/// what the segments gained.
+pub(super) fn no_faster_than(
+    timed: &Timed,
+    m0: &[f64],
+    samples: usize,
+    peak: &[f64],
+) -> (Timed, usize) {
+    let mut t = timed.t.clone();
+    let mut n = samples;
+    for _ in 0..RETIME_ROUNDS {
+        // per segment, how much faster than the demonstrations its fastest step is
+        let mut excess = vec![1.0f64; t.len().saturating_sub(1)];
+        for ((v, &m), &p) in timed.values.iter().zip(m0).zip(peak) {
+            if p <= 0.0 {
+                continue;
+            }
+            // the arm's own motion at the start is not the plan's to slow
+            let y = monotone_cubic_from(&t, v, n, m.clamp(-p, p));
+            // a step counts against every segment it spans (a knot between two samples:
+            // both sides' lengths set its speed)
+            let (mut lo, mut hi) = (0, 0);
+            for (i, w) in y.windows(2).enumerate() {
+                while lo + 2 < t.len() && i as f64 >= t[lo + 1] {
+                    lo += 1;
+                }
+                while hi + 2 < t.len() && (i + 1) as f64 > t[hi + 1] {
+                    hi += 1;
+                }
+                let r = (w[1] - w[0]).abs() / p;
+                for e in excess.iter_mut().take(hi + 1).skip(lo) {
+                    *e = e.max(r);
+                }
+            }
+        }
+        if excess.iter().all(|&e| e <= 1.0 + 1e-6) {
+            break;
+        }
+        let mut shift = 0.0;
+        let old = t.clone();
+        for k in 1..t.len() {
+            shift += (old[k] - old[k - 1]) * (excess[k - 1].max(1.0) - 1.0);
+            t[k] = old[k] + shift;
+        }
+        n = samples + (t[t.len() - 1] - timed.t[timed.t.len() - 1]).ceil() as usize;
+    }
+    let gained = t.last().copied().unwrap_or(0.0) - timed.t.last().copied().unwrap_or(0.0);
+    let slowed = Timed {
+        t,
+        values: timed.values.clone(),
+        by: timed.by.clone(),
+        total: timed.total + gained,
+        joined_from: timed.joined_from.clone(),
+        timing: timed.timing,
+    };
+    (slowed, n)
 }
 
 /// The monotone cubic through the knots (t, v) (Fritsch-Carlson tangents, zero at both

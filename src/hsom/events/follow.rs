@@ -4,6 +4,7 @@
 use crate::demos::Demonstration;
 
 use super::consensus::{aligned_samples, MAX_ALIGNED};
+use super::curve::Timing;
 use super::encode::{bottom_events, dist2, observed_durations, Step};
 use crate::hsom::errors::HsomError;
 use crate::hsom::model::{check_series, demo_series, Hsom};
@@ -28,7 +29,13 @@ impl Hsom {
             .into_iter()
             .map(|(n, d)| (n, d, 0, None))
             .collect();
-        Ok(self.timed_postures(&norm[0], &norm[0], &executed, StopReason::EndEvent))
+        Ok(self.timed_postures(
+            &norm[0],
+            &norm[0],
+            &executed,
+            StopReason::EndEvent,
+            Timing::Kept,
+        ))
     }
 
     /// The *nearest-sequence* baseline (docs/ALGORITHM.md, section 3.6): of the
@@ -58,7 +65,7 @@ impl Hsom {
             .ok_or(HsomError::NoDemonstrations)?;
         let all: Vec<Vec<Vec<f64>>> = demos.iter().map(|d| self.normalise_rows(&d.rows)).collect();
         let executed = self.followed(&all, nearest, None);
-        Ok(self.timed_postures(&y0, &y0, &executed, StopReason::EndEvent))
+        Ok(self.timed_postures(&y0, &y0, &executed, StopReason::EndEvent, Timing::Planned))
     }
 
     /// The bottom events of `norm[d]` (normalised demonstrations) that begin after sample
@@ -163,7 +170,11 @@ impl Hsom {
         let y0 = self.normalise(initial);
         let r = &p.reproduction;
         let (events, stop) = self.plan_event_list(&y0, &[], &[], r);
-        let plan = self.normalise_rows(&self.timed_postures(&y0, &y0, &events, stop).postures);
+        let plan = self.normalise_rows(
+            &self
+                .timed_postures(&y0, &y0, &events, stop, Timing::Planned)
+                .postures,
+        );
         // the alignment keeps a cell per (reading, plan) sample pair: bounded as the
         // consensus's alignments are
         let most = MAX_ALIGNED * MAX_ALIGNED / plan.len().max(1);
@@ -186,7 +197,7 @@ impl Hsom {
         // the rest), from where the reading is along it: it starts at the reading's last
         // posture, moving as the encoders read, and goes on through the plan's knots after
         // that time (each turning point kept as in the whole plan)
-        let timed = self.timed_knots(&y0, &y0, &all, stop);
+        let timed = self.retimed(self.timed_knots(&y0, &y0, &all, stop));
         let now = executed.iter().map(|e| e.1).sum::<f64>() - left;
         let rest = timed.from(now, from);
         let v0: Vec<f64> = from
@@ -231,6 +242,7 @@ impl Hsom {
             &norm[norm.len() - 1],
             &executed,
             StopReason::EndEvent,
+            Timing::Planned,
         ))
     }
 }

@@ -5,6 +5,7 @@ use std::collections::VecDeque;
 
 use crate::config::ReproductionParams;
 
+use super::curve::Timing;
 use super::encode::{
     a_part, b_part, chunk_input, dist2, event_content, summary, DurationCode, Item, Step,
 };
@@ -33,7 +34,13 @@ impl Hsom {
         r: &ReproductionParams,
     ) -> Reproduction {
         let (executed, stop) = self.plan_event_list(start, prefix, &[], r);
-        self.timed_postures(start, from, &executed[prefix.len()..], stop)
+        self.timed_postures(
+            start,
+            from,
+            &executed[prefix.len()..],
+            stop,
+            Timing::Planned,
+        )
     }
 
     /// The events of [`Hsom::plan_events`]: the prefix's, then the planned ones, each (node,

@@ -825,8 +825,20 @@ fn a_plan_that_ends_by_its_end_event_ends_where_the_demonstrations_ended() {
         .map(|(n, d)| (n, d, 0, None))
         .collect();
     executed.truncate(executed.len() - 2);
-    let early = m.timed_postures(&norm[0], &norm[0], &executed, StopReason::EndEvent);
-    let capped = m.timed_postures(&norm[0], &norm[0], &executed, StopReason::LearnedLength);
+    let early = m.timed_postures(
+        &norm[0],
+        &norm[0],
+        &executed,
+        StopReason::EndEvent,
+        Timing::Planned,
+    );
+    let capped = m.timed_postures(
+        &norm[0],
+        &norm[0],
+        &executed,
+        StopReason::LearnedLength,
+        Timing::Planned,
+    );
     let (e, c) = (
         early.postures.last().unwrap(),
         capped.postures.last().unwrap(),

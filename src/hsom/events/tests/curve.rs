@@ -296,10 +296,14 @@ fn a_start_away_from_the_demonstrations_is_joined_smoothly() {
         jerk <= 1.5 * jerks[2],
         "{jerk} against the demonstrations' {jerks:?}"
     );
+    // it ends where the demonstrations ended: their mean last posture
     let last = rep.postures.last().unwrap();
+    let end: Vec<f64> = (0..2)
+        .map(|j| train.iter().map(|d| d[d.len() - 1][j]).sum::<f64>() / train.len() as f64)
+        .collect();
     assert!(
-        (last[0] - 1.0).abs() < 1e-6 && last[1].abs() < 1e-6,
-        "{last:?}"
+        (last[0] - end[0]).abs() < 1e-9 && (last[1] - end[1]).abs() < 1e-9,
+        "{last:?} against {end:?}"
     );
     // the control
     let mut plain = m.clone();
@@ -345,4 +349,51 @@ fn a_start_s_offset_lasts_as_long_as_the_demonstrations_own_did() {
         start_fade(&meeting, 2)
     );
     assert_eq!(start_fade(&nested[..1], 2), None);
+}
+
+/// Knots at `t` with one variable's `v`, from rest, not joined.
+fn knots(t: &[f64], v: &[f64]) -> Timed {
+    Timed {
+        t: t.to_vec(),
+        values: vec![v.to_vec()],
+        by: vec![1; t.len()],
+        total: t[t.len() - 1],
+        joined_from: None,
+        timing: Timing::Planned,
+    }
+}
+
+/// The largest step of the cubic through `timed`'s first variable over `samples`.
+fn fastest(timed: &Timed, samples: usize) -> f64 {
+    let y = monotone_cubic(&timed.t, &timed.values[0], samples);
+    largest(&y.windows(2).map(|w| w[1] - w[0]).collect::<Vec<_>>())
+}
+
+#[test]
+fn a_segment_faster_than_the_demonstrations_is_slowed_not_flattened() {
+    // a rise of 1 in 2 samples between two holds; the demonstrations never stepped over 0.1
+    let timed = knots(&[0.0, 10.0, 12.0, 30.0], &[0.0, 0.0, 1.0, 1.0]);
+    assert!(
+        fastest(&timed, 31) >= 0.5,
+        "the control: the plan as timed is too fast"
+    );
+    let (slowed, samples) = no_faster_than(&timed, &[0.0], 31, &[0.1]);
+    assert!(
+        fastest(&slowed, samples) <= 0.1 * 1.001,
+        "{}",
+        fastest(&slowed, samples)
+    );
+    // the same knots, the rise longer, the holds as long, the samples grown by as much
+    assert_eq!(slowed.values, timed.values);
+    assert_eq!(slowed.t[1], 10.0);
+    assert!(slowed.t[2] - slowed.t[1] >= 14.0, "{:?}", slowed.t);
+    assert!(
+        (slowed.t[3] - slowed.t[2] - 18.0).abs() < 1e-9,
+        "{:?}",
+        slowed.t
+    );
+    assert_eq!(samples, 31 + (slowed.total - timed.total).ceil() as usize);
+    // a plan as slow as the demonstrations is left as it is
+    let (same, n) = no_faster_than(&timed, &[0.0], 31, &[1.0]);
+    assert_eq!((same.t, n), (timed.t, 31));
 }
