@@ -1,11 +1,9 @@
-//! Recognition with a multi-gesture hierarchy (docs/ALGORITHM.md, section
-//! 4): a sequence's bottom events are pushed up every label's branch exactly as in
-//! training; at each level above the bottom, each chunk is matched by the branch's map and
-//! its RMS distance (per coordinate) taken. A label's score is the mean over levels of the
-//! level's mean distance divided by the same mean on the branch's own training data: 1 is
-//! "as close as what it learned", larger is farther. The lowest score wins; above the
-//! label's threshold, calibrated on the training data alone (leave-one-out), the answer is
-//! `unknown`.
+//! Recognition with a multi-gesture hierarchy (docs/ALGORITHM.md, section 4): each label's
+//! branch reproduces its gesture from the sequence's first posture, and the label's score is
+//! the sequence's DTW distance per step from that reproduction (a prefix: with an open end).
+//! The lowest score wins; above the label's threshold (what a new demonstration of it may
+//! score, from its own demonstrations held out), the answer is `unknown`. The scores of the
+//! levels' chunks and of the bottom's postures ([`Scoring`]) remain for comparison.
 
 use crate::dtw::{argmin, dtw_distance, dtw_with_prefixes, open_end_cost, Band};
 
@@ -463,7 +461,7 @@ impl GestureModel {
 
     /// Per label (in the model's order), the score of a whole sequence (rows in the data's
     /// units): lower is closer (1 is as close as the label's training data only with
-    /// [`Scoring::Relative`]; the default scores postures' distances).
+    /// [`Scoring::Relative`]; the default scores the distance from the reproduction).
     pub fn scores(&self, rows: &[Vec<f64>]) -> Result<Vec<f64>, GestureError> {
         let (norm, ev) = self.checked_events(rows)?;
         let p = self.evidence_of(&norm);
