@@ -310,9 +310,6 @@ impl Calibration {
 /// How a label's matches become its score (lower is better).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 pub enum Scoring {
-    /// The mean over every level of its mean distance (the bottom's postures and the levels'
-    /// chunks), in the shared normalised units of every branch.
-    Raw,
     /// Level 1's mean chunk distance alone.
     Level1,
     /// The bottom alone: the mean distance of the events' postures to the nearest posture

@@ -77,17 +77,25 @@ impl Hsom {
         }
     }
 
+    /// How smooth and how fast the training demonstrations were (`None` before
+    /// [`Hsom::fit_postures`] or for the paper's model).
+    fn smoothness(&self) -> Option<&DemoSmoothness> {
+        self.events().and_then(|e| e.demo_smoothness.as_ref())
+    }
+
     /// `timed` (a plan's knots, from rest) retimed where its curve moves faster than the
     /// demonstrations ever did ([`no_faster_than`]), marked so that its curve keeps them.
     pub(super) fn retimed(&self, timed: Timed) -> Timed {
-        let peak = self
-            .events()
-            .and_then(|e| e.demo_smoothness.as_ref())
-            .map(|d| d.peak_step.clone());
-        let mut out = match peak {
-            Some(peak) => {
+        let mut out = match self.smoothness() {
+            Some(d) => {
                 let samples = timed.total.floor() as usize + 1;
-                no_faster_than(&timed, &vec![0.0; timed.values.len()], samples, &peak).0
+                no_faster_than(
+                    &timed,
+                    &vec![0.0; timed.values.len()],
+                    samples,
+                    &d.peak_step,
+                )
+                .0
             }
             None => timed,
         };
@@ -203,13 +211,10 @@ impl Hsom {
         samples: usize,
         stop: StopReason,
     ) -> Reproduction {
-        let peak = self
-            .events()
-            .and_then(|e| e.demo_smoothness.as_ref())
-            .map(|d| d.peak_step.as_slice());
-        let slowed = peak
+        let slowed = self
+            .smoothness()
             .filter(|_| timed.timing == Timing::Planned)
-            .map(|peak| no_faster_than(timed, m0, samples, peak));
+            .map(|d| no_faster_than(timed, m0, samples, &d.peak_step));
         let (timed, samples) = match &slowed {
             Some((t, n)) => (t, *n),
             None => (timed, samples),
@@ -227,7 +232,7 @@ impl Hsom {
                 .map(|(f, v)| f - v[0])
                 .collect()
         });
-        let horizon = match (&offset, e.and_then(|e| e.demo_smoothness.as_ref())) {
+        let horizon = match (&offset, self.smoothness()) {
             (Some(off), Some(d)) => off
                 .iter()
                 .zip(&d.peak_step)
@@ -256,17 +261,14 @@ impl Hsom {
             })
             .collect();
         // a reproduction from its start leaves it no faster than the demonstrations left theirs
-        let target = self
-            .events()
-            .and_then(|e| e.demo_smoothness.clone())
-            .map(|d| DemoSmoothness {
-                start_step: if timed.joined_from.is_some() {
-                    d.start_step
-                } else {
-                    f64::INFINITY
-                },
-                ..d
-            });
+        let target = self.smoothness().cloned().map(|d| DemoSmoothness {
+            start_step: if timed.joined_from.is_some() {
+                d.start_step
+            } else {
+                f64::INFINITY
+            },
+            ..d
+        });
         for (d, y) in as_smooth_as(&columns, m0, target).into_iter().enumerate() {
             for (row, v) in out.iter_mut().zip(y) {
                 row[d] = v;
