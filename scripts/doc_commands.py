@@ -2,8 +2,9 @@
 """Run every command block of README.md, CONTRIBUTING.md and docs/*.md as written, in a clean
 clone of this repository, one file at a time and its blocks in order.
 
-A block is a fenced ```sh or ```python block; ```sh long (or ```python long) marks one that is
-not run here (a build, a study of many minutes, a network install). The blocks of one file run
+A block is a fenced ```sh or ```python block. A word after the language marks one that is not
+run here, and why: `long` (a build or a study of minutes), `network` (it downloads: PyPI, a
+dataset) or `cluster` (it needs a SLURM cluster). The blocks of one file run
 as a new user would type them into one shell on a clean clone after `make demo`: the clone's
 target/release holds the built binaries (--bin-dir, default target/debug: the same programs),
 the PATH is the user's own (a block that calls `cosco` bare must put the binaries on it, as the
@@ -25,18 +26,18 @@ import sys
 import tempfile
 import time
 
-FENCE = re.compile(r"^```(sh|python)(\s+long)?\s*$")
+FENCE = re.compile(r"^```(sh|python)(?:\s+(long|network|cluster))?\s*$")
 
 
 def blocks(path):
-    """(line, language, long, text) of every ```sh / ```python block of `path`."""
+    """(line, language, why it is not run or None, text) of every ```sh / ```python block."""
     out, current = [], None
     with open(path, encoding="utf-8") as f:
         for n, line in enumerate(f, 1):
             if current is None:
                 m = FENCE.match(line.rstrip("\n"))
                 if m:
-                    current = (n, m.group(1), bool(m.group(2)), [])
+                    current = (n, m.group(1), m.group(2), [])
             elif line.startswith("```"):
                 out.append((current[0], current[1], current[2], "".join(current[3])))
                 current = None
@@ -80,11 +81,11 @@ def main():
             os.symlink(bin_dir, os.path.join(work, "target", "release"))
             state = os.path.join(tmp, rel.replace("/", "_") + ".env")
             open(state, "w").close()
-            for line, lang, long, text in blocks(path):
+            for line, lang, why, text in blocks(path):
                 where = f"{rel}:{line}"
-                if long:
+                if why:
                     skipped += 1
-                    print(f"skip  {where} (marked long)")
+                    print(f"skip  {where} ({why})")
                     continue
                 if lang == "python" and not python_ok:
                     skipped += 1
