@@ -189,6 +189,28 @@ fn a_missing_level_is_named_by_its_index() {
     assert!(e.to_string().contains("<level index=\"1\">"), "{e}");
 }
 
+/// A level index the hierarchy does not have is named, with the indices it has (not reported
+/// as the first index left without a level).
+#[test]
+fn a_stray_level_index_is_named_with_the_allowed_ones() {
+    let lone = "<hsom><levels><level index=\"9\"><rows>2</rows><cols>2</cols>\
+                <topology>orthogonal</topology><learningFactor>0.5</learningFactor></level>\
+                </levels></hsom>";
+    for bad in [
+        lone.to_string(),
+        NAO.replacen("<level index=\"3\">", "<level index=\"9\">", 1),
+    ] {
+        let e = parse_config(&bad, "bad.xml").unwrap_err();
+        assert!(
+            matches!(&e, ConfigError::Invalid { field, value, .. }
+                if field == "levels/level[0]/@index" && value == "9"),
+            "{e:?}"
+        );
+        let m = e.to_string();
+        assert!(m.contains("bad.xml") && m.contains("from 0 to 3"), "{m}");
+    }
+}
+
 #[test]
 fn mixed_content_names_the_element_and_its_line() {
     let bad = NAO.replace("<seed>1</seed>", "<seed>1 <b>2</b></seed>");

@@ -6,12 +6,15 @@
 //! to change (the retired settings of docs/CONFIG.md) are constants of the algorithm that
 //! uses them.
 
+use serde::{Deserialize, Serialize};
+
 use crate::som::{Decay, Neighbourhood, Schedule, Topology};
 
 use super::errors::ConfigError;
 
 /// Short-term memory of each level (paper II; `algorithm = paper`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum MemoryMode {
     /// CoSCo-HSOM: a fixed-size FIFO activity list of recent BMU IDs per level, updated in
     /// constant time.
@@ -24,7 +27,8 @@ pub enum MemoryMode {
 
 /// How a predicted real-valued ID is turned into a node of the level below (paper III-C.2,
 /// which names all three; `algorithm = paper`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum IdDecoding {
     /// Round each coordinate, clamped to the grid (the paper's first choice).
     Round,
@@ -36,7 +40,8 @@ pub enum IdDecoding {
 }
 
 /// Which sequence model the levels above the bottom are (docs/ALGORITHM.md).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Algorithm {
     /// The paper's procedure: activity lists of node IDs (or activity levels), levels trained
     /// every updatePeriod^level steps on overlapping windows, predicted IDs decoded to nodes.
@@ -51,16 +56,14 @@ pub enum Algorithm {
 
 impl Algorithm {
     /// The configuration's word for it: `paper` or `events`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Algorithm::Paper => "paper",
-            Algorithm::Events => "events",
-        }
+    pub fn name(self) -> String {
+        crate::som::word(&self)
     }
 }
 
 /// Internal scaling of the bottom level's input.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
 pub enum Normalisation {
     /// Subtract each variable's minimum and divide all by one common scale, the largest
     /// range (keeps the data's geometry).
@@ -72,7 +75,8 @@ pub enum Normalisation {
 }
 
 /// When a paper reproduction ends.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
 pub enum StopRule {
     /// Stop on a node where training demonstrations ended, on a stationary posture, or past
     /// `lengthFactor` times the longest demonstration; all after
@@ -81,6 +85,9 @@ pub enum StopRule {
     /// Run exactly `maxLength` postures (the paper gives no end rule).
     MaxLength,
 }
+
+/// The most levels a hierarchy may have.
+pub(crate) const MAX_HEIGHT: usize = 16;
 
 /// The paper algorithm's learned stop: no stop before this fraction of the shortest
 /// demonstration's length.
@@ -124,11 +131,17 @@ impl LevelParams {
                 last: alpha / 100.0,
                 decay: Decay::Exponential,
             },
-            learning_radius: Schedule {
-                initial: r0,
-                last: 0.5f64.min(r0),
-                decay: Decay::Exponential,
-            },
+            learning_radius: LevelParams::radius(r0),
+        }
+    }
+
+    /// The default radius schedule from `r0`: decaying exponentially to 0.5 (or `r0` when
+    /// smaller).
+    pub(super) fn radius(r0: f64) -> Schedule {
+        Schedule {
+            initial: r0,
+            last: 0.5f64.min(r0),
+            decay: Decay::Exponential,
         }
     }
 
@@ -343,83 +356,66 @@ impl HsomParams {
 
     /// Validate every value; `source` (a file name) is used in the error messages.
     pub fn check(self, source: &str) -> Result<HsomConfig, ConfigError> {
-        let bad = |field: &str, value: String, reason: &str| ConfigError::Invalid {
-            file: source.to_string(),
-            field: field.to_string(),
-            value,
-            reason: reason.to_string(),
+        let need = |ok: bool, field: &str, value: &dyn ToString, reason: String| match ok {
+            true => Ok(()),
+            false => Err(ConfigError::Invalid {
+                file: source.into(),
+                field: field.into(),
+                value: value.to_string(),
+                reason,
+            }),
         };
-        let range = |field: &str, v: usize, lo: usize, hi: usize| {
-            if v < lo || v > hi {
-                Err(bad(
-                    field,
-                    v.to_string(),
-                    &format!("expected an integer in {lo}..={hi}"),
-                ))
-            } else {
-                Ok(())
-            }
+        let int = |field: &str, v: usize, lo: usize, hi: usize| {
+            let reason = format!("expected an integer in {lo}..={hi}");
+            need((lo..=hi).contains(&v), field, &v, reason)
         };
-        range("height", self.height, 1, 16)?;
-        range("memory", self.memory, 1, 256)?;
-        range("stateLength", self.state_length, 1, 4096)?;
-        range("actionLength", self.action_length, 1, 4096)?;
-        if self.action_length != self.state_length {
-            return Err(bad(
-                "actionLength",
-                self.action_length.to_string(),
-                &format!(
-                    "the action is the next state, so actionLength must equal stateLength ({})",
-                    self.state_length
-                ),
-            ));
-        }
-        range("trainingSteps", self.training_steps, 1, 1_000_000_000)?;
+        int("height", self.height, 1, MAX_HEIGHT)?;
+        int("memory", self.memory, 1, 256)?;
+        int("stateLength", self.state_length, 1, 4096)?;
+        int("actionLength", self.action_length, 1, 4096)?;
+        let (state, action) = (self.state_length, self.action_length);
+        let reason = format!(
+            "the action is the next state, so actionLength must equal stateLength ({state})"
+        );
+        need(action == state, "actionLength", &action, reason)?;
+        int("trainingSteps", self.training_steps, 1, 1_000_000_000)?;
         if let Some(q) = self.paper() {
-            range("updatePeriod", q.update_period, 1, 1024)?;
-            let period_top = (q.update_period as f64).powi(self.height as i32 - 1);
-            if period_top > 1e12 {
-                return Err(bad(
-                    "updatePeriod",
-                    q.update_period.to_string(),
-                    &format!("updatePeriod^(height-1) = {period_top:e} is too large"),
-                ));
-            }
-            range("reproduction/offset", q.offset, 1, self.memory).map_err(|_| {
-                bad(
-                    "reproduction/offset",
-                    q.offset.to_string(),
-                    &format!("expected 1..=memory ({})", self.memory),
-                )
-            })?;
+            int("updatePeriod", q.update_period, 1, 1024)?;
+            let top = (q.update_period as f64).powi(self.height as i32 - 1);
+            let reason = format!("updatePeriod^(height-1) = {top:e} is too large");
+            need(top <= 1e12, "updatePeriod", &q.update_period, reason)?;
+            let reason = format!("expected 1..=memory ({})", self.memory);
+            let offset_ok = (1..=self.memory).contains(&q.offset);
+            need(offset_ok, "reproduction/offset", &q.offset, reason)?;
         }
-        if self.levels.len() != self.height {
-            return Err(bad(
-                "height",
-                self.height.to_string(),
-                &format!(
-                    "height must equal the number of <level> elements ({})",
-                    self.levels.len()
-                ),
-            ));
-        }
+        let listed = self.levels.len();
+        let reason = format!("height must equal the number of <level> elements ({listed})");
+        need(listed == self.height, "height", &self.height, reason)?;
         for (i, l) in self.levels.iter().enumerate() {
             let f = |name: &str| format!("levels/level[{i}]/{name}");
-            range(&f("rows"), l.rows, 1, 1024)?;
-            range(&f("cols"), l.cols, 1, 1024)?;
-            for (name, s, max) in [
-                ("learningFactor", &l.learning_factor, 1.0),
-                ("learningRadius", &l.learning_radius, 1e6),
+            int(&f("rows"), l.rows, 1, 1024)?;
+            int(&f("cols"), l.cols, 1, 1024)?;
+            for (name, s, max, reason) in [
+                (
+                    "learningFactor",
+                    l.learning_factor,
+                    1.0,
+                    "expected a number in (0, 1]",
+                ),
+                (
+                    "learningRadius",
+                    l.learning_radius,
+                    1e6,
+                    "expected a positive number",
+                ),
             ] {
                 for (suffix, v) in [("", s.initial), ("Final", s.last)] {
-                    if !(v.is_finite() && v > 0.0 && v <= max) {
-                        let reason = if max == 1.0 {
-                            "expected a number in (0, 1]".to_string()
-                        } else {
-                            "expected a positive number".to_string()
-                        };
-                        return Err(bad(&f(&format!("{name}{suffix}")), v.to_string(), &reason));
-                    }
+                    need(
+                        v > 0.0 && v <= max,
+                        &f(&format!("{name}{suffix}")),
+                        &v,
+                        reason.into(),
+                    )?;
                 }
             }
         }
@@ -440,34 +436,35 @@ impl HsomParams {
             };
             weights += (l.rows * l.cols) as u64 * dim;
         }
-        if weights > 100_000_000 {
-            return Err(bad(
-                "levels",
-                format!("{weights} weights"),
-                "the hierarchy would hold more than 100 million weights; use smaller maps",
-            ));
-        }
+        let reason = "the hierarchy would hold more than 100 million weights; use smaller maps";
+        need(
+            weights <= 100_000_000,
+            "levels",
+            &format!("{weights} weights"),
+            reason.into(),
+        )?;
         if let Some(q) = self.events() {
-            if !(q.change_ratio.is_finite() && q.change_ratio > 0.0 && q.change_ratio <= 1.0) {
-                return Err(bad(
-                    "changeRatio",
-                    q.change_ratio.to_string(),
-                    "expected a number in (0, 1]",
-                ));
-            }
-            range("actionHorizon", q.action_horizon, 1, 100_000)?;
+            let c = q.change_ratio;
+            need(
+                c > 0.0 && c <= 1.0,
+                "changeRatio",
+                &c,
+                "expected a number in (0, 1]".into(),
+            )?;
+            int("actionHorizon", q.action_horizon, 1, 100_000)?;
         }
         let r = &self.reproduction;
-        range("reproduction/maxLength", r.max_length, 1, 10_000_000)?;
-        if !(r.length_factor.is_finite() && (0.01..=1000.0).contains(&r.length_factor)) {
-            return Err(bad(
-                "reproduction/lengthFactor",
-                r.length_factor.to_string(),
-                "expected a number in [0.01, 1000]",
-            ));
-        }
+        int("reproduction/maxLength", r.max_length, 1, 10_000_000)?;
+        let (factor, reason) = (r.length_factor, "expected a number in [0.01, 1000]");
+        let factor_ok = (0.01..=1000.0).contains(&factor);
+        need(
+            factor_ok,
+            "reproduction/lengthFactor",
+            &factor,
+            reason.into(),
+        )?;
         if let Some(m) = r.max_level {
-            range("reproduction/maxLevel", m, 0, self.height - 1)?;
+            int("reproduction/maxLevel", m, 0, self.height - 1)?;
         }
         Ok(HsomConfig {
             params: self,

@@ -1,7 +1,7 @@
 //! The exported trajectory executed on the simulated arm: what its encoders read, for
 //! `cosco export --format ros2 --executed` (`sensor_msgs/msg/JointState` on `/joint_states`).
 
-use super::{ExportError, Trajectory};
+use super::trajectory::{ExportError, Trajectory};
 use crate::sim::{Controller, ControllerConfig, NaoArm, TargetTrajectory, JOINT_NAMES};
 
 /// Follow `t` (the arm's six joints, in [`JOINT_NAMES`] order) from its first posture on

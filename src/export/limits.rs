@@ -14,7 +14,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use super::{ExportError, Trajectory};
+use super::trajectory::{ExportError, Trajectory};
 
 /// Default fraction of each joint's maximum velocity a trajectory may reach.
 pub const DEFAULT_VELOCITY_FRACTION: f64 = 0.5;

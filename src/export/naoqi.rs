@@ -7,7 +7,7 @@
 
 use serde::Serialize;
 
-use super::Trajectory;
+use super::trajectory::Trajectory;
 
 /// The JSON document.
 #[derive(Debug, Clone, PartialEq, Serialize)]

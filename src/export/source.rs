@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use super::{ExportError, Trajectory};
+use super::trajectory::{ExportError, Trajectory};
 use crate::{labelled, steps};
 
 /// Rate of a reproduction's `step` column when the file has no `time` column: the arm's

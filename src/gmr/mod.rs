@@ -28,11 +28,11 @@ pub mod preprocess;
 
 pub use algorithm::{BicScore, Gmm, GmrModel, Prediction};
 pub use errors::GmrError;
-pub use hyperparams::{ComponentChoice, GmrParams, GmrValidParams, MIN_DEMONSTRATIONS};
+pub use hyperparams::{ComponentChoice, GmrParams, GmrValidParams, IdleTrim, MIN_DEMONSTRATIONS};
 pub use io::{
     load_model, model_from_str, model_to_string, save_model, FORMAT_MAGIC, FORMAT_VERSION,
 };
 pub use lead_in::{
     lead_in_ticks_at, minimum_jerk, minimum_jerk_at, plan_at, GmrPlan, LEAD_IN_MIN_S,
 };
-pub use preprocess::{active_range, IdleTrim, TrainingSet};
+pub use preprocess::{active_range, TrainingSet};

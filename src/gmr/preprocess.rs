@@ -34,61 +34,10 @@
 
 use std::ops::Range;
 
-use serde::Serialize;
-
 use super::errors::GmrError;
-use super::hyperparams::{GmrValidParams, MIN_DEMONSTRATIONS};
+use super::hyperparams::{GmrValidParams, IdleTrim, MIN_DEMONSTRATIONS};
 use crate::demos::{validate_set, Demonstration};
 use crate::dtw::{dtw, dtw_distance, Band, DtwError};
-
-/// Idle trimming settings (see the module documentation for the formula).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct IdleTrim {
-    /// Absolute floor of the threshold, rad/s; also the "never moves" limit.
-    pub min_speed: f64,
-    /// Threshold as a fraction of the peak smoothed speed, in `[0, 1)`.
-    pub relative: f64,
-    /// Half-width of the speed smoothing window, in samples.
-    pub half_window: usize,
-}
-
-impl Default for IdleTrim {
-    fn default() -> Self {
-        IdleTrim {
-            min_speed: 0.02,
-            relative: 0.05,
-            half_window: 2,
-        }
-    }
-}
-
-impl IdleTrim {
-    /// Check the settings: `(name, value, reason)` of the first bad one.
-    pub fn check(&self) -> Result<(), (&'static str, String, &'static str)> {
-        if !(self.min_speed.is_finite() && self.min_speed > 0.0) {
-            return Err((
-                "trim.min_speed",
-                self.min_speed.to_string(),
-                "a finite speed in rad/s > 0",
-            ));
-        }
-        if !(self.relative.is_finite() && (0.0..1.0).contains(&self.relative)) {
-            return Err((
-                "trim.relative",
-                self.relative.to_string(),
-                "a fraction within [0, 1)",
-            ));
-        }
-        if self.half_window > 1000 {
-            return Err((
-                "trim.half_window",
-                self.half_window.to_string(),
-                "at most 1000 samples",
-            ));
-        }
-        Ok(())
-    }
-}
 
 /// Smoothed joint-space speeds `s_k` (rad/s), `k = 0..n−1` for `n + 1` samples (see the
 /// module documentation), of evenly or explicitly timed samples: `times` when given (one per

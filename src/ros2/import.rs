@@ -7,7 +7,7 @@ use std::path::Path;
 
 use super::{read_joint_states, StampedJoints};
 use crate::demos::Demonstration;
-use crate::export::ExportError;
+use crate::export::trajectory::ExportError;
 
 /// Below this speed (rad/s, every joint) a sample is idle for `--split-idle`.
 pub const IDLE_SPEED: f64 = 0.05;

@@ -1,8 +1,9 @@
 //! The map itself: weights, best-matching-unit search, neighbourhood update, quality.
 
-use rand::Rng;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 
-use super::hyperparams::{Neighbourhood, Topology};
+use super::hyperparams::{Neighbourhood, SomParams, Topology};
 use super::kernel::{self, Lane, LANES};
 
 /// A node's ID: its `(x, y)` grid position (`x` the column, `y` the row).
@@ -588,6 +589,80 @@ impl SelfOrganizingMap {
             })
             .count();
         bad as f64 / data.len() as f64
+    }
+}
+
+impl SomParams {
+    /// Check the settings and train a map on `data` (all rows the same length), presenting
+    /// the samples in order and cycling; the initial weights are drawn uniformly, from the
+    /// seed, inside the data's bounding box.
+    pub fn fit(&self, data: &[Vec<f64>]) -> Result<SelfOrganizingMap, SomError> {
+        if self.rows == 0 || self.cols == 0 {
+            return Err(SomError::InvalidParam {
+                name: "rows/cols",
+                value: format!("{}x{}", self.rows, self.cols),
+            });
+        }
+        for (name, s, max) in [
+            ("learning_factor", &self.learning_factor, 1.0),
+            ("learning_radius", &self.learning_radius, f64::INFINITY),
+        ] {
+            for v in [s.initial, s.last] {
+                if !(v > 0.0 && v <= max) {
+                    return Err(SomError::InvalidParam {
+                        name,
+                        value: v.to_string(),
+                    });
+                }
+            }
+        }
+        let dim = data.first().map(|r| r.len()).ok_or(SomError::EmptyData)?;
+        if dim == 0 {
+            return Err(SomError::EmptyData);
+        }
+        let mut lo = vec![f64::INFINITY; dim];
+        let mut hi = vec![f64::NEG_INFINITY; dim];
+        for (i, r) in data.iter().enumerate() {
+            if r.len() != dim {
+                return Err(SomError::DimensionMismatch {
+                    expected: dim,
+                    found: r.len(),
+                    row: i,
+                });
+            }
+            for (d, &v) in r.iter().enumerate() {
+                if !v.is_finite() {
+                    return Err(SomError::NonFinite { row: i, column: d });
+                }
+                lo[d] = lo[d].min(v);
+                hi[d] = hi[d].max(v);
+            }
+        }
+        let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
+        let mut som = SelfOrganizingMap::new_random(
+            self.rows,
+            self.cols,
+            dim,
+            self.topology,
+            &lo,
+            &hi,
+            &mut rng,
+        );
+        let denom = (self.steps.max(2) - 1) as f64;
+        for t in 0..self.steps {
+            let x = &data[t % data.len()];
+            let p = t as f64 / denom;
+            let (b, _) = som.bmu(x);
+            som.update(
+                x,
+                None,
+                b,
+                self.learning_factor.at(p),
+                self.learning_radius.at(p),
+                self.neighbourhood,
+            );
+        }
+        Ok(som)
     }
 }
 

@@ -11,4 +11,5 @@ mod kernel;
 pub mod reference;
 
 pub use algorithm::{NodeId, NodeWeights, Reach, SelfOrganizingMap, SomError, DEFAULT_H_MIN};
+pub(crate) use hyperparams::word;
 pub use hyperparams::{Decay, Neighbourhood, Schedule, SomParams, Topology};
