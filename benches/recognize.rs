@@ -12,7 +12,7 @@ use cosco_hsom::nearest::NearestNeighbour;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 
 fn recognize(c: &mut Criterion) {
-    let cfg = cosco_hsom::steps::config(None).unwrap();
+    let cfg = cosco_hsom::app::config(None).unwrap();
     let base = gestures(4, 300);
     // four gestures: the same shapes, each label's joints scaled and shifted its own way
     let sets: Vec<(String, Vec<cosco_hsom::demos::Demonstration>)> = (0..4)

@@ -57,7 +57,7 @@ lasa_group() { # lasa_group NAME SHAPE...: the shapes taught, the others untaugh
     if printf '%s\n' "$@" | grep -qx -- "$s"; then taught+=("$d"); else untaught+=("$d"); fi
   done
   SECONDS=0
-  run "$name" $bin/cosco recognition --taught "${taught[@]}" --untaught "${untaught[@]}" \
+  run "$name" $bin/cosco heldout --recognition --taught "${taught[@]}" --untaught "${untaught[@]}" \
     --state-length-from-data --json "$out/$name.json"
   echo "$SECONDS" > "$out/$name.time"
 }

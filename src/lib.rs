@@ -19,10 +19,9 @@
 //! - [`experiment`]: the paper's experiment end to end: demonstrate, execute, evaluate, report.
 //! - [`sweep`]: grids of runs from a TOML spec, on a thread pool or a cluster's job arrays,
 //!   merged into tables and box plots.
-//! - [`steps`]: the steps of `cosco train/reproduce/inspect/evaluate`, shared with the Python
-//!   package (same checks, same messages).
-//! - [`commands`]: the `cosco` subcommands that read and write files (train, reproduce,
-//!   recognize, evaluate) on top of [`steps`].
+//! - [`app`]: one way in: train, reproduce, recognize, evaluate, inspect, export, import,
+//!   each one function the `cosco` binary and the Python package call (same checks, same
+//!   messages), with one error type.
 //! - [`eval`]: one evaluator (methods x an executor, leave-one-out and in-sample, results).
 //! - [`fsutil`]: atomic file writes.
 //! - [`export`]: a reproduction to a robot: time scaling, the robot's limits, NAOqi JSON,
@@ -36,7 +35,7 @@
 //! wrist paths: those need the arm's kinematics), and builds without libmujoco-dev.
 #![warn(missing_docs)]
 
-pub mod commands;
+pub mod app;
 pub mod config;
 pub mod demos;
 pub mod dtw;
@@ -48,7 +47,6 @@ pub mod fsutil;
 pub mod gesture;
 pub mod gmr;
 pub mod hsom;
-pub mod labelled;
 pub mod metrics;
 #[cfg(feature = "sim")]
 pub mod mujoco;
@@ -65,6 +63,5 @@ pub mod ros2;
 #[cfg(feature = "sim")]
 pub mod sim;
 pub mod som;
-pub mod steps;
 #[cfg(feature = "sim")]
 pub mod sweep;

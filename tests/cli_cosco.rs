@@ -297,7 +297,9 @@ fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
 }
 
 /// Negative or impossible numbers for `--count`, `--noise`, `--seed` are answered with what is
-/// allowed (not clap's "unexpected argument '-1'"); nothing is recorded.
+/// allowed (not clap's "unexpected argument '-1'"), naming the option and the value (a noise
+/// no encoder has is refused at `--noise`, not blamed on the demonstration it would spoil);
+/// nothing is recorded.
 #[cfg(feature = "sim")]
 #[test]
 fn negative_numbers_are_named_with_what_is_allowed() {
@@ -307,6 +309,7 @@ fn negative_numbers_are_named_with_what_is_allowed() {
         ("--count", "0", "at least 1"),
         ("--noise", "-0.1", ">= 0"),
         ("--noise", "nan", ">= 0"),
+        ("--noise", "5", "<= 0.1"),
         ("--seed", "-1", "whole number from 0"),
     ] {
         cosco()
@@ -316,6 +319,7 @@ fn negative_numbers_are_named_with_what_is_allowed() {
             .failure()
             .stderr(
                 predicate::str::contains(flag)
+                    .and(predicate::str::contains(format!("'{value}'")))
                     .and(predicate::str::contains(allowed))
                     .and(predicate::str::contains("unexpected argument").not()),
             );
@@ -405,4 +409,47 @@ fn a_motionless_demonstration_is_named_by_its_file() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("still.csv").and(predicate::str::contains("never moves")));
+}
+
+/// Every `cosco evaluate` error names the file it concerns: a reproduction of the arm's
+/// joints too short to score on the arm, and one far outside their ranges.
+#[cfg(feature = "sim")]
+#[test]
+fn evaluate_errors_name_the_reproduction_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let arm = "LShoulderPitch,LShoulderRoll,LElbowYaw,LElbowRoll,LWristYaw,LHand";
+    let csv = |rows: &[&str]| format!("time,{arm}\n{}\n", rows.join("\n"));
+    let arm_demo = [
+        "0,1.4,0.3,-1.39,-1.01,0,0.25",
+        "0.025,1.3,0.3,-1.39,-1.01,0,0.25",
+        "0.05,1.2,0.3,-1.39,-1.01,0,0.25",
+    ];
+    let cases = [
+        (vec![arm_demo[0]], "short_arm.csv", "1 sample"),
+        (
+            vec![arm_demo[0], "0.025,9,0.3,-1.39,-1.01,0,0.25"],
+            "far_arm.csv",
+            "LShoulderPitch = 9",
+        ),
+    ];
+    for (rep_rows, name, cause) in cases {
+        let demos = d.join(format!("demos_{name}"));
+        std::fs::create_dir_all(&demos).unwrap();
+        std::fs::write(demos.join("a.csv"), csv(&arm_demo)).unwrap();
+        std::fs::write(d.join(name), csv(&rep_rows)).unwrap();
+        cosco()
+            .arg("evaluate")
+            .arg("--reproduction")
+            .arg(d.join(name))
+            .arg("--demos")
+            .arg(&demos)
+            .assert()
+            .failure()
+            .stderr(
+                predicate::str::contains(name)
+                    .and(predicate::str::contains(cause))
+                    .and(predicate::str::contains("panicked").not()),
+            );
+    }
 }

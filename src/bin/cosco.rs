@@ -1,34 +1,21 @@
-//! `cosco`: the steps of the main job one at a time, for scripting. Without the feature `sim`
-//! only `train`, `reproduce`, `recognize`, `recognition`, `inspect`, `evaluate` and `heldout`
-//! (which need no simulator; `heldout --png` needs the feature `plot`).
+//! `cosco`: the steps of the main job one at a time, for scripting: each subcommand parsed
+//! and handed to the library in one call ([`cosco_hsom::app`], or the held-out studies of
+//! [`cosco_hsom::eval`] and the simulator's jobs). Without the feature `sim` only `train`,
+//! `reproduce`, `recognize`, `inspect`, `evaluate` and `heldout` (which need no simulator;
+//! `heldout --png` needs the feature `plot`).
 
 use std::process::ExitCode;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Parser;
-use cosco_hsom::commands;
+use cosco_hsom::app;
 
+#[macro_use]
 mod cli;
-
-/// `print!` that ignores a closed stdout (e.g. `| head`), instead of panicking.
-macro_rules! out {
-    ($($t:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stdout(), $($t)*);
-    }};
-}
-
-/// `println!` that ignores a closed stdout.
-macro_rules! outln {
-    ($($t:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout(), $($t)*);
-    }};
-}
 
 #[cfg(feature = "sim")]
 use cli::cosco_args::SweepAction;
-use cli::cosco_args::{Cli, Command};
+use cli::cosco_args::{Cli, Command, RecognitionArgs, StudyArgs};
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
@@ -80,7 +67,7 @@ fn run(cli: Cli) -> Result<()> {
             resample_line(&demos, resample)?;
             let bars = cli::StageBars::default();
             let on_step = |done, total| bars.update("training", done, total);
-            let model = commands::train_files(
+            let model = app::train_files(
                 config.as_deref(),
                 &demos,
                 &out,
@@ -109,69 +96,46 @@ fn run(cli: Cli) -> Result<()> {
             prefix,
             resume_from,
             out,
-        } => {
-            let (n, label) = match (prefix_from, prefix) {
-                (Some(p), Some(k)) => commands::continue_file(&model, &p, k, &out)?,
-                _ => commands::reproduce_gesture_file(
-                    &model,
-                    gesture.as_deref(),
-                    initial.as_deref(),
-                    initial_from.as_deref(),
-                    resume_from.as_deref(),
-                    &out,
-                )?,
-            };
-            match label {
-                Some(l) => outln!("{n} postures of {l} written to {}", out.display()),
-                None => outln!("{n} postures written to {}", out.display()),
-            }
-        }
+        } => outln!(
+            "{}",
+            app::reproduce_file(&app::ReproduceFile {
+                model,
+                gesture,
+                initial,
+                initial_from,
+                resume_from,
+                prefix_from,
+                prefix,
+                out,
+            })?
+        ),
         Command::Recognize { model, demos, json } => {
-            for line in commands::recognize_lines(&model, &demos, json.as_deref())? {
+            for line in app::recognize_files(&model, &demos, json.as_deref())? {
                 outln!("{line}");
             }
         }
-        Command::Recognition {
-            taught,
-            untaught,
-            data,
-            no_control,
-            threads,
-            json,
-        } => {
-            use cosco_hsom::eval::recognition::{recognition, RecognitionJob, RecognitionSettings};
-            let job = RecognitionJob {
-                taught,
-                untaught,
-                config: data.config,
-                state_length_from_data: data.state_length_from_data,
-                resample: data.resample,
-                settings: RecognitionSettings {
-                    control: !no_control,
-                    threads: threads.map_or_else(cli::cores, |t| t as usize),
-                },
-                json,
-            };
-            let pb = cli::progress(0, "models");
-            let on_model = |done: usize, total: usize| {
-                pb.set_length(total as u64);
-                pb.set_position(done as u64);
-            };
-            let tables = recognition(&job, Some(&on_model))?;
-            pb.finish_and_clear();
-            out!("{tables}");
-        }
+        Command::Recognition { study, common } => recognition(study, common)?,
+        Command::Heldout {
+            study: Some(study),
+            common,
+            recognition: true,
+            ..
+        } => recognition(study, common)?,
         Command::Heldout {
             demos,
-            data,
+            common:
+                StudyArgs {
+                    data,
+                    threads,
+                    json,
+                },
             no_height_1,
             no_gmr,
             no_promp,
             no_in_sample,
-            threads,
-            json,
             #[cfg(feature = "plot")]
             png,
+            ..
         } => {
             #[cfg(not(feature = "plot"))]
             let png: Option<std::path::PathBuf> = None;
@@ -203,18 +167,7 @@ fn run(cli: Cli) -> Result<()> {
             pb.finish_and_clear();
             out!("{tables}");
         }
-        Command::Inspect { model } => {
-            let m = commands::load_gesture_model(&model)?;
-            outln!("{}", model.display());
-            if m.labels().is_empty() {
-                out!("{}", m.branches()[0].summary());
-                out!("{}", commands::file_parts_lines(&m.branches()[0]));
-            }
-            for (l, b) in m.labels().iter().zip(m.branches()) {
-                outln!("gesture {l}:");
-                out!("{}", b.summary());
-            }
-        }
+        Command::Inspect { model } => out!("{}", app::inspect(&model)?),
         Command::Evaluate {
             reproduction,
             demos,
@@ -222,16 +175,25 @@ fn run(cli: Cli) -> Result<()> {
             #[cfg(feature = "sim")]
             model,
         } => {
+            // wrist paths with the simulated arm, loaded when the columns are its joints
+            #[cfg(feature = "sim")]
+            let arm = |d: &[_], rows: &[_], params: &_| -> Result<_, app::evaluate::BoxError> {
+                let arm = cosco_hsom::experiment::load_arm(model.as_deref())?;
+                Ok(cosco_hsom::experiment::evaluate(
+                    Some(&arm),
+                    d,
+                    rows,
+                    params,
+                )?)
+            };
+            #[cfg(feature = "sim")]
+            let arm: Option<app::evaluate::ArmScorer> = Some(&arm);
             #[cfg(not(feature = "sim"))]
-            let model: Option<std::path::PathBuf> = None;
-            let e = commands::evaluate_files(&reproduction, &demos, model.as_deref())?;
-            out!("{}", commands::fidelity_lines(&e.fidelity, e.unit));
-            out!("{}", commands::start_end_lines(&e.start_end, e.unit));
-            if let Some(p) = json {
-                let bytes = serde_json::to_vec_pretty(&e)?;
-                cosco_hsom::fsutil::write_atomic(&p, &bytes)
-                    .with_context(|| format!("writing {}", p.display()))?;
-            }
+            let arm = None;
+            out!(
+                "{}",
+                app::evaluate_files(&reproduction, &demos, json.as_deref(), arm)?.lines()
+            );
         }
         #[cfg(feature = "sim")]
         Command::Compare {
@@ -283,6 +245,32 @@ fn run(cli: Cli) -> Result<()> {
             }
         }
     }
+    Ok(())
+}
+
+/// `cosco heldout --recognition` (and its hidden alias `cosco recognition`, for scripts).
+fn recognition(study: RecognitionArgs, common: StudyArgs) -> Result<()> {
+    use cosco_hsom::eval::recognition::{recognition, RecognitionJob, RecognitionSettings};
+    let job = RecognitionJob {
+        taught: study.taught,
+        untaught: study.untaught,
+        config: common.data.config,
+        state_length_from_data: common.data.state_length_from_data,
+        resample: common.data.resample,
+        settings: RecognitionSettings {
+            control: !study.no_control,
+            threads: common.threads.map_or_else(cli::cores, |t| t as usize),
+        },
+        json: common.json,
+    };
+    let pb = cli::progress(0, "models");
+    let on_model = |done: usize, total: usize| {
+        pb.set_length(total as u64);
+        pb.set_position(done as u64);
+    };
+    let tables = recognition(&job, Some(&on_model))?;
+    pb.finish_and_clear();
+    out!("{tables}");
     Ok(())
 }
 

@@ -8,15 +8,8 @@ use anyhow::Result;
 use clap::Parser;
 use cosco_hsom::experiment::job;
 
+#[macro_use]
 mod cli;
-
-/// `println!` that ignores a closed stdout.
-macro_rules! outln {
-    ($($t:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout(), $($t)*);
-    }};
-}
 
 /// Teach the simulated Nao a gesture from demonstrations, reproduce it from the initial
 /// posture alone, and measure how faithful the reproduction is.

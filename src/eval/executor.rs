@@ -64,8 +64,8 @@ impl Executor for Kinematic {
             sample_period: sample_period(target),
             ..MetricsParams::default()
         };
-        let fidelity = crate::steps::evaluate_rows(std::slice::from_ref(target), postures, &params)
-            .map_err(|e| crate::steps::error_line(&e))?;
+        let fidelity = crate::app::evaluate_rows(std::slice::from_ref(target), postures, &params)
+            .map_err(|e| crate::app::error_line(&e))?;
         Ok(Executed {
             trace: (),
             fidelity,

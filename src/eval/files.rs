@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use crate::steps;
+use crate::app;
 
 use super::{
     failures, json, leave_one_out, markdown, read_gestures_at, Kinematic, LooError, LooSettings,
@@ -36,9 +36,9 @@ pub fn heldout(
     progress: Option<&(dyn Fn(usize, usize) + Sync)>,
 ) -> Result<String, LooError> {
     for p in job.json.iter().chain(&job.png) {
-        steps::check_output(p)?;
+        app::check_output(p)?;
     }
-    let cfg = steps::config(job.config.as_deref())?;
+    let cfg = app::config(job.config.as_deref())?;
     let (cfg, gestures) =
         read_gestures_at(&job.demos, &cfg, job.state_length_from_data, job.resample)?;
     let study = leave_one_out(&cfg, gestures, &job.settings, &Kinematic, progress)?;

@@ -59,7 +59,7 @@ pub type FoldRuns<T> = Vec<(Method, Result<MethodRun<T>, String>)>;
 
 /// The error and its causes on one line.
 fn msg(e: impl std::error::Error + 'static) -> String {
-    crate::steps::error_line(&e)
+    crate::app::error_line(&e)
 }
 
 /// Train with `config` (or only initialise, the negative control), timed.

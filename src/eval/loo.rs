@@ -86,9 +86,6 @@ pub enum LooError {
     /// The configuration (at height 1, or for the data's width) is not valid.
     #[error(transparent)]
     Config(#[from] crate::config::ConfigError),
-    /// The demonstrations could not be read, or do not fit the configuration.
-    #[error(transparent)]
-    Read(#[from] crate::labelled::LabelledError),
     /// The demonstrations' width is not the configuration's state length.
     #[error("{path}: {found} columns but the configuration's stateLength is {expected}; give a configuration for {found} variables, or take stateLength from the data")]
     Width {
@@ -103,9 +100,9 @@ pub enum LooError {
     /// gesture, ...).
     #[error(transparent)]
     Demo(#[from] crate::demos::DemoError),
-    /// A file given to `cosco heldout` could not be used (configuration, output path).
+    /// The demonstrations or a file given to `cosco heldout` could not be read or used.
     #[error(transparent)]
-    Step(#[from] crate::steps::StepError),
+    App(#[from] crate::app::Error),
     /// The hierarchy produced no reproduction on any fold: nothing to compare.
     #[error("the hierarchy produced no reproduction on any fold: {0}")]
     NoReproduction(String),
@@ -123,23 +120,7 @@ pub enum LooError {
     Plot(#[from] crate::plot::PlotError),
 }
 
-/// The diagonal of the bounding box of every sample of `demos`.
-pub fn diagonal(demos: &[Demonstration]) -> f64 {
-    let width = demos.first().map_or(0, |d| d.width());
-    let mut lo = vec![f64::INFINITY; width];
-    let mut hi = vec![f64::NEG_INFINITY; width];
-    for row in demos.iter().flat_map(|d| &d.rows) {
-        for (k, &v) in row.iter().enumerate() {
-            lo[k] = lo[k].min(v);
-            hi[k] = hi[k].max(v);
-        }
-    }
-    lo.iter()
-        .zip(&hi)
-        .map(|(a, b)| (b - a).powi(2))
-        .sum::<f64>()
-        .sqrt()
-}
+pub use crate::metrics::diagonal;
 
 /// Fold `i`'s training demonstrations: all but `demos[i]`.
 pub fn all_but(demos: &[Demonstration], i: usize) -> Vec<Demonstration> {
@@ -211,15 +192,15 @@ pub fn read_gestures_at(
     from_data: bool,
     resample_hz: Option<f64>,
 ) -> Result<(HsomConfig, Gestures), LooError> {
-    let sets = match crate::labelled::read_demo_sets_at(paths, None, resample_hz)? {
-        crate::labelled::DemoSets::Plain(d) => {
+    let sets = match crate::app::read_demo_sets(paths, None, resample_hz)? {
+        crate::app::DemoSets::Plain(d) => {
             let name = match paths {
                 [one] if one.is_dir() => one.file_name().map(|n| n.to_string_lossy().to_string()),
                 _ => None,
             };
             vec![(name.unwrap_or_else(|| "gesture".into()), d)]
         }
-        crate::labelled::DemoSets::Labelled(sets) => sets,
+        crate::app::DemoSets::Labelled(sets) => sets,
     };
     let width = sets[0].1[0].width();
     let config = if from_data {

@@ -18,11 +18,11 @@ use std::sync::Mutex;
 
 use serde::Serialize;
 
+use crate::app;
+use crate::app::{read_demo_sets, DemoSets};
 use crate::config::HsomConfig;
 use crate::demos::Demonstration;
 use crate::hsom::{is_plain_label, GestureError, GestureModel};
-use crate::labelled::{read_demo_sets_at, DemoSets};
-use crate::steps;
 
 pub use report::{recognition_json, recognition_markdown};
 
@@ -122,18 +122,15 @@ pub enum RecognitionError {
     /// A bad setting.
     #[error("threads = {0}: needs at least 1")]
     Threads(usize),
-    /// The demonstrations could not be read.
-    #[error(transparent)]
-    Read(#[from] crate::labelled::LabelledError),
     /// A demonstration is not valid (too short, non-finite values, ...).
     #[error(transparent)]
     Demo(#[from] crate::demos::DemoError),
     /// The configuration is not valid for the data.
     #[error(transparent)]
     Config(#[from] crate::config::ConfigError),
-    /// A file given to the study could not be used (configuration, output path).
+    /// The demonstrations or a file given to the study could not be read or used.
     #[error(transparent)]
-    Step(#[from] steps::StepError),
+    App(#[from] crate::app::Error),
     /// Training or recognition refused (`what`: the model of which fold).
     #[error("{what}: {source}")]
     Gesture {
@@ -501,7 +498,7 @@ pub fn read_labelled_dirs(
                 path: p.display().to_string(),
             });
         }
-        match read_demo_sets_at(std::slice::from_ref(p), None, resample_hz)? {
+        match read_demo_sets(std::slice::from_ref(p), None, resample_hz)? {
             DemoSets::Plain(d) => {
                 let label = p
                     .canonicalize()
@@ -548,9 +545,9 @@ pub fn recognition(
     progress: Option<&(dyn Fn(usize, usize) + Sync)>,
 ) -> Result<String, RecognitionError> {
     if let Some(p) = &job.json {
-        steps::check_output(p)?;
+        app::check_output(p)?;
     }
-    let cfg = steps::config(job.config.as_deref())?;
+    let cfg = app::config(job.config.as_deref())?;
     let taught = read_labelled_dirs(&job.taught, job.resample)?;
     let untaught = read_labelled_dirs(&job.untaught, job.resample)?;
     let width = taught

@@ -46,7 +46,7 @@ impl Executor for ArmExecutor<'_> {
             std::slice::from_ref(target),
             &metrics,
         )
-        .map_err(|e| crate::steps::error_line(&e))?;
+        .map_err(|e| crate::app::error_line(&e))?;
         Ok(Executed {
             trace: run.executed,
             fidelity: run.fidelity,

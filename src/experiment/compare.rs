@@ -4,12 +4,12 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::app;
 use crate::demos::{sample_period, validate_set, write_csv, Demonstration};
 use crate::gmr::{load_model, save_model, ComponentChoice, MIN_DEMONSTRATIONS};
 use crate::metrics::MetricsParams;
 use crate::plot::BLACK;
 use crate::sim::{NaoArm, Recording, JOINT_NAMES};
-use crate::steps;
 
 use super::all_gestures::Progress;
 use super::baseline::{fig3_png, fig5_png, gmr_params, run_baseline, GMR_COLOR};
@@ -210,8 +210,8 @@ fn hsom_method(
 pub fn compare(job: &CompareJob, on_progress: Progress<'_>) -> Result<Report> {
     let mut clock = Stopwatch::new();
     let out = &job.out;
-    let cfg = steps::config(job.config.as_deref())?;
-    let demos = steps::read_demos_at(std::slice::from_ref(&job.demos), None, job.resample)?;
+    let cfg = app::config(job.config.as_deref())?;
+    let demos = app::read_demos(std::slice::from_ref(&job.demos), None, job.resample)?;
     require_arm_joints(&demos)?;
     if demos.len() < MIN_DEMONSTRATIONS {
         return Err(ExperimentError::Invalid(format!(

@@ -2,8 +2,9 @@
 //! kinematics (see docs/METRICS.md for every definition).
 
 use crate::demos::Demonstration;
+pub use crate::export::limits::{are_arm_joints, RANGE_TOLERANCE_RAD};
 use crate::metrics::{fidelity_named, FidelityReport, MetricsParams, Trajectory};
-use crate::sim::{NaoArm, JOINT_NAMES};
+use crate::sim::NaoArm;
 
 use super::ExperimentError;
 
@@ -34,11 +35,6 @@ pub fn demo_wrist_paths(
     demos.iter().map(|d| wrist_path(arm, &d.rows)).collect()
 }
 
-/// Whether `columns` are the arm's joints in the model's order (then wrist paths exist).
-pub fn are_arm_joints(columns: &[String]) -> bool {
-    columns.len() == JOINT_NAMES.len() && columns.iter().zip(JOINT_NAMES).all(|(c, j)| c == j)
-}
-
 /// A metrics trajectory from joint rows, with the wrist path when the columns are the arm's
 /// joints and an arm is given.
 pub fn trajectory(
@@ -55,12 +51,6 @@ pub fn trajectory(
         wrist,
     })
 }
-
-/// How far beyond a joint's range a recorded or reproduced value may lie and still be scored,
-/// rad: encoders read a hair beyond a limit, and the simulated joints' soft limits let a
-/// motion driven into a limit pass it by up to 0.07 rad (measured on the shuffled controls of
-/// tests/gesture_fidelity.rs).
-pub const RANGE_TOLERANCE_RAD: f64 = 0.25;
 
 /// Every posture of `rows` within the arm's joint ranges give or take
 /// [`RANGE_TOLERANCE_RAD`]: a posture farther out is none the arm can take, and scoring it

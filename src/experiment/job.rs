@@ -7,11 +7,11 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use crate::app;
 use crate::demos::{self, sample_period, Demonstration};
 use crate::gesture::Gesture;
 use crate::plot::BLACK;
 use crate::sim::{NaoArm, JOINT_NAMES};
-use crate::steps;
 
 use super::all_gestures::Progress;
 use super::baseline::GMR_NAME;
@@ -150,14 +150,14 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     let mut clock = Stopwatch::new();
     let out = &job.out;
     std::fs::create_dir_all(out.join("demos")).map_err(ExperimentError::io("creating", out))?;
-    let cfg = steps::config(job.config.as_deref())?;
+    let cfg = app::config(job.config.as_deref())?;
     let arm = load_arm(job.model.as_deref())?;
     let mut files = Vec::new();
 
     // 1. Demonstrations.
     let (demos, gesture) = match &job.demos {
         Some(dir) => (
-            steps::read_demos_at(
+            app::read_demos(
                 std::slice::from_ref(dir),
                 Some(cfg.params().state_length),
                 job.resample,
@@ -374,7 +374,7 @@ pub fn all_gestures_job(job: &Job, on_progress: Progress<'_>) -> Result<Vec<Stri
     }
     let out = &job.out;
     std::fs::create_dir_all(out).map_err(ExperimentError::io("creating", out))?;
-    let cfg = steps::config(job.config.as_deref())?;
+    let cfg = app::config(job.config.as_deref())?;
     let arm = load_arm(job.model.as_deref())?;
     let config_name = config_name(job.config.as_deref());
     let settings = AllSettings {

@@ -83,9 +83,9 @@ pub enum ExperimentError {
         /// What is wrong with the demonstrations.
         source: crate::demos::DemoError,
     },
-    /// A file given to a step could not be read or used.
+    /// A file given to the job could not be read or used.
     #[error(transparent)]
-    Step(#[from] crate::steps::StepError),
+    App(#[from] crate::app::Error),
     /// A demonstration could not be read, written or used.
     #[error(transparent)]
     Demo(#[from] crate::demos::DemoError),

@@ -5,9 +5,9 @@
 use std::path::Path;
 use std::time::Instant;
 
+use crate::app::DEFAULT_CONFIG_NAME;
 use crate::demos::write_csv;
 use crate::sim::NaoArm;
-use crate::steps::DEFAULT_CONFIG_NAME;
 
 use super::pipeline::Outcome;
 use super::report::{MethodResult, Stage};

@@ -63,6 +63,19 @@ pub fn nao_left_arm() -> RobotLimits {
     }
 }
 
+/// Whether `columns` are the Nao left arm's joints in NAOqi order (the simulated arm's
+/// columns: then wrist paths exist and the joint ranges apply).
+pub fn are_arm_joints(columns: &[String]) -> bool {
+    let arm = nao_left_arm().joints;
+    columns.len() == arm.len() && columns.iter().zip(&arm).all(|(c, j)| *c == j.name)
+}
+
+/// How far beyond a joint's range a recorded or reproduced value may lie and still be scored,
+/// rad: encoders read a hair beyond a limit, and the simulated joints' soft limits let a
+/// motion driven into a limit pass it by up to 0.07 rad (measured on the shuffled controls of
+/// tests/gesture_fidelity.rs).
+pub const RANGE_TOLERANCE_RAD: f64 = 0.25;
+
 /// A velocity table: a CSV file with a header `joint,max_velocity` and one row per joint.
 pub fn read_velocity_table(path: &Path) -> Result<Vec<(String, f64)>, ExportError> {
     let p = path.display().to_string();

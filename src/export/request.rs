@@ -1,11 +1,11 @@
-//! `cosco export` as one call: where the trajectory comes from (a reproduction file, or a
-//! model reproduced from an initial posture), which robot's limits it is checked against, the
-//! time scaling, and the optional execution on the simulated arm; the binary only parses the
-//! arguments into an [`ExportRequest`].
+//! `cosco export` as one call once the trajectory is built (`app::export` builds it from a
+//! reproduction file or a model reproduced from an initial posture): which robot's limits it
+//! is checked against, the time scaling, and the optional execution on the simulated arm; the
+//! binary only parses the arguments into an [`ExportRequest`].
 
 use std::path::PathBuf;
 
-use super::{export_to, limits, source, ExportError, ExportOptions, Format, Timing, Trajectory};
+use super::{export_to, limits, ExportError, ExportOptions, Format, Timing, Trajectory};
 
 /// Everything `cosco export` is asked, as given on its command line.
 #[derive(Debug, Clone)]
@@ -45,41 +45,11 @@ pub struct ExportRequest {
     pub executed: bool,
 }
 
-/// The trajectory `r` asks for: the reproduction file's, or the model's reproduction from
-/// exactly one of `initial` and `initial_from`.
-fn trajectory(r: &ExportRequest) -> Result<Trajectory, ExportError> {
-    match (&r.reproduction, &r.model) {
-        (Some(path), _) => source::from_reproduction_file(path, r.step_rate),
-        (None, Some(model)) => {
-            let values;
-            let initial = match (&r.initial, &r.initial_from) {
-                (Some(text), None) => {
-                    values = crate::commands::parse_posture(text)
-                        .map_err(|e| ExportError::Usage(e.to_string()))?;
-                    source::Initial::Values(&values)
-                }
-                (None, Some(p)) => source::Initial::From(p),
-                _ => {
-                    return Err(ExportError::Usage(
-                        "with --model, give exactly one of --initial and --initial-from".into(),
-                    ))
-                }
-            };
-            source::from_model(model, r.gesture.as_deref(), initial, r.step_rate)
-        }
-        (None, None) => Err(ExportError::Usage(
-            "give --reproduction FILE or --model FILE".into(),
-        )),
-    }
-}
-
-/// `cosco export`: check where the output goes, build the trajectory, check it against the
-/// robot's limits (the Nao left arm's, or `mjcf` with `velocity_table`), scale its timing,
+/// `cosco export` once the output's place is checked and the trajectory `t` built
+/// (`app::export`): check it against the robot's limits (the Nao left arm's, or `mjcf` with `velocity_table`), scale its timing,
 /// execute it on the simulated arm when asked, and write it atomically. Returns the report's
 /// lines.
-pub fn export_request(r: &ExportRequest) -> Result<Vec<String>, ExportError> {
-    crate::steps::check_output(&r.out)?;
-    let t = trajectory(r)?;
+pub fn export_request(r: &ExportRequest, t: &Trajectory) -> Result<Vec<String>, ExportError> {
     let robot = match (&r.mjcf, &r.velocity_table) {
         (Some(m), Some(v)) => limits::from_mjcf(m, &limits::read_velocity_table(v)?)?,
         _ => limits::nao_left_arm(),
@@ -100,7 +70,7 @@ pub fn export_request(r: &ExportRequest) -> Result<Vec<String>, ExportError> {
             "--executed goes with --format ros2".into(),
         ));
     }
-    let report = export_executed(r, &t, &robot, &opts)?;
+    let report = export_executed(r, t, &robot, &opts)?;
     let mut lines = report.lines();
     lines.push(format!("written {}", r.out.display()));
     Ok(lines)

@@ -78,12 +78,6 @@ pub enum ExportError {
     /// Reading a CSV.
     #[error(transparent)]
     Demo(#[from] DemoError),
-    /// Loading a model or reproducing with it.
-    #[error(transparent)]
-    Step(#[from] crate::steps::StepError),
-    /// Loading a model of several gestures or reproducing with it.
-    #[error(transparent)]
-    Model(#[from] crate::labelled::LabelledError),
     /// Arguments that do not go together, or a value given on the command line that is not
     /// allowed (named in the message).
     #[error("{0}")]

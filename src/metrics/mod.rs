@@ -18,8 +18,8 @@ pub use smoothness::{
     velocity_reversals, Smoothness, APEX_RADIUS,
 };
 pub use start_end::{
-    end_spread, end_tolerance, start_speed, StartEnd, StartEndReference, END_DIAGONAL_FRACTION,
-    END_SPREAD_FACTOR, START_SPEED_RTOL,
+    diagonal, end_spread, end_tolerance, start_speed, StartEnd, StartEndReference,
+    END_DIAGONAL_FRACTION, END_SPREAD_FACTOR, START_SPEED_RTOL,
 };
 
 /// The median of the finite values (`None` when there are none).

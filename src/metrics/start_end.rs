@@ -54,6 +54,24 @@ pub fn end_tolerance(end_spread: f64, diagonal: f64) -> f64 {
     (END_SPREAD_FACTOR * end_spread).max(END_DIAGONAL_FRACTION * diagonal)
 }
 
+/// The diagonal of the bounding box of every sample of `demos`.
+pub fn diagonal(demos: &[Demonstration]) -> f64 {
+    let width = demos.first().map_or(0, |d| d.width());
+    let mut lo = vec![f64::INFINITY; width];
+    let mut hi = vec![f64::NEG_INFINITY; width];
+    for row in demos.iter().flat_map(|d| &d.rows) {
+        for (k, &v) in row.iter().enumerate() {
+            lo[k] = lo[k].min(v);
+            hi[k] = hi[k].max(v);
+        }
+    }
+    lo.iter()
+        .zip(&hi)
+        .map(|(a, b)| (b - a).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
 /// The demonstrations a reproduction's start and end are judged against (a held-out fold's
 /// training demonstrations; `cosco evaluate`'s demonstrations).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

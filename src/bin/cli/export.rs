@@ -1,11 +1,12 @@
-//! `cosco export` and `cosco demos import`: the arguments, parsed and handed to the library
-//! ([`cosco_hsom::export`], [`cosco_hsom::ros2`]).
+//! `cosco export` and `cosco demos import`: the arguments, parsed and handed to
+//! [`cosco_hsom::app`].
 
 use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use cosco_hsom::export::{self, limits, source, Format};
+use cosco_hsom::app;
+use cosco_hsom::export::{limits, source, ExportRequest, Format};
 
 /// `cosco export`.
 #[derive(Args)]
@@ -66,7 +67,7 @@ pub struct ExportArgs {
 
 /// `cosco export`: the report's lines.
 pub fn export(a: &ExportArgs) -> Result<Vec<String>> {
-    let request = export::ExportRequest {
+    let request = ExportRequest {
         reproduction: a.reproduction.clone(),
         model: a.model.clone(),
         initial: a.initial.clone(),
@@ -87,7 +88,7 @@ pub fn export(a: &ExportArgs) -> Result<Vec<String>> {
         #[cfg(not(feature = "sim"))]
         executed: false,
     };
-    Ok(export::export_request(&request)?)
+    Ok(app::export(&request)?)
 }
 
 /// `cosco demos import`: what `cosco demos` does besides recording.
@@ -126,20 +127,6 @@ pub fn demos_action(a: &DemosAction) -> Result<Vec<String>> {
             out,
             joints,
             split_idle,
-        } => {
-            let files =
-                cosco_hsom::ros2::import::import_to_dir(bag, topic, joints, *split_idle, out)?;
-            Ok(files
-                .iter()
-                .map(|(f, d)| {
-                    format!(
-                        "{} ({} samples, {:.3} s)",
-                        f.display(),
-                        d.len(),
-                        d.time.as_ref().map_or(0.0, |t| t[t.len() - 1])
-                    )
-                })
-                .collect())
-        }
+        } => Ok(app::import(bag, topic, joints, *split_idle, out)?),
     }
 }

@@ -3,6 +3,23 @@
 //! file, field and value (`anyhow` only here, in the binaries).
 #![allow(dead_code)]
 
+/// `print!` that ignores a closed stdout (e.g. `| head`), instead of panicking.
+#[allow(unused_macros)]
+macro_rules! out {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stdout(), $($t)*);
+    }};
+}
+
+/// `println!` that ignores a closed stdout.
+macro_rules! outln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($t)*);
+    }};
+}
+
 #[cfg(feature = "sim")]
 pub mod sweep;
 
@@ -15,8 +32,6 @@ pub use cosco_hsom::experiment::compare;
 pub use cosco_hsom::experiment::job::DEFAULT_ENCODER_NOISE;
 
 use indicatif::{ProgressBar, ProgressStyle};
-
-use cosco_hsom::steps;
 
 /// A progress bar on stderr (hidden when stderr is not a terminal).
 pub fn progress(len: u64, what: &str) -> ProgressBar {
@@ -60,9 +75,9 @@ impl StageBars {
     }
 }
 
-/// The error and its causes on one line ([`steps::error_line`]).
+/// The error and its causes on one line ([`cosco_hsom::app::error_line`]).
 pub fn error_line(e: &anyhow::Error) -> String {
-    steps::error_line(e.as_ref())
+    cosco_hsom::app::error_line(e.as_ref())
 }
 
 /// `--count`: a whole number of demonstrations, at least 1 (negative numbers reach this
@@ -85,13 +100,21 @@ pub fn parse_seed(s: &str) -> Result<u64, String> {
         .map_err(|_| format!("expected a whole number from 0 to {}; got {s:?}", u64::MAX))
 }
 
-/// `--noise`: a standard deviation in rad, finite and at least 0.
+/// The largest `--noise`, rad: a real encoder's noise is far below it (Nao's encoders
+/// resolve about 0.001 rad), and noise of 0.1 rad, about 6 degrees, already hides the
+/// smaller gestures' motion.
+#[cfg(feature = "sim")]
+pub const MAX_ENCODER_NOISE: f64 = 0.1;
+
+/// `--noise`: a standard deviation in rad, from 0 to [`MAX_ENCODER_NOISE`] (clap names the
+/// option and the value).
 #[cfg(feature = "sim")]
 pub fn parse_noise(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        Ok(v) if (0.0..=MAX_ENCODER_NOISE).contains(&v) => Ok(v),
         _ => Err(format!(
-            "expected a standard deviation in rad: a finite number >= 0; got {s:?}"
+            "expected a standard deviation in rad: a number >= 0 and <= {MAX_ENCODER_NOISE} \
+             (a real encoder's noise is far below {MAX_ENCODER_NOISE} rad); got {s:?}"
         )),
     }
 }

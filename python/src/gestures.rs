@@ -1,0 +1,250 @@
+//! `GestureModel` and `Recognition`: several gestures in one hierarchy, and its answers.
+
+use std::path::PathBuf;
+
+use numpy::PyArray2;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use cosco_hsom::app;
+
+use crate::model::Config;
+use crate::{app_err, array2, label_dict, labelled_sets, posture_of, py_err, rows_of};
+
+/// Several gestures in one hierarchy (a shared bottom level, a branch of upper levels per
+/// label): reproduction on cue, recognition with `unknown`, continuation of a prefix.
+#[pyclass(module = "cosco_hsom", name = "GestureModel", frozen)]
+pub(crate) struct GestureModel {
+    inner: cosco_hsom::hsom::GestureModel,
+    /// The model in messages: its file, or `in memory`.
+    name: String,
+}
+
+#[pymethods]
+impl GestureModel {
+    /// Train one hierarchy on labelled demonstrations: `gestures` maps each label (a plain
+    /// word) to its demonstrations (2-D arrays, samples x variables), in the mapping's order;
+    /// optional column names (default x0, x1, ...). The configuration must use the events
+    /// algorithm. The GIL is released while training.
+    #[staticmethod]
+    #[pyo3(signature = (config, gestures, columns = None))]
+    fn fit(
+        py: Python<'_>,
+        config: &Config,
+        gestures: &Bound<'_, PyAny>,
+        columns: Option<Vec<String>>,
+    ) -> PyResult<Self> {
+        let sets = labelled_sets(gestures, columns)?;
+        let cfg = config.inner.clone();
+        let model = py
+            .allow_threads(move || app::train_gestures(&cfg, &sets, None))
+            .map_err(app_err)?;
+        Ok(GestureModel {
+            inner: model,
+            name: "in memory".into(),
+        })
+    }
+
+    /// Load a model saved by `GestureModel.save` or `cosco train` (with labels;
+    /// a single-gesture file loads too, without labels).
+    #[staticmethod]
+    fn load(path: PathBuf) -> PyResult<Self> {
+        Ok(GestureModel {
+            inner: app::load_gesture_model(&path).map_err(app_err)?,
+            name: path.display().to_string(),
+        })
+    }
+
+    /// Save the model (.bin binary, .txt plain text; written atomically): the bytes
+    /// `cosco train` writes for the same demonstrations and configuration.
+    fn save(&self, path: PathBuf) -> PyResult<()> {
+        app::save_gesture_model(&self.inner, &path).map_err(app_err)
+    }
+
+    /// Reproduce gesture `label` from an initial posture: a 2-D array, one row per step (the
+    /// first row is the initial posture). `label` is None only for a single-gesture model.
+    #[pyo3(signature = (label, initial))]
+    fn reproduce<'py>(
+        &self,
+        py: Python<'py>,
+        label: Option<&str>,
+        initial: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        // the label is checked before the posture, as `cosco reproduce --gesture` does
+        self.inner.branch(label).map_err(|e| py_err(&e))?;
+        let initial = posture_of(initial, "initial")?;
+        let rep = py
+            .allow_threads(|| app::reproduce_gesture(&self.inner, &self.name, label, &initial))
+            .map_err(app_err)?;
+        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+    }
+
+    /// Per label (in the model's order), the score of a whole sequence (2-D, samples x
+    /// variables, in the data's units): lower is closer; the recognised label is the lowest
+    /// when it is at most that label's threshold (`Recognition.thresholds`).
+    fn scores<'py>(
+        &self,
+        py: Python<'py>,
+        sequence: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let rows = rows_of(sequence, "sequence")?;
+        let scores = py
+            .allow_threads(|| self.inner.scores(&rows))
+            .map_err(|e| py_err(&e))?;
+        label_dict(py, self.inner.labels().iter().zip(scores))
+    }
+
+    /// Recognise a whole sequence (2-D, samples x variables): the label or unknown (None),
+    /// every label's score and threshold, and the sample from which the decision held.
+    fn recognize(&self, py: Python<'_>, sequence: &Bound<'_, PyAny>) -> PyResult<Recognition> {
+        let rows = rows_of(sequence, "sequence")?;
+        let r = py
+            .allow_threads(|| self.inner.recognize(&rows))
+            .map_err(|e| py_err(&e))?;
+        Ok(Recognition { inner: r })
+    }
+
+    /// Continue a gesture from its first samples (2-D, at least 2 rows): the hierarchy
+    /// decides which gesture it is and continues it. Returns the label and the postures (the
+    /// prefix first).
+    fn continue_prefix<'py>(
+        &self,
+        py: Python<'py>,
+        prefix: &Bound<'py, PyAny>,
+    ) -> PyResult<(String, Bound<'py, PyArray2<f64>>)> {
+        let rows = rows_of(prefix, "prefix")?;
+        let (label, rep) = py
+            .allow_threads(|| self.inner.continue_prefix(&rows))
+            .map_err(|e| py_err(&e))?;
+        Ok((label, array2(py, &rep.postures, self.inner.columns().len())))
+    }
+
+    /// The gesture labels, in the model's order (empty for a single-gesture model).
+    #[getter]
+    fn labels(&self) -> Vec<String> {
+        self.inner.labels().to_vec()
+    }
+
+    /// The names of the variables the model learned.
+    #[getter]
+    fn columns(&self) -> Vec<String> {
+        self.inner.columns().to_vec()
+    }
+
+    /// The configuration the model was trained with; with several labels, trainingSteps is
+    /// the configured value times the number of labels (the shared bottom level sees every
+    /// gesture as often as a gesture learned alone).
+    #[getter]
+    fn config(&self) -> Config {
+        Config {
+            inner: self.inner.branches()[0].config().clone(),
+        }
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "GestureModel(model={:?}, labels={:?}, columns={:?})",
+            self.name,
+            self.inner.labels(),
+            self.inner.columns()
+        )
+    }
+}
+
+/// What `GestureModel.recognize` answers for one sequence.
+#[pyclass(module = "cosco_hsom", name = "Recognition", frozen)]
+pub(crate) struct Recognition {
+    inner: cosco_hsom::hsom::Recognition,
+}
+
+#[pymethods]
+impl Recognition {
+    /// The recognised label, or None when no taught gesture matches well enough (unknown).
+    #[getter]
+    fn label(&self) -> Option<String> {
+        self.inner.label.clone()
+    }
+
+    /// True when no taught gesture matches well enough.
+    #[getter]
+    fn unknown(&self) -> bool {
+        self.inner.label.is_none()
+    }
+
+    /// The label with the lowest score, whether or not it is below its threshold.
+    #[getter]
+    fn best(&self) -> String {
+        self.inner.best.clone()
+    }
+
+    /// Per label (in the model's order), its score: lower is closer.
+    #[getter]
+    fn scores<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        label_dict(py, self.inner.scores.iter().map(|(l, s)| (l, *s)))
+    }
+
+    /// Per label, the score above which it is not recognised (calibrated on its training
+    /// data).
+    #[getter]
+    fn thresholds<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let labels = self.inner.scores.iter().map(|(l, _)| l);
+        label_dict(py, labels.zip(self.inner.thresholds.iter().copied()))
+    }
+
+    /// The earliest sample from which the best label stayed the same (early recognition).
+    #[getter]
+    fn decided_at(&self) -> usize {
+        self.inner.decided_at
+    }
+
+    /// Samples in the sequence.
+    #[getter]
+    fn samples(&self) -> usize {
+        self.inner.samples
+    }
+
+    /// `decided_at / samples`: the fraction of the gesture seen before the decision was final.
+    #[getter]
+    fn decided_fraction(&self) -> f64 {
+        self.inner.decided_fraction()
+    }
+
+    /// The answer as `cosco recognize --json` writes each file's `recognition`.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let r = &self.inner;
+        let d = PyDict::new(py);
+        d.set_item("label", r.label.clone())?;
+        d.set_item("best", r.best.clone())?;
+        let scores = PyList::empty(py);
+        for (l, s) in &r.scores {
+            scores.append(PyList::new(
+                py,
+                [
+                    l.into_pyobject(py)?.into_any(),
+                    s.into_pyobject(py)?.into_any(),
+                ],
+            )?)?;
+        }
+        d.set_item("scores", scores)?;
+        d.set_item("thresholds", r.thresholds.clone())?;
+        d.set_item("decided_at", r.decided_at)?;
+        d.set_item("samples", r.samples)?;
+        Ok(d)
+    }
+
+    fn __repr__(&self) -> String {
+        let r = &self.inner;
+        format!(
+            "Recognition(label={}, best={:?}, decided_at={} of {}, scores={{{}}})",
+            r.label.as_ref().map_or("None".into(), |l| format!("{l:?}")),
+            r.best,
+            r.decided_at,
+            r.samples,
+            r.scores
+                .iter()
+                .map(|(l, s)| format!("{l:?}: {s:.4}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    }
+}

@@ -1,0 +1,332 @@
+//! `Config` and `Hsom`: a configuration and a hierarchy of one gesture.
+
+use std::error::Error;
+use std::path::PathBuf;
+
+use numpy::PyArray2;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use cosco_hsom::app;
+use cosco_hsom::config::{HsomConfig, HsomParams};
+
+use crate::{app_err, array2, demonstrations_of, posture_of, py_err, rows_of};
+
+/// A validated CoSCo-HSOM configuration (the XML schema of docs/CONFIG.md).
+#[pyclass(module = "cosco_hsom", name = "Config", frozen)]
+#[derive(Clone)]
+pub(crate) struct Config {
+    pub(crate) inner: HsomConfig,
+}
+
+#[pymethods]
+impl Config {
+    /// Read and validate an XML configuration file.
+    #[staticmethod]
+    fn from_xml(path: PathBuf) -> PyResult<Self> {
+        Ok(Config {
+            inner: app::config(Some(&path)).map_err(app_err)?,
+        })
+    }
+
+    /// Parse and validate an XML configuration given as text (`name` is used in messages).
+    #[staticmethod]
+    #[pyo3(signature = (text, name = "<string>"))]
+    fn from_xml_string(text: &str, name: &str) -> PyResult<Self> {
+        Ok(Config {
+            inner: cosco_hsom::config::parse_config(text, name).map_err(|e| py_err(&e))?,
+        })
+    }
+
+    /// The paper's Table I (height 6, memory 4, updatePeriod 2, 5000 steps, 6 variables).
+    #[staticmethod]
+    fn table1() -> PyResult<Self> {
+        Ok(Config {
+            inner: HsomParams::table1()
+                .check("Table I")
+                .map_err(|e| py_err(&e))?,
+        })
+    }
+
+    /// The recommended configuration for the simulated Nao arm (configs/nao-gestures.xml).
+    #[staticmethod]
+    fn nao_gestures() -> PyResult<Self> {
+        Ok(Config {
+            inner: app::config(None).map_err(app_err)?,
+        })
+    }
+
+    /// A copy with some settings changed, validated again.
+    #[pyo3(signature = (*, seed = None, state_length = None, training_steps = None))]
+    fn replace(
+        &self,
+        seed: Option<u64>,
+        state_length: Option<usize>,
+        training_steps: Option<usize>,
+    ) -> PyResult<Self> {
+        let mut p = self.inner.params().clone();
+        if let Some(s) = seed {
+            p.seed = s;
+        }
+        if let Some(n) = state_length {
+            p.state_length = n;
+            p.action_length = n;
+        }
+        if let Some(t) = training_steps {
+            p.training_steps = t;
+        }
+        Ok(Config {
+            inner: p.check(self.inner.source()).map_err(|e| py_err(&e))?,
+        })
+    }
+
+    /// The configuration as XML (every setting its algorithm reads written out).
+    fn to_xml(&self) -> String {
+        self.inner.to_xml()
+    }
+
+    /// Seed of every random draw.
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.inner.params().seed
+    }
+
+    /// Number of variables of a demonstration (stateLength).
+    #[getter]
+    fn state_length(&self) -> usize {
+        self.inner.params().state_length
+    }
+
+    /// Number of training steps.
+    #[getter]
+    fn training_steps(&self) -> usize {
+        self.inner.params().training_steps
+    }
+
+    /// Number of levels.
+    #[getter]
+    fn height(&self) -> usize {
+        self.inner.params().height
+    }
+
+    /// Where the configuration came from (a file name).
+    #[getter]
+    fn source(&self) -> String {
+        self.inner.source().to_string()
+    }
+
+    fn __repr__(&self) -> String {
+        let p = self.inner.params();
+        format!(
+            "Config(source={:?}, seed={}, state_length={}, height={}, training_steps={})",
+            self.inner.source(),
+            p.seed,
+            p.state_length,
+            p.height,
+            p.training_steps
+        )
+    }
+}
+
+/// A trained CoSCo-HSOM hierarchy.
+#[pyclass(module = "cosco_hsom", name = "Hsom", frozen)]
+pub(crate) struct Hsom {
+    inner: cosco_hsom::hsom::Hsom,
+    /// The model in messages: its file, or `in memory`.
+    name: String,
+}
+
+impl Hsom {
+    /// `f` on the model with the GIL released; the postures it gives, as a 2-D array.
+    fn postures<'py, E: Error + Send + 'static>(
+        &self,
+        py: Python<'py>,
+        f: impl FnOnce(&cosco_hsom::hsom::Hsom) -> Result<cosco_hsom::hsom::Reproduction, E> + Send,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let rep = py
+            .allow_threads(|| f(&self.inner))
+            .map_err(|e| py_err(&e))?;
+        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+    }
+}
+
+#[pymethods]
+impl Hsom {
+    /// Train on demonstrations (a list of 2-D arrays, samples x variables), with optional
+    /// column names (default x0, x1, ...). The GIL is released while training.
+    #[staticmethod]
+    #[pyo3(signature = (config, demos, columns = None))]
+    fn fit(
+        py: Python<'_>,
+        config: &Config,
+        demos: &Bound<'_, PyAny>,
+        columns: Option<Vec<String>>,
+    ) -> PyResult<Self> {
+        let demos = demonstrations_of(demos, columns)?;
+        let cfg = config.inner.clone();
+        let model = py
+            .allow_threads(move || app::train(&cfg, &demos, None))
+            .map_err(app_err)?;
+        Ok(Hsom {
+            inner: model,
+            name: "in memory".into(),
+        })
+    }
+
+    /// Load a model saved by `Hsom.save` or `cosco train` (.bin or .txt). A model of several
+    /// gestures is refused, naming `GestureModel.load`.
+    #[staticmethod]
+    fn load(path: PathBuf) -> PyResult<Self> {
+        let inner =
+            app::load_model(&path).map_err(|e| match app::load_gesture_model(&path) {
+                Ok(m) if !m.labels().is_empty() => PyValueError::new_err(format!(
+                    "{}: a model of several gestures ({}): load it with GestureModel.load",
+                    path.display(),
+                    m.labels().join(", ")
+                )),
+                _ => app_err(e),
+            })?;
+        Ok(Hsom {
+            inner,
+            name: path.display().to_string(),
+        })
+    }
+
+    /// Save the model (.bin binary, .txt plain text; written atomically).
+    fn save(&self, path: PathBuf) -> PyResult<()> {
+        app::save_model(&self.inner, &path).map_err(app_err)
+    }
+
+    /// Reproduce the gesture from an initial posture: a 2-D array, one row per step (the first
+    /// row is the initial posture).
+    fn reproduce<'py>(
+        &self,
+        py: Python<'py>,
+        initial: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let initial = posture_of(initial, "initial")?;
+        self.postures(py, |m| app::reproduce(m, &self.name, &initial))
+    }
+
+    /// The nearest-sequence baseline (docs/ALGORITHM.md, section 3.6): of
+    /// `demos` (a list of 2-D arrays as for `fit`, normally the training demonstrations), the
+    /// one whose first posture is nearest `initial`, its bottom events executed through this
+    /// model's bottom code from `initial`, with no level above. A 2-D array as `reproduce`
+    /// gives (the first row is the initial posture).
+    fn follow_nearest<'py>(
+        &self,
+        py: Python<'py>,
+        demos: &Bound<'py, PyAny>,
+        initial: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let initial = posture_of(initial, "initial")?;
+        let demos = demonstrations_of(demos, None)?;
+        self.postures(py, |m| m.follow_nearest(&demos, &initial))
+    }
+
+    /// Continue a gesture from its first samples (2-D, at least actionHorizon + 1 rows):
+    /// the prefix's events are pushed up the hierarchy's lists and the levels plan the rest
+    /// (`algorithm = events`). The postures of the continuation, from the prefix's last.
+    fn continue_events<'py>(
+        &self,
+        py: Python<'py>,
+        prefix: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let rows = rows_of(prefix, "prefix")?;
+        self.postures(py, |m| m.continue_events(&rows))
+    }
+
+    /// Resume this model's own reproduction from `initial` after part of it was executed:
+    /// `reading` (2-D, at least actionHorizon + 1 rows, from `initial`) is what the encoders
+    /// read meanwhile, possibly disturbed. The reading is aligned with the plan, the plan's
+    /// events are executed for the durations read (pushed up the lists; the levels re-plan
+    /// where one surprises them), the event in progress goes on (`algorithm = events`). The
+    /// postures of the continuation, from the reading's last.
+    fn resume<'py>(
+        &self,
+        py: Python<'py>,
+        initial: &Bound<'py, PyAny>,
+        reading: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let initial = posture_of(initial, "initial")?;
+        let rows = rows_of(reading, "reading")?;
+        self.postures(py, |m| app::resume(m, &self.name, &initial, &rows))
+    }
+
+    /// The nearest-sequence continuation of a prefix: of `demos`, the one along which the
+    /// prefix runs closest, continued after the prefix's end through this model's bottom code.
+    /// The postures of the continuation, from the prefix's last.
+    fn follow_nearest_from<'py>(
+        &self,
+        py: Python<'py>,
+        demos: &Bound<'py, PyAny>,
+        prefix: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let rows = rows_of(prefix, "prefix")?;
+        let demos = demonstrations_of(demos, None)?;
+        self.postures(py, |m| m.follow_nearest_from(&demos, &rows))
+    }
+
+    /// The names of the variables the model learned.
+    #[getter]
+    fn columns(&self) -> Vec<String> {
+        self.inner.columns().to_vec()
+    }
+
+    /// The configuration the model was trained with.
+    #[getter]
+    fn config(&self) -> Config {
+        Config {
+            inner: self.inner.config().clone(),
+        }
+    }
+
+    /// The model's levels, sizes and quality measures (what `cosco inspect` prints).
+    fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let s = self.inner.summary();
+        let d = PyDict::new(py);
+        d.set_item("memory_mode", format!("{:?}", s.memory_mode))?;
+        d.set_item("memory", s.memory)?;
+        d.set_item("update_period", s.update_period)?;
+        d.set_item("state_length", s.state_length)?;
+        d.set_item("weights", s.weights)?;
+        d.set_item("demo_lengths", s.demo_lengths.to_vec())?;
+        d.set_item("demo_events", s.demo_events.to_vec())?;
+        let levels = PyList::empty(py);
+        for l in &s.levels {
+            let ld = PyDict::new(py);
+            ld.set_item("level", l.level)?;
+            ld.set_item("rows", l.rows)?;
+            ld.set_item("cols", l.cols)?;
+            ld.set_item("topology", format!("{:?}", l.topology))?;
+            ld.set_item("input_dim", l.input_dim)?;
+            ld.set_item("period", l.period)?;
+            ld.set_item("trained", l.trained)?;
+            ld.set_item("nodes_used", l.nodes_used)?;
+            ld.set_item("quantization_error", l.quantization_error)?;
+            ld.set_item("topographic_error", l.topographic_error)?;
+            ld.set_item("prediction_accuracy", l.prediction_accuracy)?;
+            ld.set_item("lookup_accuracy", l.lookup_accuracy)?;
+            ld.set_item("heldout_prediction_accuracy", l.heldout_prediction_accuracy)?;
+            ld.set_item("heldout_lookup_accuracy", l.heldout_lookup_accuracy)?;
+            ld.set_item("used_in_reproduction", l.used_in_reproduction)?;
+            levels.append(ld)?;
+        }
+        d.set_item("levels", levels)?;
+        Ok(d)
+    }
+
+    fn __str__(&self) -> String {
+        self.inner.summary().to_string()
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Hsom(model={:?}, columns={:?}, height={})",
+            self.name,
+            self.inner.columns(),
+            self.inner.height()
+        )
+    }
+}

@@ -1,0 +1,169 @@
+//! One way in: the library's user-level operations on files and values, each one function
+//! that the `cosco` binary and the Python package (`python/`) both call, so that the checks
+//! and messages are the same from either. Needs no simulator: where an operation can use the
+//! simulated arm (`cosco evaluate`'s wrist paths), the caller passes it in.
+//!
+//! - [`files`]: the configuration, demonstration files (one gesture, or labelled
+//!   directories `DIR/<label>/*.csv`), model files, reproduction files, output paths.
+//! - [`train`]: train one gesture or several, from values or from files.
+//! - [`reproduce`]: reproduce from an initial posture, resume after a reading, continue a
+//!   prefix; the reproduction CSV.
+//! - [`recognize`]: recognise demonstration files with a model of several gestures.
+//! - [`evaluate`]: a reproduction's fidelity against demonstrations; `cosco inspect`'s lines.
+//! - [`export`]: a reproduction to a robot's formats, and demonstrations from a ROS 2 bag.
+//!
+//! Each value is checked once, where it enters: a file's layout and columns when it is read,
+//! an initial posture by the hierarchy ([`Hsom::reproduce`](crate::hsom::Hsom::reproduce)),
+//! whose error this layer names the model on. Every error is an [`Error`], naming the file,
+//! field or option and what is allowed.
+//!
+//! ```
+//! use cosco_hsom::app;
+//! use cosco_hsom::config::HsomParams;
+//! let mut p = HsomParams::table1();
+//! p.state_length = 2;
+//! p.action_length = 2;
+//! p.training_steps = 200;
+//! let cfg = p.check("example").unwrap();
+//! let rows: Vec<Vec<f64>> = (0..30).map(|i| vec![i as f64 / 30.0, 0.5]).collect();
+//! let demos = app::demonstrations_from_rows(vec![rows.clone(), rows], None).unwrap();
+//! let model = app::train(&cfg, &demos, None).unwrap();
+//! assert_eq!(model.columns(), ["x0", "x1"]);
+//! let e = app::reproduce(&model, "in memory", &[0.0]).unwrap_err();
+//! assert!(e.to_string().contains("the initial posture has 1 values; the model in memory learned 2"));
+//! ```
+
+pub mod evaluate;
+pub mod export;
+pub mod files;
+pub mod recognize;
+pub mod reproduce;
+pub mod train;
+
+use std::path::PathBuf;
+
+pub use evaluate::{evaluate_files, evaluate_rows, inspect, Evaluation};
+pub use export::export;
+#[cfg(feature = "ros2")]
+pub use export::import;
+pub use files::{
+    check_model_output, check_output, config, demonstrations_from_rows, load_gesture_model,
+    load_model, read_demo_sets, read_demos, read_reproduction, save_gesture_model, save_model,
+    DemoSets, DEFAULT_CONFIG_NAME, NAO_GESTURES_XML,
+};
+pub use recognize::{recognize_files, recognize_paths, RecognisedFile};
+pub use reproduce::{
+    continue_file, parse_posture, reproduce, reproduce_file, reproduce_gesture, resume,
+    ReproduceFile,
+};
+pub use train::{train, train_files, train_gestures};
+
+/// Why an operation was refused. The wrapped errors name their file, field and value; the
+/// others name them here, with what is allowed.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The configuration was refused.
+    #[error(transparent)]
+    Config(#[from] crate::config::ConfigError),
+    /// A demonstration was refused.
+    #[error(transparent)]
+    Demo(#[from] crate::demos::DemoError),
+    /// Training or reproduction was refused.
+    #[error(transparent)]
+    Hsom(#[from] crate::hsom::HsomError),
+    /// A model of several gestures refused a label, a set or a sequence.
+    #[error(transparent)]
+    Gesture(#[from] crate::hsom::GestureError),
+    /// A model file could not be saved or loaded.
+    #[error(transparent)]
+    Persist(#[from] crate::hsom::PersistError),
+    /// Exporting a trajectory or importing a bag was refused.
+    #[error(transparent)]
+    Export(#[from] crate::export::ExportError),
+    /// A file or directory that cannot be used as given: its extension, its place, its
+    /// layout or its columns.
+    #[error("{path}: {reason}")]
+    File {
+        /// The file or directory.
+        path: String,
+        /// What is wrong and what is allowed.
+        reason: String,
+    },
+    /// A value that is not allowed: an option's, an initial posture, column names.
+    #[error("{what} {reason}")]
+    Value {
+        /// The value (`--initial:`, `the initial posture`, `columns:`).
+        what: String,
+        /// What is wrong and what is allowed.
+        reason: String,
+    },
+    /// Directories or lists that hold no demonstration.
+    #[error("no demonstration files found in {paths}")]
+    NoDemonstrations {
+        /// The paths given, comma-separated.
+        paths: String,
+    },
+    /// An output file could not be written.
+    #[error("writing {}", path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// Resuming after an encoder reading failed.
+    #[error("resuming after {}", path.display())]
+    Resume {
+        /// The encoder reading.
+        path: PathBuf,
+        /// The cause.
+        source: Box<Error>,
+    },
+    /// A reproduction could not be scored against its demonstrations.
+    #[error("{}: scoring it against the demonstrations", path.display())]
+    Evaluate {
+        /// The reproduction file.
+        path: PathBuf,
+        /// The cause.
+        source: evaluate::BoxError,
+    },
+}
+
+impl Error {
+    /// [`Error::File`]: `path` cannot be used, `reason` says why and what is allowed.
+    pub(crate) fn file(path: &std::path::Path, reason: impl Into<String>) -> Error {
+        Error::File {
+            path: path.display().to_string(),
+            reason: reason.into(),
+        }
+    }
+
+    /// [`Error::Value`]: `what` is not allowed, `reason` says why and what is.
+    pub(crate) fn value(what: impl Into<String>, reason: impl Into<String>) -> Error {
+        Error::Value {
+            what: what.into(),
+            reason: reason.into(),
+        }
+    }
+}
+
+/// The result of an operation.
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// An error and its causes on one line, leaving out causes whose text the message above
+/// already contains (many errors quote their cause): what `cosco` prints after `Error: `, and
+/// the message of the Python package's exceptions.
+pub fn error_line(e: &(dyn std::error::Error + 'static)) -> String {
+    let mut line = e.to_string();
+    let mut cause = e.source();
+    while let Some(c) = cause {
+        let text = c.to_string();
+        if !line.contains(&text) {
+            line.push_str(": ");
+            line.push_str(&text);
+        }
+        cause = c.source();
+    }
+    line
+}

@@ -1,0 +1,204 @@
+//! Reproduction: from an initial posture, resumed after an encoder reading, or continuing
+//! the gesture a prefix begins; and the reproduction CSV `cosco reproduce` writes.
+
+use std::path::{Path, PathBuf};
+
+use super::files::{self, read_for_columns};
+use super::{Error, Result};
+use crate::hsom::{GestureModel, Hsom, HsomError, Reproduction};
+
+/// Parse `"v1,v2,..."` (`--initial`) into numbers, naming the bad entry.
+pub fn parse_posture(text: &str) -> Result<Vec<f64>> {
+    text.split(',')
+        .enumerate()
+        .map(|(i, v)| {
+            let v = v.trim();
+            match v.parse::<f64>() {
+                Ok(x) if x.is_finite() => Ok(x),
+                _ => Err(Error::value(
+                    "--initial:",
+                    format!("value {} is '{v}': need a finite number", i + 1),
+                )),
+            }
+        })
+        .collect()
+}
+
+/// The initial posture of `--initial TEXT` or `--initial-from CSV` (its first row, whose
+/// columns must be the model's): exactly one of them.
+pub(super) fn initial_posture(
+    model: &Hsom,
+    initial: Option<&str>,
+    initial_from: Option<&Path>,
+) -> Result<Vec<f64>> {
+    match (initial, initial_from) {
+        (Some(text), None) => parse_posture(text),
+        (None, Some(p)) => Ok(read_for_columns(p, model.columns())?.rows.swap_remove(0)),
+        _ => Err(Error::value(
+            "--initial:",
+            "give exactly one of --initial and --initial-from",
+        )),
+    }
+}
+
+/// An initial posture of the arm's joints within their ranges, give or take
+/// [`RANGE_TOLERANCE_RAD`](crate::export::limits::RANGE_TOLERANCE_RAD). Held in the
+/// simulator's builds, whose models are of the simulated arm; of another length, the
+/// hierarchy's own check names the lengths.
+fn check_arm_range(columns: &[String], initial: &[f64]) -> Result<()> {
+    use crate::export::limits::{are_arm_joints, nao_left_arm, RANGE_TOLERANCE_RAD as TOL};
+    if !cfg!(feature = "sim") || initial.len() != columns.len() || !are_arm_joints(columns) {
+        return Ok(());
+    }
+    for (v, j) in initial.iter().zip(nao_left_arm().joints) {
+        if v.is_finite() && !(j.lower - TOL..=j.upper + TOL).contains(v) {
+            return Err(Error::value(
+                format!("the initial posture's {} = {v}", j.name),
+                format!("is outside its range [{}, {}] by more than {TOL} rad: not a posture the arm can start from", j.lower, j.upper),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The hierarchy's refusal of an initial posture of another length, naming the model
+/// (`model_name`: its file, or `in memory`) and its variables.
+fn naming_model(e: HsomError, model: &Hsom, model_name: &str) -> Error {
+    match e {
+        HsomError::DimensionMismatch { demo, found, .. } if demo == "initial posture" => {
+            Error::value(
+                "the initial posture",
+                format!(
+                    "has {found} values; the model {model_name} learned {} variables ({})",
+                    model.columns().len(),
+                    model.columns().join(", ")
+                ),
+            )
+        }
+        e => e.into(),
+    }
+}
+
+/// Reproduce from `initial` (`model_name` names the model in messages: its file, or
+/// `in memory`).
+pub fn reproduce(model: &Hsom, model_name: &str, initial: &[f64]) -> Result<Reproduction> {
+    check_arm_range(model.columns(), initial)?;
+    model
+        .reproduce(initial)
+        .map_err(|e| naming_model(e, model, model_name))
+}
+
+/// Resume the reproduction from `initial` after part of it was executed (`reading`: what the
+/// encoders read meanwhile; [`Hsom::resume`]).
+pub fn resume(
+    model: &Hsom,
+    model_name: &str,
+    initial: &[f64],
+    reading: &[Vec<f64>],
+) -> Result<Reproduction> {
+    check_arm_range(model.columns(), initial)?;
+    model
+        .resume(initial, reading)
+        .map_err(|e| naming_model(e, model, model_name))
+}
+
+/// Reproduce gesture `label` (required for a model of several gestures) from `initial`.
+pub fn reproduce_gesture(
+    model: &GestureModel,
+    model_name: &str,
+    label: Option<&str>,
+    initial: &[f64],
+) -> Result<Reproduction> {
+    reproduce(model.branch(label)?, model_name, initial)
+}
+
+/// What `cosco reproduce` is asked, as given on its command line.
+#[derive(Debug, Clone, Default)]
+pub struct ReproduceFile {
+    /// A model saved by `cosco train`.
+    pub model: PathBuf,
+    /// The gesture (required with a model of several).
+    pub gesture: Option<String>,
+    /// The initial posture, comma-separated.
+    pub initial: Option<String>,
+    /// Or a CSV whose first row is the initial posture.
+    pub initial_from: Option<PathBuf>,
+    /// An encoder reading of part of the reproduction: write the rest of it.
+    pub resume_from: Option<PathBuf>,
+    /// Or continue the gesture begun in this CSV's first `prefix` samples.
+    pub prefix_from: Option<PathBuf>,
+    /// Samples of `prefix_from` to continue from.
+    pub prefix: Option<usize>,
+    /// Output CSV.
+    pub out: PathBuf,
+}
+
+/// `cosco reproduce`: gesture `gesture` (required with several) from the initial posture;
+/// with `resume_from`, the rest of it after that reading ([`Hsom::resume`]); with
+/// `prefix_from` and `prefix`, the continuation of the gesture the hierarchy recognises in
+/// the file's first samples. Writes `step` then the model's columns; returns the line to
+/// print.
+pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
+    let m = files::load_gesture_model(&r.model)?;
+    let name = r.model.display().to_string();
+    let (rep, label) = match (&r.prefix_from, r.prefix) {
+        (Some(path), Some(prefix)) => {
+            let (label, rep) = continue_file(&m, path, prefix)?;
+            (rep, Some(label))
+        }
+        _ => {
+            // the gesture is checked before the initial posture is read
+            let branch = m.branch(r.gesture.as_deref())?;
+            let initial = initial_posture(branch, r.initial.as_deref(), r.initial_from.as_deref())?;
+            let rep = match &r.resume_from {
+                Some(path) => {
+                    let reading = read_for_columns(path, branch.columns())?.rows;
+                    resume(branch, &name, &initial, &reading).map_err(|e| Error::Resume {
+                        path: path.clone(),
+                        source: Box::new(e),
+                    })?
+                }
+                None => reproduce(branch, &name, &initial)?,
+            };
+            (rep, r.gesture.clone())
+        }
+    };
+    let bytes = reproduction_csv(m.columns(), &rep).map_err(|e| Error::Write {
+        path: r.out.clone(),
+        source: e.into(),
+    })?;
+    files::write(&r.out, &bytes)?;
+    let n = rep.postures.len();
+    Ok(match label {
+        Some(l) => format!("{n} postures of {l} written to {}", r.out.display()),
+        None => format!("{n} postures written to {}", r.out.display()),
+    })
+}
+
+/// The first `prefix` samples of a demonstration file, continued by the gesture the
+/// hierarchy recognises in them; the label and the postures (the prefix first).
+pub fn continue_file(
+    model: &GestureModel,
+    path: &Path,
+    prefix: usize,
+) -> Result<(String, Reproduction)> {
+    let d = read_for_columns(path, model.columns())?;
+    if prefix < 2 || prefix > d.rows.len() {
+        let n = d.rows.len();
+        return Err(Error::file(
+            path,
+            format!("--prefix {prefix}: the file has {n} samples; give 2 to {n}"),
+        ));
+    }
+    Ok(model.continue_prefix(&d.rows[..prefix])?)
+}
+
+/// A reproduction as `cosco reproduce` writes it: CSV with `step`, then the model's columns.
+pub fn reproduction_csv(columns: &[String], rep: &Reproduction) -> csv::Result<Vec<u8>> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(std::iter::once("step").chain(columns.iter().map(String::as_str)))?;
+    for (step, row) in rep.steps.iter().zip(&rep.postures) {
+        w.write_record(std::iter::once(step.to_string()).chain(row.iter().map(f64::to_string)))?;
+    }
+    w.into_inner().map_err(|e| e.into_error().into())
+}

@@ -1,0 +1,88 @@
+//! Training: one gesture or several, from values (Python) or from files (`cosco train`).
+//!
+//! ```
+//! use cosco_hsom::app::{demonstrations_from_rows, train_gestures};
+//! use cosco_hsom::config::{AlgorithmParams, EventsParams, HsomParams};
+//! let mut p = HsomParams::table1();
+//! p.algorithm = AlgorithmParams::Events(EventsParams { change_ratio: 1.0, action_horizon: 1 });
+//! p.state_length = 2;
+//! p.action_length = 2;
+//! p.training_steps = 300;
+//! let cfg = p.check("example").unwrap();
+//! let up: Vec<Vec<f64>> = (0..40).map(|i| vec![i as f64 / 40.0, 0.0]).collect();
+//! let side: Vec<Vec<f64>> = (0..40).map(|i| vec![0.0, i as f64 / 40.0]).collect();
+//! let sets = vec![
+//!     ("up".to_string(), demonstrations_from_rows(vec![up.clone(), up.clone()], None).unwrap()),
+//!     ("side".to_string(), demonstrations_from_rows(vec![side.clone(), side.clone()], None).unwrap()),
+//! ];
+//! let model = train_gestures(&cfg, &sets, None).unwrap();
+//! assert_eq!(model.labels(), ["up", "side"]);
+//! assert_eq!(model.recognize(&side).unwrap().best, "side");
+//! ```
+
+use std::path::{Path, PathBuf};
+
+use super::files::{self, DemoSets};
+use super::Result;
+use crate::config::HsomConfig;
+use crate::demos::{self, Demonstration};
+use crate::hsom::{GestureError, GestureModel, Hsom};
+
+/// Check the demonstrations as a set against the configuration (at least one; see
+/// [`demos::validate_set`]), then train, calling `progress(done, total)` now and then when
+/// given.
+pub fn train(
+    cfg: &HsomConfig,
+    demos: &[Demonstration],
+    progress: Option<&dyn Fn(usize, usize)>,
+) -> Result<Hsom> {
+    demos::validate_set(demos, Some(cfg.params().state_length))?;
+    Ok(cfg.fit_with_progress(demos, progress)?)
+}
+
+/// Check every label's set against the configuration, then train one hierarchy on them,
+/// calling `progress(done, total)` now and then (the shared bottom level's training).
+pub fn train_gestures(
+    cfg: &HsomConfig,
+    sets: &[(String, Vec<Demonstration>)],
+    progress: Option<&dyn Fn(usize, usize)>,
+) -> Result<GestureModel> {
+    for (label, demos) in sets {
+        // a label without demonstrations is named (validate_set would only say "none")
+        if demos.is_empty() {
+            return Err(GestureError::EmptyLabel {
+                label: label.clone(),
+            }
+            .into());
+        }
+        demos::validate_set(demos, Some(cfg.params().state_length))?;
+    }
+    Ok(cfg.fit_gestures(sets, progress)?)
+}
+
+/// `cosco train`: check where the model goes, read the demonstrations (one gesture, or
+/// labelled directories of several; resampled to `resample` Hz when given), train
+/// (`progress(done, total)`) and save atomically.
+pub fn train_files(
+    config: Option<&Path>,
+    demo_paths: &[PathBuf],
+    out: &Path,
+    state_length_from_data: bool,
+    resample: Option<f64>,
+    progress: Option<&dyn Fn(usize, usize)>,
+) -> Result<GestureModel> {
+    // where the model goes is checked before any reading or training
+    files::check_model_output(out)?;
+    let mut cfg = files::config(config)?;
+    if state_length_from_data {
+        let width = files::read_demo_sets(demo_paths, None, resample)?.width();
+        cfg = cfg.for_width(width)?;
+    }
+    let sets = files::read_demo_sets(demo_paths, Some(cfg.params().state_length), resample)?;
+    let model = match &sets {
+        DemoSets::Plain(d) => train(&cfg, d, progress)?.into(),
+        DemoSets::Labelled(s) => train_gestures(&cfg, s, progress)?,
+    };
+    files::save_gesture_model(&model, out)?;
+    Ok(model)
+}
