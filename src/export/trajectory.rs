@@ -84,8 +84,8 @@ pub enum ExportError {
     Usage(String),
     /// The simulated arm could not be loaded.
     #[cfg(feature = "sim")]
-    #[error(transparent)]
-    Arm(Box<crate::experiment::ExperimentError>),
+    #[error("loading the default arm model: {0}")]
+    Arm(Box<crate::sim::SimError>),
     /// Writing the output.
     #[error("{path}: cannot write it: {source}")]
     Write {
