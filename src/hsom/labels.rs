@@ -11,7 +11,7 @@
 //! shared bottom nodes, [`Hsom::fit_postures`]), in the one description of
 //! [`super::persist`], its header saying the kind. Older files get the "retrain" error.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -22,7 +22,7 @@ use crate::demos::Demonstration;
 use super::algorithm::Presentation;
 use super::errors::{GestureError, HsomError, PersistError};
 use super::model::{GestureModel, Hsom, Scoring};
-use super::persist::{encode, load, open, save, text, Format, Kind, ModelFile, FORMAT_VERSION};
+use super::persist::FORMAT_VERSION;
 use super::recognize::branch_seed;
 use super::reproduction::Reproduction;
 
@@ -216,23 +216,6 @@ impl Hsom {
     }
 }
 
-impl ModelFile for GestureModel {
-    fn file_kind(&self) -> Kind {
-        Kind::Several
-    }
-
-    fn read_form(bytes: &[u8], fmt: Format, path: &Path) -> Result<GestureModel, PersistError> {
-        let file = open(bytes, fmt, path)?;
-        if file.kind != Kind::Several {
-            return Ok(Hsom::read_form(bytes, fmt, path)?.into());
-        }
-        let model: GestureModel = file.decode()?;
-        model.check(path)?;
-        file.verify()?;
-        Ok(model)
-    }
-}
-
 impl GestureModel {
     /// The same model scoring recognition another way (the thresholds stay the default
     /// scoring's: compare labels, not `unknown`, with another scoring).
@@ -289,94 +272,49 @@ impl GestureModel {
         Ok(self.branch(label)?.reproduce(initial)?)
     }
 
-    /// Save: a single-gesture model exactly as [`Hsom::save`]; several gestures (`.bin` or
-    /// `.txt`) as a file of that kind, read back with every check first, written atomically.
-    pub fn save(&self, path: &Path) -> Result<(), PersistError> {
-        if self.labels.is_empty() {
-            return self.branches[0].save(path);
-        }
-        save(self, path)
-    }
-
-    /// Load a model saved by [`GestureModel::save`] or [`Hsom::save`] (the header says which
-    /// kind).
-    pub fn load(path: &Path) -> Result<GestureModel, PersistError> {
-        load(path)
-    }
-
-    /// The binary form of several gestures (header, model, checksum).
-    pub fn to_bytes(&self) -> Vec<u8> {
-        encode(Kind::Several, self, Format::Bin)
-    }
-
-    /// Read the binary form (one gesture or several); `path` only names the file in errors.
-    pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<GestureModel, PersistError> {
-        GestureModel::read_form(bytes, Format::Bin, path)
-    }
-
-    /// The text form of several gestures (header lines, JSON, checksum line).
-    pub fn to_text(&self) -> String {
-        text(self)
-    }
-
-    /// Read the text form (one gesture or several); `path` only names the file in errors.
-    pub fn from_text(text: &str, path: &Path) -> Result<GestureModel, PersistError> {
-        GestureModel::read_form(text.as_bytes(), Format::Txt, path)
-    }
-
     /// Check what was read: at least one and at most [`MAX_LABELS`] plain, distinct labels,
-    /// a branch and a valid calibration each, branches sound ([`Hsom::load`]'s checks) of the
-    /// same configuration, columns, normalisation and bottom level.
-    fn check(&self, p: &Path) -> Result<(), PersistError> {
+    /// a branch and a valid calibration each, branches sound ([`Hsom::check`]) of the events
+    /// extension, all of the same configuration, columns, normalisation and bottom level.
+    pub(super) fn check(&self) -> Result<(), String> {
         let n = self.labels.len();
         if n == 0 || n > MAX_LABELS || self.branches.len() != n || self.calibration.len() != n {
-            return Err(corrupted(
-                p,
-                format!(
-                    "{n} gesture labels, {} branches, {} calibrations: 1 to {MAX_LABELS}, one each",
-                    self.branches.len(),
-                    self.calibration.len()
-                ),
+            return Err(format!(
+                "{n} gesture labels, {} branches, {} calibrations: 1 to {MAX_LABELS}, one each",
+                self.branches.len(),
+                self.calibration.len()
             ));
         }
-        for (i, l) in self.labels.iter().enumerate() {
-            if !is_plain_label(l) || self.labels[..i].contains(l) {
-                return Err(corrupted(p, format!("gesture label {l:?}")));
-            }
-        }
         let first = &self.branches[0];
-        for (l, b) in self.labels.iter().zip(&self.branches) {
-            b.check(Kind::Several, &p.join(format!("[gesture {l}]")))?;
+        for (i, (l, b)) in self.labels.iter().zip(&self.branches).enumerate() {
+            if !is_plain_label(l) || self.labels[..i].contains(l) {
+                return Err(format!("gesture label {l:?}: plain distinct words only"));
+            }
+            if b.config.params().kind() != Algorithm::Events {
+                return Err(format!(
+                    "gesture {l:?}: several gestures need algorithm = events"
+                ));
+            }
+            b.check().map_err(|what| format!("gesture {l:?}: {what}"))?;
             let same = b.config == first.config
                 && b.columns == first.columns
                 && b.offset == first.offset
                 && b.scale == first.scale
                 && b.maps[0] == first.maps[0];
             if !same {
-                return Err(corrupted(
-                    p,
-                    format!("gesture {l:?} does not share the first gesture's bottom level"),
-                ));
-            }
-            if b.config.params().kind() != Algorithm::Events {
-                return Err(corrupted(
-                    p,
-                    format!("gesture {l:?}: several gestures need algorithm = events"),
+                return Err(format!(
+                    "gesture {l:?} does not share the first gesture's bottom level"
                 ));
             }
         }
-        for (l, c) in self.labels.iter().zip(&self.calibration) {
-            if !c.fits(first.maps.len()) {
-                return Err(corrupted(p, format!("gesture {l:?}: bad calibration")));
-            }
+        let height = first.maps.len();
+        match self
+            .labels
+            .iter()
+            .zip(&self.calibration)
+            .find(|(_, c)| !c.fits(height))
+        {
+            Some((l, _)) => Err(format!("gesture {l:?}: bad calibration")),
+            None => Ok(()),
         }
-        Ok(())
-    }
-}
-
-fn corrupted(p: &Path, what: String) -> PersistError {
-    PersistError::Corrupted {
-        path: p.to_path_buf(),
-        what,
     }
 }

@@ -75,6 +75,13 @@ pub(crate) struct PaperModel {
     pub(crate) end_hits: Vec<u32>,
 }
 
+impl PaperModel {
+    /// Its shapes against `s` (a model read from a file).
+    pub(crate) fn check(&self, s: &Shape) -> Result<(), String> {
+        sized("end nodes", self.end_hits.len(), s.nodes[0])
+    }
+}
+
 /// What the events extension reads beyond the shared part: its levels' match thresholds
 /// and held-out figures, the follower tables and exemplars it decodes with, where it places
 /// bottom events, and the traced training chunks its plans replay.
@@ -180,6 +187,113 @@ impl EventsModel {
                 .collect(),
             // nothing learned from the demonstrations
             ..NO_EVENTS.clone()
+        }
+    }
+
+    /// Its shapes and values against `s` (a model read from a file).
+    pub(crate) fn check(&self, s: &Shape) -> Result<(), String> {
+        let (h, n0, state) = (s.nodes.len(), s.nodes[0], s.state);
+        sized("match thresholds", self.threshold.len(), h)?;
+        sized("held-out accuracy", self.heldout_accuracy.len(), h)?;
+        sized("held-out lookup accuracy", self.heldout_lookup.len(), h)?;
+        let fol = (n0 + 1) * FOLLOWERS;
+        sized("follower positions", self.follower_at.len(), fol)?;
+        per_level("followers", &self.followers, |l| {
+            (s.nodes[l] + 1) * FOLLOWERS
+        })?;
+        per_level("exemplars", &self.exemplars, |l| s.nodes[l] * s.memory)?;
+        per_level("exemplar positions", &self.exemplar_phase, |l| s.nodes[l])?;
+        let acc = self.heldout_accuracy.iter().chain(&self.heldout_lookup);
+        each("held-out accuracies", acc, unit, ACCURACY)?;
+        let nonneg = |v: f64| v.is_finite() && v >= 0.0;
+        each(
+            "match thresholds",
+            &self.threshold,
+            nonneg,
+            "negative or non-finite",
+        )?;
+        let at = self
+            .follower_at
+            .iter()
+            .chain(self.exemplar_phase.iter().flatten());
+        each("follower and exemplar positions", at, position, POSITION)?;
+        for (l, f) in self.followers.iter().enumerate() {
+            indices(&format!("followers of level {l}"), f, s.nodes[l])?;
+        }
+        for (l, e) in self.exemplars.iter().enumerate() {
+            // level l's exemplars are entries of level l - 1 (none at the bottom)
+            let below = if l == 0 { 0 } else { s.nodes[l - 1] };
+            indices(&format!("exemplars of level {l}"), e, below)?;
+        }
+        let want = n0 * state;
+        if let Some(knots) = &self.knots {
+            if knots.len() != want {
+                return Err(format!(
+                    "{} posture values, the bottom level needs {want} (nodes x stateLength) or none",
+                    knots.len()
+                ));
+            }
+            each("postures", knots, normalised, NORMALISED)?;
+        }
+        for (what, p) in [("start", &self.start_posture), ("end", &self.end_posture)] {
+            if let Some(p) = p {
+                if p.len() != state {
+                    return Err(format!(
+                        "{} {what}-posture values: none or stateLength = {state} values",
+                        p.len()
+                    ));
+                }
+                each(&format!("the {what} posture"), p, normalised, NORMALISED)?;
+            }
+        }
+        if self.demo_smoothness.as_ref().is_some_and(|d| {
+            d.peak_step.len() != state
+                || ![d.jerk, d.start_step]
+                    .iter()
+                    .chain(&d.peak_step)
+                    .all(|&v| nonneg(v))
+        }) {
+            return Err(format!(
+                "the demonstrations' jerk, first step and stateLength = {state} largest steps: \
+                 none or finite values >= 0"
+            ));
+        }
+        if self.start_fade.is_some_and(|f| !(0.0..=1.0).contains(&f)) {
+            return Err("the start's fade: none or a fraction in [0, 1]".into());
+        }
+        if let Some(k) = &self.start_knots {
+            let sound = k.width > 0.0
+                && k.starts.len() >= 3
+                && k.starts.len() == k.knots.len()
+                && k.starts.iter().all(|v| v.len() == state)
+                && k.knots.iter().all(|v| v.len() == want)
+                && self.knots.is_some();
+            if !sound {
+                return Err(format!(
+                    "start-weighted postures of {} demonstrations (width {}): at least 3 \
+                     needed, each with stateLength start values and {want} posture values, a \
+                     positive finite width, and the postures stored",
+                    k.starts.len(),
+                    k.width
+                ));
+            }
+            let values = k.starts.iter().chain(&k.knots).flatten();
+            each(
+                "start-weighted postures",
+                values.chain([&k.width]),
+                normalised,
+                NORMALISED,
+            )?;
+        }
+        match &self.traces {
+            Some(t) => t
+                .check(s.memory, s.trace_places, &s.nodes)
+                .map_err(|why| format!("traces: {why}")),
+            None => Err(
+                "traces missing for a model of algorithm events: stored exactly with \
+                         algorithm = events"
+                    .into(),
+            ),
         }
     }
 }
@@ -369,6 +483,217 @@ pub(crate) struct Series<'a> {
 /// The largest magnitude of a normalised training value: squared distances over thousands
 /// of inputs stay far from overflowing.
 pub(crate) const MAX_NORMALISED: f64 = 1e100;
+
+/// The longest demonstration a model file may record, samples (a day at 1 kHz): the
+/// reproduction's length cap derives from it.
+const MAX_DEMO_SAMPLES: f64 = 1e8;
+
+/// What a model's configuration makes of its parts' shapes: what [`Hsom::check`] and each
+/// part's `check` hold a model read from a file to.
+pub(crate) struct Shape {
+    /// Nodes per level, bottom first.
+    pub(crate) nodes: Vec<usize>,
+    /// stateLength.
+    pub(crate) state: usize,
+    /// memory.
+    pub(crate) memory: usize,
+    /// Values placing each traced event ([`super::events::trace_places`]).
+    pub(crate) trace_places: usize,
+}
+
+const ACCURACY: &str = "an accuracy outside [0, 1]";
+const POSITION: &str = "a position negative or non-finite (at most 1e8)";
+const NORMALISED: &str =
+    "a normalised value beyond 1e100 or non-finite (training refuses data beyond 1e100 once normalised)";
+
+fn unit(v: f64) -> bool {
+    (0.0..=1.0).contains(&v)
+}
+
+fn position(v: f64) -> bool {
+    (0.0..=MAX_DEMO_SAMPLES).contains(&v)
+}
+
+fn normalised(v: f64) -> bool {
+    v.abs() <= MAX_NORMALISED
+}
+
+/// `found` values of `what`, `want` expected.
+fn sized(what: &str, found: usize, want: usize) -> Result<(), String> {
+    if found == want {
+        return Ok(());
+    }
+    Err(format!("{found} values of {what}, {want} expected"))
+}
+
+/// One row of `what` per level, level `l`'s of `want(l)` values.
+fn per_level<T>(what: &str, rows: &[Vec<T>], want: impl Fn(usize) -> usize) -> Result<(), String> {
+    (0..rows.len()).try_for_each(|l| sized(&format!("{what} of level {l}"), rows[l].len(), want(l)))
+}
+
+/// Every value of `what` allowed by `ok`; the first that is not, and `why` it is refused.
+fn each<'a>(
+    what: &str,
+    values: impl IntoIterator<Item = &'a f64>,
+    ok: impl Fn(f64) -> bool,
+    why: &str,
+) -> Result<(), String> {
+    match values.into_iter().find(|&&v| !ok(v)) {
+        None => Ok(()),
+        Some(v) if v.abs() >= 1e6 || v.abs() < 1e-4 && *v != 0.0 => {
+            Err(format!("{what} holds {v:e}: {why}"))
+        }
+        Some(v) => Err(format!("{what} holds {v}: {why}")),
+    }
+}
+
+/// Every entry of `what` a node of a map of `nodes` nodes, the end or the padding.
+fn indices(what: &str, entries: &[u32], nodes: usize) -> Result<(), String> {
+    match entries
+        .iter()
+        .find(|&&v| (v as usize) >= nodes && v != u32::MAX && v != super::events::END)
+    {
+        None => Ok(()),
+        Some(v) => Err(format!(
+            "{what} holds {v}: a follower or exemplar outside its map of {nodes} nodes"
+        )),
+    }
+}
+
+impl Hsom {
+    /// Every shape and value of a model read from a file against its embedded configuration
+    /// and the bounds training holds them to: the shared part here, its algorithm's part by
+    /// that part's own `check`. What is wrong, naming the field and what is allowed.
+    pub(crate) fn check(&self) -> Result<(), String> {
+        let p = self.config.params();
+        let holds = match self.algo {
+            Algo::Paper(_) => crate::config::Algorithm::Paper,
+            Algo::Events(_) => crate::config::Algorithm::Events,
+        };
+        if holds != p.kind() {
+            return Err(format!(
+                "the model holds the {} algorithm's part, the configuration algorithm {}",
+                holds.name(),
+                p.kind().name()
+            ));
+        }
+        let height = p.levels.len();
+        sized("levels", self.maps.len(), height)?;
+        for (l, (m, lp)) in self.maps.iter().zip(&p.levels).enumerate() {
+            let dim = input_dim(&self.config, l);
+            if (m.rows(), m.cols(), m.dim()) != (lp.rows, lp.cols, dim)
+                || m.topology() != lp.topology
+            {
+                return Err(format!(
+                    "level {l} is {}x{} of dimension {} ({}), the configuration says {}x{} of dimension {dim} ({})",
+                    m.rows(),
+                    m.cols(),
+                    m.dim(),
+                    m.topology().name(),
+                    lp.rows,
+                    lp.cols,
+                    lp.topology.name()
+                ));
+            }
+            each(
+                &format!("the weights of level {l}"),
+                &m.all_weights(),
+                normalised,
+                NORMALISED,
+            )?;
+        }
+        let nodes: Vec<usize> = self.maps.iter().map(|m| m.len()).collect();
+        let state = p.state_length;
+        sized("training counts", self.trained.len(), height)?;
+        sized("quantization errors", self.qe.len(), height)?;
+        sized("topographic errors", self.te.len(), height)?;
+        sized("accuracy", self.accuracy.len(), height)?;
+        sized("lookup accuracy", self.lookup.len(), height)?;
+        sized("hit counts", self.hits.len(), height)?;
+        per_level("hit counts", &self.hits, |l| nodes[l])?;
+        sized("offset", self.offset.len(), state)?;
+        sized("scale", self.scale.len(), state)?;
+        sized("column names", self.columns.len(), state)?;
+        sized("dwell", self.dwell.len(), nodes[0])?;
+        // values that size the reproduction: no demonstration is longer than the longest, no
+        // event longer than a demonstration
+        let len = self.demo_len;
+        if !(len.iter().all(|&v| position(v)) && len[0] <= len[1] + 1e-9 && len[1] <= len[2] + 1e-9)
+        {
+            return Err(format!(
+                "demonstration lengths {len:?} (shortest, mean, longest) must be ordered and at \
+                 most {MAX_DEMO_SAMPLES:e} samples"
+            ));
+        }
+        let longest = len[2];
+        each(
+            "the bottom's dwell times and events per demonstration",
+            self.dwell.iter().chain(&self.demo_runs),
+            |v| (0.0..=longest).contains(&v),
+            &format!(
+                "negative, non-finite or longer than the longest demonstration ({longest} samples)"
+            ),
+        )?;
+        each(
+            "accuracies",
+            self.accuracy.iter().chain(&self.lookup),
+            unit,
+            ACCURACY,
+        )?;
+        let finite = |v: f64| v.is_finite();
+        each(
+            "quantization and topographic errors",
+            self.qe.iter().chain(&self.te),
+            finite,
+            "non-finite",
+        )?;
+        self.check_normalisation()?;
+        let shape = Shape {
+            nodes,
+            state,
+            memory: p.memory,
+            trace_places: super::events::trace_places(p),
+        };
+        match &self.algo {
+            Algo::Paper(m) => m.check(&shape),
+            Algo::Events(e) => e.check(&shape),
+        }
+    }
+
+    /// The offset and scale training makes: with normalisation none, 0 and 1; otherwise each
+    /// variable's least value and a positive finite range that changes it when added to it
+    /// (1 for a constant variable), with normalisation global one range for all.
+    fn check_normalisation(&self) -> Result<(), String> {
+        use crate::config::Normalisation;
+        let norm = self.config.params().normalisation;
+        let first = self.scale.first().copied().unwrap_or(1.0);
+        for (d, (&o, &s)) in self.offset.iter().zip(&self.scale).enumerate() {
+            let basic = o.is_finite() && s.is_finite() && s > 0.0;
+            let (ok, allowed) = match norm {
+                Normalisation::None => (o == 0.0 && s == 1.0, "with normalisation none, offset 0 and scale 1"),
+                Normalisation::PerDimension => (
+                    basic && (s == 1.0 || o + s != o),
+                    "with normalisation perDimension, a finite offset (the variable's least value) \
+                     and a positive finite scale (its range, 1 for a constant variable) large enough \
+                     to change the offset when added to it",
+                ),
+                Normalisation::Global => (
+                    basic && s == first && (s == 1.0 || self.offset.iter().any(|&o| o + s != o)),
+                    "with normalisation global, finite offsets (each variable's least value) and one \
+                     positive finite scale for every variable (the largest range, 1 when every \
+                     variable is constant) large enough to change an offset when added to it",
+                ),
+            };
+            if !ok {
+                return Err(format!(
+                    "offset {o:e} and scale {s:e} of variable {d} ({}): training makes {allowed}",
+                    self.columns.get(d).map_or("?", |c| c.as_str())
+                ));
+            }
+        }
+        Ok(())
+    }
+}
 
 pub(crate) fn check_series(
     series: &[Series<'_>],
