@@ -21,7 +21,7 @@ use crate::demos::Demonstration;
 
 use super::algorithm::Presentation;
 use super::errors::{GestureError, HsomError, PersistError};
-use super::model::{GestureModel, Hsom, Scoring};
+use super::model::{EventsHsom, GestureModel, Hsom, Scoring};
 use super::persist::FORMAT_VERSION;
 use super::recognize::branch_seed;
 use super::reproduction::Reproduction;
@@ -139,6 +139,9 @@ impl HsomConfig {
         } else {
             cfg.initialise(&all)?
         };
+        let Hsom::Events(shared) = shared else {
+            return Err(GestureError::NeedsEvents);
+        };
         let norm: Vec<Vec<Vec<Vec<f64>>>> = sets
             .iter()
             .map(|(_, demos)| {
@@ -149,7 +152,7 @@ impl HsomConfig {
             })
             .collect();
         let seed = self.params().seed;
-        let branches: Vec<Hsom> = norm
+        let branches: Vec<EventsHsom> = norm
             .iter()
             .enumerate()
             .map(|(g, n)| {
@@ -164,23 +167,21 @@ impl HsomConfig {
         let calibration = super::recognize::calibrate(&shared, &branches, &norm, learn, seed);
         Ok(GestureModel {
             labels: sets.iter().map(|(l, _)| l.clone()).collect(),
-            branches,
+            branches: branches
+                .into_iter()
+                .map(|b| Hsom::Events(Box::new(b)))
+                .collect(),
             calibration,
             scoring: Scoring::default(),
         })
     }
 }
 
-impl Hsom {
-    /// Normalised rows.
-    pub(crate) fn normalise_rows(&self, rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
-        rows.iter().map(|r| self.normalise(r)).collect()
-    }
-
+impl EventsHsom {
     /// A branch: this model's bottom level (and normalisation) with every statistic
     /// recomputed and the upper levels trained on `norm` (normalised demonstrations of one
     /// gesture) by the events extension's own training.
-    pub(crate) fn branch(&self, norm: &[Vec<Vec<f64>>], learn: bool, seed: u64) -> Hsom {
+    pub(crate) fn branch(&self, norm: &[Vec<Vec<f64>>], learn: bool, seed: u64) -> EventsHsom {
         let mut b = self.clone();
         let h = b.maps.len();
         b.hits.iter_mut().for_each(|v| v.fill(0));
@@ -197,18 +198,12 @@ impl Hsom {
         b.dwell.fill(0.0);
         b.accuracy = vec![0.0; h];
         b.lookup = vec![0.0; h];
-        b.ev_mut().threshold = vec![0.0; h];
-        b.ev_mut().heldout_accuracy = vec![0.0; h];
-        b.ev_mut().heldout_lookup = vec![0.0; h];
-        b.ev_mut()
-            .followers
-            .iter_mut()
-            .for_each(|f| f.fill(u32::MAX));
-        b.ev_mut().follower_at.fill(0.0);
-        b.ev_mut()
-            .exemplars
-            .iter_mut()
-            .for_each(|e| e.fill(u32::MAX));
+        b.part.threshold = vec![0.0; h];
+        b.part.heldout_accuracy = vec![0.0; h];
+        b.part.heldout_lookup = vec![0.0; h];
+        b.part.followers.iter_mut().for_each(|f| f.fill(u32::MAX));
+        b.part.follower_at.fill(0.0);
+        b.part.exemplars.iter_mut().for_each(|e| e.fill(u32::MAX));
         b.replay(norm);
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         b.fit_events(norm, learn, &mut rng);
@@ -284,17 +279,18 @@ impl GestureModel {
                 self.calibration.len()
             ));
         }
-        let first = &self.branches[0];
+        let mut first: Option<&EventsHsom> = None;
         for (i, (l, b)) in self.labels.iter().zip(&self.branches).enumerate() {
             if !is_plain_label(l) || self.labels[..i].contains(l) {
                 return Err(format!("gesture label {l:?}: plain distinct words only"));
             }
-            if b.config.params().kind() != Algorithm::Events {
+            let Some(b) = b.as_events() else {
                 return Err(format!(
                     "gesture {l:?}: several gestures need algorithm = events"
                 ));
-            }
+            };
             b.check().map_err(|what| format!("gesture {l:?}: {what}"))?;
+            let first = *first.get_or_insert(b);
             let same = b.config == first.config
                 && b.columns == first.columns
                 && b.offset == first.offset
@@ -306,7 +302,7 @@ impl GestureModel {
                 ));
             }
         }
-        let height = first.maps.len();
+        let height = self.branches[0].height();
         match self
             .labels
             .iter()

@@ -1,28 +1,47 @@
 //! The trained model, described once: the types a model file is generated from
-//! ([`super::persist`]), each holding only what its algorithm reads. [`Hsom`] holds what both
-//! algorithms share (the maps, normalisation, training counts, hits, quality figures,
-//! columns, demonstration lengths and the bottom's dwell times) and [`Algo`], the part of its
-//! algorithm: [`PaperModel`] (the paper's, Table I) or [`EventsModel`] (the events
-//! extension). [`GestureModel`] is several gestures over one shared bottom level. Training
-//! lives in [`super::algorithm`] and [`super::events`], reproduction in [`super::paper`] and
+//! ([`super::persist`]), each holding only what its algorithm reads, and the checks of each
+//! against its configuration. [`Model`] holds what both algorithms share (the maps,
+//! normalisation, training counts, hits, quality figures, columns, demonstration lengths and
+//! the bottom's dwell times) and the part of its algorithm: [`PaperModel`] (the paper's,
+//! Table I) or [`EventsModel`] (the events extension). [`Hsom`] is one of the two.
+//! [`GestureModel`] is several gestures over one shared bottom level. Training lives in
+//! [`super::algorithm`] and [`super::events`], reproduction in [`super::paper`] and
 //! [`super::events`], recognition in [`super::recognize`].
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::{HsomConfig, MemoryMode};
-use crate::demos::Demonstration;
+use crate::config::HsomConfig;
 use crate::som::SelfOrganizingMap;
 
 use super::errors::HsomError;
 use super::followers::FOLLOWERS;
+use super::inputs::input_dim;
+use super::reproduction::Reproduction;
 
-/// A trained CoSCo-HSOM: one Kohonen map per level plus the few per-node statistics used by
-/// reproduction, and its algorithm's own part. Its size is bounded by the configuration and
-/// never grows with the length of the training data: the events extension keeps at most a
-/// few training chunks per node (its traces) and, with the consensus weighed by the starts
-/// where the starts are used, one placement of the bottom nodes per training demonstration.
+/// A trained CoSCo-HSOM: a model of the paper's algorithm or of the events extension, each
+/// holding only its own algorithm's part. Its size is bounded by the configuration and never
+/// grows with the length of the training data: the events extension keeps at most a few
+/// training chunks per node (its traces) and, with the consensus weighed by the starts where
+/// the starts are used, one placement of the bottom nodes per training demonstration. Its
+/// operations are in `dispatch.rs`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Hsom {
+    /// Trained by the paper's procedure (`algorithm = paper`).
+    Paper(Box<Model<PaperModel>>),
+    /// Trained by the events extension (`algorithm = events`).
+    Events(Box<Model<EventsModel>>),
+}
+
+/// A model of the paper's algorithm.
+pub(crate) type PaperHsom = Model<PaperModel>;
+/// A model of the events extension.
+pub(crate) type EventsHsom = Model<EventsModel>;
+
+/// One Kohonen map per level plus the few per-node statistics both algorithms' reproduction
+/// reads, and `part`, what only its algorithm reads ([`PaperModel`] or [`EventsModel`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Hsom {
+#[serde(bound(serialize = "A: Part", deserialize = "A: Deserialize<'de>"))]
+pub struct Model<A> {
     pub(crate) config: HsomConfig,
     /// Per-variable offset and scale: the bottom level sees (x - offset) / scale.
     pub(crate) offset: Vec<f64>,
@@ -53,40 +72,160 @@ pub struct Hsom {
     /// below, counted on the same replay, predicted that entry (0 for level 0): the simple
     /// baseline every level must beat.
     pub(crate) lookup: Vec<f64>,
-    /// What only its algorithm reads.
-    pub(crate) algo: Algo,
+    /// What only its algorithm reads; a model file names its algorithm (`Paper` or `Events`).
+    #[serde(rename = "algo", serialize_with = "tagged")]
+    pub(crate) part: A,
     /// The maps, bottom first (last in a model file).
     pub(crate) maps: Vec<SelfOrganizingMap>,
 }
 
-/// The part of a model only its algorithm reads.
+/// The part of a model only its algorithm reads, as a model file names it: read as one of
+/// the two (`Algo`), written from either borrowed (`Algo<&PaperModel, &EventsModel>`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub(crate) enum Algo {
+pub enum Algo<P = PaperModel, E = Box<EventsModel>> {
     /// The paper's procedure (`algorithm = paper`).
-    Paper(PaperModel),
+    Paper(P),
     /// The events extension (`algorithm = events`).
-    Events(Box<EventsModel>),
+    Events(E),
+}
+
+/// What an algorithm's own part tells the code both algorithms share.
+pub trait Part {
+    /// The algorithm whose part it is.
+    const ALGORITHM: crate::config::Algorithm;
+    /// The events extension's part, where the shared code reads it if there is one (the
+    /// executed curve, the consensus): `None` for the paper's.
+    fn events(&self) -> Option<&EventsModel>;
+    /// A training demonstration ends on bottom node `node` (the replay of the training data).
+    fn count_end(&mut self, _node: usize) {}
+    /// The part as a model file names it.
+    fn tagged(&self) -> Algo<&PaperModel, &EventsModel>;
+    /// Its shapes and values against `s` (a model read from a file).
+    fn check(&self, s: &Shape) -> Result<(), String>;
+    /// `model`'s reproduction from the normalised posture `y0` with the settings `p`.
+    fn reproduce(
+        model: &Model<Self>,
+        y0: Vec<f64>,
+        p: &crate::config::HsomParams,
+    ) -> Result<Reproduction, HsomError>
+    where
+        Self: Sized;
+}
+
+fn tagged<A: Part, S: serde::Serializer>(part: &A, s: S) -> Result<S::Ok, S::Error> {
+    part.tagged().serialize(s)
+}
+
+impl Part for PaperModel {
+    const ALGORITHM: crate::config::Algorithm = crate::config::Algorithm::Paper;
+    fn events(&self) -> Option<&EventsModel> {
+        None
+    }
+    fn count_end(&mut self, node: usize) {
+        self.end_hits[node] = self.end_hits[node].saturating_add(1);
+    }
+    fn tagged(&self) -> Algo<&PaperModel, &EventsModel> {
+        Algo::Paper(self)
+    }
+    fn check(&self, s: &Shape) -> Result<(), String> {
+        sized("end nodes", self.end_hits.len(), s.nodes[0])
+    }
+    fn reproduce(
+        model: &PaperHsom,
+        y0: Vec<f64>,
+        p: &crate::config::HsomParams,
+    ) -> Result<Reproduction, HsomError> {
+        model.reproduce_paper(y0, p)
+    }
+}
+
+impl Part for EventsModel {
+    const ALGORITHM: crate::config::Algorithm = crate::config::Algorithm::Events;
+    fn events(&self) -> Option<&EventsModel> {
+        Some(self)
+    }
+    fn tagged(&self) -> Algo<&PaperModel, &EventsModel> {
+        Algo::Events(self)
+    }
+    fn check(&self, s: &Shape) -> Result<(), String> {
+        self.check_part(s)
+    }
+    fn reproduce(
+        model: &EventsHsom,
+        y0: Vec<f64>,
+        p: &crate::config::HsomParams,
+    ) -> Result<Reproduction, HsomError> {
+        Ok(model.reproduce_events(&y0, &p.reproduction))
+    }
+}
+
+impl<A> Model<A> {
+    /// The same shared part with `part` for its algorithm's, and the part it held.
+    pub(crate) fn with_part<B>(self, part: B) -> (Model<B>, A) {
+        let m = Model {
+            config: self.config,
+            offset: self.offset,
+            scale: self.scale,
+            trained: self.trained,
+            hits: self.hits,
+            qe: self.qe,
+            te: self.te,
+            demo_len: self.demo_len,
+            demo_runs: self.demo_runs,
+            dwell: self.dwell,
+            columns: self.columns,
+            accuracy: self.accuracy,
+            lookup: self.lookup,
+            part,
+            maps: self.maps,
+        };
+        (m, self.part)
+    }
+}
+
+#[cfg(test)]
+impl Hsom {
+    /// The events extension's model (a test's: a model of the paper's algorithm panics).
+    pub(crate) fn into_events(self) -> EventsHsom {
+        match self {
+            Hsom::Events(m) => *m,
+            Hsom::Paper(_) => panic!("a model of the paper's algorithm"),
+        }
+    }
+}
+
+/// A model file holds either model as it is, its part named by its algorithm.
+impl Serialize for Hsom {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Hsom::Paper(m) => m.serialize(s),
+            Hsom::Events(m) => m.serialize(s),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Hsom {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let (m, part) = Model::<Algo>::deserialize(d)?.with_part(());
+        Ok(match part {
+            Algo::Paper(p) => Hsom::Paper(Box::new(m.with_part(p).0)),
+            Algo::Events(e) => Hsom::Events(Box::new(m.with_part(*e).0)),
+        })
+    }
 }
 
 /// What the paper's reproduction reads beyond the shared part.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub(crate) struct PaperModel {
+pub struct PaperModel {
     /// Per bottom node: how many demonstrations end on it.
     pub(crate) end_hits: Vec<u32>,
-}
-
-impl PaperModel {
-    /// Its shapes against `s` (a model read from a file).
-    pub(crate) fn check(&self, s: &Shape) -> Result<(), String> {
-        sized("end nodes", self.end_hits.len(), s.nodes[0])
-    }
 }
 
 /// What the events extension reads beyond the shared part: its levels' match thresholds
 /// and held-out figures, the follower tables and exemplars it decodes with, where it places
 /// bottom events, and the traced training chunks its plans replay.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub(crate) struct EventsModel {
+pub struct EventsModel {
     /// Per level: the largest partial-match distance (RMS per known
     /// coordinate) seen when the training data were replayed; a level whose match in
     /// reproduction is farther is "confused".
@@ -146,24 +285,6 @@ pub(crate) struct EventsModel {
     pub(crate) traces: Option<Traces>,
 }
 
-/// What [`Hsom::ev`] reads for a model of the paper's algorithm: nothing.
-static NO_EVENTS: EventsModel = EventsModel {
-    threshold: Vec::new(),
-    heldout_accuracy: Vec::new(),
-    heldout_lookup: Vec::new(),
-    followers: Vec::new(),
-    follower_at: Vec::new(),
-    exemplar_phase: Vec::new(),
-    exemplars: Vec::new(),
-    knots: None,
-    start_knots: None,
-    start_posture: None,
-    demo_smoothness: None,
-    start_fade: None,
-    end_posture: None,
-    traces: None,
-};
-
 impl EventsModel {
     /// The events part of an untrained model configured by `p`: nothing placed, nothing
     /// traced, every follower and exemplar the padding.
@@ -186,12 +307,18 @@ impl EventsModel {
                 .map(|l| vec![u32::MAX; nodes(l) * p.memory])
                 .collect(),
             // nothing learned from the demonstrations
-            ..NO_EVENTS.clone()
+            knots: None,
+            start_knots: None,
+            start_posture: None,
+            demo_smoothness: None,
+            start_fade: None,
+            end_posture: None,
+            traces: None,
         }
     }
 
-    /// Its shapes and values against `s` (a model read from a file).
-    pub(crate) fn check(&self, s: &Shape) -> Result<(), String> {
+    /// Its shapes and values against `s` (a model read from a file; [`Part::check`]).
+    fn check_part(&self, s: &Shape) -> Result<(), String> {
         let (h, n0, state) = (s.nodes.len(), s.nodes[0], s.state);
         sized("match thresholds", self.threshold.len(), h)?;
         sized("held-out accuracy", self.heldout_accuracy.len(), h)?;
@@ -294,41 +421,6 @@ impl EventsModel {
                          algorithm = events"
                     .into(),
             ),
-        }
-    }
-}
-
-impl Hsom {
-    /// The events extension's part (`None` for a model of the paper's algorithm).
-    pub(crate) fn events(&self) -> Option<&EventsModel> {
-        match &self.algo {
-            Algo::Events(e) => Some(e),
-            Algo::Paper(_) => None,
-        }
-    }
-
-    /// The events extension's part, to train it (`None` for the paper's algorithm).
-    pub(crate) fn events_mut(&mut self) -> Option<&mut EventsModel> {
-        match &mut self.algo {
-            Algo::Events(e) => Some(e),
-            Algo::Paper(_) => None,
-        }
-    }
-
-    /// The events extension's part where only a model of the events extension gets (its
-    /// training, planning and decoding); a model of the paper's algorithm reads an empty one.
-    pub(crate) fn ev(&self) -> &EventsModel {
-        self.events().unwrap_or(&NO_EVENTS)
-    }
-
-    /// The events extension's part, to train. Only the events extension's training calls it,
-    /// on a model built with that part from its configuration (`fit_inner`, and the branches
-    /// of a `GestureModel`, which refuses any other algorithm): a paper model is never turned
-    /// into an events model behind its configuration's back.
-    pub(crate) fn ev_mut(&mut self) -> &mut EventsModel {
-        match &mut self.algo {
-            Algo::Events(e) => e,
-            Algo::Paper(_) => unreachable!("events training on a model of the paper's algorithm"),
         }
     }
 }
@@ -439,47 +531,6 @@ pub enum Scoring {
     Relative,
 }
 
-/// Sizes of the event encoding.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Layout {
-    /// stateLength.
-    pub(crate) s: usize,
-    /// memory: entries per chunk.
-    pub(crate) k: usize,
-}
-
-impl Layout {
-    pub(crate) fn of(config: &HsomConfig) -> Self {
-        let p = config.params();
-        Layout {
-            s: p.state_length,
-            k: p.memory,
-        }
-    }
-    /// Values of one slot.
-    pub(crate) fn slot(&self) -> usize {
-        2 * self.s + 2
-    }
-    /// Values of the context.
-    pub(crate) fn ctx(&self) -> usize {
-        self.s + 2
-    }
-    /// Input length of a level above the bottom.
-    pub(crate) fn dim(&self) -> usize {
-        self.ctx() + self.k * self.slot()
-    }
-    pub(super) fn slot_range(&self, j: usize) -> std::ops::Range<usize> {
-        let o = self.ctx() + j * self.slot();
-        o..o + self.slot()
-    }
-}
-
-/// A demonstration as borrowed rows with a name for messages.
-pub(crate) struct Series<'a> {
-    pub(crate) source: &'a str,
-    pub(crate) rows: &'a [Vec<f64>],
-}
-
 /// The largest magnitude of a normalised training value: squared distances over thousands
 /// of inputs stay far from overflowing.
 pub(crate) const MAX_NORMALISED: f64 = 1e100;
@@ -490,7 +541,7 @@ const MAX_DEMO_SAMPLES: f64 = 1e8;
 
 /// What a model's configuration makes of its parts' shapes: what [`Hsom::check`] and each
 /// part's `check` hold a model read from a file to.
-pub(crate) struct Shape {
+pub struct Shape {
     /// Nodes per level, bottom first.
     pub(crate) nodes: Vec<usize>,
     /// stateLength.
@@ -560,16 +611,13 @@ fn indices(what: &str, entries: &[u32], nodes: usize) -> Result<(), String> {
     }
 }
 
-impl Hsom {
+impl<A: Part> Model<A> {
     /// Every shape and value of a model read from a file against its embedded configuration
     /// and the bounds training holds them to: the shared part here, its algorithm's part by
-    /// that part's own `check`. What is wrong, naming the field and what is allowed.
+    /// that part's own [`Part::check`]. What is wrong, naming the field and what is allowed.
     pub(crate) fn check(&self) -> Result<(), String> {
         let p = self.config.params();
-        let holds = match self.algo {
-            Algo::Paper(_) => crate::config::Algorithm::Paper,
-            Algo::Events(_) => crate::config::Algorithm::Events,
-        };
+        let holds = A::ALGORITHM;
         if holds != p.kind() {
             return Err(format!(
                 "the model holds the {} algorithm's part, the configuration algorithm {}",
@@ -654,10 +702,7 @@ impl Hsom {
             memory: p.memory,
             trace_places: super::events::trace_places(p),
         };
-        match &self.algo {
-            Algo::Paper(m) => m.check(&shape),
-            Algo::Events(e) => e.check(&shape),
-        }
+        self.part.check(&shape)
     }
 
     /// The offset and scale training makes: with normalisation none, 0 and 1; otherwise each
@@ -692,68 +737,5 @@ impl Hsom {
             }
         }
         Ok(())
-    }
-}
-
-pub(crate) fn check_series(
-    series: &[Series<'_>],
-    state: usize,
-    horizon: usize,
-) -> Result<(), HsomError> {
-    if series.is_empty() {
-        return Err(HsomError::NoDemonstrations);
-    }
-    let needed = (horizon + 1).max(2);
-    for s in series {
-        if s.rows.len() < needed {
-            return Err(HsomError::TooShort {
-                demo: s.source.to_string(),
-                rows: s.rows.len(),
-                needed,
-            });
-        }
-        for (i, r) in s.rows.iter().enumerate() {
-            if r.len() != state {
-                return Err(HsomError::DimensionMismatch {
-                    demo: s.source.to_string(),
-                    row: i,
-                    expected: state,
-                    found: r.len(),
-                });
-            }
-            if let Some(c) = r.iter().position(|v| !v.is_finite()) {
-                return Err(HsomError::NonFinite {
-                    demo: s.source.to_string(),
-                    row: i,
-                    column: c,
-                });
-            }
-        }
-    }
-    Ok(())
-}
-
-/// The demonstrations as borrowed series for training.
-pub(crate) fn demo_series(demos: &[Demonstration]) -> Vec<Series<'_>> {
-    demos
-        .iter()
-        .map(|d| Series {
-            source: &d.source,
-            rows: &d.rows,
-        })
-        .collect()
-}
-
-pub(crate) fn input_dim(config: &HsomConfig, level: usize) -> usize {
-    let p = config.params();
-    if level == 0 {
-        p.state_length + p.action_length
-    } else if p.kind() == crate::config::Algorithm::Events {
-        Layout::of(config).dim()
-    } else {
-        match p.memory_mode() {
-            MemoryMode::Lists => 2 * p.memory,
-            MemoryMode::Levels => p.levels[level - 1].rows * p.levels[level - 1].cols,
-        }
     }
 }

@@ -20,7 +20,7 @@ use crate::fsutil::write_atomic;
 
 use super::errors::PersistError;
 use super::events::trace_places;
-use super::model::{Algo, GestureModel, Hsom};
+use super::model::{Algo, EventsHsom, GestureModel, Hsom, Model, Part};
 
 /// Magic bytes opening a binary model file.
 const MAGIC: &[u8; 8] = b"COSCOHSM";
@@ -355,10 +355,10 @@ fn binary_len<T: Serialize + ?Sized>(value: &T) -> usize {
     bincode::serde::encode_to_vec(value, bincode_config()).map_or(0, |b| b.len())
 }
 
-impl Hsom {
+impl<A: Part> Model<A> {
     /// The binary file's bytes by part, in file order grouped by what they hold; they add up
     /// to the file's length (docs/BENCHMARKS.md, "The model file").
-    pub fn file_parts(&self) -> Vec<FilePart> {
+    pub(crate) fn file_parts(&self) -> Vec<FilePart> {
         const NODES: &str = "per-node statistics (hits, ends, dwell, followers, exemplars)";
         const LEVELS: &str = "per-level statistics, normalisation, lengths, columns";
         const PLACES: &str = "postures and end postures";
@@ -379,7 +379,7 @@ impl Hsom {
             // the algorithm's tag
             (LEVELS, 4),
         ];
-        match &self.algo {
+        match self.part.tagged() {
             Algo::Paper(m) => fields.push((NODES, binary_len(&m.end_hits))),
             Algo::Events(e) => fields.extend([
                 (LEVELS, binary_len(&e.threshold)),
@@ -411,12 +411,14 @@ impl Hsom {
         }
         parts
     }
+}
 
+impl EventsHsom {
     /// The most bytes the traced chunks may take in the binary form: every node of every
     /// traced level with all its chunks, a bound set by the configuration alone.
-    pub fn traced_ceiling(&self) -> usize {
+    pub(crate) fn traced_ceiling(&self) -> usize {
         let p = self.config.params();
-        let Some(t) = &self.ev().traces else {
+        let Some(t) = &self.part.traces else {
             return 0;
         };
         let (k, s) = (p.memory, trace_places(p));
@@ -461,7 +463,7 @@ impl ModelFile for Hsom {
     const READS: &'static [Kind] = &[Kind::One(Algorithm::Paper), Kind::One(Algorithm::Events)];
 
     fn file_kind(&self) -> Kind {
-        Kind::One(self.config.params().kind())
+        Kind::One(self.config().params().kind())
     }
 
     fn decode_checked(file: &Opened<'_>) -> Result<Hsom, PersistError> {
@@ -472,7 +474,7 @@ impl ModelFile for Hsom {
                 format!(
                     "the header says {}, the configuration algorithm {}",
                     file.kind.word(),
-                    model.config.params().kind().name()
+                    model.config().params().kind().name()
                 ),
             ));
         }

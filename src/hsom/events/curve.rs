@@ -4,10 +4,10 @@
 
 use super::encode::Step;
 use super::traces::HALF_PLACES;
-use crate::hsom::model::{DemoSmoothness, Hsom};
+use crate::hsom::model::{DemoSmoothness, Model, Part};
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
-impl Hsom {
+impl<A: Part> Model<A> {
     /// Postures at every sample from the executed events ([`Hsom::curve`] of
     /// [`Hsom::timed_knots`]): each event's place is reached at the middle of the event; the
     /// first knot is where the plan begins and the last where it ends ([`Hsom::knot_places`]).
@@ -39,7 +39,7 @@ impl Hsom {
     /// the mean of their first postures with the weights of their placements
     /// ([`StartKnots`](crate::hsom::model::StartKnots)); `None` without them.
     fn plan_start(&self, start: &[f64]) -> Option<Vec<f64>> {
-        let e = self.events()?;
+        let e = self.part.events()?;
         match &e.start_knots {
             Some(k) => Some(k.placed_start(start)),
             None => e.start_posture.clone(),
@@ -80,7 +80,7 @@ impl Hsom {
     /// How smooth and how fast the training demonstrations were (`None` before
     /// [`Hsom::fit_postures`] or for the paper's model).
     fn smoothness(&self) -> Option<&DemoSmoothness> {
-        self.events().and_then(|e| e.demo_smoothness.as_ref())
+        self.part.events().and_then(|e| e.demo_smoothness.as_ref())
     }
 
     /// `timed` (a plan's knots, from rest) retimed where its curve moves faster than the
@@ -167,6 +167,7 @@ impl Hsom {
             // one cut short goes on along its last node's learned action (the posture
             // actionHorizon samples later), as far as that event's second half lasts
             let ended = self
+                .part
                 .events()
                 .and_then(|e| e.end_posture.clone())
                 .filter(|_| stop == StopReason::EndEvent);
@@ -225,7 +226,7 @@ impl Hsom {
         let whole = (samples.max(2) - 1) as f64;
         // as long as the demonstrations' own offsets lasted, and no faster than they move (a
         // minimum-jerk move of d in H samples peaks at 1.875 d / H)
-        let e = self.events();
+        let e = self.part.events();
         let offset: Option<Vec<f64>> = timed.joined_from.as_ref().map(|from| {
             from.iter()
                 .zip(&timed.values)
