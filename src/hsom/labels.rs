@@ -8,7 +8,7 @@
 //! A single-gesture model (no label) loads as a [`GestureModel`] with one unlabelled branch,
 //! and is saved as an [`Hsom`]; a file of several gestures holds the labels, their
 //! recognition calibration and every branch (which holds the branch's own postures of the
-//! shared bottom nodes, [`Hsom::fit_postures`]), in the one description of
+//! shared bottom nodes, [`EventsHsom::fit_postures`]), in the one description of
 //! [`super::persist`], its header saying the kind. Older files get the "retrain" error.
 
 use std::path::PathBuf;
@@ -268,7 +268,7 @@ impl GestureModel {
     }
 
     /// Check what was read: at least one and at most [`MAX_LABELS`] plain, distinct labels,
-    /// a branch and a valid calibration each, branches sound ([`Hsom::check`]) of the events
+    /// a branch and a valid calibration each, branches sound ([`Model::check`]) of the events
     /// extension, all of the same configuration, columns, normalisation and bottom level.
     pub(super) fn check(&self) -> Result<(), String> {
         let n = self.labels.len();

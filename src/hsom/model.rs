@@ -10,7 +10,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::config::HsomConfig;
+use crate::config::{Algorithm, HsomConfig, HsomParams};
 use crate::som::SelfOrganizingMap;
 
 use super::errors::HsomError;
@@ -90,9 +90,9 @@ pub enum Algo<P = PaperModel, E = Box<EventsModel>> {
 }
 
 /// What an algorithm's own part tells the code both algorithms share.
-pub trait Part {
+pub trait Part: Sized {
     /// The algorithm whose part it is.
-    const ALGORITHM: crate::config::Algorithm;
+    const ALGORITHM: Algorithm;
     /// The events extension's part, where the shared code reads it if there is one (the
     /// executed curve, the consensus): `None` for the paper's.
     fn events(&self) -> Option<&EventsModel>;
@@ -103,13 +103,7 @@ pub trait Part {
     /// Its shapes and values against `s` (a model read from a file).
     fn check(&self, s: &Shape) -> Result<(), String>;
     /// `model`'s reproduction from the normalised posture `y0` with the settings `p`.
-    fn reproduce(
-        model: &Model<Self>,
-        y0: Vec<f64>,
-        p: &crate::config::HsomParams,
-    ) -> Result<Reproduction, HsomError>
-    where
-        Self: Sized;
+    fn reproduce(m: &Model<Self>, y0: Vec<f64>, p: &HsomParams) -> Result<Reproduction, HsomError>;
 }
 
 fn tagged<A: Part, S: serde::Serializer>(part: &A, s: S) -> Result<S::Ok, S::Error> {
@@ -117,7 +111,7 @@ fn tagged<A: Part, S: serde::Serializer>(part: &A, s: S) -> Result<S::Ok, S::Err
 }
 
 impl Part for PaperModel {
-    const ALGORITHM: crate::config::Algorithm = crate::config::Algorithm::Paper;
+    const ALGORITHM: Algorithm = Algorithm::Paper;
     fn events(&self) -> Option<&EventsModel> {
         None
     }
@@ -130,17 +124,13 @@ impl Part for PaperModel {
     fn check(&self, s: &Shape) -> Result<(), String> {
         sized("end nodes", self.end_hits.len(), s.nodes[0])
     }
-    fn reproduce(
-        model: &PaperHsom,
-        y0: Vec<f64>,
-        p: &crate::config::HsomParams,
-    ) -> Result<Reproduction, HsomError> {
-        model.reproduce_paper(y0, p)
+    fn reproduce(m: &PaperHsom, y0: Vec<f64>, p: &HsomParams) -> Result<Reproduction, HsomError> {
+        m.reproduce_paper(y0, p)
     }
 }
 
 impl Part for EventsModel {
-    const ALGORITHM: crate::config::Algorithm = crate::config::Algorithm::Events;
+    const ALGORITHM: Algorithm = Algorithm::Events;
     fn events(&self) -> Option<&EventsModel> {
         Some(self)
     }
@@ -150,12 +140,8 @@ impl Part for EventsModel {
     fn check(&self, s: &Shape) -> Result<(), String> {
         self.check_part(s)
     }
-    fn reproduce(
-        model: &EventsHsom,
-        y0: Vec<f64>,
-        p: &crate::config::HsomParams,
-    ) -> Result<Reproduction, HsomError> {
-        Ok(model.reproduce_events(&y0, &p.reproduction))
+    fn reproduce(m: &EventsHsom, y0: Vec<f64>, p: &HsomParams) -> Result<Reproduction, HsomError> {
+        Ok(m.reproduce_events(&y0, &p.reproduction))
     }
 }
 
@@ -254,7 +240,7 @@ pub struct EventsModel {
     pub(crate) exemplars: Vec<Vec<u32>>,
     /// Per bottom node, where a reproduction places its events (state part, normalised,
     /// `stateLength` values per node): the consensus of the demonstrations it was trained on
-    /// (a branch of a model of several gestures: its own gesture's; [`Hsom::fit_postures`]);
+    /// (a branch of a model of several gestures: its own gesture's; [`EventsHsom::fit_postures`]);
     /// `None`: the nodes' weights.
     pub(crate) knots: Option<Vec<f64>>,
     /// With `consensus = start`: each training demonstration's own placement of the bottom
@@ -440,7 +426,7 @@ pub(crate) struct DemoSmoothness {
 /// The consensus weighed by the starts (docs/ALGORITHM.md, section 3.7): where each training
 /// demonstration places every bottom node's events (the node's samples, of every
 /// demonstration, replaced by that demonstration's samples aligned to them, smoothed as
-/// [`Hsom::fit_postures`] smooths the consensus), and where each started. A reproduction
+/// [`EventsHsom::fit_postures`] smooths the consensus), and where each started. A reproduction
 /// weighs the demonstrations by a Gaussian of the distance between their start and its own,
 /// of the width that best predicted each training demonstration's placement from the others'
 /// (leave-one-out); all alike (`width` infinite) is a candidate, and is the plain
@@ -539,7 +525,7 @@ pub(crate) const MAX_NORMALISED: f64 = 1e100;
 /// reproduction's length cap derives from it.
 const MAX_DEMO_SAMPLES: f64 = 1e8;
 
-/// What a model's configuration makes of its parts' shapes: what [`Hsom::check`] and each
+/// What a model's configuration makes of its parts' shapes: what [`Model::check`] and each
 /// part's `check` hold a model read from a file to.
 pub struct Shape {
     /// Nodes per level, bottom first.

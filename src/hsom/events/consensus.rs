@@ -207,7 +207,7 @@ impl<A: Part> Model<A> {
     /// Where a reproduction that starts at `start` (normalised) places every bottom node's
     /// events, `stateLength` values per node: with `consensus = start` the training
     /// demonstrations' placements weighed by their starts ([`StartKnots`]); otherwise the
-    /// branch's own postures ([`Hsom::fit_postures`]) when it has them, else the nodes'
+    /// branch's own postures ([`EventsHsom::fit_postures`]) when it has them, else the nodes'
     /// weights (state part).
     pub(super) fn placement(&self, start: &[f64]) -> Vec<f64> {
         let s = self.config.params().state_length;
@@ -238,7 +238,7 @@ impl<A: Part> Model<A> {
     /// realise it: the bottom map's last training step done in batch on these values alone,
     /// i.e. per node the mean of the values of the events on it, weighted by the map's
     /// neighbourhood at its final radius around each event's node. A node no event is on
-    /// keeps its weights. Flattened, `stateLength` values per node. [`Hsom::fit_postures`]
+    /// keeps its weights. Flattened, `stateLength` values per node. [`EventsHsom::fit_postures`]
     /// gives it the demonstrations' consensus (docs/ALGORITHM.md, sections 3.7
     /// and 4).
     fn smoothed_postures(&self, sums: &NodeSums) -> Vec<f64> {
@@ -269,7 +269,7 @@ impl<A: Part> Model<A> {
 
     /// Per demonstration of `norm` (normalised), per bottom event, where that event lies in
     /// the demonstrations' consensus, as an offset from where its node is placed for a
-    /// reproduction from that demonstration's start ([`Hsom::placement`]); state part. The
+    /// reproduction from that demonstration's start ([`Model::placement`]); state part. The
     /// consensus is the mean over the event's samples of every demonstration's samples
     /// aligned to them (its own for itself): with `consensus = start`, where the starts are
     /// used, weighed by that demonstration's start as [`StartKnots`] weighs them; otherwise
@@ -363,7 +363,7 @@ impl EventsHsom {
     /// normalised demonstrations this model or branch was trained on): the demonstrations'
     /// [`consensus`] over the samples of the node's events, smoothed by the map's
     /// neighbourhood at its final radius as the bottom's last training step would
-    /// ([`Hsom::smoothed_postures`]). A reproduction follows one demonstrated sequence of
+    /// ([`Model::smoothed_postures`]). A reproduction follows one demonstrated sequence of
     /// nodes; placed at the consensus, each node's events land where the demonstrations
     /// agree, not where the one demonstration that visited it went, nor where the map's
     /// neighbourhood pulled its weights. With one demonstration there is nothing to agree
@@ -411,7 +411,7 @@ impl EventsHsom {
         self.place_traced_events(norm, &aligned);
     }
 
-    /// The nodes' places of [`Hsom::fit_postures`] (`aligned`: [`aligned_samples`] of
+    /// The nodes' places of [`EventsHsom::fit_postures`] (`aligned`: [`aligned_samples`] of
     /// `norm`).
     fn fit_node_postures(&mut self, norm: &[Vec<Vec<f64>>], aligned: &Aligned) {
         if norm.len() < 2 {
@@ -443,7 +443,7 @@ impl EventsHsom {
         self.part.start_knots = weighed.width.is_finite().then_some(weighed);
     }
 
-    /// The traced chunks' events placed ([`Traces`], [`Hsom::event_offsets`] of `norm`, the
+    /// The traced chunks' events placed ([`Traces`], [`Model::event_offsets`] of `norm`, the
     /// normalised demonstrations the traces were made from, once the nodes are placed): each
     /// traced event's offset from its node's place; where the demonstration's events do not
     /// match the traced ones (other demonstrations), none.

@@ -73,7 +73,7 @@ pub(crate) fn bottom_events<A: Part>(model: &Model<A>, demo: &[Vec<f64>]) -> Vec
 /// planned), its duration in samples, the level that planned it, and where a traced plan
 /// places it (`plan = traced`: that demonstrated event's place in the demonstrations'
 /// consensus, normalised, state part; `None`: where its node is placed,
-/// [`Hsom::placement`]).
+/// [`Model::placement`]).
 pub(super) type Step<N> = (N, f64, usize, Option<Vec<f64>>);
 
 /// How far a `reading` of a plan's execution has got along the plan, event by event: the

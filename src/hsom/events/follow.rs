@@ -73,7 +73,7 @@ impl<A: Part> Model<A> {
     /// `after` (all of them for `None`), as planned ones, as a reproduction whose plan follows
     /// that demonstration executes them: each for its node's learned mean duration (its own
     /// length where the node has none); with `plan = traced`, each at that event's place in
-    /// the consensus of `norm` ([`Hsom::event_postures`]), as a traced plan places it.
+    /// the consensus of `norm` ([`Model::event_offsets`]), as a traced plan places it.
     pub(super) fn followed(
         &self,
         norm: &[Vec<Vec<f64>>],

@@ -15,7 +15,7 @@ use crate::hsom::followers::{follower_positions, followers_table, lookup_accurac
 use crate::hsom::inputs::Layout;
 use crate::hsom::model::{EventsHsom, TracedChunk, Traces};
 
-/// What [`Hsom::replay_level`] measured.
+/// What [`EventsHsom::replay_level`] measured.
 struct LevelReplay {
     /// Per sequence, the level's BMU of each chunk: the next level's entries.
     next_items: Vec<Vec<Item>>,
@@ -52,7 +52,7 @@ impl EventsHsom {
     /// Each level's prediction accuracy and its lookup table's, held out: for every
     /// demonstration, the levels above the bottom trained again on the others (the bottom
     /// kept, fold seeds from `seed`) predict its entries, scored as in training
-    /// ([`Hsom::replay_level`]); the counts are summed over the folds. With one
+    /// ([`EventsHsom::replay_level`]); the counts are summed over the folds. With one
     /// demonstration nothing can be held out: the in-sample figures.
     fn heldout_levels(
         &self,
@@ -106,7 +106,7 @@ impl EventsHsom {
         )
     }
 
-    /// [`Hsom::fit_events`] without the held-out figures.
+    /// [`EventsHsom::fit_events`] without the held-out figures.
     fn fit_levels<R: Rng>(&mut self, norm: &[Vec<Vec<f64>>], learn: bool, rng: &mut R) {
         let cfg = self.config.clone();
         let p = cfg.params();

@@ -44,7 +44,7 @@ impl EventsHsom {
         )
     }
 
-    /// The events of [`Hsom::plan_events`]: the prefix's, then the planned ones, each (node,
+    /// The events of [`EventsHsom::plan_events`]: the prefix's, then the planned ones, each (node,
     /// duration in samples, level that planned it), and why the plan ended. The first
     /// planned events are `executed` where given (what was executed of an earlier plan: its
     /// nodes, for the durations observed): each is pushed up the lists in the plan's place,

@@ -22,7 +22,7 @@ pub(super) const TRACE_HEAD: usize = 3;
 /// demonstration, the bottom node before it (its first, for a demonstration's first chunk),
 /// the demonstration (its index among the training demonstrations), its `k^l` bottom
 /// events, where each of them lies in the demonstrations' consensus (`s` values per event,
-/// as `f32` bits, from [`Hsom::fit_postures`]; all `u32::MAX`: none), then for each level
+/// as `f32` bits, from [`EventsHsom::fit_postures`]; all `u32::MAX`: none), then for each level
 /// `m` from 1 to `l - 1` the BMUs of its `k^(l-m)` chunks of level `m`; `None` where that
 /// does not fit in `usize`. `s` is [`trace_places`]: each event's place, then its two
 /// halves'.
