@@ -165,6 +165,91 @@ fn model_statistics_that_would_size_the_reproduction_without_bound_are_refused()
     assert_eq!(Hsom::load(&p).unwrap().to_text(), text);
 }
 
+/// A model file of a small trained model, resealed (the checksum recomputed) after `edit`.
+fn resealed(edit: impl FnOnce(&mut serde_json::Value)) -> (tempfile::TempDir, std::path::PathBuf) {
+    let m = config(1, "global")
+        .fit_series(&[line(40, 1.0), line(50, 1.0)])
+        .unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("m.txt");
+    std::fs::write(&p, hsom_common::edit_model_text(&m.to_text(), edit)).unwrap();
+    (dir, p)
+}
+
+#[test]
+fn weights_beyond_what_training_makes_are_refused_naming_the_level_and_the_bound() {
+    let (_dir, p) = resealed(|m| {
+        for map in m["maps"].as_array_mut().unwrap() {
+            for w in map["weights"].as_array_mut().unwrap() {
+                *w = 1e300.into();
+            }
+        }
+    });
+    let e = Hsom::load(&p).unwrap_err();
+    assert!(matches!(e, PersistError::Corrupted { .. }), "{e}");
+    let e = e.to_string();
+    assert!(
+        e.contains("m.txt") && e.contains("weights of level 0") && e.contains("1e100"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_scale_training_cannot_make_is_refused_naming_the_normalisation() {
+    let (_dir, p) = resealed(|m| {
+        for s in m["scale"].as_array_mut().unwrap() {
+            *s = 1e-300.into();
+        }
+    });
+    let e = Hsom::load(&p).unwrap_err().to_string();
+    assert!(
+        e.contains("m.txt") && e.contains("scale 1e-300") && e.contains("normalisation global"),
+        "{e}"
+    );
+    // normalisation none keeps offset 0 and scale 1
+    let m = config(1, "none")
+        .fit_series(&[line(40, 1.0), line(50, 1.0)])
+        .unwrap();
+    let bad = hsom_common::edit_model_text(&m.to_text(), |m| m["scale"][1] = 2.0.into());
+    std::fs::write(&p, bad).unwrap();
+    let e = Hsom::load(&p).unwrap_err().to_string();
+    assert!(e.contains("offset 0 and scale 1"), "{e}");
+}
+
+#[test]
+fn a_model_file_without_its_kind_line_is_refused_quoting_a_short_prefix() {
+    let (_dir, p) = resealed(|_| {});
+    let text = std::fs::read_to_string(&p).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let without = [&lines[..2], &lines[3..]].concat().join("\n") + "\n";
+    std::fs::write(&p, hsom_common::with_checksum(&without)).unwrap();
+    let e = Hsom::load(&p).unwrap_err().to_string();
+    assert!(e.contains("m.txt") && e.contains("kind line"), "{e}");
+    assert!(e.len() < 300, "{} characters: {e}", e.len());
+}
+
+#[test]
+fn what_the_binary_form_cannot_decode_is_said_in_words() {
+    let m = config(1, "global")
+        .fit_series(&[line(40, 1.0), line(50, 1.0)])
+        .unwrap();
+    let mut b = m.to_bytes();
+    // the embedded configuration made unreadable (same length), the file resealed
+    let at = b.windows(6).position(|w| w == b"<rows>").unwrap();
+    b[at + 6] = b'x';
+    let n = b.len() - 8;
+    let sum = b[..n].iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &x| {
+        (h ^ x as u64).wrapping_mul(0x0100_0000_01b3)
+    });
+    b[n..].copy_from_slice(&sum.to_le_bytes());
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("m.bin");
+    std::fs::write(&p, &b).unwrap();
+    let e = Hsom::load(&p).unwrap_err().to_string();
+    assert!(e.contains("m.bin") && e.contains("rows"), "{e}");
+    assert!(!e.contains("OtherString") && !e.contains("Error("), "{e}");
+}
+
 const NAO: &str = include_str!("../configs/nao-gestures.xml");
 
 #[test]

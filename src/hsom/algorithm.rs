@@ -7,138 +7,12 @@ use rand_chacha::ChaCha8Rng;
 
 use crate::config::{HsomConfig, MemoryMode, Normalisation};
 use crate::demos::Demonstration;
-use crate::som::{SelfOrganizingMap, Topology};
+use crate::som::SelfOrganizingMap;
 
 use super::errors::HsomError;
+use super::inputs::{check_series, demo_series, input_dim, Series};
 use super::memory::{Memory, Stm};
-use super::model::{
-    check_series, demo_series, input_dim, Algo, EventsModel, Hsom, PaperModel, Series,
-    MAX_NORMALISED,
-};
-
-/// Quality of one level, as reported by [`Hsom::summary`].
-#[derive(Debug, Clone, PartialEq)]
-pub struct LevelSummary {
-    /// Level index (0 = bottom).
-    pub level: usize,
-    /// Grid rows.
-    pub rows: usize,
-    /// Grid columns.
-    pub cols: usize,
-    /// Topology.
-    pub topology: Topology,
-    /// Input (weight vector) length.
-    pub input_dim: usize,
-    /// Training period (updatePeriod^level).
-    pub period: u64,
-    /// Times the level was trained.
-    pub trained: u64,
-    /// Nodes that are the BMU of some training input.
-    pub nodes_used: usize,
-    /// Mean distance from each training input to its BMU (level 0: in the data's units
-    /// unless normalisation is perDimension; upper levels: in grid cells of the level below).
-    pub quantization_error: f64,
-    /// Fraction of training inputs whose two best nodes are not adjacent.
-    pub topographic_error: f64,
-    /// Fraction of the next entries of the level below predicted exactly from the partial
-    /// list on the training data (0 for the bottom level).
-    pub prediction_accuracy: f64,
-    /// The same fraction for a lookup table of "next entry given the last entry" of the level
-    /// below, counted on the same training data (the baseline the level must beat).
-    pub lookup_accuracy: f64,
-    /// `prediction_accuracy` held out (`algorithm = events`): on each training
-    /// demonstration's entries, by the levels above the bottom trained on the other
-    /// demonstrations (the in-sample figure with one demonstration; 0 with the paper's
-    /// algorithm).
-    pub heldout_prediction_accuracy: f64,
-    /// `lookup_accuracy` held out the same way: the lookup table counted on the other
-    /// demonstrations, scored on the held-out one.
-    pub heldout_lookup_accuracy: f64,
-    /// Whether reproduction may plan from this level ([`Hsom::level_trusted`]).
-    pub used_in_reproduction: bool,
-}
-
-/// How `cosco inspect` and the reports say whether reproduction plans from `level`: `-` for
-/// the bottom, `yes` or `no` above it.
-pub fn plans_word(level: usize, used_in_reproduction: bool) -> &'static str {
-    match (level, used_in_reproduction) {
-        (0, _) => "-",
-        (_, true) => "yes",
-        (_, false) => "no",
-    }
-}
-
-/// What `cosco inspect` shows: the levels, their sizes and quality.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ModelSummary {
-    /// Short-term memory mode.
-    pub memory_mode: MemoryMode,
-    /// memory (list length).
-    pub memory: usize,
-    /// updatePeriod.
-    pub update_period: usize,
-    /// stateLength.
-    pub state_length: usize,
-    /// Number of weights over all levels.
-    pub weights: usize,
-    /// Shortest, mean and longest training demonstration (samples).
-    pub demo_lengths: [f64; 3],
-    /// Shortest, mean and longest training demonstration in bottom events (runs of the
-    /// bottom BMU).
-    pub demo_events: [f64; 3],
-    /// One entry per level, bottom first.
-    pub levels: Vec<LevelSummary>,
-}
-
-impl std::fmt::Display for ModelSummary {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        writeln!(
-            f,
-            "CoSCo-HSOM: {} levels, memory {} ({:?}), updatePeriod {}, stateLength {}, {} weights",
-            self.levels.len(),
-            self.memory,
-            self.memory_mode,
-            self.update_period,
-            self.state_length,
-            self.weights
-        )?;
-        writeln!(
-            f,
-            "training demonstrations: {:.0} to {:.0} samples (mean {:.1})",
-            self.demo_lengths[0], self.demo_lengths[2], self.demo_lengths[1]
-        )?;
-        writeln!(
-            f,
-            "bottom events per demonstration: {:.0} to {:.0} (mean {:.1})",
-            self.demo_events[0], self.demo_events[2], self.demo_events[1]
-        )?;
-        writeln!(
-            f,
-            "level  size     topology    input  period  trained  used    QE        TE       acc    lookup  acc-ho lookup-ho plans"
-        )?;
-        for l in self.levels.iter().rev() {
-            writeln!(
-                f,
-                "{:<6} {:<8} {:<11} {:<6} {:<7} {:<8} {:<7} {:<9.4} {:<8.4} {:<6.3} {:<7.3} {:<6.3} {:<9.3} {}",
-                l.level,
-                format!("{}x{}", l.rows, l.cols),
-                l.topology.name(),
-                l.input_dim,
-                l.period,
-                l.trained,
-                l.nodes_used,
-                l.quantization_error,
-                l.topographic_error,
-                l.prediction_accuracy,
-                l.lookup_accuracy,
-                l.heldout_prediction_accuracy,
-                l.heldout_lookup_accuracy,
-                plans_word(l.level, l.used_in_reproduction)
-            )?;
-        }
-        Ok(())
-    }
-}
+use super::model::{EventsHsom, EventsModel, Hsom, Model, PaperModel, Part, MAX_NORMALISED};
 
 fn demo_columns(demos: &[Demonstration]) -> Vec<String> {
     demos.first().map(|d| d.columns.clone()).unwrap_or_default()
@@ -173,7 +47,9 @@ impl HsomConfig {
         progress: Option<&dyn Fn(usize, usize)>,
     ) -> Result<Hsom, HsomError> {
         let mut model = self.fit_presented(demos, progress, Presentation::InOrder)?;
-        model.learn_postures(demos.iter().map(|d| d.rows.as_slice()));
+        if let Hsom::Events(m) = &mut model {
+            m.learn_postures(demos.iter().map(|d| d.rows.as_slice()));
+        }
         Ok(model)
     }
 
@@ -224,8 +100,8 @@ impl HsomConfig {
             .map(|i| format!("x{i}"))
             .collect();
         let mut model = self.fit_inner(&s, None, learn, columns, Presentation::InOrder)?;
-        if learn {
-            model.learn_postures(series.iter().map(|r| r.as_slice()));
+        if let (true, Hsom::Events(m)) = (learn, &mut model) {
+            m.learn_postures(series.iter().map(|r| r.as_slice()));
         }
         Ok(model)
     }
@@ -452,7 +328,7 @@ impl HsomConfig {
             }
         }
         let lens: Vec<f64> = series.iter().map(|s| s.rows.len() as f64).collect();
-        let mut model = Hsom {
+        let model = Model {
             config: self.clone(),
             maps,
             offset,
@@ -471,33 +347,32 @@ impl HsomConfig {
             columns,
             accuracy: vec![0.0; p.height],
             lookup: vec![0.0; p.height],
-            algo: if events {
-                Algo::Events(Box::new(EventsModel::untrained(p)))
-            } else {
-                Algo::Paper(PaperModel {
-                    end_hits: vec![0; p.levels[0].rows * p.levels[0].cols],
-                })
-            },
+            part: (),
         };
-        model.replay(&norm);
         if events {
-            model.fit_events(&norm, learn, &mut rng);
+            let (mut m, ()) = model.with_part(EventsModel::untrained(p));
+            m.replay(&norm);
+            m.fit_events(&norm, learn, &mut rng);
+            return Ok(Hsom::Events(Box::new(m)));
         }
-        Ok(model)
+        let end_hits = vec![0; p.levels[0].rows * p.levels[0].cols];
+        let (mut m, ()) = model.with_part(PaperModel { end_hits });
+        m.replay(&norm);
+        Ok(Hsom::Paper(Box::new(m)))
     }
 }
 
-impl Hsom {
-    /// With the events extension, where reproduction places each bottom node's events,
-    /// learned from these (raw) demonstrations ([`Hsom::fit_postures`]). A bottom shared by
-    /// several gestures gets none of its own: each branch learns its own.
+impl EventsHsom {
+    /// Where reproduction places each bottom node's events, learned from these (raw)
+    /// demonstrations ([`EventsHsom::fit_postures`]). A bottom shared by several gestures
+    /// gets none of its own: each branch learns its own.
     fn learn_postures<'a>(&mut self, demos: impl Iterator<Item = &'a [Vec<f64>]>) {
-        if self.config.params().kind() == crate::config::Algorithm::Events {
-            let norm: Vec<Vec<Vec<f64>>> = demos.map(|rows| self.normalise_rows(rows)).collect();
-            self.fit_postures(&norm);
-        }
+        let norm: Vec<Vec<Vec<f64>>> = demos.map(|rows| self.normalise_rows(rows)).collect();
+        self.fit_postures(&norm);
     }
+}
 
+impl<A: Part> Model<A> {
     /// Replay the (normalised) training data through the trained maps, without learning, with
     /// the training schedule restarted at every demonstration: node usage, end nodes, QE, TE.
     pub(super) fn replay(&mut self, norm: &[Vec<Vec<f64>>]) {
@@ -556,8 +431,8 @@ impl Hsom {
                     usize::from(self.maps[0].len() > 1 && !self.maps[0].are_neighbours(a, b));
                 count[0] += 1;
                 self.hits[0][a] = self.hits[0][a].saturating_add(1);
-                if let (true, Algo::Paper(m)) = (pos + 2 == demo.len(), &mut self.algo) {
-                    m.end_hits[a] = m.end_hits[a].saturating_add(1);
+                if pos + 2 == demo.len() {
+                    self.part.count_end(a);
                 }
                 let guess = if events {
                     None
@@ -683,6 +558,11 @@ impl Hsom {
             .collect()
     }
 
+    /// Normalised rows.
+    pub(crate) fn normalise_rows(&self, rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        rows.iter().map(|r| self.normalise(r)).collect()
+    }
+
     /// Back to the data's units: y * scale + offset.
     pub(crate) fn denormalise(&self, y: &[f64]) -> Vec<f64> {
         y.iter()
@@ -691,22 +571,6 @@ impl Hsom {
             .collect()
     }
 
-    /// The validated configuration the model was trained with.
-    pub fn config(&self) -> &HsomConfig {
-        &self.config
-    }
-    /// The maps, bottom first.
-    pub fn maps(&self) -> &[SelfOrganizingMap] {
-        &self.maps
-    }
-    /// Times each level was trained (bottom first).
-    pub fn trained_counts(&self) -> &[u64] {
-        &self.trained
-    }
-    /// Number of levels.
-    pub fn height(&self) -> usize {
-        self.maps.len()
-    }
     /// Level `level` (>= 1) predicts the next entry of the list of `level - 1` from its
     /// `offset` or more newest entries (as in reproduction: known entries in the oldest
     /// slots, rounded ID clamped to the grid); `None` with too little history or activity
@@ -743,61 +607,5 @@ impl Hsom {
             .round()
             .clamp(0.0, below.rows() as f64 - 1.0) as u16;
         Some(below.index((x, y)))
-    }
-
-    /// Per level (>= 1): the fraction of the entries of the level below that the level
-    /// predicted exactly from the partial list when the training data were replayed (0 for
-    /// the bottom level or without lists).
-    pub fn prediction_accuracy(&self) -> &[f64] {
-        &self.accuracy
-    }
-
-    /// Names of the variables (the demonstrations' columns; `x0`, `x1`, ... when trained on
-    /// plain series).
-    pub fn columns(&self) -> &[String] {
-        &self.columns
-    }
-
-    /// Levels, sizes, node usage, quantization and topographic error per level (computed on
-    /// the training data when the model was trained).
-    pub fn summary(&self) -> ModelSummary {
-        let p = self.config.params();
-        // the events extension's held-out figures (0 with the paper's algorithm)
-        let held_out = |f: fn(&EventsModel) -> &Vec<f64>, l: usize| {
-            self.events()
-                .and_then(|e| f(e).get(l).copied())
-                .unwrap_or(0.0)
-        };
-        ModelSummary {
-            memory_mode: p.memory_mode(),
-            memory: p.memory,
-            update_period: p.update_period(),
-            state_length: p.state_length,
-            weights: self.maps.iter().map(|m| m.all_weights().len()).sum(),
-            demo_lengths: self.demo_len,
-            demo_events: self.demo_runs,
-            levels: self
-                .maps
-                .iter()
-                .enumerate()
-                .map(|(l, m)| LevelSummary {
-                    level: l,
-                    rows: m.rows(),
-                    cols: m.cols(),
-                    topology: m.topology(),
-                    input_dim: m.dim(),
-                    period: self.config.period(l),
-                    trained: self.trained[l],
-                    nodes_used: self.hits[l].iter().filter(|&&h| h > 0).count(),
-                    quantization_error: self.qe[l],
-                    topographic_error: self.te[l],
-                    prediction_accuracy: self.accuracy.get(l).copied().unwrap_or(0.0),
-                    lookup_accuracy: self.lookup.get(l).copied().unwrap_or(0.0),
-                    heldout_prediction_accuracy: held_out(|e| &e.heldout_accuracy, l),
-                    heldout_lookup_accuracy: held_out(|e| &e.heldout_lookup, l),
-                    used_in_reproduction: self.level_trusted(l),
-                })
-                .collect(),
-        }
     }
 }

@@ -8,10 +8,10 @@
 //! A single-gesture model (no label) loads as a [`GestureModel`] with one unlabelled branch,
 //! and is saved as an [`Hsom`]; a file of several gestures holds the labels, their
 //! recognition calibration and every branch (which holds the branch's own postures of the
-//! shared bottom nodes, [`Hsom::fit_postures`]), in the one description of
+//! shared bottom nodes, [`EventsHsom::fit_postures`]), in the one description of
 //! [`super::persist`], its header saying the kind. Older files get the "retrain" error.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -21,8 +21,8 @@ use crate::demos::Demonstration;
 
 use super::algorithm::Presentation;
 use super::errors::{GestureError, HsomError, PersistError};
-use super::model::{GestureModel, Hsom, Scoring};
-use super::persist::{encode, load, open, save, text, Format, Kind, ModelFile, FORMAT_VERSION};
+use super::model::{EventsHsom, GestureModel, Hsom, Scoring};
+use super::persist::FORMAT_VERSION;
 use super::recognize::branch_seed;
 use super::reproduction::Reproduction;
 
@@ -139,6 +139,9 @@ impl HsomConfig {
         } else {
             cfg.initialise(&all)?
         };
+        let Hsom::Events(shared) = shared else {
+            return Err(GestureError::NeedsEvents);
+        };
         let norm: Vec<Vec<Vec<Vec<f64>>>> = sets
             .iter()
             .map(|(_, demos)| {
@@ -149,7 +152,7 @@ impl HsomConfig {
             })
             .collect();
         let seed = self.params().seed;
-        let branches: Vec<Hsom> = norm
+        let branches: Vec<EventsHsom> = norm
             .iter()
             .enumerate()
             .map(|(g, n)| {
@@ -164,23 +167,21 @@ impl HsomConfig {
         let calibration = super::recognize::calibrate(&shared, &branches, &norm, learn, seed);
         Ok(GestureModel {
             labels: sets.iter().map(|(l, _)| l.clone()).collect(),
-            branches,
+            branches: branches
+                .into_iter()
+                .map(|b| Hsom::Events(Box::new(b)))
+                .collect(),
             calibration,
             scoring: Scoring::default(),
         })
     }
 }
 
-impl Hsom {
-    /// Normalised rows.
-    pub(crate) fn normalise_rows(&self, rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
-        rows.iter().map(|r| self.normalise(r)).collect()
-    }
-
+impl EventsHsom {
     /// A branch: this model's bottom level (and normalisation) with every statistic
     /// recomputed and the upper levels trained on `norm` (normalised demonstrations of one
     /// gesture) by the events extension's own training.
-    pub(crate) fn branch(&self, norm: &[Vec<Vec<f64>>], learn: bool, seed: u64) -> Hsom {
+    pub(crate) fn branch(&self, norm: &[Vec<Vec<f64>>], learn: bool, seed: u64) -> EventsHsom {
         let mut b = self.clone();
         let h = b.maps.len();
         b.hits.iter_mut().for_each(|v| v.fill(0));
@@ -197,39 +198,16 @@ impl Hsom {
         b.dwell.fill(0.0);
         b.accuracy = vec![0.0; h];
         b.lookup = vec![0.0; h];
-        b.ev_mut().threshold = vec![0.0; h];
-        b.ev_mut().heldout_accuracy = vec![0.0; h];
-        b.ev_mut().heldout_lookup = vec![0.0; h];
-        b.ev_mut()
-            .followers
-            .iter_mut()
-            .for_each(|f| f.fill(u32::MAX));
-        b.ev_mut().follower_at.fill(0.0);
-        b.ev_mut()
-            .exemplars
-            .iter_mut()
-            .for_each(|e| e.fill(u32::MAX));
+        b.part.threshold = vec![0.0; h];
+        b.part.heldout_accuracy = vec![0.0; h];
+        b.part.heldout_lookup = vec![0.0; h];
+        b.part.followers.iter_mut().for_each(|f| f.fill(u32::MAX));
+        b.part.follower_at.fill(0.0);
+        b.part.exemplars.iter_mut().for_each(|e| e.fill(u32::MAX));
         b.replay(norm);
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         b.fit_events(norm, learn, &mut rng);
         b
-    }
-}
-
-impl ModelFile for GestureModel {
-    fn file_kind(&self) -> Kind {
-        Kind::Several
-    }
-
-    fn read_form(bytes: &[u8], fmt: Format, path: &Path) -> Result<GestureModel, PersistError> {
-        let file = open(bytes, fmt, path)?;
-        if file.kind != Kind::Several {
-            return Ok(Hsom::read_form(bytes, fmt, path)?.into());
-        }
-        let model: GestureModel = file.decode()?;
-        model.check(path)?;
-        file.verify()?;
-        Ok(model)
     }
 }
 
@@ -289,94 +267,50 @@ impl GestureModel {
         Ok(self.branch(label)?.reproduce(initial)?)
     }
 
-    /// Save: a single-gesture model exactly as [`Hsom::save`]; several gestures (`.bin` or
-    /// `.txt`) as a file of that kind, read back with every check first, written atomically.
-    pub fn save(&self, path: &Path) -> Result<(), PersistError> {
-        if self.labels.is_empty() {
-            return self.branches[0].save(path);
-        }
-        save(self, path)
-    }
-
-    /// Load a model saved by [`GestureModel::save`] or [`Hsom::save`] (the header says which
-    /// kind).
-    pub fn load(path: &Path) -> Result<GestureModel, PersistError> {
-        load(path)
-    }
-
-    /// The binary form of several gestures (header, model, checksum).
-    pub fn to_bytes(&self) -> Vec<u8> {
-        encode(Kind::Several, self, Format::Bin)
-    }
-
-    /// Read the binary form (one gesture or several); `path` only names the file in errors.
-    pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<GestureModel, PersistError> {
-        GestureModel::read_form(bytes, Format::Bin, path)
-    }
-
-    /// The text form of several gestures (header lines, JSON, checksum line).
-    pub fn to_text(&self) -> String {
-        text(self)
-    }
-
-    /// Read the text form (one gesture or several); `path` only names the file in errors.
-    pub fn from_text(text: &str, path: &Path) -> Result<GestureModel, PersistError> {
-        GestureModel::read_form(text.as_bytes(), Format::Txt, path)
-    }
-
     /// Check what was read: at least one and at most [`MAX_LABELS`] plain, distinct labels,
-    /// a branch and a valid calibration each, branches sound ([`Hsom::load`]'s checks) of the
-    /// same configuration, columns, normalisation and bottom level.
-    fn check(&self, p: &Path) -> Result<(), PersistError> {
+    /// a branch and a valid calibration each, branches sound ([`Model::check`]) of the events
+    /// extension, all of the same configuration, columns, normalisation and bottom level.
+    pub(super) fn check(&self) -> Result<(), String> {
         let n = self.labels.len();
         if n == 0 || n > MAX_LABELS || self.branches.len() != n || self.calibration.len() != n {
-            return Err(corrupted(
-                p,
-                format!(
-                    "{n} gesture labels, {} branches, {} calibrations: 1 to {MAX_LABELS}, one each",
-                    self.branches.len(),
-                    self.calibration.len()
-                ),
+            return Err(format!(
+                "{n} gesture labels, {} branches, {} calibrations: 1 to {MAX_LABELS}, one each",
+                self.branches.len(),
+                self.calibration.len()
             ));
         }
-        for (i, l) in self.labels.iter().enumerate() {
+        let mut first: Option<&EventsHsom> = None;
+        for (i, (l, b)) in self.labels.iter().zip(&self.branches).enumerate() {
             if !is_plain_label(l) || self.labels[..i].contains(l) {
-                return Err(corrupted(p, format!("gesture label {l:?}")));
+                return Err(format!("gesture label {l:?}: plain distinct words only"));
             }
-        }
-        let first = &self.branches[0];
-        for (l, b) in self.labels.iter().zip(&self.branches) {
-            b.check(Kind::Several, &p.join(format!("[gesture {l}]")))?;
+            let Some(b) = b.as_events() else {
+                return Err(format!(
+                    "gesture {l:?}: several gestures need algorithm = events"
+                ));
+            };
+            b.check().map_err(|what| format!("gesture {l:?}: {what}"))?;
+            let first = *first.get_or_insert(b);
             let same = b.config == first.config
                 && b.columns == first.columns
                 && b.offset == first.offset
                 && b.scale == first.scale
                 && b.maps[0] == first.maps[0];
             if !same {
-                return Err(corrupted(
-                    p,
-                    format!("gesture {l:?} does not share the first gesture's bottom level"),
-                ));
-            }
-            if b.config.params().kind() != Algorithm::Events {
-                return Err(corrupted(
-                    p,
-                    format!("gesture {l:?}: several gestures need algorithm = events"),
+                return Err(format!(
+                    "gesture {l:?} does not share the first gesture's bottom level"
                 ));
             }
         }
-        for (l, c) in self.labels.iter().zip(&self.calibration) {
-            if !c.fits(first.maps.len()) {
-                return Err(corrupted(p, format!("gesture {l:?}: bad calibration")));
-            }
+        let height = self.branches[0].height();
+        match self
+            .labels
+            .iter()
+            .zip(&self.calibration)
+            .find(|(_, c)| !c.fits(height))
+        {
+            Some((l, _)) => Err(format!("gesture {l:?}: bad calibration")),
+            None => Ok(()),
         }
-        Ok(())
-    }
-}
-
-fn corrupted(p: &Path, what: String) -> PersistError {
-    PersistError::Corrupted {
-        path: p.to_path_buf(),
-        what,
     }
 }

@@ -3,11 +3,13 @@
 //! exponential update schedule, reproduction from an initial posture, save and load.
 //!
 //! Where to look: `model.rs` describes the trained model once (the part both algorithms read,
-//! and the paper's or the events extension's own part); `algorithm.rs` trains it; `paper.rs`
-//! holds the paper's reproduction, and [`Hsom::reproduce`] starts there for both algorithms,
-//! handing the events extension's models to `events/` (its plans in `events/plan.rs`, the
-//! executed curve in `events/curve.rs`); `labels.rs` and `recognize.rs` are several gestures
-//! and their recognition; `persist.rs` writes and reads model files.
+//! and the paper's or the events extension's own part) with the checks of each part;
+//! [`Hsom`] is a model of one algorithm or the other, and `dispatch.rs` hands each operation
+//! to it; `algorithm.rs` trains it on what `inputs.rs` checks; `paper.rs` holds the paper's
+//! reproduction and the one entry of both algorithms' (the events extension's in `events/`:
+//! its plans in `events/plan.rs`, the executed curve in `events/curve.rs`); `summary.rs` is
+//! what `cosco inspect` shows; `labels.rs` and `recognize.rs` are several gestures and their
+//! recognition; `persist.rs` writes and reads model files of either kind.
 //!
 //! ```no_run
 //! use cosco_hsom::config::load_config;
@@ -21,9 +23,11 @@
 //! ```
 
 mod algorithm;
+mod dispatch;
 mod errors;
 mod events;
 mod followers;
+mod inputs;
 mod labels;
 mod memory;
 mod model;
@@ -32,8 +36,8 @@ mod persist;
 mod recognize;
 mod record;
 mod reproduction;
+mod summary;
 
-pub use algorithm::{plans_word, LevelSummary, ModelSummary};
 pub use errors::{GestureError, HsomError, PersistError};
 pub use labels::{is_plain_label, GESTURES_FORMAT_VERSION, MAX_LABELS};
 pub use memory::{ActivityLevels, ActivityList};
@@ -41,3 +45,4 @@ pub use model::{GestureModel, Hsom, Scoring};
 pub use persist::{FilePart, FORMAT_VERSION};
 pub use recognize::{Recognition, PREFIX_BLEND};
 pub use reproduction::{Reproduction, StopReason};
+pub use summary::{plans_word, LevelSummary, ModelSummary};

@@ -1,21 +1,22 @@
 //! The paper's reproduction from an initial posture (paper III-C.2, Table I): the levels'
 //! predictions through activity lists (or, as the baseline, activity levels), decoded to the
-//! bottom's next posture. [`Hsom::reproduce`] starts here for both algorithms and hands the
+//! bottom's next posture. [`Model::reproduce`] starts here for both algorithms and hands the
 //! events extension's models to [`super::events`]. See docs/ALGORITHM.md for every choice the
 //! paper leaves open.
 
 use crate::config::{
-    IdDecoding, MemoryMode, PaperParams, ReproductionParams, StopRule, PAPER_MIN_LENGTH_FRACTION,
-    PAPER_STATIONARY_STEPS, PAPER_STATIONARY_TOLERANCE,
+    ConfigError, HsomParams, IdDecoding, MemoryMode, PaperParams, ReproductionParams, StopRule,
+    PAPER_MIN_LENGTH_FRACTION, PAPER_STATIONARY_STEPS, PAPER_STATIONARY_TOLERANCE,
 };
 
 use super::errors::HsomError;
+use super::inputs::input_dim;
 use super::memory::{Memory, Stm};
-use super::model::{input_dim, Algo, Hsom, PaperModel};
+use super::model::{Model, PaperHsom, Part};
 use super::reproduction::{Reproduction, StopReason};
 
 struct Gen<'a> {
-    m: &'a Hsom,
+    m: &'a PaperHsom,
     /// Per bottom node, how many demonstrations end on it ([`PaperModel`]).
     ends: &'a [u32],
     r: &'a ReproductionParams,
@@ -269,7 +270,7 @@ impl Gen<'_> {
     }
 }
 
-impl Hsom {
+impl<A: Part> Model<A> {
     /// An initial posture a reproduction can start from: `stateLength` finite values.
     pub(crate) fn check_initial(&self, initial: &[f64]) -> Result<(), HsomError> {
         let state = self.config.params().state_length;
@@ -293,32 +294,46 @@ impl Hsom {
 
     /// Reproduce the learned gesture from `initial` (a posture of `stateLength` values, in the
     /// data's units) with the configuration's reproduction settings.
-    pub fn reproduce(&self, initial: &[f64]) -> Result<Reproduction, HsomError> {
+    pub(crate) fn reproduce(&self, initial: &[f64]) -> Result<Reproduction, HsomError> {
         self.reproduce_with(initial, &self.config.params().reproduction)
     }
 
     /// Reproduce with other reproduction settings; out-of-range values are an error, as
     /// [`HsomConfig::with_reproduction`](crate::config::HsomConfig::with_reproduction) says.
-    pub fn reproduce_with(
+    /// The paper's reproduction ([`PaperHsom::reproduce_paper`]) or the events extension's.
+    pub(crate) fn reproduce_with(
         &self,
         initial: &[f64],
         r: &ReproductionParams,
     ) -> Result<Reproduction, HsomError> {
         let checked = self.config.clone().with_reproduction(r.clone())?;
-        let p = checked.params();
         self.check_initial(initial)?;
+        let y0 = self.normalise(initial);
+        let mut rep = A::reproduce(self, y0, checked.params())?;
+        rep.truncate(checked.params().reproduction.max_length);
+        Ok(rep)
+    }
+}
+
+impl PaperHsom {
+    /// The paper's reproduction from the normalised posture `y0` with the settings `p`.
+    pub(crate) fn reproduce_paper(
+        &self,
+        y0: Vec<f64>,
+        p: &HsomParams,
+    ) -> Result<Reproduction, HsomError> {
         let state = p.state_length;
         let r = &p.reproduction;
-        let y0 = self.normalise(initial);
+        // a paper model's configuration is the paper's: so trained, and checked on loading
         let Some(q) = p.paper() else {
-            let mut rep = self.reproduce_events(&y0, r);
-            rep.truncate(r.max_length);
-            return Ok(rep);
+            return Err(HsomError::Config(ConfigError::Invalid {
+                file: self.config.source().to_string(),
+                field: "algorithm".into(),
+                value: p.kind().name().into(),
+                reason: "the model holds the paper's algorithm's part".into(),
+            }));
         };
-        let ends: &[u32] = match &self.algo {
-            Algo::Paper(PaperModel { end_hits }) => end_hits,
-            Algo::Events(_) => &[],
-        };
+        let ends = &self.part.end_hits;
         let mut g = Gen {
             m: self,
             ends,

@@ -20,8 +20,7 @@ use crate::fsutil::write_atomic;
 
 use super::errors::PersistError;
 use super::events::trace_places;
-use super::followers::FOLLOWERS;
-use super::model::{input_dim, Algo, Hsom};
+use super::model::{Algo, EventsHsom, GestureModel, Hsom, Model, Part};
 
 /// Magic bytes opening a binary model file.
 const MAGIC: &[u8; 8] = b"COSCOHSM";
@@ -31,13 +30,10 @@ const TEXT_MAGIC: &str = "cosco-hsom model";
 pub const FORMAT_VERSION: u32 = 24;
 /// The most bytes a model file may hold (what bincode may be asked to read).
 const MAX_MODEL_BYTES: usize = 1 << 30;
-/// The longest demonstration a model file may record, samples (a day at 1 kHz): the
-/// reproduction's length cap derives from it.
-const MAX_DEMO_SAMPLES: f64 = 1e8;
 
 /// What a model file holds: one gesture (of an algorithm) or several (the events extension).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Kind {
+enum Kind {
     One(Algorithm),
     Several,
 }
@@ -66,12 +62,12 @@ impl Kind {
 
 /// The file's form, from its extension.
 #[derive(Debug, Clone, Copy)]
-pub(super) enum Format {
+enum Format {
     Bin,
     Txt,
 }
 
-pub(super) fn ext(path: &Path) -> Result<Format, PersistError> {
+fn ext(path: &Path) -> Result<Format, PersistError> {
     match path
         .extension()
         .and_then(|e| e.to_str())
@@ -108,6 +104,31 @@ fn corrupted(path: &Path, what: String) -> PersistError {
     }
 }
 
+/// `line` quoted, at most its first 40 characters (a model's line is kilobytes long).
+fn quoted(line: &str) -> String {
+    match line.char_indices().nth(40) {
+        Some((i, _)) => format!("{:?}...", &line[..i]),
+        None => format!("{line:?}"),
+    }
+}
+
+/// What bincode could not decode, in words (its own text is its debug form).
+fn decode_error(e: bincode::error::DecodeError) -> String {
+    use bincode::error::DecodeError as E;
+    match e {
+        // serde's words: a value the description refuses, a map of the wrong size, ...
+        E::OtherString(s) => s,
+        E::Other(s) => s.to_string(),
+        E::UnexpectedVariant {
+            type_name, found, ..
+        } => format!("variant {found} of {type_name}, which has no such variant"),
+        E::InvalidBooleanValue(v) => format!("a yes-or-no byte of {v}, where 0 or 1 is allowed"),
+        E::Utf8 { .. } | E::InvalidCharEncoding(_) => "a text that is not UTF-8".into(),
+        E::OutsideUsizeRange(v) => format!("a length of {v}, beyond what this machine can hold"),
+        _ => "bytes that are not a model of this format".into(),
+    }
+}
+
 fn truncated(path: &Path, what: &str) -> PersistError {
     PersistError::Truncated {
         path: path.to_path_buf(),
@@ -116,7 +137,7 @@ fn truncated(path: &Path, what: &str) -> PersistError {
 }
 
 /// `value` of `kind` in the form `fmt`: header, model, checksum.
-pub(super) fn encode<T: Serialize>(kind: Kind, value: &T, fmt: Format) -> Vec<u8> {
+fn encode<T: Serialize>(kind: Kind, value: &T, fmt: Format) -> Vec<u8> {
     match fmt {
         Format::Bin => {
             let mut b = MAGIC.to_vec();
@@ -145,8 +166,8 @@ pub(super) fn encode<T: Serialize>(kind: Kind, value: &T, fmt: Format) -> Vec<u8
 }
 
 /// A model file whose header was read: its kind, its model's bytes, and the checksum.
-pub(super) struct Opened<'a> {
-    pub(super) kind: Kind,
+struct Opened<'a> {
+    kind: Kind,
     fmt: Format,
     body: &'a [u8],
     signed: &'a [u8],
@@ -156,11 +177,7 @@ pub(super) struct Opened<'a> {
 
 /// Read the header of `bytes` (a file of form `fmt`): magic, then version (older: the
 /// "retrain" error; newer: "written by a newer version"), then kind, before anything else.
-pub(super) fn open<'a>(
-    bytes: &'a [u8],
-    fmt: Format,
-    path: &'a Path,
-) -> Result<Opened<'a>, PersistError> {
+fn open<'a>(bytes: &'a [u8], fmt: Format, path: &'a Path) -> Result<Opened<'a>, PersistError> {
     let version = |found: u32| match found {
         v if v == FORMAT_VERSION => Ok(()),
         v if v < FORMAT_VERSION => Err(PersistError::Version {
@@ -174,12 +191,12 @@ pub(super) fn open<'a>(
             expected: FORMAT_VERSION,
         }),
     };
-    let bad_kind = |k: &dyn std::fmt::Debug| {
+    let bad_kind = |k: String| {
         corrupted(
             path,
             format!(
-                "kind {k:?}; known: {}",
-                Kind::ALL.map(|k| k.word()).join(", ")
+                "kind line {k}; known: kind {}",
+                Kind::ALL.map(|k| k.word()).join(", kind ")
             ),
         )
     };
@@ -200,7 +217,7 @@ pub(super) fn open<'a>(
             let kind = Kind::ALL
                 .into_iter()
                 .find(|k| k.bytes() == kb)
-                .ok_or_else(|| bad_kind(&kb))?;
+                .ok_or_else(|| bad_kind(format!("{kb:?}")))?;
             let (signed, sum) = bytes.split_at(bytes.len() - 8);
             let mut stored = [0u8; 8];
             stored.copy_from_slice(sum);
@@ -233,14 +250,14 @@ pub(super) fn open<'a>(
             let found = l
                 .strip_prefix("version ")
                 .and_then(|v| v.trim().parse::<u32>().ok())
-                .ok_or_else(|| corrupted(path, format!("bad version line {l:.40?}")))?;
+                .ok_or_else(|| corrupted(path, format!("bad version line {}", quoted(l))))?;
             version(found)?;
             let l = next("kind line")?;
             let word = l.strip_prefix("kind ").unwrap_or("");
             let kind = Kind::ALL
                 .into_iter()
                 .find(|k| k.word() == word)
-                .ok_or_else(|| bad_kind(&l))?;
+                .ok_or_else(|| bad_kind(quoted(l)))?;
             // the checksum is the last line, over everything before it
             let body_end = text.trim_end_matches('\n').rfind('\n').map_or(0, |i| i + 1);
             let stored = text[body_end..]
@@ -264,7 +281,7 @@ pub(super) fn open<'a>(
 
 impl Opened<'_> {
     /// The model the file holds, decoded (not yet checked).
-    pub(super) fn decode<T: for<'de> Deserialize<'de>>(&self) -> Result<T, PersistError> {
+    fn decode<T: for<'de> Deserialize<'de>>(&self) -> Result<T, PersistError> {
         match self.fmt {
             Format::Bin => {
                 use bincode::error::DecodeError;
@@ -274,7 +291,7 @@ impl Opened<'_> {
                             DecodeError::UnexpectedEnd { .. } | DecodeError::LimitExceeded => {
                                 truncated(self.path, "the model ends early")
                             }
-                            e => corrupted(self.path, e.to_string()),
+                            e => corrupted(self.path, decode_error(e)),
                         },
                     )?;
                 if read != self.body.len() {
@@ -300,7 +317,7 @@ impl Opened<'_> {
     }
 
     /// The checksum over everything before it.
-    pub(super) fn verify(&self) -> Result<(), PersistError> {
+    fn verify(&self) -> Result<(), PersistError> {
         if fnv1a(self.signed) != self.stored {
             return Err(corrupted(self.path, "checksum mismatch".into()));
         }
@@ -308,7 +325,7 @@ impl Opened<'_> {
     }
 
     /// Refuse another kind than `want`.
-    pub(super) fn expect(&self, want: &[Kind]) -> Result<(), PersistError> {
+    fn expect(&self, want: &[Kind]) -> Result<(), PersistError> {
         if want.contains(&self.kind) {
             return Ok(());
         }
@@ -338,10 +355,10 @@ fn binary_len<T: Serialize + ?Sized>(value: &T) -> usize {
     bincode::serde::encode_to_vec(value, bincode_config()).map_or(0, |b| b.len())
 }
 
-impl Hsom {
+impl<A: Part> Model<A> {
     /// The binary file's bytes by part, in file order grouped by what they hold; they add up
     /// to the file's length (docs/BENCHMARKS.md, "The model file").
-    pub fn file_parts(&self) -> Vec<FilePart> {
+    pub(crate) fn file_parts(&self) -> Vec<FilePart> {
         const NODES: &str = "per-node statistics (hits, ends, dwell, followers, exemplars)";
         const LEVELS: &str = "per-level statistics, normalisation, lengths, columns";
         const PLACES: &str = "postures and end postures";
@@ -362,7 +379,7 @@ impl Hsom {
             // the algorithm's tag
             (LEVELS, 4),
         ];
-        match &self.algo {
+        match self.part.tagged() {
             Algo::Paper(m) => fields.push((NODES, binary_len(&m.end_hits))),
             Algo::Events(e) => fields.extend([
                 (LEVELS, binary_len(&e.threshold)),
@@ -394,12 +411,14 @@ impl Hsom {
         }
         parts
     }
+}
 
+impl EventsHsom {
     /// The most bytes the traced chunks may take in the binary form: every node of every
     /// traced level with all its chunks, a bound set by the configuration alone.
-    pub fn traced_ceiling(&self) -> usize {
+    pub(crate) fn traced_ceiling(&self) -> usize {
         let p = self.config.params();
-        let Some(t) = &self.ev().traces else {
+        let Some(t) = &self.part.traces else {
             return 0;
         };
         let (k, s) = (p.memory, trace_places(p));
@@ -416,356 +435,141 @@ impl Hsom {
     }
 }
 
-/// A model type with files of its own: its kind, and how a file is read back.
-pub(super) trait ModelFile: Serialize + Sized {
+/// A model type with files of its own: the kinds it reads, and how it is written and
+/// checked.
+trait ModelFile: Serialize + Sized {
+    /// The kinds of file it loads from.
+    const READS: &'static [Kind];
     /// The kind of file it is saved as.
     fn file_kind(&self) -> Kind;
-    /// Read a file of form `fmt` with every check; `path` only names it in errors.
-    fn read_form(bytes: &[u8], fmt: Format, path: &Path) -> Result<Self, PersistError>;
+    /// Its file in the form `fmt`.
+    fn write(&self, fmt: Format) -> Vec<u8> {
+        encode(self.file_kind(), self, fmt)
+    }
+    /// The model of `file` (of a kind in `READS`), decoded and every shape and value checked.
+    fn decode_checked(file: &Opened<'_>) -> Result<Self, PersistError>;
 }
 
-/// Save `model` to `path` (the form by the extension; atomic). The bytes are read back with
-/// every check of loading first: a model that could not be loaded is refused, and nothing
-/// is written.
-pub(super) fn save<T: ModelFile>(model: &T, path: &Path) -> Result<(), PersistError> {
-    let fmt = ext(path)?;
-    let bytes = encode(model.file_kind(), model, fmt);
-    T::read_form(&bytes, fmt, path)?;
-    write_atomic(path, &bytes).map_err(|source| PersistError::Io {
-        path: path.to_path_buf(),
-        source,
-    })
-}
-
-/// Load a model of type `T` from `path` (the form by the extension).
-pub(super) fn load<T: ModelFile>(path: &Path) -> Result<T, PersistError> {
-    let fmt = ext(path)?;
-    let bytes = std::fs::read(path).map_err(|source| PersistError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    T::read_form(&bytes, fmt, path)
-}
-
-/// The text form of `model`.
-pub(super) fn text<T: ModelFile>(model: &T) -> String {
-    // cannot fail: the text form is ASCII lines and JSON
-    String::from_utf8(encode(model.file_kind(), model, Format::Txt)).unwrap_or_default()
+/// Read a file of form `fmt` with every check; `path` only names it in errors.
+fn read_form<T: ModelFile>(bytes: &[u8], fmt: Format, path: &Path) -> Result<T, PersistError> {
+    let file = open(bytes, fmt, path)?;
+    file.expect(T::READS)?;
+    let model = T::decode_checked(&file)?;
+    file.verify()?;
+    Ok(model)
 }
 
 impl ModelFile for Hsom {
+    const READS: &'static [Kind] = &[Kind::One(Algorithm::Paper), Kind::One(Algorithm::Events)];
+
     fn file_kind(&self) -> Kind {
-        Kind::One(self.config.params().kind())
+        Kind::One(self.config().params().kind())
     }
 
-    fn read_form(bytes: &[u8], fmt: Format, path: &Path) -> Result<Hsom, PersistError> {
-        let file = open(bytes, fmt, path)?;
-        file.expect(&[Kind::One(Algorithm::Paper), Kind::One(Algorithm::Events)])?;
+    fn decode_checked(file: &Opened<'_>) -> Result<Hsom, PersistError> {
         let model: Hsom = file.decode()?;
-        model.check(file.kind, path)?;
-        file.verify()?;
+        if file.kind != model.file_kind() {
+            return Err(corrupted(
+                file.path,
+                format!(
+                    "the header says {}, the configuration algorithm {}",
+                    file.kind.word(),
+                    model.config().params().kind().name()
+                ),
+            ));
+        }
+        model.check().map_err(|what| corrupted(file.path, what))?;
         Ok(model)
     }
 }
 
-impl Hsom {
-    /// Save to `path`: binary for `.bin`, plain text for `.txt` (atomic write). The bytes are
-    /// read back with every check of [`Hsom::load`] first: a model that could not be loaded
-    /// is refused here, and nothing is written.
-    pub fn save(&self, path: &Path) -> Result<(), PersistError> {
-        save(self, path)
+impl ModelFile for GestureModel {
+    const READS: &'static [Kind] = &[
+        Kind::One(Algorithm::Paper),
+        Kind::One(Algorithm::Events),
+        Kind::Several,
+    ];
+
+    fn file_kind(&self) -> Kind {
+        match self.labels.is_empty() {
+            true => self.branches[0].file_kind(),
+            false => Kind::Several,
+        }
     }
 
-    /// Load a model saved by [`Hsom::save`]; the form is chosen by the extension.
-    pub fn load(path: &Path) -> Result<Hsom, PersistError> {
-        load(path)
+    /// A single-gesture model is written exactly as its [`Hsom`].
+    fn write(&self, fmt: Format) -> Vec<u8> {
+        match self.labels.is_empty() {
+            true => self.branches[0].write(fmt),
+            false => encode(Kind::Several, self, fmt),
+        }
     }
 
-    /// The binary form (header, model, checksum).
-    pub fn to_bytes(&self) -> Vec<u8> {
-        encode(self.file_kind(), self, Format::Bin)
-    }
-
-    /// Read the binary form; `path` is only used in error messages.
-    pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<Hsom, PersistError> {
-        Hsom::read_form(bytes, Format::Bin, path)
-    }
-
-    /// The plain-text form: the header lines, the model as JSON, a checksum line.
-    pub fn to_text(&self) -> String {
-        text(self)
-    }
-
-    /// Read the plain-text form; `path` is only used in error messages.
-    pub fn from_text(text: &str, path: &Path) -> Result<Hsom, PersistError> {
-        Hsom::read_form(text.as_bytes(), Format::Txt, path)
-    }
-
-    /// Every shape and value of a model read from a file (of kind `kind`) against its
-    /// embedded configuration.
-    pub(super) fn check(&self, kind: Kind, path: &Path) -> Result<(), PersistError> {
-        let bad = |what: String| Err(corrupted(path, what));
-        let p = self.config.params();
-        if kind != Kind::Several && kind != self.file_kind() {
-            return bad(format!(
-                "the header says {}, the configuration algorithm {}",
-                kind.word(),
-                p.kind().name()
-            ));
+    fn decode_checked(file: &Opened<'_>) -> Result<GestureModel, PersistError> {
+        if file.kind != Kind::Several {
+            return Ok(Hsom::decode_checked(file)?.into());
         }
-        let holds = match self.algo {
-            Algo::Paper(_) => Algorithm::Paper,
-            Algo::Events(_) => Algorithm::Events,
-        };
-        if holds != p.kind() {
-            return bad(format!(
-                "the model holds the {} algorithm's part, the configuration algorithm {}",
-                holds.name(),
-                p.kind().name()
-            ));
-        }
-        let height = p.levels.len();
-        if self.maps.len() != height {
-            return bad(format!(
-                "{} levels, the configuration has {height}",
-                self.maps.len()
-            ));
-        }
-        for (l, (m, lp)) in self.maps.iter().zip(&p.levels).enumerate() {
-            let dim = input_dim(&self.config, l);
-            if (m.rows(), m.cols(), m.dim()) != (lp.rows, lp.cols, dim)
-                || m.topology() != lp.topology
-            {
-                return bad(format!(
-                    "level {l} is {}x{} of dimension {} ({}), the configuration says {}x{} of dimension {dim} ({})",
-                    m.rows(),
-                    m.cols(),
-                    m.dim(),
-                    m.topology().name(),
-                    lp.rows,
-                    lp.cols,
-                    lp.topology.name()
-                ));
-            }
-        }
-        let nodes: Vec<usize> = self.maps.iter().map(|m| m.len()).collect();
-        let (n0, state, k) = (nodes[0], p.state_length, p.memory);
-        let per_level = |name: &str, lens: Vec<usize>, per_node: usize, extra: usize| {
-            (0..height.max(lens.len()))
-                .map(|l| {
-                    let want = nodes.get(l).map_or(0, |n| (n + extra) * per_node);
-                    (
-                        format!("{name} of level {l}"),
-                        lens.get(l).copied().unwrap_or(0),
-                        want,
-                    )
-                })
-                .collect::<Vec<_>>()
-        };
-        fn lens<T>(v: &[Vec<T>]) -> Vec<usize> {
-            v.iter().map(Vec::len).collect()
-        }
-        let mut sizes: Vec<(&str, usize, usize)> = vec![
-            ("training counts", self.trained.len(), height),
-            ("quantization errors", self.qe.len(), height),
-            ("topographic errors", self.te.len(), height),
-            ("hit counts", self.hits.len(), height),
-            ("offset", self.offset.len(), state),
-            ("scale", self.scale.len(), state),
-            ("dwell", self.dwell.len(), n0),
-            ("accuracy", self.accuracy.len(), height),
-            ("lookup accuracy", self.lookup.len(), height),
-            ("column names", self.columns.len(), state),
-        ];
-        let mut sizes: Vec<(String, usize, usize)> = match &self.algo {
-            Algo::Paper(m) => {
-                sizes.push(("end nodes", m.end_hits.len(), n0));
-                sizes
-                    .into_iter()
-                    .map(|(n, a, b)| (n.to_string(), a, b))
-                    .collect()
-            }
-            Algo::Events(e) => {
-                sizes.extend([
-                    ("match thresholds", e.threshold.len(), height),
-                    ("held-out accuracy", e.heldout_accuracy.len(), height),
-                    ("held-out lookup accuracy", e.heldout_lookup.len(), height),
-                    (
-                        "follower positions",
-                        e.follower_at.len(),
-                        (n0 + 1) * FOLLOWERS,
-                    ),
-                    ("followers", e.followers.len(), height),
-                    ("exemplars", e.exemplars.len(), height),
-                    ("exemplar positions", e.exemplar_phase.len(), height),
-                ]);
-                let mut s: Vec<(String, usize, usize)> = sizes
-                    .into_iter()
-                    .map(|(n, a, b)| (n.to_string(), a, b))
-                    .collect();
-                s.extend(per_level("followers", lens(&e.followers), FOLLOWERS, 1));
-                s.extend(per_level("exemplars", lens(&e.exemplars), k, 0));
-                s.extend(per_level(
-                    "exemplar positions",
-                    lens(&e.exemplar_phase),
-                    1,
-                    0,
-                ));
-                s
-            }
-        };
-        sizes.extend(per_level("hit counts", lens(&self.hits), 1, 0));
-        if let Some((name, found, want)) = sizes.iter().find(|(_, a, b)| a != b) {
-            return bad(format!("{found} values of {name}, {want} expected"));
-        }
-        self.check_values(path)
-    }
-
-    /// The values of a model read from a file: what sizes a reproduction bounded, every
-    /// statistic in its range, every index inside its map.
-    fn check_values(&self, path: &Path) -> Result<(), PersistError> {
-        let bad = |what: String| Err(corrupted(path, what));
-        let p = self.config.params();
-        let maps = &self.maps;
-        // the events extension's part (empty for the paper's algorithm)
-        let e = self.ev();
-        let n0 = maps[0].len();
-        let state = p.state_length;
-        let demo_len = self.demo_len;
-        // values that size the reproduction: no demonstration is longer than the longest, no
-        // event longer than a demonstration
-        let longest = demo_len[2];
-        let lengths_ok = demo_len
-            .iter()
-            .all(|v| v.is_finite() && *v >= 0.0 && *v <= MAX_DEMO_SAMPLES)
-            && demo_len[0] <= demo_len[1] + 1e-9
-            && demo_len[1] <= demo_len[2] + 1e-9;
-        if !lengths_ok {
-            return bad(format!(
-                "demonstration lengths {demo_len:?} (shortest, mean, longest) must be ordered and \
-                 at most {MAX_DEMO_SAMPLES:e} samples"
-            ));
-        }
-        let index_ok =
-            |v: u32, n: usize| (v as usize) < n || v == u32::MAX || v == super::events::END;
-        let stats_ok = self
-            .demo_runs
-            .iter()
-            .chain(&self.dwell)
-            .all(|v| v.is_finite() && *v >= 0.0 && *v <= longest)
-            && self
-                .accuracy
-                .iter()
-                .chain(&self.lookup)
-                .chain(&e.heldout_accuracy)
-                .chain(&e.heldout_lookup)
-                .all(|v| v.is_finite() && (0.0..=1.0).contains(v))
-            && e.threshold.iter().all(|v| v.is_finite() && *v >= 0.0)
-            && e.follower_at
-                .iter()
-                .chain(e.exemplar_phase.iter().flatten())
-                .all(|v| v.is_finite() && (0.0..=MAX_DEMO_SAMPLES).contains(v))
-            && e.followers
-                .iter()
-                .zip(maps)
-                .all(|(f, m)| f.iter().all(|&v| index_ok(v, m.len())))
-            && e.exemplars.iter().enumerate().all(|(l, e)| {
-                // level l's exemplars are entries of level l - 1 (none at the bottom)
-                let below = if l == 0 { 0 } else { maps[l - 1].len() };
-                e.iter().all(|&v| index_ok(v, below))
-            });
-        if !stats_ok {
-            return bad("bad run statistics (a dwell or event count negative, non-finite or longer than the longest demonstration, an accuracy outside [0, 1], a position negative or non-finite, or a follower or exemplar outside its map)".into());
-        }
-        let finite = maps
-            .iter()
-            .all(|m| m.all_weights().iter().all(|v| v.is_finite()))
-            && self
-                .offset
-                .iter()
-                .chain(&self.qe)
-                .chain(&self.te)
-                .all(|v| v.is_finite())
-            && self.scale.iter().all(|v| v.is_finite() && *v > 0.0);
-        if !finite {
-            return bad("non-finite weight or statistic (or a non-positive scale)".into());
-        }
-        let want = n0 * state;
-        if let Some(knots) = &e.knots {
-            if knots.len() != want {
-                return bad(format!(
-                    "{} posture values, the bottom level needs {want} (nodes x stateLength) or none",
-                    knots.len()
-                ));
-            }
-            if !knots.iter().all(|v| v.is_finite()) {
-                return bad("a non-finite posture value".into());
-            }
-        }
-        for (what, p) in [("start", &e.start_posture), ("end", &e.end_posture)] {
-            if let Some(p) = p {
-                if p.len() != state || !p.iter().all(|v| v.is_finite()) {
-                    return bad(format!(
-                        "{} {what}-posture values: none or stateLength = {state} finite values",
-                        p.len()
-                    ));
-                }
-            }
-        }
-        if e.demo_smoothness.as_ref().is_some_and(|d| {
-            d.peak_step.len() != state
-                || ![d.jerk, d.start_step]
-                    .iter()
-                    .chain(&d.peak_step)
-                    .all(|v| v.is_finite() && *v >= 0.0)
-        }) {
-            return bad(format!(
-                "the demonstrations' jerk, first step and stateLength = {state} largest steps: \
-                 none or finite values >= 0"
-            ));
-        }
-        if e.start_fade.is_some_and(|f| !(0.0..=1.0).contains(&f)) {
-            return bad("the start's fade: none or a fraction in [0, 1]".into());
-        }
-        if let Some(s) = &e.start_knots {
-            let sound = s.width.is_finite()
-                && s.width > 0.0
-                && s.starts.len() >= 3
-                && s.starts.len() == s.knots.len()
-                && s.starts.iter().all(|v| v.len() == state)
-                && s.knots.iter().all(|v| v.len() == want)
-                && s.starts
-                    .iter()
-                    .chain(&s.knots)
-                    .flatten()
-                    .all(|v| v.is_finite())
-                && e.knots.is_some();
-            if !sound {
-                return bad(format!(
-                    "start-weighted postures of {} demonstrations (width {}): at least 3 \
-                     needed, each with stateLength finite start values and {want} posture \
-                     values, a positive finite width, and the postures stored",
-                    s.starts.len(),
-                    s.width
-                ));
-            }
-        }
-        let traced = p.kind() == Algorithm::Events;
-        match (&e.traces, traced) {
-            (None, false) => Ok(()),
-            (Some(t), true) => {
-                let nodes: Vec<usize> = maps.iter().map(|m| m.len()).collect();
-                t.check(p.memory, trace_places(p), &nodes)
-                    .or_else(|why| bad(format!("traces: {why}")))
-            }
-            (_, traced) => bad(format!(
-                "traces {} for a model of algorithm {}: stored exactly with algorithm = events",
-                if traced { "missing" } else { "stored" },
-                p.kind().name(),
-            )),
-        }
+        let model: GestureModel = file.decode()?;
+        model.check().map_err(|what| corrupted(file.path, what))?;
+        Ok(model)
     }
 }
+
+/// Saving, loading and the two forms in memory, written once for both model types.
+macro_rules! model_files {
+    ($t:ty) => {
+        impl $t {
+            /// Save to `path`: binary for `.bin`, plain text for `.txt` (atomic write); a
+            /// single gesture as one gesture's file. The bytes are read back with every
+            /// check of loading first: a model that could not be loaded is refused here, and
+            /// nothing is written.
+            pub fn save(&self, path: &Path) -> Result<(), PersistError> {
+                let fmt = ext(path)?;
+                let bytes = self.write(fmt);
+                read_form::<Self>(&bytes, fmt, path)?;
+                write_atomic(path, &bytes).map_err(|source| PersistError::Io {
+                    path: path.to_path_buf(),
+                    source,
+                })
+            }
+
+            /// Load a model saved by `save`; the form is chosen by the extension, the kind
+            /// read from the header.
+            pub fn load(path: &Path) -> Result<Self, PersistError> {
+                let fmt = ext(path)?;
+                let bytes = std::fs::read(path).map_err(|source| PersistError::Io {
+                    path: path.to_path_buf(),
+                    source,
+                })?;
+                read_form(&bytes, fmt, path)
+            }
+
+            /// The binary form (header, model, checksum).
+            pub fn to_bytes(&self) -> Vec<u8> {
+                self.write(Format::Bin)
+            }
+
+            /// Read the binary form; `path` only names the file in errors.
+            pub fn from_bytes(bytes: &[u8], path: &Path) -> Result<Self, PersistError> {
+                read_form(bytes, Format::Bin, path)
+            }
+
+            /// The plain-text form: the header lines, the model as JSON, a checksum line.
+            pub fn to_text(&self) -> String {
+                // cannot fail: the text form is ASCII lines and JSON
+                String::from_utf8(self.write(Format::Txt)).unwrap_or_default()
+            }
+
+            /// Read the plain-text form; `path` only names the file in errors.
+            pub fn from_text(text: &str, path: &Path) -> Result<Self, PersistError> {
+                read_form(text.as_bytes(), Format::Txt, path)
+            }
+        }
+    };
+}
+
+model_files!(Hsom);
+model_files!(GestureModel);
 
 #[cfg(test)]
 mod tests;

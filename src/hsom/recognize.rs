@@ -12,7 +12,8 @@ use super::errors::HsomError;
 use super::events::{
     a_part, b_part, bottom_events, chunk_input, chunks, summary, DurationCode, Item,
 };
-use super::model::{Calibration, GestureModel, Hsom, Layout, Scoring};
+use super::inputs::Layout;
+use super::model::{Calibration, EventsHsom, GestureModel, Scoring};
 use super::reproduction::Reproduction;
 
 /// The seed of branch `g` (`held_out`: of its leave-one-out variant without that
@@ -26,7 +27,7 @@ pub(crate) fn branch_seed(seed: u64, g: usize, held_out: Option<usize>) -> u64 {
 /// Per sample of `norm` (normalised rows; its bottom inputs: the posture and the posture
 /// `actionHorizon` later), the RMS distance to the nearest bottom node `model`'s gesture used
 /// (the bottom is shared; the branch's event durations say which nodes its gesture visited).
-pub(crate) fn posture_distances(model: &Hsom, norm: &[Vec<f64>]) -> Vec<f64> {
+pub(crate) fn posture_distances(model: &EventsHsom, norm: &[Vec<f64>]) -> Vec<f64> {
     let map = &model.maps[0];
     let used: Vec<usize> = (0..map.len()).filter(|&n| model.dwell[n] > 0.0).collect();
     let s = model.config.params().state_length;
@@ -47,14 +48,14 @@ pub(crate) fn posture_distances(model: &Hsom, norm: &[Vec<f64>]) -> Vec<f64> {
 
 /// `model`'s gesture reproduced from the first posture of `norm` (normalised rows), normalised;
 /// `None` when it cannot be reproduced from there.
-fn reproduction_from(model: &Hsom, norm: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
+fn reproduction_from(model: &EventsHsom, norm: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
     let rep = model.reproduce(&model.denormalise(norm.first()?)).ok()?;
     (!rep.postures.is_empty()).then(|| model.normalise_rows(&rep.postures))
 }
 
 /// The DTW distance per step between `norm` and `model`'s gesture reproduced from its first
 /// posture (infinite when it cannot be reproduced).
-fn reproduction_distance(model: &Hsom, norm: &[Vec<f64>]) -> f64 {
+fn reproduction_distance(model: &EventsHsom, norm: &[Vec<f64>]) -> f64 {
     reproduction_from(model, norm)
         .and_then(|r| dtw_distance(norm, &r, Band::None).ok())
         .map_or(f64::INFINITY, |c| c.per_step())
@@ -68,7 +69,11 @@ fn mean_of(v: &[f64], n: usize) -> Option<f64> {
 
 /// Level distances of a whole normalised sequence: the postures' at level 0, then the
 /// levels' chunks ([`level_distances`]).
-fn all_distances(model: &Hsom, norm: &[Vec<f64>], events: &[(usize, f64)]) -> Vec<Option<f64>> {
+fn all_distances(
+    model: &EventsHsom,
+    norm: &[Vec<f64>],
+    events: &[(usize, f64)],
+) -> Vec<Option<f64>> {
     let mut d = level_distances(model, events, true);
     let p = posture_distances(model, norm);
     d[0] = mean_of(&p, p.len());
@@ -81,7 +86,7 @@ fn all_distances(model: &Hsom, norm: &[Vec<f64>], events: &[(usize, f64)]) -> Ve
 /// otherwise it is a prefix: only the chunks it completes count, plus the chunk in progress
 /// at level 1, matched on what it holds. Level 0 is left to [`posture_distances`].
 pub(crate) fn level_distances(
-    model: &Hsom,
+    model: &EventsHsom,
     events: &[(usize, f64)],
     complete: bool,
 ) -> Vec<Option<f64>> {
@@ -259,8 +264,8 @@ pub(crate) fn new_demonstration_bounds(own: &[Vec<f64>]) -> Vec<f64> {
 /// demonstration), and its threshold: what a new demonstration of the gesture may score, from
 /// those own held-out scores ([`new_demonstration_bounds`]).
 pub(crate) fn calibrate(
-    shared: &Hsom,
-    branches: &[Hsom],
+    shared: &EventsHsom,
+    branches: &[EventsHsom],
     norm: &[Vec<Vec<Vec<f64>>>],
     learn: bool,
     seed: u64,
@@ -273,7 +278,7 @@ pub(crate) fn calibrate(
     let per: Vec<(Vec<f64>, Vec<f64>)> = (0..branches.len())
         .map(|g| {
             // each own demonstration's branch: trained without it (with it, when alone)
-            let loo: Vec<Hsom> = if norm[g].len() >= 2 {
+            let loo: Vec<EventsHsom> = if norm[g].len() >= 2 {
                 (0..norm[g].len())
                     .map(|i| {
                         let rest: Vec<Vec<Vec<f64>>> = norm[g]
@@ -363,16 +368,26 @@ struct Evidence {
 }
 
 impl GestureModel {
-    /// The normalised rows and their bottom events, after checking the rows.
+    /// The branches of a model of several gestures: the events extension's (so trained, and
+    /// checked on loading).
+    fn labelled(&self) -> Result<Vec<&EventsHsom>, GestureError> {
+        if self.labels.is_empty() {
+            return Err(GestureError::NoLabels);
+        }
+        self.branches
+            .iter()
+            .map(|b| b.as_events().ok_or(GestureError::NeedsEvents))
+            .collect()
+    }
+
+    /// The branches, the normalised rows and their bottom events, after checking the rows.
     #[allow(clippy::type_complexity)]
     fn checked_events(
         &self,
         rows: &[Vec<f64>],
-    ) -> Result<(Vec<Vec<f64>>, Vec<(usize, f64)>), GestureError> {
-        if self.labels.is_empty() {
-            return Err(GestureError::NoLabels);
-        }
-        let shared = &self.branches[0];
+    ) -> Result<(Vec<&EventsHsom>, Vec<Vec<f64>>, Vec<(usize, f64)>), GestureError> {
+        let branches = self.labelled()?;
+        let shared = branches[0];
         let width = shared.columns.len();
         if rows.len() < 2 {
             return Err(HsomError::TooShort {
@@ -403,13 +418,13 @@ impl GestureModel {
         }
         let norm = shared.normalise_rows(rows);
         let ev = bottom_events(shared, &norm);
-        Ok((norm, ev))
+        Ok((branches, norm, ev))
     }
 
     /// Per label, what a normalised sequence is scored on: its per-sample posture distances,
     /// or (scoring by reproduction) the gesture reproduced from its first posture.
-    fn evidence_of(&self, norm: &[Vec<f64>]) -> Vec<Evidence> {
-        self.branches
+    fn evidence_of(&self, branches: &[&EventsHsom], norm: &[Vec<f64>]) -> Vec<Evidence> {
+        branches
             .iter()
             .map(|b| match self.scoring {
                 Scoring::Reproduction => {
@@ -434,12 +449,13 @@ impl GestureModel {
     /// `events`; `complete`: the sequence ends there.
     fn scores_of(
         &self,
+        branches: &[&EventsHsom],
         evidence: &[Evidence],
         samples: usize,
         events: &[(usize, f64)],
         complete: bool,
     ) -> Vec<f64> {
-        self.branches
+        branches
             .iter()
             .zip(&self.calibration)
             .zip(evidence)
@@ -463,20 +479,20 @@ impl GestureModel {
     /// units): lower is closer (1 is as close as the label's training data only with
     /// [`Scoring::Relative`]; the default scores the distance from the reproduction).
     pub fn scores(&self, rows: &[Vec<f64>]) -> Result<Vec<f64>, GestureError> {
-        let (norm, ev) = self.checked_events(rows)?;
-        let p = self.evidence_of(&norm);
-        Ok(self.scores_of(&p, rows.len(), &ev, true))
+        let (branches, norm, ev) = self.checked_events(rows)?;
+        let p = self.evidence_of(&branches, &norm);
+        Ok(self.scores_of(&branches, &p, rows.len(), &ev, true))
     }
 
     /// Recognise a whole sequence: the best label or unknown, every score, and the earliest
     /// sample from which the best label stayed the same (each prefix scored on the bottom
     /// events it has completed, available `actionHorizon` samples after they end).
     pub fn recognize(&self, rows: &[Vec<f64>]) -> Result<Recognition, GestureError> {
-        let (norm, ev) = self.checked_events(rows)?;
-        let post = self.evidence_of(&norm);
-        let fin = self.scores_of(&post, rows.len(), &ev, true);
+        let (branches, norm, ev) = self.checked_events(rows)?;
+        let post = self.evidence_of(&branches, &norm);
+        let fin = self.scores_of(&branches, &post, rows.len(), &ev, true);
         let best = argmin(&fin);
-        let horizon = self.branches[0].config.params().action_horizon();
+        let horizon = branches[0].config.params().action_horizon();
         let mut decided_at = rows.len();
         let mut done = 0.0;
         let mut ends = Vec::with_capacity(ev.len());
@@ -486,7 +502,8 @@ impl GestureModel {
         }
         for p in (1..=ev.len()).rev() {
             let at = ((ends[p - 1] as usize) + horizon).min(rows.len());
-            if argmin(&self.scores_of(&post, ends[p - 1] as usize, &ev[..p], false)) != best {
+            let prefix = self.scores_of(&branches, &post, ends[p - 1] as usize, &ev[..p], false);
+            if argmin(&prefix) != best {
                 break;
             }
             decided_at = at;
@@ -512,10 +529,10 @@ impl GestureModel {
         &self,
         prefix: &[Vec<f64>],
     ) -> Result<(String, Reproduction), GestureError> {
-        let (norm, ev) = self.checked_events(prefix)?;
-        let post = self.evidence_of(&norm);
-        let g = argmin(&self.scores_of(&post, prefix.len(), &ev, false));
-        let rep = self.branches[g].reproduce(&prefix[0])?;
+        let (branches, norm, ev) = self.checked_events(prefix)?;
+        let post = self.evidence_of(&branches, &norm);
+        let g = argmin(&self.scores_of(&branches, &post, prefix.len(), &ev, false));
+        let rep = branches[g].reproduce(&prefix[0])?;
         let j = open_end(prefix, &rep.postures);
         let last = &prefix[prefix.len() - 1];
         let gap: Vec<f64> = last

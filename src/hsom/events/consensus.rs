@@ -4,7 +4,7 @@
 use super::encode::bottom_events;
 use super::encode::dist2;
 use super::traces::{trace_places, trace_postures_at, TRACE_HEAD};
-use crate::hsom::model::{DemoSmoothness, Hsom, StartKnots};
+use crate::hsom::model::{DemoSmoothness, EventsHsom, Model, Part, StartKnots};
 
 /// Longest sequence [`aligned_samples`] aligns sample by sample: a longer demonstration is aligned
 /// in blocks of consecutive samples (their means), so that an alignment never takes more
@@ -173,7 +173,11 @@ impl NodeSums {
     }
 
     /// The samples of `demo` (normalised) on the nodes of its `events`.
-    pub(super) fn of(model: &Hsom, demo: &[Vec<f64>], events: &[(usize, f64)]) -> Self {
+    pub(super) fn of<A: Part>(
+        model: &Model<A>,
+        demo: &[Vec<f64>],
+        events: &[(usize, f64)],
+    ) -> Self {
         let s = model.config.params().state_length;
         let mut out = NodeSums::new(model.maps[0].len(), s);
         let mut pos = 0usize;
@@ -199,15 +203,15 @@ impl NodeSums {
     }
 }
 
-impl Hsom {
+impl<A: Part> Model<A> {
     /// Where a reproduction that starts at `start` (normalised) places every bottom node's
     /// events, `stateLength` values per node: with `consensus = start` the training
     /// demonstrations' placements weighed by their starts ([`StartKnots`]); otherwise the
-    /// branch's own postures ([`Hsom::fit_postures`]) when it has them, else the nodes'
+    /// branch's own postures ([`EventsHsom::fit_postures`]) when it has them, else the nodes'
     /// weights (state part).
     pub(super) fn placement(&self, start: &[f64]) -> Vec<f64> {
         let s = self.config.params().state_length;
-        let e = self.events();
+        let e = self.part.events();
         if let Some(k) = e.and_then(|e| e.start_knots.as_ref()) {
             return k.placed(start);
         }
@@ -234,7 +238,7 @@ impl Hsom {
     /// realise it: the bottom map's last training step done in batch on these values alone,
     /// i.e. per node the mean of the values of the events on it, weighted by the map's
     /// neighbourhood at its final radius around each event's node. A node no event is on
-    /// keeps its weights. Flattened, `stateLength` values per node. [`Hsom::fit_postures`]
+    /// keeps its weights. Flattened, `stateLength` values per node. [`EventsHsom::fit_postures`]
     /// gives it the demonstrations' consensus (docs/ALGORITHM.md, sections 3.7
     /// and 4).
     fn smoothed_postures(&self, sums: &NodeSums) -> Vec<f64> {
@@ -263,97 +267,9 @@ impl Hsom {
         out
     }
 
-    /// Where a reproduction places each bottom node's events, learned from `norm` (the
-    /// normalised demonstrations this model or branch was trained on): the demonstrations'
-    /// [`consensus`] over the samples of the node's events, smoothed by the map's
-    /// neighbourhood at its final radius as the bottom's last training step would
-    /// ([`Hsom::smoothed_postures`]). A reproduction follows one demonstrated sequence of
-    /// nodes; placed at the consensus, each node's events land where the demonstrations
-    /// agree, not where the one demonstration that visited it went, nor where the map's
-    /// neighbourhood pulled its weights. With one demonstration there is nothing to agree
-    /// on: the weights (and no stored postures).
-    pub(crate) fn fit_postures(&mut self, norm: &[Vec<Vec<f64>>]) {
-        let s = self.config.params().state_length;
-        // the mean of one posture of each demonstration (state part)
-        let mean = |at: fn(&Vec<Vec<f64>>) -> Option<&Vec<f64>>| {
-            let rows: Vec<&Vec<f64>> = norm.iter().filter_map(at).collect();
-            (!rows.is_empty())
-                .then(|| StartKnots::mean(&rows, &vec![1.0; rows.len()])[..s].to_vec())
-        };
-        let (start, end) = (mean(|d| d.first()), mean(|d| d.last()));
-        let jerk = crate::metrics::median(
-            norm.iter()
-                .filter_map(|d| crate::metrics::normalized_jerk(&state_rows(d, s), 1.0)),
-        );
-        let start_step = norm
-            .iter()
-            .filter(|d| d.len() >= 2)
-            .map(|d| dist2(&d[1][..s], &d[0][..s]).sqrt())
-            .fold(0.0, f64::max);
-        let peak_step = (0..s)
-            .map(|j| {
-                norm.iter()
-                    .flat_map(|d| d.windows(2).map(move |w| (w[1][j] - w[0][j]).abs()))
-                    .fold(0.0, f64::max)
-            })
-            .collect();
-        let fade = super::start::start_fade(norm, s);
-        let smoothness = jerk.map(|jerk| DemoSmoothness {
-            jerk,
-            start_step,
-            peak_step,
-        });
-        let Some(e) = self.events_mut() else {
-            return;
-        };
-        e.demo_smoothness = smoothness;
-        e.start_fade = fade;
-        e.knots = None;
-        e.start_knots = None;
-        e.start_posture = start;
-        e.end_posture = end;
-        let aligned = aligned_samples(norm, MAX_ALIGNED);
-        self.fit_node_postures(norm, &aligned);
-        self.place_traced_events(norm, &aligned);
-    }
-
-    /// The nodes' places of [`Hsom::fit_postures`] (`aligned`: [`aligned_samples`] of
-    /// `norm`).
-    fn fit_node_postures(&mut self, norm: &[Vec<Vec<f64>>], aligned: &Aligned) {
-        if norm.len() < 2 {
-            return;
-        }
-        let s = self.config.params().state_length;
-        let events: Vec<Vec<(usize, f64)>> = norm.iter().map(|d| bottom_events(self, d)).collect();
-        let mut count = NodeSums::new(self.maps[0].len(), s);
-        for (demo, ev) in norm.iter().zip(&events) {
-            count.add(&NodeSums::of(self, demo, ev));
-        }
-        let knots: Vec<Vec<f64>> = (0..norm.len())
-            .map(|d| {
-                let mut sums = NodeSums::new(self.maps[0].len(), s);
-                for (a, ev) in events.iter().enumerate() {
-                    let values = aligned[a][d].as_ref().unwrap_or(&norm[a]);
-                    sums.add(&NodeSums::of(self, values, ev));
-                }
-                self.smoothed_postures(&sums)
-            })
-            .collect();
-        let all: Vec<&Vec<f64>> = knots.iter().collect();
-        let mean = StartKnots::mean(&all, &vec![1.0; all.len()]);
-        let starts = norm.iter().map(|d| d[0][..s].to_vec()).collect();
-        let seed = self.config.params().seed;
-        let weighed = StartKnots::fit(starts, knots, &count.count, seed);
-        if let Some(e) = self.events_mut() {
-            e.knots = Some(mean);
-            // all alike is the mean already stored: nothing more to keep
-            e.start_knots = weighed.width.is_finite().then_some(weighed);
-        }
-    }
-
     /// Per demonstration of `norm` (normalised), per bottom event, where that event lies in
     /// the demonstrations' consensus, as an offset from where its node is placed for a
-    /// reproduction from that demonstration's start ([`Hsom::placement`]); state part. The
+    /// reproduction from that demonstration's start ([`Model::placement`]); state part. The
     /// consensus is the mean over the event's samples of every demonstration's samples
     /// aligned to them (its own for itself): with `consensus = start`, where the starts are
     /// used, weighed by that demonstration's start as [`StartKnots`] weighs them; otherwise
@@ -370,32 +286,33 @@ impl Hsom {
         aligned: &Aligned,
     ) -> Vec<Vec<(usize, Vec<f64>)>> {
         let s = self.config.params().state_length;
-        let agreed: Vec<Vec<Vec<f64>>> = match self.events().and_then(|e| e.start_knots.as_ref()) {
-            Some(k) => {
-                let starts: Vec<Vec<f64>> = norm.iter().map(|d| d[0][..s].to_vec()).collect();
-                let refs: Vec<&Vec<f64>> = starts.iter().collect();
-                (0..norm.len())
-                    .map(|d| {
-                        let w = StartKnots::weights(&refs, &starts[d], k.width);
-                        let total: f64 = w.iter().sum();
-                        (0..norm[d].len())
-                            .map(|t| {
-                                let mut m = vec![0.0; s];
-                                for (a, wa) in w.iter().enumerate() {
-                                    let x = match &aligned[d][a] {
-                                        Some(al) if a != d => &al[t],
-                                        _ => &norm[d][t],
-                                    };
-                                    m.iter_mut().zip(x).for_each(|(v, x)| *v += wa / total * x);
-                                }
-                                m
-                            })
-                            .collect()
-                    })
-                    .collect()
-            }
-            None => consensus(norm, aligned),
-        };
+        let agreed: Vec<Vec<Vec<f64>>> =
+            match self.part.events().and_then(|e| e.start_knots.as_ref()) {
+                Some(k) => {
+                    let starts: Vec<Vec<f64>> = norm.iter().map(|d| d[0][..s].to_vec()).collect();
+                    let refs: Vec<&Vec<f64>> = starts.iter().collect();
+                    (0..norm.len())
+                        .map(|d| {
+                            let w = StartKnots::weights(&refs, &starts[d], k.width);
+                            let total: f64 = w.iter().sum();
+                            (0..norm[d].len())
+                                .map(|t| {
+                                    let mut m = vec![0.0; s];
+                                    for (a, wa) in w.iter().enumerate() {
+                                        let x = match &aligned[d][a] {
+                                            Some(al) if a != d => &al[t],
+                                            _ => &norm[d][t],
+                                        };
+                                        m.iter_mut().zip(x).for_each(|(v, x)| *v += wa / total * x);
+                                    }
+                                    m
+                                })
+                                .collect()
+                        })
+                        .collect()
+                }
+                None => consensus(norm, aligned),
+            };
         norm.iter()
             .zip(&agreed)
             .map(|(demo, values)| {
@@ -439,13 +356,99 @@ impl Hsom {
             })
             .collect()
     }
+}
 
-    /// The traced chunks' events placed ([`Traces`], [`Hsom::event_offsets`] of `norm`, the
+impl EventsHsom {
+    /// Where a reproduction places each bottom node's events, learned from `norm` (the
+    /// normalised demonstrations this model or branch was trained on): the demonstrations'
+    /// [`consensus`] over the samples of the node's events, smoothed by the map's
+    /// neighbourhood at its final radius as the bottom's last training step would
+    /// ([`Model::smoothed_postures`]). A reproduction follows one demonstrated sequence of
+    /// nodes; placed at the consensus, each node's events land where the demonstrations
+    /// agree, not where the one demonstration that visited it went, nor where the map's
+    /// neighbourhood pulled its weights. With one demonstration there is nothing to agree
+    /// on: the weights (and no stored postures).
+    pub(crate) fn fit_postures(&mut self, norm: &[Vec<Vec<f64>>]) {
+        let s = self.config.params().state_length;
+        // the mean of one posture of each demonstration (state part)
+        let mean = |at: fn(&Vec<Vec<f64>>) -> Option<&Vec<f64>>| {
+            let rows: Vec<&Vec<f64>> = norm.iter().filter_map(at).collect();
+            (!rows.is_empty())
+                .then(|| StartKnots::mean(&rows, &vec![1.0; rows.len()])[..s].to_vec())
+        };
+        let (start, end) = (mean(|d| d.first()), mean(|d| d.last()));
+        let jerk = crate::metrics::median(
+            norm.iter()
+                .filter_map(|d| crate::metrics::normalized_jerk(&state_rows(d, s), 1.0)),
+        );
+        let start_step = norm
+            .iter()
+            .filter(|d| d.len() >= 2)
+            .map(|d| dist2(&d[1][..s], &d[0][..s]).sqrt())
+            .fold(0.0, f64::max);
+        let peak_step = (0..s)
+            .map(|j| {
+                norm.iter()
+                    .flat_map(|d| d.windows(2).map(move |w| (w[1][j] - w[0][j]).abs()))
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        let fade = super::start::start_fade(norm, s);
+        let smoothness = jerk.map(|jerk| DemoSmoothness {
+            jerk,
+            start_step,
+            peak_step,
+        });
+        let e = &mut self.part;
+        e.demo_smoothness = smoothness;
+        e.start_fade = fade;
+        e.knots = None;
+        e.start_knots = None;
+        e.start_posture = start;
+        e.end_posture = end;
+        let aligned = aligned_samples(norm, MAX_ALIGNED);
+        self.fit_node_postures(norm, &aligned);
+        self.place_traced_events(norm, &aligned);
+    }
+
+    /// The nodes' places of [`EventsHsom::fit_postures`] (`aligned`: [`aligned_samples`] of
+    /// `norm`).
+    fn fit_node_postures(&mut self, norm: &[Vec<Vec<f64>>], aligned: &Aligned) {
+        if norm.len() < 2 {
+            return;
+        }
+        let s = self.config.params().state_length;
+        let events: Vec<Vec<(usize, f64)>> = norm.iter().map(|d| bottom_events(self, d)).collect();
+        let mut count = NodeSums::new(self.maps[0].len(), s);
+        for (demo, ev) in norm.iter().zip(&events) {
+            count.add(&NodeSums::of(self, demo, ev));
+        }
+        let knots: Vec<Vec<f64>> = (0..norm.len())
+            .map(|d| {
+                let mut sums = NodeSums::new(self.maps[0].len(), s);
+                for (a, ev) in events.iter().enumerate() {
+                    let values = aligned[a][d].as_ref().unwrap_or(&norm[a]);
+                    sums.add(&NodeSums::of(self, values, ev));
+                }
+                self.smoothed_postures(&sums)
+            })
+            .collect();
+        let all: Vec<&Vec<f64>> = knots.iter().collect();
+        let mean = StartKnots::mean(&all, &vec![1.0; all.len()]);
+        let starts = norm.iter().map(|d| d[0][..s].to_vec()).collect();
+        let seed = self.config.params().seed;
+        let weighed = StartKnots::fit(starts, knots, &count.count, seed);
+        self.part.knots = Some(mean);
+        // all alike is the mean already stored: nothing more to keep
+        self.part.start_knots = weighed.width.is_finite().then_some(weighed);
+    }
+
+    /// The traced chunks' events placed ([`Traces`], [`Model::event_offsets`] of `norm`, the
     /// normalised demonstrations the traces were made from, once the nodes are placed): each
     /// traced event's offset from its node's place; where the demonstration's events do not
     /// match the traced ones (other demonstrations), none.
     fn place_traced_events(&mut self, norm: &[Vec<Vec<f64>>], aligned: &Aligned) {
-        let Some(mut traces) = self.events_mut().and_then(|e| e.traces.take()) else {
+        let Some(mut traces) = self.part.traces.take() else {
             return;
         };
         let own = self.event_offsets(norm, aligned);
@@ -473,9 +476,7 @@ impl Hsom {
                 }
             }
         }
-        if let Some(e) = self.events_mut() {
-            e.traces = Some(traces);
-        }
+        self.part.traces = Some(traces);
     }
 }
 

@@ -4,20 +4,20 @@
 
 use super::encode::Step;
 use super::traces::HALF_PLACES;
-use crate::hsom::model::{DemoSmoothness, Hsom};
+use crate::hsom::model::{DemoSmoothness, Model, Part};
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
-impl Hsom {
-    /// Postures at every sample from the executed events ([`Hsom::curve`] of
-    /// [`Hsom::timed_knots`]): each event's place is reached at the middle of the event; the
-    /// first knot is where the plan begins and the last where it ends ([`Hsom::knot_places`]).
+impl<A: Part> Model<A> {
+    /// Postures at every sample from the executed events ([`Model::curve`] of
+    /// [`Model::timed_knots`]): each event's place is reached at the middle of the event; the
+    /// first knot is where the plan begins and the last where it ends ([`Model::knot_places`]).
     ///
     /// A reproduction from its own start (`start` is `y0`) begins where the training
-    /// demonstrations weighed by that start began ([`Hsom::plan_start`]), the mean their
-    /// placements are weighed with, and the given posture's offset from there is joined to
-    /// the plan ([`Timed::joined_from`]): a start away from every
-    /// demonstration's is neither snapped to the plan in its first steps nor kept to the end.
-    /// A continuation (`y0` the posture reached) starts at `y0`.
+    /// demonstrations weighed by that start began ([`Model::plan_start`]), the mean their
+    /// placements are weighed with, and the given posture's offset from there is joined to the
+    /// plan ([`Timed::joined_from`]): a start away from every demonstration's is neither
+    /// snapped to the plan in its first steps nor kept to the end. A continuation (`y0` the
+    /// posture reached) starts at `y0`.
     pub(super) fn timed_postures(
         &self,
         start: &[f64],
@@ -35,18 +35,16 @@ impl Hsom {
         self.curve(&timed, &vec![0.0; y0.len()], samples, stop)
     }
 
-    /// Where the training demonstrations weighed by `start` began (normalised, state part):
-    /// the mean of their first postures with the weights of their placements
-    /// ([`StartKnots`](crate::hsom::model::StartKnots)); `None` without them.
+    /// Where the training demonstrations weighed by `start` began (normalised, state part): the
+    /// mean of their first postures weighed as their placements (`StartKnots`); `None` without.
     fn plan_start(&self, start: &[f64]) -> Option<Vec<f64>> {
-        let e = self.events()?;
-        match &e.start_knots {
-            Some(k) => Some(k.placed_start(start)),
-            None => e.start_posture.clone(),
-        }
+        let e = self.part.events()?;
+        e.start_knots
+            .as_ref()
+            .map_or(e.start_posture.clone(), |k| Some(k.placed_start(start)))
     }
 
-    /// The knots of [`Hsom::timed_postures`]: their times, their values per variable (turning
+    /// The knots of [`Model::timed_postures`]: their times, their values per variable (turning
     /// points kept), the level that planned each, and the events' total duration.
     pub(super) fn timed_knots(
         &self,
@@ -78,9 +76,9 @@ impl Hsom {
     }
 
     /// How smooth and how fast the training demonstrations were (`None` before
-    /// [`Hsom::fit_postures`] or for the paper's model).
+    /// [`Model::fit_postures`] or for the paper's model).
     fn smoothness(&self) -> Option<&DemoSmoothness> {
-        self.events().and_then(|e| e.demo_smoothness.as_ref())
+        self.part.events().and_then(|e| e.demo_smoothness.as_ref())
     }
 
     /// `timed` (a plan's knots, from rest) retimed where its curve moves faster than the
@@ -103,7 +101,7 @@ impl Hsom {
         out
     }
 
-    /// The knots of [`Hsom::timed_knots`] where the plan places them, before the turning
+    /// The knots of [`Model::timed_knots`] where the plan places them, before the turning
     /// points are kept.
     pub(super) fn knot_places(
         &self,
@@ -167,6 +165,7 @@ impl Hsom {
             // one cut short goes on along its last node's learned action (the posture
             // actionHorizon samples later), as far as that event's second half lasts
             let ended = self
+                .part
                 .events()
                 .and_then(|e| e.end_posture.clone())
                 .filter(|_| stop == StopReason::EndEvent);
@@ -198,12 +197,12 @@ impl Hsom {
     /// The postures at `samples` samples along the knots `timed`: per variable the monotone
     /// cubic through them ([`monotone_cubic_from`]: holds are held, turns are at knots), the
     /// knots retimed where it moves faster than the demonstrations ever did
-    /// ([`no_faster_than`]; the samples grow by what they gained),
-    /// leaving the first knot at the slope `m0` (within its monotone limits); plus the
-    /// offset of the given posture from the first knot ([`Timed::joined_from`]) fading from 1 to 0
-    /// along a minimum-jerk profile over the samples; then smoothed as the training
-    /// demonstrations are smooth ([`as_smooth_as`]): the cubic is continuous in velocity
-    /// only, and its steps of acceleration at the knots are what the smoothing takes away.
+    /// ([`no_faster_than`]; the samples grow by what they gained), leaving the first knot at
+    /// the slope `m0` (within its monotone limits); plus the offset of the given posture from
+    /// the first knot ([`Timed::joined_from`]) fading from 1 to 0 along a minimum-jerk profile
+    /// over the samples; then smoothed as the training demonstrations are smooth
+    /// ([`as_smooth_as`]): the cubic is continuous in velocity only, and its steps of
+    /// acceleration at the knots are what the smoothing takes away.
     pub(super) fn curve(
         &self,
         timed: &Timed,
@@ -225,7 +224,7 @@ impl Hsom {
         let whole = (samples.max(2) - 1) as f64;
         // as long as the demonstrations' own offsets lasted, and no faster than they move (a
         // minimum-jerk move of d in H samples peaks at 1.875 d / H)
-        let e = self.events();
+        let e = self.part.events();
         let offset: Option<Vec<f64>> = timed.joined_from.as_ref().map(|from| {
             from.iter()
                 .zip(&timed.values)
@@ -295,7 +294,7 @@ impl Hsom {
     }
 }
 
-/// Knots where the plan places them ([`Hsom::knot_places`]).
+/// Knots where the plan places them ([`Model::knot_places`]).
 pub(super) struct Places {
     /// Knot times, samples from the first.
     pub(super) t: Vec<f64>,
@@ -316,7 +315,7 @@ pub(super) struct Places {
     pub(super) total: f64,
 }
 
-/// Knots of a timed reproduction ([`Hsom::timed_knots`]).
+/// Knots of a timed reproduction ([`Model::timed_knots`]).
 pub(super) struct Timed {
     /// Knot times, samples from the first.
     pub(super) t: Vec<f64>,
@@ -327,7 +326,7 @@ pub(super) struct Timed {
     /// The events' total duration, samples.
     pub(super) total: f64,
     /// The given initial posture (normalised) the curve starts at: its offset from the first
-    /// knot fades along the reproduction ([`Hsom::curve`]); `None`: the curve starts at its
+    /// knot fades along the reproduction ([`Model::curve`]); `None`: the curve starts at its
     /// first knot.
     pub(super) joined_from: Option<Vec<f64>>,
     /// Whose the events' durations are.
@@ -341,7 +340,7 @@ pub(super) enum Timing {
     /// demonstrations ever did, the knots are retimed ([`no_faster_than`]).
     Planned,
     /// Kept as they are: a demonstration's own (re-encoding it, sample for sample), or knots
-    /// already retimed (the rest of a resumed plan, [`Hsom::retimed`]).
+    /// already retimed (the rest of a resumed plan, [`Model::retimed`]).
     Kept,
 }
 

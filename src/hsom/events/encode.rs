@@ -3,7 +3,8 @@
 
 use crate::som::SelfOrganizingMap;
 
-use crate::hsom::model::{Hsom, Layout};
+use crate::hsom::inputs::Layout;
+use crate::hsom::model::{Model, Part};
 
 /// Encoded durations: `scale * ln(1 + samples)`.
 #[derive(Debug, Clone, Copy)]
@@ -38,7 +39,7 @@ pub(in crate::hsom) struct Item {
 
 /// The events of one demonstration: runs of the bottom BMU with hysteresis (`changeRatio`),
 /// as (node, length in samples). Constant work per sample.
-pub(crate) fn bottom_events(model: &Hsom, demo: &[Vec<f64>]) -> Vec<(usize, f64)> {
+pub(crate) fn bottom_events<A: Part>(model: &Model<A>, demo: &[Vec<f64>]) -> Vec<(usize, f64)> {
     let p = model.config.params();
     let s = p.state_length;
     let h = p.action_horizon().max(1);
@@ -72,7 +73,7 @@ pub(crate) fn bottom_events(model: &Hsom, demo: &[Vec<f64>]) -> Vec<(usize, f64)
 /// planned), its duration in samples, the level that planned it, and where a traced plan
 /// places it (`plan = traced`: that demonstrated event's place in the demonstrations'
 /// consensus, normalised, state part; `None`: where its node is placed,
-/// [`Hsom::placement`]).
+/// [`Model::placement`]).
 pub(super) type Step<N> = (N, f64, usize, Option<Vec<f64>>);
 
 /// How far a `reading` of a plan's execution has got along the plan, event by event: the
@@ -277,8 +278,8 @@ pub(in crate::hsom) fn chunks(
 }
 
 /// The content of entry `m` of level `level` as a slot of the level above.
-pub(super) fn entry_content(
-    model: &Hsom,
+pub(super) fn entry_content<A: Part>(
+    model: &Model<A>,
     lay: Layout,
     level: usize,
     m: usize,

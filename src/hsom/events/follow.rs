@@ -7,17 +7,18 @@ use super::consensus::{aligned_samples, MAX_ALIGNED};
 use super::curve::Timing;
 use super::encode::{bottom_events, dist2, observed_durations, Step};
 use crate::hsom::errors::HsomError;
-use crate::hsom::model::{check_series, demo_series, Hsom};
+use crate::hsom::inputs::{check_series, demo_series, Series};
+use crate::hsom::model::{EventsHsom, Model, Part};
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
-impl Hsom {
+impl<A: Part> Model<A> {
     /// The demonstration through the bottom level's own code and back: its events (the
     /// bottom node of each run of samples and the run's length, as in training) turned into
     /// postures exactly as a reproduction's planned events are. No upper level is involved,
     /// so this is the ceiling of what the hierarchy can reproduce of that demonstration:
     /// whatever is lost here (a swing's amplitude, a short hold) the levels above cannot
     /// bring back. `predicted_by` is 0 throughout.
-    pub fn reencode(&self, demo: &Demonstration) -> Result<Reproduction, HsomError> {
+    pub(crate) fn reencode(&self, demo: &Demonstration) -> Result<Reproduction, HsomError> {
         let p = self.config.params();
         check_series(
             &demo_series(std::slice::from_ref(demo)),
@@ -47,7 +48,7 @@ impl Hsom {
     /// this is a reproduction whose plan is one whole demonstrated sequence of bottom nodes,
     /// the one that starts nearest, where the levels' plan is built chunk by chunk.
     /// `predicted_by` is 0 throughout.
-    pub fn follow_nearest(
+    pub(crate) fn follow_nearest(
         &self,
         demos: &[Demonstration],
         initial: &[f64],
@@ -72,7 +73,7 @@ impl Hsom {
     /// `after` (all of them for `None`), as planned ones, as a reproduction whose plan follows
     /// that demonstration executes them: each for its node's learned mean duration (its own
     /// length where the node has none); with `plan = traced`, each at that event's place in
-    /// the consensus of `norm` ([`Hsom::event_postures`]), as a traced plan places it.
+    /// the consensus of `norm` ([`Model::event_offsets`]), as a traced plan places it.
     pub(super) fn followed(
         &self,
         norm: &[Vec<Vec<f64>>],
@@ -80,6 +81,7 @@ impl Hsom {
         after: Option<f64>,
     ) -> Vec<Step<usize>> {
         let own = self
+            .part
             .events()
             .is_some_and(|e| e.traces.is_some())
             .then(|| self.event_offsets(norm, &aligned_samples(norm, MAX_ALIGNED)));
@@ -102,14 +104,14 @@ impl Hsom {
 
     /// The normalised rows of `prefix` (the first samples of a gesture, in the data's units;
     /// `source` names it in errors), once checked as a demonstration is.
-    fn normalised_prefix(
+    pub(super) fn normalised_prefix(
         &self,
         source: &'static str,
         prefix: &[Vec<f64>],
     ) -> Result<Vec<Vec<f64>>, HsomError> {
         let p = self.config.params();
         check_series(
-            &[crate::hsom::model::Series {
+            &[Series {
                 source,
                 rows: prefix,
             }],
@@ -119,20 +121,51 @@ impl Hsom {
         Ok(self.normalise_rows(prefix))
     }
 
+    /// The nearest-sequence baseline for a prefix: of `demos`, the one along which `prefix`
+    /// runs closest (open-end DTW in the model's normalised units, per prefix sample), its
+    /// bottom events after the sample where the prefix ends along it, executed from the
+    /// prefix's last posture as [`Hsom::follow_nearest`] executes them. The postures start
+    /// at the prefix's last posture and hold only the continuation.
+    pub(crate) fn follow_nearest_from(
+        &self,
+        demos: &[Demonstration],
+        prefix: &[Vec<f64>],
+    ) -> Result<Reproduction, HsomError> {
+        let p = self.config.params();
+        check_series(&demo_series(demos), p.state_length, p.action_horizon())?;
+        let norm = self.normalised_prefix("prefix", prefix)?;
+        let all: Vec<Vec<Vec<f64>>> = demos.iter().map(|d| self.normalise_rows(&d.rows)).collect();
+        let (d, end, _) = all
+            .iter()
+            .enumerate()
+            .map(|(d, rows)| {
+                let (end, cost) = crate::dtw::open_end_cost(&norm, rows);
+                (d, end, cost)
+            })
+            .min_by(|a, b| a.2.total_cmp(&b.2))
+            .ok_or(HsomError::NoDemonstrations)?;
+        // the events the prefix has reached (begun at or before its end) are skipped, as
+        // `continue_events` takes the prefix's last event as done
+        let executed = self.followed(&all, d, Some(end as f64));
+        Ok(self.timed_postures(
+            &norm[0],
+            &norm[norm.len() - 1],
+            &executed,
+            StopReason::EndEvent,
+            Timing::Planned,
+        ))
+    }
+}
+
+impl EventsHsom {
     /// Continue a gesture from its first samples (`prefix`, in the data's units; at least
     /// `actionHorizon + 1` of them) with the events extension's own machinery: the prefix's
     /// bottom events are pushed up the lists exactly as executed events are (each level's
     /// context, phase and completed entries become the prefix's), and the levels plan the rest
     /// from there (docs/ALGORITHM.md, section 3.10). The postures start at the
-    /// prefix's last posture and hold only the continuation. Needs `algorithm = events`.
-    pub fn continue_events(&self, prefix: &[Vec<f64>]) -> Result<Reproduction, HsomError> {
+    /// prefix's last posture and hold only the continuation.
+    pub(crate) fn continue_events(&self, prefix: &[Vec<f64>]) -> Result<Reproduction, HsomError> {
         let p = self.config.params();
-        if p.kind() != crate::config::Algorithm::Events {
-            return Err(HsomError::NeedsEvents {
-                what: "continuing a prefix".into(),
-                algorithm: format!("{:?}", p.algorithm).to_lowercase(),
-            });
-        }
         let norm = self.normalised_prefix("prefix", prefix)?;
         let events = bottom_events(self, &norm);
         let last = &norm[norm.len() - 1];
@@ -156,15 +189,12 @@ impl Hsom {
     /// The events are the plan's own, not the reading encoded again: a reproduction's reading
     /// encodes into more bottom events than were planned, and the lists' phase counts events.
     /// The postures start at the reading's last posture and hold only the continuation.
-    /// Needs `algorithm = events`.
-    pub fn resume(&self, initial: &[f64], reading: &[Vec<f64>]) -> Result<Reproduction, HsomError> {
+    pub(crate) fn resume(
+        &self,
+        initial: &[f64],
+        reading: &[Vec<f64>],
+    ) -> Result<Reproduction, HsomError> {
         let p = self.config.params();
-        if p.kind() != crate::config::Algorithm::Events {
-            return Err(HsomError::NeedsEvents {
-                what: "resuming a reproduction".into(),
-                algorithm: format!("{:?}", p.algorithm).to_lowercase(),
-            });
-        }
         self.check_initial(initial)?;
         let norm = self.normalised_prefix("reading", reading)?;
         let y0 = self.normalise(initial);
@@ -209,40 +239,5 @@ impl Hsom {
         let mut rep = self.curve(&rest, &v0, samples, stop);
         rep.truncate(r.max_length);
         Ok(rep)
-    }
-
-    /// The nearest-sequence baseline for a prefix: of `demos`, the one along which `prefix`
-    /// runs closest (open-end DTW in the model's normalised units, per prefix sample), its
-    /// bottom events after the sample where the prefix ends along it, executed from the
-    /// prefix's last posture as [`Hsom::follow_nearest`] executes them. The postures start
-    /// at the prefix's last posture and hold only the continuation.
-    pub fn follow_nearest_from(
-        &self,
-        demos: &[Demonstration],
-        prefix: &[Vec<f64>],
-    ) -> Result<Reproduction, HsomError> {
-        let p = self.config.params();
-        check_series(&demo_series(demos), p.state_length, p.action_horizon())?;
-        let norm = self.normalised_prefix("prefix", prefix)?;
-        let all: Vec<Vec<Vec<f64>>> = demos.iter().map(|d| self.normalise_rows(&d.rows)).collect();
-        let (d, end, _) = all
-            .iter()
-            .enumerate()
-            .map(|(d, rows)| {
-                let (end, cost) = crate::dtw::open_end_cost(&norm, rows);
-                (d, end, cost)
-            })
-            .min_by(|a, b| a.2.total_cmp(&b.2))
-            .ok_or(HsomError::NoDemonstrations)?;
-        // the events the prefix has reached (begun at or before its end) are skipped, as
-        // `continue_events` takes the prefix's last event as done
-        let executed = self.followed(&all, d, Some(end as f64));
-        Ok(self.timed_postures(
-            &norm[0],
-            &norm[norm.len() - 1],
-            &executed,
-            StopReason::EndEvent,
-            Timing::Planned,
-        ))
     }
 }

@@ -12,9 +12,10 @@ use super::traces::{
 };
 use super::END;
 use crate::hsom::followers::{follower_positions, followers_table, lookup_accuracy, lookup_counts};
-use crate::hsom::model::{Hsom, Layout, TracedChunk, Traces};
+use crate::hsom::inputs::Layout;
+use crate::hsom::model::{EventsHsom, TracedChunk, Traces};
 
-/// What [`Hsom::replay_level`] measured.
+/// What [`EventsHsom::replay_level`] measured.
 struct LevelReplay {
     /// Per sequence, the level's BMU of each chunk: the next level's entries.
     next_items: Vec<Vec<Item>>,
@@ -31,27 +32,27 @@ struct LevelReplay {
 }
 
 /// Nodes of a level that some training entry selected.
-pub(super) fn used(model: &Hsom, level: usize) -> Vec<usize> {
+pub(super) fn used(model: &EventsHsom, level: usize) -> Vec<usize> {
     (0..model.maps[level].len())
         .filter(|&i| model.hits[level][i] > 0)
         .collect()
 }
 
-impl Hsom {
+impl EventsHsom {
     /// Train the levels above the bottom on the events of `norm` (already normalised
     /// demonstrations; the bottom map is trained), level by level, and compute every
     /// statistic the events reproduction uses.
     pub(crate) fn fit_events<R: Rng>(&mut self, norm: &[Vec<Vec<f64>>], learn: bool, rng: &mut R) {
         self.fit_levels(norm, learn, rng);
         let (acc, lookup) = self.heldout_levels(norm, learn, rng.gen());
-        self.ev_mut().heldout_accuracy = acc;
-        self.ev_mut().heldout_lookup = lookup;
+        self.part.heldout_accuracy = acc;
+        self.part.heldout_lookup = lookup;
     }
 
     /// Each level's prediction accuracy and its lookup table's, held out: for every
     /// demonstration, the levels above the bottom trained again on the others (the bottom
     /// kept, fold seeds from `seed`) predict its entries, scored as in training
-    /// ([`Hsom::replay_level`]); the counts are summed over the folds. With one
+    /// ([`EventsHsom::replay_level`]); the counts are summed over the folds. With one
     /// demonstration nothing can be held out: the in-sample figures.
     fn heldout_levels(
         &self,
@@ -81,7 +82,7 @@ impl Hsom {
             for (l, c) in counts.iter_mut().enumerate().skip(1) {
                 let seq: Vec<u32> = items.iter().map(|i| i.node).collect();
                 let (n, ok) = lookup_counts(
-                    &fold.ev().followers[l - 1],
+                    &fold.part.followers[l - 1],
                     fold.maps[l - 1].len(),
                     std::slice::from_ref(&seq),
                 );
@@ -105,7 +106,7 @@ impl Hsom {
         )
     }
 
-    /// [`Hsom::fit_events`] without the held-out figures.
+    /// [`EventsHsom::fit_events`] without the held-out figures.
     fn fit_levels<R: Rng>(&mut self, norm: &[Vec<Vec<f64>>], learn: bool, rng: &mut R) {
         let cfg = self.config.clone();
         let p = cfg.params();
@@ -113,15 +114,15 @@ impl Hsom {
         let n0 = self.maps[0].len();
         // what a previous fit of the levels left (a held-out fold starts from a clone)
         self.hits[1..].iter_mut().for_each(|v| v.fill(0));
-        self.ev_mut()
+        self.part
             .exemplars
             .iter_mut()
             .for_each(|e| e.fill(u32::MAX));
-        self.ev_mut()
+        self.part
             .exemplar_phase
             .iter_mut()
             .for_each(|e| e.fill(0.0));
-        self.ev_mut()
+        self.part
             .followers
             .iter_mut()
             .for_each(|f| f.fill(u32::MAX));
@@ -155,9 +156,9 @@ impl Hsom {
             .collect();
         // the bottom's followers: its lookup table (the reflex at height 1) and the candidates
         // level 1 decodes among
-        self.ev_mut().followers[0] = followers_table(n0, &seqs0);
-        self.ev_mut().follower_at =
-            follower_positions(n0, &seqs0, &self.ev().followers[0], self.demo_runs[1]);
+        self.part.followers[0] = followers_table(n0, &seqs0);
+        self.part.follower_at =
+            follower_positions(n0, &seqs0, &self.part.followers[0], self.demo_runs[1]);
         let code = DurationCode::from_dwell(&self.dwell);
         let mean_events = self.demo_runs[1];
         // 2. level by level
@@ -177,7 +178,7 @@ impl Hsom {
             seqs_by_level.push(seqs.clone());
             let nodes_below = self.maps[l - 1].len();
             if l > 1 {
-                self.ev_mut().followers[l - 1] = followers_table(nodes_below, &seqs);
+                self.part.followers[l - 1] = followers_table(nodes_below, &seqs);
             }
             let per_item = (lay.k as f64).powi(l as i32 - 1);
             let demo_chunks: Vec<_> = items
@@ -233,10 +234,10 @@ impl Hsom {
                     if d2 < best[b] {
                         best[b] = d2;
                         for j in 0..lay.k {
-                            self.ev_mut().exemplars[l][b * lay.k + j] =
+                            self.part.exemplars[l][b * lay.k + j] =
                                 items[di].get(ci * lay.k + j).map_or(END, |i| i.node);
                         }
-                        self.ev_mut().exemplar_phase[l][b] = ch.phase;
+                        self.part.exemplar_phase[l][b] = ch.phase;
                     }
                 }
             }
@@ -249,17 +250,17 @@ impl Hsom {
             let chunks = r.chunks.max(1) as f64;
             self.qe[l] = r.qe / chunks;
             self.te[l] = r.te as f64 / chunks;
-            self.ev_mut().threshold[l] = r.threshold;
+            self.part.threshold[l] = r.threshold;
             self.accuracy[l] = if r.predicted > 0 {
                 r.correct as f64 / r.predicted as f64
             } else {
                 0.0
             };
-            self.lookup[l] = lookup_accuracy(&self.ev().followers[l - 1], nodes_below, &seqs);
+            self.lookup[l] = lookup_accuracy(&self.part.followers[l - 1], nodes_below, &seqs);
             items = r.next_items;
             chunk_bmus.push(bmus);
         }
-        self.ev_mut().traces = Some(self.traced_chunks(&seqs_by_level, chunk_bmus));
+        self.part.traces = Some(self.traced_chunks(&seqs_by_level, chunk_bmus));
     }
 
     /// The traced chunks ([`Traces`]) from the entries per demonstration of every level below
@@ -431,26 +432,9 @@ impl Hsom {
     /// Entry `j` of the exemplar of node `n` of `level` (`u32::MAX`: none).
     pub(super) fn exemplar(&self, level: usize, n: usize, j: usize) -> u32 {
         let k = self.config.params().memory;
-        self.ev().exemplars[level]
+        self.part.exemplars[level]
             .get(n * k + j)
             .copied()
             .unwrap_or(u32::MAX)
-    }
-
-    /// Reproduce with the events extension from the normalised initial posture `y0`.
-    /// Whether reproduction may plan from level `l` (`algorithm = events`): level 1 always
-    /// (the lowest level with a sequence); a level above only if it and every level between
-    /// it and level 1, on their own training data, predicted the next entry of the level
-    /// below more often than the lookup table of "next entry given the last one" counted on
-    /// the same data (docs/ALGORITHM.md, section 3.5). Always true with the paper's algorithm
-    /// and for the bottom.
-    pub fn level_trusted(&self, l: usize) -> bool {
-        if self.config.params().kind() != crate::config::Algorithm::Events {
-            return true;
-        }
-        (2..=l).all(|k| {
-            self.accuracy.get(k).copied().unwrap_or(0.0)
-                > self.lookup.get(k).copied().unwrap_or(0.0)
-        })
     }
 }

@@ -13,10 +13,11 @@ use super::levels::used;
 use super::traces::{trace_bmus_at, trace_places, trace_postures_at, Decoder, TRACE_HEAD};
 use super::END;
 use crate::hsom::followers::most_frequent;
-use crate::hsom::model::{Hsom, Layout};
+use crate::hsom::inputs::Layout;
+use crate::hsom::model::EventsHsom;
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
-impl Hsom {
+impl EventsHsom {
     pub(crate) fn reproduce_events(&self, y0: &[f64], r: &ReproductionParams) -> Reproduction {
         self.plan_events(y0, y0, &[], r)
     }
@@ -43,7 +44,7 @@ impl Hsom {
         )
     }
 
-    /// The events of [`Hsom::plan_events`]: the prefix's, then the planned ones, each (node,
+    /// The events of [`EventsHsom::plan_events`]: the prefix's, then the planned ones, each (node,
     /// duration in samples, level that planned it), and why the plan ended. The first
     /// planned events are `executed` where given (what was executed of an earlier plan: its
     /// nodes, for the durations observed): each is pushed up the lists in the plan's place,
@@ -109,7 +110,7 @@ impl Hsom {
                     if l > 1
                         && (!self.level_trusted(l)
                             || (d2 / known as f64).sqrt()
-                                > self.ev().threshold[l] * (1.0 + 1e-9) + 1e-12)
+                                > self.part.threshold[l] * (1.0 + 1e-9) + 1e-12)
                     {
                         break;
                     }
@@ -122,7 +123,7 @@ impl Hsom {
                     let next = if first {
                         n_init as u32
                     } else {
-                        most_frequent(&self.ev().followers[0], self.maps[0].len(), last as u32)
+                        most_frequent(&self.part.followers[0], self.maps[0].len(), last as u32)
                     };
                     if next == u32::MAX || next == END {
                         stop = StopReason::EndEvent;
@@ -153,7 +154,7 @@ impl Hsom {
                     let pos = if self.exemplar(level, matched[level], 0) == u32::MAX {
                         f64::NAN
                     } else {
-                        self.ev().exemplar_phase[level][matched[level]]
+                        self.part.exemplar_phase[level][matched[level]]
                     };
                     let traced =
                         self.traced_plan(&ctx, level, &mut follow, &mut plan, &mut lists.expected);
@@ -224,7 +225,7 @@ impl Hsom {
         expected: &mut [VecDeque<u32>],
     ) -> bool {
         let Some(chunks) = self
-            .ev()
+            .part
             .traces
             .as_ref()
             .and_then(|t| t.levels.get(level))
@@ -438,7 +439,7 @@ impl Lists {
     /// chunk's node is not the one the plan expected there (a surprise).
     pub(super) fn push_event(
         &mut self,
-        model: &Hsom,
+        model: &EventsHsom,
         lay: Layout,
         code: DurationCode,
         mean_events: f64,
@@ -477,7 +478,7 @@ impl Lists {
 }
 
 impl Planner<'_> {
-    pub(super) fn decoder<'m>(&self, model: &'m Hsom) -> Decoder<'m> {
+    pub(super) fn decoder<'m>(&self, model: &'m EventsHsom) -> Decoder<'m> {
         Decoder {
             model,
             lay: self.lay,

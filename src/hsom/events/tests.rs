@@ -14,7 +14,8 @@ use super::END;
 use crate::config::HsomParams;
 use crate::hsom::errors::HsomError;
 use crate::hsom::followers::*;
-use crate::hsom::model::{Hsom, Layout, StartKnots};
+use crate::hsom::inputs::Layout;
+use crate::hsom::model::{EventsHsom, StartKnots};
 use crate::hsom::reproduction::StopReason;
 
 mod consensus;
@@ -65,14 +66,14 @@ fn config(height: usize) -> HsomConfig {
     p.check("test").unwrap()
 }
 
-fn trained(height: usize) -> Hsom {
+fn trained(height: usize) -> EventsHsom {
     let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
-    config(height).fit_series(&series).unwrap()
+    config(height).fit_series(&series).unwrap().into_events()
 }
 
 /// Mean distance of `rows` (with their postures `horizon` samples later, as the bottom is
 /// trained) to the bottom map: its quantization error on them.
-fn bottom_error(m: &Hsom, rows: &[Vec<f64>], horizon: usize) -> f64 {
+fn bottom_error(m: &EventsHsom, rows: &[Vec<f64>], horizon: usize) -> f64 {
     let norm = m.normalise_rows(rows);
     let n = norm.len() - 1;
     let inputs: Vec<Vec<f64>> = (0..n)
@@ -144,7 +145,7 @@ fn decoding_by_content_picks_the_nearest_follower() {
     let lay = Layout::of(&m.config);
     let code = DurationCode::from_dwell(&m.dwell);
     // the first follower of the begin, decoded from its own content
-    let first = m.ev().followers[0][m.maps[0].len() * FOLLOWERS];
+    let first = m.part.followers[0][m.maps[0].len() * FOLLOWERS];
     assert_ne!(first, u32::MAX);
     let c = entry_content(&m, lay, 0, first as usize, code);
     let dec = Decoder {
@@ -165,7 +166,7 @@ fn decoding_by_content_picks_the_nearest_follower() {
     );
     // an exemplar entry that followed the previous one wins over content; one that never
     // followed it is ignored
-    let row = &m.ev().followers[0][m.maps[0].len() * FOLLOWERS..][..FOLLOWERS];
+    let row = &m.part.followers[0][m.maps[0].len() * FOLLOWERS..][..FOLLOWERS];
     let never = (0..m.maps[0].len() as u32)
         .find(|n| !row.contains(n))
         .unwrap();
@@ -202,14 +203,14 @@ fn decoding_prefers_the_follower_seen_at_the_planned_position() {
     let lay = Layout::of(&m.config);
     let code = DurationCode::from_dwell(&m.dwell);
     let (p, a, b) = (0usize, 1u32, 2u32);
-    m.ev_mut().followers[0][p * FOLLOWERS..(p + 1) * FOLLOWERS].copy_from_slice(&[
+    m.part.followers[0][p * FOLLOWERS..(p + 1) * FOLLOWERS].copy_from_slice(&[
         a,
         b,
         u32::MAX,
         u32::MAX,
     ]);
-    m.ev_mut().follower_at[p * FOLLOWERS] = 0.1;
-    m.ev_mut().follower_at[p * FOLLOWERS + 1] = 0.9;
+    m.part.follower_at[p * FOLLOWERS] = 0.1;
+    m.part.follower_at[p * FOLLOWERS + 1] = 0.9;
     // a slot halfway between a and b: content alone cannot choose
     let ca = entry_content(&m, lay, 0, a as usize, code);
     let cb = entry_content(&m, lay, 0, b as usize, code);
@@ -232,7 +233,7 @@ fn decoding_prefers_the_follower_seen_at_the_planned_position() {
 /// nearer the start's (the paper's replication, which the count alone let through).
 /// Two demonstrations of a 2-D gesture from different starts: out along x and back once
 /// from (0, 0), twice from (0, 0.3); and the model `config(2)` trained on them.
-fn once_and_twice() -> ([Demonstration; 2], Hsom) {
+fn once_and_twice() -> ([Demonstration; 2], EventsHsom) {
     let demo = |source: &str, rows: Vec<Vec<f64>>, y: f64| Demonstration {
         source: source.into(),
         columns: vec!["x".into(), "y".into()],
@@ -243,16 +244,16 @@ fn once_and_twice() -> ([Demonstration; 2], Hsom) {
         demo("once", gesture(30, 1), 0.0),
         demo("twice", [gesture(30, 2), gesture(30, 3)].concat(), 0.3),
     ];
-    let m = config(2).fit(&demos).unwrap();
+    let m = config(2).fit(&demos).unwrap().into_events();
     (demos, m)
 }
 
 /// The same model with the traces' stored places cleared: each event at its node's place.
-fn at_nodes(m: &Hsom) -> Hsom {
+fn at_nodes(m: &EventsHsom) -> EventsHsom {
     let mut cleared = m.clone();
     let (k, s) = (m.config.params().memory, trace_places(m.config.params()));
     let at = trace_postures_at(k, 1);
-    for c in cleared.ev_mut().traces.as_mut().unwrap().levels[1].iter_mut() {
+    for c in cleared.part.traces.as_mut().unwrap().levels[1].iter_mut() {
         c.words[at..trace_bmus_at(k, 1, s)].fill(u32::MAX);
     }
     cleared
@@ -275,7 +276,7 @@ fn following_the_nearest_demonstration_keeps_its_number_of_excursions() {
     assert_ne!(excursions(&demos[0].rows), excursions(&demos[1].rows));
     // without traces, the followed events are placed at their nodes
     let mut nodes = m.clone();
-    nodes.ev_mut().traces = None;
+    nodes.part.traces = None;
     for d in &demos {
         let r = nodes.follow_nearest(&demos, &d.rows[0]).unwrap();
         assert_eq!(excursions(&r.postures), excursions(&d.rows), "{}", d.source);
@@ -298,9 +299,9 @@ fn following_the_nearest_demonstration_keeps_its_number_of_excursions() {
 #[test]
 fn a_traced_plan_replays_the_demonstration_its_node_stands_for() {
     let (demos, _) = once_and_twice();
-    let m = config(2).fit(&demos).unwrap();
+    let m = config(2).fit(&demos).unwrap().into_events();
     let r = &m.config.params().reproduction;
-    let tr = m.ev().traces.as_ref().unwrap();
+    let tr = m.part.traces.as_ref().unwrap();
     let (k, s) = (m.config.params().memory, trace_places(m.config.params()));
     let width = trace_width(k, 1, s).unwrap();
     assert!(tr.levels[1].len() <= m.maps[1].len() * TRACED_CHUNKS);
@@ -326,7 +327,7 @@ fn a_traced_plan_replays_the_demonstration_its_node_stands_for() {
     }
     // the control: the first demonstration's traced chunks replaced by the second's
     let mut other = m.clone();
-    let chunks = &mut other.ev_mut().traces.as_mut().unwrap().levels[1];
+    let chunks = &mut other.part.traces.as_mut().unwrap().levels[1];
     let second: Vec<Vec<u32>> = chunks
         .iter()
         .filter(|c| c.words[2] == 1)
@@ -379,8 +380,8 @@ fn traced_events_at_their_place_in_the_consensus_are_smoother_than_at_their_node
             .filter(|&i| i != out)
             .map(|i| all[i].clone())
             .collect();
-        let mut m = config(2).fit_series(&train).unwrap();
-        m.ev_mut().demo_smoothness = None;
+        let mut m = config(2).fit_series(&train).unwrap().into_events();
+        m.part.demo_smoothness = None;
         let cleared = at_nodes(&m);
         let y0 = &all[out][0];
         let a = m.reproduce(y0).unwrap().postures;
@@ -449,11 +450,16 @@ fn two_knots_per_event_keep_the_swings() {
             .collect();
         let mut p = config(2).into_params();
         p.levels[0] = crate::config::LevelParams::new(4, 2, crate::som::Topology::Orthogonal, 0.1);
-        let m = p.check("test").unwrap().fit_series(&train).unwrap();
+        let m = p
+            .check("test")
+            .unwrap()
+            .fit_series(&train)
+            .unwrap()
+            .into_events();
         let mut cleared = m.clone();
         let (k, pw) = (m.config.params().memory, trace_places(m.config.params()));
         let at = trace_postures_at(k, 1);
-        for c in cleared.ev_mut().traces.as_mut().unwrap().levels[1].iter_mut() {
+        for c in cleared.part.traces.as_mut().unwrap().levels[1].iter_mut() {
             c.words[at..trace_bmus_at(k, 1, pw)].fill(u32::MAX);
         }
         for (i, model) in [&m, &cleared].into_iter().enumerate() {
@@ -466,7 +472,7 @@ fn two_knots_per_event_keep_the_swings() {
     // an event passes through two knots only where each half lasts two samples: one
     // of 3.5 samples keeps one knot at its middle, one of 4 two, at its quarters, each
     // at its half's place
-    let m = config(2).fit_series(&all[..4]).unwrap();
+    let m = config(2).fit_series(&all[..4]).unwrap().into_events();
     let y0 = m.normalise(&all[0][0]);
     // the event, its halves, then each half's lowest and highest values (s = 2)
     let at: Vec<f64> = vec![
@@ -629,7 +635,7 @@ fn resuming_its_own_reproduction_goes_on_as_planned() {
 #[test]
 fn continuing_a_prefix_plans_the_rest_from_the_lists() {
     let prefix: Vec<Vec<f64>> = gesture(35, 9).into_iter().take(35 + 40 + 15).collect();
-    let goes_home = |m: &Hsom| {
+    let goes_home = |m: &EventsHsom| {
         let r = m.continue_events(&prefix).unwrap();
         let xs: Vec<f64> = r.postures.iter().map(|p| p[0]).collect();
         let back = xs.iter().position(|&x| x < 0.5);
@@ -647,7 +653,7 @@ fn continuing_a_prefix_plans_the_rest_from_the_lists() {
     let (ok, xs) = goes_home(&trained(3));
     assert!(ok, "trained: {xs}");
     let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
-    let (ok, xs) = goes_home(&config(3).initialise_series(&series).unwrap());
+    let (ok, xs) = goes_home(&config(3).initialise_series(&series).unwrap().into_events());
     assert!(!ok, "untrained: {xs}");
     let mut p = HsomParams::table1();
     p.state_length = 2;
@@ -668,14 +674,14 @@ fn a_plan_ends_at_home_where_its_position_is_nearer_the_end() {
     let lay = Layout::of(&m.config);
     let code = DurationCode::from_dwell(&m.dwell);
     let (home, start) = (0usize, 1u32);
-    m.ev_mut().followers[0][home * FOLLOWERS..(home + 1) * FOLLOWERS].copy_from_slice(&[
+    m.part.followers[0][home * FOLLOWERS..(home + 1) * FOLLOWERS].copy_from_slice(&[
         start,
         END,
         u32::MAX,
         u32::MAX,
     ]);
-    m.ev_mut().follower_at[home * FOLLOWERS] = 0.0;
-    m.ev_mut().follower_at[home * FOLLOWERS + 1] = 1.0;
+    m.part.follower_at[home * FOLLOWERS] = 0.0;
+    m.part.follower_at[home * FOLLOWERS + 1] = 1.0;
     // a slot that reads as the start of the gesture: content says "start again"
     let mut c = entry_content(&m, lay, 0, start as usize, code);
     c[2 * lay.s + 1] = 0.0;
@@ -711,7 +717,7 @@ fn exemplar_positions_are_phases_of_training_chunks() {
     let m = trained(3);
     for l in 1..m.maps.len() {
         for n in (0..m.maps[l].len()).filter(|&n| m.hits[l][n] > 0) {
-            let p = m.ev().exemplar_phase[l][n];
+            let p = m.part.exemplar_phase[l][n];
             assert!(
                 p.is_finite() && (0.0..=2.0).contains(&p),
                 "level {l} node {n}: {p}"
@@ -719,7 +725,7 @@ fn exemplar_positions_are_phases_of_training_chunks() {
         }
     }
     // the begin chunk's node is at 0
-    assert!((1..m.maps.len()).all(|l| m.ev().exemplar_phase[l].contains(&0.0)));
+    assert!((1..m.maps.len()).all(|l| m.part.exemplar_phase[l].contains(&0.0)));
 }
 
 /// Every used node of a level above the bottom has an exemplar: the entries below of a
@@ -800,11 +806,11 @@ fn a_plan_that_ends_by_its_end_event_ends_where_the_demonstrations_ended() {
         rows
     };
     let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| stroke(30 + 5 * i, i as u64)).collect();
-    let m = config(3).fit_series(&series).unwrap();
+    let m = config(3).fit_series(&series).unwrap().into_events();
     let ended: Vec<f64> = (0..2)
         .map(|j| series.iter().map(|d| d.last().unwrap()[j]).sum::<f64>() / 3.0)
         .collect();
-    let end = m.denormalise(m.ev().end_posture.as_ref().unwrap());
+    let end = m.denormalise(m.part.end_posture.as_ref().unwrap());
     assert!(
         end.iter().zip(&ended).all(|(a, b)| (a - b).abs() < 1e-9),
         "{end:?}"
@@ -886,7 +892,7 @@ fn reencoding_keeps_what_the_bottom_code_keeps_and_an_untrained_code_loses_it() 
         time: None,
         rows: rows.clone(),
     };
-    let err = |m: &Hsom| {
+    let err = |m: &EventsHsom| {
         let r = m.reencode(&demo).unwrap();
         assert!(r.predicted_by.iter().all(|&l| l == 0));
         crate::dtw::dtw_distance(&r.postures, &rows, crate::dtw::Band::None)
@@ -898,7 +904,7 @@ fn reencoding_keeps_what_the_bottom_code_keeps_and_an_untrained_code_loses_it() 
     assert!(good < 0.05, "trained: {good}");
     // negative control: the initial (random) bottom map
     let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
-    let untrained = err(&config(3).initialise_series(&series).unwrap());
+    let untrained = err(&config(3).initialise_series(&series).unwrap().into_events());
     // it fails the gate the trained code passes, by an order of magnitude
     assert!(
         untrained > 0.05 && untrained > 10.0 * good,
@@ -916,7 +922,7 @@ fn reencoding_keeps_what_the_bottom_code_keeps_and_an_untrained_code_loses_it() 
 #[test]
 fn an_untrained_hierarchy_does_not_reproduce_the_gesture() {
     let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
-    let m = config(3).initialise_series(&series).unwrap();
+    let m = config(3).initialise_series(&series).unwrap().into_events();
     let rep = m.reproduce(&[0.0, 0.0]).unwrap();
     let xs: Vec<f64> = rep.postures.iter().map(|p| p[0]).collect();
     let held = xs.iter().filter(|&&x| x > 0.9).count();
@@ -941,13 +947,13 @@ fn executed_events_climb_the_lists_and_a_wrong_expectation_is_a_surprise() {
     assert!(ev.len() >= 2 * lay.k);
     let start = m.maps[0].weights(ev[0].0)[..lay.s].to_vec();
     // expecting exactly what the lists will find: no surprise
-    let mut probe = Lists::new(m.height(), &start);
+    let mut probe = Lists::new(m.maps.len(), &start);
     for &(n, d) in &ev[..lay.k] {
         probe.push_event(&m, lay, code, mean, n, d);
     }
     let first_chunk = probe.tail[1];
     assert_ne!(first_chunk, u32::MAX, "a full chunk reaches level 1");
-    let mut lists = Lists::new(m.height(), &start);
+    let mut lists = Lists::new(m.maps.len(), &start);
     lists.expected[1].push_back(first_chunk);
     let mut surprised = false;
     for &(n, d) in &ev[..lay.k] {
@@ -958,7 +964,7 @@ fn executed_events_climb_the_lists_and_a_wrong_expectation_is_a_surprise() {
     assert!(lists.chunk[1].is_empty());
     assert!(lists.expected[1].is_empty(), "the expectation was consumed");
     // expecting another node: surprise, at the event that completes the chunk only
-    let mut lists = Lists::new(m.height(), &start);
+    let mut lists = Lists::new(m.maps.len(), &start);
     let other = (first_chunk + 1) % m.maps[1].len() as u32;
     lists.expected[1].push_back(other);
     let flags: Vec<bool> = ev[..lay.k]

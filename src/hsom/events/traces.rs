@@ -4,7 +4,8 @@
 use super::encode::{b_part, dist2, entry_content, DurationCode};
 use super::END;
 use crate::hsom::followers::{follower_row, FOLLOWERS};
-use crate::hsom::model::{Hsom, Layout, Traces};
+use crate::hsom::inputs::Layout;
+use crate::hsom::model::{EventsHsom, Traces};
 
 /// How many of the training chunks a node was the BMU of it keeps for traced plans (those
 /// nearest its weights first): a bound on the model's size, not a tuned value.
@@ -21,7 +22,7 @@ pub(super) const TRACE_HEAD: usize = 3;
 /// demonstration, the bottom node before it (its first, for a demonstration's first chunk),
 /// the demonstration (its index among the training demonstrations), its `k^l` bottom
 /// events, where each of them lies in the demonstrations' consensus (`s` values per event,
-/// as `f32` bits, from [`Hsom::fit_postures`]; all `u32::MAX`: none), then for each level
+/// as `f32` bits, from [`EventsHsom::fit_postures`]; all `u32::MAX`: none), then for each level
 /// `m` from 1 to `l - 1` the BMUs of its `k^(l-m)` chunks of level `m`; `None` where that
 /// does not fit in `usize`. `s` is [`trace_places`]: each event's place, then its two
 /// halves'.
@@ -162,7 +163,7 @@ impl Traces {
 
 /// What decoding needs: the model and its encoding.
 pub(super) struct Decoder<'a> {
-    pub(super) model: &'a Hsom,
+    pub(super) model: &'a EventsHsom,
     pub(super) lay: Layout,
     pub(super) code: DurationCode,
 }
@@ -198,7 +199,7 @@ impl Decoder<'_> {
         let below = level - 1;
         let n = model.maps[below].len();
         let row = follower_row(n, prev);
-        let table = &model.ev().followers[below];
+        let table = &model.part.followers[below];
         let cands: Vec<u32> = table[row * FOLLOWERS..(row + 1) * FOLLOWERS]
             .iter()
             .copied()
@@ -211,7 +212,7 @@ impl Decoder<'_> {
                 .iter()
                 .position(|&f| f == m)?;
             (level == 1 && position.is_finite())
-                .then(|| (position - model.ev().follower_at[row * FOLLOWERS + k]).abs())
+                .then(|| (position - model.part.follower_at[row * FOLLOWERS + k]).abs())
         };
         // the plan nearer where the demonstrations ended after `prev` than where any other
         // follower came: "end here", not "start again", even when the reproduction came home

@@ -15,7 +15,10 @@ fn saving_refuses_what_loading_would_refuse_and_writes_nothing() {
     for name in ["m.bin", "m.txt"] {
         m.save(&dir.path().join(name)).unwrap();
     }
-    m.dwell[0] = 1e300;
+    let Hsom::Paper(paper) = &mut m else {
+        panic!("Table I is the paper's algorithm")
+    };
+    paper.dwell[0] = 1e300;
     for name in ["bad.bin", "bad.txt"] {
         let path = dir.path().join(name);
         let e = m.save(&path).unwrap_err();

@@ -109,9 +109,9 @@ fn each_node_is_placed_where_the_demonstrations_agree() {
                 .collect()
         })
         .collect();
-    let m = config(2).fit_series(&series).unwrap();
+    let m = config(2).fit_series(&series).unwrap().into_events();
     // where each demonstration's apex events are placed, raw units
-    let apex = |h: &Hsom, d: &[Vec<f64>]| {
+    let apex = |h: &EventsHsom, d: &[Vec<f64>]| {
         let y = m.normalise_rows(d);
         let ev = bottom_events(h, &y);
         let node = ev.iter().max_by(|a, b| a.1.total_cmp(&b.1)).unwrap().0;
@@ -131,10 +131,10 @@ fn each_node_is_placed_where_the_demonstrations_agree() {
     // the control: each node at its own samples' mean, each demonstration its own apex
     let norm: Vec<Vec<Vec<f64>>> = series.iter().map(|d| m.normalise_rows(d)).collect();
     let mut own = m.clone();
-    own.ev_mut().knots = Some(m.own_postures(&norm));
+    own.part.knots = Some(m.own_postures(&norm));
     for d in &series {
         let amplitude = d.iter().map(|r| r[0]).fold(f64::MIN, f64::max);
-        let toward_mean = |h: &Hsom| (apex(h, d) - 1.0).abs() < 0.7 * (amplitude - 1.0).abs();
+        let toward_mean = |h: &EventsHsom| (apex(h, d) - 1.0).abs() < 0.7 * (amplitude - 1.0).abs();
         if (amplitude - 1.0).abs() < 0.1 {
             assert!((apex(&m, d) - 1.0).abs() < 0.05, "{}", apex(&m, d));
             continue;

@@ -272,7 +272,7 @@ fn from_elsewhere(i: usize) -> Vec<Vec<f64>> {
 #[test]
 fn a_start_away_from_the_demonstrations_is_joined_smoothly() {
     let train: Vec<Vec<Vec<f64>>> = (0..5).map(from_elsewhere).collect();
-    let m = config(2).fit_series(&train).unwrap();
+    let m = config(2).fit_series(&train).unwrap().into_events();
     let speed = |r: &[Vec<f64>]| crate::dtw::euclidean(&r[1], &r[0]);
     let fastest_start = train.iter().map(|d| speed(d)).fold(0.0, f64::max);
     let y0 = [0.02, 0.33];
@@ -307,7 +307,7 @@ fn a_start_away_from_the_demonstrations_is_joined_smoothly() {
     );
     // the control
     let mut plain = m.clone();
-    plain.ev_mut().demo_smoothness = None;
+    plain.part.demo_smoothness = None;
     let y = m.normalise(&y0);
     let r = &m.config.params().reproduction;
     let (executed, stop) = plain.plan_event_list(&y, &[], &[], r);

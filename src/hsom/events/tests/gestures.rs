@@ -5,7 +5,7 @@ use super::*;
 #[test]
 fn a_shared_bottom_drawn_at_random_keeps_the_first_gesture() {
     use crate::hsom::algorithm::Presentation;
-    use crate::hsom::model::Series;
+    use crate::hsom::inputs::Series;
     // two gestures in different places, presented first one, then the other
     let a: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
     let b: Vec<Vec<Vec<f64>>> = (0..3)
@@ -26,10 +26,11 @@ fn a_shared_bottom_drawn_at_random_keeps_the_first_gesture() {
     let fit = |order| {
         cfg.fit_inner(&series, None, true, vec!["x".into(), "y".into()], order)
             .unwrap()
+            .into_events()
     };
     let (in_order, drawn) = (fit(Presentation::InOrder), fit(Presentation::Shuffled));
     let h = cfg.params().action_horizon();
-    let err = |m: &Hsom, set: &[Vec<Vec<f64>>]| {
+    let err = |m: &EventsHsom, set: &[Vec<Vec<f64>>]| {
         set.iter().map(|r| bottom_error(m, r, h)).sum::<f64>() / set.len() as f64
     };
     let (ea_order, ea_drawn) = (err(&in_order, &a), err(&drawn, &a));
@@ -77,7 +78,7 @@ fn each_branch_executes_its_own_gesture_on_the_shared_nodes() {
     let sets = vec![("a".to_string(), demos(&a)), ("b".to_string(), demos(&b))];
     let m = cfg.fit_gestures(&sets, None).unwrap();
     // mean distance between a demonstration and its re-encoding by a branch
-    let err = |br: &Hsom, set: &[Demonstration]| {
+    let err = |br: &EventsHsom, set: &[Demonstration]| {
         let mut e = 0.0;
         for d in set {
             let r = br.reencode(d).unwrap();
@@ -92,15 +93,18 @@ fn each_branch_executes_its_own_gesture_on_the_shared_nodes() {
         }
         e / set.len() as f64
     };
-    let (ba, bb) = (&m.branches[0], &m.branches[1]);
-    assert!(ba.ev().knots.is_some() && bb.ev().knots.is_some());
-    let weights_only = |br: &Hsom| {
+    let (ba, bb) = (
+        m.branches[0].as_events().unwrap(),
+        m.branches[1].as_events().unwrap(),
+    );
+    assert!(ba.part.knots.is_some() && bb.part.knots.is_some());
+    let weights_only = |br: &EventsHsom| {
         let mut m = br.clone();
-        m.ev_mut().knots = None;
+        m.part.knots = None;
         m
     };
     let mut other = ba.clone();
-    other.ev_mut().knots = bb.ev().knots.clone();
+    other.part.knots = bb.part.knots.clone();
     let (own, plain, wrong) = (
         err(ba, &sets[0].1),
         err(&weights_only(ba), &sets[0].1),
@@ -116,12 +120,20 @@ fn each_branch_executes_its_own_gesture_on_the_shared_nodes() {
     // demonstration (nothing to agree on), executes the nodes' weights
     let alone = cfg.fit_gestures(&sets[..1], None).unwrap();
     assert_eq!(
-        alone.branches[0].ev().knots,
-        cfg.fit(&sets[0].1).unwrap().ev().knots
+        alone.branches[0].as_events().unwrap().part.knots,
+        cfg.fit(&sets[0].1).unwrap().into_events().part.knots
     );
     assert!(cfg.initialise_gestures(&sets).unwrap().branches[0]
-        .ev()
+        .as_events()
+        .unwrap()
+        .part
         .knots
         .is_none());
-    assert!(cfg.fit(&sets[0].1[..1]).unwrap().ev().knots.is_none());
+    assert!(cfg
+        .fit(&sets[0].1[..1])
+        .unwrap()
+        .into_events()
+        .part
+        .knots
+        .is_none());
 }
