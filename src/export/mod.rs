@@ -109,8 +109,11 @@ pub enum ExportError {
     Usage(String),
     /// The simulated arm could not be loaded.
     #[cfg(feature = "sim")]
-    #[error(transparent)]
-    Arm(Box<crate::experiment::ExperimentError>),
+    #[error("loading the default arm model")]
+    Arm {
+        /// The simulator's error.
+        source: crate::sim::SimError,
+    },
     /// Writing the output.
     #[error("{path}: cannot write it: {source}")]
     Write {

@@ -86,7 +86,8 @@ fn export_executed(
 ) -> Result<super::ExportReport, ExportError> {
     #[cfg(feature = "sim")]
     if r.executed {
-        let arm = crate::experiment::load_arm(None).map_err(|e| ExportError::Arm(Box::new(e)))?;
+        let arm =
+            crate::sim::NaoArm::load_default().map_err(|source| ExportError::Arm { source })?;
         let run = |t: &Trajectory| {
             super::executed::execute_on_arm(&arm, t, crate::sim::DEFAULT_RECORD_RATE_HZ)
         };
