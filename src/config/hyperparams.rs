@@ -86,6 +86,11 @@ pub enum StopRule {
     MaxLength,
 }
 
+/// The `offset` of a configuration that omits it: `memory - 1`, at least 1.
+pub(super) fn default_offset(memory: usize) -> usize {
+    memory.saturating_sub(1).max(1)
+}
+
 /// The most levels a hierarchy may have.
 pub(crate) const MAX_HEIGHT: usize = 16;
 
@@ -351,7 +356,7 @@ impl HsomParams {
     /// predict from any number of entries.
     pub fn offset(&self) -> usize {
         self.paper()
-            .map_or(self.memory.saturating_sub(1).max(1), |q| q.offset)
+            .map_or(default_offset(self.memory), |q| q.offset)
     }
 
     /// Validate every value; `source` (a file name) is used in the error messages.

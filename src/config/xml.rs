@@ -14,8 +14,8 @@ use crate::som::{Decay, Neighbourhood, Schedule, Topology};
 
 use super::errors::ConfigError;
 use super::hyperparams::{
-    Algorithm, AlgorithmParams, EventsParams, HsomConfig, HsomParams, IdDecoding, LevelParams,
-    MemoryMode, Normalisation, PaperParams, ReproductionParams, StopRule, MAX_HEIGHT,
+    default_offset, Algorithm, AlgorithmParams, EventsParams, HsomConfig, HsomParams, IdDecoding,
+    LevelParams, MemoryMode, Normalisation, PaperParams, ReproductionParams, StopRule, MAX_HEIGHT,
 };
 
 /// The document: every element optional, written when present.
@@ -173,8 +173,8 @@ impl<'de> de::Deserializer<'de> for Word<'_> {
     }
 }
 
-/// Settings retired from the schema and what they are now: an element at one of these paths
-/// is an error naming it.
+/// Settings retired from the schema and what stands in their place: an element at one of these
+/// paths is an error naming it.
 const RETIRED: &[(&str, &str)] = &[
     ("plan", "plans always follow a training demonstration (what `traced` was)"),
     ("alignment", "the consensus always reads one demonstration along another without the warp's stairs (what `smooth` was)"),
@@ -263,32 +263,22 @@ impl Doc {
         }
         let chosen = self.algorithm.unwrap_or(Algorithm::Events);
         let r = self.reproduction.unwrap_or_default();
-        let one_algorithm = [
-            (
-                "updatePeriod",
-                self.update_period.is_some(),
-                Algorithm::Paper,
-            ),
-            ("memoryMode", self.memory_mode.is_some(), Algorithm::Paper),
-            ("reproduction/offset", r.offset.is_some(), Algorithm::Paper),
-            (
-                "reproduction/idDecoding",
-                r.id_decoding.is_some(),
-                Algorithm::Paper,
-            ),
-            ("reproduction/stop", r.stop.is_some(), Algorithm::Paper),
-            (
-                "changeRatio",
-                self.change_ratio.is_some(),
-                Algorithm::Events,
-            ),
-            (
-                "actionHorizon",
-                self.action_horizon.is_some(),
-                Algorithm::Events,
-            ),
+        let paper_only = [
+            ("updatePeriod", self.update_period.is_some()),
+            ("memoryMode", self.memory_mode.is_some()),
+            ("reproduction/offset", r.offset.is_some()),
+            ("reproduction/idDecoding", r.id_decoding.is_some()),
+            ("reproduction/stop", r.stop.is_some()),
         ];
-        if let Some((field, _, reads)) = one_algorithm.iter().find(|f| f.1 && f.2 != chosen) {
+        let events_only = [
+            ("changeRatio", self.change_ratio.is_some()),
+            ("actionHorizon", self.action_horizon.is_some()),
+        ];
+        let (reads, given) = match chosen {
+            Algorithm::Paper => (Algorithm::Events, &events_only[..]),
+            Algorithm::Events => (Algorithm::Paper, &paper_only[..]),
+        };
+        if let Some((field, _)) = given.iter().find(|g| g.1) {
             return Err(ConfigError::NotRead {
                 file: file.into(),
                 field: field.to_string(),
@@ -324,7 +314,7 @@ impl Doc {
                 AlgorithmParams::Paper(q) => AlgorithmParams::Paper(PaperParams {
                     update_period: self.update_period.unwrap_or(q.update_period),
                     memory_mode: self.memory_mode.unwrap_or(q.memory_mode),
-                    offset: r.offset.unwrap_or(memory.saturating_sub(1).max(1)),
+                    offset: r.offset.unwrap_or(default_offset(memory)),
                     id_decoding: r.id_decoding.unwrap_or(q.id_decoding),
                     stop: r.stop.unwrap_or(q.stop),
                 }),
@@ -398,12 +388,8 @@ fn in_index_order(
             let allowed = format!(
                 "expected a level index from 0 to {top} (height {height}, {listed} <level> listed)"
             );
-            return Err(invalid(
-                file,
-                format!("levels/level[{pos}]/@index"),
-                index,
-                allowed,
-            ));
+            let field = format!("levels/level[{pos}]/@index");
+            return Err(invalid(file, field, index, allowed));
         };
         if slot.is_some() {
             return Err(invalid(file, at("@index"), index, "index given twice"));
