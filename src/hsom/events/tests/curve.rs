@@ -397,3 +397,116 @@ fn a_segment_faster_than_the_demonstrations_is_slowed_not_flattened() {
     let (same, n) = no_faster_than(&timed, &[0.0], 31, &[1.0]);
     assert_eq!((same.t, n), (timed.t, 31));
 }
+
+/// A warp with stairs (runs of three samples aligned to one sample of `b`) is read at an
+/// even pace: every step a third of `b`'s, from `b`'s first sample to its last; the
+/// stepped mean of the same alignment jumps a whole sample of `b` at each stair. A warp
+/// without stairs reads `b` as it is.
+/// Two knots per event (docs/ALGORITHM.md section 3.7): a traced event of four samples
+/// or more passes through two knots, at a quarter and three quarters of its duration, at
+/// its halves' places. On a family whose swings are about as short as its events (a wave
+/// from a hold, three half-swings of 9-13 samples, 8 bottom nodes), held out, the
+/// executed curve keeps the three swings on every fold; the control, every traced place
+/// cleared (each event at its node's place), loses a turn on some fold.
+#[test]
+fn two_knots_per_event_keep_the_swings() {
+    let wave = |i: usize| -> Vec<Vec<f64>> {
+        let (hold, per) = (10 + 2 * i, 9 + i);
+        let swings = 3.0 * per as f64;
+        (0..2 * hold + swings as usize)
+            .map(|j| {
+                let u = (j as f64 - hold as f64).clamp(0.0, swings) / per as f64;
+                let x = (std::f64::consts::PI * u).sin();
+                vec![
+                    0.5 * x,
+                    0.2 * (1.0 - (std::f64::consts::PI * u / 3.0).cos()),
+                ]
+            })
+            .collect()
+    };
+    let all: Vec<Vec<Vec<f64>>> = (0..5).map(wave).collect();
+    let swings = |rows: &[Vec<f64>]| crate::metrics::column_swings(rows, 0, 0.3).unwrap();
+    assert!(all.iter().all(|d| swings(d) == swings(&all[0])));
+    let mut kept = [0, 0];
+    for out in 0..5 {
+        let train: Vec<Vec<Vec<f64>>> = (0..5)
+            .filter(|&i| i != out)
+            .map(|i| all[i].clone())
+            .collect();
+        let mut p = config(2).into_params();
+        p.levels[0] = crate::config::LevelParams::new(4, 2, crate::som::Topology::Orthogonal, 0.1);
+        let m = p
+            .check("test")
+            .unwrap()
+            .fit_series(&train)
+            .unwrap()
+            .into_events();
+        let mut cleared = m.clone();
+        let (k, pw) = (m.config.params().memory, trace_places(m.config.params()));
+        let at = trace_postures_at(k, 1);
+        for c in cleared.part.traces.as_mut().unwrap().levels[1].iter_mut() {
+            c.words[at..trace_bmus_at(k, 1, pw)].fill(u32::MAX);
+        }
+        for (i, model) in [&m, &cleared].into_iter().enumerate() {
+            let r = model.reproduce(&all[out][0]).unwrap().postures;
+            kept[i] += usize::from(swings(&r) == swings(&all[out]));
+        }
+    }
+    assert_eq!(kept[0], 5, "two knots per event {kept:?}");
+    assert!(kept[1] < 5, "at the nodes' places {kept:?}");
+    // an event passes through two knots only where each half lasts two samples: one
+    // of 3.5 samples keeps one knot at its middle, one of 4 two, at its quarters, each
+    // at its half's place
+    let m = config(2).fit_series(&all[..4]).unwrap().into_events();
+    let y0 = m.normalise(&all[0][0]);
+    // the event, its halves, then each half's lowest and highest values (s = 2)
+    let at: Vec<f64> = vec![
+        0.0, 0.0, 0.1, 0.1, 0.2, 0.2, -0.3, -0.3, 0.4, 0.4, -0.5, -0.5, 0.6, 0.6,
+    ];
+    let n = m.dwell.iter().position(|&d| d > 0.0).unwrap();
+    let executed: Vec<Step<usize>> = vec![(n, 3.5, 1, Some(at.clone())), (n, 4.0, 1, Some(at))];
+    let places = m.knot_places(&y0, &y0, &executed, StopReason::LearnedLength);
+    assert_eq!(places.t, vec![0.0, 1.75, 4.5, 6.5, 7.5]);
+    let placed = m.placement(&y0);
+    assert_eq!(places.by, vec![0, 1, 1, 1, 1]);
+    assert_eq!(places.traced_mean, vec![false, true, true, true, false]);
+    // the whole event at its place, the first half of the next at that half's, the
+    // second at the second's
+    for (k, off) in [(1, 0.0), (2, 0.1), (3, 0.2)] {
+        assert!(
+            (places.v[k][0] - (placed[2 * n] + off)).abs() < 1e-12,
+            "knot {k}"
+        );
+    }
+    // and the knots the curve passes through are those places, turning points kept
+    let timed = m.timed_knots(&y0, &y0, &executed, StopReason::LearnedLength);
+    assert_eq!(timed.t, places.t);
+    let target: Vec<f64> = places.v.iter().map(|r| r[0]).collect();
+    // each half's extremes go with its knot; the whole event and the end have none
+    let reach: Vec<Option<(f64, f64)>> = places
+        .reach
+        .iter()
+        .map(|r| r.as_ref().map(|(lo, hi)| (lo[0], hi[0])))
+        .collect();
+    let at = |off: f64| placed[2 * n] + off;
+    assert_eq!(
+        reach,
+        vec![
+            None,
+            None,
+            Some((at(-0.3), at(0.4))),
+            Some((at(-0.5), at(0.6))),
+            None
+        ]
+    );
+    assert_eq!(
+        timed.values[0],
+        turning_points_kept(
+            &places.t,
+            &target,
+            &places.spans,
+            &places.traced_mean,
+            &reach
+        )
+    );
+}
