@@ -158,11 +158,7 @@ fn run(cli: Cli) -> Result<()> {
                 json,
                 png,
             };
-            let pb = cli::progress(0, "folds");
-            let on_fold = |done: usize, total: usize| {
-                pb.set_length(total as u64);
-                pb.set_position(done as u64);
-            };
+            let (pb, on_fold) = cli::counter("folds");
             let tables = cosco_hsom::eval::heldout(&job, Some(&on_fold))?;
             pb.finish_and_clear();
             out!("{tables}");
@@ -263,11 +259,7 @@ fn recognition(study: RecognitionArgs, common: StudyArgs) -> Result<()> {
         },
         json: common.json,
     };
-    let pb = cli::progress(0, "models");
-    let on_model = |done: usize, total: usize| {
-        pb.set_length(total as u64);
-        pb.set_position(done as u64);
-    };
+    let (pb, on_model) = cli::counter("models");
     let tables = recognition(&job, Some(&on_model))?;
     pb.finish_and_clear();
     out!("{tables}");

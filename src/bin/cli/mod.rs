@@ -1,6 +1,7 @@
-//! What the `simulate` and `cosco` binaries share: progress bars, the one-line error, and the
-//! parsers of their numeric flags; the work is the library's, whose typed errors carry the
-//! file, field and value (`anyhow` only here, in the binaries).
+//! What the `simulate` and `cosco` binaries share: stdout that tolerates a closed pipe,
+//! progress bars, the one-line error, and the parsers of their numeric flags; the work is the
+//! library's, whose typed errors carry the file, field and value (`anyhow` only here, in the
+//! binaries).
 #![allow(dead_code)]
 
 /// `print!` that ignores a closed stdout (e.g. `| head`), instead of panicking.
@@ -45,6 +46,17 @@ pub fn progress(len: u64, what: &str) -> ProgressBar {
     );
     pb.set_message(what.to_string());
     pb
+}
+
+/// A progress bar of `what`, and the `(done, total)` callback that moves it (the total as the
+/// work reports it).
+pub fn counter(what: &str) -> (ProgressBar, impl Fn(usize, usize)) {
+    let pb = progress(0, what);
+    let bar = pb.clone();
+    (pb, move |done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    })
 }
 
 /// One progress bar per stage of a job (`(stage, done, total)`): a new bar when the stage
