@@ -137,7 +137,8 @@ pub fn evaluate_files(
     #[cfg(feature = "sim")]
     if crate::experiment::are_arm_joints(&rep.columns) {
         let arm = crate::experiment::load_arm(model)?;
-        let report = crate::experiment::evaluate(Some(&arm), &demos, &rep.rows, &params)?;
+        let report = crate::sim::evaluate(Some(&arm), &demos, &rep.rows, &params)
+            .map_err(crate::experiment::ExperimentError::from)?;
         return Ok(judged(report, "rad"));
     }
     let _ = model;

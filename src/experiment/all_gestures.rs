@@ -17,18 +17,18 @@ use serde::Serialize;
 use crate::config::HsomConfig;
 use crate::demos::{write_csv, Demonstration};
 use crate::dtw::Band;
+use crate::eval::Executed;
 use crate::gesture::Gesture;
 use crate::hsom::{GestureError, GestureModel};
 use crate::metrics::MetricsParams;
 use crate::nearest::NearestNeighbour;
 use crate::plot::{caption, confusion_png, ConfusionPanel};
 use crate::render::{contact_sheet, save_png, Clip};
-use crate::sim::{NaoArm, Recording};
+use crate::sim::{execute_and_score, NaoArm, Recording, Transition};
 
 use super::demonstrate::{synthetic_demonstrations, DemoSettings};
 use super::film::{clip_options, film};
-use super::pipeline::execute_and_score;
-use super::{ExperimentError, Transition};
+use super::ExperimentError;
 use crate::demos::sample_period;
 use crate::metrics::median;
 
@@ -366,7 +366,7 @@ pub fn run_all_gestures(
                 )
             };
             let (s, a) = (score(&shared.postures)?, score(&alone.postures)?);
-            let wrist = |e: &super::Executed| e.fidelity.wrist_dtw_mm.map(|w| w.mean);
+            let wrist = |e: &Executed<Recording>| e.fidelity.wrist_dtw_mm.map(|w| w.mean);
             wrist_missing |= wrist(&s).is_none() || wrist(&a).is_none();
             per_gesture[gi].push([
                 s.fidelity.joint_dtw_rad_per_step.mean,
@@ -378,7 +378,7 @@ pub fn run_all_gestures(
             if k == count - 1 {
                 // the saved model's: kept for its files and the clip
                 let stop = format!("{:?}", shared.stop);
-                last_fold.push((label.clone(), shared.postures.len(), stop, s.executed));
+                last_fold.push((label.clone(), shared.postures.len(), stop, s.trace));
             }
         }
         last_model = Some(model);
