@@ -71,7 +71,7 @@ fn failures(s: &HeldOutSummary) -> Vec<String> {
 fn the_hierarchy_beats_height_one_held_out_and_the_controls_fail() {
     let arm = NaoArm::load_default().unwrap();
     let cfg = recommended();
-    let h1 = cosco_hsom::experiment::variants::at_height_1(&cfg).unwrap();
+    let h1 = cfg.at_height(1).unwrap();
     let mut wins = 0;
     for g in GESTURES {
         let d = demos(&arm, g);

@@ -343,11 +343,7 @@ pub fn closed_loop_folds(
             let train_s = t.elapsed().as_secs_f64();
             let t = Instant::now();
             let plan = gmr_plan(&model, initial, rate)?;
-            Ok::<_, cosco_hsom::experiment::baseline::BaselineError>((
-                plan,
-                train_s,
-                t.elapsed().as_secs_f64(),
-            ))
+            Ok::<_, ExperimentError>((plan, train_s, t.elapsed().as_secs_f64()))
         })();
         out.gmr.push(match gmr {
             Ok((plan, train_s, reproduce_s)) => {

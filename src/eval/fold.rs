@@ -366,26 +366,24 @@ pub fn fold_scores<E: Executor>(
 }
 
 /// A method's run (or the reason it has none) as a [`Run`]: its every metric
-/// ([`fold_scores`]) and its [`Score`] in the gesture's diagonal `diag`.
+/// ([`fold_scores`]) against the first of `targets` and its [`Score`] in the gesture's
+/// diagonal `diag`.
 pub fn scored<E: Executor>(
     method: Method,
     run: Result<MethodRun<E::Trace>, String>,
     executor: &E,
     train: &[Demonstration],
-    target: &Demonstration,
+    targets: &[Demonstration],
     diag: f64,
 ) -> Run {
     let scores = run.and_then(|r| {
-        let s = fold_scores(&r, executor, train, target, diag)?;
-        Ok((s, r.postures))
+        let target = targets.first().ok_or_else(|| NO_TARGET.to_string())?;
+        Ok((fold_scores(&r, executor, train, target, diag)?, r.postures))
     });
     match scores {
         Ok((s, postures)) => Run {
             method,
-            score: s
-                .start_end
-                .as_ref()
-                .map(|se| Score::of(&s.fidelity, diag, se)),
+            score: (s.start_end.as_ref()).map(|se| Score::of(&s.fidelity, diag, se)),
             error: None,
             postures,
             scores: Some(s),
@@ -417,28 +415,13 @@ pub fn fold<E: Executor>(
         targets,
         ..*base
     };
-    let runs = run_fold(methods, &input, executor);
-    let Some(target) = targets.first() else {
-        let runs = runs
-            .into_iter()
-            .map(|(method, _)| Run {
-                method,
-                score: None,
-                error: Some(NO_TARGET.to_string()),
-                postures: Vec::new(),
-                scores: None,
-            })
-            .collect();
-        return Fold {
-            demonstration: String::new(),
-            runs,
-        };
-    };
+    let runs = run_fold(methods, &input, executor).into_iter();
     Fold {
-        demonstration: target.source.clone(),
+        demonstration: targets
+            .first()
+            .map_or_else(String::new, |t| t.source.clone()),
         runs: runs
-            .into_iter()
-            .map(|(m, r)| scored(m, r, executor, &train, target, diag))
+            .map(|(m, r)| scored(m, r, executor, &train, targets, diag))
             .collect(),
     }
 }

@@ -124,19 +124,11 @@ pub enum LooError {
 
 /// The gestures of `paths` as `cosco train` reads them: a directory of CSV files or files
 /// (one gesture, named after its directory, else `gesture`), or directories of gesture
-/// subdirectories (`DIR/<gesture>/*.csv`, each gesture on its own). With `from_data` the configuration is
-/// adapted to the data's width ([`HsomConfig::for_width`]); otherwise [`leave_one_out`]
-/// refuses files without the configuration's `stateLength` columns.
-pub fn read_gestures(
-    paths: &[std::path::PathBuf],
-    config: &HsomConfig,
-    from_data: bool,
-) -> Result<(HsomConfig, Gestures), LooError> {
-    read_gestures_at(paths, config, from_data, None)
-}
-
-/// [`read_gestures`], each demonstration first resampled to `resample_hz` when given
-/// ([`crate::resample::resample_all`]).
+/// subdirectories (`DIR/<gesture>/*.csv`, each gesture on its own), each demonstration first
+/// resampled to `resample_hz` when given ([`crate::resample::resample_all`]). With
+/// `from_data` the configuration is adapted to the data's width ([`HsomConfig::for_width`]);
+/// otherwise [`leave_one_out`] refuses files without the configuration's `stateLength`
+/// columns.
 pub fn read_gestures_at(
     paths: &[std::path::PathBuf],
     config: &HsomConfig,

@@ -24,14 +24,14 @@ use std::path::Path;
 use plotters::style::RGBColor;
 
 use crate::gmr::{
-    lead_in_ticks_at, plan_at, ComponentChoice, GmrError, GmrModel, GmrParams, GmrValidParams,
-    TrainingSet,
+    lead_in_ticks_at, plan_at, ComponentChoice, GmrModel, GmrParams, GmrValidParams, TrainingSet,
 };
 pub use crate::gmr::{minimum_jerk, GmrPlan, LEAD_IN_MIN_S};
-use crate::plot::{demo_color, panels_png, Band, Ellipse, Panel, PlotError, Scatter, Series};
+use crate::plot::{demo_color, panels_png, Band, Ellipse, Panel, Scatter, Series};
 pub use crate::sim::LEAD_IN_PEAK_SPEED;
 
 use super::ExperimentError;
+
 /// Name of the baseline in reports.
 pub const GMR_NAME: &str = "GMM/GMR";
 /// What the baseline needs as input (the report's "needs as input" row).
@@ -45,24 +45,6 @@ pub const DEFAULT_COMPONENTS: ComponentChoice = crate::eval::GMR_COMPONENTS;
 /// Colour of the baseline's curves.
 pub const GMR_COLOR: RGBColor = RGBColor(200, 0, 130);
 
-/// Errors of the baseline experiment.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum BaselineError {
-    /// Fitting or querying the GMM/GMR failed.
-    #[error("GMM/GMR: {0}")]
-    Gmr(#[from] GmrError),
-    /// Executing or evaluating failed.
-    #[error(transparent)]
-    Experiment(#[from] ExperimentError),
-    /// A figure could not be drawn or written.
-    #[error(transparent)]
-    Plot(#[from] PlotError),
-    /// A bad argument (named in the message).
-    #[error("{0}")]
-    Invalid(String),
-}
-
 /// Ticks of the lead-in from `from` to `to` at `rate_hz` (see the module documentation); at
 /// least 1 (the initial posture itself).
 pub fn lead_in_ticks(from: &[f64], to: &[f64], rate_hz: f64) -> usize {
@@ -71,7 +53,7 @@ pub fn lead_in_ticks(from: &[f64], to: &[f64], rate_hz: f64) -> usize {
 
 /// The plan: the lead-in from `initial` to GMR's first point, then GMR's mean every
 /// `1 / rate_hz` seconds over the model's duration.
-pub fn plan(model: &GmrModel, initial: &[f64], rate_hz: f64) -> Result<GmrPlan, BaselineError> {
+pub fn plan(model: &GmrModel, initial: &[f64], rate_hz: f64) -> Result<GmrPlan, ExperimentError> {
     Ok(plan_at(model, initial, rate_hz, LEAD_IN_PEAK_SPEED)?)
 }
 
@@ -80,7 +62,7 @@ pub fn plan(model: &GmrModel, initial: &[f64], rate_hz: f64) -> Result<GmrPlan, 
 pub fn gmr_params(
     components: ComponentChoice,
     sample_period: f64,
-) -> Result<GmrValidParams, BaselineError> {
+) -> Result<GmrValidParams, ExperimentError> {
     Ok(GmrParams::new()
         .components(components)
         .sample_period(sample_period)
@@ -93,7 +75,7 @@ pub fn fig3_png(
     path: &Path,
     training: &TrainingSet,
     joints: &[(usize, &str)],
-) -> Result<(), BaselineError> {
+) -> Result<(), ExperimentError> {
     let panels: Vec<Panel> = joints
         .iter()
         .map(|&(k, name)| {
@@ -133,9 +115,9 @@ pub fn fig5_png(
     joint: usize,
     name: &str,
     period: f64,
-) -> Result<(), BaselineError> {
+) -> Result<(), ExperimentError> {
     if joint >= model.columns().len() {
-        return Err(BaselineError::Invalid(format!(
+        return Err(ExperimentError::Invalid(format!(
             "joint index {joint} for {name}: the model has {} columns",
             model.columns().len()
         )));

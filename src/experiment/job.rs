@@ -357,7 +357,7 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
         variants: variant_results,
         heldout,
         heldout_note,
-        levels: level_rows(hsom_model(&run)?),
+        levels: level_rows(hsom_model(&run)?.0),
         stages: clock.stages,
         files,
     };

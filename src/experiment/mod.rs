@@ -84,9 +84,6 @@ pub enum ExperimentError {
     /// Per-fold results could not be put together.
     #[error(transparent)]
     Folds(#[from] crate::eval::FoldsError),
-    /// The GMM/GMR baseline's run or figures failed.
-    #[error(transparent)]
-    Baseline(#[from] Box<baseline::BaselineError>),
     /// A model could not be saved.
     #[error(transparent)]
     Persist(#[from] crate::hsom::PersistError),
@@ -104,11 +101,5 @@ impl ExperimentError {
             path,
             source,
         }
-    }
-}
-
-impl From<baseline::BaselineError> for ExperimentError {
-    fn from(e: baseline::BaselineError) -> Self {
-        ExperimentError::Baseline(Box::new(e))
     }
 }

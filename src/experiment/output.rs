@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use crate::demos::write_csv;
 use crate::eval::{Fitted, MethodRun};
-use crate::hsom::Hsom;
+use crate::hsom::{Hsom, Reproduction};
 use crate::sim::{NaoArm, Recording};
 use crate::steps::DEFAULT_CONFIG_NAME;
 
@@ -81,11 +81,14 @@ pub const FIG4_JOINTS: [(usize, &str); 4] = [
     (3, "LElbowRoll"),
 ];
 
-/// The hierarchy's model of a run of [`Method::Hierarchy`](crate::eval::Method) (an error
-/// for a run of another method).
-pub fn hsom_model(run: &MethodRun<Recording>) -> Result<&Hsom, ExperimentError> {
+/// The model and the reproduction of a run of [`Method::Hierarchy`](crate::eval::Method)
+/// (an error for a run of another method).
+pub fn hsom_model(run: &MethodRun<Recording>) -> Result<(&Hsom, &Reproduction), ExperimentError> {
     match &run.fitted {
-        Some(Fitted::Hierarchy { model, .. }) => Ok(model),
+        Some(Fitted::Hierarchy {
+            model,
+            reproduction,
+        }) => Ok((model, reproduction)),
         _ => Err(ExperimentError::Invalid(
             "not a run of the hierarchy: no model to save".into(),
         )),
@@ -123,15 +126,7 @@ pub fn write_hsom_run(
     notes: Vec<String>,
     files: &mut Vec<String>,
 ) -> Result<MethodResult, ExperimentError> {
-    let Some(Fitted::Hierarchy {
-        model,
-        reproduction,
-    }) = &run.fitted
-    else {
-        return Err(ExperimentError::Invalid(
-            "not a run of the hierarchy: no model to save".into(),
-        ));
-    };
+    let (model, reproduction) = hsom_model(run)?;
     let model_path = out.join("model.bin");
     model.save(&model_path)?;
     files.push("model.bin".into());
