@@ -156,7 +156,7 @@ pub fn execute_postures(
     let trajectory = TargetTrajectory::at_rate(rate_hz, postures)?;
     let mut sim = arm.sim()?;
     sim.set_posture(first)?;
-    Ok(controller.follow(&mut sim, &trajectory)?)
+    controller.follow(&mut sim, &trajectory)
 }
 
 /// Clamp learned postures into the joint ranges before execution, counting the values that

@@ -189,7 +189,7 @@ fn run_methods(spec: &SweepSpec, plan: &RunPlan) -> Result<Vec<MethodRecord>, St
             };
             let diag = diagonal(&demos);
             vec![fold(
-                &methods,
+                methods,
                 &base,
                 &demos,
                 Split::InSampleAll,
@@ -200,7 +200,7 @@ fn run_methods(spec: &SweepSpec, plan: &RunPlan) -> Result<Vec<MethodRecord>, St
         Evaluation::LeaveOneOut => folds(
             &arm,
             &demos,
-            &methods,
+            methods,
             Some(config),
             Training::Trained,
             spec.transition,
