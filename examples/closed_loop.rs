@@ -30,8 +30,9 @@ use anyhow::{Context, Result};
 use clap::Parser;
 
 use closed_loop::{closed_loop_folds, closed_loop_png, ClosedLoop, ClosedLoopFold, ClosedLoopGrab};
+use cosco_hsom::eval::FoldScores;
 use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
-use cosco_hsom::experiment::{synthetic_demonstrations, FoldScores, Transition};
+use cosco_hsom::experiment::{synthetic_demonstrations, Transition};
 use cosco_hsom::metrics::median;
 
 /// A grab during execution: the hierarchy's and the nearest sequence's closed loops, and
@@ -101,7 +102,7 @@ fn mean<'a>(folds: impl Iterator<Item = &'a FoldScores>) -> Mean {
             / n,
         exact: folds
             .iter()
-            .filter(|f| f.swings.reproduction == f.swings.demo)
+            .filter(|f| f.swings.as_ref().is_some_and(|w| w.reproduction == w.demo))
             .count(),
         folds: folds.len(),
     }

@@ -25,8 +25,9 @@ use anyhow::{Context, Result};
 use clap::Parser;
 
 use continuation::{continuation_folds, Disturbance};
+use cosco_hsom::eval::FoldScores;
 use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
-use cosco_hsom::experiment::{synthetic_demonstrations, FoldScores, Transition};
+use cosco_hsom::experiment::{synthetic_demonstrations, Transition};
 use cosco_hsom::metrics::median;
 
 /// Continuing a held-out demonstration's prefix: the hierarchy and the nearest sequence.
@@ -55,7 +56,7 @@ fn summary(folds: &[FoldScores]) -> (f64, usize) {
         / folds.len().max(1) as f64;
     let exact = folds
         .iter()
-        .filter(|f| f.swings.reproduction == f.swings.demo)
+        .filter(|f| f.swings.as_ref().is_some_and(|w| w.reproduction == w.demo))
         .count();
     (dtw, exact)
 }

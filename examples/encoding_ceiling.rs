@@ -25,13 +25,14 @@ use clap::Parser;
 use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::dtw::{dtw_distance, Band};
+use cosco_hsom::eval::SWING_MIN_AMPLITUDE_RAD;
 use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
-use cosco_hsom::experiment::heldout::{SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
 use cosco_hsom::hsom::Hsom;
 use cosco_hsom::metrics::column_swings;
 use cosco_hsom::metrics::median;
 use cosco_hsom::sim::NaoArm;
+use cosco_hsom::sim::SWING_JOINT;
 
 /// Re-encode demonstrations through the bottom level and score what survives.
 #[derive(Parser, Debug)]

@@ -63,7 +63,7 @@ fn run(a: Args) -> Result<()> {
     let configs = if a.height_1 {
         let mut all = Vec::new();
         for c in configs {
-            let h1 = cosco_hsom::experiment::variants::at_height_1(&c)?;
+            let h1 = c.at_height(1)?;
             all.push(c);
             all.push(h1);
         }

@@ -16,9 +16,10 @@ use anyhow::Result;
 use clap::Parser;
 
 use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
-use cosco_hsom::experiment::{evaluate, record_demonstrations, DemoSettings};
+use cosco_hsom::experiment::{record_demonstrations, DemoSettings};
 use cosco_hsom::metrics::median;
 use cosco_hsom::metrics::MetricsParams;
+use cosco_hsom::sim::evaluate;
 use cosco_hsom::sim::NaoArm;
 
 /// Held-out score of replaying a training demonstration.

@@ -338,8 +338,8 @@ fn demonstrations_sampled_at_different_rates_are_refused() {
 #[test]
 #[cfg(feature = "sim")] // needs the simulated arm
 fn evaluating_a_one_row_or_impossible_reproduction_is_refused() {
-    use cosco_hsom::experiment::evaluate;
     use cosco_hsom::metrics::MetricsParams;
+    use cosco_hsom::sim::evaluate;
     use cosco_hsom::sim::JOINT_NAMES;
     let arm = NaoArm::load_default().unwrap();
     let demo = cosco_hsom::demos::Demonstration {

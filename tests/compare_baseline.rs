@@ -2,12 +2,11 @@
 //! and the baseline executed on the simulated arm from the initial posture.
 #![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
-use cosco_hsom::experiment::baseline::{run_baseline, BaselineError, LEAD_IN_PEAK_SPEED};
+use cosco_hsom::eval::{run_fold, Fitted, FoldInput, Method};
 use cosco_hsom::experiment::{record_demonstrations, DemoSettings};
 use cosco_hsom::gesture::Gesture;
-use cosco_hsom::gmr::{active_range, load_model, save_model, GmrParams, IdleTrim};
-use cosco_hsom::metrics::MetricsParams;
-use cosco_hsom::sim::NaoArm;
+use cosco_hsom::gmr::{active_range, load_model, save_model, ComponentChoice, IdleTrim};
+use cosco_hsom::sim::{ArmExecutor, NaoArm, Transition, LEAD_IN_PEAK_SPEED};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
@@ -61,36 +60,53 @@ fn baseline_runs_on_the_arm_from_the_initial_posture_and_follows_the_demonstrati
         .enumerate()
         .map(|(i, r)| r.to_demonstration(format!("demo {i}")))
         .collect();
-    // the comparison's default: components by BIC
-    let params = GmrParams::new().check().unwrap();
-    let metrics = MetricsParams::default();
-    let run = run_baseline(&arm, &demos, &params, &metrics).unwrap();
+    // the library's default (components by BIC over 1..=8); learned from all, scored against
+    // all
+    let input = FoldInput {
+        gmr_components: ComponentChoice::Bic { min: 1, max: 8 },
+        ..FoldInput::new(&demos, &demos)
+    };
+    let executor = ArmExecutor {
+        arm: &arm,
+        transition: Transition::Linear,
+    };
+    let (_, run) = run_fold(&[Method::GmmGmr], &input, &executor).remove(0);
+    let run = run.unwrap();
+    let Some(Fitted::GmmGmr {
+        model,
+        training,
+        plan,
+        ..
+    }) = &run.fitted
+    else {
+        panic!("GMM/GMR's model is kept");
+    };
 
     // executed from demos[0]'s first posture, at 40 Hz
-    assert_eq!(run.executed.rate_hz, 40.0);
-    let start = &run.executed.qpos[0];
+    assert_eq!(run.executed.trace.rate_hz, 40.0);
+    let start = &run.executed.trace.qpos[0];
     for (a, b) in start.iter().zip(&demos[0].rows[0]) {
         assert!((a - b).abs() < 0.01, "{start:?} vs {:?}", demos[0].rows[0]);
     }
-    assert_eq!(run.plan.postures[0], demos[0].rows[0]);
+    assert_eq!(plan.postures[0], demos[0].rows[0]);
     // the lead-in keeps to its speed limit
-    for w in run.plan.postures[..=run.plan.lead_in].windows(2) {
+    for w in plan.postures[..=plan.lead_in].windows(2) {
         for (a, b) in w[0].iter().zip(&w[1]) {
             assert!((b - a).abs() * 40.0 <= LEAD_IN_PEAK_SPEED + 1e-9);
         }
     }
     // trimming worked on the noisy demonstrations: the learned duration is the motion, not
     // the whole recording
-    let r = run.training.reference.unwrap();
+    let r = training.reference.unwrap();
     let whole = (demos[r].rows.len() - 1) as f64 * 0.025;
     assert!(
-        run.training.duration < whole - 0.5,
+        training.duration < whole - 0.5,
         "learned {} s of a {whole} s recording",
-        run.training.duration
+        training.duration
     );
     // it follows the demonstrations: a tenth of a radian per step at most, the key pose
     // reached, the tempo within 25 %, and it settles where they do
-    let f = &run.fidelity;
+    let f = &run.executed.fidelity;
     assert!(f.joint_dtw_rad_per_step.mean < 0.1, "{f:?}");
     assert!(f.apex_error_rad.mean < 0.2, "{f:?}");
     assert!(
@@ -104,8 +120,8 @@ fn baseline_runs_on_the_arm_from_the_initial_posture_and_follows_the_demonstrati
     // the model saves and loads back identical
     let dir = tempfile::tempdir().unwrap();
     let p = dir.path().join("gmr_model.txt");
-    save_model(&p, &run.model).unwrap();
-    assert_eq!(load_model(&p).unwrap(), run.model);
+    save_model(&p, model).unwrap();
+    assert_eq!(load_model(&p).unwrap(), **model);
 }
 
 #[test]
@@ -114,8 +130,12 @@ fn baseline_needs_two_demonstrations() {
     let g = Gesture::by_name("wave").unwrap();
     let recs = record_demonstrations(&arm, &g, 1, 1, &DemoSettings::default(), |_| {}).unwrap();
     let demos = vec![recs[0].to_demonstration("only")];
-    let params = GmrParams::new().check().unwrap();
-    let e = run_baseline(&arm, &demos, &params, &MetricsParams::default()).unwrap_err();
-    assert!(matches!(e, BaselineError::Gmr(_)), "{e:?}");
-    assert!(e.to_string().contains("at least 2"), "{e}");
+    let executor = ArmExecutor {
+        arm: &arm,
+        transition: Transition::Linear,
+    };
+    let input = FoldInput::new(&demos, &demos);
+    let (_, run) = run_fold(&[Method::GmmGmr], &input, &executor).remove(0);
+    let e = run.unwrap_err();
+    assert!(e.contains("at least 2"), "{e}");
 }

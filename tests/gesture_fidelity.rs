@@ -15,12 +15,12 @@ mod hsom_common;
 
 use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::Demonstration;
-use cosco_hsom::experiment::{
-    evaluate, learn_and_reproduce, record_demonstrations, DemoSettings, Training, Transition,
-};
+use cosco_hsom::eval::{FoldInput, Method, MethodRun, Training};
+use cosco_hsom::experiment::heldout::on_arm;
+use cosco_hsom::experiment::{record_demonstrations, DemoSettings, Transition};
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::metrics::{FidelityReport, MetricsParams};
-use cosco_hsom::sim::NaoArm;
+use cosco_hsom::sim::{evaluate, NaoArm, Recording};
 use hsom_common::shuffle_blocks;
 
 /// Mean apex (key-pose) error over the demonstrations, rad: the reproduction gets close to
@@ -128,6 +128,22 @@ fn demos(arm: &NaoArm, g: &Gesture, seed: u64) -> Vec<Demonstration> {
         .collect()
 }
 
+/// Learned from all of `d` (or only initialised), reproduced from the first, executed on the
+/// arm and scored against all of them.
+fn learn_and_reproduce(
+    arm: &NaoArm,
+    cfg: &HsomConfig,
+    d: &[Demonstration],
+    training: Training,
+) -> MethodRun<Recording> {
+    let input = FoldInput {
+        config: Some(cfg),
+        training,
+        ..FoldInput::new(d, d)
+    };
+    on_arm(arm, Transition::Linear, Method::Hierarchy, &input).unwrap()
+}
+
 fn check_gesture(name: &str, other: &str) {
     let arm = NaoArm::load_default().unwrap();
     let cfg = table1();
@@ -138,10 +154,8 @@ fn check_gesture(name: &str, other: &str) {
     for seed in SEEDS {
         let d = demos(&arm, &g, seed);
         eprintln!("{name} seed {seed}: trained");
-        let trained =
-            learn_and_reproduce(&arm, &cfg, &d, Training::Trained, Transition::Linear, None)
-                .unwrap();
-        let f = failures(&trained.fidelity);
+        let trained = learn_and_reproduce(&arm, &cfg, &d, Training::Trained);
+        let f = failures(&trained.executed.fidelity);
         if f.is_empty() {
             passing += 1;
         }
@@ -149,17 +163,9 @@ fn check_gesture(name: &str, other: &str) {
 
         // Negative control 1: the same configuration, untrained.
         eprintln!("{name} seed {seed}: untrained");
-        let untrained = learn_and_reproduce(
-            &arm,
-            &cfg,
-            &d,
-            Training::Untrained,
-            Transition::Linear,
-            None,
-        )
-        .unwrap();
+        let untrained = learn_and_reproduce(&arm, &cfg, &d, Training::Untrained);
         assert!(
-            !failures(&untrained.fidelity).is_empty(),
+            !failures(&untrained.executed.fidelity).is_empty(),
             "{name} seed {seed}: the UNTRAINED hierarchy passes the fidelity checks"
         );
 
@@ -167,17 +173,14 @@ fn check_gesture(name: &str, other: &str) {
         // of 20 samples, about half a second, in a seeded random order).
         eprintln!("{name} seed {seed}: shuffled");
         let shuffled: Vec<Demonstration> = d.iter().map(|x| shuffle_blocks(x, seed)).collect();
-        let sh = learn_and_reproduce(
-            &arm,
-            &cfg,
-            &shuffled,
-            Training::Trained,
-            Transition::Linear,
-            None,
+        let sh = learn_and_reproduce(&arm, &cfg, &shuffled, Training::Trained);
+        let scored = evaluate(
+            Some(&arm),
+            &d,
+            &sh.executed.trace.qpos,
+            &MetricsParams::default(),
         )
         .unwrap();
-        let scored =
-            evaluate(Some(&arm), &d, &sh.executed.qpos, &MetricsParams::default()).unwrap();
         assert!(
             !failures(&scored).is_empty(),
             "{name} seed {seed}: a hierarchy trained on shuffled demonstrations passes"
@@ -186,13 +189,11 @@ fn check_gesture(name: &str, other: &str) {
         // Negative control 2: trained on another gesture, scored against this one's demonstrations.
         eprintln!("{name} seed {seed}: trained on {other}");
         let od = demos(&arm, &og, seed);
-        let wrong =
-            learn_and_reproduce(&arm, &cfg, &od, Training::Trained, Transition::Linear, None)
-                .unwrap();
+        let wrong = learn_and_reproduce(&arm, &cfg, &od, Training::Trained);
         let scored = evaluate(
             Some(&arm),
             &d,
-            &wrong.executed.qpos,
+            &wrong.executed.trace.qpos,
             &MetricsParams::default(),
         )
         .unwrap();

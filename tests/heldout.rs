@@ -18,16 +18,16 @@ mod continuation;
 #[path = "../examples/common/swing_folds.rs"]
 mod swing;
 use continuation::{continuation_folds, Disturbance};
-use cosco_hsom::eval::{all_but, diagonal};
-use cosco_hsom::experiment::heldout::{SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
-use cosco_hsom::experiment::{
-    hsom_folds, leave_one_out, synthetic_demonstrations, DemoSettings, HeldOut, HeldOutSummary,
-    Training, Transition,
+use cosco_hsom::eval::{
+    all_but, diagonal, FoldScores, HeldOut, Method, Training, SWING_MIN_AMPLITUDE_RAD,
 };
+use cosco_hsom::experiment::heldout::hierarchy_held_out;
+use cosco_hsom::experiment::{leave_one_out, synthetic_demonstrations, DemoSettings, Transition};
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::gmr::{active_range, IdleTrim};
 use cosco_hsom::metrics::{column_swings, end_spread, end_tolerance, large_swings, start_speed};
 use cosco_hsom::sim::NaoArm;
+use cosco_hsom::sim::SWING_JOINT;
 use swing::{swing_folds, swing_folds_png};
 
 const COUNT: usize = 4;
@@ -66,6 +66,11 @@ fn fixture() -> &'static Fixture {
     })
 }
 
+/// The hierarchy's scores on a fold.
+fn hsom(fold: &cosco_hsom::eval::Fold) -> &FoldScores {
+    fold.scores(Method::Hierarchy).expect("the hierarchy ran")
+}
+
 /// Trimmed duration of a demonstration, seconds (docs/METRICS.md).
 fn trimmed_duration(d: &Demonstration) -> f64 {
     let dt = sample_period(d);
@@ -86,10 +91,11 @@ fn start_and_end_are_judged_against_each_folds_training_demonstrations() {
             .filter_map(|d| start_speed(&d.rows, sample_period(d)))
             .fold(0.0, f64::max);
         let ends: Vec<&Vec<f64>> = train.iter().filter_map(|d| d.rows.last()).collect();
-        let sequence = fold.sequence.as_ref().unwrap();
-        let promp = fold.promp.as_ref().unwrap();
+        let hsom = fold.scores(Method::Hierarchy).unwrap();
+        let sequence = fold.scores(Method::NearestSequence).unwrap();
+        let promp = fold.scores(Method::ProMP).unwrap();
         for (method, s) in [
-            ("CoSCo-HSOM", &fold.hsom),
+            ("CoSCo-HSOM", hsom),
             ("nearest-sequence", sequence),
             ("ProMP", promp),
         ] {
@@ -112,7 +118,7 @@ fn start_and_end_are_judged_against_each_folds_training_demonstrations() {
             );
             assert_eq!(c.start_end.end_tolerance, e.end_tolerance);
         }
-        judged.0 += usize::from(fold.hsom.start_end.unwrap().start_in_range);
+        judged.0 += usize::from(hsom.start_end.unwrap().start_in_range);
         judged.1 += 1;
     }
     // the summary's fraction counts the folds
@@ -138,22 +144,21 @@ fn one_fold_per_demonstration_each_scored_against_it_alone() {
         assert!((w[0] - w[1]).abs() > 0.05, "{durations:?}");
     }
     for (i, fold) in h.folds.iter().enumerate() {
-        assert_eq!(fold.held_out, i);
-        assert_eq!(fold.source, f.demos[i].source);
-        let gmr = fold
-            .gmr
-            .as_ref()
-            .unwrap_or_else(|| panic!("fold {i}: GMM/GMR did not run: {:?}", fold.gmr_error));
+        assert_eq!(fold.demonstration, f.demos[i].source);
+        let hsom = fold.scores(Method::Hierarchy).unwrap();
+        let gmr = fold.scores(Method::GmmGmr).unwrap_or_else(|| {
+            let e = fold.error(Method::GmmGmr);
+            panic!("fold {i}: GMM/GMR did not run: {e:?}")
+        });
         let sequence = fold
-            .sequence
-            .as_ref()
+            .scores(Method::NearestSequence)
             .expect("the nearest-sequence baseline ran");
-        let promp = fold
-            .promp
-            .as_ref()
-            .unwrap_or_else(|| panic!("fold {i}: ProMP did not run: {:?}", fold.promp_error));
+        let promp = fold.scores(Method::ProMP).unwrap_or_else(|| {
+            let e = fold.error(Method::ProMP);
+            panic!("fold {i}: ProMP did not run: {e:?}")
+        });
         for (method, s) in [
-            ("CoSCo-HSOM", &fold.hsom),
+            ("CoSCo-HSOM", hsom),
             ("GMM/GMR", gmr),
             ("nearest-sequence", sequence),
             ("ProMP", promp),
@@ -175,7 +180,7 @@ fn one_fold_per_demonstration_each_scored_against_it_alone() {
                 r.duration_ratio.mean
             );
             assert_eq!(
-                s.swings.demo,
+                s.swings.as_ref().unwrap().demo,
                 column_swings(&f.demos[i].rows, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD).unwrap()
             );
             assert!(r.wrist_dtw_mm.is_some(), "{method} fold {i}: no wrist path");
@@ -185,7 +190,7 @@ fn one_fold_per_demonstration_each_scored_against_it_alone() {
     let mean = h
         .folds
         .iter()
-        .map(|f| f.hsom.fidelity.joint_dtw_rad_per_step.mean)
+        .map(|f| hsom(f).fidelity.joint_dtw_rad_per_step.mean)
         .sum::<f64>()
         / COUNT as f64;
     assert!((h.hsom.joint_dtw_rad_per_step - mean).abs() < 1e-12);
@@ -197,7 +202,7 @@ fn one_fold_per_demonstration_each_scored_against_it_alone() {
 #[test]
 fn an_untrained_hierarchy_scores_worse_held_out_than_a_trained_one() {
     let f = fixture();
-    let untrained = hsom_folds(
+    let u = hierarchy_held_out(
         &f.arm,
         &f.config,
         &f.demos,
@@ -205,7 +210,6 @@ fn an_untrained_hierarchy_scores_worse_held_out_than_a_trained_one() {
         Transition::Linear,
     )
     .unwrap();
-    let u = HeldOutSummary::of(&untrained.iter().collect::<Vec<_>>()).unwrap();
     let t = &f.heldout.hsom;
     eprintln!("trained {t:?}\nuntrained {u:?}");
     assert!(
@@ -229,12 +233,12 @@ fn swing_folds_draw_the_scored_folds() {
     let f = fixture();
     let folds = swing_folds(&f.arm, &f.config, &f.demos, Transition::Linear).unwrap();
     assert_eq!(folds.len(), COUNT);
-    for (drawn, scored) in folds.iter().zip(&f.heldout.folds) {
-        assert_eq!(drawn.held_out, scored.held_out);
-        assert_eq!(drawn.swings, scored.hsom.swings);
+    for (i, (drawn, scored)) in folds.iter().zip(&f.heldout.folds).enumerate() {
+        assert_eq!(drawn.held_out, i);
+        assert_eq!(Some(&drawn.swings), hsom(scored).swings.as_ref());
         assert_eq!(
             drawn.joint_dtw,
-            scored.hsom.fidelity.joint_dtw_rad_per_step.mean
+            hsom(scored).fidelity.joint_dtw_rad_per_step.mean
         );
         let demo = &f.demos[drawn.held_out];
         assert_eq!(drawn.demo.len(), demo.rows.len());
@@ -344,28 +348,30 @@ fn a_grab_during_execution_is_scored_against_the_held_out_demonstration() {
             }
         }
         let fold = &f.heldout.folds[i];
-        let same = |a: &cosco_hsom::experiment::FoldScores,
-                    b: &cosco_hsom::experiment::FoldScores| {
+        let same = |a: &FoldScores, b: &FoldScores| {
             a.fidelity.joint_dtw_rad_per_step.mean == b.fidelity.joint_dtw_rad_per_step.mean
         };
-        assert!(same(&c.hsom[i].undisturbed, &fold.hsom), "fold {i}");
+        assert!(same(&c.hsom[i].undisturbed, hsom(fold)), "fold {i}");
         // resumed from the reading of its own undisturbed execution, the hierarchy goes on
         // as planned: within 2 % of its undisturbed run
         let read_back = c.hsom[i].read_back.as_ref().unwrap();
         let (a, b) = (
             read_back.fidelity.joint_dtw_rad_per_step.mean,
-            fold.hsom.fidelity.joint_dtw_rad_per_step.mean,
+            hsom(fold).fidelity.joint_dtw_rad_per_step.mean,
         );
         assert!(
             (a - b).abs() < 0.02 * b,
             "fold {i}: read back {a}, undisturbed {b}"
         );
         assert!(
-            same(&c.sequence[i].undisturbed, fold.sequence.as_ref().unwrap()),
+            same(
+                &c.sequence[i].undisturbed,
+                fold.scores(Method::NearestSequence).unwrap()
+            ),
             "fold {i}"
         );
         assert!(
-            same(&gmr.undisturbed, fold.gmr.as_ref().unwrap()),
+            same(&gmr.undisturbed, fold.scores(Method::GmmGmr).unwrap()),
             "fold {i}"
         );
         // re-planned, the rest of the gesture follows the grab (at half the held-out
@@ -394,7 +400,7 @@ fn a_grab_during_execution_is_scored_against_the_held_out_demonstration() {
     // then lie nearer a held-out demonstration that held longer; measured at 0.3, 0.5 and
     // 0.7 of the demonstration, some fold of every method does so somewhere, GMM/GMR's
     // included (docs/ALGORITHM.md, section 3.10)
-    let dtw = |r: &cosco_hsom::experiment::FoldScores| r.fidelity.joint_dtw_rad_per_step.mean;
+    let dtw = |r: &FoldScores| r.fidelity.joint_dtw_rad_per_step.mean;
     for (method, folds) in [
         (
             "hierarchy",
@@ -520,9 +526,9 @@ fn two_demonstrations_run_without_the_baseline_and_one_is_refused() {
     // the nearest-sequence baseline needs one demonstration to follow: it runs
     assert_eq!(h.sequence.as_ref().map(|s| s.folds), Some(2));
     for fold in &h.folds {
-        let e = fold.gmr_error.as_deref().unwrap();
+        let e = fold.error(Method::GmmGmr).unwrap();
         assert!(e.contains("at least 2"), "{e}");
-        let e = fold.promp_error.as_deref().unwrap();
+        let e = fold.error(Method::ProMP).unwrap();
         assert!(e.contains("ProMP needs at least 2"), "{e}");
     }
     let e = leave_one_out(&f.arm, &f.config, &f.demos[..1], Transition::Linear)

@@ -9,10 +9,9 @@ mod hsom_common;
 
 use cosco_hsom::config::{load_config, HsomConfig};
 use cosco_hsom::demos::Demonstration;
-use cosco_hsom::experiment::heldout::{hsom_folds, HeldOutSummary};
-use cosco_hsom::experiment::{
-    learn_and_score, record_demonstrations, DemoSettings, Split, Training, Transition,
-};
+use cosco_hsom::eval::{FoldInput, HeldOut, HeldOutSummary, Method, Training};
+use cosco_hsom::experiment::heldout::{folds, hierarchy_held_out, on_arm};
+use cosco_hsom::experiment::{record_demonstrations, DemoSettings, Transition};
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::sim::NaoArm;
 
@@ -42,8 +41,7 @@ fn demos(arm: &NaoArm, name: &str) -> Vec<Demonstration> {
 }
 
 fn held_out(arm: &NaoArm, cfg: &HsomConfig, d: &[Demonstration], t: Training) -> HeldOutSummary {
-    let folds = hsom_folds(arm, cfg, d, t, Transition::Linear).unwrap();
-    HeldOutSummary::of(&folds.iter().collect::<Vec<_>>()).unwrap()
+    hierarchy_held_out(arm, cfg, d, t, Transition::Linear).unwrap()
 }
 
 /// The fidelity and timing gates one held-out summary must pass (docs/ALGORITHM.md; the
@@ -73,7 +71,7 @@ fn failures(s: &HeldOutSummary) -> Vec<String> {
 fn the_hierarchy_beats_height_one_held_out_and_the_controls_fail() {
     let arm = NaoArm::load_default().unwrap();
     let cfg = recommended();
-    let h1 = cosco_hsom::experiment::variants::at_height_1(&cfg).unwrap();
+    let h1 = cfg.at_height(1).unwrap();
     let mut wins = 0;
     for g in GESTURES {
         let d = demos(&arm, g);
@@ -112,20 +110,14 @@ fn the_hierarchy_beats_height_one_held_out_and_the_controls_fail() {
                     .filter(|(j, _)| *j != i)
                     .map(|(_, x)| x.clone())
                     .collect();
-                let split = Split {
-                    train: &train,
-                    test: std::slice::from_ref(&d[i]),
+                let input = FoldInput {
+                    config: Some(&cfg),
+                    ..FoldInput::new(&train, std::slice::from_ref(&d[i]))
                 };
-                learn_and_score(
-                    &arm,
-                    &cfg,
-                    split,
-                    Training::Trained,
-                    Transition::Linear,
-                    None,
-                )
-                .unwrap()
-                .fidelity
+                on_arm(&arm, Transition::Linear, Method::Hierarchy, &input)
+                    .unwrap()
+                    .executed
+                    .fidelity
             })
             .collect();
         let joint = folds
@@ -162,9 +154,18 @@ fn held_out_fidelity_is_within_a_tenth_of_gmm_gmr_and_an_untrained_hierarchy_is_
     let (mut joint, mut wrist, mut untrained) = (Vec::new(), Vec::new(), Vec::new());
     for g in GESTURES {
         let d = demos(&arm, g);
-        let gmr_folds = cosco_hsom::experiment::heldout::gmr_folds(&arm, &d).unwrap();
-        let gmr_ok: Vec<_> = gmr_folds.into_iter().map(|f| f.unwrap()).collect();
-        let gmr = HeldOutSummary::of(&gmr_ok.iter().collect::<Vec<_>>()).unwrap();
+        let methods = [Method::Hierarchy, Method::GmmGmr];
+        let all = folds(
+            &arm,
+            &d,
+            &methods,
+            Some(&cfg),
+            Training::Trained,
+            Transition::Linear,
+        );
+        let all = all.unwrap();
+        assert!(all.iter().all(|f| f.scores(Method::GmmGmr).is_some()));
+        let gmr = HeldOut::of(all).unwrap().gmr.unwrap();
         let hsom = held_out(&arm, &cfg, &d, Training::Trained);
         let none = held_out(&arm, &cfg, &d, Training::Untrained);
         joint.push(hsom.joint_dtw_rad_per_step / gmr.joint_dtw_rad_per_step);

@@ -13,7 +13,6 @@ use cosco_hsom::demos::{write_csv, Demonstration};
 use cosco_hsom::dtw::{dtw_distance, Band};
 use cosco_hsom::eval::{
     all_but, leave_one_out, run_fold, summary, FoldInput, Kinematic, LooError, LooSettings, Method,
-    Training,
 };
 use hsom_common::{handwriting, recommended_for};
 
@@ -328,13 +327,7 @@ fn cosco_heldout_on_directories_of_gestures() {
 fn promp_dtw(train: &[Demonstration], target: &Demonstration, start: &[f64]) -> f64 {
     let mut from = target.clone();
     from.rows[0] = start.to_vec();
-    let input = FoldInput {
-        config: None,
-        height_1: None,
-        train,
-        target: &from,
-        training: Training::Trained,
-    };
+    let input = FoldInput::new(train, std::slice::from_ref(&from));
     let (method, run) = run_fold(&[Method::ProMP], &input, &Kinematic).remove(0);
     assert_eq!(method, Method::ProMP);
     let postures = run.unwrap().postures;

@@ -44,7 +44,9 @@ fn demos() -> Vec<Demonstration> {
 fn score(rows: &[Vec<f64>]) -> Score {
     let demos = demos();
     let held = &demos[HELD];
-    let executed = Kinematic.execute(Method::Hierarchy, rows, held).unwrap();
+    let executed = Kinematic
+        .execute(Method::Hierarchy, rows, std::slice::from_ref(held))
+        .unwrap();
     let diag = diagonal(&demos);
     let reference = StartEndReference::of(&all_but(&demos, HELD), diag);
     let f = &executed.fidelity;

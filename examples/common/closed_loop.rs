@@ -7,21 +7,30 @@ use std::time::Instant;
 use serde::Serialize;
 
 use cosco_hsom::config::HsomConfig;
+use cosco_hsom::demos::sample_period;
 use cosco_hsom::demos::Demonstration;
-use cosco_hsom::eval::all_but;
+use cosco_hsom::eval::{all_but, FoldScores, Swings, SWING_MIN_AMPLITUDE_RAD};
 use cosco_hsom::gmr::MIN_DEMONSTRATIONS;
-use cosco_hsom::metrics::MetricsParams;
-use cosco_hsom::sim::{NaoArm, Recording, JOINT_NAMES};
+use cosco_hsom::metrics::{column_swings, MetricsParams};
+use cosco_hsom::sim::{clamp_to_ranges, evaluate, execute_and_score};
+use cosco_hsom::sim::{NaoArm, Recording, Transition, JOINT_NAMES, SWING_JOINT};
 
 use cosco_hsom::experiment::baseline::{gmr_params, plan as gmr_plan, DEFAULT_COMPONENTS};
-use cosco_hsom::experiment::clamp_to_ranges;
-use cosco_hsom::experiment::evaluate::evaluate;
-use cosco_hsom::experiment::heldout::{
-    check_demos, demo_trace, joint_trace, swings, FoldScores, SWING_JOINT,
-};
-use cosco_hsom::experiment::pipeline::{execute_and_score, Split};
-use cosco_hsom::experiment::{ExperimentError, Transition};
+use cosco_hsom::experiment::heldout::{check_demos, demo_trace, joint_trace};
+use cosco_hsom::experiment::ExperimentError;
 use cosco_hsom::sim::{Controller, ControllerConfig, Grab, TargetTrajectory};
+
+/// The large swings of [`SWING_JOINT`] in an executed motion and in the held-out
+/// demonstration it is scored against.
+fn swings(executed: &Recording, held_out: &Demonstration) -> Result<Swings, ExperimentError> {
+    let count = |rows| column_swings(rows, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD);
+    Ok(Swings {
+        joint: JOINT_NAMES[SWING_JOINT].to_string(),
+        min_amplitude_rad: SWING_MIN_AMPLITUDE_RAD,
+        reproduction: count(&executed.qpos)?,
+        demo: count(&held_out.rows)?,
+    })
+}
 
 /// One method on one fold of [`closed_loop_folds`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -92,7 +101,7 @@ impl GrabbedFold<'_> {
                 &rec.qpos,
                 self.metrics,
             )?,
-            swings: swings(rec, self.held)?,
+            swings: Some(swings(rec, self.held)?),
             postures: rec.len(),
             clamped_values,
             train_s,
@@ -115,7 +124,7 @@ impl GrabbedFold<'_> {
         let still = execute_and_score(self.arm, plan, self.transition, test, self.metrics)?;
         let undisturbed = FoldScores {
             fidelity: still.fidelity,
-            swings: swings(&still.executed, self.held)?,
+            swings: Some(swings(&still.trace, self.held)?),
             postures: plan.len(),
             clamped_values: still.clamped_values,
             train_s,
@@ -262,12 +271,14 @@ pub fn closed_loop_folds(
     for i in 0..demos.len() {
         let train = all_but(demos, i);
         let held = &demos[i];
-        let split = Split {
-            train: &train,
-            test: std::slice::from_ref(held),
+        let metrics = MetricsParams {
+            sample_period: sample_period(held),
+            ..MetricsParams::default()
         };
-        let metrics = split.metrics()?;
-        let initial = split.initial()?;
+        let initial = held
+            .rows
+            .first()
+            .ok_or_else(|| ExperimentError::Invalid(format!("{}: no samples", held.source)))?;
         let rate = 1.0 / metrics.sample_period;
         let at = ((held.rows.len() as f64 * grab.at).round() as usize).max(needed);
         out.grab_s
@@ -332,11 +343,7 @@ pub fn closed_loop_folds(
             let train_s = t.elapsed().as_secs_f64();
             let t = Instant::now();
             let plan = gmr_plan(&model, initial, rate)?;
-            Ok::<_, cosco_hsom::experiment::baseline::BaselineError>((
-                plan,
-                train_s,
-                t.elapsed().as_secs_f64(),
-            ))
+            Ok::<_, ExperimentError>((plan, train_s, t.elapsed().as_secs_f64()))
         })();
         out.gmr.push(match gmr {
             Ok((plan, train_s, reproduce_s)) => {

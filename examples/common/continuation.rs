@@ -7,10 +7,10 @@ use std::time::Instant;
 
 use cosco_hsom::config::HsomConfig;
 use cosco_hsom::demos::Demonstration;
-use cosco_hsom::eval::{all_but, Executor, Method, MethodRun};
+use cosco_hsom::eval::{all_but, diagonal, fold_scores, Executor, FoldScores, Method, MethodRun};
 use cosco_hsom::experiment::heldout::check_demos;
-use cosco_hsom::experiment::{ArmExecutor, ExperimentError, FoldScores, Transition};
-use cosco_hsom::sim::NaoArm;
+use cosco_hsom::experiment::ExperimentError;
+use cosco_hsom::sim::{ArmExecutor, NaoArm, Transition};
 
 /// What happens to the arm at the end of a shown prefix, before the continuation takes over
 /// ([`continuation_folds`]): nothing, held still for a number of samples, or pushed back
@@ -122,18 +122,17 @@ pub fn continuation_folds(
                     .cloned()
                     .collect();
                 let executed = executor
-                    .execute(Method::Hierarchy, &postures, held)
+                    .execute(Method::Hierarchy, &postures, std::slice::from_ref(held))
                     .map_err(ExperimentError::Invalid)?;
-                FoldScores::of(
-                    MethodRun {
-                        postures,
-                        executed,
-                        train_s,
-                        reproduce_s,
-                    },
-                    demos,
-                    i,
-                )
+                let run = MethodRun {
+                    postures,
+                    executed,
+                    train_s,
+                    reproduce_s,
+                    fitted: None,
+                };
+                fold_scores(&run, &executor, &train, held, diagonal(demos))
+                    .map_err(ExperimentError::Invalid)
             };
             let t = Instant::now();
             let rep = model.continue_events(prefix)?;

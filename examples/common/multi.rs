@@ -24,8 +24,8 @@ use cosco_hsom::sim::NaoArm;
 use cosco_hsom::demos::sample_period;
 use cosco_hsom::experiment::all_gestures::{confusion_counts, confusion_markdown};
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
-use cosco_hsom::experiment::pipeline::execute_and_score;
 use cosco_hsom::experiment::{ExperimentError, Transition};
+use cosco_hsom::sim::execute_and_score;
 
 /// What the study does.
 #[derive(Debug, Clone)]

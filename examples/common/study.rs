@@ -7,8 +7,6 @@
 
 use std::fmt::Write as _;
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 
 use serde::Serialize;
 
@@ -20,11 +18,8 @@ pub use cosco_hsom::metrics::median;
 use cosco_hsom::metrics::FidelityReport;
 use cosco_hsom::sim::NaoArm;
 
-use cosco_hsom::experiment::baseline::run_baseline_in_sample;
-use cosco_hsom::experiment::heldout::{
-    gmr_folds, hsom_and_sequence_folds, promp_folds, HeldOut, HeldOutSummary,
-};
-use cosco_hsom::experiment::pipeline::{learn_and_reproduce, Training};
+use cosco_hsom::eval::{FoldInput, FoldScores, HeldOut, HeldOutSummary, Method, Pool, Training};
+use cosco_hsom::experiment::heldout::{folds, on_arm};
 use cosco_hsom::experiment::report::{level_rows, LevelRow};
 use cosco_hsom::experiment::{synthetic_demonstrations, DemoSettings, ExperimentError, Transition};
 
@@ -110,8 +105,10 @@ fn run_job(
     };
     let demos =
         synthetic_demonstrations(arm, gesture, settings.count, seed, &demo_settings, |_| {})?;
-    let gmr = gmr_folds(arm, &demos)?;
-    let promp = promp_folds(arm, &demos)?;
+    // the baselines do not depend on the configuration: their folds once per set
+    let baselines = [Method::GmmGmr, Method::ProMP];
+    let trained = Training::Trained;
+    let baseline_folds = folds(arm, &demos, &baselines, None, trained, settings.transition)?;
     let gmr_in_sample = if settings.in_sample {
         Some(gmr_in_sample(arm, &demos))
     } else {
@@ -121,23 +118,28 @@ fn run_job(
     configs
         .iter()
         .map(|config| {
-            let (hsom, sequence) =
-                hsom_and_sequence_folds(arm, config, &demos, settings.transition)?;
-            let heldout = HeldOut::new(&demos, hsom, gmr.clone())?
-                .with_sequence(sequence)?
-                .with_promp(promp.clone())?;
+            let methods = [Method::Hierarchy, Method::NearestSequence];
+            let mut all = folds(
+                arm,
+                &demos,
+                &methods,
+                Some(config),
+                trained,
+                settings.transition,
+            )?;
+            for (f, b) in all.iter_mut().zip(&baseline_folds) {
+                f.runs.extend(b.runs.iter().cloned());
+            }
+            let heldout = HeldOut::of(all)?;
             let in_sample = match &gmr_in_sample {
                 Some(g) => {
-                    let run = learn_and_reproduce(
-                        arm,
-                        config,
-                        &demos,
-                        Training::Trained,
-                        settings.transition,
-                        None,
-                    )?;
+                    let input = FoldInput {
+                        config: Some(config),
+                        ..FoldInput::new(&demos, &demos)
+                    };
+                    let run = on_arm(arm, settings.transition, Method::Hierarchy, &input)?;
                     Some(InSample {
-                        hsom: run.fidelity,
+                        hsom: run.executed.fidelity,
                         gmr: g.as_ref().ok().cloned(),
                         gmr_error: g.as_ref().err().cloned(),
                     })
@@ -159,14 +161,16 @@ fn run_job(
 
 /// GMM/GMR learned from all `demos`, scored against all (the reason when it cannot run).
 fn gmr_in_sample(arm: &NaoArm, demos: &[Demonstration]) -> Result<FidelityReport, String> {
-    run_baseline_in_sample(arm, demos)
-        .map(|r| r.fidelity)
+    let input = FoldInput::new(demos, demos);
+    on_arm(arm, Transition::Linear, Method::GmmGmr, &input)
+        .map(|r| r.executed.fidelity)
         .map_err(|e| e.to_string())
 }
 
-/// Run the study: every (gesture, seed) of `jobs` on `settings.threads` worker threads, each
-/// set of demonstrations recorded once and used for every configuration. `on_job_done(done,
-/// total)` is called after each job (from the worker threads).
+/// Run the study: every (gesture, seed) of `jobs` on `settings.threads` worker threads (the
+/// library's [`Pool`]), each set of demonstrations recorded once and used for every
+/// configuration. `on_job_done(done, total)` is called after each job (from the worker
+/// threads).
 pub fn run_study(
     arm: &NaoArm,
     configs: &[HsomConfig],
@@ -192,35 +196,16 @@ pub fn run_study(
             jobs.len()
         )));
     }
-    let next = AtomicUsize::new(0);
-    let done = AtomicUsize::new(0);
-    type Slot = Option<Result<Vec<StudyRow>, ExperimentError>>;
-    let results: Mutex<Vec<Slot>> = Mutex::new((0..jobs.len()).map(|_| None).collect());
-    std::thread::scope(|scope| {
-        for _ in 0..settings.threads.min(jobs.len()) {
-            scope.spawn(|| loop {
-                let j = next.fetch_add(1, Ordering::Relaxed);
-                let Some((gesture, seed)) = jobs.get(j) else {
-                    break;
-                };
-                let r = run_job(arm, configs, gesture, *seed, settings).map_err(|e| {
-                    ExperimentError::Invalid(format!("gesture {} seed {seed}: {e}", gesture.name))
-                });
-                let failed = r.is_err();
-                if let Ok(mut slots) = results.lock() {
-                    slots[j] = Some(r);
-                }
-                on_job_done(done.fetch_add(1, Ordering::Relaxed) + 1, jobs.len());
-                if failed {
-                    // stop handing out jobs: the study fails anyway
-                    next.store(jobs.len(), Ordering::Relaxed);
-                }
-            });
-        }
-    });
-    let slots = results
-        .into_inner()
-        .map_err(|_| ExperimentError::Invalid("a worker thread panicked".into()))?;
+    let pool = Pool::new(settings.threads).map_err(ExperimentError::Invalid)?;
+    let slots = pool.map(
+        jobs,
+        |(gesture, seed)| {
+            run_job(arm, configs, gesture, *seed, settings).map_err(|e| {
+                ExperimentError::Invalid(format!("gesture {} seed {seed}: {e}", gesture.name))
+            })
+        },
+        Some(on_job_done),
+    );
     let mut configs_out: Vec<ConfigStudy> = configs
         .iter()
         .map(|c| ConfigStudy {
@@ -228,13 +213,8 @@ pub fn run_study(
             rows: Vec::with_capacity(jobs.len()),
         })
         .collect();
-    for (slot, (gesture, seed)) in slots.into_iter().zip(jobs) {
-        let rows = slot.ok_or_else(|| {
-            ExperimentError::Invalid(format!(
-                "gesture {} seed {seed}: not run (another job failed first)",
-                gesture.name
-            ))
-        })??;
+    for slot in slots {
+        let rows = slot?;
         for (c, row) in configs_out.iter_mut().zip(rows) {
             c.rows.push(row);
         }
@@ -281,7 +261,7 @@ fn paired(r: &StudyRow) -> Option<(HeldOutSummary, HeldOutSummary)> {
 
 /// (CoSCo-HSOM, ProMP) over the folds where ProMP ran.
 fn paired_promp(r: &StudyRow) -> Option<(HeldOutSummary, HeldOutSummary)> {
-    r.heldout.paired_with(|f| f.promp.as_ref())
+    r.heldout.paired_with(Method::ProMP)
 }
 
 fn columns(in_sample: bool) -> Vec<Column> {
@@ -555,12 +535,11 @@ impl GateRow {
                 .heldout
                 .folds
                 .iter()
-                .map(|f| {
-                    (
-                        f.hsom.swings.reproduction,
-                        f.hsom.swings.demo,
-                        f.sequence.as_ref().map(|s| s.swings.reproduction),
-                    )
+                .filter_map(|f| {
+                    let swings = |m| f.scores(m).and_then(|s: &FoldScores| s.swings.as_ref());
+                    let h = swings(Method::Hierarchy)?;
+                    let sequence = swings(Method::NearestSequence).map(|s| s.reproduction);
+                    Some((h.reproduction, h.demo, sequence))
                 })
                 .collect(),
         }

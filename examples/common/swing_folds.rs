@@ -5,11 +5,10 @@ use serde::Serialize;
 
 use cosco_hsom::config::HsomConfig;
 use cosco_hsom::demos::Demonstration;
-use cosco_hsom::experiment::heldout::{
-    demo_trace, hierarchy_runs, joint_trace, swings, SWING_JOINT,
-};
-use cosco_hsom::experiment::{ExperimentError, Swings, Training, Transition};
-use cosco_hsom::sim::{NaoArm, JOINT_NAMES};
+use cosco_hsom::eval::{all_but, fold_scores, run_fold, FoldInput, Method, Swings};
+use cosco_hsom::experiment::heldout::{check_demos, demo_trace, joint_trace};
+use cosco_hsom::experiment::ExperimentError;
+use cosco_hsom::sim::{ArmExecutor, NaoArm, Transition, JOINT_NAMES, SWING_JOINT};
 
 /// One fold of [`swing_folds`]: the large swings of [`SWING_JOINT`] in the executed
 /// reproduction and in the held-out demonstration, and both traces to draw.
@@ -29,7 +28,7 @@ pub struct SwingFold {
     pub demo: Vec<(f64, f64)>,
 }
 
-/// CoSCo-HSOM's leave-one-out folds as [`hsom_folds`](cosco_hsom::experiment::hsom_folds) (learned with `config`, executed with
+/// CoSCo-HSOM's leave-one-out folds on the arm (learned with `config`, executed with
 /// `transition`), keeping for each the trace of [`SWING_JOINT`] beside the held-out
 /// demonstration's: what a swing count means, to look at ([`swing_folds_png`]).
 pub fn swing_folds(
@@ -38,14 +37,28 @@ pub fn swing_folds(
     demos: &[Demonstration],
     transition: Transition,
 ) -> Result<Vec<SwingFold>, ExperimentError> {
-    let runs = hierarchy_runs(arm, config, demos, Training::Trained, transition)?;
-    runs.into_iter()
-        .zip(demos)
+    check_demos(demos)?;
+    let executor = ArmExecutor { arm, transition };
+    demos
+        .iter()
         .enumerate()
-        .map(|(i, (run, demo))| {
+        .map(|(i, demo)| {
+            let train = all_but(demos, i);
+            let input = FoldInput {
+                config: Some(config),
+                ..FoldInput::new(&train, std::slice::from_ref(demo))
+            };
+            let run = run_fold(&[Method::Hierarchy], &input, &executor)
+                .pop()
+                .map_or_else(|| Err("no run".to_string()), |(_, r)| r)
+                .map_err(ExperimentError::Invalid)?;
+            let scores = fold_scores(&run, &executor, &train, demo, 0.0)
+                .map_err(ExperimentError::Invalid)?;
             Ok(SwingFold {
                 held_out: i,
-                swings: swings(&run.executed.trace, demo)?,
+                swings: scores
+                    .swings
+                    .ok_or_else(|| ExperimentError::Invalid("no swings".into()))?,
                 joint_dtw: run.executed.fidelity.joint_dtw_rad_per_step.mean,
                 duration_ratio: run.executed.fidelity.duration_ratio.mean,
                 reproduction: joint_trace(&run.executed.trace),

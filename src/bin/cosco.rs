@@ -175,12 +175,7 @@ fn run(cli: Cli) -> Result<()> {
             #[cfg(feature = "sim")]
             let arm = |d: &[_], rows: &[_], params: &_| -> Result<_, app::evaluate::BoxError> {
                 let arm = cosco_hsom::experiment::load_arm(model.as_deref())?;
-                Ok(cosco_hsom::experiment::evaluate(
-                    Some(&arm),
-                    d,
-                    rows,
-                    params,
-                )?)
+                Ok(cosco_hsom::sim::evaluate(Some(&arm), d, rows, params)?)
             };
             #[cfg(feature = "sim")]
             let arm: Option<app::evaluate::ArmScorer> = Some(&arm);

@@ -1,19 +1,19 @@
 //! Where a method's postures are carried out before they are scored: the executor. The
 //! kinematic one ([`Kinematic`]) takes the postures as they are, with no simulator; the
-//! simulated Nao arm's lives in `experiment::ArmExecutor` (feature `sim`), recording the
-//! executed motion at the demonstration's rate.
+//! simulated Nao arm's is `sim::ArmExecutor` (feature `sim`), recording the executed motion
+//! at the demonstration's rate. Both produce an [`Executed`].
 
 use crate::demos::{sample_period, Demonstration};
 use crate::metrics::{FidelityReport, MetricsParams};
 
 use super::method::{peak_speed, Method};
 
-/// What an executor made of a method's postures, scored against the demonstration.
+/// What an executor made of a method's postures, scored against the demonstrations.
 #[derive(Debug, Clone)]
 pub struct Executed<T> {
     /// The executed motion (the executor's own record of it).
     pub trace: T,
-    /// Its fidelity against the demonstration.
+    /// Its fidelity against the demonstrations.
     pub fidelity: FidelityReport,
     /// Posture values moved into the executor's ranges before execution.
     pub clamped_values: usize,
@@ -28,13 +28,13 @@ pub trait Executor: Sync {
     /// The executor's record of an executed motion.
     type Trace;
 
-    /// Execute `postures` produced by `method` and score the motion against `target` alone,
-    /// at `target`'s sample period. The reason as a line when it cannot.
+    /// Execute `postures` produced by `method` and score the motion against each of
+    /// `targets`, at the first one's sample period. The reason as a line when it cannot.
     fn execute(
         &self,
         method: Method,
         postures: &[Vec<f64>],
-        target: &Demonstration,
+        targets: &[Demonstration],
     ) -> Result<Executed<Self::Trace>, String>;
 
     /// The executed motion of `executed`, one row per sample period of the demonstration it
@@ -44,6 +44,11 @@ pub trait Executor: Sync {
     /// The peak speed of GMM/GMR's lead-in from the initial posture to its first point, units
     /// per second, for training demonstrations sampled every `period` seconds.
     fn gmr_lead_in_speed(&self, train: &[Demonstration], period: f64) -> f64;
+
+    /// The column whose large swings are counted, and its name (`None`: none is).
+    fn swing_joint(&self) -> Option<(usize, &'static str)> {
+        None
+    }
 }
 
 /// The postures as they are: no simulator, no ranges, scored in the data's own units. GMM/GMR's
@@ -58,13 +63,13 @@ impl Executor for Kinematic {
         &self,
         _method: Method,
         postures: &[Vec<f64>],
-        target: &Demonstration,
+        targets: &[Demonstration],
     ) -> Result<Executed<()>, String> {
         let params = MetricsParams {
-            sample_period: sample_period(target),
+            sample_period: targets.first().map_or(f64::NAN, sample_period),
             ..MetricsParams::default()
         };
-        let fidelity = crate::app::evaluate_rows(std::slice::from_ref(target), postures, &params)
+        let fidelity = crate::app::evaluate_rows(targets, postures, &params)
             .map_err(|e| crate::app::error_line(&e))?;
         Ok(Executed {
             trace: (),

@@ -1,17 +1,25 @@
 //! One fold of an evaluation: each method learns from the training demonstrations, produces
-//! postures from the target's initial posture, and the executor carries them out and scores
-//! them against the target.
+//! postures from the first target's initial posture, and the executor carries them out and
+//! scores them against the targets. Held out and in-sample are two [`Split`]s of the same
+//! [`run_fold`]; [`fold`] scores every run of a split into a [`Fold`].
 
+use std::borrow::Cow;
 use std::time::Instant;
 
 use crate::config::HsomConfig;
 use crate::demos::{sample_period, Demonstration};
-use crate::gmr::{plan_at, GmrParams};
-use crate::hsom::Hsom;
+use crate::dtw::euclidean;
+use crate::gmr::{plan_at, BicScore, ComponentChoice, GmrModel, GmrParams, GmrPlan, TrainingSet};
+use crate::hsom::{Hsom, Reproduction};
+use crate::metrics::{column_swings, trimmed_normalized_jerk, MetricsParams, StartEndReference};
 use crate::promp::PrompSettings;
 
 use super::executor::{Executed, Executor};
 use super::method::{Method, GMR_COMPONENTS};
+use super::results::{Commanded, Fold, FoldScores, Run, Score, Swings};
+
+/// Smallest excursion between turning points that counts as a swing, rad.
+pub const SWING_MIN_AMPLITUDE_RAD: f64 = 0.3;
 
 /// Whether the hierarchy learns (the real thing) or keeps its seeded initial weights (the
 /// negative control of every fidelity check).
@@ -24,8 +32,47 @@ pub enum Training {
     Untrained,
 }
 
-/// One fold: what the methods learn from and whom they are scored against.
-#[derive(Debug, Clone, Copy)]
+/// Which demonstrations of a set a fold learns from and which it is scored against.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Split {
+    /// Learn from all but demonstration `i`; start from it and score against it alone.
+    HeldOut(usize),
+    /// Learn from all; start from demonstration `i` and score against it alone.
+    InSample(usize),
+    /// Learn from all; start from the first and score against each of them (the in-sample
+    /// result of the simulated arm's reports).
+    InSampleAll,
+}
+
+impl Split {
+    /// The training demonstrations and the targets of this split of `demos`.
+    pub fn of(self, demos: &[Demonstration]) -> (Cow<'_, [Demonstration]>, &[Demonstration]) {
+        match self {
+            Split::HeldOut(i) => (Cow::Owned(all_but(demos, i)), one(demos, i)),
+            Split::InSample(i) => (Cow::Borrowed(demos), one(demos, i)),
+            Split::InSampleAll => (Cow::Borrowed(demos), demos),
+        }
+    }
+}
+
+fn one(demos: &[Demonstration], i: usize) -> &[Demonstration] {
+    demos.get(i..=i).unwrap_or_default()
+}
+
+/// Fold `i`'s training demonstrations: all but `demos[i]`.
+pub fn all_but(demos: &[Demonstration], i: usize) -> Vec<Demonstration> {
+    demos
+        .iter()
+        .enumerate()
+        .filter(|&(j, _)| j != i)
+        .map(|(_, d)| d.clone())
+        .collect()
+}
+
+pub use crate::metrics::diagonal;
+
+/// One fold: what the methods learn from, how, and whom they are scored against.
+#[derive(Clone, Copy)]
 pub struct FoldInput<'a> {
     /// The configuration of the hierarchy and of the nearest sequence (`None` when neither
     /// runs).
@@ -34,11 +81,55 @@ pub struct FoldInput<'a> {
     pub height_1: Option<&'a HsomConfig>,
     /// Demonstrations to learn from.
     pub train: &'a [Demonstration],
-    /// The demonstration whose first sample the methods start from and which they are scored
-    /// against alone.
-    pub target: &'a Demonstration,
+    /// The demonstrations the methods are scored against; they start from the first one's
+    /// first sample, at its sample period.
+    pub targets: &'a [Demonstration],
     /// Whether the hierarchy (and height 1) learn, or keep their initial weights.
     pub training: Training,
+    /// GMM/GMR's choice of the number of components.
+    pub gmr_components: ComponentChoice,
+    /// Called with `(done, total)` as the hierarchy trains.
+    pub progress: Option<&'a dyn Fn(usize, usize)>,
+}
+
+impl<'a> FoldInput<'a> {
+    /// Learn from `train` and score against `targets`: no configuration, trained,
+    /// [`GMR_COMPONENTS`], no progress.
+    pub fn new(train: &'a [Demonstration], targets: &'a [Demonstration]) -> FoldInput<'a> {
+        FoldInput {
+            config: None,
+            height_1: None,
+            train,
+            targets,
+            training: Training::Trained,
+            gmr_components: GMR_COMPONENTS,
+            progress: None,
+        }
+    }
+}
+
+/// What a method learned, kept for the reports that show it.
+#[derive(Debug, Clone)]
+pub enum Fitted {
+    /// The hierarchy and its reproduction (how each posture was produced, why it stopped).
+    Hierarchy {
+        /// The model.
+        model: Box<Hsom>,
+        /// Its reproduction.
+        reproduction: Reproduction,
+    },
+    /// GMM/GMR, its pre-processed training data, the BIC of each component count tried and
+    /// the plan it executed (lead-in, then GMR's mean).
+    GmmGmr {
+        /// The model.
+        model: Box<GmrModel>,
+        /// The pre-processed training data.
+        training: Box<TrainingSet>,
+        /// BIC of every component count tried.
+        bic: Vec<BicScore>,
+        /// The plan.
+        plan: GmrPlan,
+    },
 }
 
 /// A method's run on one fold.
@@ -52,10 +143,15 @@ pub struct MethodRun<T> {
     pub train_s: f64,
     /// Time to produce the postures, seconds.
     pub reproduce_s: f64,
+    /// What the hierarchy or GMM/GMR learned (`None` for the other methods).
+    pub fitted: Option<Fitted>,
 }
 
 /// Each method of a fold with its run, or the reason it produced none.
 pub type FoldRuns<T> = Vec<(Method, Result<MethodRun<T>, String>)>;
+
+/// Why a fold without a target has no run.
+const NO_TARGET: &str = "no demonstration to score against";
 
 /// The error and its causes on one line.
 fn msg(e: impl std::error::Error + 'static) -> String {
@@ -65,43 +161,50 @@ fn msg(e: impl std::error::Error + 'static) -> String {
 /// Train with `config` (or only initialise, the negative control), timed.
 fn fit(
     config: &HsomConfig,
-    train: &[Demonstration],
-    training: Training,
+    input: &FoldInput<'_>,
+    progress: Option<&dyn Fn(usize, usize)>,
 ) -> Result<(Hsom, f64), String> {
     let t = Instant::now();
-    let model = match training {
-        Training::Trained => config.fit(train),
-        Training::Untrained => config.initialise(train),
+    let model = match input.training {
+        Training::Trained => config.fit_with_progress(input.train, progress),
+        Training::Untrained => config.initialise(input.train),
     }
     .map_err(msg)?;
     Ok((model, t.elapsed().as_secs_f64()))
 }
 
-/// Each of `methods` on one fold: learned from `input.train`, started from `input.target`'s
-/// first sample, executed by `executor` and scored against `input.target`; in `methods`'
-/// order, each with its run or the reason it produced none. The hierarchy and the nearest
-/// sequence share one trained model.
+/// What a method produced: postures, training and reproduction times, what it learned.
+type Produced = (Vec<Vec<f64>>, f64, f64, Option<Fitted>);
+
+/// Each of `methods` on one fold: learned from `input.train`, started from the first
+/// target's first sample, executed by `executor` and scored against `input.targets`; in
+/// `methods`' order, each with its run or the reason it produced none. The hierarchy and the
+/// nearest sequence share one trained model.
 pub fn run_fold<E: Executor>(
     methods: &[Method],
     input: &FoldInput<'_>,
     executor: &E,
 ) -> FoldRuns<E::Trace> {
-    let (train, target) = (input.train, input.target);
-    let Some(initial) = target.rows.first() else {
-        let why = format!("{}: no samples", target.source);
+    let train = input.train;
+    let first = input.targets.first();
+    let Some((target, initial)) = first.and_then(|t| t.rows.first().map(|r| (t, r))) else {
+        let why = first.map_or_else(
+            || NO_TARGET.to_string(),
+            |t| format!("{}: no samples", t.source),
+        );
         return methods.iter().map(|&m| (m, Err(why.clone()))).collect();
     };
     let mut model: Option<Result<(Hsom, f64), String>> = None;
     methods
         .iter()
         .map(|&method| {
-            let produced = match method {
+            let produced: Result<Produced, String> = match method {
                 Method::Hierarchy | Method::NearestSequence => {
                     let trained = model.get_or_insert_with(|| {
                         input
                             .config
                             .ok_or_else(|| "no configuration of the hierarchy given".to_string())
-                            .and_then(|c| fit(c, train, input.training))
+                            .and_then(|c| fit(c, input, input.progress))
                     });
                     match trained {
                         Ok((m, train_s)) => {
@@ -110,8 +213,16 @@ pub fn run_fold<E: Executor>(
                                 Method::Hierarchy => m.reproduce(initial),
                                 _ => m.follow_nearest(train, initial),
                             };
-                            rep.map(|r| (r.postures, *train_s, t.elapsed().as_secs_f64()))
-                                .map_err(msg)
+                            rep.map(|r| {
+                                let reproduce_s = t.elapsed().as_secs_f64();
+                                let fitted =
+                                    (method == Method::Hierarchy).then(|| Fitted::Hierarchy {
+                                        model: Box::new(m.clone()),
+                                        reproduction: r.clone(),
+                                    });
+                                (r.postures, *train_s, reproduce_s, fitted)
+                            })
+                            .map_err(msg)
                         }
                         Err(e) => Err(e.clone()),
                     }
@@ -119,26 +230,33 @@ pub fn run_fold<E: Executor>(
                 Method::Height1 => input
                     .height_1
                     .ok_or_else(|| "no configuration at height 1 given".to_string())
-                    .and_then(|h1| fit(h1, train, input.training))
+                    .and_then(|h1| fit(h1, input, None))
                     .and_then(|(m, train_s)| {
                         let t = Instant::now();
                         let rep = m.reproduce(initial).map_err(msg)?;
-                        Ok((rep.postures, train_s, t.elapsed().as_secs_f64()))
+                        Ok((rep.postures, train_s, t.elapsed().as_secs_f64(), None))
                     }),
                 Method::GmmGmr => {
                     let period = sample_period(target);
                     let t = Instant::now();
                     GmrParams::new()
-                        .components(GMR_COMPONENTS)
+                        .components(input.gmr_components)
                         .sample_period(period)
                         .check()
-                        .and_then(|p| p.fit(train))
-                        .and_then(|m| {
+                        .and_then(|p| p.fit_with_details(train))
+                        .and_then(|(m, training, bic)| {
                             let train_s = t.elapsed().as_secs_f64();
                             let t = Instant::now();
                             let speed = executor.gmr_lead_in_speed(train, period);
-                            plan_at(&m, initial, 1.0 / period, speed)
-                                .map(|p| (p.postures, train_s, t.elapsed().as_secs_f64()))
+                            let plan = plan_at(&m, initial, 1.0 / period, speed)?;
+                            let reproduce_s = t.elapsed().as_secs_f64();
+                            let fitted = Fitted::GmmGmr {
+                                model: Box::new(m),
+                                training: Box::new(training),
+                                bic,
+                                plan: plan.clone(),
+                            };
+                            Ok((plan.postures, train_s, reproduce_s, Some(fitted)))
                         })
                         .map_err(msg)
                 }
@@ -150,29 +268,144 @@ pub fn run_fold<E: Executor>(
                             let train_s = t.elapsed().as_secs_f64();
                             let t = Instant::now();
                             m.reproduce(initial)
-                                .map(|p| (p, train_s, t.elapsed().as_secs_f64()))
+                                .map(|p| (p, train_s, t.elapsed().as_secs_f64(), None))
                         })
                         .map_err(msg)
                 }
                 Method::Replay => {
-                    let start = |d: &Demonstration| crate::dtw::euclidean(&d.rows[0], initial);
+                    let start = |d: &Demonstration| euclidean(&d.rows[0], initial);
                     train
                         .iter()
                         .min_by(|a, b| start(a).total_cmp(&start(b)))
-                        .map(|d| (d.rows.clone(), 0.0, 0.0))
+                        .map(|d| (d.rows.clone(), 0.0, 0.0, None))
                         .ok_or_else(|| "no training demonstration".to_string())
                 }
             };
-            let run = produced.and_then(|(postures, train_s, reproduce_s)| {
-                let executed = executor.execute(method, &postures, target)?;
+            let run = produced.and_then(|(postures, train_s, reproduce_s, fitted)| {
+                let executed = executor.execute(method, &postures, input.targets)?;
                 Ok(MethodRun {
                     postures,
                     executed,
                     train_s,
                     reproduce_s,
+                    fitted,
                 })
             });
             (method, run)
         })
         .collect()
+}
+
+/// Every metric of `run` (executed by `executor`) against its first target, the motion's and
+/// the commanded postures' start and end judged against the demonstrations it learned from
+/// (`train`) in a gesture of bounding-box diagonal `diag`.
+pub fn fold_scores<E: Executor>(
+    run: &MethodRun<E::Trace>,
+    executor: &E,
+    train: &[Demonstration],
+    target: &Demonstration,
+    diag: f64,
+) -> Result<FoldScores, String> {
+    let reference = StartEndReference::of(train, diag);
+    let metrics = MetricsParams {
+        sample_period: sample_period(target),
+        ..MetricsParams::default()
+    };
+    let dt = metrics.sample_period;
+    let executed = &run.executed;
+    let motion = executor.motion(executed);
+    let start_end = reference.judge(motion, dt, executed.fidelity.final_error_rad.mean);
+    let commanded = match (executed.commanded.last(), target.rows.last()) {
+        (Some(c), Some(h)) => Some(Commanded {
+            postures: executed.commanded.len(),
+            normalized_jerk: trimmed_normalized_jerk(&executed.commanded, &metrics),
+            start_end: reference.judge(&executed.commanded, dt, euclidean(c, h)),
+        }),
+        _ => None,
+    };
+    let swings = match executor.swing_joint() {
+        Some((j, name)) => {
+            let count = |rows: &[Vec<f64>]| {
+                column_swings(rows, j, SWING_MIN_AMPLITUDE_RAD).map_err(|e| e.to_string())
+            };
+            Some(Swings {
+                joint: name.to_string(),
+                min_amplitude_rad: SWING_MIN_AMPLITUDE_RAD,
+                reproduction: count(motion)?,
+                demo: count(&target.rows)?,
+            })
+        }
+        None => None,
+    };
+    Ok(FoldScores {
+        swings,
+        postures: run.postures.len(),
+        clamped_values: executed.clamped_values,
+        train_s: run.train_s,
+        reproduce_s: run.reproduce_s,
+        start_end: Some(start_end),
+        commanded,
+        fidelity: executed.fidelity.clone(),
+    })
+}
+
+/// A method's run (or the reason it has none) as a [`Run`]: its every metric
+/// ([`fold_scores`]) against the first of `targets` and its [`Score`] in the gesture's
+/// diagonal `diag`.
+pub fn scored<E: Executor>(
+    method: Method,
+    run: Result<MethodRun<E::Trace>, String>,
+    executor: &E,
+    train: &[Demonstration],
+    targets: &[Demonstration],
+    diag: f64,
+) -> Run {
+    let scores = run.and_then(|r| {
+        let target = targets.first().ok_or_else(|| NO_TARGET.to_string())?;
+        Ok((fold_scores(&r, executor, train, target, diag)?, r.postures))
+    });
+    match scores {
+        Ok((s, postures)) => Run {
+            method,
+            score: (s.start_end.as_ref()).map(|se| Score::of(&s.fidelity, diag, se)),
+            error: None,
+            postures,
+            scores: Some(s),
+        },
+        Err(e) => Run {
+            method,
+            score: None,
+            error: Some(e),
+            postures: Vec::new(),
+            scores: None,
+        },
+    }
+}
+
+/// `methods` on split `split` of `demos` (learned as `base` says: configuration, height 1,
+/// training, GMM/GMR's components), every run scored against the split's first target in the
+/// diagonal `diag` of the set.
+pub fn fold<E: Executor>(
+    methods: &[Method],
+    base: &FoldInput<'_>,
+    demos: &[Demonstration],
+    split: Split,
+    diag: f64,
+    executor: &E,
+) -> Fold {
+    let (train, targets) = split.of(demos);
+    let input = FoldInput {
+        train: &train,
+        targets,
+        ..*base
+    };
+    let runs = run_fold(methods, &input, executor).into_iter();
+    Fold {
+        demonstration: targets
+            .first()
+            .map_or_else(String::new, |t| t.source.clone()),
+        runs: runs
+            .map(|(m, r)| scored(m, r, executor, &train, targets, diag))
+            .collect(),
+    }
 }

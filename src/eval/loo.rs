@@ -2,17 +2,13 @@
 //! demonstration of a gesture in turn, learn from the others, reproduce from its first
 //! sample, execute, and score against it alone; in-sample, learn from all.
 
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
-
 use crate::config::HsomConfig;
-use crate::demos::{sample_period, Demonstration};
-use crate::metrics::StartEndReference;
+use crate::demos::Demonstration;
 
 use super::executor::Executor;
-use super::fold::{run_fold, FoldInput};
+use super::fold::{diagonal, fold, FoldInput, Split};
 use super::method::Method;
-use super::results::{Fold, GestureLoo, Run, Score};
+use super::results::GestureLoo;
 
 /// Gestures by name, each with its demonstrations.
 pub type Gestures = Vec<(String, Vec<Demonstration>)>;
@@ -83,6 +79,9 @@ pub enum LooError {
     /// A bad setting.
     #[error("threads = {0}: needs at least 1")]
     Threads(usize),
+    /// The worker threads could not be started.
+    #[error("{0}")]
+    Pool(String),
     /// The configuration (at height 1, or for the data's width) is not valid.
     #[error(transparent)]
     Config(#[from] crate::config::ConfigError),
@@ -120,72 +119,13 @@ pub enum LooError {
     Plot(#[from] crate::plot::PlotError),
 }
 
-pub use crate::metrics::diagonal;
-
-/// Fold `i`'s training demonstrations: all but `demos[i]`.
-pub fn all_but(demos: &[Demonstration], i: usize) -> Vec<Demonstration> {
-    demos
-        .iter()
-        .enumerate()
-        .filter(|&(j, _)| j != i)
-        .map(|(_, d)| d.clone())
-        .collect()
-}
-
-/// The methods of `settings` on one fold ([`run_fold`]), scored in the gesture's diagonal
-/// `diag`, their start and end against the fold's training demonstrations.
-fn fold<E: Executor>(
-    input: &FoldInput<'_>,
-    diag: f64,
-    settings: &LooSettings,
-    held_out: bool,
-    executor: &E,
-) -> Fold {
-    let reference = StartEndReference::of(input.train, diag);
-    let period = sample_period(input.target);
-    let runs = run_fold(&settings.methods(held_out), input, executor)
-        .into_iter()
-        .map(|(method, r)| match r {
-            Ok(r) => {
-                let f = &r.executed.fidelity;
-                let motion = executor.motion(&r.executed);
-                let start_end = reference.judge(motion, period, f.final_error_rad.mean);
-                Run {
-                    method,
-                    score: Some(Score::of(f, diag, &start_end)),
-                    error: None,
-                    postures: r.postures,
-                }
-            }
-            Err(e) => Run {
-                method,
-                score: None,
-                error: Some(e),
-                postures: Vec::new(),
-            },
-        })
-        .collect();
-    Fold {
-        demonstration: input.target.source.clone(),
-        runs,
-    }
-}
-
 /// The gestures of `paths` as `cosco train` reads them: a directory of CSV files or files
 /// (one gesture, named after its directory, else `gesture`), or directories of gesture
-/// subdirectories (`DIR/<gesture>/*.csv`, each gesture on its own). With `from_data` the configuration is
-/// adapted to the data's width ([`HsomConfig::for_width`]); otherwise [`leave_one_out`]
-/// refuses files without the configuration's `stateLength` columns.
-pub fn read_gestures(
-    paths: &[std::path::PathBuf],
-    config: &HsomConfig,
-    from_data: bool,
-) -> Result<(HsomConfig, Gestures), LooError> {
-    read_gestures_at(paths, config, from_data, None)
-}
-
-/// [`read_gestures`], each demonstration first resampled to `resample_hz` when given
-/// ([`crate::resample::resample_all`]).
+/// subdirectories (`DIR/<gesture>/*.csv`, each gesture on its own), each demonstration first
+/// resampled to `resample_hz` when given ([`crate::resample::resample_all`]). With
+/// `from_data` the configuration is adapted to the data's width ([`HsomConfig::for_width`]);
+/// otherwise [`leave_one_out`] refuses files without the configuration's `stateLength`
+/// columns.
 pub fn read_gestures_at(
     paths: &[std::path::PathBuf],
     config: &HsomConfig,
@@ -265,48 +205,39 @@ pub fn leave_one_out<E: Executor>(
         }
     }
     let diagonals: Vec<f64> = gestures.iter().map(|(_, d)| diagonal(d)).collect();
-    let results: Mutex<Vec<Option<Fold>>> = Mutex::new(vec![None; jobs.len()]);
-    let (next, done) = (AtomicUsize::new(0), AtomicUsize::new(0));
-    std::thread::scope(|s| {
-        for _ in 0..settings.threads.min(jobs.len()) {
-            s.spawn(|| loop {
-                let k = next.fetch_add(1, Ordering::Relaxed);
-                let Some(&(g, i, held)) = jobs.get(k) else {
-                    break;
-                };
-                let demos = &gestures[g].1;
-                let train = if held {
-                    all_but(demos, i)
-                } else {
-                    demos.clone()
-                };
-                let input = FoldInput {
-                    config: Some(config),
-                    height_1: height_1.as_ref(),
-                    train: &train,
-                    target: &demos[i],
-                    training: super::Training::Trained,
-                };
-                let f = fold(&input, diagonals[g], settings, held, executor);
-                results.lock().unwrap_or_else(|p| p.into_inner())[k] = Some(f);
-                let d = done.fetch_add(1, Ordering::Relaxed) + 1;
-                if let Some(p) = progress {
-                    p(d, jobs.len());
-                }
-            });
-        }
-    });
-    let mut folds = results
-        .into_inner()
-        .unwrap_or_else(|p| p.into_inner())
-        .into_iter();
+    let pool = super::Pool::new(settings.threads).map_err(LooError::Pool)?;
+    let (held_out, in_sample) = (settings.methods(true), settings.methods(false));
+    let done = pool.map(
+        &jobs,
+        |&(g, i, held)| {
+            let base = FoldInput {
+                config: Some(config),
+                height_1: height_1.as_ref(),
+                ..FoldInput::new(&[], &[])
+            };
+            let (methods, split) = match held {
+                true => (&held_out, Split::HeldOut(i)),
+                false => (&in_sample, Split::InSample(i)),
+            };
+            fold(
+                methods,
+                &base,
+                &gestures[g].1,
+                split,
+                diagonals[g],
+                executor,
+            )
+        },
+        progress,
+    );
+    let mut folds = done.into_iter();
     let mut out = Vec::new();
     for (g, (name, demos)) in gestures.into_iter().enumerate() {
         let (mut held_out, mut in_sample) = (Vec::new(), Vec::new());
         for _ in 0..demos.len() {
-            held_out.push(folds.next().flatten().expect("every job ran"));
+            held_out.extend(folds.next());
             if settings.in_sample {
-                in_sample.push(folds.next().flatten().expect("every job ran"));
+                in_sample.extend(folds.next());
             }
         }
         out.push(GestureLoo {

@@ -1,12 +1,14 @@
 //! One evaluator, without the simulator: the methods compared on the same folds
-//! ([`Method`]: the hierarchy, the nearest sequence, height 1, GMM/GMR, the replay of the
-//! training demonstration that starts nearest), an [`Executor`] that carries their postures
-//! out ([`Kinematic`]: as they are; the simulated arm's is `experiment::ArmExecutor`),
-//! leave-one-out with the in-sample result beside it ([`leave_one_out`]), and the results
-//! ([`Score`], [`Fold`], [`GestureLoo`], [`MethodSummary`]).
+//! ([`Method`]: the hierarchy, the nearest sequence, height 1, GMM/GMR, ProMP, the replay of
+//! the training demonstration that starts nearest), an [`Executor`] that carries their
+//! postures out ([`Kinematic`]: as they are; the simulated arm's is `sim::ArmExecutor`), one
+//! fold ([`run_fold`]) whose held-out and in-sample [`Split`]s make every study
+//! ([`leave_one_out`] with the in-sample result beside it), one result family ([`Run`],
+//! [`Fold`], [`GestureLoo`], [`HeldOut`] and their summaries), and one worker pool
+//! ([`Pool`]).
 //!
-//! Used by `cosco heldout` (any recorded data), the Python package, the simulated held-out
-//! evaluation of `simulate` and the examples (through [`run_fold`] with the arm's executor).
+//! Used by `cosco heldout` (any recorded data), the Python package, `simulate`'s in-sample and
+//! held-out results, the sweeps and the examples (with the arm's executor).
 //!
 //! Reproductions are scored as executed: joint DTW in the data's own units per step and
 //! relative to the diagonal of the gesture's bounding box (comparable across gestures and
@@ -21,22 +23,24 @@ mod files;
 mod fold;
 mod loo;
 mod method;
+mod pool;
 pub mod recognition;
 mod report;
 mod results;
 
 pub use executor::{Executed, Executor, Kinematic};
 pub use files::{heldout, HeldoutJob};
-pub use fold::{run_fold, FoldInput, FoldRuns, MethodRun, Training};
-pub use loo::{
-    all_but, diagonal, leave_one_out, read_gestures, read_gestures_at, Gestures, LooError,
-    LooSettings,
+pub use fold::{
+    all_but, diagonal, fold, fold_scores, run_fold, scored, Fitted, FoldInput, FoldRuns, MethodRun,
+    Split, Training, SWING_MIN_AMPLITUDE_RAD,
 };
+pub use loo::{leave_one_out, read_gestures_at, Gestures, LooError, LooSettings};
 pub use method::{peak_speed, Method, GMR_COMPONENTS};
+pub use pool::Pool;
 #[cfg(feature = "plot")]
 pub use report::png;
 pub use report::{json, markdown};
 pub use results::{
-    failures, passed, summary, ArmFold, Commanded, Fold, FoldScores, FoldsError, GestureLoo,
-    HeldOut, HeldOutSummary, MethodSummary, Run, Score, Swings, MIN_DEMO_JERK,
+    failures, passed, summary, Commanded, Fold, FoldScores, FoldsError, GestureLoo, HeldOut,
+    HeldOutSummary, MethodSummary, Run, Score, Swings, MIN_DEMO_JERK,
 };

@@ -13,8 +13,6 @@
 mod report;
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 
 use serde::Serialize;
 
@@ -122,6 +120,9 @@ pub enum RecognitionError {
     /// A bad setting.
     #[error("threads = {0}: needs at least 1")]
     Threads(usize),
+    /// The worker threads could not be started.
+    #[error("{0}")]
+    Pool(String),
     /// A demonstration is not valid (too short, non-finite values, ...).
     #[error(transparent)]
     Demo(#[from] crate::demos::DemoError),
@@ -398,40 +399,6 @@ fn check_sets(
     Ok(())
 }
 
-/// Run `jobs` on `threads` threads, `progress(done, total)` after each; the results in the
-/// jobs' order.
-fn run_all<J: Sync, T: Send>(
-    jobs: &[J],
-    threads: usize,
-    work: impl Fn(&J) -> T + Sync,
-    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
-) -> Vec<T> {
-    let results: Mutex<Vec<Option<T>>> = Mutex::new((0..jobs.len()).map(|_| None).collect());
-    let (next, done) = (AtomicUsize::new(0), AtomicUsize::new(0));
-    std::thread::scope(|s| {
-        for _ in 0..threads.min(jobs.len()) {
-            s.spawn(|| loop {
-                let k = next.fetch_add(1, Ordering::Relaxed);
-                let Some(job) = jobs.get(k) else {
-                    break;
-                };
-                let r = work(job);
-                results.lock().unwrap_or_else(|p| p.into_inner())[k] = Some(r);
-                let d = done.fetch_add(1, Ordering::Relaxed) + 1;
-                if let Some(p) = progress {
-                    p(d, jobs.len());
-                }
-            });
-        }
-    });
-    results
-        .into_inner()
-        .unwrap_or_else(|p| p.into_inner())
-        .into_iter()
-        .map(|r| r.expect("every job ran"))
-        .collect()
-}
-
 /// The study on labelled sets (`taught`: at least one label, each with at least
 /// [`MIN_TAUGHT_DEMOS`] demonstrations; `untaught`: any, possibly none), with `config` (the
 /// events extension, of the data's `stateLength`); `progress(done, total)` after each model
@@ -459,12 +426,8 @@ pub fn recognition_study(
             jobs.push(Job::All { learn });
         }
     }
-    let done = run_all(
-        &jobs,
-        settings.threads,
-        |&j| run_job(config, taught, untaught, j),
-        progress,
-    );
+    let pool = super::Pool::new(settings.threads).map_err(RecognitionError::Pool)?;
+    let done = pool.map(&jobs, |&j| run_job(config, taught, untaught, j), progress);
     let (mut model, mut control) = (Answers::default(), Answers::default());
     for (job, d) in jobs.iter().zip(done) {
         let learn = match job {

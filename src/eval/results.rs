@@ -1,7 +1,8 @@
-//! The results of an evaluation, in one place: a method's score on one fold, the fold, a
-//! gesture's folds held out and in-sample, and the summary over gestures; and the simulated
-//! arm's held-out results, with every fidelity metric of each fold ([`FoldScores`],
-//! [`HeldOut`]).
+//! The results of an evaluation, in one place: a method's run on one fold ([`Run`]: its
+//! [`Score`] and every metric, [`FoldScores`]), the fold ([`Fold`]), a gesture's folds held
+//! out and in-sample ([`GestureLoo`]), the summary over gestures ([`MethodSummary`]); and the
+//! means over one set's folds ([`HeldOut`], [`HeldOutSummary`]) that the simulated arm's
+//! reports show.
 
 use serde::Serialize;
 
@@ -44,8 +45,9 @@ pub struct Score {
     pub end_within_spread: bool,
 }
 
-/// A method's result on one fold.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// A method's result on one fold (equal to another with the same results, whatever the time
+/// each took).
+#[derive(Debug, Clone, Serialize)]
 pub struct Run {
     /// Which method.
     pub method: Method,
@@ -56,6 +58,24 @@ pub struct Run {
     /// The reproduction (not serialised).
     #[serde(skip)]
     pub postures: Vec<Vec<f64>>,
+    /// Every metric of the executed reproduction (not serialised here: [`HeldOut`] writes it).
+    #[serde(skip)]
+    pub scores: Option<FoldScores>,
+}
+
+impl PartialEq for Run {
+    fn eq(&self, other: &Run) -> bool {
+        let untimed = |r: &Run| {
+            r.scores.as_ref().map(|s| FoldScores {
+                train_s: 0.0,
+                reproduce_s: 0.0,
+                ..s.clone()
+            })
+        };
+        (self.method, &self.score, &self.error, &self.postures)
+            == (other.method, &other.score, &other.error, &other.postures)
+            && untimed(self) == untimed(other)
+    }
 }
 
 /// The methods on one demonstration: held out (learned from the others) or in-sample
@@ -69,12 +89,24 @@ pub struct Fold {
 }
 
 impl Fold {
+    /// The run of `method`, when it was asked for.
+    pub fn run(&self, method: Method) -> Option<&Run> {
+        self.runs.iter().find(|r| r.method == method)
+    }
+
     /// The score of `method`, when it ran and succeeded.
     pub fn score(&self, method: Method) -> Option<&Score> {
-        self.runs
-            .iter()
-            .find(|r| r.method == method)
-            .and_then(|r| r.score.as_ref())
+        self.run(method).and_then(|r| r.score.as_ref())
+    }
+
+    /// Every metric of `method`'s run, when it ran and succeeded.
+    pub fn scores(&self, method: Method) -> Option<&FoldScores> {
+        self.run(method).and_then(|r| r.scores.as_ref())
+    }
+
+    /// Why `method` produced nothing, when it was asked for and failed.
+    pub fn error(&self, method: Method) -> Option<&str> {
+        self.run(method).and_then(|r| r.error.as_deref())
     }
 }
 
@@ -271,17 +303,17 @@ pub fn failures(study: &[GestureLoo]) -> Vec<(Method, String, Vec<String>)> {
     out
 }
 
-// The simulated arm's held-out results (`experiment::heldout`, `simulate`'s report): every
-// fidelity metric of a fold executed on the arm, and their means over the folds.
+// Every metric of a run, and their means over one set's folds (`experiment::heldout`,
+// `simulate`'s report, the sweeps).
 
 /// Per-fold results that do not go together (named in the message).
 #[derive(Debug, thiserror::Error)]
 #[error("{0}")]
 pub struct FoldsError(pub String);
 
-/// Large swings of the swing joint (`experiment::heldout::SWING_JOINT`; see
-/// [`crate::metrics::large_swings`]): the reproduction's
-/// and the held-out demonstration's.
+/// Large swings of the executor's swing joint ([`Executor::swing_joint`](super::Executor);
+/// see [`crate::metrics::large_swings`]): the reproduction's and the held-out
+/// demonstration's.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Swings {
     /// Joint name.
@@ -294,13 +326,15 @@ pub struct Swings {
     pub demo: usize,
 }
 
-/// One method on one fold.
+/// Every metric of one method on one fold.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FoldScores {
-    /// Fidelity of the executed trajectory against the held-out demonstration only.
+    /// Fidelity of the executed trajectory against the fold's targets (held out: the held-out
+    /// demonstration only).
     pub fidelity: FidelityReport,
-    /// Large swings of the swing joint.
-    pub swings: Swings,
+    /// Large swings of the swing joint (`None` when the executor counts none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub swings: Option<Swings>,
     /// Postures the method produced.
     pub postures: usize,
     /// Posture values clamped into the joint ranges before execution.
@@ -329,29 +363,6 @@ pub struct Commanded {
     pub start_end: StartEnd,
 }
 
-/// One fold on the arm: a demonstration held out.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ArmFold {
-    /// 0-based index of the held-out demonstration.
-    pub held_out: usize,
-    /// Its source (file name or description).
-    pub source: String,
-    /// CoSCo-HSOM trained on the other demonstrations.
-    pub hsom: FoldScores,
-    /// GMM/GMR trained on the other demonstrations, when it could run.
-    pub gmr: Option<FoldScores>,
-    /// Why GMM/GMR did not run on this fold.
-    pub gmr_error: Option<String>,
-    /// The nearest-sequence baseline on the same fold (`experiment::hsom_and_sequence_folds`), when it
-    /// was run.
-    pub sequence: Option<FoldScores>,
-    /// ProMP conditioned on the initial posture, trained on the other demonstrations, when it
-    /// was run and could run ([`HeldOut::with_promp`]).
-    pub promp: Option<FoldScores>,
-    /// Why ProMP did not run on this fold (`None` when it ran or was not asked for).
-    pub promp_error: Option<String>,
-}
-
 /// Means over folds of one method.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct HeldOutSummary {
@@ -371,9 +382,11 @@ pub struct HeldOutSummary {
     pub normalized_jerk: Option<f64>,
     /// Velocity reversals of the reproductions, all joints.
     pub velocity_reversals: f64,
-    /// Normalized jerk of the held-out demonstrations (mean where defined).
+    /// Normalized jerk of the held-out demonstrations (mean where defined; of a fold scored
+    /// against several, their mean).
     pub demo_normalized_jerk: Option<f64>,
-    /// Velocity reversals of the held-out demonstrations, all joints.
+    /// Velocity reversals of the held-out demonstrations, all joints (of a fold scored against
+    /// several, their mean).
     pub demo_velocity_reversals: f64,
     /// Large swings of the swing joint of the reproductions.
     pub swings: f64,
@@ -416,7 +429,6 @@ impl HeldOutSummary {
     /// Means over `folds`; `None` when there are none.
     pub fn of(folds: &[&FoldScores]) -> Option<HeldOutSummary> {
         let m = |f: &dyn Fn(&FoldScores) -> f64| mean(folds.iter().map(|s| f(s)));
-        let demo_smoothness = |s: &FoldScores| s.fidelity.demo_smoothness.first().cloned();
         let executed = || folds.iter().filter_map(|s| s.start_end.as_ref());
         let commanded = || folds.iter().filter_map(|s| s.commanded.as_ref());
         Some(HeldOutSummary {
@@ -436,16 +448,24 @@ impl HeldOutSummary {
                     .filter_map(|s| s.fidelity.reproduction_smoothness.normalized_jerk),
             ),
             velocity_reversals: m(&|s| s.fidelity.reproduction_smoothness.total_reversals as f64)?,
-            demo_normalized_jerk: mean(
-                folds
-                    .iter()
-                    .filter_map(|s| demo_smoothness(s).and_then(|d| d.normalized_jerk)),
-            ),
+            demo_normalized_jerk: mean(folds.iter().filter_map(|s| {
+                mean(
+                    s.fidelity
+                        .demo_smoothness
+                        .iter()
+                        .filter_map(|d| d.normalized_jerk),
+                )
+            })),
             demo_velocity_reversals: m(&|s| {
-                demo_smoothness(s).map_or(f64::NAN, |d| d.total_reversals as f64)
+                let demos = s.fidelity.demo_smoothness.iter();
+                mean(demos.map(|d| d.total_reversals as f64)).unwrap_or(f64::NAN)
             })?,
-            swings: m(&|s| s.swings.reproduction as f64)?,
-            demo_swings: m(&|s| s.swings.demo as f64)?,
+            swings: m(&|s| {
+                s.swings
+                    .as_ref()
+                    .map_or(f64::NAN, |w| w.reproduction as f64)
+            })?,
+            demo_swings: m(&|s| s.swings.as_ref().map_or(f64::NAN, |w| w.demo as f64))?,
             hold_s: m(&|s| s.fidelity.reproduction_hold_s)?,
             demo_hold_s: m(&|s| s.fidelity.demo_hold_s.first().copied().unwrap_or(f64::NAN))?,
             start_speed: mean(executed().filter_map(|e| e.start_speed)),
@@ -460,137 +480,86 @@ impl HeldOutSummary {
     }
 }
 
-/// The held-out evaluation of CoSCo-HSOM, GMM/GMR, and when run the nearest sequence and
-/// ProMP, on one set of demonstrations.
+/// One set's folds with the means over them of the hierarchy, GMM/GMR, and when run the
+/// nearest sequence and ProMP.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct HeldOut {
-    /// One fold per demonstration, in order.
-    pub folds: Vec<ArmFold>,
+    /// One fold per demonstration, in order (written per method: `hsom`, `gmr`, `sequence`,
+    /// `promp`, each with its scores, and the reason where GMM/GMR or ProMP did not run).
+    #[serde(serialize_with = "per_method")]
+    pub folds: Vec<Fold>,
     /// CoSCo-HSOM: means over all folds.
     pub hsom: HeldOutSummary,
     /// GMM/GMR: means over the folds where it ran (`None` when it ran on none).
     pub gmr: Option<HeldOutSummary>,
-    /// The nearest-sequence baseline: means over all folds (`None` when it was not run:
-    /// [`HeldOut::with_sequence`]).
+    /// The nearest-sequence baseline: means over all folds (`None` when it was not run).
     pub sequence: Option<HeldOutSummary>,
-    /// ProMP: means over the folds where it ran (`None` when it was not run,
-    /// [`HeldOut::with_promp`], or ran on none).
+    /// ProMP: means over the folds where it ran (`None` when it was not run or ran on none).
     pub promp: Option<HeldOutSummary>,
 }
 
+/// The folds as the reports write them: per method.
+fn per_method<S: serde::Serializer>(folds: &[Fold], s: S) -> Result<S::Ok, S::Error> {
+    #[derive(Serialize)]
+    struct Row<'a> {
+        held_out: usize,
+        source: &'a str,
+        hsom: Option<&'a FoldScores>,
+        gmr: Option<&'a FoldScores>,
+        gmr_error: Option<&'a str>,
+        sequence: Option<&'a FoldScores>,
+        promp: Option<&'a FoldScores>,
+        promp_error: Option<&'a str>,
+    }
+    s.collect_seq(folds.iter().enumerate().map(|(i, f)| Row {
+        held_out: i,
+        source: &f.demonstration,
+        hsom: f.scores(Method::Hierarchy),
+        gmr: f.scores(Method::GmmGmr),
+        gmr_error: f.error(Method::GmmGmr),
+        sequence: f.scores(Method::NearestSequence),
+        promp: f.scores(Method::ProMP),
+        promp_error: f.error(Method::ProMP),
+    }))
+}
+
 impl HeldOut {
-    /// Put per-fold results together: `hsom[i]` and `gmr[i]` are the results of fold `i`
-    /// (demonstration `i` held out); `gmr[i]` is the reason when GMM/GMR did not run.
-    pub fn new(
-        demos: &[Demonstration],
-        hsom: Vec<FoldScores>,
-        gmr: Vec<Result<FoldScores, String>>,
-    ) -> Result<HeldOut, FoldsError> {
-        if hsom.len() != demos.len() || gmr.len() != demos.len() {
-            return Err(FoldsError(format!(
-                "held-out results: {} CoSCo-HSOM and {} GMM/GMR folds for {} demonstrations; \
-                 need one per demonstration",
-                hsom.len(),
-                gmr.len(),
-                demos.len()
-            )));
+    /// The means over `folds`; an error when there are none, or when the hierarchy (or the
+    /// nearest sequence, when run) failed on one.
+    pub fn of(folds: Vec<Fold>) -> Result<HeldOut, FoldsError> {
+        for m in [Method::Hierarchy, Method::NearestSequence] {
+            if let Some(e) = folds.iter().find_map(|f| f.error(m)) {
+                return Err(FoldsError(e.to_string()));
+            }
         }
-        let folds: Vec<ArmFold> = demos
-            .iter()
-            .zip(hsom.into_iter().zip(gmr))
-            .enumerate()
-            .map(|(i, (d, (h, g)))| {
-                let (gmr, gmr_error) = match g {
-                    Ok(s) => (Some(s), None),
-                    Err(e) => (None, Some(e)),
-                };
-                ArmFold {
-                    held_out: i,
-                    source: d.source.clone(),
-                    hsom: h,
-                    gmr,
-                    gmr_error,
-                    sequence: None,
-                    promp: None,
-                    promp_error: None,
-                }
-            })
-            .collect();
-        let all: Vec<&FoldScores> = folds.iter().map(|f| &f.hsom).collect();
-        let hsom = HeldOutSummary::of(&all)
+        let summary = |m| {
+            let ran: Vec<&FoldScores> = folds.iter().filter_map(|f| f.scores(m)).collect();
+            HeldOutSummary::of(&ran)
+        };
+        let hsom = summary(Method::Hierarchy)
             .ok_or_else(|| FoldsError("held-out results: no folds (no demonstrations)".into()))?;
-        let ran: Vec<&FoldScores> = folds.iter().filter_map(|f| f.gmr.as_ref()).collect();
         Ok(HeldOut {
-            gmr: HeldOutSummary::of(&ran),
             hsom,
+            gmr: summary(Method::GmmGmr),
+            sequence: summary(Method::NearestSequence),
+            promp: summary(Method::ProMP),
             folds,
-            sequence: None,
-            promp: None,
         })
-    }
-
-    /// Add the nearest-sequence baseline's folds (`experiment::hsom_and_sequence_folds`): `sequence[i]` is fold
-    /// `i`'s, one per fold.
-    pub fn with_sequence(mut self, sequence: Vec<FoldScores>) -> Result<HeldOut, FoldsError> {
-        if sequence.len() != self.folds.len() {
-            return Err(FoldsError(format!(
-                "held-out results: {} nearest-sequence folds for {} folds; need one per fold",
-                sequence.len(),
-                self.folds.len()
-            )));
-        }
-        for (f, s) in self.folds.iter_mut().zip(sequence) {
-            f.sequence = Some(s);
-        }
-        let all: Vec<&FoldScores> = self
-            .folds
-            .iter()
-            .filter_map(|f| f.sequence.as_ref())
-            .collect();
-        self.sequence = HeldOutSummary::of(&all);
-        Ok(self)
-    }
-
-    /// Add ProMP's folds: `promp[i]` is fold `i`'s scores, or the reason ProMP did not run on
-    /// it; one per fold.
-    pub fn with_promp(
-        mut self,
-        promp: Vec<Result<FoldScores, String>>,
-    ) -> Result<HeldOut, FoldsError> {
-        if promp.len() != self.folds.len() {
-            return Err(FoldsError(format!(
-                "held-out results: {} ProMP folds for {} folds; need one per fold",
-                promp.len(),
-                self.folds.len()
-            )));
-        }
-        for (f, p) in self.folds.iter_mut().zip(promp) {
-            (f.promp, f.promp_error) = match p {
-                Ok(s) => (Some(s), None),
-                Err(e) => (None, Some(e)),
-            };
-        }
-        let ran: Vec<&FoldScores> = self.folds.iter().filter_map(|f| f.promp.as_ref()).collect();
-        self.promp = HeldOutSummary::of(&ran);
-        Ok(self)
     }
 
     /// Both methods averaged over the same folds (those where GMM/GMR ran): (CoSCo-HSOM,
     /// GMM/GMR); `None` when GMM/GMR ran on none.
     pub fn paired(&self) -> Option<(HeldOutSummary, HeldOutSummary)> {
-        self.paired_with(|f| f.gmr.as_ref())
+        self.paired_with(Method::GmmGmr)
     }
 
-    /// CoSCo-HSOM and another method (`other` of a fold: its scores, when it ran) averaged over
-    /// the same folds, those where the other ran; `None` when it ran on none.
-    pub fn paired_with(
-        &self,
-        other: fn(&ArmFold) -> Option<&FoldScores>,
-    ) -> Option<(HeldOutSummary, HeldOutSummary)> {
+    /// CoSCo-HSOM and `other` averaged over the same folds, those where the other ran; `None`
+    /// when it ran on none.
+    pub fn paired_with(&self, other: Method) -> Option<(HeldOutSummary, HeldOutSummary)> {
         let (h, g): (Vec<&FoldScores>, Vec<&FoldScores>) = self
             .folds
             .iter()
-            .filter_map(|f| other(f).map(|g| (&f.hsom, g)))
+            .filter_map(|f| Some((f.scores(Method::Hierarchy)?, f.scores(other)?)))
             .unzip();
         Some((HeldOutSummary::of(&h)?, HeldOutSummary::of(&g)?))
     }

@@ -17,19 +17,18 @@ use serde::Serialize;
 use crate::config::HsomConfig;
 use crate::demos::{write_csv, Demonstration};
 use crate::dtw::Band;
+use crate::eval::{Executed, Executor, FoldInput, Method};
 use crate::gesture::Gesture;
 use crate::hsom::{GestureError, GestureModel};
-use crate::metrics::MetricsParams;
 use crate::nearest::NearestNeighbour;
 use crate::plot::{caption, confusion_png, ConfusionPanel};
 use crate::render::{contact_sheet, save_png, Clip};
-use crate::sim::{NaoArm, Recording};
+use crate::sim::{ArmExecutor, NaoArm, Recording, Transition};
 
 use super::demonstrate::{synthetic_demonstrations, DemoSettings};
 use super::film::{clip_options, film};
-use super::pipeline::execute_and_score;
-use super::{ExperimentError, Transition};
-use crate::demos::sample_period;
+use super::heldout::on_arm;
+use super::ExperimentError;
 use crate::metrics::median;
 
 /// Frames of each gesture on the contact sheet (one row per gesture).
@@ -268,7 +267,7 @@ pub fn run_all_gestures(
     out: &Path,
     progress: Progress<'_>,
 ) -> Result<AllReport, ExperimentError> {
-    let count = settings.count;
+    let (count, transition) = (settings.count, settings.transition);
     if count < 2 {
         return Err(ExperimentError::Invalid(format!(
             "--count {count} with --gesture all: at least 2 demonstrations per gesture (each is held out in turn)"
@@ -350,23 +349,17 @@ pub fn run_all_gestures(
                 nn_ms,
             });
             // fidelity on cue, shared and alone, executed on the arm
-            let metrics = MetricsParams {
-                sample_period: sample_period(test),
-                ..MetricsParams::default()
-            };
+            let targets = std::slice::from_ref(test);
             let shared = model.reproduce(Some(label), &test.rows[0]).map_err(gerr)?;
-            let alone = config.fit(train)?.reproduce(&test.rows[0])?;
-            let score = |p: &[Vec<f64>]| {
-                execute_and_score(
-                    arm,
-                    p,
-                    settings.transition,
-                    std::slice::from_ref(test),
-                    &metrics,
-                )
+            let s = ArmExecutor { arm, transition }
+                .execute(Method::Hierarchy, &shared.postures, targets)
+                .map_err(ExperimentError::Invalid)?;
+            let alone = FoldInput {
+                config: Some(config),
+                ..FoldInput::new(train, targets)
             };
-            let (s, a) = (score(&shared.postures)?, score(&alone.postures)?);
-            let wrist = |e: &super::Executed| e.fidelity.wrist_dtw_mm.map(|w| w.mean);
+            let a = on_arm(arm, transition, Method::Hierarchy, &alone)?.executed;
+            let wrist = |e: &Executed<Recording>| e.fidelity.wrist_dtw_mm.map(|w| w.mean);
             wrist_missing |= wrist(&s).is_none() || wrist(&a).is_none();
             per_gesture[gi].push([
                 s.fidelity.joint_dtw_rad_per_step.mean,
@@ -378,7 +371,7 @@ pub fn run_all_gestures(
             if k == count - 1 {
                 // the saved model's: kept for its files and the clip
                 let stop = format!("{:?}", shared.stop);
-                last_fold.push((label.clone(), shared.postures.len(), stop, s.executed));
+                last_fold.push((label.clone(), shared.postures.len(), stop, s.trace));
             }
         }
         last_model = Some(model);

@@ -20,26 +20,18 @@
 //! CoSCo-HSOM.
 
 use std::path::Path;
-use std::time::Instant;
 
 use plotters::style::RGBColor;
 
-use crate::demos::Demonstration;
 use crate::gmr::{
-    lead_in_ticks_at, plan_at, BicScore, ComponentChoice, GmrError, GmrModel, GmrParams,
-    GmrValidParams, TrainingSet,
+    lead_in_ticks_at, plan_at, ComponentChoice, GmrModel, GmrParams, GmrValidParams, TrainingSet,
 };
 pub use crate::gmr::{minimum_jerk, GmrPlan, LEAD_IN_MIN_S};
-use crate::metrics::{FidelityReport, MetricsParams};
-use crate::plot::{demo_color, panels_png, Band, Ellipse, Panel, PlotError, Scatter, Series};
-use crate::sim::{NaoArm, Recording, JOINT_NAMES};
+use crate::plot::{demo_color, panels_png, Band, Ellipse, Panel, Scatter, Series};
+pub use crate::sim::LEAD_IN_PEAK_SPEED;
 
-use super::pipeline::{execute_and_score, Split};
-use super::report::MethodResult;
-use super::{are_arm_joints, ExperimentError, Transition};
+use super::ExperimentError;
 
-/// Peak joint speed of the lead-in from the initial posture to GMR's first point, rad/s.
-pub const LEAD_IN_PEAK_SPEED: f64 = 1.0;
 /// Name of the baseline in reports.
 pub const GMR_NAME: &str = "GMM/GMR";
 /// What the baseline needs as input (the report's "needs as input" row).
@@ -53,32 +45,6 @@ pub const DEFAULT_COMPONENTS: ComponentChoice = crate::eval::GMR_COMPONENTS;
 /// Colour of the baseline's curves.
 pub const GMR_COLOR: RGBColor = RGBColor(200, 0, 130);
 
-/// Errors of the baseline experiment.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum BaselineError {
-    /// The demonstrations are not the arm's joints, so the baseline cannot be executed.
-    #[error("the demonstrations' columns are {found:?}; executing on the simulated arm needs exactly {expected:?}")]
-    NotArmJoints {
-        /// Columns found.
-        found: Vec<String>,
-        /// Columns expected (the arm's joints in model order).
-        expected: Vec<String>,
-    },
-    /// Fitting or querying the GMM/GMR failed.
-    #[error("GMM/GMR: {0}")]
-    Gmr(#[from] GmrError),
-    /// Executing or evaluating failed.
-    #[error(transparent)]
-    Experiment(#[from] ExperimentError),
-    /// A figure could not be drawn or written.
-    #[error(transparent)]
-    Plot(#[from] PlotError),
-    /// A bad argument (named in the message).
-    #[error("{0}")]
-    Invalid(String),
-}
-
 /// Ticks of the lead-in from `from` to `to` at `rate_hz` (see the module documentation); at
 /// least 1 (the initial posture itself).
 pub fn lead_in_ticks(from: &[f64], to: &[f64], rate_hz: f64) -> usize {
@@ -87,110 +53,8 @@ pub fn lead_in_ticks(from: &[f64], to: &[f64], rate_hz: f64) -> usize {
 
 /// The plan: the lead-in from `initial` to GMR's first point, then GMR's mean every
 /// `1 / rate_hz` seconds over the model's duration.
-pub fn plan(model: &GmrModel, initial: &[f64], rate_hz: f64) -> Result<GmrPlan, BaselineError> {
+pub fn plan(model: &GmrModel, initial: &[f64], rate_hz: f64) -> Result<GmrPlan, ExperimentError> {
     Ok(plan_at(model, initial, rate_hz, LEAD_IN_PEAK_SPEED)?)
-}
-
-/// Everything one run of the baseline produced.
-#[derive(Debug, Clone)]
-pub struct BaselineRun {
-    /// The fitted model.
-    pub model: GmrModel,
-    /// The pre-processed training data (the paper's Fig. 3).
-    pub training: TrainingSet,
-    /// BIC of every component count tried.
-    pub bic: Vec<BicScore>,
-    /// Pre-processing + EM, seconds.
-    pub train_s: f64,
-    /// GMR regression + lead-in, seconds.
-    pub reproduce_s: f64,
-    /// The postures sent to the controller (before clamping).
-    pub plan: GmrPlan,
-    /// Posture values clamped into the joint ranges before execution.
-    pub clamped: usize,
-    /// The executed trajectory, recorded at the demonstrations' rate.
-    pub executed: Recording,
-    /// Fidelity of the executed trajectory against the demonstrations.
-    pub fidelity: FidelityReport,
-}
-
-/// Fit the baseline to `demos` (the arm's joints, sampled every `metrics.sample_period`
-/// seconds), execute its plan on the simulated arm from `demos[0]`'s first posture, and
-/// score the executed trajectory with `metrics` (the in-sample result: [`run_baseline_split`]
-/// with [`Split::in_sample`]).
-pub fn run_baseline(
-    arm: &NaoArm,
-    demos: &[Demonstration],
-    params: &GmrValidParams,
-    metrics: &MetricsParams,
-) -> Result<BaselineRun, BaselineError> {
-    if demos.is_empty() {
-        return Err(BaselineError::Invalid(
-            "no demonstrations given to the GMM/GMR baseline".into(),
-        ));
-    }
-    run_baseline_split(arm, Split::in_sample(demos), params, metrics)
-}
-
-/// The baseline as the experiment runs it in-sample: [`DEFAULT_COMPONENTS`], learned from all
-/// `demos` (sampled at `demos[0]`'s period) and scored against all of them.
-pub fn run_baseline_in_sample(
-    arm: &NaoArm,
-    demos: &[Demonstration],
-) -> Result<BaselineRun, BaselineError> {
-    let metrics = Split::in_sample(demos).metrics()?;
-    let params = gmr_params(DEFAULT_COMPONENTS, metrics.sample_period)?;
-    run_baseline(arm, demos, &params, &metrics)
-}
-
-/// Fit the baseline to `split.train` (the arm's joints, sampled every
-/// `metrics.sample_period` seconds), execute its plan on the simulated arm from the first
-/// posture of `split.test[0]`, and score the executed trajectory against `split.test` with
-/// `metrics`.
-pub fn run_baseline_split(
-    arm: &NaoArm,
-    split: Split<'_>,
-    params: &GmrValidParams,
-    metrics: &MetricsParams,
-) -> Result<BaselineRun, BaselineError> {
-    let Some(first) = split.train.first() else {
-        return Err(BaselineError::Invalid(
-            "no demonstrations given to the GMM/GMR baseline".into(),
-        ));
-    };
-    for d in [first, split.first_test()?] {
-        if !are_arm_joints(&d.columns) {
-            return Err(BaselineError::NotArmJoints {
-                found: d.columns.clone(),
-                expected: JOINT_NAMES.iter().map(|s| s.to_string()).collect(),
-            });
-        }
-    }
-    if !(metrics.sample_period.is_finite() && metrics.sample_period > 0.0) {
-        return Err(BaselineError::Invalid(format!(
-            "metrics sample_period = {}: needs a finite period > 0",
-            metrics.sample_period
-        )));
-    }
-    let rate = 1.0 / metrics.sample_period;
-    let t = Instant::now();
-    let (model, training, bic) = params.fit_with_details(split.train)?;
-    let train_s = t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    let plan = plan(&model, split.initial()?, rate)?;
-    let reproduce_s = t.elapsed().as_secs_f64();
-    let run = execute_and_score(arm, &plan.postures, Transition::Linear, split.test, metrics)?;
-    Ok(BaselineRun {
-        model,
-        training,
-        bic,
-        train_s,
-        reproduce_s,
-        plan,
-        clamped: run.clamped_values,
-        executed: run.executed,
-        fidelity: run.fidelity,
-    })
 }
 
 /// The baseline's settings used by the experiment: `components` chosen as given, the
@@ -198,76 +62,11 @@ pub fn run_baseline_split(
 pub fn gmr_params(
     components: ComponentChoice,
     sample_period: f64,
-) -> Result<GmrValidParams, BaselineError> {
+) -> Result<GmrValidParams, ExperimentError> {
     Ok(GmrParams::new()
         .components(components)
         .sample_period(sample_period)
         .check()?)
-}
-
-impl BaselineRun {
-    /// The baseline's column of the comparison table; `model_bytes` is the size of the saved
-    /// model file.
-    pub fn method_result(&self, model_bytes: u64) -> MethodResult {
-        let g = self.model.gmm();
-        let chosen: Vec<String> = self
-            .bic
-            .iter()
-            .map(|b| match b.bic {
-                Some(v) => format!("K={}: {v:.0}", b.components),
-                None => format!("K={}: failed", b.components),
-            })
-            .collect();
-        let mut notes = vec![
-            format!(
-                "{} Gaussian components over [t, q] (dimension {}); {} numbers in the model",
-                g.n_components(),
-                g.dim(),
-                g.n_components() * (1 + g.dim() + g.dim() * g.dim())
-            ),
-            format!(
-                "training data: {} demonstrations x {} points, aligned to demonstration {} \
-                 (the medoid); learned duration {:.2} s",
-                self.training.demos.len(),
-                self.training.times.len(),
-                self.training
-                    .reference
-                    .map_or("none".into(), |r| (r + 1).to_string()),
-                self.training.duration
-            ),
-            format!(
-                "minimum-jerk lead-in from the initial posture to GMR's first point: {} ticks \
-                 ({:.3} s), then {} GMR postures",
-                self.plan.lead_in,
-                self.plan.lead_in as f64 / self.executed.rate_hz,
-                self.plan.predictions.len()
-            ),
-        ];
-        if chosen.len() > 1 {
-            let top = self.bic.last().map(|b| b.components);
-            let edge = if top == Some(g.n_components()) {
-                " -- the largest count tried: a wider range may fit better"
-            } else {
-                ""
-            };
-            notes.push(format!(
-                "components chosen by BIC (lowest wins): {}{edge}",
-                chosen.join(", ")
-            ));
-        }
-        MethodResult {
-            name: GMR_NAME.into(),
-            needs: GMR_NEEDS.into(),
-            fidelity: self.fidelity.clone(),
-            train_s: self.train_s,
-            reproduce_s: self.reproduce_s,
-            model_bytes,
-            postures: self.plan.postures.len(),
-            clamped_values: self.clamped,
-            notes,
-            heldout: None,
-        }
-    }
 }
 
 /// The paper's Fig. 3: the pre-processed (trimmed, aligned, resampled) training data, one
@@ -276,7 +75,7 @@ pub fn fig3_png(
     path: &Path,
     training: &TrainingSet,
     joints: &[(usize, &str)],
-) -> Result<(), BaselineError> {
+) -> Result<(), ExperimentError> {
     let panels: Vec<Panel> = joints
         .iter()
         .map(|&(k, name)| {
@@ -316,9 +115,9 @@ pub fn fig5_png(
     joint: usize,
     name: &str,
     period: f64,
-) -> Result<(), BaselineError> {
+) -> Result<(), ExperimentError> {
     if joint >= model.columns().len() {
-        return Err(BaselineError::Invalid(format!(
+        return Err(ExperimentError::Invalid(format!(
             "joint index {joint} for {name}: the model has {} columns",
             model.columns().len()
         )));

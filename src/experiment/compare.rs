@@ -6,19 +6,19 @@ use std::path::{Path, PathBuf};
 
 use crate::app;
 use crate::demos::{sample_period, validate_set, write_csv, Demonstration};
-use crate::gmr::{load_model, save_model, ComponentChoice, MIN_DEMONSTRATIONS};
-use crate::metrics::MetricsParams;
+use crate::eval::{Fitted, FoldInput, Method, MethodRun};
+use crate::gmr::{load_model, save_model, BicScore, ComponentChoice, GmrModel, MIN_DEMONSTRATIONS};
+use crate::gmr::{GmrPlan, TrainingSet};
 use crate::plot::BLACK;
-use crate::sim::{NaoArm, Recording, JOINT_NAMES};
+use crate::sim::{demo_wrist_paths, NaoArm, Recording, Transition, JOINT_NAMES};
 
 use super::all_gestures::Progress;
-use super::baseline::{fig3_png, fig5_png, gmr_params, run_baseline, GMR_COLOR};
+use super::baseline::{fig3_png, fig5_png, GMR_COLOR, GMR_NAME, GMR_NEEDS};
 use super::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
+use super::heldout::on_arm;
 use super::output::{config_name, file_size, load_arm, write_hsom_run, Stopwatch, FIG4_JOINTS};
 use super::report::{DemoInfo, MethodResult, Report};
-use super::{
-    are_arm_joints, demo_wrist_paths, learn_and_reproduce, ExperimentError, Training, Transition,
-};
+use super::{are_arm_joints, ExperimentError};
 
 /// The result of a job's step.
 type Result<T> = std::result::Result<T, ExperimentError>;
@@ -70,17 +70,27 @@ pub fn baseline_section(
     files: &mut Vec<String>,
 ) -> Result<MethodResult> {
     let dt = sample_period(&demos[0]);
-    let params = gmr_params(components, dt)?;
-    let metrics = MetricsParams {
-        sample_period: dt,
-        ..MetricsParams::default()
+    let input = FoldInput {
+        gmr_components: components,
+        ..FoldInput::new(demos, demos)
     };
-    let run = run_baseline(arm, demos, &params, &metrics)?;
+    let run = on_arm(arm, Transition::Linear, Method::GmmGmr, &input)
+        .map_err(|e| ExperimentError::Invalid(format!("{GMR_NAME}: {e}")))?;
+    let Some(Fitted::GmmGmr {
+        model,
+        training,
+        bic,
+        plan,
+    }) = &run.fitted
+    else {
+        return Err(ExperimentError::Invalid(format!("{GMR_NAME}: no model")));
+    };
+    let executed = &run.executed.trace;
 
     let model_path = out.join("gmr_model.txt");
-    save_model(&model_path, &run.model)?;
+    save_model(&model_path, model)?;
     let back = load_model(&model_path)?;
-    if back != run.model {
+    if back != **model {
         return Err(ExperimentError::Invalid(format!(
             "{}: the reloaded GMR model differs from the saved one",
             model_path.display()
@@ -89,20 +99,20 @@ pub fn baseline_section(
     files.push("gmr_model.txt".into());
     write_csv(
         &out.join("gmr_reproduction.csv"),
-        &run.executed.to_demonstration("GMM/GMR reproduction"),
+        &executed.to_demonstration("GMM/GMR reproduction"),
     )?;
     files.push("gmr_reproduction.csv".into());
 
     fig3_png(
         &out.join("fig3_gmr_training_data.png"),
-        &run.training,
+        training,
         &FIG4_JOINTS,
     )?;
     files.push("fig3_gmr_training_data.png".into());
     fig5_png(
         &out.join("fig5_gmr_lshoulderpitch.png"),
-        &run.model,
-        &run.training,
+        model,
+        training,
         0,
         JOINT_NAMES[0],
         dt,
@@ -123,8 +133,8 @@ pub fn baseline_section(
         label: "GMM/GMR reproduction".into(),
         color: GMR_COLOR,
         width: 3,
-        time: &run.executed.time,
-        rows: &run.executed.qpos,
+        time: &executed.time,
+        rows: &executed.qpos,
     });
     joint_panels_png(
         &out.join("joints_compare.png"),
@@ -144,7 +154,7 @@ pub fn baseline_section(
     paths.push(Path3::reproduction(
         "GMM/GMR reproduction",
         GMR_COLOR,
-        &run.executed.wrist,
+        &executed.wrist,
     ));
     wrist_png(
         &out.join("wrist_compare.png"),
@@ -153,7 +163,74 @@ pub fn baseline_section(
     )?;
     files.push("wrist_compare.png".into());
 
-    Ok(run.method_result(file_size(&model_path)))
+    let fit = (&**model, &**training, bic.as_slice(), plan);
+    Ok(gmr_result(&run, fit, file_size(&model_path)))
+}
+
+/// The baseline's column of the comparison table: `run` with what it `fit` (model, training
+/// data, BIC of each count tried, plan); `model_bytes` is the size of the saved model file.
+fn gmr_result(
+    run: &MethodRun<Recording>,
+    (model, training, bic, plan): (&GmrModel, &TrainingSet, &[BicScore], &GmrPlan),
+    model_bytes: u64,
+) -> MethodResult {
+    let g = model.gmm();
+    let chosen: Vec<String> = bic
+        .iter()
+        .map(|b| match b.bic {
+            Some(v) => format!("K={}: {v:.0}", b.components),
+            None => format!("K={}: failed", b.components),
+        })
+        .collect();
+    let mut notes = vec![
+        format!(
+            "{} Gaussian components over [t, q] (dimension {}); {} numbers in the model",
+            g.n_components(),
+            g.dim(),
+            g.n_components() * (1 + g.dim() + g.dim() * g.dim())
+        ),
+        format!(
+            "training data: {} demonstrations x {} points, aligned to demonstration {} \
+             (the medoid); learned duration {:.2} s",
+            training.demos.len(),
+            training.times.len(),
+            training
+                .reference
+                .map_or("none".into(), |r| (r + 1).to_string()),
+            training.duration
+        ),
+        format!(
+            "minimum-jerk lead-in from the initial posture to GMR's first point: {} ticks \
+             ({:.3} s), then {} GMR postures",
+            plan.lead_in,
+            plan.lead_in as f64 / run.executed.trace.rate_hz,
+            plan.predictions.len()
+        ),
+    ];
+    if chosen.len() > 1 {
+        let top = bic.last().map(|b| b.components);
+        let edge = if top == Some(g.n_components()) {
+            " -- the largest count tried: a wider range may fit better"
+        } else {
+            ""
+        };
+        notes.push(format!(
+            "components chosen by BIC (lowest wins): {}{edge}",
+            chosen.join(", ")
+        ));
+    }
+    MethodResult {
+        name: GMR_NAME.into(),
+        needs: GMR_NEEDS.into(),
+        fidelity: run.executed.fidelity.clone(),
+        train_s: run.train_s,
+        reproduce_s: run.reproduce_s,
+        model_bytes,
+        postures: plan.postures.len(),
+        clamped_values: run.executed.clamped_values,
+        notes,
+        heldout: None,
+    }
 }
 
 /// What `cosco compare` needs.
@@ -176,7 +253,7 @@ pub struct CompareJob {
 }
 
 /// Train CoSCo-HSOM, reproduce from `demos[0]`'s first posture, execute on the arm with
-/// `transition`, score (the main job's `learn_and_reproduce`); writes `model.bin` and
+/// `transition`, score (the main job's in-sample run); writes `model.bin` and
 /// `reproduction.csv` into `out`.
 fn hsom_method(
     cfg: &crate::config::HsomConfig,
@@ -188,21 +265,20 @@ fn hsom_method(
     on_progress: Progress<'_>,
 ) -> Result<(MethodResult, Recording)> {
     let total = cfg.params().training_steps;
-    let run = learn_and_reproduce(
-        arm,
-        cfg,
-        demos,
-        Training::Trained,
-        transition,
-        Some(&|done, _| on_progress("training", done, total)),
-    )?;
+    let progress = |done, _| on_progress("training", done, total);
+    let input = FoldInput {
+        config: Some(cfg),
+        progress: Some(&progress),
+        ..FoldInput::new(demos, demos)
+    };
+    let run = on_arm(arm, transition, Method::Hierarchy, &input)?;
     let result = write_hsom_run(
         out,
         &run,
         vec![format!("transition: {transition:?}")],
         files,
     )?;
-    Ok((result, run.executed))
+    Ok((result, run.executed.trace))
 }
 
 /// `cosco compare`: both methods on the same demonstrations, executed on the simulated arm;

@@ -9,21 +9,21 @@ use std::time::Instant;
 
 use crate::app;
 use crate::demos::{self, sample_period, Demonstration};
+use crate::eval::{FoldInput, Method, Training};
 use crate::gesture::Gesture;
 use crate::plot::BLACK;
-use crate::sim::{NaoArm, JOINT_NAMES};
+use crate::sim::{check_reachable, demo_wrist_paths, NaoArm, Transition, JOINT_NAMES};
 
 use super::all_gestures::Progress;
 use super::baseline::GMR_NAME;
 use super::compare;
 use super::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
-use super::output::{config_name, load_arm, write_hsom_run, Stopwatch, FIG4_JOINTS};
+use super::heldout::{hierarchy_held_out, on_arm};
+use super::output::{config_name, hsom_model, load_arm, write_hsom_run, Stopwatch, FIG4_JOINTS};
 use super::report::{level_rows, DemoInfo, Report, Stage};
 use super::variants::{reference_variants, run_variant, variants};
 use super::{
-    are_arm_joints, check_reachable, demo_wrist_paths, film, hsom_folds, learn_and_reproduce,
-    leave_one_out, synthetic_demonstrations, DemoSettings, ExperimentError, HeldOutSummary,
-    Training, Transition,
+    are_arm_joints, film, leave_one_out, synthetic_demonstrations, DemoSettings, ExperimentError,
 };
 
 /// The result of a job's step.
@@ -196,14 +196,13 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
 
     // 2-4. Training, reproduction from the initial posture on the simulated arm, metrics.
     let steps_total = cfg.params().training_steps;
-    let run = learn_and_reproduce(
-        &arm,
-        &cfg,
-        &demos,
-        Training::Trained,
-        job.transition,
-        Some(&|done, _| on_progress("training", done, steps_total)),
-    )?;
+    let progress = |done, _| on_progress("training", done, steps_total);
+    let input = FoldInput {
+        config: Some(&cfg),
+        progress: Some(&progress),
+        ..FoldInput::new(&demos, &demos)
+    };
+    let run = on_arm(&arm, job.transition, Method::Hierarchy, &input)?;
     clock.stages.push(Stage {
         stage: "training".into(),
         seconds: run.train_s,
@@ -214,7 +213,7 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     });
     clock.t = Instant::now();
     let hsom_result = write_hsom_run(out, &run, Vec::new(), &mut files)?;
-    let executed = &run.executed;
+    let executed = &run.executed.trace;
     clock.lap("writing the model and reproduction.csv");
 
     // 5. Plots.
@@ -305,8 +304,13 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
         let mut main = methods[0].clone();
         main.name = format!("{} ({})", cfg.source(), job.transition.name());
         if job.heldout && main.heldout.is_none() && demos.len() >= 2 {
-            let folds = hsom_folds(&arm, &cfg, &demos, Training::Trained, job.transition)?;
-            main.heldout = HeldOutSummary::of(&folds.iter().collect::<Vec<_>>());
+            main.heldout = Some(hierarchy_held_out(
+                &arm,
+                &cfg,
+                &demos,
+                Training::Trained,
+                job.transition,
+            )?);
         }
         variant_results.push(main);
         for (k, v) in vs.iter().enumerate() {
@@ -353,7 +357,7 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
         variants: variant_results,
         heldout,
         heldout_note,
-        levels: level_rows(&run.model),
+        levels: level_rows(hsom_model(&run)?.0),
         stages: clock.stages,
         files,
     };

@@ -1,42 +1,31 @@
-//! The paper's experiment (Section IV), made repeatable: teach the simulated Nao a gesture from
-//! demonstrations recorded at 40 Hz, reproduce it from the initial posture alone on the
-//! simulated arm, and measure how faithful the reproduction is.
+//! The paper's experiment (Section IV), made repeatable: the jobs that teach the simulated Nao
+//! gestures from demonstrations recorded at 40 Hz, reproduce them from the initial posture
+//! alone on the arm and measure how faithful the reproductions are (the main job, `cosco
+//! compare`, several gestures, the before/after variants, held out), and their reports,
+//! figures and film. Executing and scoring on the arm live in [`crate::sim`], the evaluator
+//! in [`crate::eval`].
 
 pub mod all_gestures;
-pub mod arm_executor;
 pub mod baseline;
 pub mod compare;
 pub mod demonstrate;
 pub mod evaluate;
-pub mod execute;
 pub mod figures;
 pub mod film;
 pub mod heldout;
 pub mod job;
 pub mod output;
-pub mod pipeline;
 pub mod report;
 pub mod variants;
 
-pub use arm_executor::ArmExecutor;
+pub use crate::sim::Transition;
 pub use demonstrate::{
     joint_limits, record_demonstrations, synthetic_demonstrations, DemoSettings,
 };
-pub use evaluate::{
-    are_arm_joints, check_reachable, demo_wrist_paths, evaluate, trajectory, wrist_path,
-    RANGE_TOLERANCE_RAD,
-};
-pub use execute::{clamp_to_ranges, execute_postures, Transition};
+pub use evaluate::{are_arm_joints, RANGE_TOLERANCE_RAD};
 pub use film::film;
-pub use heldout::{
-    gmr_folds, hsom_and_sequence_folds, hsom_folds, leave_one_out, promp_folds, Fold, FoldScores,
-    HeldOut, HeldOutSummary, Swings,
-};
+pub use heldout::{folds, leave_one_out};
 pub use output::load_arm;
-pub use pipeline::{
-    execute_and_score, learn_and_reproduce, learn_and_score, reproduce_variant, Executed, Outcome,
-    Split, Training,
-};
 
 /// Errors of the experiment pipeline.
 #[derive(Debug, thiserror::Error)]
@@ -95,9 +84,6 @@ pub enum ExperimentError {
     /// Per-fold results could not be put together.
     #[error(transparent)]
     Folds(#[from] crate::eval::FoldsError),
-    /// The GMM/GMR baseline's run or figures failed.
-    #[error(transparent)]
-    Baseline(#[from] Box<baseline::BaselineError>),
     /// A model could not be saved.
     #[error(transparent)]
     Persist(#[from] crate::hsom::PersistError),
@@ -115,11 +101,5 @@ impl ExperimentError {
             path,
             source,
         }
-    }
-}
-
-impl From<baseline::BaselineError> for ExperimentError {
-    fn from(e: baseline::BaselineError) -> Self {
-        ExperimentError::Baseline(Box::new(e))
     }
 }

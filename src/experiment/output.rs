@@ -7,11 +7,15 @@ use std::time::Instant;
 
 use crate::app::DEFAULT_CONFIG_NAME;
 use crate::demos::write_csv;
-use crate::sim::NaoArm;
+use crate::eval::{Fitted, MethodRun};
+use crate::hsom::{Hsom, Reproduction};
+use crate::sim::{NaoArm, Recording};
 
-use super::pipeline::Outcome;
 use super::report::{MethodResult, Stage};
 use super::ExperimentError;
+
+/// What CoSCo-HSOM needs as input (the report's "needs as input" row).
+pub const HSOM_NEEDS: &str = "raw demonstrations; the initial posture";
 
 /// How a report names the configuration: its path, or the built-in default's name.
 pub fn config_name(path: Option<&Path>) -> String {
@@ -77,29 +81,68 @@ pub const FIG4_JOINTS: [(usize, &str); 4] = [
     (3, "LElbowRoll"),
 ];
 
+/// The model and the reproduction of a run of [`Method::Hierarchy`](crate::eval::Method)
+/// (an error for a run of another method).
+pub fn hsom_model(run: &MethodRun<Recording>) -> Result<(&Hsom, &Reproduction), ExperimentError> {
+    match &run.fitted {
+        Some(Fitted::Hierarchy {
+            model,
+            reproduction,
+        }) => Ok((model, reproduction)),
+        _ => Err(ExperimentError::Invalid(
+            "not a run of the hierarchy: no model to save".into(),
+        )),
+    }
+}
+
+/// CoSCo-HSOM's column of a comparison table (no held-out figures: see
+/// `heldout::leave_one_out`); `model_bytes` is the size of the saved model.
+pub fn hsom_result(
+    name: &str,
+    run: &MethodRun<Recording>,
+    model_bytes: u64,
+    notes: Vec<String>,
+) -> MethodResult {
+    MethodResult {
+        name: name.into(),
+        needs: HSOM_NEEDS.into(),
+        fidelity: run.executed.fidelity.clone(),
+        train_s: run.train_s,
+        reproduce_s: run.reproduce_s,
+        model_bytes,
+        postures: run.postures.len(),
+        clamped_values: run.executed.clamped_values,
+        notes,
+        heldout: None,
+    }
+}
+
 /// Save a CoSCo-HSOM run's model (`model.bin`) and executed trajectory (`reproduction.csv`)
 /// into `out`, list them in `files`, and return its column of the report (notes: why it
 /// stopped, postures per level, then `notes`).
 pub fn write_hsom_run(
     out: &Path,
-    run: &Outcome,
+    run: &MethodRun<Recording>,
     notes: Vec<String>,
     files: &mut Vec<String>,
 ) -> Result<MethodResult, ExperimentError> {
+    let (model, reproduction) = hsom_model(run)?;
     let model_path = out.join("model.bin");
-    run.model.save(&model_path)?;
+    model.save(&model_path)?;
     files.push("model.bin".into());
     write_csv(
         &out.join("reproduction.csv"),
-        &run.executed.to_demonstration("CoSCo-HSOM reproduction"),
+        &run.executed
+            .trace
+            .to_demonstration("CoSCo-HSOM reproduction"),
     )?;
     files.push("reproduction.csv".into());
     let mut all = vec![
-        format!("stopped: {:?}", run.reproduction.stop),
-        levels_note(&run.reproduction.predicted_by),
+        format!("stopped: {:?}", reproduction.stop),
+        levels_note(&reproduction.predicted_by),
     ];
     all.extend(notes);
-    Ok(run.method_result("CoSCo-HSOM", file_size(&model_path), all))
+    Ok(hsom_result("CoSCo-HSOM", run, file_size(&model_path), all))
 }
 
 /// "predicted by level": how many postures each level produced.

@@ -9,10 +9,10 @@ use serde::Serialize;
 use crate::fsutil::write_atomic;
 use crate::metrics::{FidelityReport, Smoothness, Stat};
 
-use super::evaluate::{SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
-use crate::eval::{FoldScores, HeldOut, HeldOutSummary};
+use crate::eval::{FoldScores, HeldOut, HeldOutSummary, Method, SWING_MIN_AMPLITUDE_RAD};
 use crate::hsom::Hsom;
 use crate::sim::JOINT_NAMES;
+use crate::sim::SWING_JOINT;
 
 /// One demonstration used for training.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -402,7 +402,15 @@ pub fn folds_table(h: &HeldOut) -> String {
          | swings | nearest-sequence joint DTW | swings | ProMP joint DTW | final | swings \
          |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
-    for f in &h.folds {
+    let swings = |s: &FoldScores, demo: bool| {
+        s.swings.as_ref().map_or("n/a".to_string(), |w| {
+            (if demo { w.demo } else { w.reproduction }).to_string()
+        })
+    };
+    for (i, f) in h.folds.iter().enumerate() {
+        let Some(hsom) = f.scores(Method::Hierarchy) else {
+            continue;
+        };
         let scores = |s: &FoldScores| {
             let r = &s.fidelity;
             format!(
@@ -414,25 +422,25 @@ pub fn folds_table(h: &HeldOut) -> String {
                 r.duration_ratio.mean
             )
         };
-        let gmr = match (&f.gmr, &f.gmr_error) {
-            (Some(g), _) => format!("{} | {}", scores(g), g.swings.reproduction),
-            (None, e) => format!(
-                "not run: {} | | | | | ",
-                e.as_deref().unwrap_or("no reason given")
-            ),
+        let gmr = match (f.scores(Method::GmmGmr), f.error(Method::GmmGmr)) {
+            (Some(g), _) => format!("{} | {}", scores(g), swings(g, false)),
+            (None, e) => format!("not run: {} | | | | | ", e.unwrap_or("no reason given")),
         };
-        let sequence = f.sequence.as_ref().map_or("n/a | n/a".into(), |s| {
-            format!(
-                "{:.4} | {}",
-                s.fidelity.joint_dtw_rad_per_step.mean, s.swings.reproduction
-            )
-        });
-        let promp = match (&f.promp, &f.promp_error) {
+        let sequence = f
+            .scores(Method::NearestSequence)
+            .map_or("n/a | n/a".into(), |s| {
+                format!(
+                    "{:.4} | {}",
+                    s.fidelity.joint_dtw_rad_per_step.mean,
+                    swings(s, false)
+                )
+            });
+        let promp = match (f.scores(Method::ProMP), f.error(Method::ProMP)) {
             (Some(p), _) => format!(
                 "{:.4} | {:.3} | {}",
                 p.fidelity.joint_dtw_rad_per_step.mean,
                 p.fidelity.final_error_rad.mean,
-                p.swings.reproduction
+                swings(p, false)
             ),
             (None, Some(e)) => format!("not run: {e} | | "),
             (None, None) => "n/a | n/a | n/a".into(),
@@ -440,11 +448,11 @@ pub fn folds_table(h: &HeldOut) -> String {
         let _ = writeln!(
             t,
             "| {} | {} | {} | {} ({}) | {gmr} | {sequence} | {promp} |",
-            f.held_out + 1,
-            f.source,
-            scores(&f.hsom),
-            f.hsom.swings.reproduction,
-            f.hsom.swings.demo
+            i + 1,
+            f.demonstration,
+            scores(hsom),
+            swings(hsom, false),
+            swings(hsom, true)
         );
     }
     t

@@ -5,12 +5,13 @@
 
 use crate::config::{parse_config, AlgorithmParams, HsomConfig, HsomParams};
 use crate::demos::Demonstration;
-use crate::sim::NaoArm;
+use crate::eval::{FoldInput, Method, Training};
+use crate::sim::{NaoArm, Transition};
 
-use super::heldout::{hsom_folds, HeldOutSummary};
-use super::pipeline::{learn_and_reproduce, Training};
+use super::heldout::{hierarchy_held_out, on_arm};
+use super::output::{hsom_model, hsom_result};
 use super::report::MethodResult;
-use super::{ExperimentError, Transition};
+use super::ExperimentError;
 
 /// The shipped `configs/table1.xml` (the paper's Table I), built in.
 pub const TABLE1_XML: &str = include_str!("../../configs/table1.xml");
@@ -80,22 +81,6 @@ pub fn variants(
     Ok(out)
 }
 
-/// `config` with its bottom level alone (`levels` truncated to the first, `height = 1`): the
-/// baseline the hierarchy must beat.
-pub fn at_height_1(config: &HsomConfig) -> Result<HsomConfig, crate::config::ConfigError> {
-    at_height(config, 1)
-}
-
-/// `config` with its lowest `height` levels (`levels` truncated). A height above the
-/// configuration's own, or 0, is an error naming both: levels cannot be made up; so is a
-/// `maxLevel` the new height does not have.
-pub fn at_height(
-    config: &HsomConfig,
-    height: usize,
-) -> Result<HsomConfig, crate::config::ConfigError> {
-    config.at_height(height)
-}
-
 /// Reference rows of the before/after table, each executed with `transition`: the paper
 /// literal (`configs/table1.xml`) and `config` at height 1 (the bottom level alone: `levels`
 /// truncated to the first, `height = 1`).
@@ -117,7 +102,7 @@ pub fn reference_variants(
             "paper literal (configs/table1.xml)",
             parse_config(TABLE1_XML, TABLE1_SOURCE),
         )?,
-        named("this configuration at height 1", at_height_1(config))?,
+        named("this configuration at height 1", config.at_height(1))?,
     ])
 }
 
@@ -130,25 +115,21 @@ pub fn run_variant(
     demos: &[Demonstration],
     heldout: bool,
 ) -> Result<MethodResult, ExperimentError> {
-    let run = learn_and_reproduce(
-        arm,
-        &variant.config,
-        demos,
-        Training::Trained,
-        variant.transition,
-        None,
-    )?;
-    let mut result =
-        run.method_result(&variant.name, run.model.to_bytes().len() as u64, Vec::new());
+    let input = FoldInput {
+        config: Some(&variant.config),
+        ..FoldInput::new(demos, demos)
+    };
+    let run = on_arm(arm, variant.transition, Method::Hierarchy, &input)?;
+    let bytes = hsom_model(&run)?.0.to_bytes().len() as u64;
+    let mut result = hsom_result(&variant.name, &run, bytes, Vec::new());
     if heldout && demos.len() >= 2 {
-        let folds = hsom_folds(
+        result.heldout = Some(hierarchy_held_out(
             arm,
             &variant.config,
             demos,
             Training::Trained,
             variant.transition,
-        )?;
-        result.heldout = HeldOutSummary::of(&folds.iter().collect::<Vec<_>>());
+        )?);
     }
     Ok(result)
 }

@@ -80,6 +80,13 @@ pub enum SimError {
     /// A target trajectory is malformed (empty, times not increasing, lengths differ).
     #[error("invalid target trajectory: {0}")]
     InvalidTrajectory(String),
+    /// Postures, demonstrations or a setting that cannot be executed or scored on the arm
+    /// (named in the message).
+    #[error("{0}")]
+    Invalid(String),
+    /// The metrics refused their input.
+    #[error(transparent)]
+    Metrics(#[from] crate::metrics::MetricsError),
 }
 
 /// Result of the `sim` room.

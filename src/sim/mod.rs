@@ -6,13 +6,18 @@
 //! - [`interp`]: transition profiles ([`Interpolation`]).
 //! - [`controller`]: [`Controller`] for key-pose sequences and dense target trajectories.
 //! - [`recording`]: [`Recording`], what the controller records.
+//! - [`execute`]: postures executed on the arm ([`execute_postures`]), their [`Transition`].
+//! - [`score`]: scoring on the arm with wrist paths ([`evaluate`]), the evaluator's
+//!   [`ArmExecutor`].
 //! - [`error`]: [`SimError`], the room's error type.
 
 pub mod arm;
 pub mod controller;
 pub mod error;
+pub mod execute;
 pub mod interp;
 pub mod recording;
+pub mod score;
 pub mod spec;
 
 pub use arm::{ArmSim, NaoArm, ServoGains, DEFAULT_MODEL_PATH, GRIPPER_SITE, WRIST_SITE};
@@ -20,8 +25,13 @@ pub use controller::{
     Controller, ControllerConfig, Grab, KeyPose, TargetTrajectory, DEFAULT_RECORD_RATE_HZ,
 };
 pub use error::{Result, SimError};
+pub use execute::{clamp_to_ranges, execute_postures, key_pose_indices, Transition};
 pub use interp::Interpolation;
 pub use recording::Recording;
+pub use score::{
+    check_reachable, demo_wrist_paths, evaluate, execute_and_score, trajectory, wrist_path,
+    ArmExecutor, LEAD_IN_PEAK_SPEED, SWING_JOINT,
+};
 pub use spec::{
     check_posture, clamp_posture, JointSpec, NamedPosture, Posture, JOINT_NAMES, JOINT_SPECS, NJ,
 };

@@ -1,7 +1,7 @@
 //! One run of a sweep: the `simulate --no-render` pipeline for one point of the grid
-//! (synthetic demonstrations, training, reproduction on the simulated arm, metrics; in-sample
-//! or leave-one-out; CoSCo-HSOM, GMM/GMR or both), and the record it leaves in
-//! `DIR/runs/<run-id>.json`.
+//! (synthetic demonstrations, then the evaluator once: in-sample or leave-one-out,
+//! CoSCo-HSOM, GMM/GMR or both, executed on the simulated arm), its metrics, and the record it
+//! leaves in `DIR/runs/<run-id>.json`.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -10,20 +10,18 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 
 use crate::demos::Demonstration;
-use crate::experiment::baseline::run_baseline_in_sample;
-use crate::experiment::heldout::{gmr_folds, hsom_folds, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD};
-use crate::experiment::{
-    learn_and_reproduce, synthetic_demonstrations, DemoSettings, FoldScores, HeldOutSummary,
-    Training,
+use crate::eval::{
+    diagonal, fold, FoldInput, FoldScores, HeldOutSummary, Method, Split, Training,
+    SWING_MIN_AMPLITUDE_RAD,
 };
+use crate::experiment::{folds, synthetic_demonstrations, DemoSettings};
 use crate::fsutil::write_atomic;
 use crate::gesture::Gesture;
-use crate::metrics::{column_swings, FidelityReport};
-use crate::sim::{NaoArm, Recording};
+use crate::metrics::column_swings;
+use crate::sim::{ArmExecutor, NaoArm, SWING_JOINT};
 
 use super::spec::{AxisValues, Evaluation, RunPlan, SweepSpec};
 use super::SweepError;
-use crate::eval::Method;
 
 /// Version of the run-file format.
 pub const RUN_FORMAT: u32 = 1;
@@ -177,46 +175,59 @@ fn run_methods(spec: &SweepSpec, plan: &RunPlan) -> Result<Vec<MethodRecord>, St
     };
     let demos = synthetic_demonstrations(&arm, &gesture, a.count, a.seed, &settings, |_| {})
         .map_err(|e| format!("recording the demonstrations: {e}"))?;
-    Ok(a.method
-        .singles()
+    let methods = a.method.singles();
+    // the evaluator, once: the in-sample split, or every held-out fold
+    let folds = match a.evaluation {
+        Evaluation::InSample => {
+            let executor = ArmExecutor {
+                arm: &arm,
+                transition: spec.transition,
+            };
+            let base = FoldInput {
+                config: Some(config),
+                ..FoldInput::new(&[], &[])
+            };
+            let diag = diagonal(&demos);
+            vec![fold(
+                methods,
+                &base,
+                &demos,
+                Split::InSampleAll,
+                diag,
+                &executor,
+            )]
+        }
+        Evaluation::LeaveOneOut => folds(
+            &arm,
+            &demos,
+            methods,
+            Some(config),
+            Training::Trained,
+            spec.transition,
+        )
+        .map_err(|e| e.to_string())?,
+    };
+    Ok(methods
         .iter()
         .map(|&method| {
-            let r = match (method, a.evaluation) {
-                (Method::GmmGmr, Evaluation::InSample) => run_baseline_in_sample(&arm, &demos)
-                    .map_err(|e| e.to_string())
-                    .and_then(|r| {
-                        in_sample(&r.fidelity, &r.executed, &demos, r.train_s, r.reproduce_s)
-                    }),
-                (_, Evaluation::InSample) => learn_and_reproduce(
-                    &arm,
-                    config,
-                    &demos,
-                    Training::Trained,
-                    spec.transition,
-                    None,
-                )
-                .map_err(|e| e.to_string())
-                .and_then(|r| {
-                    in_sample(&r.fidelity, &r.executed, &demos, r.train_s, r.reproduce_s)
-                }),
-                (Method::GmmGmr, Evaluation::LeaveOneOut) => gmr_folds(&arm, &demos)
-                    .map_err(|e| e.to_string())
-                    .and_then(|folds| {
-                        let (ran, failed): (Vec<_>, Vec<_>) =
-                            folds.into_iter().partition(Result::is_ok);
-                        let ran: Vec<FoldScores> = ran.into_iter().flatten().collect();
-                        let failed: Vec<String> =
-                            failed.into_iter().filter_map(Result::err).collect();
-                        if ran.is_empty() {
-                            return Err(format!("GMM/GMR ran on no fold: {}", failed.join("; ")));
-                        }
-                        held_out(&ran, failed)
-                    }),
-                (_, Evaluation::LeaveOneOut) => {
-                    hsom_folds(&arm, config, &demos, Training::Trained, spec.transition)
-                        .map_err(|e| e.to_string())
-                        .and_then(|folds| held_out(&folds, Vec::new()))
+            let (ran, failed): (Vec<&FoldScores>, Vec<String>) =
+                folds
+                    .iter()
+                    .fold((Vec::new(), Vec::new()), |(mut ran, mut failed), f| {
+                        ran.extend(f.scores(method));
+                        failed.extend(f.error(method).map(str::to_string));
+                        (ran, failed)
+                    });
+            let in_sample = (a.evaluation == Evaluation::InSample).then_some(&demos[..]);
+            let r = if method == Method::GmmGmr && in_sample.is_none() {
+                match ran.is_empty() {
+                    true => Err(format!("GMM/GMR ran on no fold: {}", failed.join("; "))),
+                    false => scored(&ran, failed, None),
                 }
+            } else if !failed.is_empty() {
+                Err(failed.join("; "))
+            } else {
+                scored(&ran, failed, in_sample)
             };
             match r {
                 Ok((metrics, timing, detail)) => MethodRecord {
@@ -237,7 +248,6 @@ fn run_methods(spec: &SweepSpec, plan: &RunPlan) -> Result<Vec<MethodRecord>, St
         })
         .collect())
 }
-
 type Scored = (
     BTreeMap<String, f64>,
     BTreeMap<String, f64>,
@@ -264,59 +274,24 @@ fn mean(v: impl Iterator<Item = f64>) -> Option<f64> {
     (n > 0).then(|| s / n as f64)
 }
 
-/// The metrics of a run learned from all and scored against all.
-fn in_sample(
-    f: &FidelityReport,
-    executed: &Recording,
-    demos: &[Demonstration],
-    train_s: f64,
-    reproduce_s: f64,
+/// The metrics of a run: means over `folds` (those that ran; the in-sample split is one fold
+/// scored against every demonstration of `in_sample`); `failed` lists the folds that did not.
+fn scored(
+    folds: &[&FoldScores],
+    failed: Vec<String>,
+    in_sample: Option<&[Demonstration]>,
 ) -> Result<Scored, String> {
-    let swings = column_swings(&executed.qpos, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD)
-        .map_err(|e| e.to_string())?;
-    let demo_swings = demos
-        .iter()
-        .map(|d| column_swings(&d.rows, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD).map(|s| s as f64))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(|e| e.to_string())?;
-    let demo_jerk = mean(f.demo_smoothness.iter().filter_map(|s| s.normalized_jerk));
-    let metrics = finite([
-        (
-            "joint_dtw_rad_per_step",
-            Some(f.joint_dtw_rad_per_step.mean),
-        ),
-        ("wrist_dtw_mm_per_step", f.wrist_dtw_mm.map(|w| w.mean)),
-        ("apex_error_rad", Some(f.apex_error_rad.mean)),
-        ("final_error_rad", Some(f.final_error_rad.mean)),
-        ("duration_ratio", Some(f.duration_ratio.mean)),
-        (
-            "velocity_reversals",
-            Some(f.reproduction_smoothness.total_reversals as f64),
-        ),
-        (
-            "demo_velocity_reversals",
-            mean(f.demo_smoothness.iter().map(|s| s.total_reversals as f64)),
-        ),
-        (
-            "jerk_ratio",
-            ratio(f.reproduction_smoothness.normalized_jerk, demo_jerk),
-        ),
-        ("swings", Some(swings as f64)),
-        ("demo_swings", mean(demo_swings.into_iter())),
-    ]);
-    let timing = finite([
-        ("train_s", Some(train_s)),
-        ("reproduce_s", Some(reproduce_s)),
-    ]);
-    let detail = serde_json::to_value(f).map_err(|e| e.to_string())?;
-    Ok((metrics, timing, detail))
-}
-
-/// The metrics of a leave-one-out run: means over `folds` (those that ran); `failed` lists
-/// the folds that did not.
-fn held_out(folds: &[FoldScores], failed: Vec<String>) -> Result<Scored, String> {
-    let s = HeldOutSummary::of(&folds.iter().collect::<Vec<_>>())
-        .ok_or_else(|| "no folds".to_string())?;
+    let s = HeldOutSummary::of(folds).ok_or_else(|| "no folds".to_string())?;
+    let demo_swings = match in_sample {
+        Some(demos) => {
+            let swings = |d: &Demonstration| {
+                column_swings(&d.rows, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD).map(|s| s as f64)
+            };
+            let all = demos.iter().map(swings).collect::<Result<Vec<_>, _>>();
+            mean(all.map_err(|e| e.to_string())?.into_iter())
+        }
+        None => Some(s.demo_swings),
+    };
     let metrics = finite([
         ("joint_dtw_rad_per_step", Some(s.joint_dtw_rad_per_step)),
         ("wrist_dtw_mm_per_step", s.wrist_dtw_mm),
@@ -330,13 +305,16 @@ fn held_out(folds: &[FoldScores], failed: Vec<String>) -> Result<Scored, String>
             ratio(s.normalized_jerk, s.demo_normalized_jerk),
         ),
         ("swings", Some(s.swings)),
-        ("demo_swings", Some(s.demo_swings)),
-        ("folds", Some(s.folds as f64)),
+        ("demo_swings", demo_swings),
+        ("folds", in_sample.is_none().then_some(s.folds as f64)),
     ]);
     let timing = finite([
         ("train_s", mean(folds.iter().map(|f| f.train_s))),
         ("reproduce_s", mean(folds.iter().map(|f| f.reproduce_s))),
     ]);
-    let detail = serde_json::json!({ "folds": folds, "failed_folds": failed });
+    let detail = match (in_sample, folds) {
+        (Some(_), [one]) => serde_json::to_value(&one.fidelity).map_err(|e| e.to_string())?,
+        _ => serde_json::json!({ "folds": folds, "failed_folds": failed }),
+    };
     Ok((metrics, timing, detail))
 }

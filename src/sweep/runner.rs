@@ -7,9 +7,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
 
-use rayon::iter::{ParallelBridge, ParallelIterator};
 use serde::{Deserialize, Serialize};
 
+use crate::eval::Pool;
 use crate::fsutil::write_atomic;
 
 use super::run::{execute_run, RunRecord};
@@ -236,8 +236,8 @@ fn identity_difference(old: &Identity, new: &Identity) -> String {
     }
 }
 
-/// Run the runs of `options.shard` not yet recorded in `dir`, on a pool of
-/// `options.threads` threads, in grid order as threads free up. Every check (spec, output
+/// Run the runs of `options.shard` not yet recorded in `dir`, on the worker pool
+/// ([`Pool`]) of `options.threads` threads. Every check (spec, output
 /// directory, existing run files) is done before the first run; a run that fails is recorded
 /// and the sweep goes on. `progress` hears the start and every finished run.
 pub fn run_sweep(
@@ -254,11 +254,8 @@ pub fn run_sweep(
     }
     let plans = spec.runs();
     let (todo, in_shard) = prepare(spec, dir, &plans, options)?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(options.threads.unwrap_or(0))
-        .build()
-        .map_err(|e| SweepError::Invalid(format!("cannot start the thread pool: {e}")))?;
-    let threads = pool.current_num_threads();
+    let pool = Pool::new(options.threads.unwrap_or(0)).map_err(SweepError::Invalid)?;
+    let threads = pool.threads();
     progress(Progress::Start {
         to_run: todo.len(),
         skipped: in_shard - todo.len(),
@@ -269,26 +266,24 @@ pub fn run_sweep(
     let failed = AtomicUsize::new(0);
     let runs_s = Mutex::new(0.0f64);
     let write_errors: Mutex<Vec<SweepError>> = Mutex::new(Vec::new());
-    pool.install(|| {
-        // par_bridge hands the runs out in grid order as threads free up
-        todo.iter().par_bridge().for_each(|plan| {
-            let record = execute_run(spec, plan, &hash, &shard);
-            if record.failed() {
-                failed.fetch_add(1, Ordering::Relaxed);
-            }
-            if let Ok(mut s) = runs_s.lock() {
-                *s += record.wall_s;
-            }
-            match record.write(&run_path(dir, &plan.id)) {
-                Ok(()) => progress(Progress::Done(&record)),
-                Err(e) => {
-                    if let Ok(mut w) = write_errors.lock() {
-                        w.push(e);
-                    }
+    let run = |plan: &RunPlan| {
+        let record = execute_run(spec, plan, &hash, &shard);
+        if record.failed() {
+            failed.fetch_add(1, Ordering::Relaxed);
+        }
+        if let Ok(mut s) = runs_s.lock() {
+            *s += record.wall_s;
+        }
+        match record.write(&run_path(dir, &plan.id)) {
+            Ok(()) => progress(Progress::Done(&record)),
+            Err(e) => {
+                if let Ok(mut w) = write_errors.lock() {
+                    w.push(e);
                 }
             }
-        })
-    });
+        }
+    };
+    pool.map(&todo, run, None);
     let mut write_errors = write_errors.into_inner().unwrap_or_default();
     if !write_errors.is_empty() {
         let n = write_errors.len();

@@ -12,7 +12,6 @@ use sha2::{Digest, Sha256};
 use crate::config::{load_config, HsomConfig};
 use crate::eval::Method;
 use crate::experiment::demonstrate::parse_seeds;
-use crate::experiment::variants::at_height;
 use crate::experiment::Transition;
 use crate::gesture::Gesture;
 use crate::sim::NaoArm;
@@ -133,7 +132,7 @@ impl Evaluation {
 pub enum Height {
     /// The configuration as written (`"config"` in the spec).
     Config(ConfigHeight),
-    /// The configuration's lowest `n` levels (`experiment::variants::at_height`).
+    /// The configuration's lowest `n` levels ([`HsomConfig::at_height`]).
     Levels(usize),
 }
 
@@ -661,7 +660,8 @@ fn load_entry(written: &str, dir: &Path, heights: &[Height]) -> Result<ConfigEnt
         .iter()
         .map(|h| match h {
             Height::Config(_) => Ok(config.clone()),
-            Height::Levels(n) => at_height(&config, *n)
+            Height::Levels(n) => config
+                .at_height(*n)
                 .map_err(|e| format!("axes `config` and `height`: '{written}' at height {n}: {e}")),
         })
         .collect::<Result<Vec<_>, _>>()?;

@@ -1,5 +1,6 @@
 use super::*;
-use crate::gmr::{ComponentChoice, Gmm};
+use crate::gmr::Gmm;
+use crate::sim::JOINT_NAMES;
 use nalgebra::{DMatrix, DVector};
 
 #[test]
@@ -79,25 +80,4 @@ fn plan_rejects_bad_initial_posture_and_rate() {
     assert!(e.to_string().contains("finite"), "{e}");
     let e = plan(&m, &[0.0; 6], 0.0).unwrap_err();
     assert!(e.to_string().contains("rate_hz"), "{e}");
-}
-
-#[test]
-fn run_baseline_refuses_columns_that_are_not_the_arm() {
-    let arm = NaoArm::load_default().unwrap();
-    let d = Demonstration {
-        source: "x.csv".into(),
-        columns: vec!["a".into(), "b".into()],
-        time: None,
-        rows: vec![vec![0.0, 0.0]; 10],
-    };
-    let params = crate::gmr::GmrParams::new()
-        .components(ComponentChoice::Fixed(1))
-        .check()
-        .unwrap();
-    let e = run_baseline(&arm, &[d.clone(), d], &params, &MetricsParams::default()).unwrap_err();
-    let msg = e.to_string();
-    assert!(
-        msg.contains("LShoulderPitch") && msg.contains("\"a\""),
-        "{msg}"
-    );
 }

@@ -1,11 +1,9 @@
 //! Executing a learned gesture on the simulated arm: the predicted postures go to the position
 //! controller, from the initial posture, and the executed trajectory is recorded at 40 Hz.
 
-use crate::sim::{
-    Controller, ControllerConfig, NaoArm, Recording, TargetTrajectory, JOINT_SPECS, NJ,
+use super::{
+    Controller, ControllerConfig, NaoArm, Recording, SimError, TargetTrajectory, JOINT_SPECS, NJ,
 };
-
-use super::ExperimentError;
 
 /// How predicted postures become servo targets.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -27,9 +25,9 @@ pub enum Transition {
 
 impl Transition {
     /// Parse `linear` or `min-jerk` / `min-jerk:TOL` (tolerance in rad, default 0.02).
-    pub fn parse(s: &str) -> Result<Transition, ExperimentError> {
+    pub fn parse(s: &str) -> Result<Transition, SimError> {
         let bad = || {
-            ExperimentError::Invalid(format!(
+            SimError::Invalid(format!(
                 "transition '{s}': allowed `linear`, `min-jerk` or `min-jerk:TOL` with TOL a tolerance in rad > 0"
             ))
         };
@@ -141,12 +139,12 @@ pub fn execute_postures(
     arm: &NaoArm,
     postures: &[Vec<f64>],
     rate_hz: f64,
-) -> Result<Recording, ExperimentError> {
+) -> Result<Recording, SimError> {
     let Some(first) = postures.first() else {
-        return Err(ExperimentError::Invalid("no postures to execute".into()));
+        return Err(SimError::Invalid("no postures to execute".into()));
     };
     if first.len() != NJ {
-        return Err(ExperimentError::Invalid(format!(
+        return Err(SimError::Invalid(format!(
             "postures have {} values, the arm has {NJ} joints",
             first.len()
         )));
@@ -158,17 +156,17 @@ pub fn execute_postures(
     let trajectory = TargetTrajectory::at_rate(rate_hz, postures)?;
     let mut sim = arm.sim()?;
     sim.set_posture(first)?;
-    Ok(controller.follow(&mut sim, &trajectory)?)
+    controller.follow(&mut sim, &trajectory)
 }
 
 /// Clamp learned postures into the joint ranges before execution, counting the values that
 /// were outside (the report shows the count: nothing is fixed silently). NaN is an error.
-pub fn clamp_to_ranges(postures: &[Vec<f64>]) -> Result<(Vec<Vec<f64>>, usize), ExperimentError> {
+pub fn clamp_to_ranges(postures: &[Vec<f64>]) -> Result<(Vec<Vec<f64>>, usize), SimError> {
     let mut clamped = 0;
     let mut out = Vec::with_capacity(postures.len());
     for (i, p) in postures.iter().enumerate() {
         if p.len() != NJ {
-            return Err(ExperimentError::Invalid(format!(
+            return Err(SimError::Invalid(format!(
                 "posture {i} has {} values, the arm has {NJ} joints",
                 p.len()
             )));
