@@ -9,7 +9,6 @@ pub mod all_gestures;
 pub mod baseline;
 pub mod compare;
 pub mod demonstrate;
-pub mod evaluate;
 pub mod figures;
 pub mod film;
 pub mod heldout;
@@ -18,11 +17,11 @@ pub mod output;
 pub mod report;
 pub mod variants;
 
+pub use crate::export::limits::are_arm_joints;
 pub use crate::sim::Transition;
 pub use demonstrate::{
     joint_limits, record_demonstrations, synthetic_demonstrations, DemoSettings,
 };
-pub use evaluate::{are_arm_joints, RANGE_TOLERANCE_RAD};
 pub use film::film;
 pub use heldout::{folds, leave_one_out};
 pub use output::load_arm;

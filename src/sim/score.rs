@@ -7,7 +7,7 @@
 
 use crate::demos::{sample_period, Demonstration};
 use crate::eval::{Executed, Executor, Method};
-use crate::experiment::{are_arm_joints, RANGE_TOLERANCE_RAD};
+use crate::export::limits::{are_arm_joints, RANGE_TOLERANCE_RAD};
 use crate::metrics::{fidelity_named, FidelityReport, MetricsParams, Trajectory};
 
 use super::execute::{clamp_to_ranges, execute_postures, Transition};
