@@ -9,7 +9,7 @@ PYTHON ?= python3
 # The Python package's virtual environment (git-ignored, under target/).
 PY_VENV := target/py-venv
 
-.PHONY: deps demo test test-python doc-commands results bench bench-som bindings fmt clippy clean
+.PHONY: deps demo test structure test-python doc-commands results bench bench-som bindings fmt clippy clean
 
 ## deps: install the Debian packages (MuJoCo 2.2.2, OSMesa) when any is missing
 deps:
@@ -28,13 +28,23 @@ demo: deps
 
 ## test: the whole test suite, headless: with the simulator (default), without it (the
 ## algorithm alone, as the Python package builds it), then the Python package's tests
-test: deps
+test: deps structure
 	$(CARGO) test --all-targets
 	$(CARGO) test --doc
 	$(CARGO) test --no-default-features --all-targets
 	$(CARGO) test --no-default-features --doc
 	$(MAKE) test-python
 	$(MAKE) doc-commands
+
+## structure: no import circle among the files under src/, no file there over 800 lines
+## (the generated bindings aside)
+structure:
+	@command -v $(PYTHON) >/dev/null 2>&1 || { $(SUDO) apt-get update && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y --no-install-recommends python3; }
+	$(PYTHON) scripts/import_circles.py src
+	@if $(PYTHON) scripts/import_circles.py tests/fixtures/import-circle >/dev/null; then \
+	  echo "scripts/import_circles.py missed the circle of tests/fixtures/import-circle"; exit 1; fi
+	@big=$$(find src -name '*.rs' ! -name ffi.rs -exec wc -l {} + | awk '$$2 != "total" && $$1 > 800 {print "  " $$2 " (" $$1 " lines)"}'); \
+	if [ -n "$$big" ]; then echo "files over 800 lines under src/:"; echo "$$big"; exit 1; else echo "no file under src/ over 800 lines"; fi
 
 ## test-python: build the Python package (python/) into a local virtual environment and run
 ## its tests against the `cosco` binary (without the simulator, with ROS 2 bags: the export
