@@ -5,7 +5,8 @@
 //! - [`mujoco`]: bindings to Debian's MuJoCo 2.2.2 and a safe layer; with [`render`], the only
 //!   places with `unsafe`.
 //! - [`render`]: off-screen rendering with OSMesa, PNG frames, GIF clips, contact sheets.
-//! - [`sim`]: the Nao left arm model and its position controller with 40 Hz encoder recording.
+//! - [`sim`]: the Nao left arm model, its position controller with 40 Hz encoder recording,
+//!   and executing and scoring a reproduction on it.
 //! - [`som`]: a Kohonen map.
 //! - [`hsom`]: the CoSCo-HSOM hierarchy: activity lists, training, reproduction, save/load.
 //! - [`config`]: the XML configuration, validated once into a checked type.
@@ -16,13 +17,15 @@
 //! - [`gesture`]: synthetic human-like demonstrations.
 //! - [`metrics`]: fidelity metrics.
 //! - [`plot`]: PNG plots.
-//! - [`experiment`]: the paper's experiment end to end: demonstrate, execute, evaluate, report.
+//! - [`experiment`]: the jobs on the simulated arm (the paper's experiment end to end, compare,
+//!   several gestures, variants, held out) and their reports, figures and film.
 //! - [`sweep`]: grids of runs from a TOML spec, on a thread pool or a cluster's job arrays,
 //!   merged into tables and box plots.
 //! - [`app`]: one way in: train, reproduce, recognize, evaluate, inspect, export, import,
 //!   each one function the `cosco` binary and the Python package call (same checks, same
 //!   messages), with one error type.
-//! - [`eval`]: one evaluator (methods x an executor, leave-one-out and in-sample, results).
+//! - [`eval`]: one evaluator (methods x an executor; in-sample and leave-one-out as two splits
+//!   of one fold; one result family; one worker pool).
 //! - [`fsutil`]: atomic file writes.
 //! - [`export`]: a reproduction to a robot: time scaling, the robot's limits, NAOqi JSON,
 //!   ROS 2 MCAP ([`ros2`], feature `ros2`, on by default, which also imports bags) and CSV.
