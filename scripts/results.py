@@ -142,6 +142,10 @@ SETTINGS = [
 ]
 
 
+def fmt(value, digits):
+    return "n/a" if value is None else f"{value:.{digits}f}"
+
+
 def settings_table(out):
     """CONFIG.md's measured effects: each setting changed alone from the recommended
     configuration, held out (median over the (gesture, seed) sets of the mean over folds)."""
@@ -157,7 +161,11 @@ def settings_table(out):
     for label, config, name in SETTINGS:
         rows = runs[(name, config)]
         hs = [r["heldout"]["hsom"] for r in rows]
-        jerk = median(h["normalized_jerk"] / h["demo_normalized_jerk"] for h in hs if h.get("demo_normalized_jerk"))
+        jerk = median(
+            h["normalized_jerk"] / h["demo_normalized_jerk"]
+            for h in hs
+            if h.get("normalized_jerk") is not None and h.get("demo_normalized_jerk")
+        )
         kept = total = 0
         for r in rows:
             if r["gesture"] == "wave":
@@ -167,8 +175,8 @@ def settings_table(out):
                         total += 1
                         kept += s["reproduction"] == s["demo"]
         lines.append(
-            f"| {label} | {median(h['joint_dtw_rad_per_step'] for h in hs):.4f} "
-            f"| {median(h['wrist_dtw_mm'] for h in hs):.2f} | {jerk:.2f} | {kept} of {total} |"
+            f"| {label} | {fmt(median(h.get('joint_dtw_rad_per_step') for h in hs), 4)} "
+            f"| {fmt(median(h.get('wrist_dtw_mm') for h in hs), 2)} | {fmt(jerk, 2)} | {kept} of {total} |"
         )
     cmds = [read(os.path.join(out, n + ".cmd")).strip().replace(out.rstrip("/") + "/", "OUT/") for n in ("heldout", "settings")]
     return "\n".join(lines) + "\n\nMade by `scripts/results.sh` from:\n\n```sh long\n" + "\n".join(cmds) + "\n```"
