@@ -329,7 +329,7 @@ impl PaperHsom {
             return Err(HsomError::Config(ConfigError::Invalid {
                 file: self.config.source().to_string(),
                 field: "algorithm".into(),
-                value: p.kind().name().into(),
+                value: p.kind().name(),
                 reason: "the model holds the paper's algorithm's part".into(),
             }));
         };
