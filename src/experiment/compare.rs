@@ -18,7 +18,8 @@ use super::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
 use super::heldout::on_arm;
 use super::output::{config_name, file_size, load_arm, write_hsom_run, Stopwatch, FIG4_JOINTS};
 use super::report::{DemoInfo, MethodResult, Report};
-use super::{are_arm_joints, ExperimentError};
+use super::ExperimentError;
+use crate::export::limits::are_arm_joints;
 
 /// The result of a job's step.
 type Result<T> = std::result::Result<T, ExperimentError>;

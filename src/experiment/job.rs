@@ -22,9 +22,8 @@ use super::heldout::{hierarchy_held_out, on_arm};
 use super::output::{config_name, hsom_model, load_arm, write_hsom_run, Stopwatch, FIG4_JOINTS};
 use super::report::{level_rows, DemoInfo, Report, Stage};
 use super::variants::{reference_variants, run_variant, variants};
-use super::{
-    are_arm_joints, film, leave_one_out, synthetic_demonstrations, DemoSettings, ExperimentError,
-};
+use super::{film, leave_one_out, synthetic_demonstrations, DemoSettings, ExperimentError};
+use crate::export::limits::are_arm_joints;
 
 /// The result of a job's step.
 type Result<T> = std::result::Result<T, ExperimentError>;

@@ -17,7 +17,6 @@ pub mod output;
 pub mod report;
 pub mod variants;
 
-pub use crate::export::limits::are_arm_joints;
 pub use crate::sim::Transition;
 pub use demonstrate::{
     joint_limits, record_demonstrations, synthetic_demonstrations, DemoSettings,
