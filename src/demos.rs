@@ -278,10 +278,10 @@ fn parse_cell(path: &str, line: u64, column: &str, text: &str) -> Result<f64, De
     Ok(v)
 }
 
-fn check_names(path: &str, names: &[String], offset: usize) -> Result<(), DemoError> {
+fn check_names(path: &str, names: &[String]) -> Result<(), DemoError> {
     let mut seen: HashMap<&str, usize> = HashMap::new();
     for (i, name) in names.iter().enumerate() {
-        let pos = i + 1 + offset;
+        let pos = i + 1;
         if name.trim().is_empty() {
             return Err(DemoError::EmptyColumnName {
                 path: path.to_string(),
@@ -341,7 +341,7 @@ pub fn parse_csv(source: &str, bytes: &[u8]) -> Result<Demonstration, DemoError>
         .is_some_and(|n| n.trim().eq_ignore_ascii_case(TIME_COLUMN));
     let offset = usize::from(has_time);
     let columns: Vec<String> = names[offset..].to_vec();
-    check_names(&p, &names, 0)?;
+    check_names(&p, &names)?;
     if columns.is_empty() {
         return Err(DemoError::NoStateColumns { path: p.clone() });
     }
@@ -402,16 +402,13 @@ pub fn read_dir_or_files(paths: &[PathBuf]) -> Result<Vec<Demonstration>, DemoEr
     let mut out = Vec::new();
     for path in paths {
         if path.is_dir() {
-            let entries = std::fs::read_dir(path).map_err(|source| DemoError::Io {
+            let io = |source| DemoError::Io {
                 path: path.display().to_string(),
                 source,
-            })?;
+            };
             let mut files = Vec::new();
-            for e in entries {
-                let e = e.map_err(|source| DemoError::Io {
-                    path: path.display().to_string(),
-                    source,
-                })?;
+            for e in std::fs::read_dir(path).map_err(io)? {
+                let e = e.map_err(io)?;
                 let f = e.path();
                 let is_csv = f
                     .extension()
@@ -443,7 +440,7 @@ pub fn read_dir_or_files(paths: &[PathBuf]) -> Result<Vec<Demonstration>, DemoEr
 pub fn to_csv_bytes(demo: &Demonstration) -> Result<Vec<u8>, DemoError> {
     validate_set(std::slice::from_ref(demo), None)?;
     let mut w = csv::Writer::from_writer(Vec::new());
-    let io = |e: csv::Error| DemoError::Write {
+    let io = |e: &dyn ToString| DemoError::Write {
         path: demo.source.clone(),
         source: std::io::Error::other(e.to_string()),
     };
@@ -452,19 +449,16 @@ pub fn to_csv_bytes(demo: &Demonstration) -> Result<Vec<u8>, DemoError> {
         header.push(TIME_COLUMN);
     }
     header.extend(demo.columns.iter().map(|s| s.as_str()));
-    w.write_record(&header).map_err(io)?;
+    w.write_record(&header).map_err(|e| io(&e))?;
     for (i, row) in demo.rows.iter().enumerate() {
         let mut rec: Vec<String> = Vec::with_capacity(row.len() + 1);
         if let Some(t) = &demo.time {
             rec.push(format!("{}", t[i]));
         }
         rec.extend(row.iter().map(|v| format!("{v}")));
-        w.write_record(&rec).map_err(io)?;
+        w.write_record(&rec).map_err(|e| io(&e))?;
     }
-    w.into_inner().map_err(|e| DemoError::Write {
-        path: demo.source.clone(),
-        source: std::io::Error::other(e.to_string()),
-    })
+    w.into_inner().map_err(|e| io(&e))
 }
 
 /// Write a demonstration to `path` atomically (temporary file + rename, see
@@ -485,7 +479,7 @@ pub fn validate(demo: &Demonstration) -> Result<(), DemoError> {
     if demo.columns.is_empty() {
         return Err(DemoError::NoStateColumns { path: p.clone() });
     }
-    check_names(p, &demo.columns, 0)?;
+    check_names(p, &demo.columns)?;
     if demo.rows.is_empty() {
         return Err(DemoError::NoSamples { path: p.clone() });
     }

@@ -149,16 +149,6 @@ impl LevelParams {
             decay: Decay::Exponential,
         }
     }
-
-    /// As [`LevelParams::new`] with the initial radius `radius` and final values `last_alpha`
-    /// and `last_radius`.
-    fn sharp(n: usize, alpha: f64, radius: f64, last_alpha: f64, last_radius: f64) -> Self {
-        let mut l = LevelParams::new(n, n, Topology::Orthogonal, alpha);
-        l.learning_factor.last = last_alpha;
-        l.learning_radius.initial = radius;
-        l.learning_radius.last = last_radius;
-        l
-    }
 }
 
 /// Reproduction settings both algorithms read.
@@ -246,59 +236,6 @@ pub struct HsomParams {
 }
 
 impl HsomParams {
-    /// The paper's Table I (height 6, memory 4, updatePeriod 2, 5000 steps, state and action
-    /// length 6, all orthogonal) with the documented defaults for everything Table I omits:
-    /// `configs/table1.xml`, and the defaults of `algorithm = paper`.
-    pub fn table1() -> Self {
-        let sizes = [(16, 0.1), (10, 0.2), (8, 0.3), (6, 0.5), (2, 0.6), (1, 0.8)];
-        HsomParams {
-            seed: 1,
-            height: 6,
-            memory: 4,
-            state_length: 6,
-            action_length: 6,
-            training_steps: 5000,
-            normalisation: Normalisation::Global,
-            levels: sizes
-                .iter()
-                .map(|&(n, a)| LevelParams::new(n, n, Topology::Orthogonal, a))
-                .collect(),
-            reproduction: ReproductionParams::default(),
-            algorithm: AlgorithmParams::Paper(PaperParams {
-                update_period: 2,
-                memory_mode: MemoryMode::Lists,
-                offset: 3,
-                id_decoding: IdDecoding::Round,
-                stop: StopRule::Learned,
-            }),
-        }
-    }
-
-    /// The recommended configuration for the simulated Nao (`configs/nao-gestures.xml`): the
-    /// events extension, and the defaults of a configuration file.
-    pub fn recommended() -> Self {
-        HsomParams {
-            seed: 1,
-            height: 4,
-            memory: 4,
-            state_length: 6,
-            action_length: 6,
-            training_steps: 5000,
-            normalisation: Normalisation::Global,
-            levels: vec![
-                LevelParams::sharp(16, 0.1, 8.0, 0.001, 0.5),
-                LevelParams::sharp(8, 0.5, 4.0, 0.05, 0.3),
-                LevelParams::sharp(4, 0.5, 2.0, 0.05, 0.3),
-                LevelParams::sharp(2, 0.5, 1.0, 0.05, 0.3),
-            ],
-            reproduction: ReproductionParams::default(),
-            algorithm: AlgorithmParams::Events(EventsParams {
-                change_ratio: 0.6,
-                action_horizon: 10,
-            }),
-        }
-    }
-
     /// Which algorithm these settings are for.
     pub fn kind(&self) -> Algorithm {
         match self.algorithm {
@@ -361,19 +298,20 @@ impl HsomParams {
 
     /// Validate every value; `source` (a file name) is used in the error messages.
     pub fn check(self, source: &str) -> Result<HsomConfig, ConfigError> {
-        let need = |ok: bool, field: &str, value: &dyn ToString, reason: String| match ok {
+        let need = |ok: bool, field: &str, value: &dyn ToString, reason: &str| match ok {
             true => Ok(()),
             false => Err(ConfigError::Invalid {
                 file: source.into(),
                 field: field.into(),
                 value: value.to_string(),
-                reason,
+                reason: reason.into(),
             }),
         };
         let int = |field: &str, v: usize, lo: usize, hi: usize| {
             let reason = format!("expected an integer in {lo}..={hi}");
-            need((lo..=hi).contains(&v), field, &v, reason)
+            need((lo..=hi).contains(&v), field, &v, &reason)
         };
+        let fraction = "expected a number in (0, 1]";
         int("height", self.height, 1, MAX_HEIGHT)?;
         int("memory", self.memory, 1, 256)?;
         int("stateLength", self.state_length, 1, 4096)?;
@@ -382,45 +320,33 @@ impl HsomParams {
         let reason = format!(
             "the action is the next state, so actionLength must equal stateLength ({state})"
         );
-        need(action == state, "actionLength", &action, reason)?;
+        need(action == state, "actionLength", &action, &reason)?;
         int("trainingSteps", self.training_steps, 1, 1_000_000_000)?;
         if let Some(q) = self.paper() {
             int("updatePeriod", q.update_period, 1, 1024)?;
             let top = (q.update_period as f64).powi(self.height as i32 - 1);
             let reason = format!("updatePeriod^(height-1) = {top:e} is too large");
-            need(top <= 1e12, "updatePeriod", &q.update_period, reason)?;
+            need(top <= 1e12, "updatePeriod", &q.update_period, &reason)?;
             let reason = format!("expected 1..=memory ({})", self.memory);
             let offset_ok = (1..=self.memory).contains(&q.offset);
-            need(offset_ok, "reproduction/offset", &q.offset, reason)?;
+            need(offset_ok, "reproduction/offset", &q.offset, &reason)?;
         }
         let listed = self.levels.len();
         let reason = format!("height must equal the number of <level> elements ({listed})");
-        need(listed == self.height, "height", &self.height, reason)?;
+        need(listed == self.height, "height", &self.height, &reason)?;
         for (i, l) in self.levels.iter().enumerate() {
             let f = |name: &str| format!("levels/level[{i}]/{name}");
             int(&f("rows"), l.rows, 1, 1024)?;
             int(&f("cols"), l.cols, 1, 1024)?;
+            let (factor, radius) = (l.learning_factor, l.learning_radius);
+            let positive = "expected a positive number";
             for (name, s, max, reason) in [
-                (
-                    "learningFactor",
-                    l.learning_factor,
-                    1.0,
-                    "expected a number in (0, 1]",
-                ),
-                (
-                    "learningRadius",
-                    l.learning_radius,
-                    1e6,
-                    "expected a positive number",
-                ),
+                ("learningFactor", factor, 1.0, fraction),
+                ("learningRadius", radius, 1e6, positive),
             ] {
                 for (suffix, v) in [("", s.initial), ("Final", s.last)] {
-                    need(
-                        v > 0.0 && v <= max,
-                        &f(&format!("{name}{suffix}")),
-                        &v,
-                        reason.into(),
-                    )?;
+                    let field = f(&format!("{name}{suffix}"));
+                    need(v > 0.0 && v <= max, &field, &v, reason)?;
                 }
             }
         }
@@ -442,32 +368,18 @@ impl HsomParams {
             weights += (l.rows * l.cols) as u64 * dim;
         }
         let reason = "the hierarchy would hold more than 100 million weights; use smaller maps";
-        need(
-            weights <= 100_000_000,
-            "levels",
-            &format!("{weights} weights"),
-            reason.into(),
-        )?;
+        let count = format!("{weights} weights");
+        need(weights <= 100_000_000, "levels", &count, reason)?;
         if let Some(q) = self.events() {
             let c = q.change_ratio;
-            need(
-                c > 0.0 && c <= 1.0,
-                "changeRatio",
-                &c,
-                "expected a number in (0, 1]".into(),
-            )?;
+            need(c > 0.0 && c <= 1.0, "changeRatio", &c, fraction)?;
             int("actionHorizon", q.action_horizon, 1, 100_000)?;
         }
         let r = &self.reproduction;
         int("reproduction/maxLength", r.max_length, 1, 10_000_000)?;
         let (factor, reason) = (r.length_factor, "expected a number in [0.01, 1000]");
         let factor_ok = (0.01..=1000.0).contains(&factor);
-        need(
-            factor_ok,
-            "reproduction/lengthFactor",
-            &factor,
-            reason.into(),
-        )?;
+        need(factor_ok, "reproduction/lengthFactor", &factor, reason)?;
         if let Some(m) = r.max_level {
             int("reproduction/maxLevel", m, 0, self.height - 1)?;
         }

@@ -215,6 +215,16 @@ pub fn load_config(path: &Path) -> Result<HsomConfig, ConfigError> {
 /// default) or [`HsomParams::table1`] (`algorithm = paper`); a retired setting, or one the
 /// chosen algorithm does not read, is an error naming it.
 pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
+    read(text, file, shipped)
+}
+
+/// [`parse_config`] with `defaults(algorithm)` giving the values of the omitted settings (called
+/// only when one is omitted).
+fn read(
+    text: &str,
+    file: &str,
+    defaults: impl Fn(Algorithm) -> HsomParams,
+) -> Result<HsomConfig, ConfigError> {
     let indices = scan(text, file)?;
     let mut reader = quick_xml::de::Deserializer::from_str(text);
     let doc: Doc = serde_path_to_error::deserialize(&mut reader).map_err(|e| {
@@ -243,7 +253,44 @@ pub fn parse_config(text: &str, file: &str) -> Result<HsomConfig, ConfigError> {
             },
         }
     })?;
-    doc.into_params(file)?.check(file)
+    doc.into_params(file, defaults)?.check(file)
+}
+
+impl HsomParams {
+    /// The paper's Table I (height 6, memory 4, updatePeriod 2, 5000 steps, state and action
+    /// length 6, all orthogonal) with the documented defaults for everything Table I omits:
+    /// `configs/table1.xml`, and the defaults of `algorithm = paper`.
+    pub fn table1() -> Self {
+        shipped(Algorithm::Paper)
+    }
+
+    /// The recommended configuration for the simulated Nao (`configs/nao-gestures.xml`): the
+    /// events extension, and the defaults of a configuration file.
+    pub fn recommended() -> Self {
+        shipped(Algorithm::Events)
+    }
+}
+
+/// The configuration file shipped for `algorithm`, built in: it gives the values a file of
+/// that algorithm omits. Each shipped file sets every setting but the reproduction's, so it
+/// is read without defaults of its own.
+fn shipped(algorithm: Algorithm) -> HsomParams {
+    let (file, text) = match algorithm {
+        Algorithm::Paper => (
+            "configs/table1.xml",
+            include_str!("../../configs/table1.xml"),
+        ),
+        Algorithm::Events => (
+            "configs/nao-gestures.xml",
+            include_str!("../../configs/nao-gestures.xml"),
+        ),
+    };
+    let none =
+        |_: Algorithm| -> HsomParams { unreachable!("{file} omits only reproduction settings") };
+    match read(text, file, none) {
+        Ok(config) => config.into_params(),
+        Err(e) => unreachable!("the shipped {file} is valid (tests/config_table1.rs): {e}"),
+    }
 }
 
 fn invalid(file: &str, field: String, value: impl ToString, reason: impl ToString) -> ConfigError {
@@ -256,8 +303,13 @@ fn invalid(file: &str, field: String, value: impl ToString, reason: impl ToStrin
 }
 
 impl Doc {
-    /// The settings written, with the defaults of the chosen algorithm for the others.
-    fn into_params(self, file: &str) -> Result<HsomParams, ConfigError> {
+    /// The settings written, with `defaults(chosen algorithm)`'s for the others (the
+    /// reproduction's: [`ReproductionParams::default`], that of both shipped files).
+    fn into_params(
+        self,
+        file: &str,
+        defaults: impl Fn(Algorithm) -> HsomParams,
+    ) -> Result<HsomParams, ConfigError> {
         if let Some(v) = self.version.as_ref().filter(|v| v.trim() != "1") {
             return Err(invalid(file, "hsom/@version".into(), v, "expected 1"));
         }
@@ -286,41 +338,51 @@ impl Doc {
                 chosen: chosen.name(),
             });
         }
-        let base = match chosen {
-            Algorithm::Paper => HsomParams::table1(),
-            Algorithm::Events => HsomParams::recommended(),
-        };
-        let height = self.height.unwrap_or(base.height);
-        let memory = self.memory.unwrap_or(base.memory);
-        let d = base.reproduction;
+        // the defaults, read only when a setting is omitted (never for a shipped file)
+        let base = std::cell::OnceCell::new();
+        let base = || base.get_or_init(|| defaults(chosen));
+        let height = self.height.unwrap_or_else(|| base().height);
+        let memory = self.memory.unwrap_or_else(|| base().memory);
+        let d = ReproductionParams::default();
         Ok(HsomParams {
-            seed: self.seed.unwrap_or(base.seed),
+            seed: self.seed.unwrap_or_else(|| base().seed),
             height,
             memory,
-            state_length: self.state_length.unwrap_or(base.state_length),
-            action_length: self.action_length.unwrap_or(base.action_length),
-            training_steps: self.training_steps.unwrap_or(base.training_steps),
-            normalisation: self.normalisation.unwrap_or(base.normalisation),
+            state_length: self.state_length.unwrap_or_else(|| base().state_length),
+            action_length: self.action_length.unwrap_or_else(|| base().action_length),
+            training_steps: self.training_steps.unwrap_or_else(|| base().training_steps),
+            normalisation: self.normalisation.unwrap_or_else(|| base().normalisation),
             levels: match self.levels {
-                None => base.levels,
+                None => base().levels.clone(),
                 Some(levels) => in_index_order(levels.level, height, file)?,
             },
             reproduction: ReproductionParams {
                 max_length: r.max_length.unwrap_or(d.max_length),
-                max_level: r.max_level.or(d.max_level),
+                max_level: r.max_level,
                 length_factor: r.length_factor.unwrap_or(d.length_factor),
             },
-            algorithm: match base.algorithm {
-                AlgorithmParams::Paper(q) => AlgorithmParams::Paper(PaperParams {
-                    update_period: self.update_period.unwrap_or(q.update_period),
-                    memory_mode: self.memory_mode.unwrap_or(q.memory_mode),
-                    offset: r.offset.unwrap_or(default_offset(memory)),
-                    id_decoding: r.id_decoding.unwrap_or(q.id_decoding),
-                    stop: r.stop.unwrap_or(q.stop),
-                }),
-                AlgorithmParams::Events(q) => AlgorithmParams::Events(EventsParams {
-                    change_ratio: self.change_ratio.unwrap_or(q.change_ratio),
-                    action_horizon: self.action_horizon.unwrap_or(q.action_horizon),
+            algorithm: match chosen {
+                Algorithm::Paper => {
+                    let paper = "the defaults of algorithm paper are a paper configuration";
+                    let q = || {
+                        base()
+                            .paper()
+                            .cloned()
+                            .unwrap_or_else(|| unreachable!("{paper}"))
+                    };
+                    AlgorithmParams::Paper(PaperParams {
+                        update_period: self.update_period.unwrap_or_else(|| q().update_period),
+                        memory_mode: self.memory_mode.unwrap_or_else(|| q().memory_mode),
+                        offset: r.offset.unwrap_or(default_offset(memory)),
+                        id_decoding: r.id_decoding.unwrap_or_else(|| q().id_decoding),
+                        stop: r.stop.unwrap_or_else(|| q().stop),
+                    })
+                }
+                Algorithm::Events => AlgorithmParams::Events(EventsParams {
+                    change_ratio: self.change_ratio.unwrap_or_else(|| base().change_ratio()),
+                    action_horizon: self
+                        .action_horizon
+                        .unwrap_or_else(|| base().action_horizon()),
                 }),
             },
         })

@@ -172,18 +172,10 @@ impl HumanTrajectory {
                             *v = (*v + amp.sample(rng)).clamp(lo + 0.02, hi - 0.02);
                         }
                     }
-                    let mut start = [t; N_JOINTS];
-                    for s in start.iter_mut() {
-                        *s += uniform(rng, (0.0, variation.stagger));
-                    }
-                    let mut delta = [0.0; N_JOINTS];
-                    for j in 0..N_JOINTS {
-                        delta[j] = target[j] - pose[j];
-                    }
                     moves.push(Blend {
-                        start,
+                        start: std::array::from_fn(|_| t + uniform(rng, (0.0, variation.stagger))),
                         duration: d,
-                        delta,
+                        delta: std::array::from_fn(|j| target[j] - pose[j]),
                     });
                     pose = target;
                     t += d;
@@ -214,17 +206,12 @@ impl HumanTrajectory {
         let motion_end = t + variation.stagger;
         let wobble = (0..N_JOINTS)
             .map(|_| {
-                let mut w = [(0.0, 0.0, 0.0); 3];
-                for c in w.iter_mut() {
+                std::array::from_fn(|_| {
                     let freq = uniform(rng, (0.2, 0.9));
                     let phase = uniform(rng, (0.0, std::f64::consts::TAU));
-                    *c = (
-                        variation.wobble_deg.to_radians() / 3.0_f64.sqrt(),
-                        freq,
-                        phase,
-                    );
-                }
-                w
+                    let amplitude = variation.wobble_deg.to_radians() / 3.0_f64.sqrt();
+                    (amplitude, freq, phase)
+                })
             })
             .collect();
         Ok(HumanTrajectory {

@@ -90,17 +90,6 @@ impl Gesture {
         }
         best
     }
-
-    /// Nominal duration of the movement (without idle time), in seconds.
-    pub fn nominal_duration(&self) -> f64 {
-        self.segments
-            .iter()
-            .map(|s| match s {
-                Segment::Move { duration, .. } | Segment::Hold { duration } => *duration,
-                Segment::Oscillate { period, cycles, .. } => period * cycles,
-            })
-            .sum()
-    }
 }
 
 /// The paper's gesture (Fig. 1): from StandInit raise the left forearm across the chest as if

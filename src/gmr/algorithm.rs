@@ -484,11 +484,6 @@ impl GmrModel {
         })
     }
 
-    /// [`GmrModel::predict`] at each of `times`.
-    pub fn predict_many(&self, times: &[f64]) -> Result<Vec<Prediction>, GmrError> {
-        times.iter().map(|&t| self.predict(t)).collect()
-    }
-
     /// The reproduction: predictions at `k · period`, `k = 0 … round(duration / period)`
     /// (`period` finite and > 0; at most 10⁷ samples).
     pub fn reproduce(&self, period: f64) -> Result<Vec<Prediction>, GmrError> {

@@ -29,26 +29,20 @@ impl Default for IdleTrim {
 impl IdleTrim {
     /// Check the settings: `(name, value, reason)` of the first bad one.
     pub fn check(&self) -> Result<(), (&'static str, String, &'static str)> {
-        if !(self.min_speed.is_finite() && self.min_speed > 0.0) {
-            return Err((
-                "trim.min_speed",
-                self.min_speed.to_string(),
-                "a finite speed in rad/s > 0",
-            ));
+        let bad = |name, value: &dyn ToString, reason| Err((name, value.to_string(), reason));
+        let (speed, relative) = (self.min_speed, self.relative);
+        if !(speed.is_finite() && speed > 0.0) {
+            return bad("trim.min_speed", &speed, "a finite speed in rad/s > 0");
         }
-        if !(self.relative.is_finite() && (0.0..1.0).contains(&self.relative)) {
-            return Err((
-                "trim.relative",
-                self.relative.to_string(),
-                "a fraction within [0, 1)",
-            ));
+        if !(relative.is_finite() && (0.0..1.0).contains(&relative)) {
+            return bad("trim.relative", &relative, "a fraction within [0, 1)");
         }
         if self.half_window > 1000 {
-            return Err((
+            return bad(
                 "trim.half_window",
-                self.half_window.to_string(),
+                &self.half_window,
                 "at most 1000 samples",
-            ));
+            );
         }
         Ok(())
     }
@@ -176,63 +170,45 @@ impl GmrParams {
 
     /// Check every parameter once; only the checked type can fit.
     pub fn check(self) -> Result<GmrValidParams, GmrError> {
-        let bad = |name, value: String, reason| {
+        let bad = |name, value: &dyn ToString, reason| {
+            let value = value.to_string();
             Err(GmrError::InvalidParam {
                 name,
                 value,
                 reason,
             })
         };
+        let positive = |v: f64| v.is_finite() && v > 0.0;
         match self.components {
-            ComponentChoice::Fixed(0) => {
-                return bad("components", "0".into(), "at least one component")
-            }
+            ComponentChoice::Fixed(0) => return bad("components", &0, "at least one component"),
             ComponentChoice::Bic { min, max } if min == 0 || max < min => {
-                return bad(
-                    "components",
-                    format!("BIC {min}..={max}"),
-                    "a range with 1 <= min <= max",
-                )
+                let range = format!("BIC {min}..={max}");
+                return bad("components", &range, "a range with 1 <= min <= max");
             }
             _ => {}
         }
-        if !(self.reg_covar.is_finite() && self.reg_covar > 0.0) {
-            return bad(
-                "reg_covar",
-                self.reg_covar.to_string(),
-                "a finite value > 0",
-            );
+        if !positive(self.reg_covar) {
+            return bad("reg_covar", &self.reg_covar, "a finite value > 0");
         }
-        if !(self.tolerance.is_finite() && self.tolerance > 0.0) {
-            return bad(
-                "tolerance",
-                self.tolerance.to_string(),
-                "a finite value > 0",
-            );
+        if !positive(self.tolerance) {
+            return bad("tolerance", &self.tolerance, "a finite value > 0");
         }
         if self.max_iterations == 0 {
-            return bad("max_iterations", "0".into(), "at least 1");
+            return bad("max_iterations", &0, "at least 1");
         }
         if self.n_points < 2 {
-            return bad("n_points", self.n_points.to_string(), "at least 2");
+            return bad("n_points", &self.n_points, "at least 2");
         }
-        if !(self.sample_period.is_finite() && self.sample_period > 0.0) {
-            return bad(
-                "sample_period",
-                self.sample_period.to_string(),
-                "a finite time in seconds > 0",
-            );
+        let period = self.sample_period;
+        if !positive(period) {
+            return bad("sample_period", &period, "a finite time in seconds > 0");
         }
-        self.trim
-            .check()
-            .map_err(|(name, value, reason)| GmrError::InvalidParam {
-                name,
-                value,
-                reason,
-            })?;
+        if let Err((name, value, reason)) = self.trim.check() {
+            return bad(name, &value, reason);
+        }
         if let Band::Fraction(f) = self.band {
             if !(0.0..=1.0).contains(&f) {
-                return bad("band", f.to_string(), "a fraction within [0, 1]");
+                return bad("band", &f, "a fraction within [0, 1]");
             }
         }
         Ok(GmrValidParams(self))

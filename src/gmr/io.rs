@@ -208,16 +208,9 @@ pub fn model_from_str(path: &str, text: &str) -> Result<GmrModel, GmrError> {
         l.line = i + 1;
         return Err(l.err(format!("unexpected content after `end`: `{extra}`")));
     }
-    let gmm = Gmm::new(weights, means, covs).map_err(|e| GmrError::Format {
-        path: path.to_string(),
-        line: l.line,
-        message: format!("inconsistent parameters: {e}"),
-    })?;
-    GmrModel::new(columns, duration, gmm).map_err(|e| GmrError::Format {
-        path: path.to_string(),
-        line: l.line,
-        message: e.to_string(),
-    })
+    let gmm = Gmm::new(weights, means, covs)
+        .map_err(|e| l.err(format!("inconsistent parameters: {e}")))?;
+    GmrModel::new(columns, duration, gmm).map_err(|e| l.err(e.to_string()))
 }
 
 /// Load a model saved by [`save_model`].

@@ -67,36 +67,34 @@ impl Default for MetricsParams {
 impl MetricsParams {
     /// Check the settings.
     pub fn check(&self) -> Result<(), MetricsError> {
-        if !(self.sample_period.is_finite() && self.sample_period > 0.0) {
-            return Err(MetricsError::InvalidParam {
-                name: "sample_period",
-                value: self.sample_period.to_string(),
-                reason: "a finite time in seconds > 0",
-            });
-        }
-        if !(self.reversal_deadband.is_finite() && self.reversal_deadband >= 0.0) {
-            return Err(MetricsError::InvalidParam {
-                name: "reversal_deadband",
-                value: self.reversal_deadband.to_string(),
-                reason: "a finite speed in rad/s >= 0",
-            });
-        }
-        if let Band::Fraction(f) = self.band {
-            if !(0.0..=1.0).contains(&f) {
-                return Err(MetricsError::InvalidParam {
-                    name: "band",
-                    value: f.to_string(),
-                    reason: "a fraction within [0, 1]",
-                });
-            }
-        }
-        self.trim
-            .check()
-            .map_err(|(name, value, reason)| MetricsError::InvalidParam {
+        let bad = |name, value: &dyn ToString, reason| {
+            let value = value.to_string();
+            Err(MetricsError::InvalidParam {
                 name,
                 value,
                 reason,
             })
+        };
+        let (period, deadband) = (self.sample_period, self.reversal_deadband);
+        if !(period.is_finite() && period > 0.0) {
+            return bad("sample_period", &period, "a finite time in seconds > 0");
+        }
+        if !(deadband.is_finite() && deadband >= 0.0) {
+            return bad(
+                "reversal_deadband",
+                &deadband,
+                "a finite speed in rad/s >= 0",
+            );
+        }
+        if let Band::Fraction(f) = self.band {
+            if !(0.0..=1.0).contains(&f) {
+                return bad("band", &f, "a fraction within [0, 1]");
+            }
+        }
+        match self.trim.check() {
+            Ok(()) => Ok(()),
+            Err((name, value, reason)) => bad(name, &value, reason),
+        }
     }
 }
 
@@ -248,13 +246,11 @@ pub fn fidelity(
     reproduction: &Trajectory,
     params: &MetricsParams,
 ) -> Result<FidelityReport, MetricsError> {
-    let names: Vec<String> = (0..demos.len())
-        .map(|i| format!("demonstration {i}"))
-        .collect();
-    fidelity_named(demos, &names, reproduction, params)
+    fidelity_named(demos, &[], reproduction, params)
 }
 
-/// [`fidelity`] with the demonstrations' names (their files) for the error messages.
+/// [`fidelity`] with the demonstrations' names (their files) for the error messages; a
+/// demonstration without one is `demonstration {i}`.
 pub fn fidelity_named(
     demos: &[Trajectory],
     names: &[String],

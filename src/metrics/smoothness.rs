@@ -165,21 +165,13 @@ pub fn large_swings(values: &[f64], min_amplitude: f64) -> Result<usize, Metrics
                     extreme = v;
                 }
             }
-            Some(true) => {
-                if v > extreme {
+            Some(up) => {
+                if (up && v > extreme) || (!up && v < extreme) {
                     extreme = v;
-                } else if extreme - v > min_amplitude {
+                } else if (extreme - v).abs() > min_amplitude {
+                    // a move back from the running extreme: a turning point there
                     count += 1;
-                    rising = Some(false);
-                    extreme = v;
-                }
-            }
-            Some(false) => {
-                if v < extreme {
-                    extreme = v;
-                } else if v - extreme > min_amplitude {
-                    count += 1;
-                    rising = Some(true);
+                    rising = Some(!up);
                     extreme = v;
                 }
             }

@@ -85,3 +85,20 @@ pub fn check_version() -> Result<()> {
         }),
     }
 }
+
+/// Allocate a zeroed `T` on the heap, never on the stack (an `mjVFS` is about 2 MB). Only for
+/// MuJoCo's plain-data structs.
+///
+/// # Safety
+/// All-zero bytes must be a valid `T`.
+pub(crate) unsafe fn zeroed_box<T>() -> Box<T> {
+    let layout = std::alloc::Layout::new::<T>();
+    // Safety: T is not zero-sized (MuJoCo structs); see the function contract for validity.
+    unsafe {
+        let raw = std::alloc::alloc_zeroed(layout) as *mut T;
+        if raw.is_null() {
+            std::alloc::handle_alloc_error(layout);
+        }
+        Box::from_raw(raw)
+    }
+}

@@ -1,6 +1,6 @@
 //! [`Model`]: an owned, compiled `mjModel`.
 
-use super::{callbacks, check_version, ffi, MjError, Result};
+use super::{callbacks, check_version, ffi, zeroed_box, MjError, Result};
 use std::ffi::{c_char, c_int, CStr, CString};
 use std::path::Path;
 use std::ptr::NonNull;
@@ -74,16 +74,8 @@ struct Vfs(Box<ffi::mjVFS>);
 impl Vfs {
     fn new() -> Vfs {
         // Safety: mjVFS is plain old data (ints, chars, raw pointers); all-zero is a valid
-        // value for every field. Allocating zeroed memory of its layout and handing it to Box
-        // is the documented way to build a Box without a stack temporary.
-        let mut vfs = unsafe {
-            let layout = std::alloc::Layout::new::<ffi::mjVFS>();
-            let raw = std::alloc::alloc_zeroed(layout) as *mut ffi::mjVFS;
-            if raw.is_null() {
-                std::alloc::handle_alloc_error(layout);
-            }
-            Box::from_raw(raw)
-        };
+        // value for every field.
+        let mut vfs = unsafe { zeroed_box::<ffi::mjVFS>() };
         // Safety: `vfs` points to a valid, writable mjVFS.
         unsafe { ffi::mj_defaultVFS(&mut *vfs) };
         Vfs(vfs)
@@ -310,23 +302,37 @@ impl Model {
         unsafe { *p.add(i) }
     }
 
+    /// Entry `id` of a `(low, high)` range array of `n` objects, `None` when its `limited`
+    /// flag is 0. Panics when `id >= n`.
+    ///
+    /// # Safety
+    /// `limited` (`n` entries) and `range` (`2 n`) must be the model arrays the caller names.
+    unsafe fn limited_range(
+        limited: *const ffi::mjtByte,
+        range: *const f64,
+        id: usize,
+        n: usize,
+    ) -> Option<(f64, f64)> {
+        // Safety: guaranteed by the caller.
+        unsafe {
+            if Self::at(limited, id, n) == 0 {
+                return None;
+            }
+            Some((
+                Self::at(range, 2 * id, 2 * n),
+                Self::at(range, 2 * id + 1, 2 * n),
+            ))
+        }
+    }
+
     /// Range of joint `id`, `None` when the joint is not limited.
     ///
     /// # Panics
     /// When `id >= njnt()` (ids come from [`Model::joint_id`]).
     pub fn joint_range(&self, id: usize) -> Option<(f64, f64)> {
         let m = self.raw();
-        let n = self.njnt();
         // Safety: jnt_limited has njnt entries, jnt_range 2*njnt.
-        unsafe {
-            if Self::at(m.jnt_limited, id, n) == 0 {
-                return None;
-            }
-            Some((
-                Self::at(m.jnt_range, 2 * id, 2 * n),
-                Self::at(m.jnt_range, 2 * id + 1, 2 * n),
-            ))
-        }
+        unsafe { Self::limited_range(m.jnt_limited, m.jnt_range, id, self.njnt()) }
     }
     /// Address of joint `id`'s first coordinate in `qpos`. Panics when `id >= njnt()`.
     pub fn joint_qpos_adr(&self, id: usize) -> usize {
@@ -341,31 +347,20 @@ impl Model {
     /// Control range of actuator `id`, `None` when not limited. Panics when `id >= nu()`.
     pub fn actuator_ctrl_range(&self, id: usize) -> Option<(f64, f64)> {
         let m = self.raw();
-        let n = self.nu();
         // Safety: actuator_ctrllimited has nu entries, actuator_ctrlrange 2*nu.
-        unsafe {
-            if Self::at(m.actuator_ctrllimited, id, n) == 0 {
-                return None;
-            }
-            Some((
-                Self::at(m.actuator_ctrlrange, 2 * id, 2 * n),
-                Self::at(m.actuator_ctrlrange, 2 * id + 1, 2 * n),
-            ))
-        }
+        unsafe { Self::limited_range(m.actuator_ctrllimited, m.actuator_ctrlrange, id, self.nu()) }
     }
     /// Force range of actuator `id`, `None` when not limited. Panics when `id >= nu()`.
     pub fn actuator_force_range(&self, id: usize) -> Option<(f64, f64)> {
         let m = self.raw();
-        let n = self.nu();
         // Safety: actuator_forcelimited has nu entries, actuator_forcerange 2*nu.
         unsafe {
-            if Self::at(m.actuator_forcelimited, id, n) == 0 {
-                return None;
-            }
-            Some((
-                Self::at(m.actuator_forcerange, 2 * id, 2 * n),
-                Self::at(m.actuator_forcerange, 2 * id + 1, 2 * n),
-            ))
+            Self::limited_range(
+                m.actuator_forcelimited,
+                m.actuator_forcerange,
+                id,
+                self.nu(),
+            )
         }
     }
     /// The joint actuator `id` drives, when its transmission is a joint. Panics when

@@ -1,7 +1,7 @@
 //! [`Renderer`]: OSMesa context + MuJoCo scene, camera, options and GPU context.
 
 use super::{RenderError, Result};
-use crate::mujoco::{callbacks, ffi, Data, MjError, Model};
+use crate::mujoco::{callbacks, ffi, zeroed_box, Data, MjError, Model};
 use image::RgbImage;
 use std::ffi::c_int;
 use std::path::Path;
@@ -96,22 +96,6 @@ impl Drop for OsMesa {
         // Safety: the context was created by OSMesaCreateContextExt and is destroyed once;
         // the GPU context using it has been freed before (see Renderer's Drop).
         unsafe { ffi::OSMesaDestroyContext(self.ctx.as_ptr()) }
-    }
-}
-
-/// Allocate a zeroed `T` on the heap. Only for MuJoCo's plain-data structs.
-///
-/// # Safety
-/// All-zero bytes must be a valid `T`.
-unsafe fn zeroed_box<T>() -> Box<T> {
-    let layout = std::alloc::Layout::new::<T>();
-    // Safety: T is not zero-sized (MuJoCo structs); see the function contract for validity.
-    unsafe {
-        let raw = std::alloc::alloc_zeroed(layout) as *mut T;
-        if raw.is_null() {
-            std::alloc::handle_alloc_error(layout);
-        }
-        Box::from_raw(raw)
     }
 }
 
@@ -284,22 +268,6 @@ impl<'m> Renderer<'m> {
         // The new context is current after mjr_makeContext; nothing else refers to the old.
         self.multisample = on;
         Ok(())
-    }
-
-    /// Point the free camera: look at `lookat` from `distance` m, `azimuth` and `elevation`
-    /// in degrees (switches a fixed camera to the free camera).
-    pub fn set_free_camera(
-        &mut self,
-        lookat: [f64; 3],
-        distance: f64,
-        azimuth: f64,
-        elevation: f64,
-    ) {
-        self.cam.type_ = ffi::mjtCamera__mjCAMERA_FREE as c_int;
-        self.cam.lookat = lookat;
-        self.cam.distance = distance;
-        self.cam.azimuth = azimuth;
-        self.cam.elevation = elevation;
     }
 
     /// Render `data` (its kinematics as of the last step or forward) into an image, top row

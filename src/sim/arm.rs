@@ -365,10 +365,7 @@ impl<'a> ArmSim<'a> {
     }
 
     fn teleport(&mut self, p: Posture) -> Result<()> {
-        for (k, j) in self.arm.joints.iter().enumerate() {
-            self.data.qpos_mut()[j.qpos] = p[k];
-            self.data.qvel_mut()[j.dof] = 0.0;
-        }
+        self.pin(&p);
         self.targets = p;
         self.write_ctrl(&p, &[0.0; NJ], false);
         self.data.forward()?;
@@ -387,12 +384,6 @@ impl<'a> ArmSim<'a> {
         std::array::from_fn(|k| v[self.arm.joints[k].dof])
     }
 
-    /// Actuator torques of the last step, N m.
-    pub fn actuator_torques(&self) -> Posture {
-        let f = self.data.actuator_force();
-        std::array::from_fn(|k| f[self.arm.joints[k].actuator])
-    }
-
     /// The current servo targets (last checked targets given).
     pub fn targets(&self) -> Posture {
         self.targets
@@ -406,11 +397,6 @@ impl<'a> ArmSim<'a> {
     /// Position of the `l_gripper` site (hand point), torso frame, m.
     pub fn gripper_position(&self) -> [f64; 3] {
         self.data.site_xpos(self.arm.gripper_site)
-    }
-
-    /// Orientation of the `l_gripper` site, row-major 3x3 rotation matrix (torso frame).
-    pub fn gripper_orientation(&self) -> [f64; 9] {
-        self.data.site_xmat(self.arm.gripper_site)
     }
 
     /// Set the servo targets (checked); they hold until changed.

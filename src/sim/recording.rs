@@ -52,16 +52,6 @@ impl Recording {
         (index < self.joint_names.len()).then(|| self.qpos.iter().map(|r| r[index]).collect())
     }
 
-    /// Largest absolute difference between encoder and target over all samples and joints
-    /// (a tracking-error figure; includes the sensor noise if any).
-    pub fn max_tracking_error(&self) -> f64 {
-        self.qpos
-            .iter()
-            .zip(&self.target)
-            .flat_map(|(q, t)| q.iter().zip(t).map(|(a, b)| (a - b).abs()))
-            .fold(0.0, f64::max)
-    }
-
     /// Append a recording that went on from where this one ended (the state one tick after
     /// this one's last sample is `later`'s first): `later`'s times are shifted by this one's
     /// length. The rates and joints must agree.

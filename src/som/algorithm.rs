@@ -180,6 +180,17 @@ impl TryFrom<MapRecord> for SelfOrganizingMap {
     }
 }
 
+/// The `(dimension, value)` pairs of `x` among its first `dim` where `mask` is true.
+#[inline]
+pub(crate) fn known<'a>(
+    x: &'a [f64],
+    mask: &'a [bool],
+    dim: usize,
+) -> impl Iterator<Item = (usize, f64)> + 'a {
+    let pairs = x.iter().zip(mask).take(dim).enumerate();
+    pairs.filter_map(|(d, (&v, &m))| m.then_some((d, v)))
+}
+
 pub(crate) fn positions(rows: usize, cols: usize, topology: Topology) -> Vec<(f64, f64)> {
     let mut pos = Vec::with_capacity(rows * cols);
     for y in 0..rows {
@@ -377,13 +388,7 @@ impl SelfOrganizingMap {
             return (0, 0.0);
         }
         let dim = self.dim;
-        kernel::argmin(&self.w, dim, self.len(), || {
-            x.iter()
-                .zip(mask)
-                .take(dim)
-                .enumerate()
-                .filter_map(|(d, (&v, &m))| m.then_some((d, v)))
-        })
+        kernel::argmin(&self.w, dim, self.len(), || known(x, mask, dim))
     }
 
     /// Best-matching unit of `x` over the dimension range `range` only (e.g. the state half).
@@ -450,13 +455,7 @@ impl SelfOrganizingMap {
                 self.update_with(dims, bmu, alpha, radius, neighbourhood, reach)
             }
             Some(m) => {
-                let dims = || {
-                    x.iter()
-                        .zip(m)
-                        .take(dim)
-                        .enumerate()
-                        .filter_map(|(d, (&v, &m))| m.then_some((d, v)))
-                };
+                let dims = || known(x, m, dim);
                 self.update_with(dims, bmu, alpha, radius, neighbourhood, reach)
             }
         }

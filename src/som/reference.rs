@@ -1,7 +1,7 @@
 //! The map's loops node by node, without the blocked layout: the reference the kernels are
 //! tested and benchmarked against.
 
-use super::algorithm::positions;
+use super::algorithm::{known, positions};
 use super::{Neighbourhood, SelfOrganizingMap};
 
 /// A node-major map with plain loops: the reference the blocked kernels are tested against,
@@ -27,13 +27,14 @@ impl NodeMajorMap {
     pub fn n(&self) -> usize {
         self.weights.len() / self.dim
     }
-    /// Best-matching unit (ties to the lowest index).
-    pub fn bmu(&self, x: &[f64]) -> (usize, f64) {
+    /// Best-matching unit over the `(dimension, value)` pairs `pairs` yields (ties to the
+    /// lowest index).
+    fn argmin<I: Iterator<Item = (usize, f64)>>(&self, pairs: impl Fn() -> I) -> (usize, f64) {
         let mut best = (0, f64::INFINITY);
         for (i, w) in self.weights.chunks_exact(self.dim).enumerate() {
             let mut d = 0.0;
-            for (a, b) in w.iter().zip(x) {
-                let t = a - b;
+            for (k, v) in pairs() {
+                let t = w[k] - v;
                 d += t * t;
             }
             if d < best.1 {
@@ -41,38 +42,18 @@ impl NodeMajorMap {
             }
         }
         best
+    }
+    /// Best-matching unit (ties to the lowest index).
+    pub fn bmu(&self, x: &[f64]) -> (usize, f64) {
+        self.argmin(|| x.iter().copied().take(self.dim).enumerate())
     }
     /// Best-matching unit over the dimensions where `mask` is true.
     pub fn bmu_masked(&self, x: &[f64], mask: &[bool]) -> (usize, f64) {
-        let mut best = (0, f64::INFINITY);
-        for (i, w) in self.weights.chunks_exact(self.dim).enumerate() {
-            let mut d = 0.0;
-            for ((a, b), &m) in w.iter().zip(x).zip(mask) {
-                if m {
-                    let t = a - b;
-                    d += t * t;
-                }
-            }
-            if d < best.1 {
-                best = (i, d);
-            }
-        }
-        best
+        self.argmin(|| known(x, mask, self.dim))
     }
     /// Best-matching unit over the dimensions `range`.
     pub fn bmu_range(&self, x: &[f64], range: std::ops::Range<usize>) -> (usize, f64) {
-        let mut best = (0, f64::INFINITY);
-        for (i, w) in self.weights.chunks_exact(self.dim).enumerate() {
-            let mut d = 0.0;
-            for (a, b) in w[range.clone()].iter().zip(x) {
-                let t = a - b;
-                d += t * t;
-            }
-            if d < best.1 {
-                best = (i, d);
-            }
-        }
-        best
+        self.argmin(|| range.clone().zip(x.iter().copied()))
     }
     /// Best and second-best matching units.
     pub fn best_two(&self, x: &[f64]) -> (usize, usize) {
