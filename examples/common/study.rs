@@ -14,13 +14,13 @@ use cosco_hsom::config::HsomConfig;
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::fsutil::write_atomic;
 use cosco_hsom::gesture::Gesture;
+use cosco_hsom::hsom::LevelSummary;
 pub use cosco_hsom::metrics::median;
 use cosco_hsom::metrics::FidelityReport;
 use cosco_hsom::sim::NaoArm;
 
 use cosco_hsom::eval::{FoldInput, FoldScores, HeldOut, HeldOutSummary, Method, Pool, Training};
 use cosco_hsom::experiment::heldout::{folds, on_arm};
-use cosco_hsom::experiment::report::{level_rows, LevelRow};
 use cosco_hsom::experiment::{synthetic_demonstrations, DemoSettings, ExperimentError, Transition};
 
 /// Demonstrations the per-level accuracy is measured on (the first ones of each set).
@@ -64,7 +64,7 @@ pub struct StudyRow {
     /// Learned from all, scored against all (with `in_sample`).
     pub in_sample: Option<InSample>,
     /// Levels of a hierarchy trained on the first `levels_demos` demonstrations.
-    pub levels: Vec<LevelRow>,
+    pub levels: Vec<LevelSummary>,
     /// Demonstrations that hierarchy learned from.
     pub levels_demos: usize,
 }
@@ -152,7 +152,7 @@ fn run_job(
                 seed,
                 heldout,
                 in_sample,
-                levels: level_rows(&model),
+                levels: model.summary().levels,
                 levels_demos,
             })
         })

@@ -93,7 +93,7 @@ fn run(a: Args) -> Result<()> {
     let bars = cli::StageBars::default();
     let on_progress = |stage: &str, done, total| bars.update(stage, done, total);
     if job.gesture == "all" {
-        let lines = job::all_gestures_job(&job, &on_progress)?;
+        let lines = cosco_hsom::experiment::all_gestures::all_gestures_job(&job, &on_progress)?;
         bars.finish();
         for line in lines {
             outln!("{line}");

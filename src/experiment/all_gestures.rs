@@ -10,10 +10,9 @@
 //! issue). The model saved, reproduced and filmed is fold `count - 1`'s (learned from the
 //! first `count - 1` demonstrations of each gesture).
 
-use std::path::Path;
-
 use serde::Serialize;
 
+use crate::app;
 use crate::config::HsomConfig;
 use crate::demos::{write_csv, Demonstration};
 use crate::dtw::Band;
@@ -23,31 +22,19 @@ use crate::hsom::{GestureError, GestureModel};
 use crate::nearest::NearestNeighbour;
 use crate::plot::{caption, confusion_png, ConfusionPanel};
 use crate::render::{contact_sheet, save_png, Clip};
-use crate::sim::{ArmExecutor, NaoArm, Recording, Transition};
+use crate::sim::{ArmExecutor, NaoArm, Recording};
 
-use super::demonstrate::{synthetic_demonstrations, DemoSettings};
+use super::demonstrate::{synthetic_demonstrations, write_demos, DemoSettings};
 use super::film::{clip_options, film};
 use super::heldout::on_arm;
-use super::ExperimentError;
+use super::job::Job;
+use super::output::{config_name, load_arm};
+use super::report::{files_section, write_report};
+use super::{ExperimentError, Progress};
 use crate::metrics::median;
 
 /// Frames of each gesture on the contact sheet (one row per gesture).
 const SHEET_COLUMNS: usize = 4;
-
-/// Settings of the job.
-#[derive(Debug, Clone)]
-pub struct AllSettings {
-    /// Demonstrations per gesture (at least 2: one is held out in turn).
-    pub count: usize,
-    /// Seed of the demonstrations.
-    pub seed: u64,
-    /// Encoder noise of the demonstrations, rad.
-    pub noise: f64,
-    /// How postures become servo targets.
-    pub transition: Transition,
-    /// Render the clip and contact sheet.
-    pub render: bool,
-}
 
 /// One gesture's fidelity, held out: the shared hierarchy beside the gesture learned alone
 /// (same configuration, same folds), means over the folds.
@@ -127,17 +114,16 @@ pub struct AllReport {
 impl AllReport {
     /// Fraction of queries CoSCo-HSOM answered with the gesture shown.
     pub fn accuracy(&self) -> f64 {
-        let right = self
-            .queries
-            .iter()
-            .filter(|q| q.hsom.as_deref() == Some(q.expected.as_str()))
-            .count();
-        right as f64 / self.queries.len().max(1) as f64
+        self.share(|q| q.hsom.as_deref() == Some(q.expected.as_str()))
     }
 
     /// Fraction of queries the 1-NN DTW baseline answered with the gesture shown.
     pub fn nn_accuracy(&self) -> f64 {
-        let right = self.queries.iter().filter(|q| q.nn == q.expected).count();
+        self.share(|q| q.nn == q.expected)
+    }
+
+    fn share(&self, right: impl Fn(&AllQuery) -> bool) -> f64 {
+        let right = self.queries.iter().filter(|&q| right(q)).count();
         right as f64 / self.queries.len().max(1) as f64
     }
 
@@ -166,8 +152,7 @@ impl AllReport {
             s,
             "## Fidelity per gesture, held out: the shared hierarchy beside the gesture learned alone\n"
         );
-        let _ = writeln!(s, "| gesture | shared joint DTW (rad/step) | alone joint DTW | shared / alone | shared wrist DTW (mm) | alone wrist DTW (mm) | shared duration ratio | folds |");
-        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+        let _ = writeln!(s, "| gesture | shared joint DTW (rad/step) | alone joint DTW | shared / alone | shared wrist DTW (mm) | alone wrist DTW (mm) | shared duration ratio | folds |\n|---|---|---|---|---|---|---|---|");
         let mm = |v: Option<f64>| v.map_or("n/a".to_string(), |x| format!("{x:.1}"));
         for f in &self.fidelity {
             let _ = writeln!(
@@ -231,16 +216,11 @@ impl AllReport {
              (`reproduction_<gesture>.csv`; `clip.gif` plays them in turn).\n",
             self.count - 1
         );
-        let _ = writeln!(s, "| gesture | samples | stopped |");
-        let _ = writeln!(s, "|---|---|---|");
+        let _ = writeln!(s, "| gesture | samples | stopped |\n|---|---|---|");
         for (g, n, stop) in &self.reproductions {
             let _ = writeln!(s, "| {g} | {n} | {stop} |");
         }
-        let _ = writeln!(s, "\n## Files\n");
-        for f in &self.files {
-            let _ = writeln!(s, "- `{f}`");
-        }
-        s
+        s + &files_section(&self.files)
     }
 }
 
@@ -252,22 +232,53 @@ fn werr(what: &str, e: impl std::fmt::Display) -> ExperimentError {
     ExperimentError::Invalid(format!("{what}: {e}"))
 }
 
-/// What a stage reports to a progress display: (stage, done, total).
-pub type Progress<'a> = &'a dyn Fn(&str, usize, usize);
+/// `simulate --gesture all`: one hierarchy for every gesture, its files written into
+/// `job.out` (see [`run_all_gestures`]); returns the report's summary lines.
+pub fn all_gestures_job(job: &Job, progress: Progress<'_>) -> Result<Vec<String>, ExperimentError> {
+    if job.demos.is_some() {
+        return Err(ExperimentError::Invalid(
+            "--gesture all records synthetic demonstrations of every gesture; to learn several gestures from recorded files use `cosco train --demos DIR` with one subdirectory per gesture (DIR/<gesture>/*.csv)"
+        .into()));
+    }
+    let out = &job.out;
+    std::fs::create_dir_all(out).map_err(ExperimentError::io("creating", out))?;
+    let cfg = app::config(job.config.as_deref())?;
+    let arm = load_arm(job.model.as_deref())?;
+    let report = run_all_gestures(&arm, &cfg, &Gesture::all(), job, progress)?;
+    let mut lines: Vec<String> = report
+        .fidelity
+        .iter()
+        .map(|f| {
+            format!(
+                "{:<14} held-out joint DTW {:.4} rad/step in the shared hierarchy, {:.4} learned alone ({:.2}x)",
+                f.gesture,
+                f.shared_joint_dtw,
+                f.alone_joint_dtw,
+                f.ratio()
+            )
+        })
+        .collect();
+    lines.push(format!(
+        "recognition of {} held-out demonstrations: CoSCo-HSOM {:.0} %, 1-NN DTW {:.0} %",
+        report.queries.len(),
+        100.0 * report.accuracy(),
+        100.0 * report.nn_accuracy()
+    ));
+    Ok(lines)
+}
 
-/// Run the job and write its files into `out`: `demos/<gesture>/demo_NN.csv`, `model.bin`,
-/// `reproduction_<gesture>.csv`, `confusion.png`, `report.md`, `report.json`, and with
-/// rendering `clip.gif` and `contact_sheet.png`.
-pub fn run_all_gestures(
+/// Run the job on `gestures` as `job` says (demonstrations per gesture, seed, encoder noise,
+/// transition, rendering) and write its files into `job.out`: `demos/<gesture>/demo_NN.csv`,
+/// `model.bin`, `reproduction_<gesture>.csv`, `confusion.png`, `report.md`, `report.json`,
+/// and with rendering `clip.gif` and `contact_sheet.png`.
+fn run_all_gestures(
     arm: &NaoArm,
     config: &HsomConfig,
-    config_name: &str,
     gestures: &[Gesture],
-    settings: &AllSettings,
-    out: &Path,
+    job: &Job,
     progress: Progress<'_>,
 ) -> Result<AllReport, ExperimentError> {
-    let (count, transition) = (settings.count, settings.transition);
+    let (count, transition, out) = (job.count, job.transition, &job.out);
     if count < 2 {
         return Err(ExperimentError::Invalid(format!(
             "--count {count} with --gesture all: at least 2 demonstrations per gesture (each is held out in turn)"
@@ -286,19 +297,20 @@ pub fn run_all_gestures(
     let mut files = Vec::new();
     // 1. demonstrations, written into labelled subdirectories (`cosco train` reads them back)
     let demo_settings = DemoSettings {
-        encoder_noise: settings.noise,
+        encoder_noise: job.noise,
         ..DemoSettings::default()
     };
     let mut all: Vec<Vec<Demonstration>> = Vec::new();
     for (i, g) in gestures.iter().enumerate() {
         progress("demonstrations", i, gestures.len());
-        let demos = synthetic_demonstrations(arm, g, count, settings.seed, &demo_settings, |_| {})?;
-        let dir = out.join("demos").join(g.name);
-        std::fs::create_dir_all(&dir).map_err(|e| werr(&dir.display().to_string(), e))?;
-        for (k, d) in demos.iter().enumerate() {
-            let rel = format!("demos/{}/demo_{:02}.csv", g.name, k + 1);
-            write_csv(&out.join(&rel), d).map_err(|e| werr(&rel, e))?;
-            files.push(rel);
+        let demos = synthetic_demonstrations(arm, g, count, job.seed, &demo_settings, |_| {})?;
+        for path in write_demos(&out.join("demos").join(g.name), &demos)? {
+            files.push(
+                path.strip_prefix(out)
+                    .unwrap_or(&path)
+                    .display()
+                    .to_string(),
+            );
         }
         all.push(demos);
     }
@@ -308,7 +320,8 @@ pub fn run_all_gestures(
     let mut per_gesture: Vec<Vec<[f64; 5]>> = vec![Vec::new(); labels.len()];
     let mut wrist_missing = false;
     let mut last_model = None;
-    let mut last_fold: Vec<(String, usize, String, Recording)> = Vec::new();
+    // the saved model's reproductions on cue, kept for their files and the clip
+    let (mut reproductions, mut executed) = (Vec::new(), Vec::<(String, Recording)>::new());
     for k in 0..count {
         progress("held-out folds", k, count);
         let sets: Vec<(String, Vec<Demonstration>)> = labels
@@ -369,9 +382,9 @@ pub fn run_all_gestures(
                 s.fidelity.duration_ratio.mean,
             ]);
             if k == count - 1 {
-                // the saved model's: kept for its files and the clip
                 let stop = format!("{:?}", shared.stop);
-                last_fold.push((label.clone(), shared.postures.len(), stop, s.trace));
+                reproductions.push((label.clone(), shared.postures.len(), stop));
+                executed.push((label.clone(), s.trace));
             }
         }
         last_model = Some(model);
@@ -405,15 +418,11 @@ pub fn run_all_gestures(
         .save(&out.join("model.bin"))
         .map_err(|e| werr("model.bin", e))?;
     files.push("model.bin".into());
-    let mut executed: Vec<(String, Recording)> = Vec::new();
-    let mut reproductions = Vec::new();
-    for (label, samples, stop, rec) in last_fold {
+    for (label, rec) in &executed {
         let rel = format!("reproduction_{label}.csv");
         let name = format!("CoSCo-HSOM reproduction of {label} (shared hierarchy)");
         write_csv(&out.join(&rel), &rec.to_demonstration(&name)).map_err(|err| werr(&rel, err))?;
         files.push(rel);
-        reproductions.push((label.clone(), samples, stop));
-        executed.push((label, rec));
     }
     // 4. the confusion matrices as a figure
     let panel = |title: String, counts: &[Vec<usize>], unknown: bool| ConfusionPanel {
@@ -431,10 +440,10 @@ pub fn run_all_gestures(
     };
     let mut report = AllReport {
         labels: labels.clone(),
-        config: config_name.to_string(),
+        config: config_name(job.config.as_deref()),
         count,
-        seed: settings.seed,
-        noise: settings.noise,
+        seed: job.seed,
+        noise: job.noise,
         fidelity,
         queries,
         confusion,
@@ -461,12 +470,12 @@ pub fn run_all_gestures(
     .map_err(|e| werr("confusion.png", e))?;
     report.files.push("confusion.png".into());
     // 5. the clip: the gestures in turn
-    if settings.render {
+    if job.render {
         let opts = clip_options();
         let stride = 3;
         let total: usize = executed.iter().map(|(_, r)| r.len().div_ceil(stride)).sum();
         let mut clip: Option<Clip> = None;
-        let mut sheet: Vec<(Option<String>, image::RgbImage)> = Vec::new();
+        let mut sheet: Vec<image::RgbImage> = Vec::new();
         let (mut offset, mut done) = (0.0, 0);
         for (label, rec) in &executed {
             let part = film(arm, rec, &opts, stride, |n, _| {
@@ -478,7 +487,7 @@ pub fn run_all_gestures(
                 let (t, f) = part.frames().nth(i).expect("a key frame is a frame");
                 let mut f = f.clone();
                 caption(&mut f, &format!("{label}  t = {t:.1} s"), 18);
-                sheet.push((None, f));
+                sheet.push(f);
             }
             let c = match &mut clip {
                 Some(c) => c,
@@ -493,7 +502,7 @@ pub fn run_all_gestures(
             c.write_gif(&out.join("clip.gif"))?;
             report.files.push("clip.gif".into());
             let picked: Vec<(Option<String>, &image::RgbImage)> =
-                sheet.iter().map(|(l, f)| (l.clone(), f)).collect();
+                sheet.iter().map(|f| (None, f)).collect();
             save_png(
                 &contact_sheet(&picked, SHEET_COLUMNS)?,
                 &out.join("contact_sheet.png"),
@@ -501,13 +510,11 @@ pub fn run_all_gestures(
             report.files.push("contact_sheet.png".into());
         }
     }
-    report.files.push("report.md".into());
-    report.files.push("report.json".into());
-    crate::fsutil::write_atomic(&out.join("report.md"), report.to_markdown().as_bytes())
-        .map_err(|e| werr("report.md", e))?;
-    let json = serde_json::to_vec_pretty(&report).map_err(|e| werr("report.json", e))?;
-    crate::fsutil::write_atomic(&out.join("report.json"), &json)
-        .map_err(|e| werr("report.json", e))?;
+    report
+        .files
+        .extend(["report.md".into(), "report.json".into()]);
+    write_report(out, &report, &report.to_markdown())
+        .map_err(ExperimentError::io("writing the report into", out))?;
     Ok(report)
 }
 

@@ -9,7 +9,7 @@
 //!
 //! 1. a minimum-jerk lead-in from the initial posture `q₀` to `m(0)` (GMR's first point):
 //!    `q(s) = q₀ + (m(0) − q₀)(10 s³ − 15 s⁴ + 6 s⁵)`, `s = k / n`, `k = 0 … n−1`, whose
-//!    duration `T = max(`[`LEAD_IN_MIN_S`]`, 1.875 · max_j |m_j(0) − q₀_j| / `[`LEAD_IN_PEAK_SPEED`]`)`
+//!    duration `T = max(`[`LEAD_IN_MIN_S`](crate::gmr::LEAD_IN_MIN_S)`, 1.875 · max_j |m_j(0) − q₀_j| / `[`LEAD_IN_PEAK_SPEED`]`)`
 //!    (1.875 · Δ / T is the peak speed of a minimum-jerk move), rounded up to whole ticks
 //!    (`n = ⌈T · rate⌉`);
 //! 2. then GMR's mean `m(t)` at `t = 0, dt, …, duration` (the reference demonstration's
@@ -23,13 +23,12 @@ use std::path::Path;
 
 use plotters::style::RGBColor;
 
-use crate::gmr::{
-    lead_in_ticks_at, plan_at, ComponentChoice, GmrModel, GmrParams, GmrValidParams, TrainingSet,
-};
-pub use crate::gmr::{minimum_jerk, GmrPlan, LEAD_IN_MIN_S};
-use crate::plot::{demo_color, panels_png, Band, Ellipse, Panel, Scatter, Series};
-pub use crate::sim::LEAD_IN_PEAK_SPEED;
+use crate::gmr::TrainingSet;
+use crate::gmr::{plan_at, ComponentChoice, GmrModel, GmrParams, GmrPlan, GmrValidParams};
+use crate::plot::{panels_png, Band, Ellipse, Panel, Scatter, Series};
+use crate::sim::LEAD_IN_PEAK_SPEED;
 
+use super::figures::{joint_panels_png, Curve};
 use super::ExperimentError;
 
 /// Name of the baseline in reports.
@@ -44,12 +43,6 @@ pub const GMR_NEEDS: &str = "at least 2 demonstrations, pre-processed: idle star
 pub const DEFAULT_COMPONENTS: ComponentChoice = crate::eval::GMR_COMPONENTS;
 /// Colour of the baseline's curves.
 pub const GMR_COLOR: RGBColor = RGBColor(200, 0, 130);
-
-/// Ticks of the lead-in from `from` to `to` at `rate_hz` (see the module documentation); at
-/// least 1 (the initial posture itself).
-pub fn lead_in_ticks(from: &[f64], to: &[f64], rate_hz: f64) -> usize {
-    lead_in_ticks_at(from, to, rate_hz, LEAD_IN_PEAK_SPEED)
-}
 
 /// The plan: the lead-in from `initial` to GMR's first point, then GMR's mean every
 /// `1 / rate_hz` seconds over the model's duration.
@@ -76,24 +69,8 @@ pub fn fig3_png(
     training: &TrainingSet,
     joints: &[(usize, &str)],
 ) -> Result<(), ExperimentError> {
-    let panels: Vec<Panel> = joints
-        .iter()
-        .map(|&(k, name)| {
-            let mut p = Panel::new(name, "time (s)", format!("{name} (rad)"));
-            for (i, d) in training.demos.iter().enumerate() {
-                p.series.push(Series::new(
-                    format!("demonstration {}", i + 1),
-                    demo_color(i),
-                    training
-                        .times
-                        .iter()
-                        .zip(d)
-                        .filter_map(|(t, q)| q.get(k).map(|v| (*t, *v)))
-                        .collect(),
-                ));
-            }
-            p
-        })
+    let curves: Vec<Curve> = (training.demos.iter().enumerate())
+        .map(|(i, d)| Curve::demo(i, (&training.times[..], &d[..])))
         .collect();
     let title = format!(
         "Pre-processed training data for GMM: idle trimmed, DTW-aligned{}, {} points each",
@@ -102,7 +79,7 @@ pub fn fig3_png(
             .map_or(String::new(), |r| format!(" to demonstration {}", r + 1)),
         training.times.len()
     );
-    Ok(panels_png(path, &title, &panels, 2, (620, 380))?)
+    Ok(joint_panels_png(path, &title, joints, &curves, "rad")?)
 }
 
 /// The paper's Fig. 5 for column `joint` (named `name`): each Gaussian's marginal over

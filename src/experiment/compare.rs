@@ -12,13 +12,13 @@ use crate::gmr::{GmrPlan, TrainingSet};
 use crate::plot::BLACK;
 use crate::sim::{demo_wrist_paths, NaoArm, Recording, Transition, JOINT_NAMES};
 
-use super::all_gestures::Progress;
 use super::baseline::{fig3_png, fig5_png, GMR_COLOR, GMR_NAME, GMR_NEEDS};
-use super::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
+use super::figures::{demo_curves, demo_paths, joint_panels_png, reproduction, wrist_png};
 use super::heldout::on_arm;
-use super::output::{config_name, file_size, load_arm, write_hsom_run, Stopwatch, FIG4_JOINTS};
+use super::output::FIG4_JOINTS;
+use super::output::{config_name, file_size, hsom_on_arm, load_arm, write_hsom_run, Stopwatch};
 use super::report::{DemoInfo, MethodResult, Report};
-use super::ExperimentError;
+use super::{ExperimentError, Progress};
 use crate::export::limits::are_arm_joints;
 
 /// The result of a job's step.
@@ -120,23 +120,10 @@ pub fn baseline_section(
     )?;
     files.push("fig5_gmr_lshoulderpitch.png".into());
 
-    let mut curves: Vec<Curve> = demos
-        .iter()
-        .enumerate()
-        .map(|(i, d)| Curve::demo(i, d.time.as_deref().unwrap_or(&[]), &d.rows))
-        .collect();
-    curves.push(Curve::reproduction(
-        "CoSCo-HSOM reproduction",
-        &hsom.time,
-        &hsom.qpos,
-    ));
-    curves.push(Curve {
-        label: "GMM/GMR reproduction".into(),
-        color: GMR_COLOR,
-        width: 3,
-        time: &executed.time,
-        rows: &executed.qpos,
-    });
+    let (hsom_curve, hsom_path) = reproduction("CoSCo-HSOM reproduction", BLACK, hsom);
+    let (gmr_curve, gmr_path) = reproduction("GMM/GMR reproduction", GMR_COLOR, executed);
+    let mut curves = demo_curves(demos);
+    curves.extend([hsom_curve, gmr_curve]);
     joint_panels_png(
         &out.join("joints_compare.png"),
         "Demonstrations (colour), CoSCo-HSOM (black), GMM/GMR (magenta: learned without the idle start)",
@@ -147,16 +134,7 @@ pub fn baseline_section(
     files.push("joints_compare.png".into());
 
     let mut paths = demo_paths(demo_wrists);
-    paths.push(Path3::reproduction(
-        "CoSCo-HSOM reproduction",
-        BLACK,
-        &hsom.wrist,
-    ));
-    paths.push(Path3::reproduction(
-        "GMM/GMR reproduction",
-        GMR_COLOR,
-        &executed.wrist,
-    ));
+    paths.extend([hsom_path, gmr_path]);
     wrist_png(
         &out.join("wrist_compare.png"),
         "Wrist path (l_wrist), torso frame: both methods",
@@ -220,18 +198,7 @@ fn gmr_result(
             chosen.join(", ")
         ));
     }
-    MethodResult {
-        name: GMR_NAME.into(),
-        needs: GMR_NEEDS.into(),
-        fidelity: run.executed.fidelity.clone(),
-        train_s: run.train_s,
-        reproduce_s: run.reproduce_s,
-        model_bytes,
-        postures: plan.postures.len(),
-        clamped_values: run.executed.clamped_values,
-        notes,
-        heldout: None,
-    }
+    MethodResult::of(GMR_NAME, GMR_NEEDS, run, model_bytes, notes)
 }
 
 /// What `cosco compare` needs.
@@ -253,39 +220,10 @@ pub struct CompareJob {
     pub resample: Option<f64>,
 }
 
-/// Train CoSCo-HSOM, reproduce from `demos[0]`'s first posture, execute on the arm with
-/// `transition`, score (the main job's in-sample run); writes `model.bin` and
-/// `reproduction.csv` into `out`.
-fn hsom_method(
-    cfg: &crate::config::HsomConfig,
-    arm: &NaoArm,
-    demos: &[Demonstration],
-    transition: Transition,
-    out: &Path,
-    files: &mut Vec<String>,
-    on_progress: Progress<'_>,
-) -> Result<(MethodResult, Recording)> {
-    let total = cfg.params().training_steps;
-    let progress = |done, _| on_progress("training", done, total);
-    let input = FoldInput {
-        config: Some(cfg),
-        progress: Some(&progress),
-        ..FoldInput::new(demos, demos)
-    };
-    let run = on_arm(arm, transition, Method::Hierarchy, &input)?;
-    let result = write_hsom_run(
-        out,
-        &run,
-        vec![format!("transition: {transition:?}")],
-        files,
-    )?;
-    Ok((result, run.executed.trace))
-}
-
 /// `cosco compare`: both methods on the same demonstrations, executed on the simulated arm;
 /// report, csvs, models and plots written into `job.out`.
 pub fn compare(job: &CompareJob, on_progress: Progress<'_>) -> Result<Report> {
-    let mut clock = Stopwatch::new();
+    let mut clock = Stopwatch::default();
     let out = &job.out;
     let cfg = app::config(job.config.as_deref())?;
     let demos = app::read_demos(std::slice::from_ref(&job.demos), None, job.resample)?;
@@ -308,39 +246,28 @@ pub fn compare(job: &CompareJob, on_progress: Progress<'_>) -> Result<Report> {
     let arm = load_arm(job.model.as_deref())?;
     let demo_info: Vec<DemoInfo> = demos
         .iter()
-        .map(|d| DemoInfo {
-            file: d.source.clone(),
-            samples: d.rows.len(),
-            duration_s: (d.rows.len().saturating_sub(1)) as f64 * sample_period(d),
-        })
+        .map(|d| DemoInfo::new(d.source.clone(), d))
         .collect();
     clock.lap("read demonstrations");
 
     let mut files = Vec::new();
-    let (hsom_result, hsom_exec) = hsom_method(
-        &cfg,
-        &arm,
-        &demos,
-        job.transition,
-        out,
-        &mut files,
-        on_progress,
-    )?;
+    let run = hsom_on_arm(&arm, &cfg, &demos, job.transition, on_progress)?;
+    let notes = vec![format!("transition: {:?}", job.transition)];
+    let hsom_result = write_hsom_run(out, &run, notes, &mut files)?;
     clock.lap("CoSCo-HSOM (train + reproduce + execute + metrics)");
     let demo_wrists = demo_wrist_paths(&arm, &demos)?;
     let gmr_result = baseline_section(
         &arm,
         &demos,
         &demo_wrists,
-        &hsom_exec,
+        &run.executed.trace,
         out,
         job.components,
         &mut files,
     )?;
     clock.lap("GMM/GMR (fit + reproduce + execute + metrics + plots)");
 
-    files.push("report.md".into());
-    files.push("report.json".into());
+    files.extend(["report.md".into(), "report.json".into()]);
     let report = Report {
         title: "CoSCo-HSOM and the GMM/GMR baseline on the simulated Nao left arm".into(),
         gesture: None,

@@ -4,7 +4,9 @@
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-use crate::demos::Demonstration;
+use std::path::{Path, PathBuf};
+
+use crate::demos::{write_csv, Demonstration};
 use crate::gesture::{Gesture, HumanTrajectory, Variation};
 use crate::sim::{Controller, ControllerConfig, NaoArm, Recording, TargetTrajectory, JOINT_SPECS};
 
@@ -34,11 +36,6 @@ impl Default for DemoSettings {
     }
 }
 
-/// The joints' ranges in model order, for the demonstrator.
-pub fn joint_limits() -> Vec<(f64, f64)> {
-    JOINT_SPECS.iter().map(|s| s.range).collect()
-}
-
 /// Record `count` demonstrations of `gesture` on the simulated arm. Everything random comes
 /// from `seed`: demonstration `i` uses its own sub-stream, so demonstration 0 is the same
 /// whatever `count` is.
@@ -55,7 +52,8 @@ pub fn record_demonstrations(
             "demonstration count is 0: need at least 1".into(),
         ));
     }
-    let limits = joint_limits();
+    // the joints' ranges in model order, for the demonstrator
+    let limits: Vec<(f64, f64)> = JOINT_SPECS.iter().map(|s| s.range).collect();
     let mut out = Vec::with_capacity(count);
     for i in 0..count {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -103,6 +101,18 @@ pub fn synthetic_demonstrations(
             ))
         })
         .collect())
+}
+
+/// Write demonstrations as `demo_01.csv`, ... in `dir` (created if missing).
+pub fn write_demos(dir: &Path, demos: &[Demonstration]) -> Result<Vec<PathBuf>, ExperimentError> {
+    std::fs::create_dir_all(dir).map_err(ExperimentError::io("creating", dir))?;
+    let mut files = Vec::new();
+    for (i, d) in demos.iter().enumerate() {
+        let p = dir.join(format!("demo_{:02}.csv", i + 1));
+        write_csv(&p, d)?;
+        files.push(p);
+    }
+    Ok(files)
 }
 
 /// Parse seeds: a comma-separated list of numbers and inclusive ranges `A-B` (`1-5`,

@@ -4,45 +4,79 @@ use std::path::Path;
 
 use plotters::style::RGBColor;
 
-use crate::plot::{demo_color, panels_png, Panel, PlotError, Series, BLACK};
+use crate::demos::Demonstration;
+use crate::plot::{demo_color, panels_png, Panel, PlotError, Series};
+use crate::sim::Recording;
 
-/// A trajectory to draw: a legend label, a colour, sample times and rows.
+/// Something to draw as a line: a legend label, a colour, a line width and its data (a
+/// [`Curve`]'s sample times and rows, a [`Path3`]'s positions).
 #[derive(Debug, Clone)]
-pub struct Curve<'a> {
+pub struct Trace<D> {
     /// Legend entry.
     pub label: String,
     /// Line colour.
     pub color: RGBColor,
     /// Line width in pixels.
     pub width: u32,
-    /// Sample times, seconds.
-    pub time: &'a [f64],
-    /// One row per sample.
-    pub rows: &'a [Vec<f64>],
+    /// What is drawn.
+    pub data: D,
 }
 
-impl<'a> Curve<'a> {
+/// A trajectory: sample times (seconds) and one row per sample.
+pub type Curve<'a> = Trace<(&'a [f64], &'a [Vec<f64>])>;
+
+/// A wrist path: positions in metres, torso frame.
+pub type Path3<'a> = Trace<&'a [[f64; 3]]>;
+
+impl<D> Trace<D> {
     /// The `i`-th demonstration, in the palette's `i`-th colour.
-    pub fn demo(i: usize, time: &'a [f64], rows: &'a [Vec<f64>]) -> Self {
-        Curve {
+    pub fn demo(i: usize, data: D) -> Self {
+        Trace {
             label: format!("demonstration {}", i + 1),
             color: demo_color(i),
             width: 2,
-            time,
-            rows,
+            data,
         }
     }
 
-    /// A reproduction in black, drawn thicker.
-    pub fn reproduction(label: impl Into<String>, time: &'a [f64], rows: &'a [Vec<f64>]) -> Self {
-        Curve {
+    /// A reproduction, drawn thicker.
+    pub fn reproduction(label: impl Into<String>, color: RGBColor, data: D) -> Self {
+        Trace {
             label: label.into(),
-            color: BLACK,
+            color,
             width: 3,
-            time,
-            rows,
+            data,
         }
     }
+
+    /// Its line through `points`.
+    fn series(&self, points: Vec<(f64, f64)>) -> Series {
+        Series {
+            label: Some(self.label.clone()),
+            color: self.color,
+            width: self.width,
+            points,
+        }
+    }
+}
+
+/// An executed reproduction, drawn thicker: its trajectory (sample times, encoder rows) and
+/// its wrist path.
+pub fn reproduction<'a>(
+    label: &str,
+    color: RGBColor,
+    rec: &'a Recording,
+) -> (Curve<'a>, Path3<'a>) {
+    let curve = Curve::reproduction(label, color, (&rec.time[..], &rec.qpos[..]));
+    (curve, Path3::reproduction(label, color, &rec.wrist[..]))
+}
+
+/// The demonstrations' curves (their own times; none without a time column), each in its
+/// palette colour.
+pub fn demo_curves(demos: &[Demonstration]) -> Vec<Curve<'_>> {
+    (demos.iter().enumerate())
+        .map(|(i, d)| Curve::demo(i, (d.time.as_deref().unwrap_or(&[]), &d.rows[..])))
+        .collect()
 }
 
 /// One panel per named column (`columns[k]` names column `k` of the rows), every curve in
@@ -59,17 +93,10 @@ pub fn joint_panels_png(
         .map(|&(k, name)| {
             let mut p = Panel::new(name, "time (s)", format!("{name} ({unit})"));
             for c in curves {
-                p.series.push(Series {
-                    label: Some(c.label.clone()),
-                    color: c.color,
-                    width: c.width,
-                    points: c
-                        .time
-                        .iter()
-                        .zip(c.rows)
-                        .filter_map(|(t, r)| r.get(k).map(|v| (*t, *v)))
-                        .collect(),
-                });
+                let (time, rows) = c.data;
+                let points = time.iter().zip(rows);
+                let points = points.filter_map(|(t, r)| r.get(k).map(|v| (*t, *v)));
+                p.series.push(c.series(points.collect()));
             }
             p
         })
@@ -77,47 +104,10 @@ pub fn joint_panels_png(
     panels_png(path, title, &panels, 2, (620, 380))
 }
 
-/// A wrist path to draw (positions in metres, torso frame).
-#[derive(Debug, Clone)]
-pub struct Path3<'a> {
-    /// Legend entry.
-    pub label: String,
-    /// Line colour.
-    pub color: RGBColor,
-    /// Line width in pixels.
-    pub width: u32,
-    /// Positions, m.
-    pub points: &'a [[f64; 3]],
-}
-
-impl<'a> Path3<'a> {
-    /// The `i`-th demonstration's path, in the palette's `i`-th colour.
-    pub fn demo(i: usize, points: &'a [[f64; 3]]) -> Self {
-        Path3 {
-            label: format!("demonstration {}", i + 1),
-            color: demo_color(i),
-            width: 2,
-            points,
-        }
-    }
-
-    /// A reproduction's path, drawn thicker.
-    pub fn reproduction(label: impl Into<String>, color: RGBColor, points: &'a [[f64; 3]]) -> Self {
-        Path3 {
-            label: label.into(),
-            color,
-            width: 3,
-            points,
-        }
-    }
-}
-
 /// The demonstrations' wrist paths, each in its palette colour.
 pub fn demo_paths(wrists: &[Vec<[f64; 3]>]) -> Vec<Path3<'_>> {
-    wrists
-        .iter()
-        .enumerate()
-        .map(|(i, w)| Path3::demo(i, w))
+    (wrists.iter().enumerate())
+        .map(|(i, w)| Path3::demo(i, &w[..]))
         .collect()
 }
 
@@ -125,32 +115,24 @@ pub fn demo_paths(wrists: &[Vec<[f64; 3]>]) -> Vec<Path3<'_>> {
 /// robot's left on the right of the picture) and from the side (x-z plane), in millimetres,
 /// with equal axis scales.
 pub fn wrist_png(path: &Path, title: &str, paths: &[Path3<'_>]) -> Result<(), PlotError> {
-    let mm = |v: f64| v * 1000.0;
-    let mut front = Panel::new(
+    let view = |title: &str, x_label: &str, x: usize| {
+        let mut panel = Panel::new(title, x_label, "z: up (mm)");
+        panel.equal_aspect = true;
+        for p in paths {
+            let points = p.data.iter().map(|q| (q[x] * 1000.0, q[2] * 1000.0));
+            panel.series.push(p.series(points.collect()));
+        }
+        panel
+    };
+    let front = view(
         "front view (seen from ahead of the robot)",
         "y: robot's left (mm)",
-        "z: up (mm)",
+        1,
     );
-    let mut side = Panel::new(
+    let side = view(
         "side view (seen from the robot's left)",
         "x: forward (mm)",
-        "z: up (mm)",
+        0,
     );
-    front.equal_aspect = true;
-    side.equal_aspect = true;
-    for p in paths {
-        front.series.push(Series {
-            label: Some(p.label.clone()),
-            color: p.color,
-            width: p.width,
-            points: p.points.iter().map(|q| (mm(q[1]), mm(q[2]))).collect(),
-        });
-        side.series.push(Series {
-            label: Some(p.label.clone()),
-            color: p.color,
-            width: p.width,
-            points: p.points.iter().map(|q| (mm(q[0]), mm(q[2]))).collect(),
-        });
-    }
     panels_png(path, title, &[front, side], 2, (620, 520))
 }

@@ -5,24 +5,26 @@
 //! through a callback `(stage, done, total)`; nothing here prints.
 
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 use crate::app;
-use crate::demos::{self, sample_period, Demonstration};
-use crate::eval::{FoldInput, Method, Training};
+use crate::demos::Demonstration;
+use crate::eval::Training;
 use crate::gesture::Gesture;
 use crate::plot::BLACK;
 use crate::sim::{check_reachable, demo_wrist_paths, NaoArm, Transition, JOINT_NAMES};
 
-use super::all_gestures::Progress;
 use super::baseline::GMR_NAME;
 use super::compare;
-use super::figures::{demo_paths, joint_panels_png, wrist_png, Curve, Path3};
-use super::heldout::{hierarchy_held_out, on_arm};
-use super::output::{config_name, hsom_model, load_arm, write_hsom_run, Stopwatch, FIG4_JOINTS};
-use super::report::{level_rows, DemoInfo, Report, Stage};
+use super::demonstrate::write_demos;
+use super::figures::{demo_curves, demo_paths, joint_panels_png, reproduction, wrist_png};
+use super::heldout::hierarchy_held_out;
+use super::output::FIG4_JOINTS;
+use super::output::{config_name, hsom_model, hsom_on_arm, load_arm, write_hsom_run, Stopwatch};
+use super::report::{DemoInfo, Report};
 use super::variants::{reference_variants, run_variant, variants};
-use super::{film, leave_one_out, synthetic_demonstrations, DemoSettings, ExperimentError};
+use super::{
+    film, leave_one_out, synthetic_demonstrations, DemoSettings, ExperimentError, Progress,
+};
 use crate::export::limits::are_arm_joints;
 
 /// The result of a job's step.
@@ -62,18 +64,6 @@ pub fn record(
         on_progress("demonstrating", done.get(), count);
     })?;
     Ok(demos)
-}
-
-/// Write demonstrations as `demo_01.csv`, ... in `dir` (created if missing).
-pub fn write_demos(dir: &Path, demos: &[Demonstration]) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(ExperimentError::io("creating", dir))?;
-    let mut files = Vec::new();
-    for (i, d) in demos.iter().enumerate() {
-        let p = dir.join(format!("demo_{:02}.csv", i + 1));
-        demos::write_csv(&p, d)?;
-        files.push(p);
-    }
-    Ok(files)
 }
 
 /// `cosco demos`: record and write demonstrations.
@@ -146,7 +136,7 @@ pub struct JobSummary {
 /// plots and clip, all written into `job.out`.
 pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     let mut warnings = Vec::new();
-    let mut clock = Stopwatch::new();
+    let mut clock = Stopwatch::default();
     let out = &job.out;
     std::fs::create_dir_all(out.join("demos")).map_err(ExperimentError::io("creating", out))?;
     let cfg = app::config(job.config.as_deref())?;
@@ -184,49 +174,26 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     let demo_info: Vec<DemoInfo> = demos
         .iter()
         .zip(&demo_files)
-        .map(|(d, f)| DemoInfo {
-            file: f.strip_prefix(out).unwrap_or(f).display().to_string(),
-            samples: d.rows.len(),
-            duration_s: (d.rows.len().saturating_sub(1)) as f64 * sample_period(d),
-        })
+        .map(|(d, f)| DemoInfo::new(f.strip_prefix(out).unwrap_or(f).display().to_string(), d))
         .collect();
     files.extend(demo_info.iter().map(|d| d.file.clone()));
     clock.lap("demonstrations (simulate + record)");
 
     // 2-4. Training, reproduction from the initial posture on the simulated arm, metrics.
-    let steps_total = cfg.params().training_steps;
-    let progress = |done, _| on_progress("training", done, steps_total);
-    let input = FoldInput {
-        config: Some(&cfg),
-        progress: Some(&progress),
-        ..FoldInput::new(&demos, &demos)
-    };
-    let run = on_arm(&arm, job.transition, Method::Hierarchy, &input)?;
-    clock.stages.push(Stage {
-        stage: "training".into(),
-        seconds: run.train_s,
-    });
-    clock.stages.push(Stage {
-        stage: "reproduction (predict + execute) and metrics".into(),
-        seconds: (clock.t.elapsed().as_secs_f64() - run.train_s).max(0.0),
-    });
-    clock.t = Instant::now();
+    let run = hsom_on_arm(&arm, &cfg, &demos, job.transition, on_progress)?;
+    clock.split_lap(
+        "training",
+        run.train_s,
+        "reproduction (predict + execute) and metrics",
+    );
     let hsom_result = write_hsom_run(out, &run, Vec::new(), &mut files)?;
     let executed = &run.executed.trace;
     clock.lap("writing the model and reproduction.csv");
 
     // 5. Plots.
-    let demo_curves: Vec<Curve> = demos
-        .iter()
-        .enumerate()
-        .map(|(i, d)| Curve::demo(i, d.time.as_deref().unwrap_or(&[]), &d.rows))
-        .collect();
-    let mut curves = demo_curves.clone();
-    curves.push(Curve::reproduction(
-        "CoSCo-HSOM reproduction",
-        &executed.time,
-        &executed.qpos,
-    ));
+    let (curve, path) = reproduction("CoSCo-HSOM reproduction", BLACK, executed);
+    let mut curves = demo_curves(&demos);
+    curves.push(curve);
     joint_panels_png(
         &out.join("joints.png"),
         "Training demonstrations (colour) and the reproduced gesture (black)",
@@ -237,11 +204,7 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     files.push("joints.png".into());
     let demo_wrists = demo_wrist_paths(&arm, &demos)?;
     let mut paths = demo_paths(&demo_wrists);
-    paths.push(Path3::reproduction(
-        "CoSCo-HSOM reproduction",
-        BLACK,
-        &executed.wrist,
-    ));
+    paths.push(path);
     wrist_png(
         &out.join("wrist.png"),
         "Wrist path (l_wrist), torso frame",
@@ -333,13 +296,11 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
         })?;
         clip.write_gif(&out.join("clip.gif"))?;
         clip.write_contact_sheet(&out.join("contact_sheet.png"), 8, 4, true)?;
-        files.push("clip.gif".into());
-        files.push("contact_sheet.png".into());
+        files.extend(["clip.gif".into(), "contact_sheet.png".into()]);
         clock.lap("rendering (clip + contact sheet)");
     }
 
-    files.push("report.md".into());
-    files.push("report.json".into());
+    files.extend(["report.md".into(), "report.json".into()]);
     let report = Report {
         title: format!(
             "CoSCo-HSOM on the simulated Nao left arm{}",
@@ -356,7 +317,7 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
         variants: variant_results,
         heldout,
         heldout_note,
-        levels: level_rows(hsom_model(&run)?.0),
+        levels: hsom_model(&run)?.0.summary().levels,
         stages: clock.stages,
         files,
     };
@@ -364,56 +325,4 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
         .write(out)
         .map_err(ExperimentError::io("writing the report into", out))?;
     Ok(JobSummary { report, warnings })
-}
-
-/// `simulate --gesture all`: one hierarchy for every gesture ([`super::all_gestures`]);
-/// returns the report's summary lines.
-pub fn all_gestures_job(job: &Job, on_progress: Progress<'_>) -> Result<Vec<String>> {
-    use super::all_gestures::{run_all_gestures, AllSettings};
-    if job.demos.is_some() {
-        return Err(ExperimentError::Invalid(
-            "--gesture all records synthetic demonstrations of every gesture; to learn several gestures from recorded files use `cosco train --demos DIR` with one subdirectory per gesture (DIR/<gesture>/*.csv)"
-        .into()));
-    }
-    let out = &job.out;
-    std::fs::create_dir_all(out).map_err(ExperimentError::io("creating", out))?;
-    let cfg = app::config(job.config.as_deref())?;
-    let arm = load_arm(job.model.as_deref())?;
-    let config_name = config_name(job.config.as_deref());
-    let settings = AllSettings {
-        count: job.count,
-        seed: job.seed,
-        noise: job.noise,
-        transition: job.transition,
-        render: job.render,
-    };
-    let report = run_all_gestures(
-        &arm,
-        &cfg,
-        &config_name,
-        &Gesture::all(),
-        &settings,
-        out,
-        on_progress,
-    )?;
-    let mut lines: Vec<String> = report
-        .fidelity
-        .iter()
-        .map(|f| {
-            format!(
-                "{:<14} held-out joint DTW {:.4} rad/step in the shared hierarchy, {:.4} learned alone ({:.2}x)",
-                f.gesture,
-                f.shared_joint_dtw,
-                f.alone_joint_dtw,
-                f.ratio()
-            )
-        })
-        .collect();
-    lines.push(format!(
-        "recognition of {} held-out demonstrations: CoSCo-HSOM {:.0} %, 1-NN DTW {:.0} %",
-        report.queries.len(),
-        100.0 * report.accuracy(),
-        100.0 * report.nn_accuracy()
-    ));
-    Ok(lines)
 }

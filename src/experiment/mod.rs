@@ -18,12 +18,13 @@ pub mod report;
 pub mod variants;
 
 pub use crate::sim::Transition;
-pub use demonstrate::{
-    joint_limits, record_demonstrations, synthetic_demonstrations, DemoSettings,
-};
+pub use demonstrate::{record_demonstrations, synthetic_demonstrations, DemoSettings};
 pub use film::film;
 pub use heldout::{folds, leave_one_out};
 pub use output::load_arm;
+
+/// What a stage reports to a progress display: (stage, done, total).
+pub type Progress<'a> = &'a dyn Fn(&str, usize, usize);
 
 /// Errors of the experiment pipeline.
 #[derive(Debug, thiserror::Error)]

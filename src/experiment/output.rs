@@ -6,13 +6,15 @@ use std::path::Path;
 use std::time::Instant;
 
 use crate::app::DEFAULT_CONFIG_NAME;
-use crate::demos::write_csv;
-use crate::eval::{Fitted, MethodRun};
+use crate::config::HsomConfig;
+use crate::demos::{write_csv, Demonstration};
+use crate::eval::{Fitted, FoldInput, Method, MethodRun};
 use crate::hsom::{Hsom, Reproduction};
-use crate::sim::{NaoArm, Recording};
+use crate::sim::{NaoArm, Recording, Transition};
 
+use super::heldout::on_arm;
 use super::report::{MethodResult, Stage};
-use super::ExperimentError;
+use super::{ExperimentError, Progress};
 
 /// What CoSCo-HSOM needs as input (the report's "needs as input" row).
 pub const HSOM_NEEDS: &str = "raw demonstrations; the initial posture";
@@ -43,28 +45,32 @@ pub struct Stopwatch {
 }
 
 impl Default for Stopwatch {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-impl Stopwatch {
     /// A stopwatch with no stage, started now.
-    pub fn new() -> Self {
+    fn default() -> Self {
         Stopwatch {
             stages: Vec::new(),
             t: Instant::now(),
         }
     }
-    /// Close the current stage as `stage`; its seconds.
-    pub fn lap(&mut self, stage: &str) -> f64 {
-        let s = self.t.elapsed().as_secs_f64();
-        self.stages.push(Stage {
-            stage: stage.to_string(),
-            seconds: s,
-        });
+}
+
+impl Stopwatch {
+    /// Close the current stage as `stage`.
+    pub fn lap(&mut self, stage: &str) {
+        self.push(stage, self.t.elapsed().as_secs_f64());
         self.t = Instant::now();
-        s
+    }
+
+    /// Close the current stage as two: `first`, which took `seconds` of it, then `rest`.
+    pub fn split_lap(&mut self, first: &str, seconds: f64, rest: &str) {
+        self.push(first, seconds);
+        self.push(rest, (self.t.elapsed().as_secs_f64() - seconds).max(0.0));
+        self.t = Instant::now();
+    }
+
+    fn push(&mut self, stage: &str, seconds: f64) {
+        let stage = stage.to_string();
+        self.stages.push(Stage { stage, seconds });
     }
 }
 
@@ -95,26 +101,24 @@ pub fn hsom_model(run: &MethodRun<Recording>) -> Result<(&Hsom, &Reproduction), 
     }
 }
 
-/// CoSCo-HSOM's column of a comparison table (no held-out figures: see
-/// `heldout::leave_one_out`); `model_bytes` is the size of the saved model.
-pub fn hsom_result(
-    name: &str,
-    run: &MethodRun<Recording>,
-    model_bytes: u64,
-    notes: Vec<String>,
-) -> MethodResult {
-    MethodResult {
-        name: name.into(),
-        needs: HSOM_NEEDS.into(),
-        fidelity: run.executed.fidelity.clone(),
-        train_s: run.train_s,
-        reproduce_s: run.reproduce_s,
-        model_bytes,
-        postures: run.postures.len(),
-        clamped_values: run.executed.clamped_values,
-        notes,
-        heldout: None,
-    }
+/// Train CoSCo-HSOM with `cfg` on `demos` (stage `training` to `on_progress`), reproduce from
+/// the first one's initial posture, execute on the arm with `transition` and score against
+/// all of them (the main job's in-sample run).
+pub fn hsom_on_arm(
+    arm: &NaoArm,
+    cfg: &HsomConfig,
+    demos: &[Demonstration],
+    transition: Transition,
+    on_progress: Progress<'_>,
+) -> Result<MethodRun<Recording>, ExperimentError> {
+    let total = cfg.params().training_steps;
+    let progress = |done, _| on_progress("training", done, total);
+    let input = FoldInput {
+        config: Some(cfg),
+        progress: Some(&progress),
+        ..FoldInput::new(demos, demos)
+    };
+    on_arm(arm, transition, Method::Hierarchy, &input)
 }
 
 /// Save a CoSCo-HSOM run's model (`model.bin`) and executed trajectory (`reproduction.csv`)
@@ -129,20 +133,19 @@ pub fn write_hsom_run(
     let (model, reproduction) = hsom_model(run)?;
     let model_path = out.join("model.bin");
     model.save(&model_path)?;
-    files.push("model.bin".into());
+    let trace = &run.executed.trace;
     write_csv(
         &out.join("reproduction.csv"),
-        &run.executed
-            .trace
-            .to_demonstration("CoSCo-HSOM reproduction"),
+        &trace.to_demonstration("CoSCo-HSOM reproduction"),
     )?;
-    files.push("reproduction.csv".into());
+    files.extend(["model.bin".into(), "reproduction.csv".into()]);
     let mut all = vec![
         format!("stopped: {:?}", reproduction.stop),
         levels_note(&reproduction.predicted_by),
     ];
     all.extend(notes);
-    Ok(hsom_result("CoSCo-HSOM", run, file_size(&model_path), all))
+    let bytes = file_size(&model_path);
+    Ok(MethodResult::of("CoSCo-HSOM", HSOM_NEEDS, run, bytes, all))
 }
 
 /// "predicted by level": how many postures each level produced.

@@ -4,15 +4,17 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use serde::Serialize;
+use serde::ser::SerializeStruct as _;
+use serde::{Serialize, Serializer};
 
 use crate::fsutil::write_atomic;
 use crate::metrics::{FidelityReport, Smoothness, Stat};
 
-use crate::eval::{FoldScores, HeldOut, HeldOutSummary, Method, SWING_MIN_AMPLITUDE_RAD};
-use crate::hsom::Hsom;
-use crate::sim::JOINT_NAMES;
-use crate::sim::SWING_JOINT;
+use crate::demos::{sample_period, Demonstration};
+use crate::eval::SWING_MIN_AMPLITUDE_RAD;
+use crate::eval::{FoldScores, HeldOut, HeldOutSummary, Method, MethodRun};
+use crate::hsom::LevelSummary;
+use crate::sim::{Recording, JOINT_NAMES, SWING_JOINT};
 
 /// One demonstration used for training.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -23,6 +25,19 @@ pub struct DemoInfo {
     pub samples: usize,
     /// Duration, seconds.
     pub duration_s: f64,
+}
+
+impl DemoInfo {
+    /// `demo`, listed as `file`.
+    pub fn new(file: String, demo: &Demonstration) -> Self {
+        let samples = demo.rows.len();
+        let duration_s = samples.saturating_sub(1) as f64 * sample_period(demo);
+        DemoInfo {
+            file,
+            samples,
+            duration_s,
+        }
+    }
 }
 
 /// How one method (or variant of a method) did.
@@ -50,47 +65,49 @@ pub struct MethodResult {
     pub heldout: Option<HeldOutSummary>,
 }
 
-/// One level of a trained hierarchy: how many nodes it uses and how well it predicts the
-/// level below, beside the lookup-table baseline (`hsom::LevelSummary`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct LevelRow {
-    /// Level (0 = bottom).
-    pub level: usize,
-    /// Nodes of the map (rows x cols).
-    pub nodes: usize,
-    /// Nodes that are the best match of some training input.
-    pub nodes_used: usize,
-    /// Fraction of the next entries of the level below predicted exactly (0 for level 0).
-    pub prediction_accuracy: f64,
-    /// The same for a "next entry given the last entry" lookup table.
-    pub lookup_accuracy: f64,
-    /// `prediction_accuracy` held out: each training demonstration's entries predicted by
-    /// the levels trained on the others ([`crate::hsom::LevelSummary`]).
-    pub heldout_prediction_accuracy: f64,
-    /// `lookup_accuracy` held out the same way.
-    pub heldout_lookup_accuracy: f64,
-    /// Whether reproduction may plan from this level (levels above 1: only when it beats
-    /// the lookup table; [`Hsom::level_trusted`]).
-    pub used_in_reproduction: bool,
+impl MethodResult {
+    /// `run`'s column of a comparison table, without held-out figures (see
+    /// `heldout::leave_one_out`): the method named `name` needs `needs` as input;
+    /// `model_bytes` is the size of its saved model.
+    pub fn of(
+        name: &str,
+        needs: &str,
+        run: &MethodRun<Recording>,
+        model_bytes: u64,
+        notes: Vec<String>,
+    ) -> Self {
+        MethodResult {
+            name: name.into(),
+            needs: needs.into(),
+            fidelity: run.executed.fidelity.clone(),
+            train_s: run.train_s,
+            reproduce_s: run.reproduce_s,
+            model_bytes,
+            postures: run.postures.len(),
+            clamped_values: run.executed.clamped_values,
+            notes,
+            heldout: None,
+        }
+    }
 }
 
-/// The levels of `model`, bottom first.
-pub fn level_rows(model: &Hsom) -> Vec<LevelRow> {
-    model
-        .summary()
-        .levels
-        .iter()
-        .map(|l| LevelRow {
-            level: l.level,
-            nodes: l.rows * l.cols,
-            nodes_used: l.nodes_used,
-            prediction_accuracy: l.prediction_accuracy,
-            lookup_accuracy: l.lookup_accuracy,
-            heldout_prediction_accuracy: l.heldout_prediction_accuracy,
-            heldout_lookup_accuracy: l.heldout_lookup_accuracy,
-            used_in_reproduction: l.used_in_reproduction,
-        })
-        .collect()
+/// A level of the main model in `report.json`: how many nodes it has (rows x cols) and uses,
+/// and how well it predicts the level below beside the lookup-table baseline, in sample and
+/// held out, and whether reproduction plans from it.
+impl Serialize for LevelSummary {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut level = s.serialize_struct("LevelRow", 8)?;
+        level.serialize_field("level", &self.level)?;
+        level.serialize_field("nodes", &(self.rows * self.cols))?;
+        level.serialize_field("nodes_used", &self.nodes_used)?;
+        level.serialize_field("prediction_accuracy", &self.prediction_accuracy)?;
+        level.serialize_field("lookup_accuracy", &self.lookup_accuracy)?;
+        let prediction = self.heldout_prediction_accuracy;
+        level.serialize_field("heldout_prediction_accuracy", &prediction)?;
+        level.serialize_field("heldout_lookup_accuracy", &self.heldout_lookup_accuracy)?;
+        level.serialize_field("used_in_reproduction", &self.used_in_reproduction)?;
+        level.end()
+    }
 }
 
 /// Wall time of one stage of the job.
@@ -123,8 +140,8 @@ pub struct Report {
     pub heldout: Option<HeldOut>,
     /// Why the held-out evaluation did not run (when it did not).
     pub heldout_note: Option<String>,
-    /// The levels of the main model.
-    pub levels: Vec<LevelRow>,
+    /// The levels of the main model ([`crate::hsom::Hsom::summary`]).
+    pub levels: Vec<LevelSummary>,
     /// Wall time per stage.
     pub stages: Vec<Stage>,
     /// Files written, relative to the output directory.
@@ -140,131 +157,89 @@ fn opt_stat(s: &Option<Stat>, digits: usize) -> String {
         .map_or_else(|| "n/a".to_string(), |s| stat(s, digits))
 }
 
+/// The rows of [`comparison_table`]: a name and how one result fills it, given the
+/// demonstrations' mean normalized jerk and velocity reversals.
+type ComparisonRow = (&'static str, fn(&MethodResult, (f64, f64)) -> String);
+
+const COMPARISON_ROWS: [ComparisonRow; 15] = [
+    ("joint DTW (rad/step)", |r, _| {
+        stat(&r.fidelity.joint_dtw_rad_per_step, 4)
+    }),
+    ("wrist-path DTW (mm/step)", |r, _| {
+        opt_stat(&r.fidelity.wrist_dtw_mm, 1)
+    }),
+    ("apex error (rad)", |r, _| {
+        stat(&r.fidelity.apex_error_rad, 3)
+    }),
+    ("final-posture error (rad)", |r, _| {
+        stat(&r.fidelity.final_error_rad, 3)
+    }),
+    ("duration ratio", |r, _| stat(&r.fidelity.duration_ratio, 2)),
+    (
+        "normalized jerk (demos' mean in brackets)",
+        |r, (jerk, _)| {
+            let j = r.fidelity.reproduction_smoothness.normalized_jerk;
+            format!(
+                "{} ({jerk:.0})",
+                j.map_or("n/a".into(), |j| format!("{j:.0}"))
+            )
+        },
+    ),
+    (
+        "velocity reversals, all joints (demos' mean)",
+        |r, (_, rev)| {
+            format!(
+                "{} ({rev:.1})",
+                r.fidelity.reproduction_smoothness.total_reversals
+            )
+        },
+    ),
+    ("velocity reversals per joint", |r, _| {
+        let v = &r.fidelity.reproduction_smoothness.reversals;
+        v.iter()
+            .map(|n| n.to_string())
+            .collect::<Vec<_>>()
+            .join(" ")
+    }),
+    ("reproduction duration (s)", |r, _| {
+        format!("{:.2}", r.fidelity.reproduction_duration_s)
+    }),
+    ("postures produced", |r, _| r.postures.to_string()),
+    ("clamped values", |r, _| r.clamped_values.to_string()),
+    ("training time (s)", |r, _| format!("{:.3}", r.train_s)),
+    ("reproduction time (s)", |r, _| {
+        format!("{:.4}", r.reproduce_s)
+    }),
+    ("model size (bytes)", |r, _| r.model_bytes.to_string()),
+    ("needs as input", |r, _| r.needs.clone()),
+];
+
 /// A markdown table with one column per result: every fidelity metric (mean / worst over the
-/// demonstrations), smoothness, and costs.
+/// demonstrations), smoothness, and costs; then each result's notes, one line each.
 pub fn comparison_table(results: &[MethodResult]) -> String {
-    let mut t = String::new();
-    let _ = write!(t, "| metric (mean / worst) |");
+    let mut t = String::from("| metric (mean / worst) |");
     for r in results {
         let _ = write!(t, " {} |", r.name);
     }
-    let _ = write!(t, "\n|---|");
-    for _ in results {
-        let _ = write!(t, "---|");
-    }
-    t.push('\n');
-    let demo_jerk = results
+    let _ = writeln!(t, "\n|---|{}", "---|".repeat(results.len()));
+    let demos = results
         .first()
-        .map(|r| {
-            let v: Vec<f64> = r
-                .fidelity
-                .demo_smoothness
-                .iter()
-                .filter_map(|s| s.normalized_jerk)
-                .collect();
-            if v.is_empty() {
-                f64::NAN
-            } else {
-                v.iter().sum::<f64>() / v.len() as f64
-            }
-        })
-        .unwrap_or(f64::NAN);
-    let demo_rev = results
-        .first()
-        .map(|r| {
-            let v: Vec<usize> = r
-                .fidelity
-                .demo_smoothness
-                .iter()
-                .map(|s| s.total_reversals)
-                .collect();
-            if v.is_empty() {
-                f64::NAN
-            } else {
-                v.iter().sum::<usize>() as f64 / v.len() as f64
-            }
-        })
-        .unwrap_or(f64::NAN);
-    type Row<'a> = (&'a str, Box<dyn Fn(&MethodResult) -> String>);
-    let rows: Vec<Row> = vec![
-        (
-            "joint DTW (rad/step)",
-            Box::new(|r| stat(&r.fidelity.joint_dtw_rad_per_step, 4)),
-        ),
-        (
-            "wrist-path DTW (mm/step)",
-            Box::new(|r| opt_stat(&r.fidelity.wrist_dtw_mm, 1)),
-        ),
-        (
-            "apex error (rad)",
-            Box::new(|r| stat(&r.fidelity.apex_error_rad, 3)),
-        ),
-        (
-            "final-posture error (rad)",
-            Box::new(|r| stat(&r.fidelity.final_error_rad, 3)),
-        ),
-        (
-            "duration ratio",
-            Box::new(|r| stat(&r.fidelity.duration_ratio, 2)),
-        ),
-        (
-            "normalized jerk (demos' mean in brackets)",
-            Box::new(move |r| {
-                let j = r.fidelity.reproduction_smoothness.normalized_jerk;
-                format!(
-                    "{} ({demo_jerk:.0})",
-                    j.map_or("n/a".into(), |j| format!("{j:.0}"))
-                )
-            }),
-        ),
-        (
-            "velocity reversals, all joints (demos' mean)",
-            Box::new(move |r| {
-                format!(
-                    "{} ({demo_rev:.1})",
-                    r.fidelity.reproduction_smoothness.total_reversals
-                )
-            }),
-        ),
-        (
-            "velocity reversals per joint",
-            Box::new(|r| {
-                let v: Vec<String> = r
-                    .fidelity
-                    .reproduction_smoothness
-                    .reversals
-                    .iter()
-                    .map(|n| n.to_string())
-                    .collect();
-                v.join(" ")
-            }),
-        ),
-        (
-            "reproduction duration (s)",
-            Box::new(|r| format!("{:.2}", r.fidelity.reproduction_duration_s)),
-        ),
-        ("postures produced", Box::new(|r| r.postures.to_string())),
-        ("clamped values", Box::new(|r| r.clamped_values.to_string())),
-        (
-            "training time (s)",
-            Box::new(|r| format!("{:.3}", r.train_s)),
-        ),
-        (
-            "reproduction time (s)",
-            Box::new(|r| format!("{:.4}", r.reproduce_s)),
-        ),
-        (
-            "model size (bytes)",
-            Box::new(|r| r.model_bytes.to_string()),
-        ),
-        ("needs as input", Box::new(|r| r.needs.clone())),
-    ];
-    for (name, f) in rows {
+        .map_or(&[][..], |r| &r.fidelity.demo_smoothness);
+    let demo_means = (
+        demo_mean(demos, |s| s.normalized_jerk).unwrap_or(f64::NAN),
+        demo_mean(demos, |s| Some(s.total_reversals as f64)).unwrap_or(f64::NAN),
+    );
+    for (name, cell) in COMPARISON_ROWS {
         let _ = write!(t, "| {name} |");
         for r in results {
-            let _ = write!(t, " {} |", f(r));
+            let _ = write!(t, " {} |", cell(r, demo_means));
         }
         t.push('\n');
+    }
+    for r in results {
+        for n in &r.notes {
+            let _ = writeln!(t, "- {}: {n}", r.name);
+        }
     }
     t
 }
@@ -299,62 +274,66 @@ pub fn heldout_table(results: &[MethodResult]) -> String {
     t
 }
 
+/// Decimals of the in-sample / held-out pairs of [`heldout_row`], in its column order.
+const HELDOUT_DIGITS: [usize; 9] = [4, 1, 3, 3, 2, 0, 0, 1, 1];
+
+/// The in-sample figures of [`heldout_row`]'s pairs, in its column order.
+fn in_sample_figures(f: &FidelityReport) -> [Option<f64>; 9] {
+    [
+        Some(f.joint_dtw_rad_per_step.mean),
+        f.wrist_dtw_mm.map(|w| w.mean),
+        Some(f.apex_error_rad.mean),
+        Some(f.final_error_rad.mean),
+        Some(f.duration_ratio.mean),
+        f.reproduction_smoothness.normalized_jerk,
+        demo_mean(&f.demo_smoothness, |s| s.normalized_jerk),
+        Some(f.reproduction_smoothness.total_reversals as f64),
+        demo_mean(&f.demo_smoothness, |s| Some(s.total_reversals as f64)),
+    ]
+}
+
+/// The held-out figures of [`heldout_row`]'s pairs, in its column order.
+fn heldout_figures(h: &HeldOutSummary) -> [Option<f64>; 9] {
+    [
+        Some(h.joint_dtw_rad_per_step),
+        h.wrist_dtw_mm,
+        Some(h.apex_error_rad),
+        Some(h.final_error_rad),
+        Some(h.duration_ratio),
+        h.normalized_jerk,
+        h.demo_normalized_jerk,
+        Some(h.velocity_reversals),
+        Some(h.demo_velocity_reversals),
+    ]
+}
+
 /// One row of [`heldout_table`]: `name`'s in-sample fidelity `f` (`n/a` without one: a method
 /// evaluated held out only) beside its held-out means `h`.
 pub fn heldout_row(name: &str, f: Option<&FidelityReport>, h: Option<&HeldOutSummary>) -> String {
-    let pair = |a: Option<f64>, b: Option<f64>, digits: usize| {
-        format!("{} / {}", num(a, digits), num(b, digits))
-    };
-    let fm = |g: fn(&FidelityReport) -> Option<f64>| f.and_then(g);
-    let demo_jerk = f.and_then(|f| demo_mean(&f.demo_smoothness, |s| s.normalized_jerk));
-    let demo_rev =
-        f.and_then(|f| demo_mean(&f.demo_smoothness, |s| Some(s.total_reversals as f64)));
-    format!(
-        "| {} | {} | {} | {} | {} | {} | {} | {} ({}) | {} ({}) | {} |\n",
-        name,
-        h.map_or("n/a".into(), |h| h.folds.to_string()),
-        pair(
-            fm(|f| Some(f.joint_dtw_rad_per_step.mean)),
-            h.map(|h| h.joint_dtw_rad_per_step),
-            4
-        ),
-        pair(
-            fm(|f| f.wrist_dtw_mm.map(|w| w.mean)),
-            h.and_then(|h| h.wrist_dtw_mm),
-            1
-        ),
-        pair(
-            fm(|f| Some(f.apex_error_rad.mean)),
-            h.map(|h| h.apex_error_rad),
-            3
-        ),
-        pair(
-            fm(|f| Some(f.final_error_rad.mean)),
-            h.map(|h| h.final_error_rad),
-            3
-        ),
-        pair(
-            fm(|f| Some(f.duration_ratio.mean)),
-            h.map(|h| h.duration_ratio),
-            2
-        ),
-        pair(
-            fm(|f| f.reproduction_smoothness.normalized_jerk),
-            h.and_then(|h| h.normalized_jerk),
-            0
-        ),
-        pair(demo_jerk, h.and_then(|h| h.demo_normalized_jerk), 0),
-        pair(
-            fm(|f| Some(f.reproduction_smoothness.total_reversals as f64)),
-            h.map(|h| h.velocity_reversals),
-            1
-        ),
-        pair(demo_rev, h.map(|h| h.demo_velocity_reversals), 1),
-        h.map_or("n/a".into(), |h| format!(
+    let (a, b) = (
+        f.map_or([None; 9], in_sample_figures),
+        h.map_or([None; 9], heldout_figures),
+    );
+    let p: Vec<String> = (0..9)
+        .map(|i| {
+            format!(
+                "{} / {}",
+                num(a[i], HELDOUT_DIGITS[i]),
+                num(b[i], HELDOUT_DIGITS[i])
+            )
+        })
+        .collect();
+    let folds = h.map_or("n/a".into(), |h| h.folds.to_string());
+    let swings = h.map_or("n/a".into(), |h| {
+        format!(
             "{} ({})",
             num(Some(h.swings), 1),
             num(Some(h.demo_swings), 1)
-        )),
+        )
+    });
+    format!(
+        "| {name} | {folds} | {} | {} | {} | {} | {} | {} ({}) | {} ({}) | {swings} |\n",
+        p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8]
     )
 }
 
@@ -460,7 +439,7 @@ pub fn folds_table(h: &HeldOut) -> String {
 
 /// A markdown table of a model's levels: nodes used, prediction accuracy, lookup-table
 /// accuracy, both in-sample and held out.
-pub fn levels_table(levels: &[LevelRow]) -> String {
+pub fn levels_table(levels: &[LevelSummary]) -> String {
     let mut t = String::from(
         "| level | nodes used / nodes | prediction accuracy | lookup-table accuracy | held out: prediction | held out: lookup table | plans in reproduction |\n\
          |---|---|---|---|---|---|---|\n",
@@ -471,7 +450,7 @@ pub fn levels_table(levels: &[LevelRow]) -> String {
             "| {} | {} / {} | {:.3} | {:.3} | {:.3} | {:.3} | {} |",
             l.level,
             l.nodes_used,
-            l.nodes,
+            l.rows * l.cols,
             l.prediction_accuracy,
             l.lookup_accuracy,
             l.heldout_prediction_accuracy,
@@ -508,11 +487,6 @@ impl Report {
         );
         let _ = writeln!(md, "## Methods side by side\n");
         md.push_str(&comparison_table(&self.methods));
-        for m in &self.methods {
-            for n in &m.notes {
-                let _ = writeln!(md, "- {}: {n}", m.name);
-            }
-        }
         match &self.heldout {
             None if self.heldout_note.is_none() => {}
             Some(h) => {
@@ -598,11 +572,6 @@ impl Report {
                 let _ = writeln!(md, "\nIn-sample, every metric:\n");
             }
             md.push_str(&comparison_table(&self.variants));
-            for m in &self.variants {
-                for n in &m.notes {
-                    let _ = writeln!(md, "- {}: {n}", m.name);
-                }
-            }
         }
         let _ = writeln!(
             md,
@@ -614,19 +583,27 @@ impl Report {
             total += s.seconds;
         }
         let _ = writeln!(md, "| **total** | {total:.3} |");
-        if !self.files.is_empty() {
-            let _ = writeln!(md, "\n## Files\n");
-            for f in &self.files {
-                let _ = writeln!(md, "- `{f}`");
-            }
-        }
-        md
+        md + &files_section(&self.files)
     }
 
     /// Write `report.json` and `report.md` into `dir`, atomically.
     pub fn write(&self, dir: &Path) -> std::io::Result<()> {
-        let json = serde_json::to_vec_pretty(self).map_err(std::io::Error::other)?;
-        write_atomic(&dir.join("report.json"), &json)?;
-        write_atomic(&dir.join("report.md"), self.to_markdown().as_bytes())
+        write_report(dir, self, &self.to_markdown())
     }
+}
+
+/// The Markdown list of the files a job wrote (nothing when it wrote none).
+pub fn files_section(files: &[String]) -> String {
+    if files.is_empty() {
+        return String::new();
+    }
+    let list: String = files.iter().map(|f| format!("- `{f}`\n")).collect();
+    format!("\n## Files\n\n{list}")
+}
+
+/// Write `report` as `report.json` and `markdown` as `report.md` into `dir`, atomically.
+pub fn write_report(dir: &Path, report: &impl Serialize, markdown: &str) -> std::io::Result<()> {
+    let json = serde_json::to_vec_pretty(report).map_err(std::io::Error::other)?;
+    write_atomic(&dir.join("report.json"), &json)?;
+    write_atomic(&dir.join("report.md"), markdown.as_bytes())
 }

@@ -3,13 +3,13 @@
 //! executed and scored exactly like the main result, so `report.md` shows what every setting
 //! buys.
 
-use crate::config::{parse_config, AlgorithmParams, HsomConfig, HsomParams};
+use crate::config::{parse_config, AlgorithmParams, EventsParams, HsomConfig, HsomParams};
 use crate::demos::Demonstration;
 use crate::eval::{FoldInput, Method, Training};
 use crate::sim::{NaoArm, Transition};
 
 use super::heldout::{hierarchy_held_out, on_arm};
-use super::output::{hsom_model, hsom_result};
+use super::output::{hsom_model, HSOM_NEEDS};
 use super::report::MethodResult;
 use super::ExperimentError;
 
@@ -52,20 +52,21 @@ pub fn variants(
             Ok(())
         };
     if let AlgorithmParams::Events(e) = &p.algorithm {
+        // `p` with its events settings changed by `off`
+        let events_off = |off: fn(&mut EventsParams)| {
+            let (mut q, mut e) = (p.clone(), e.clone());
+            off(&mut e);
+            q.algorithm = AlgorithmParams::Events(e);
+            q
+        };
         if e.change_ratio < 1.0 {
             // events start on any change of the bottom BMU (no hysteresis)
-            let mut q = p.clone();
-            let mut off = e.clone();
-            off.change_ratio = 1.0;
-            q.algorithm = AlgorithmParams::Events(off);
+            let q = events_off(|e| e.change_ratio = 1.0);
             push("changeRatio 1 (no event hysteresis)", q, transition)?;
         }
         if e.action_horizon > 1 {
             // the bottom learns the next state, the paper's action
-            let mut q = p.clone();
-            let mut off = e.clone();
-            off.action_horizon = 1;
-            q.algorithm = AlgorithmParams::Events(off);
+            let q = events_off(|e| e.action_horizon = 1);
             push("actionHorizon 1 (the next state)", q, transition)?;
         }
     }
@@ -121,7 +122,7 @@ pub fn run_variant(
     };
     let run = on_arm(arm, variant.transition, Method::Hierarchy, &input)?;
     let bytes = hsom_model(&run)?.0.to_bytes().len() as u64;
-    let mut result = hsom_result(&variant.name, &run, bytes, Vec::new());
+    let mut result = MethodResult::of(&variant.name, HSOM_NEEDS, &run, bytes, Vec::new());
     if heldout && demos.len() >= 2 {
         result.heldout = Some(hierarchy_held_out(
             arm,

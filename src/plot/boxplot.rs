@@ -8,7 +8,7 @@ use std::path::Path;
 use plotters::prelude::*;
 use plotters::style::RGBColor;
 
-use super::figure::{draw_legend, grid_png, Area, PlotError};
+use super::figure::{draw_error, draw_legend, grid_png, label_at, Area, PlotError};
 
 /// One panel of box plots.
 #[derive(Debug, Clone)]
@@ -82,10 +82,7 @@ pub fn boxplots_png(
 }
 
 fn draw_boxes(path: &Path, panel: &BoxPanel, area: &Area<'_>) -> Result<(), PlotError> {
-    let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
-        path: path.to_path_buf(),
-        message: format!("panel '{}': {e}", panel.title),
-    };
+    let draw_err = draw_error(path, &panel.title);
     let finite = || {
         panel
             .values
@@ -123,14 +120,7 @@ fn draw_boxes(path: &Path, panel: &BoxPanel, area: &Area<'_>) -> Result<(), Plot
         .configure_mesh()
         .disable_x_mesh()
         .x_labels(n_cat * 2 + 1)
-        .x_label_formatter(&|x| {
-            let k = x.round();
-            if (x - k).abs() < 1e-6 && k >= 0.0 {
-                categories.get(k as usize).cloned().unwrap_or_default()
-            } else {
-                String::new()
-            }
-        })
+        .x_label_formatter(&|x| label_at(*x, &categories))
         .y_desc(panel.y_label.as_str())
         .max_light_lines(1)
         .label_style(("sans-serif", 13))
@@ -149,35 +139,22 @@ fn draw_boxes(path: &Path, panel: &BoxPanel, area: &Area<'_>) -> Result<(), Plot
                 continue;
             };
             let x = c as f64 - 0.4 + slot * (s as f64 + 0.5);
-            shapes.push(
-                Rectangle::new(
-                    [(x - half, b.q1), (x + half, b.q3)],
-                    color.mix(0.3).filled(),
-                )
-                .into_dyn(),
-            );
-            shapes.push(
-                Rectangle::new([(x - half, b.q1), (x + half, b.q3)], color.stroke_width(2))
-                    .into_dyn(),
-            );
-            shapes.push(
+            let (rect, median) = ([(x - half, b.q1), (x + half, b.q3)], b.median);
+            shapes.extend([
+                Rectangle::new(rect, color.mix(0.3).filled()).into_dyn(),
+                Rectangle::new(rect, color.stroke_width(2)).into_dyn(),
                 PathElement::new(
-                    vec![(x - half, b.median), (x + half, b.median)],
+                    vec![(x - half, median), (x + half, median)],
                     color.stroke_width(3),
                 )
                 .into_dyn(),
-            );
+            ]);
             for (from, to) in [(b.q3, b.high), (b.q1, b.low)] {
-                shapes.push(
+                let cap = vec![(x - half / 2.0, to), (x + half / 2.0, to)];
+                shapes.extend([
                     PathElement::new(vec![(x, from), (x, to)], color.stroke_width(1)).into_dyn(),
-                );
-                shapes.push(
-                    PathElement::new(
-                        vec![(x - half / 2.0, to), (x + half / 2.0, to)],
-                        color.stroke_width(1),
-                    )
-                    .into_dyn(),
-                );
+                    PathElement::new(cap, color.stroke_width(1)).into_dyn(),
+                ]);
             }
             for o in b.outliers {
                 shapes.push(Circle::new((x, o), 3, color.filled()).into_dyn());

@@ -7,7 +7,7 @@ use std::path::Path;
 use plotters::prelude::*;
 use plotters::style::RGBColor;
 
-use super::figure::{grid_png, Area, PlotError};
+use super::figure::{draw_error, grid_png, label_at, Area, PlotError};
 
 /// One panel: a classifier's counts.
 #[derive(Debug, Clone)]
@@ -43,10 +43,7 @@ pub fn confusion_png(path: &Path, title: &str, panels: &[ConfusionPanel]) -> Res
 }
 
 fn draw_panel(path: &Path, panel: &ConfusionPanel, area: &Area<'_>) -> Result<(), PlotError> {
-    let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
-        path: path.to_path_buf(),
-        message: format!("panel '{}': {e}", panel.title),
-    };
+    let draw_err = draw_error(path, &panel.title);
     let (nr, nc) = (panel.rows.len(), panel.columns.len());
     let columns = panel.columns.clone();
     let rows = panel.rows.clone();
@@ -62,9 +59,9 @@ fn draw_panel(path: &Path, panel: &ConfusionPanel, area: &Area<'_>) -> Result<()
         .disable_mesh()
         .x_labels(2 * nc + 1)
         .y_labels(2 * nr + 1)
-        .x_label_formatter(&|x| centred_label(*x, &columns))
-        // row 0 at the top
-        .y_label_formatter(&|y| centred_label(nr as f64 - *y, &rows))
+        // labels at the cells' centres, row 0 at the top
+        .x_label_formatter(&|x| label_at(*x - 0.5, &columns))
+        .y_label_formatter(&|y| label_at(nr as f64 - *y - 0.5, &rows))
         .x_desc("answer")
         .y_desc("gesture shown")
         .label_style(("sans-serif", 12))
@@ -100,15 +97,4 @@ fn draw_panel(path: &Path, panel: &ConfusionPanel, area: &Area<'_>) -> Result<()
         }
     }
     Ok(())
-}
-
-/// The label of the cell whose centre is at `v` (`k + 0.5`), empty elsewhere.
-fn centred_label(v: f64, labels: &[String]) -> String {
-    let k = v - 0.5;
-    let i = k.round();
-    if (k - i).abs() < 1e-6 && i >= 0.0 {
-        labels.get(i as usize).cloned().unwrap_or_default()
-    } else {
-        String::new()
-    }
 }

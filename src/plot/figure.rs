@@ -154,11 +154,9 @@ impl Panel {
                 ys = (ys.0.min(y), ys.1.max(y));
             }
         };
-        for s in &self.series {
-            s.points.iter().for_each(|&(x, y)| add(x, y));
-        }
-        for s in &self.scatter {
-            s.points.iter().for_each(|&(x, y)| add(x, y));
+        let lines = self.series.iter().map(|s| &s.points);
+        for points in lines.chain(self.scatter.iter().map(|s| &s.points)) {
+            points.iter().for_each(|&(x, y)| add(x, y));
         }
         for b in &self.bands {
             for &(x, lo, hi) in &b.points {
@@ -281,10 +279,8 @@ pub(crate) fn grid_png(
         }
         root.present().map_err(|e| draw_err(&e))?;
     }
-    let img = image::RgbImage::from_raw(w, h, buf).ok_or_else(|| PlotError::Draw {
-        path: path.to_path_buf(),
-        message: "pixel buffer has the wrong size".into(),
-    })?;
+    let img = image::RgbImage::from_raw(w, h, buf)
+        .ok_or_else(|| draw_err(&"pixel buffer has the wrong size"))?;
     let mut png = Vec::new();
     img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
         .map_err(|e| PlotError::Write {
@@ -297,11 +293,30 @@ pub(crate) fn grid_png(
     })
 }
 
-fn draw_panel(path: &Path, panel: &Panel, area: &Area<'_>) -> Result<(), PlotError> {
-    let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
+/// How a failure to draw panel `panel` of the figure at `path` is reported.
+pub(crate) fn draw_error<'a>(
+    path: &'a Path,
+    panel: &'a str,
+) -> impl Fn(&dyn std::fmt::Display) -> PlotError + 'a {
+    move |e| PlotError::Draw {
         path: path.to_path_buf(),
-        message: format!("panel '{}': {e}", panel.title),
-    };
+        message: format!("panel '{panel}': {e}"),
+    }
+}
+
+/// The label of index `v` when `v` is a whole number, empty elsewhere (axis labels of
+/// categories).
+pub(crate) fn label_at(v: f64, labels: &[String]) -> String {
+    let i = v.round();
+    if (v - i).abs() < 1e-6 && i >= 0.0 {
+        labels.get(i as usize).cloned().unwrap_or_default()
+    } else {
+        String::new()
+    }
+}
+
+fn draw_panel(path: &Path, panel: &Panel, area: &Area<'_>) -> Result<(), PlotError> {
+    let draw_err = draw_error(path, &panel.title);
     let ((mut x0, mut x1), (mut y0, mut y1)) = panel.bounds().ok_or_else(|| PlotError::Empty {
         path: path.to_path_buf(),
         panel: panel.title.clone(),

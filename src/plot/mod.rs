@@ -32,8 +32,6 @@ pub const PALETTE: [RGBColor; 8] = [
 
 /// Black, for the reproduction (as in the paper's Fig. 4).
 pub const BLACK: RGBColor = RGBColor(0, 0, 0);
-/// Grey, for a reference drawn behind the reproduction.
-pub const GREY: RGBColor = RGBColor(150, 150, 150);
 
 /// The colour of the `i`-th demonstration.
 pub fn demo_color(i: usize) -> RGBColor {

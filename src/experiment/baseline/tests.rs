@@ -1,5 +1,5 @@
 use super::*;
-use crate::gmr::Gmm;
+use crate::gmr::{lead_in_ticks_at, minimum_jerk, Gmm};
 use crate::sim::JOINT_NAMES;
 use nalgebra::{DMatrix, DVector};
 
@@ -19,10 +19,12 @@ fn minimum_jerk_starts_at_from_and_approaches_to_monotonically() {
 
 #[test]
 fn lead_in_respects_the_peak_speed_and_the_minimum() {
+    let lead_in_ticks =
+        |from: &[f64], to: &[f64]| lead_in_ticks_at(from, to, 40.0, LEAD_IN_PEAK_SPEED);
     // tiny distance: the minimum duration, 0.1 s at 40 Hz = 4 ticks
-    assert_eq!(lead_in_ticks(&[0.0], &[1e-6], 40.0), 4);
+    assert_eq!(lead_in_ticks(&[0.0], &[1e-6]), 4);
     // 1 rad at 1 rad/s peak: 1.875 s = 75 ticks
-    assert_eq!(lead_in_ticks(&[0.0, 0.0], &[0.2, -1.0], 40.0), 75);
+    assert_eq!(lead_in_ticks(&[0.0, 0.0], &[0.2, -1.0]), 75);
     // the samples' peak speed stays under the limit
     let s = minimum_jerk(&[0.0], &[1.0], 75);
     let peak = s
