@@ -13,8 +13,6 @@ use cosco_hsom::app;
 #[macro_use]
 mod cli;
 
-#[cfg(feature = "sim")]
-use cli::cosco_args::SweepAction;
 use cli::cosco_args::{Cli, Command, RecognitionArgs, StudyArgs};
 
 fn run(cli: Cli) -> Result<()> {
@@ -197,7 +195,7 @@ fn run(cli: Cli) -> Result<()> {
             resample,
         } => {
             resample_line(std::slice::from_ref(&demos), resample)?;
-            let job = cli::compare::CompareJob {
+            let job = cosco_hsom::experiment::compare::CompareJob {
                 resample,
                 demos,
                 config,
@@ -208,33 +206,15 @@ fn run(cli: Cli) -> Result<()> {
             };
             let bars = cli::StageBars::default();
             let on_progress = |stage: &str, done, total| bars.update(stage, done, total);
-            let report = cli::compare::compare(&job, &on_progress)?;
+            let report = cosco_hsom::experiment::compare::compare(&job, &on_progress)?;
             bars.finish();
-            for line in cli::compare::summary_lines(&report) {
+            for line in cosco_hsom::experiment::compare::summary_lines(&report) {
                 outln!("{line}");
             }
             outln!("report: {}", job.out.join("report.md").display());
         }
         #[cfg(feature = "sim")]
-        Command::Sweep {
-            action,
-            spec,
-            out,
-            shard,
-            threads,
-            retry_failed,
-        } => {
-            let lines = match (action, spec, out) {
-                (Some(SweepAction::Merge { dir }), _, _) => cli::sweep::merge_lines(&dir)?,
-                (None, Some(spec), Some(out)) => {
-                    cli::sweep::sweep(&spec, &out, shard.as_deref(), threads, retry_failed)?
-                }
-                _ => anyhow::bail!("give --spec FILE and --out DIR, or `merge DIR`"),
-            };
-            for line in lines {
-                outln!("{line}");
-            }
-        }
+        Command::Sweep(a) => cli::sweep::run(a)?.iter().for_each(|l| outln!("{l}")),
     }
     Ok(())
 }
@@ -270,11 +250,5 @@ fn resample_line(paths: &[std::path::PathBuf], hz: Option<f64>) -> Result<()> {
 }
 
 fn main() -> ExitCode {
-    match run(Cli::parse()) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("Error: {}", cli::error_line(&e));
-            ExitCode::FAILURE
-        }
-    }
+    cli::exit(run(Cli::parse()))
 }

@@ -40,7 +40,7 @@ struct Args {
     count: usize,
     /// Standard deviation of the synthetic encoder noise, rad: 0 to 0.1 (a real encoder's
     /// noise is far below 0.1 rad, about 6 degrees; more would hide the gesture).
-    #[arg(long, default_value_t = cli::DEFAULT_ENCODER_NOISE, allow_negative_numbers = true, value_parser = cli::parse_noise)]
+    #[arg(long, default_value_t = job::DEFAULT_ENCODER_NOISE, allow_negative_numbers = true, value_parser = cli::parse_noise)]
     noise: f64,
     /// Skip the off-screen rendering of the clip and contact sheet.
     #[arg(long)]
@@ -126,7 +126,7 @@ fn run(a: Args) -> Result<()> {
         eprintln!("warning: {msg}; --strict makes this an error");
     }
     // one line per method (CoSCo-HSOM, then the baseline when it ran)
-    for line in cli::compare::summary_lines(&report) {
+    for line in cosco_hsom::experiment::compare::summary_lines(&report) {
         outln!("{line}");
     }
     outln!("report: {}", job.out.join("report.md").display());
@@ -134,11 +134,5 @@ fn run(a: Args) -> Result<()> {
 }
 
 fn main() -> ExitCode {
-    match run(Args::parse()) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("Error: {}", cli::error_line(&e));
-            ExitCode::FAILURE
-        }
-    }
+    cli::exit(run(Args::parse()))
 }

@@ -15,7 +15,7 @@ use crate::fsutil::write_atomic;
 use crate::plot::{boxplots_png, quantile, BoxPanel};
 
 use super::run::RunRecord;
-use super::runner::{run_files, Manifest};
+use super::runner::{read_runs_of, Manifest};
 use super::spec::{method_name, AxisValues};
 use super::SweepError;
 use crate::eval::Method;
@@ -170,22 +170,8 @@ pub struct MergeSummary {
 /// Read every run file of `dir` (checked against `dir/sweep.json`), sorted by grid index.
 pub fn read_runs(dir: &Path) -> Result<(Manifest, Vec<RunRecord>), SweepError> {
     let manifest = Manifest::read(dir)?;
-    let mut runs = Vec::new();
-    for f in run_files(dir)? {
-        let r = RunRecord::read(&f)?;
-        if r.spec_hash != manifest.spec_hash {
-            return Err(SweepError::OutDir {
-                path: dir.to_path_buf(),
-                message: format!(
-                    "{} is a run of another spec (hash {}, the directory's sweep.json {})",
-                    f.display(),
-                    r.spec_hash,
-                    manifest.spec_hash
-                ),
-            });
-        }
-        runs.push(r);
-    }
+    let hash = &manifest.spec_hash;
+    let mut runs = read_runs_of(dir, hash, "the directory's sweep.json", "")?;
     runs.sort_by_key(|r| r.index);
     Ok((manifest, runs))
 }
@@ -233,11 +219,7 @@ pub fn merge(dir: &Path) -> Result<MergeSummary, SweepError> {
     let mut files = Vec::new();
     let mut write = |name: &str, bytes: Vec<u8>| -> Result<(), SweepError> {
         let p = dir.join(name);
-        write_atomic(&p, &bytes).map_err(|source| SweepError::Io {
-            action: "write",
-            path: p.clone(),
-            source,
-        })?;
+        write_atomic(&p, &bytes).map_err(SweepError::io("write", &p))?;
         files.push(p);
         Ok(())
     };
@@ -249,11 +231,7 @@ pub fn merge(dir: &Path) -> Result<MergeSummary, SweepError> {
     write(WINS_CSV, wins_csv(&samples, &rows)?)?;
     write(TIMING_MD, timing_md(&manifest, &runs).into_bytes())?;
     let plots = dir.join(PLOTS_DIR);
-    std::fs::create_dir_all(&plots).map_err(|source| SweepError::Io {
-        action: "create",
-        path: plots.clone(),
-        source,
-    })?;
+    std::fs::create_dir_all(&plots).map_err(SweepError::io("create", &plots))?;
     if !samples.is_empty() {
         for m in &METRICS {
             let p = plots.join(format!("{}.png", m.key));
@@ -278,6 +256,9 @@ fn methods_of(samples: &[Sample]) -> Vec<Method> {
     m
 }
 
+/// A row of the tables: an axis and its value, or `("all", "all")`.
+type Row = (&'static str, String);
+
 /// The axes of the tables' rows, in order (`method` is the columns).
 const ROW_AXES: [&str; 7] = [
     "gesture",
@@ -291,7 +272,7 @@ const ROW_AXES: [&str; 7] = [
 
 /// The rows of a table: `("all", "all")`, then each value of each of [`ROW_AXES`] that has
 /// more than one value among the runs, in the order of the runs.
-fn rows_of(runs: &[RunRecord]) -> Vec<(&'static str, String)> {
+fn rows_of(runs: &[RunRecord]) -> Vec<Row> {
     let mut rows = vec![("all", "all".to_string())];
     for axis in &ROW_AXES {
         let mut values: Vec<String> = Vec::new();
@@ -308,16 +289,11 @@ fn rows_of(runs: &[RunRecord]) -> Vec<(&'static str, String)> {
     rows
 }
 
-fn in_row(s: &AxisValues, row: &(&str, String)) -> bool {
+fn in_row(s: &AxisValues, row: &Row) -> bool {
     row.0 == "all" || s.value(row.0) == row.1
 }
 
-fn stats_of(
-    samples: &[Sample],
-    metric: &str,
-    method: Method,
-    row: &(&str, String),
-) -> Option<Stats> {
+fn stats_of(samples: &[Sample], metric: &str, method: Method, row: &Row) -> Option<Stats> {
     Stats::of(
         samples
             .iter()
@@ -343,7 +319,7 @@ fn pair_key(a: &AxisValues) -> String {
         .join("\u{1f}")
 }
 
-fn wins(samples: &[Sample], metric: &Metric, row: &(&str, String)) -> Option<Wins> {
+fn wins(samples: &[Sample], metric: &Metric, row: &Row) -> Option<Wins> {
     if metric.better == Better::Neither {
         return None;
     }
@@ -377,6 +353,15 @@ fn wins(samples: &[Sample], metric: &Metric, row: &(&str, String)) -> Option<Win
     any.then_some(w)
 }
 
+/// `| a | b | ... |` and a line break.
+fn md_row(md: &mut String, cells: impl IntoIterator<Item = String>) {
+    md.push('|');
+    for c in cells {
+        let _ = write!(md, " {c} |");
+    }
+    md.push('\n');
+}
+
 fn fmt(v: f64, digits: usize) -> String {
     format!("{v:.digits$}")
 }
@@ -387,7 +372,7 @@ fn tables_md(
     runs: &[RunRecord],
     samples: &[Sample],
     methods: &[Method],
-    rows: &[(&'static str, String)],
+    rows: &[Row],
     failed: &[String],
     missing: &[String],
 ) -> String {
@@ -430,26 +415,21 @@ fn tables_md(
             Better::Neither => "",
         };
         let _ = writeln!(md, "## {}{better}\n", m.label);
-        md.push_str("| axis | value |");
-        for me in methods {
-            let _ = write!(md, " {} (n) |", method_name(*me));
-        }
         let pairs = has_pairs && m.better != Better::Neither;
-        if pairs {
-            md.push_str(" paired wins |");
-        }
-        md.push_str("\n|---|---|");
-        for _ in methods {
-            md.push_str("---|");
-        }
-        if pairs {
-            md.push_str("---|");
-        }
-        md.push('\n');
+        let columns = methods.iter().map(|&me| format!("{} (n)", method_name(me)));
+        let columns: Vec<String> = columns.chain(pairs.then(|| "paired wins".into())).collect();
+        md_row(
+            &mut md,
+            ["axis", "value"]
+                .map(String::from)
+                .into_iter()
+                .chain(columns.clone()),
+        );
+        let _ = writeln!(md, "|---|---|{}", "---|".repeat(columns.len()));
         for row in rows {
-            let _ = write!(md, "| {} | {} |", row.0, row.1);
-            for &me in methods {
-                let cell = match stats_of(samples, m.key, me, row) {
+            let cells = methods
+                .iter()
+                .map(|&me| match stats_of(samples, m.key, me, row) {
                     Some(s) => format!(
                         "{} / {} / {}-{} ({})",
                         fmt(s.median, m.digits),
@@ -459,15 +439,18 @@ fn tables_md(
                         s.n
                     ),
                     None => "n/a".into(),
-                };
-                let _ = write!(md, " {cell} |");
-            }
-            if pairs {
-                let cell = wins(samples, m, row)
-                    .map_or("n/a".into(), |w| format!("{}-{}-{}", w.hsom, w.gmr, w.ties));
-                let _ = write!(md, " {cell} |");
-            }
-            md.push('\n');
+                });
+            let paired = pairs.then(|| {
+                wins(samples, m, row)
+                    .map_or("n/a".into(), |w| format!("{}-{}-{}", w.hsom, w.gmr, w.ties))
+            });
+            md_row(
+                &mut md,
+                [row.0.to_string(), row.1.clone()]
+                    .into_iter()
+                    .chain(cells)
+                    .chain(paired),
+            );
         }
         md.push('\n');
     }
@@ -493,80 +476,52 @@ fn tables_md(
     md
 }
 
-fn csv_bytes(
-    header: &[&str],
-    rows: impl IntoIterator<Item = Vec<String>>,
+/// A long CSV: `metric`, `axis`, `value`, then `columns`; for every metric and row, the
+/// records `cells` gives.
+fn long_csv<C: IntoIterator<Item = Vec<String>>>(
+    columns: &[&str],
+    rows: &[Row],
+    cells: impl Fn(&Metric, &Row) -> C,
 ) -> Result<Vec<u8>, SweepError> {
     let err = |e: &dyn std::fmt::Display| SweepError::Invalid(format!("CSV: {e}"));
     let mut w = csv::Writer::from_writer(Vec::new());
+    let header = ["metric", "axis", "value"].iter().chain(columns);
     w.write_record(header).map_err(|e| err(&e))?;
-    for r in rows {
-        w.write_record(&r).map_err(|e| err(&e))?;
+    for m in &METRICS {
+        for row in rows {
+            for record in cells(m, row) {
+                let key = [m.key, row.0, &row.1].map(str::to_string);
+                w.write_record(key.into_iter().chain(record))
+                    .map_err(|e| err(&e))?;
+            }
+        }
     }
     w.into_inner().map_err(|e| err(&e))
 }
 
-fn tables_csv(
-    samples: &[Sample],
-    methods: &[Method],
-    rows: &[(&'static str, String)],
-) -> Result<Vec<u8>, SweepError> {
-    let mut out = Vec::new();
-    for m in &METRICS {
-        for row in rows {
-            for &me in methods {
-                if let Some(s) = stats_of(samples, m.key, me, row) {
-                    out.push(vec![
-                        m.key.to_string(),
-                        row.0.to_string(),
-                        row.1.clone(),
-                        method_name(me).to_string(),
-                        s.n.to_string(),
-                        s.median.to_string(),
-                        s.mean.to_string(),
-                        s.q1.to_string(),
-                        s.q3.to_string(),
-                        (s.q3 - s.q1).to_string(),
-                    ]);
-                }
-            }
-        }
-    }
-    csv_bytes(
-        &[
-            "metric", "axis", "value", "method", "n", "median", "mean", "q1", "q3", "iqr",
-        ],
-        out,
-    )
+fn tables_csv(samples: &[Sample], methods: &[Method], rows: &[Row]) -> Result<Vec<u8>, SweepError> {
+    let columns = ["method", "n", "median", "mean", "q1", "q3", "iqr"];
+    long_csv(&columns, rows, |m, row| {
+        let stats = methods
+            .iter()
+            .filter_map(|&me| Some((me, stats_of(samples, m.key, me, row)?)));
+        stats
+            .map(|(me, s)| {
+                let numbers = [s.median, s.mean, s.q1, s.q3, s.q3 - s.q1].map(|x| x.to_string());
+                [method_name(me).to_string(), s.n.to_string()]
+                    .into_iter()
+                    .chain(numbers)
+                    .collect()
+            })
+            .collect::<Vec<_>>()
+    })
 }
 
-fn wins_csv(samples: &[Sample], rows: &[(&'static str, String)]) -> Result<Vec<u8>, SweepError> {
-    let mut out = Vec::new();
-    for m in &METRICS {
-        for row in rows {
-            if let Some(w) = wins(samples, m, row) {
-                out.push(vec![
-                    m.key.to_string(),
-                    row.0.to_string(),
-                    row.1.clone(),
-                    w.hsom.to_string(),
-                    w.gmr.to_string(),
-                    w.ties.to_string(),
-                ]);
-            }
-        }
-    }
-    csv_bytes(
-        &[
-            "metric",
-            "axis",
-            "value",
-            "cosco_hsom_wins",
-            "gmr_wins",
-            "ties",
-        ],
-        out,
-    )
+fn wins_csv(samples: &[Sample], rows: &[Row]) -> Result<Vec<u8>, SweepError> {
+    let columns = ["cosco_hsom_wins", "gmr_wins", "ties"];
+    long_csv(&columns, rows, |m, row| {
+        wins(samples, m, row).map(|w| [w.hsom, w.gmr, w.ties].map(|n| n.to_string()).to_vec())
+    })
 }
 
 fn timing_md(manifest: &Manifest, runs: &[RunRecord]) -> String {
@@ -689,7 +644,7 @@ fn box_plot(
                 })
                 .collect();
             BoxPanel {
-                title,
+                title: format!("{name}: {title}"),
                 y_label: metric.label.to_string(),
                 categories: gestures.clone(),
                 series: methods
@@ -698,13 +653,6 @@ fn box_plot(
                     .collect(),
                 values,
             }
-        })
-        .collect();
-    let panels: Vec<BoxPanel> = panels
-        .into_iter()
-        .map(|p| BoxPanel {
-            title: format!("{name}: {}", p.title),
-            ..p
         })
         .collect();
     boxplots_png(

@@ -15,7 +15,11 @@ pub mod runner;
 pub mod shard;
 pub mod spec;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+use serde::{de::DeserializeOwned, Serialize};
+
+use crate::fsutil::write_atomic;
 
 pub use merge::{merge, MergeSummary, Stats, METRICS};
 pub use run::{execute_run, MethodRecord, RunRecord};
@@ -68,4 +72,40 @@ pub enum SweepError {
     /// A plot could not be drawn or written.
     #[error(transparent)]
     Plot(#[from] crate::plot::PlotError),
+}
+
+impl SweepError {
+    /// The I/O error of `action` on `path` (for `map_err`).
+    fn io(action: &'static str, path: &Path) -> impl FnOnce(std::io::Error) -> SweepError {
+        let path = path.to_path_buf();
+        move |source| SweepError::Io {
+            action,
+            path,
+            source,
+        }
+    }
+}
+
+/// Read the JSON file `path` (`action` names the reading in an I/O error; `bad` says what is
+/// wrong with a file that is not a `T`).
+fn read_json<T: DeserializeOwned>(
+    path: &Path,
+    action: &'static str,
+    bad: impl FnOnce(serde_json::Error) -> String,
+) -> Result<T, SweepError> {
+    let bytes = std::fs::read(path).map_err(SweepError::io(action, path))?;
+    serde_json::from_slice(&bytes).map_err(|e| SweepError::Record {
+        path: path.to_path_buf(),
+        message: bad(e),
+    })
+}
+
+/// Write `value` as pretty JSON to `path`, atomically (a killed sweep leaves the old file or
+/// none, never half a file).
+fn write_json(path: &Path, value: &impl Serialize, action: &'static str) -> Result<(), SweepError> {
+    let json = serde_json::to_vec_pretty(value).map_err(|e| SweepError::Record {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    write_atomic(path, &json).map_err(SweepError::io(action, path))
 }

@@ -15,13 +15,12 @@ use crate::eval::{
     SWING_MIN_AMPLITUDE_RAD,
 };
 use crate::experiment::{folds, synthetic_demonstrations, DemoSettings};
-use crate::fsutil::write_atomic;
 use crate::gesture::Gesture;
 use crate::metrics::column_swings;
 use crate::sim::{ArmExecutor, NaoArm, SWING_JOINT};
 
 use super::spec::{AxisValues, Evaluation, RunPlan, SweepSpec};
-use super::SweepError;
+use super::{read_json, write_json, SweepError};
 
 /// Version of the run-file format.
 pub const RUN_FORMAT: u32 = 1;
@@ -81,14 +80,8 @@ impl RunRecord {
 
     /// Read a run file.
     pub fn read(path: &Path) -> Result<RunRecord, SweepError> {
-        let bytes = std::fs::read(path).map_err(|source| SweepError::Io {
-            action: "read the run file",
-            path: path.to_path_buf(),
-            source,
-        })?;
-        let r: RunRecord = serde_json::from_slice(&bytes).map_err(|e| SweepError::Record {
-            path: path.to_path_buf(),
-            message: format!("not a run file of this version ({e}); delete it to run it again"),
+        let r: RunRecord = read_json(path, "read the run file", |e| {
+            format!("not a run file of this version ({e}); delete it to run it again")
         })?;
         if r.format != RUN_FORMAT {
             return Err(SweepError::Record {
@@ -104,15 +97,7 @@ impl RunRecord {
 
     /// Write atomically (a killed sweep leaves the old file or none, never half a file).
     pub fn write(&self, path: &Path) -> Result<(), SweepError> {
-        let json = serde_json::to_vec_pretty(self).map_err(|e| SweepError::Record {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })?;
-        write_atomic(path, &json).map_err(|source| SweepError::Io {
-            action: "write the run file",
-            path: path.to_path_buf(),
-            source,
-        })
+        write_json(path, self, "write the run file")
     }
 }
 
@@ -210,49 +195,32 @@ fn run_methods(spec: &SweepSpec, plan: &RunPlan) -> Result<Vec<MethodRecord>, St
     Ok(methods
         .iter()
         .map(|&method| {
-            let (ran, failed): (Vec<&FoldScores>, Vec<String>) =
-                folds
-                    .iter()
-                    .fold((Vec::new(), Vec::new()), |(mut ran, mut failed), f| {
-                        ran.extend(f.scores(method));
-                        failed.extend(f.error(method).map(str::to_string));
-                        (ran, failed)
-                    });
+            let ran: Vec<&FoldScores> = folds.iter().filter_map(|f| f.scores(method)).collect();
+            let failed: Vec<String> = folds
+                .iter()
+                .filter_map(|f| f.error(method).map(str::to_string))
+                .collect();
             let in_sample = (a.evaluation == Evaluation::InSample).then_some(&demos[..]);
             let r = if method == Method::GmmGmr && in_sample.is_none() {
                 match ran.is_empty() {
                     true => Err(format!("GMM/GMR ran on no fold: {}", failed.join("; "))),
-                    false => scored(&ran, failed, None),
+                    false => scored(method, &ran, failed, None),
                 }
             } else if !failed.is_empty() {
                 Err(failed.join("; "))
             } else {
-                scored(&ran, failed, in_sample)
+                scored(method, &ran, failed, in_sample)
             };
-            match r {
-                Ok((metrics, timing, detail)) => MethodRecord {
-                    method,
-                    metrics,
-                    timing,
-                    error: None,
-                    detail,
-                },
-                Err(e) => MethodRecord {
-                    method,
-                    metrics: BTreeMap::new(),
-                    timing: BTreeMap::new(),
-                    error: Some(e),
-                    detail: serde_json::Value::Null,
-                },
-            }
+            r.unwrap_or_else(|e| MethodRecord {
+                method,
+                metrics: BTreeMap::new(),
+                timing: BTreeMap::new(),
+                error: Some(e),
+                detail: serde_json::Value::Null,
+            })
         })
         .collect())
 }
-type Scored = (
-    BTreeMap<String, f64>,
-    BTreeMap<String, f64>,
-    serde_json::Value,
-);
 
 /// Insert the finite values of `pairs` (JSON has no NaN).
 fn finite(pairs: impl IntoIterator<Item = (&'static str, Option<f64>)>) -> BTreeMap<String, f64> {
@@ -274,13 +242,15 @@ fn mean(v: impl Iterator<Item = f64>) -> Option<f64> {
     (n > 0).then(|| s / n as f64)
 }
 
-/// The metrics of a run: means over `folds` (those that ran; the in-sample split is one fold
-/// scored against every demonstration of `in_sample`); `failed` lists the folds that did not.
+/// The record of `method` in a run: means over `folds` (those that ran; the in-sample split is
+/// one fold scored against every demonstration of `in_sample`); `failed` lists the folds that
+/// did not.
 fn scored(
+    method: Method,
     folds: &[&FoldScores],
     failed: Vec<String>,
     in_sample: Option<&[Demonstration]>,
-) -> Result<Scored, String> {
+) -> Result<MethodRecord, String> {
     let s = HeldOutSummary::of(folds).ok_or_else(|| "no folds".to_string())?;
     let demo_swings = match in_sample {
         Some(demos) => {
@@ -316,5 +286,11 @@ fn scored(
         (Some(_), [one]) => serde_json::to_value(&one.fidelity).map_err(|e| e.to_string())?,
         _ => serde_json::json!({ "folds": folds, "failed_folds": failed }),
     };
-    Ok((metrics, timing, detail))
+    Ok(MethodRecord {
+        method,
+        metrics,
+        timing,
+        error: None,
+        detail,
+    })
 }

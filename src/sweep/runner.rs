@@ -3,19 +3,16 @@
 //! written to `DIR/runs/<run-id>.json` as it finishes.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
 use crate::eval::Pool;
-use crate::fsutil::write_atomic;
 
 use super::run::{execute_run, RunRecord};
 use super::shard::Shard;
 use super::spec::{identity_hash, Identity, RunPlan, SweepSpec};
-use super::SweepError;
+use super::{read_json, write_json, SweepError};
 
 /// Name of the manifest in the output directory.
 pub const MANIFEST: &str = "sweep.json";
@@ -42,15 +39,8 @@ pub struct Manifest {
 impl Manifest {
     /// Read `DIR/sweep.json`.
     pub fn read(dir: &Path) -> Result<Manifest, SweepError> {
-        let path = dir.join(MANIFEST);
-        let bytes = std::fs::read(&path).map_err(|source| SweepError::Io {
-            action: "read the sweep manifest",
-            path: path.clone(),
-            source,
-        })?;
-        serde_json::from_slice(&bytes).map_err(|e| SweepError::Record {
-            path,
-            message: format!("not a sweep manifest: {e}"),
+        read_json(&dir.join(MANIFEST), "read the sweep manifest", |e| {
+            format!("not a sweep manifest: {e}")
         })
     }
 }
@@ -114,13 +104,7 @@ pub fn run_files(dir: &Path) -> Result<Vec<PathBuf>, SweepError> {
     let entries = match std::fs::read_dir(&runs) {
         Ok(e) => e,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
-        Err(source) => {
-            return Err(SweepError::Io {
-                action: "list",
-                path: runs,
-                source,
-            })
-        }
+        Err(e) => return Err(SweepError::io("list", &runs)(e)),
     };
     let mut files: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -133,6 +117,32 @@ pub fn run_files(dir: &Path) -> Result<Vec<PathBuf>, SweepError> {
         .collect();
     files.sort();
     Ok(files)
+}
+
+/// Every run file of `dir`, each checked to be a run of the spec whose hash is `hash` (`whose`:
+/// where that hash is from, and `advice`, for the message).
+pub fn read_runs_of(
+    dir: &Path,
+    hash: &str,
+    whose: &str,
+    advice: &str,
+) -> Result<Vec<RunRecord>, SweepError> {
+    let mut runs = Vec::new();
+    for f in run_files(dir)? {
+        let r = RunRecord::read(&f)?;
+        if r.spec_hash != hash {
+            return Err(SweepError::OutDir {
+                path: dir.to_path_buf(),
+                message: format!(
+                    "{} is a run of another spec (hash {}, {whose} {hash}){advice}",
+                    f.display(),
+                    r.spec_hash,
+                ),
+            });
+        }
+        runs.push(r);
+    }
+    Ok(runs)
 }
 
 /// Check that `dir` holds this spec's runs or none, write its manifest, and return the runs
@@ -161,11 +171,8 @@ fn prepare(
             });
         }
     }
-    std::fs::create_dir_all(dir.join(RUNS_DIR)).map_err(|source| SweepError::Io {
-        action: "create",
-        path: dir.join(RUNS_DIR),
-        source,
-    })?;
+    let runs = dir.join(RUNS_DIR);
+    std::fs::create_dir_all(&runs).map_err(SweepError::io("create", &runs))?;
     let manifest = Manifest {
         spec_hash: hash.clone(),
         identity,
@@ -175,35 +182,15 @@ fn prepare(
         run_ids: plans.iter().map(|p| p.id.clone()).collect(),
     };
     if !manifest_path.exists() {
-        let json = serde_json::to_vec_pretty(&manifest).map_err(|e| SweepError::Record {
-            path: manifest_path.clone(),
-            message: e.to_string(),
-        })?;
-        write_atomic(&manifest_path, &json).map_err(|source| SweepError::Io {
-            action: "write",
-            path: manifest_path.clone(),
-            source,
-        })?;
+        write_json(&manifest_path, &manifest, "write")?;
     }
     // every run file must be this spec's; finished runs of the shard are skipped
-    let mut done = std::collections::HashSet::new();
-    for f in run_files(dir)? {
-        let r = RunRecord::read(&f)?;
-        if r.spec_hash != hash {
-            return Err(SweepError::OutDir {
-                path: dir.to_path_buf(),
-                message: format!(
-                    "{} is a run of another spec (hash {}, this spec {}); give a new --out",
-                    f.display(),
-                    r.spec_hash,
-                    hash
-                ),
-            });
-        }
-        if !(options.retry_failed && r.failed()) {
-            done.insert(r.run_id);
-        }
-    }
+    let done: std::collections::HashSet<String> =
+        read_runs_of(dir, &hash, "this spec", "; give a new --out")?
+            .into_iter()
+            .filter(|r| !(options.retry_failed && r.failed()))
+            .map(|r| r.run_id)
+            .collect();
     let shard: Vec<&RunPlan> = plans
         .iter()
         .filter(|p| options.shard.contains(p.index))
@@ -263,44 +250,35 @@ pub fn run_sweep(
     });
     let hash = spec.hash();
     let shard = options.shard.label();
-    let failed = AtomicUsize::new(0);
-    let runs_s = Mutex::new(0.0f64);
-    let write_errors: Mutex<Vec<SweepError>> = Mutex::new(Vec::new());
-    let run = |plan: &RunPlan| {
-        let record = execute_run(spec, plan, &hash, &shard);
-        if record.failed() {
-            failed.fetch_add(1, Ordering::Relaxed);
-        }
-        if let Ok(mut s) = runs_s.lock() {
-            *s += record.wall_s;
-        }
-        match record.write(&run_path(dir, &plan.id)) {
-            Ok(()) => progress(Progress::Done(&record)),
-            Err(e) => {
-                if let Ok(mut w) = write_errors.lock() {
-                    w.push(e);
-                }
-            }
-        }
-    };
-    pool.map(&todo, run, None);
-    let mut write_errors = write_errors.into_inner().unwrap_or_default();
-    if !write_errors.is_empty() {
-        let n = write_errors.len();
-        let first = write_errors.remove(0);
+    let outcomes = pool.map(
+        &todo,
+        |plan: &RunPlan| {
+            let record = execute_run(spec, plan, &hash, &shard);
+            record.write(&run_path(dir, &plan.id))?;
+            progress(Progress::Done(&record));
+            Ok::<_, SweepError>((record.failed(), record.wall_s))
+        },
+        None,
+    );
+    let (written, errors): (Vec<_>, Vec<_>) = outcomes.into_iter().partition(Result::is_ok);
+    if let Some(Err(first)) = errors.into_iter().next() {
         return Err(SweepError::Record {
             path: dir.join(RUNS_DIR),
-            message: format!("{n} run file(s) could not be written; the first: {first}"),
+            message: format!(
+                "{} run file(s) could not be written; the first: {first}",
+                todo.len() - written.len()
+            ),
         });
     }
+    let written: Vec<(bool, f64)> = written.into_iter().flatten().collect();
     Ok(SweepSummary {
         grid: plans.len(),
         in_shard,
         skipped: in_shard - todo.len(),
         ran: todo.len(),
-        failed: failed.into_inner(),
+        failed: written.iter().filter(|(failed, _)| *failed).count(),
         wall_s: t.elapsed().as_secs_f64(),
-        runs_s: runs_s.into_inner().unwrap_or(0.0),
+        runs_s: written.iter().map(|(_, wall_s)| wall_s).sum(),
         threads,
     })
 }

@@ -6,6 +6,8 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use serde::de::value::StrDeserializer;
+use serde::de::{DeserializeOwned, IntoDeserializer};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
@@ -63,12 +65,6 @@ impl MethodAxis {
             MethodAxis::Both => &[Method::Hierarchy, Method::GmmGmr],
         }
     }
-
-    fn parse(s: &str) -> Option<MethodAxis> {
-        [MethodAxis::CoscoHsom, MethodAxis::Gmr, MethodAxis::Both]
-            .into_iter()
-            .find(|m| m.name() == s)
-    }
 }
 
 /// A single method's name in run files and tables: the spec file's spelling
@@ -117,12 +113,6 @@ impl Evaluation {
             Evaluation::InSample => "in-sample",
             Evaluation::LeaveOneOut => "leave-one-out",
         }
-    }
-
-    fn parse(s: &str) -> Option<Evaluation> {
-        [Evaluation::InSample, Evaluation::LeaveOneOut]
-            .into_iter()
-            .find(|e| e.name() == s)
     }
 }
 
@@ -248,23 +238,6 @@ pub struct Axes {
     pub method: Vec<MethodAxis>,
 }
 
-impl Axes {
-    /// How many values axis `axis` has.
-    pub fn len(&self, axis: &str) -> usize {
-        match axis {
-            "gesture" => self.gesture.len(),
-            "seed" => self.seed.len(),
-            "config" => self.config.len(),
-            "noise" => self.noise.len(),
-            "count" => self.count.len(),
-            "height" => self.height.len(),
-            "evaluation" => self.evaluation.len(),
-            "method" => self.method.len(),
-            _ => 0,
-        }
-    }
-}
-
 /// A checked sweep: every value valid, every configuration read, the grid fixed.
 #[derive(Debug, Clone)]
 pub struct SweepSpec {
@@ -355,11 +328,7 @@ pub fn sha256_hex(bytes: &[u8]) -> String {
 impl SweepSpec {
     /// Read and check the spec file `path`.
     pub fn load(path: &Path) -> Result<SweepSpec, SweepError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SweepError::Io {
-            action: "read the spec",
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = std::fs::read_to_string(path).map_err(SweepError::io("read the spec", path))?;
         SweepSpec::parse(&text, path)
     }
 
@@ -378,118 +347,7 @@ impl SweepSpec {
             ))
         })?;
         let dir = path.parent().unwrap_or(Path::new(""));
-        let a = raw.axes;
-        let axis = |name: &str, n: usize| -> Result<(), SweepError> {
-            if n == 0 {
-                return Err(bad(format!(
-                    "axis `{name}` is empty: give at least one value, or leave the axis out \
-                     for its default"
-                )));
-            }
-            Ok(())
-        };
-        let gesture = a.gesture.unwrap_or_else(|| vec!["reading-watch".into()]);
-        axis("gesture", gesture.len())?;
-        for g in &gesture {
-            if Gesture::by_name(g).is_none() {
-                return Err(bad(format!(
-                    "axis `gesture`: unknown gesture '{g}': allowed {}",
-                    Gesture::names().join(", ")
-                )));
-            }
-        }
-        let seed = match a.seed {
-            None => vec![1],
-            Some(RawSeeds::List(v)) => v,
-            Some(RawSeeds::Text(t)) => {
-                parse_seeds(&t).map_err(|e| bad(format!("axis `seed`: {e}")))?
-            }
-        };
-        axis("seed", seed.len())?;
-        let config = a.config.unwrap_or_else(|| vec![DEFAULT_CONFIG.into()]);
-        axis("config", config.len())?;
-        let noise = a.noise.unwrap_or_else(|| vec![0.001]);
-        axis("noise", noise.len())?;
-        if let Some(n) = noise.iter().find(|n| !(n.is_finite() && **n >= 0.0)) {
-            return Err(bad(format!(
-                "axis `noise`: {n} rad: allowed a finite encoder noise >= 0"
-            )));
-        }
-        let count = a.count.unwrap_or_else(|| vec![4]);
-        axis("count", count.len())?;
-        let count = count
-            .into_iter()
-            .map(|c| match usize::try_from(c) {
-                Ok(c) if (1..=100).contains(&c) => Ok(c),
-                _ => Err(bad(format!(
-                    "axis `count`: {c} demonstrations: allowed 1 to 100"
-                ))),
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        let height = a
-            .height
-            .unwrap_or_else(|| vec![RawHeight::Word("config".into())]);
-        axis("height", height.len())?;
-        let height = height
-            .into_iter()
-            .map(|h| match h {
-                RawHeight::Word(w) if w == "config" => Ok(Height::Config(ConfigHeight::Config)),
-                RawHeight::Levels(n) if n >= 1 => Ok(Height::Levels(n as usize)),
-                RawHeight::Word(w) => Err(bad(format!(
-                    "axis `height`: '{w}': allowed \"config\" (the configuration's own) or a \
-                     number of levels >= 1"
-                ))),
-                RawHeight::Levels(n) => Err(bad(format!(
-                    "axis `height`: {n}: allowed \"config\" (the configuration's own) or a \
-                     number of levels >= 1"
-                ))),
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        let evaluation = a.evaluation.unwrap_or_else(|| vec!["in-sample".into()]);
-        axis("evaluation", evaluation.len())?;
-        let evaluation = words(
-            "evaluation",
-            &evaluation,
-            Evaluation::parse,
-            "in-sample, leave-one-out",
-        )
-        .map_err(bad)?;
-        let method = a.method.unwrap_or_else(|| vec!["both".into()]);
-        axis("method", method.len())?;
-        let method = words(
-            "method",
-            &method,
-            MethodAxis::parse,
-            "cosco-hsom, gmr, both",
-        )
-        .map_err(bad)?;
-        if method.contains(&MethodAxis::Both) && method.len() > 1 {
-            return Err(bad(
-                "axis `method`: `both` already runs cosco-hsom and gmr; give either `both` or \
-                 the single methods"
-                    .into(),
-            ));
-        }
-        let axes = Axes {
-            gesture,
-            seed,
-            config,
-            noise,
-            count,
-            height,
-            evaluation,
-            method,
-        };
-        check_distinct(&axes).map_err(bad)?;
-        if axes.evaluation.contains(&Evaluation::LeaveOneOut) {
-            if let Some(c) = axes.count.iter().find(|&&c| c < 2) {
-                return Err(bad(format!(
-                    "axes `count` and `evaluation`: leave-one-out needs at least 2 \
-                     demonstrations, `count` has {c}"
-                )));
-            }
-        }
-
+        let axes = check_axes(raw.axes).map_err(bad)?;
         let s = raw.sweep;
         let transition_text = s.transition.unwrap_or_else(|| "linear".into());
         let transition = Transition::parse(&transition_text)
@@ -532,7 +390,18 @@ impl SweepSpec {
     /// Every run of the grid, in order: nested loops over [`AXES`], the first outermost.
     pub fn runs(&self) -> Vec<RunPlan> {
         let a = &self.axes;
-        let total: usize = AXES.iter().map(|x| a.len(x)).product();
+        let total: usize = [
+            a.method.len(),
+            a.evaluation.len(),
+            a.config.len(),
+            a.height.len(),
+            a.count.len(),
+            a.noise.len(),
+            a.gesture.len(),
+            a.seed.len(),
+        ]
+        .iter()
+        .product();
         let width = total.saturating_sub(1).to_string().len().max(4);
         let mut out = Vec::with_capacity(total);
         for &method in &a.method {
@@ -610,40 +479,112 @@ pub fn identity_hash(id: &Identity) -> String {
     sha256_hex(&serde_json::to_vec(id).unwrap_or_default())
 }
 
-/// Parse the words of an axis with `parse`; an unknown one is an error listing `allowed`.
-fn words<T>(
-    axis: &str,
-    values: &[String],
-    parse: fn(&str) -> Option<T>,
-    allowed: &str,
-) -> Result<Vec<T>, String> {
-    values
-        .iter()
-        .map(|v| {
-            parse(v).ok_or_else(|| format!("axis `{axis}`: unknown value '{v}': allowed {allowed}"))
-        })
-        .collect()
+/// The axes as written, checked: each axis through [`axis`] (its default when left out), then
+/// what the axes must satisfy together.
+fn check_axes(a: RawAxes) -> Result<Axes, String> {
+    let seed = match a.seed {
+        None => None,
+        Some(RawSeeds::List(v)) => Some(v),
+        Some(RawSeeds::Text(t)) => Some(parse_seeds(&t).map_err(|e| format!("axis `seed`: {e}"))?),
+    };
+    let axes = Axes {
+        gesture: axis(
+            "gesture",
+            a.gesture,
+            "reading-watch".into(),
+            |g| match Gesture::by_name(&g) {
+                Some(_) => Ok(g),
+                None => Err(format!(
+                    "unknown gesture '{g}': allowed {}",
+                    Gesture::names().join(", ")
+                )),
+            },
+        )?,
+        seed: axis("seed", seed, 1, Ok)?,
+        config: axis("config", a.config, DEFAULT_CONFIG.into(), Ok)?,
+        noise: axis("noise", a.noise, 0.001, |n| {
+            match n.is_finite() && n >= 0.0 {
+                true => Ok(n),
+                false => Err(format!("{n} rad: allowed a finite encoder noise >= 0")),
+            }
+        })?,
+        count: axis("count", a.count, 4, |c| match usize::try_from(c) {
+            Ok(c) if (1..=100).contains(&c) => Ok(c),
+            _ => Err(format!("{c} demonstrations: allowed 1 to 100")),
+        })?,
+        height: axis("height", a.height, RawHeight::Word("config".into()), |h| {
+            let given = match h {
+                RawHeight::Word(w) if w == "config" => {
+                    return Ok(Height::Config(ConfigHeight::Config))
+                }
+                RawHeight::Levels(n) if n >= 1 => return Ok(Height::Levels(n as usize)),
+                RawHeight::Word(w) => format!("'{w}'"),
+                RawHeight::Levels(n) => n.to_string(),
+            };
+            Err(format!(
+                "{given}: allowed \"config\" (the configuration's own) or a number of \
+                 levels >= 1"
+            ))
+        })?,
+        evaluation: axis("evaluation", a.evaluation, "in-sample".into(), |w| {
+            word(w, "in-sample, leave-one-out")
+        })?,
+        method: axis("method", a.method, "both".into(), |w| {
+            word(w, "cosco-hsom, gmr, both")
+        })?,
+    };
+    if axes.method.contains(&MethodAxis::Both) && axes.method.len() > 1 {
+        return Err(
+            "axis `method`: `both` already runs cosco-hsom and gmr; give either `both` \
+             or the single methods"
+                .into(),
+        );
+    }
+    if axes.evaluation.contains(&Evaluation::LeaveOneOut) {
+        if let Some(c) = axes.count.iter().find(|&&c| c < 2) {
+            return Err(format!(
+                "axes `count` and `evaluation`: leave-one-out needs at least 2 \
+                 demonstrations, `count` has {c}"
+            ));
+        }
+    }
+    Ok(axes)
 }
 
-fn check_distinct(a: &Axes) -> Result<(), String> {
-    fn dup<T: PartialEq + std::fmt::Debug>(name: &str, v: &[T]) -> Result<(), String> {
-        for (i, x) in v.iter().enumerate() {
-            if v[..i].contains(x) {
-                return Err(format!(
-                    "axis `{name}`: {x:?} is given twice (every run would be run twice)"
-                ));
-            }
-        }
-        Ok(())
+/// The values of axis `name` (`default` when the spec leaves the axis out), each through
+/// `check`: at least one, none twice.
+fn axis<R, T: PartialEq + std::fmt::Debug>(
+    name: &str,
+    given: Option<Vec<R>>,
+    default: R,
+    check: impl Fn(R) -> Result<T, String>,
+) -> Result<Vec<T>, String> {
+    let given = given.unwrap_or_else(|| vec![default]);
+    if given.is_empty() {
+        return Err(format!(
+            "axis `{name}` is empty: give at least one value, or leave the axis out for its \
+             default"
+        ));
     }
-    dup("gesture", &a.gesture)?;
-    dup("seed", &a.seed)?;
-    dup("config", &a.config)?;
-    dup("noise", &a.noise)?;
-    dup("count", &a.count)?;
-    dup("height", &a.height)?;
-    dup("evaluation", &a.evaluation)?;
-    dup("method", &a.method)
+    let values = given
+        .into_iter()
+        .map(|v| check(v).map_err(|e| format!("axis `{name}`: {e}")))
+        .collect::<Result<Vec<T>, String>>()?;
+    for (i, x) in values.iter().enumerate() {
+        if values[..i].contains(x) {
+            return Err(format!(
+                "axis `{name}`: {x:?} is given twice (every run would be run twice)"
+            ));
+        }
+    }
+    Ok(values)
+}
+
+/// A word of an axis, as its enum is spelt in spec files; an unknown one is an error listing
+/// `allowed`.
+fn word<T: DeserializeOwned>(w: String, allowed: &str) -> Result<T, String> {
+    let de: StrDeserializer<'_, serde::de::value::Error> = w.as_str().into_deserializer();
+    T::deserialize(de).map_err(|_| format!("unknown value '{w}': allowed {allowed}"))
 }
 
 fn load_entry(written: &str, dir: &Path, heights: &[Height]) -> Result<ConfigEntry, String> {

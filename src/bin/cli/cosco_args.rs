@@ -40,7 +40,7 @@ pub enum Command {
         out: Option<PathBuf>,
         /// Standard deviation of the encoder noise, rad: 0 to 0.1 (a real encoder's noise is
         /// far below 0.1 rad, about 6 degrees; more would hide the gesture).
-        #[arg(long, default_value_t = super::DEFAULT_ENCODER_NOISE, allow_negative_numbers = true, value_parser = super::parse_noise)]
+        #[arg(long, default_value_t = cosco_hsom::experiment::job::DEFAULT_ENCODER_NOISE, allow_negative_numbers = true, value_parser = super::parse_noise)]
         noise: f64,
         /// MJCF model of the arm.
         #[arg(long)]
@@ -205,7 +205,7 @@ pub enum Command {
         #[arg(long, default_value = "out-compare")]
         out: PathBuf,
         /// GMM components: a number K >= 1, or `bic` (lowest BIC over 1..=16).
-        #[arg(long, default_value = "bic", value_parser = super::compare::parse_components)]
+        #[arg(long, default_value = "bic", value_parser = cosco_hsom::experiment::compare::parse_components)]
         components: cosco_hsom::gmr::ComponentChoice,
         /// How CoSCo-HSOM's postures become servo targets: `linear` (the paper) or
         /// `min-jerk[:TOL]` (as for `simulate`).
@@ -222,37 +222,7 @@ pub enum Command {
     /// Run a sweep: every combination of the axes of a TOML spec (docs/SWEEPS.md), one JSON
     /// file per run in DIR/runs, finished runs skipped; `merge` makes the tables and plots.
     #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
-    Sweep {
-        #[command(subcommand)]
-        action: Option<SweepAction>,
-        /// The spec file (TOML).
-        #[arg(long, required = true)]
-        spec: Option<PathBuf>,
-        /// Output directory: DIR/runs/<run-id>.json, then the merged tables and plots.
-        #[arg(long, required = true)]
-        out: Option<PathBuf>,
-        /// Run only the runs whose grid index is I modulo N (default: SLURM_ARRAY_TASK_ID /
-        /// SLURM_ARRAY_TASK_COUNT when set, else all).
-        #[arg(long, value_name = "I/N")]
-        shard: Option<String>,
-        /// Worker threads (default: every core).
-        #[arg(long)]
-        threads: Option<usize>,
-        /// Run again the runs whose file records a failure.
-        #[arg(long)]
-        retry_failed: bool,
-    },
-}
-
-#[cfg(feature = "sim")]
-#[derive(Subcommand)]
-pub enum SweepAction {
-    /// Merge the run files of DIR (all shards) into tables.md, tables.csv, wins.csv,
-    /// timing.md and plots/*.png there.
-    Merge {
-        /// The sweep's output directory.
-        dir: PathBuf,
-    },
+    Sweep(super::sweep::SweepArgs),
 }
 
 /// The recognition study's demonstrations (`cosco heldout --recognition`).

@@ -27,11 +27,6 @@ pub mod sweep;
 pub mod cosco_args;
 pub mod export;
 
-#[cfg(feature = "sim")]
-pub use cosco_hsom::experiment::compare;
-#[cfg(feature = "sim")]
-pub use cosco_hsom::experiment::job::DEFAULT_ENCODER_NOISE;
-
 use indicatif::{ProgressBar, ProgressStyle};
 
 /// A progress bar on stderr (hidden when stderr is not a terminal).
@@ -87,9 +82,16 @@ impl StageBars {
     }
 }
 
-/// The error and its causes on one line ([`cosco_hsom::app::error_line`]).
-pub fn error_line(e: &anyhow::Error) -> String {
-    cosco_hsom::app::error_line(e.as_ref())
+/// A binary's exit: success, or `Error: ` and the error with its causes on one line
+/// ([`cosco_hsom::app::error_line`]) on stderr, and failure.
+pub fn exit(result: anyhow::Result<()>) -> std::process::ExitCode {
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("Error: {}", cosco_hsom::app::error_line(e.as_ref()));
+            std::process::ExitCode::FAILURE
+        }
+    }
 }
 
 /// `--count`: a whole number of demonstrations, at least 1 (negative numbers reach this

@@ -2,12 +2,58 @@
 //! library's `sweep` room.
 
 use std::io::IsTerminal as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
+use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use cosco_hsom::sweep::{merge, run_sweep, MergeSummary, Progress, Shard, SweepOptions, SweepSpec};
+
+/// `cosco sweep`: a sweep, or `merge`.
+#[derive(Args)]
+pub struct SweepArgs {
+    #[command(subcommand)]
+    action: Option<SweepAction>,
+    /// The spec file (TOML).
+    #[arg(long, required = true)]
+    spec: Option<PathBuf>,
+    /// Output directory: DIR/runs/<run-id>.json, then the merged tables and plots.
+    #[arg(long, required = true)]
+    out: Option<PathBuf>,
+    /// Run only the runs whose grid index is I modulo N (default: SLURM_ARRAY_TASK_ID /
+    /// SLURM_ARRAY_TASK_COUNT when set, else all).
+    #[arg(long, value_name = "I/N")]
+    shard: Option<String>,
+    /// Worker threads (default: every core).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Run again the runs whose file records a failure.
+    #[arg(long)]
+    retry_failed: bool,
+}
+
+/// What `cosco sweep` does besides running a sweep.
+#[derive(Subcommand)]
+pub enum SweepAction {
+    /// Merge the run files of DIR (all shards) into tables.md, tables.csv, wins.csv,
+    /// timing.md and plots/*.png there.
+    Merge {
+        /// The sweep's output directory.
+        dir: PathBuf,
+    },
+}
+
+/// `cosco sweep`: run the sweep, or merge one; the lines to print.
+pub fn run(a: SweepArgs) -> Result<Vec<String>> {
+    match (a.action, a.spec, a.out) {
+        (Some(SweepAction::Merge { dir }), _, _) => merge_lines(&dir),
+        (None, Some(spec), Some(out)) => {
+            sweep(&spec, &out, a.shard.as_deref(), a.threads, a.retry_failed)
+        }
+        _ => anyhow::bail!("give --spec FILE and --out DIR, or `merge DIR`"),
+    }
+}
 
 /// The shard: `--shard I/N`, else SLURM's job-array variables, else the whole grid.
 pub fn shard(flag: Option<&str>) -> Result<Shard> {
