@@ -7,7 +7,7 @@ use super::consensus::{aligned_samples, MAX_ALIGNED};
 use super::curve::Timing;
 use super::encode::{bottom_events, dist2, observed_durations, Step};
 use crate::hsom::errors::HsomError;
-use crate::hsom::inputs::{check_series, demo_series, Series};
+use crate::hsom::inputs::{demo_series, Series};
 use crate::hsom::model::{EventsHsom, Model, Part};
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
@@ -19,12 +19,7 @@ impl<A: Part> Model<A> {
     /// whatever is lost here (a swing's amplitude, a short hold) the levels above cannot
     /// bring back. `predicted_by` is 0 throughout.
     pub(crate) fn reencode(&self, demo: &Demonstration) -> Result<Reproduction, HsomError> {
-        let p = self.config.params();
-        check_series(
-            &demo_series(std::slice::from_ref(demo)),
-            p.state_length,
-            p.action_horizon(),
-        )?;
+        self.check_demos(&demo_series(std::slice::from_ref(demo)))?;
         let norm: Vec<Vec<f64>> = demo.rows.iter().map(|r| self.normalise(r)).collect();
         let executed: Vec<Step<usize>> = bottom_events(self, &norm)
             .into_iter()
@@ -53,8 +48,7 @@ impl<A: Part> Model<A> {
         demos: &[Demonstration],
         initial: &[f64],
     ) -> Result<Reproduction, HsomError> {
-        let p = self.config.params();
-        check_series(&demo_series(demos), p.state_length, p.action_horizon())?;
+        self.check_demos(&demo_series(demos))?;
         self.check_initial(initial)?;
         let y0 = self.normalise(initial);
         let nearest = demos
@@ -109,15 +103,10 @@ impl<A: Part> Model<A> {
         source: &'static str,
         prefix: &[Vec<f64>],
     ) -> Result<Vec<Vec<f64>>, HsomError> {
-        let p = self.config.params();
-        check_series(
-            &[Series {
-                source,
-                rows: prefix,
-            }],
-            p.state_length,
-            p.action_horizon(),
-        )?;
+        self.check_demos(&[Series {
+            source,
+            rows: prefix,
+        }])?;
         Ok(self.normalise_rows(prefix))
     }
 
@@ -131,8 +120,7 @@ impl<A: Part> Model<A> {
         demos: &[Demonstration],
         prefix: &[Vec<f64>],
     ) -> Result<Reproduction, HsomError> {
-        let p = self.config.params();
-        check_series(&demo_series(demos), p.state_length, p.action_horizon())?;
+        self.check_demos(&demo_series(demos))?;
         let norm = self.normalised_prefix("prefix", prefix)?;
         let all: Vec<Vec<Vec<f64>>> = demos.iter().map(|d| self.normalise_rows(&d.rows)).collect();
         let (d, end, _) = all
