@@ -6,7 +6,6 @@ use crate::demos::Demonstration;
 use crate::som::SelfOrganizingMap;
 
 use super::errors::HsomError;
-use super::model::{Model, Part};
 
 /// Sizes of the event encoding.
 #[derive(Debug, Clone, Copy)]
@@ -87,14 +86,6 @@ pub(crate) fn check_series(
         }
     }
     Ok(())
-}
-
-impl<A: Part> Model<A> {
-    /// [`check_series`] with this model's stateLength and actionHorizon.
-    pub(crate) fn check_demos(&self, series: &[Series<'_>]) -> Result<(), HsomError> {
-        let p = self.config.params();
-        check_series(series, p.state_length, p.action_horizon())
-    }
 }
 
 /// The shortest, mean and longest of `v`.

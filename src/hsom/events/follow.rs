@@ -7,11 +7,17 @@ use super::consensus::{aligned_samples, MAX_ALIGNED};
 use super::curve::Timing;
 use super::encode::{bottom_events, dist2, observed_durations, Step};
 use crate::hsom::errors::HsomError;
-use crate::hsom::inputs::{demo_series, Series};
+use crate::hsom::inputs::{check_series, demo_series, Series};
 use crate::hsom::model::{EventsHsom, Model, Part};
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
 impl<A: Part> Model<A> {
+    /// [`check_series`] with this model's stateLength and actionHorizon.
+    pub(crate) fn check_demos(&self, series: &[Series<'_>]) -> Result<(), HsomError> {
+        let p = self.config.params();
+        check_series(series, p.state_length, p.action_horizon())
+    }
+
     /// The demonstration through the bottom level's own code and back: its events (the
     /// bottom node of each run of samples and the run's length, as in training) turned into
     /// postures exactly as a reproduction's planned events are. No upper level is involved,
