@@ -10,7 +10,10 @@ use crate::demos::Demonstration;
 use crate::som::SelfOrganizingMap;
 
 use super::errors::HsomError;
-use super::inputs::{check_series, demo_series, input_dim, Series};
+use super::followers::{followers_table, fraction, most_frequent};
+use super::inputs::{
+    bmu_known, check_series, demo_series, input_dim, level_buffers, node_means, spread, Series,
+};
 use super::memory::{Memory, Stm};
 use super::model::{EventsHsom, EventsModel, Hsom, Model, PaperModel, Part, MAX_NORMALISED};
 
@@ -168,12 +171,7 @@ impl HsomConfig {
             .map(|s| {
                 s.rows
                     .iter()
-                    .map(|r| {
-                        r.iter()
-                            .enumerate()
-                            .map(|(d, v)| (v - offset[d]) / scale[d])
-                            .collect()
-                    })
+                    .map(|r| normalised(r, &offset, &scale))
                     .collect()
             })
             .collect();
@@ -200,8 +198,10 @@ impl HsomConfig {
         for (l, lp) in p.levels.iter().enumerate() {
             let dim = input_dim(self, l);
             let (blo, bhi): (Vec<f64>, Vec<f64>) = if l == 0 {
-                let a: Vec<f64> = (0..state).map(|d| (lo[d] - offset[d]) / scale[d]).collect();
-                let b: Vec<f64> = (0..state).map(|d| (hi[d] - offset[d]) / scale[d]).collect();
+                let (a, b) = (
+                    normalised(&lo, &offset, &scale),
+                    normalised(&hi, &offset, &scale),
+                );
                 (
                     a.iter().chain(&a).cloned().collect(),
                     b.iter().chain(&b).cloned().collect(),
@@ -229,12 +229,7 @@ impl HsomConfig {
             ));
         }
         let mut stm = Stm::new(self);
-        let mut bufs: Vec<Vec<f64>> = (0..p.height)
-            .map(|l| vec![0.0; input_dim(self, l)])
-            .collect();
-        let mut masks: Vec<Vec<bool>> = (0..p.height)
-            .map(|l| vec![true; input_dim(self, l)])
-            .collect();
+        let (mut bufs, mut masks) = level_buffers(self);
         let total = if learn { p.training_steps } else { 0 };
         let expected: Vec<f64> = (0..p.height)
             .map(|l| ((total as u64 / self.period(l)).max(2) - 1) as f64)
@@ -244,16 +239,11 @@ impl HsomConfig {
         let horizon = p.action_horizon();
         let chunk = (total / 100).max(1);
         let events = p.kind() == crate::config::Algorithm::Events;
-        let mut s = 0u64;
         // the events extension trains the upper levels afterwards, so only the bottom's
         // samples are drawn (the paper's levels learn from the sequence as it is presented)
         let shuffled = events && presentation == Presentation::Shuffled;
         let samples: usize = norm.iter().map(|r| r.len() - 1).sum();
-        loop {
-            if s >= total as u64 {
-                break;
-            }
-            s += 1;
+        for s in 1..=total as u64 {
             if shuffled {
                 // one of every demonstration's samples (but the last), uniformly
                 let mut g = rng.gen_range(0..samples);
@@ -288,21 +278,13 @@ impl HsomConfig {
                 if events || s % self.period(l) != 0 {
                     break;
                 }
-                let (lower, upper) = bufs.split_at_mut(l);
-                let _ = lower;
-                let x = &mut upper[0];
-                let mask = &mut masks[l];
+                let (x, mask) = (&mut bufs[l], &mut masks[l]);
                 if !stm.input(l - 1, x, mask) {
                     continue;
                 }
-                let full = mask.iter().all(|&m| m);
                 let lp = &p.levels[l];
                 let prog = trained[l] as f64 / expected[l];
-                let (b, _) = if full {
-                    maps[l].bmu(x)
-                } else {
-                    maps[l].bmu_masked(x, mask)
-                };
+                let (b, _, full) = bmu_known(&maps[l], x, mask);
                 maps[l].update(
                     x,
                     if full { None } else { Some(mask) },
@@ -337,11 +319,7 @@ impl HsomConfig {
             hits: p.levels.iter().map(|l| vec![0; l.rows * l.cols]).collect(),
             qe: vec![0.0; p.height],
             te: vec![0.0; p.height],
-            demo_len: [
-                lens.iter().cloned().fold(f64::INFINITY, f64::min),
-                lens.iter().sum::<f64>() / lens.len() as f64,
-                lens.iter().cloned().fold(0.0, f64::max),
-            ],
+            demo_len: spread(&lens),
             demo_runs: [0.0; 3],
             dwell: vec![0.0; p.levels[0].rows * p.levels[0].cols],
             columns,
@@ -360,6 +338,14 @@ impl HsomConfig {
         m.replay(&norm);
         Ok(Hsom::Paper(Box::new(m)))
     }
+}
+
+/// `x` as the bottom level sees it with `offset` and `scale`: (x - offset) / scale.
+fn normalised(x: &[f64], offset: &[f64], scale: &[f64]) -> Vec<f64> {
+    x.iter()
+        .enumerate()
+        .map(|(d, v)| (v - offset[d]) / scale[d])
+        .collect()
 }
 
 impl EventsHsom {
@@ -381,12 +367,7 @@ impl<A: Part> Model<A> {
         let state = p.state_length;
         let events = p.kind() == crate::config::Algorithm::Events;
         let mut stm = Stm::new(&cfg);
-        let mut bufs: Vec<Vec<f64>> = (0..p.height)
-            .map(|l| vec![0.0; input_dim(&cfg, l)])
-            .collect();
-        let mut masks: Vec<Vec<bool>> = (0..p.height)
-            .map(|l| vec![true; input_dim(&cfg, l)])
-            .collect();
+        let (mut bufs, mut masks) = level_buffers(&cfg);
         let mut qe_sum = vec![0.0; p.height];
         let mut te_bad = vec![0usize; p.height];
         let mut count = vec![0usize; p.height];
@@ -462,12 +443,7 @@ impl<A: Part> Model<A> {
                     if !stm.input(l - 1, x, mask) {
                         continue;
                     }
-                    let full = mask.iter().all(|&m| m);
-                    let (b, d2) = if full {
-                        self.maps[l].bmu(x)
-                    } else {
-                        self.maps[l].bmu_masked(x, mask)
-                    };
+                    let (b, d2, full) = bmu_known(&self.maps[l], x, mask);
                     if full {
                         let (_, b2) = self.maps[l].best_two(x);
                         qe_sum[l] += d2.sqrt();
@@ -501,22 +477,14 @@ impl<A: Part> Model<A> {
             }
             runs_per_demo.push(k as f64);
         }
-        for i in 0..n0 {
-            self.dwell[i] = if dwell_n[i] > 0 {
-                dwell_sum[i] / dwell_n[i] as f64
-            } else {
-                0.0
-            };
-        }
+        self.dwell = node_means(&dwell_sum, &dwell_n);
         if !events {
             for l in 1..p.height {
                 let nodes = self.maps[l - 1].len();
-                let table = super::followers::followers_table(nodes, &seqs[l - 1]);
+                let table = followers_table(nodes, &seqs[l - 1]);
                 let ok = scored[l]
                     .iter()
-                    .filter(|&&(prev, actual)| {
-                        super::followers::most_frequent(&table, nodes, prev) == actual
-                    })
+                    .filter(|&&(prev, actual)| most_frequent(&table, nodes, prev) == actual)
                     .count();
                 self.lookup[l] = if scored[l].is_empty() {
                     0.0
@@ -526,20 +494,9 @@ impl<A: Part> Model<A> {
             }
         }
         self.accuracy = (0..p.height)
-            .map(|l| {
-                if acc_n[l] > 0 {
-                    acc_ok[l] as f64 / acc_n[l] as f64
-                } else {
-                    0.0
-                }
-            })
+            .map(|l| fraction(acc_ok[l], acc_n[l]))
             .collect();
-        let nd = runs_per_demo.len().max(1) as f64;
-        self.demo_runs = [
-            runs_per_demo.iter().cloned().fold(f64::INFINITY, f64::min),
-            runs_per_demo.iter().sum::<f64>() / nd,
-            runs_per_demo.iter().cloned().fold(0.0, f64::max),
-        ];
+        self.demo_runs = spread(&runs_per_demo);
         for l in 0..p.height {
             let c = count[l].max(1) as f64;
             self.qe[l] = qe_sum[l] / c;
@@ -552,10 +509,7 @@ impl<A: Part> Model<A> {
 
     /// A posture in the data's units as the bottom level sees it: (x - offset) / scale.
     pub(crate) fn normalise(&self, x: &[f64]) -> Vec<f64> {
-        x.iter()
-            .enumerate()
-            .map(|(d, v)| (v - self.offset[d]) / self.scale[d])
-            .collect()
+        normalised(x, &self.offset, &self.scale)
     }
 
     /// Normalised rows.

@@ -209,14 +209,6 @@ pub enum GestureError {
     /// at once, so its upper levels cannot be split by label).
     #[error("several gestures need algorithm = events (configs/nao-gestures.xml); this configuration uses the paper's algorithm")]
     NeedsEvents,
-    /// A prefix shorter than one sample or longer than its file.
-    #[error("--prefix {prefix}: the demonstration has {len} samples; give 1 to {len}")]
-    Prefix {
-        /// The prefix asked for.
-        prefix: usize,
-        /// The demonstration's samples.
-        len: usize,
-    },
     /// Training or reproduction was refused.
     #[error(transparent)]
     Hsom(#[from] HsomError),

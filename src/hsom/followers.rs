@@ -29,8 +29,13 @@ pub(crate) fn most_frequent(table: &[u32], nodes: usize, prev: u32) -> u32 {
 /// lookup table of "next entry given the last one" of `table` predicts.
 pub(crate) fn lookup_accuracy(table: &[u32], nodes: usize, seqs: &[Vec<u32>]) -> f64 {
     let (n, ok) = lookup_counts(table, nodes, seqs);
-    if n > 0 {
-        ok as f64 / n as f64
+    fraction(ok, n)
+}
+
+/// `right / asked` (0 when nothing was asked): a prediction accuracy.
+pub(crate) fn fraction(right: u32, asked: u32) -> f64 {
+    if asked > 0 {
+        right as f64 / asked as f64
     } else {
         0.0
     }

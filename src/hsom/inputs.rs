@@ -3,6 +3,7 @@
 
 use crate::config::{HsomConfig, MemoryMode};
 use crate::demos::Demonstration;
+use crate::som::SelfOrganizingMap;
 
 use super::errors::HsomError;
 
@@ -47,6 +48,8 @@ pub(crate) struct Series<'a> {
     pub(crate) rows: &'a [Vec<f64>],
 }
 
+/// Refuse `series` unless there is one and each has samples of `state` finite values, at
+/// least one state-action pair at action horizon `horizon` and never fewer than 2.
 pub(crate) fn check_series(
     series: &[Series<'_>],
     state: usize,
@@ -83,6 +86,45 @@ pub(crate) fn check_series(
         }
     }
     Ok(())
+}
+
+/// The shortest, mean and longest of `v`.
+pub(crate) fn spread(v: &[f64]) -> [f64; 3] {
+    [
+        v.iter().cloned().fold(f64::INFINITY, f64::min),
+        v.iter().sum::<f64>() / v.len().max(1) as f64,
+        v.iter().cloned().fold(0.0, f64::max),
+    ]
+}
+
+/// Per node, the mean of its `sum` over its `n` values (0 where it has none).
+pub(crate) fn node_means(sum: &[f64], n: &[u32]) -> Vec<f64> {
+    sum.iter()
+        .zip(n)
+        .map(|(&s, &n)| if n > 0 { s / n as f64 } else { 0.0 })
+        .collect()
+}
+
+/// One input buffer and one mask (all known) per level, each of the level's input length.
+pub(crate) fn level_buffers(config: &HsomConfig) -> (Vec<Vec<f64>>, Vec<Vec<bool>>) {
+    let h = config.params().height;
+    let dims = (0..h).map(|l| input_dim(config, l));
+    (
+        dims.clone().map(|d| vec![0.0; d]).collect(),
+        dims.map(|d| vec![true; d]).collect(),
+    )
+}
+
+/// The BMU of `x` in `map` and its squared distance, on the known coordinates of `mask`;
+/// and whether every coordinate is known.
+pub(crate) fn bmu_known(map: &SelfOrganizingMap, x: &[f64], mask: &[bool]) -> (usize, f64, bool) {
+    let full = mask.iter().all(|&m| m);
+    let (b, d2) = if full {
+        map.bmu(x)
+    } else {
+        map.bmu_masked(x, mask)
+    };
+    (b, d2, full)
 }
 
 /// The demonstrations as borrowed series for training.

@@ -21,6 +21,7 @@ use crate::demos::Demonstration;
 
 use super::algorithm::Presentation;
 use super::errors::{GestureError, HsomError, PersistError};
+use super::inputs::spread;
 use super::model::{EventsHsom, GestureModel, Hsom, Scoring};
 use super::persist::FORMAT_VERSION;
 use super::recognize::branch_seed;
@@ -155,14 +156,7 @@ impl HsomConfig {
         let branches: Vec<EventsHsom> = norm
             .iter()
             .enumerate()
-            .map(|(g, n)| {
-                let mut b = shared.branch(n, learn, branch_seed(seed, g, None));
-                if learn {
-                    // each branch places the shared nodes' events where its gesture has them
-                    b.fit_postures(n);
-                }
-                b
-            })
+            .map(|(g, n)| shared.branch(n, learn, branch_seed(seed, g, None)))
             .collect();
         let calibration = super::recognize::calibrate(&shared, &branches, &norm, learn, seed);
         Ok(GestureModel {
@@ -180,33 +174,25 @@ impl HsomConfig {
 impl EventsHsom {
     /// A branch: this model's bottom level (and normalisation) with every statistic
     /// recomputed and the upper levels trained on `norm` (normalised demonstrations of one
-    /// gesture) by the events extension's own training.
+    /// gesture) by the events extension's own training; trained (`learn`), it places the
+    /// shared nodes' events where its gesture has them ([`EventsHsom::fit_postures`]).
     pub(crate) fn branch(&self, norm: &[Vec<Vec<f64>>], learn: bool, seed: u64) -> EventsHsom {
         let mut b = self.clone();
         let h = b.maps.len();
+        // what the replay and the levels' training add to or may leave; every other
+        // statistic they compute anew
         b.hits.iter_mut().for_each(|v| v.fill(0));
-        b.qe.fill(0.0);
-        b.te.fill(0.0);
         b.trained[1..].iter_mut().for_each(|t| *t = 0);
-        let lens: Vec<f64> = norm.iter().map(|d| d.len() as f64).collect();
-        b.demo_len = [
-            lens.iter().cloned().fold(f64::INFINITY, f64::min),
-            lens.iter().sum::<f64>() / lens.len().max(1) as f64,
-            lens.iter().cloned().fold(0.0, f64::max),
-        ];
-        b.demo_runs = [0.0; 3];
-        b.dwell.fill(0.0);
-        b.accuracy = vec![0.0; h];
         b.lookup = vec![0.0; h];
         b.part.threshold = vec![0.0; h];
-        b.part.heldout_accuracy = vec![0.0; h];
-        b.part.heldout_lookup = vec![0.0; h];
-        b.part.followers.iter_mut().for_each(|f| f.fill(u32::MAX));
-        b.part.follower_at.fill(0.0);
-        b.part.exemplars.iter_mut().for_each(|e| e.fill(u32::MAX));
+        let lens: Vec<f64> = norm.iter().map(|d| d.len() as f64).collect();
+        b.demo_len = spread(&lens);
         b.replay(norm);
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         b.fit_events(norm, learn, &mut rng);
+        if learn {
+            b.fit_postures(norm);
+        }
         b
     }
 }

@@ -23,10 +23,6 @@ impl ActivityList {
             len: 0,
         }
     }
-    /// Capacity (`memory`).
-    pub fn capacity(&self) -> usize {
-        self.buf.len()
-    }
     /// Number of entries held.
     pub fn len(&self) -> usize {
         self.len

@@ -129,22 +129,6 @@ impl Part for PaperModel {
     }
 }
 
-impl Part for EventsModel {
-    const ALGORITHM: Algorithm = Algorithm::Events;
-    fn events(&self) -> Option<&EventsModel> {
-        Some(self)
-    }
-    fn tagged(&self) -> Algo<&PaperModel, &EventsModel> {
-        Algo::Events(self)
-    }
-    fn check(&self, s: &Shape) -> Result<(), String> {
-        self.check_part(s)
-    }
-    fn reproduce(m: &EventsHsom, y0: Vec<f64>, p: &HsomParams) -> Result<Reproduction, HsomError> {
-        Ok(m.reproduce_events(&y0, &p.reproduction))
-    }
-}
-
 impl<A> Model<A> {
     /// The same shared part with `part` for its algorithm's, and the part it held.
     pub(crate) fn with_part<B>(self, part: B) -> (Model<B>, A) {
@@ -302,9 +286,20 @@ impl EventsModel {
             traces: None,
         }
     }
+}
 
-    /// Its shapes and values against `s` (a model read from a file; [`Part::check`]).
-    fn check_part(&self, s: &Shape) -> Result<(), String> {
+impl Part for EventsModel {
+    const ALGORITHM: Algorithm = Algorithm::Events;
+    fn events(&self) -> Option<&EventsModel> {
+        Some(self)
+    }
+    fn tagged(&self) -> Algo<&PaperModel, &EventsModel> {
+        Algo::Events(self)
+    }
+    fn reproduce(m: &EventsHsom, y0: Vec<f64>, p: &HsomParams) -> Result<Reproduction, HsomError> {
+        Ok(m.plan_events(&y0, &y0, &[], &p.reproduction))
+    }
+    fn check(&self, s: &Shape) -> Result<(), String> {
         let (h, n0, state) = (s.nodes.len(), s.nodes[0], s.state);
         sized("match thresholds", self.threshold.len(), h)?;
         sized("held-out accuracy", self.heldout_accuracy.len(), h)?;

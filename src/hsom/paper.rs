@@ -10,7 +10,7 @@ use crate::config::{
 };
 
 use super::errors::HsomError;
-use super::inputs::input_dim;
+use super::inputs::{bmu_known, level_buffers};
 use super::memory::{Memory, Stm};
 use super::model::{Model, PaperHsom, Part};
 use super::reproduction::{Reproduction, StopReason};
@@ -217,12 +217,7 @@ impl Gen<'_> {
             if !self.stm.input(l - 1, x, mask) {
                 continue;
             }
-            let full = mask.iter().all(|&m| m);
-            let (b, _) = if full {
-                self.m.maps[l].bmu(x)
-            } else {
-                self.m.maps[l].bmu_masked(x, mask)
-            };
+            let (b, _, _) = bmu_known(&self.m.maps[l], x, mask);
             self.stm.push(l, b, &self.m.maps[l]);
         }
     }
@@ -334,6 +329,7 @@ impl PaperHsom {
             }));
         };
         let ends = &self.part.end_hits;
+        let (bufs, masks) = level_buffers(&self.config);
         let mut g = Gen {
             m: self,
             ends,
@@ -344,12 +340,8 @@ impl PaperHsom {
             out: vec![y0],
             by: vec![0],
             last_node: 0,
-            bufs: (0..p.height)
-                .map(|l| vec![0.0; input_dim(&self.config, l)])
-                .collect(),
-            masks: (0..p.height)
-                .map(|l| vec![true; input_dim(&self.config, l)])
-                .collect(),
+            bufs,
+            masks,
             qe0: if p.normalisation == crate::config::Normalisation::PerDimension {
                 self.qe[0]
             } else {

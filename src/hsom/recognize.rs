@@ -8,11 +8,10 @@
 use crate::dtw::{argmin, dtw_distance, dtw_with_prefixes, open_end_cost, Band};
 
 use super::errors::GestureError;
-use super::errors::HsomError;
 use super::events::{
-    a_part, b_part, bottom_events, chunk_input, chunks, summary, DurationCode, Item,
+    a_part, b_part, bottom_events, chunk_input, chunks, summary, used, DurationCode, Item,
 };
-use super::inputs::Layout;
+use super::inputs::{check_series, Layout, Series};
 use super::model::{Calibration, EventsHsom, GestureModel, Scoring};
 use super::reproduction::Reproduction;
 
@@ -29,7 +28,7 @@ pub(crate) fn branch_seed(seed: u64, g: usize, held_out: Option<usize>) -> u64 {
 /// (the bottom is shared; the branch's event durations say which nodes its gesture visited).
 pub(crate) fn posture_distances(model: &EventsHsom, norm: &[Vec<f64>]) -> Vec<f64> {
     let map = &model.maps[0];
-    let used: Vec<usize> = (0..map.len()).filter(|&n| model.dwell[n] > 0.0).collect();
+    let used = used(model, 0);
     let s = model.config.params().state_length;
     let h = model.config.params().action_horizon().max(1);
     let mut x = vec![0.0; 2 * s];
@@ -287,11 +286,7 @@ pub(crate) fn calibrate(
                             .filter(|&(j, _)| j != i)
                             .map(|(_, d)| d.clone())
                             .collect();
-                        let mut b = shared.branch(&rest, learn, branch_seed(seed, g, Some(i)));
-                        if learn {
-                            b.fit_postures(&rest);
-                        }
-                        b
+                        shared.branch(&rest, learn, branch_seed(seed, g, Some(i)))
                     })
                     .collect()
             } else {
@@ -388,34 +383,12 @@ impl GestureModel {
     ) -> Result<(Vec<&EventsHsom>, Vec<Vec<f64>>, Vec<(usize, f64)>), GestureError> {
         let branches = self.labelled()?;
         let shared = branches[0];
-        let width = shared.columns.len();
-        if rows.len() < 2 {
-            return Err(HsomError::TooShort {
-                demo: "the sequence".into(),
-                rows: rows.len(),
-                needed: 2,
-            }
-            .into());
-        }
-        for (i, r) in rows.iter().enumerate() {
-            if r.len() != width {
-                return Err(HsomError::DimensionMismatch {
-                    demo: "the sequence".into(),
-                    row: i,
-                    expected: width,
-                    found: r.len(),
-                }
-                .into());
-            }
-            if let Some(c) = r.iter().position(|v| !v.is_finite()) {
-                return Err(HsomError::NonFinite {
-                    demo: "the sequence".into(),
-                    row: i,
-                    column: c,
-                }
-                .into());
-            }
-        }
+        // a sequence of at least 2 samples (an action horizon of 1)
+        let sequence = Series {
+            source: "the sequence",
+            rows,
+        };
+        check_series(&[sequence], shared.columns.len(), 1)?;
         let norm = shared.normalise_rows(rows);
         let ev = bottom_events(shared, &norm);
         Ok((branches, norm, ev))
@@ -533,7 +506,8 @@ impl GestureModel {
         let post = self.evidence_of(&branches, &norm);
         let g = argmin(&self.scores_of(&branches, &post, prefix.len(), &ev, false));
         let rep = branches[g].reproduce(&prefix[0])?;
-        let j = open_end(prefix, &rep.postures);
+        // where the prefix ends along the reproduction: DTW with an open end in it
+        let j = open_end_cost(prefix, &rep.postures).0;
         let last = &prefix[prefix.len() - 1];
         let gap: Vec<f64> = last
             .iter()
@@ -566,12 +540,6 @@ impl GestureModel {
 /// Samples over which a continued prefix closes the gap to the reproduction (0.25 s at the
 /// recordings' 40 Hz).
 pub const PREFIX_BLEND: usize = 10;
-
-/// Where along `b` the sequence `a` ends: the column of the cheapest warping path that
-/// starts at both starts and covers all of `a` (open end in `b`).
-fn open_end(a: &[Vec<f64>], b: &[Vec<f64>]) -> usize {
-    open_end_cost(a, b).0
-}
 
 #[cfg(test)]
 mod tests {

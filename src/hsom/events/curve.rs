@@ -483,20 +483,24 @@ fn cubic_at(t: &[f64], v: &[f64], m: &[f64], ti: f64) -> f64 {
     on_segment(t, v, m, seg, ti)
 }
 
-/// The cubic on segment `seg` (knots seg and seg + 1) at time `ti`; a single knot's value.
+/// The cubic on segment `seg` (knots seg and seg + 1) at time `ti`, clamped to the segment:
+/// the cubic Hermite between the two knots with their tangents; a single knot's value.
 fn on_segment(t: &[f64], v: &[f64], m: &[f64], seg: usize, ti: f64) -> f64 {
     if t.len() == 1 {
         return v[0];
     }
-    hermite(
-        t[seg],
-        t[seg + 1],
-        v[seg],
-        v[seg + 1],
-        m[seg],
-        m[seg + 1],
-        ti,
-    )
+    let (t0, v0, m0) = (t[seg], v[seg], m[seg]);
+    let (v1, m1) = (v[seg + 1], m[seg + 1]);
+    let h = t[seg + 1] - t0;
+    if h <= 0.0 {
+        return v1;
+    }
+    let u = ((ti - t0) / h).clamp(0.0, 1.0);
+    let (u2, u3) = (u * u, u * u * u);
+    (2.0 * u3 - 3.0 * u2 + 1.0) * v0
+        + (u3 - 2.0 * u2 + u) * h * m0
+        + (-2.0 * u3 + 3.0 * u2) * v1
+        + (u3 - u2) * h * m1
 }
 
 /// The fewest samples each half of a traced event lasts for the event to pass through two
@@ -630,20 +634,6 @@ pub(super) fn monotone_tangents(t: &[f64], v: &[f64]) -> Vec<f64> {
         }
     }
     m
-}
-
-/// Cubic Hermite between (t0, v0, m0) and (t1, v1, m1) at t (clamped to the segment).
-fn hermite(t0: f64, t1: f64, v0: f64, v1: f64, m0: f64, m1: f64, t: f64) -> f64 {
-    let h = t1 - t0;
-    if h <= 0.0 {
-        return v1;
-    }
-    let u = ((t - t0) / h).clamp(0.0, 1.0);
-    let (u2, u3) = (u * u, u * u * u);
-    (2.0 * u3 - 3.0 * u2 + 1.0) * v0
-        + (u3 - 2.0 * u2 + u) * h * m0
-        + (-2.0 * u3 + 3.0 * u2) * v1
-        + (u3 - u2) * h * m1
 }
 
 /// The smoothing weights [`as_smooth_as`] tries, least first: the cut-off period of

@@ -12,6 +12,12 @@ use crate::hsom::model::{EventsHsom, Model, Part};
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
 impl<A: Part> Model<A> {
+    /// [`check_series`] with this model's stateLength and actionHorizon.
+    pub(crate) fn check_demos(&self, series: &[Series<'_>]) -> Result<(), HsomError> {
+        let p = self.config.params();
+        check_series(series, p.state_length, p.action_horizon())
+    }
+
     /// The demonstration through the bottom level's own code and back: its events (the
     /// bottom node of each run of samples and the run's length, as in training) turned into
     /// postures exactly as a reproduction's planned events are. No upper level is involved,
@@ -19,12 +25,7 @@ impl<A: Part> Model<A> {
     /// whatever is lost here (a swing's amplitude, a short hold) the levels above cannot
     /// bring back. `predicted_by` is 0 throughout.
     pub(crate) fn reencode(&self, demo: &Demonstration) -> Result<Reproduction, HsomError> {
-        let p = self.config.params();
-        check_series(
-            &demo_series(std::slice::from_ref(demo)),
-            p.state_length,
-            p.action_horizon(),
-        )?;
+        self.check_demos(&demo_series(std::slice::from_ref(demo)))?;
         let norm: Vec<Vec<f64>> = demo.rows.iter().map(|r| self.normalise(r)).collect();
         let executed: Vec<Step<usize>> = bottom_events(self, &norm)
             .into_iter()
@@ -53,8 +54,7 @@ impl<A: Part> Model<A> {
         demos: &[Demonstration],
         initial: &[f64],
     ) -> Result<Reproduction, HsomError> {
-        let p = self.config.params();
-        check_series(&demo_series(demos), p.state_length, p.action_horizon())?;
+        self.check_demos(&demo_series(demos))?;
         self.check_initial(initial)?;
         let y0 = self.normalise(initial);
         let nearest = demos
@@ -109,15 +109,10 @@ impl<A: Part> Model<A> {
         source: &'static str,
         prefix: &[Vec<f64>],
     ) -> Result<Vec<Vec<f64>>, HsomError> {
-        let p = self.config.params();
-        check_series(
-            &[Series {
-                source,
-                rows: prefix,
-            }],
-            p.state_length,
-            p.action_horizon(),
-        )?;
+        self.check_demos(&[Series {
+            source,
+            rows: prefix,
+        }])?;
         Ok(self.normalise_rows(prefix))
     }
 
@@ -131,8 +126,7 @@ impl<A: Part> Model<A> {
         demos: &[Demonstration],
         prefix: &[Vec<f64>],
     ) -> Result<Reproduction, HsomError> {
-        let p = self.config.params();
-        check_series(&demo_series(demos), p.state_length, p.action_horizon())?;
+        self.check_demos(&demo_series(demos))?;
         let norm = self.normalised_prefix("prefix", prefix)?;
         let all: Vec<Vec<Vec<f64>>> = demos.iter().map(|d| self.normalise_rows(&d.rows)).collect();
         let (d, end, _) = all

@@ -11,8 +11,10 @@ use super::traces::{
     trace_bmus_at, trace_places, trace_width, trace_words, Decoder, TRACED_CHUNKS, TRACE_HEAD,
 };
 use super::END;
-use crate::hsom::followers::{follower_positions, followers_table, lookup_accuracy, lookup_counts};
-use crate::hsom::inputs::Layout;
+use crate::hsom::followers::{
+    follower_positions, followers_table, fraction, lookup_accuracy, lookup_counts,
+};
+use crate::hsom::inputs::{node_means, spread, Layout};
 use crate::hsom::model::{EventsHsom, TracedChunk, Traces};
 
 /// What [`EventsHsom::replay_level`] measured.
@@ -31,10 +33,14 @@ struct LevelReplay {
     chunks: usize,
 }
 
-/// Nodes of a level that some training entry selected.
-pub(super) fn used(model: &EventsHsom, level: usize) -> Vec<usize> {
+/// Nodes of a level that some training entry selected (of the bottom: the nodes some
+/// training event was on, those with a dwell time).
+pub(in crate::hsom) fn used(model: &EventsHsom, level: usize) -> Vec<usize> {
     (0..model.maps[level].len())
-        .filter(|&i| model.hits[level][i] > 0)
+        .filter(|&i| match level {
+            0 => model.dwell[i] > 0.0,
+            _ => model.hits[level][i] > 0,
+        })
         .collect()
 }
 
@@ -99,10 +105,9 @@ impl EventsHsom {
                 }
             }
         }
-        let frac = |ok: u32, n: u32| if n > 0 { ok as f64 / n as f64 } else { 0.0 };
         (
-            counts.iter().map(|c| frac(c[1], c[0])).collect(),
-            counts.iter().map(|c| frac(c[3], c[2])).collect(),
+            counts.iter().map(|c| fraction(c[1], c[0])).collect(),
+            counts.iter().map(|c| fraction(c[3], c[2])).collect(),
         )
     }
 
@@ -136,20 +141,9 @@ impl EventsHsom {
                 dn[n] += 1;
             }
         }
-        for i in 0..n0 {
-            self.dwell[i] = if dn[i] > 0 {
-                dsum[i] / dn[i] as f64
-            } else {
-                0.0
-            };
-        }
+        self.dwell = node_means(&dsum, &dn);
         let counts: Vec<f64> = events.iter().map(|e| e.len() as f64).collect();
-        let nd = counts.len().max(1) as f64;
-        self.demo_runs = [
-            counts.iter().cloned().fold(f64::INFINITY, f64::min),
-            counts.iter().sum::<f64>() / nd,
-            counts.iter().cloned().fold(0.0, f64::max),
-        ];
+        self.demo_runs = spread(&counts);
         let seqs0: Vec<Vec<u32>> = events
             .iter()
             .map(|e| e.iter().map(|&(n, _)| n as u32).chain([END]).collect())
@@ -251,11 +245,7 @@ impl EventsHsom {
             self.qe[l] = r.qe / chunks;
             self.te[l] = r.te as f64 / chunks;
             self.part.threshold[l] = r.threshold;
-            self.accuracy[l] = if r.predicted > 0 {
-                r.correct as f64 / r.predicted as f64
-            } else {
-                0.0
-            };
+            self.accuracy[l] = fraction(r.correct, r.predicted);
             self.lookup[l] = lookup_accuracy(&self.part.followers[l - 1], nodes_below, &seqs);
             items = r.next_items;
             chunk_bmus.push(bmus);
@@ -370,13 +360,7 @@ impl EventsHsom {
         let lay = Layout::of(&self.config);
         let mut x = vec![0.0; lay.dim()];
         let mut mask = vec![true; lay.dim()];
-        let used_below: Vec<usize> = if l == 1 {
-            (0..self.maps[0].len())
-                .filter(|&i| self.dwell[i] > 0.0)
-                .collect()
-        } else {
-            used(self, l - 1)
-        };
+        let used_below = used(self, l - 1);
         let dec = Decoder {
             model: self,
             lay,

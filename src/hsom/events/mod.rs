@@ -40,6 +40,7 @@ mod tests;
 pub(super) use encode::{
     a_part, b_part, bottom_events, chunk_input, chunks, summary, DurationCode, Item,
 };
+pub(super) use levels::used;
 pub(super) use traces::{trace_places, trace_width, trace_words, TRACED_CHUNKS};
 
 pub(crate) use super::followers::END;

@@ -18,16 +18,12 @@ use crate::hsom::model::EventsHsom;
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
 impl EventsHsom {
-    pub(crate) fn reproduce_events(&self, y0: &[f64], r: &ReproductionParams) -> Reproduction {
-        self.plan_events(y0, y0, &[], r)
-    }
-
     /// The events reproduction after `prefix`, bottom events already executed from the
     /// normalised posture `start` (none: a reproduction from `start`): they are pushed up the
     /// lists exactly as executed events are, so every level's context and completed entries
     /// are theirs, and the plan continues from there. The postures returned start at `from`
     /// (the prefix's last posture) and hold only the continuation's events.
-    pub(super) fn plan_events(
+    pub(in crate::hsom) fn plan_events(
         &self,
         start: &[f64],
         from: &[f64],
@@ -66,17 +62,7 @@ impl EventsHsom {
         let code = DurationCode::from_dwell(&self.dwell);
         let mean_events = self.demo_runs[1].max(1.0);
         let cap = ((self.demo_len[2] * r.length_factor).ceil() as usize).clamp(2, max_len.max(2));
-        let used_levels: Vec<Vec<usize>> = (0..h)
-            .map(|l| {
-                if l == 0 {
-                    (0..self.maps[0].len())
-                        .filter(|&i| self.dwell[i] > 0.0)
-                        .collect()
-                } else {
-                    used(self, l)
-                }
-            })
-            .collect();
+        let used_levels: Vec<Vec<usize>> = (0..h).map(|l| used(self, l)).collect();
         let top = r.max_level.unwrap_or(h - 1).min(h - 1);
         // the initial event: the bottom node nearest to the initial posture (state half)
         let (n_init, _) = self.maps[0].bmu_range(start, 0..s);
@@ -326,62 +312,38 @@ impl EventsHsom {
         for j in from..lay.k {
             let c = &w[lay.slot_range(j)];
             let slot_pos = pos + (j * lay.k.pow(level as u32 - 1)) as f64 / mean_events;
-            if level == 1 {
-                let before = (ctx.executed + plan.len()) as f64;
-                let e = ctx.decoder(self).decode(
-                    1,
-                    c,
-                    &ctx.used[0],
-                    tail[0],
-                    before,
-                    slot_pos,
-                    self.exemplar(1, n, j),
-                );
-                tail[0] = e;
-                if e == END {
-                    plan.push_back((END, 0.0, ctx.by, None));
-                    return true;
-                }
-                plan.push_back((e, self.dwell[e as usize].max(1.0), ctx.by, None));
+            let below = level - 1;
+            // above level 1, the slot being executed below is that level's own match
+            let resumed = in_progress && j == from && level > 1;
+            let m = if resumed {
+                ctx.matched[below] as u32
             } else {
-                let (m, sub_from, sub_prog) = if in_progress && j == from {
-                    (ctx.matched[level - 1] as u32, ctx.done[level - 1], true)
-                } else {
-                    let prev = tail[level - 1];
-                    let dec = ctx.decoder(self);
-                    (
-                        dec.decode(
-                            level,
-                            c,
-                            &ctx.used[level - 1],
-                            prev,
-                            0.0,
-                            f64::NAN,
-                            self.exemplar(level, n, j),
-                        ),
-                        0,
-                        false,
-                    )
+                // level 1 decodes by position too
+                let (before, at) = match level {
+                    1 => ((ctx.executed + plan.len()) as f64, slot_pos),
+                    _ => (0.0, f64::NAN),
                 };
-                tail[level - 1] = m;
-                if m == END {
-                    plan.push_back((END, 0.0, ctx.by, None));
-                    return true;
-                }
-                expected[level - 1].push_back(m);
-                if self.expand(
-                    ctx,
-                    level - 1,
-                    m as usize,
-                    sub_from,
-                    sub_prog,
-                    slot_pos,
-                    plan,
-                    expected,
-                    tail,
-                ) {
-                    return true;
-                }
+                let hint = self.exemplar(level, n, j);
+                let used = &ctx.used[below];
+                ctx.decoder(self)
+                    .decode(level, c, used, tail[below], before, at, hint)
+            };
+            tail[below] = m;
+            if m == END {
+                plan.push_back((END, 0.0, ctx.by, None));
+                return true;
+            }
+            if level == 1 {
+                plan.push_back((m, self.dwell[m as usize].max(1.0), ctx.by, None));
+                continue;
+            }
+            expected[below].push_back(m);
+            let sub_from = if resumed { ctx.done[below] } else { 0 };
+            let m = m as usize;
+            if self.expand(
+                ctx, below, m, sub_from, resumed, slot_pos, plan, expected, tail,
+            ) {
+                return true;
             }
         }
         false

@@ -65,24 +65,23 @@ impl StartKnots {
         out
     }
 
+    /// The demonstrations' weights for a reproduction starting at `x` (normalised).
+    fn weights_at(&self, x: &[f64]) -> Vec<f64> {
+        let starts: Vec<&Vec<f64>> = self.starts.iter().collect();
+        Self::weights(&starts, &x[..starts[0].len()], self.width)
+    }
+
     /// The placement for a reproduction starting at `x` (normalised, state part).
     pub(crate) fn placed(&self, x: &[f64]) -> Vec<f64> {
-        let starts: Vec<&Vec<f64>> = self.starts.iter().collect();
         let knots: Vec<&Vec<f64>> = self.knots.iter().collect();
-        Self::mean(
-            &knots,
-            &Self::weights(&starts, &x[..starts[0].len()], self.width),
-        )
+        Self::mean(&knots, &self.weights_at(x))
     }
 
     /// Where the demonstrations weighed by a reproduction starting at `x` began: the mean of
     /// their first postures with [`StartKnots::placed`]'s weights (normalised, state part).
     pub(crate) fn placed_start(&self, x: &[f64]) -> Vec<f64> {
         let starts: Vec<&Vec<f64>> = self.starts.iter().collect();
-        Self::mean(
-            &starts,
-            &Self::weights(&starts, &x[..starts[0].len()], self.width),
-        )
+        Self::mean(&starts, &self.weights_at(x))
     }
 
     /// The width that predicts each demonstration's placement best from the others' (the
@@ -99,6 +98,16 @@ impl StartKnots {
         count: &[f64],
         seed: u64,
     ) -> Self {
+        let width = Self::fitted_width(&starts, &knots, count, seed);
+        StartKnots {
+            starts,
+            knots,
+            width,
+        }
+    }
+
+    /// The width of [`StartKnots::fit`].
+    fn fitted_width(starts: &[Vec<f64>], knots: &[Vec<f64>], count: &[f64], seed: u64) -> f64 {
         let n = starts.len();
         let s = knots[0].len() / count.len().max(1);
         let mut dist: Vec<f64> = (0..n)
@@ -108,11 +117,7 @@ impl StartKnots {
             .collect();
         dist.sort_by(f64::total_cmp);
         let Some(&median) = dist.get(dist.len() / 2) else {
-            return StartKnots {
-                starts,
-                knots,
-                width: f64::INFINITY,
-            };
+            return f64::INFINITY;
         };
         // gram[e][f]: the placements' inner product, each node weighted by its samples, so
         // that an error below costs n^2 per demonstration whatever the map's size
@@ -160,11 +165,7 @@ impl StartKnots {
         };
         let (gain, width) = best(&(0..n).collect::<Vec<_>>());
         if gain <= 0.0 {
-            return StartKnots {
-                starts,
-                knots,
-                width: f64::INFINITY,
-            };
+            return f64::INFINITY;
         }
         // every other order where there are at most 720 (exact), else shuffles from the seed
         let orders: Vec<Vec<usize>> = if n <= 6 {
@@ -182,15 +183,10 @@ impl StartKnots {
         // the starts' own order counts itself (its gain is `gain`)
         let as_good = orders.iter().filter(|o| best(o).0 >= gain).count();
         let p = as_good as f64 / orders.len() as f64;
-        let width = if p <= START_SIGNIFICANCE {
+        if p <= START_SIGNIFICANCE {
             width
         } else {
             f64::INFINITY
-        };
-        StartKnots {
-            starts,
-            knots,
-            width,
         }
     }
 }
