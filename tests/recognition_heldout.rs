@@ -11,9 +11,10 @@ use rand::{Rng, SeedableRng};
 
 use cosco_hsom::demos::{write_csv, Demonstration};
 use cosco_hsom::eval::recognition::{
-    recognition_json, recognition_markdown, recognition_study, RecognitionError,
-    RecognitionSettings, ACCEPT_GATE, UNKNOWN_GATE,
+    recognition_json, recognition_markdown, recognition_study, RecognitionSettings, ACCEPT_GATE,
+    UNKNOWN_GATE,
 };
+use cosco_hsom::eval::LooError;
 
 mod hsom_common;
 use hsom_common::{apex_config, apex_demo};
@@ -132,10 +133,7 @@ fn the_study_refuses_bad_input_naming_the_label_or_file() {
         control: false,
         threads: 1,
     };
-    assert!(matches!(
-        run(&[], &[], no_control),
-        RecognitionError::NoTaught
-    ));
+    assert!(matches!(run(&[], &[], no_control), LooError::NoTaught));
     // too few to hold one out and still calibrate held out
     let mut few = labelled(&TAUGHT[..2], 3);
     few[1].1.truncate(2);

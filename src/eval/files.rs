@@ -43,14 +43,7 @@ pub fn heldout(
         read_gestures_at(&job.demos, &cfg, job.state_length_from_data, job.resample)?;
     let study = leave_one_out(&cfg, gestures, &job.settings, &Kinematic, progress)?;
     // nothing to compare when the hierarchy itself never ran: the reason, as an error
-    let ran = |m| {
-        study
-            .iter()
-            .flat_map(|g| &g.held_out)
-            .flat_map(|f| &f.runs)
-            .any(|r| r.method == m && r.score.is_some())
-    };
-    if !ran(Method::Hierarchy) {
+    if !super::results::held_out_runs(&study, Method::Hierarchy).any(|r| r.score.is_some()) {
         let why = failures(&study)
             .into_iter()
             .find(|(m, _, _)| *m == Method::Hierarchy)
@@ -58,12 +51,7 @@ pub fn heldout(
         return Err(LooError::NoReproduction(why));
     }
     if let Some(p) = &job.json {
-        crate::fsutil::write_atomic(p, json(&cfg, &study).as_bytes()).map_err(|source| {
-            LooError::Write {
-                path: p.clone(),
-                source,
-            }
-        })?;
+        super::loo::write(p, json(&cfg, &study).as_bytes())?;
     }
     #[cfg(feature = "plot")]
     if let Some(p) = &job.png {

@@ -164,13 +164,18 @@ fn fit(
     input: &FoldInput<'_>,
     progress: Option<&dyn Fn(usize, usize)>,
 ) -> Result<(Hsom, f64), String> {
-    let t = Instant::now();
-    let model = match input.training {
+    let (model, s) = timed(|| match input.training {
         Training::Trained => config.fit_with_progress(input.train, progress),
         Training::Untrained => config.initialise(input.train),
-    }
-    .map_err(msg)?;
-    Ok((model, t.elapsed().as_secs_f64()))
+    });
+    Ok((model.map_err(msg)?, s))
+}
+
+/// What `f` returns, and the seconds it took.
+fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
+    let t = Instant::now();
+    let r = f();
+    (r, t.elapsed().as_secs_f64())
 }
 
 /// What a method produced: postures, training and reproduction times, what it learned.
@@ -195,93 +200,72 @@ pub fn run_fold<E: Executor>(
         return methods.iter().map(|&m| (m, Err(why.clone()))).collect();
     };
     let mut model: Option<Result<(Hsom, f64), String>> = None;
+    let mut produce = |method| -> Result<Produced, String> {
+        match method {
+            Method::Hierarchy | Method::NearestSequence => {
+                let trained = model.get_or_insert_with(|| {
+                    input
+                        .config
+                        .ok_or_else(|| "no configuration of the hierarchy given".to_string())
+                        .and_then(|c| fit(c, input, input.progress))
+                });
+                let (m, train_s) = trained.as_ref().map_err(Clone::clone)?;
+                let (rep, reproduce_s) = timed(|| match method {
+                    Method::Hierarchy => m.reproduce(initial),
+                    _ => m.follow_nearest(train, initial),
+                });
+                let r = rep.map_err(msg)?;
+                let fitted = (method == Method::Hierarchy).then(|| Fitted::Hierarchy {
+                    model: Box::new(m.clone()),
+                    reproduction: r.clone(),
+                });
+                Ok((r.postures, *train_s, reproduce_s, fitted))
+            }
+            Method::Height1 => {
+                let h1 = input.height_1.ok_or("no configuration at height 1 given")?;
+                let (m, train_s) = fit(h1, input, None)?;
+                let (rep, reproduce_s) = timed(|| m.reproduce(initial));
+                Ok((rep.map_err(msg)?.postures, train_s, reproduce_s, None))
+            }
+            Method::GmmGmr => {
+                let period = sample_period(target);
+                let (fitted, train_s) = timed(|| {
+                    let p = GmrParams::new().components(input.gmr_components);
+                    p.sample_period(period).check()?.fit_with_details(train)
+                });
+                let (m, training, bic) = fitted.map_err(msg)?;
+                let (plan, reproduce_s) = timed(|| {
+                    let speed = executor.gmr_lead_in_speed(train, period);
+                    plan_at(&m, initial, 1.0 / period, speed)
+                });
+                let plan = plan.map_err(msg)?;
+                let fitted = Fitted::GmmGmr {
+                    model: Box::new(m),
+                    training: Box::new(training),
+                    bic,
+                    plan: plan.clone(),
+                };
+                Ok((plan.postures, train_s, reproduce_s, Some(fitted)))
+            }
+            Method::ProMP => {
+                let (m, train_s) = timed(|| PrompSettings::default().fit(train));
+                let (p, reproduce_s) = timed(|| m.map_err(msg)?.reproduce(initial).map_err(msg));
+                Ok((p?, train_s, reproduce_s, None))
+            }
+            Method::Replay => {
+                let start = |d: &Demonstration| euclidean(&d.rows[0], initial);
+                train
+                    .iter()
+                    .min_by(|a, b| start(a).total_cmp(&start(b)))
+                    .map(|d| (d.rows.clone(), 0.0, 0.0, None))
+                    .ok_or_else(|| "no training demonstration".to_string())
+            }
+        }
+    };
     methods
         .iter()
         .map(|&method| {
-            let produced: Result<Produced, String> = match method {
-                Method::Hierarchy | Method::NearestSequence => {
-                    let trained = model.get_or_insert_with(|| {
-                        input
-                            .config
-                            .ok_or_else(|| "no configuration of the hierarchy given".to_string())
-                            .and_then(|c| fit(c, input, input.progress))
-                    });
-                    match trained {
-                        Ok((m, train_s)) => {
-                            let t = Instant::now();
-                            let rep = match method {
-                                Method::Hierarchy => m.reproduce(initial),
-                                _ => m.follow_nearest(train, initial),
-                            };
-                            rep.map(|r| {
-                                let reproduce_s = t.elapsed().as_secs_f64();
-                                let fitted =
-                                    (method == Method::Hierarchy).then(|| Fitted::Hierarchy {
-                                        model: Box::new(m.clone()),
-                                        reproduction: r.clone(),
-                                    });
-                                (r.postures, *train_s, reproduce_s, fitted)
-                            })
-                            .map_err(msg)
-                        }
-                        Err(e) => Err(e.clone()),
-                    }
-                }
-                Method::Height1 => input
-                    .height_1
-                    .ok_or_else(|| "no configuration at height 1 given".to_string())
-                    .and_then(|h1| fit(h1, input, None))
-                    .and_then(|(m, train_s)| {
-                        let t = Instant::now();
-                        let rep = m.reproduce(initial).map_err(msg)?;
-                        Ok((rep.postures, train_s, t.elapsed().as_secs_f64(), None))
-                    }),
-                Method::GmmGmr => {
-                    let period = sample_period(target);
-                    let t = Instant::now();
-                    GmrParams::new()
-                        .components(input.gmr_components)
-                        .sample_period(period)
-                        .check()
-                        .and_then(|p| p.fit_with_details(train))
-                        .and_then(|(m, training, bic)| {
-                            let train_s = t.elapsed().as_secs_f64();
-                            let t = Instant::now();
-                            let speed = executor.gmr_lead_in_speed(train, period);
-                            let plan = plan_at(&m, initial, 1.0 / period, speed)?;
-                            let reproduce_s = t.elapsed().as_secs_f64();
-                            let fitted = Fitted::GmmGmr {
-                                model: Box::new(m),
-                                training: Box::new(training),
-                                bic,
-                                plan: plan.clone(),
-                            };
-                            Ok((plan.postures, train_s, reproduce_s, Some(fitted)))
-                        })
-                        .map_err(msg)
-                }
-                Method::ProMP => {
-                    let t = Instant::now();
-                    PrompSettings::default()
-                        .fit(train)
-                        .and_then(|m| {
-                            let train_s = t.elapsed().as_secs_f64();
-                            let t = Instant::now();
-                            m.reproduce(initial)
-                                .map(|p| (p, train_s, t.elapsed().as_secs_f64(), None))
-                        })
-                        .map_err(msg)
-                }
-                Method::Replay => {
-                    let start = |d: &Demonstration| euclidean(&d.rows[0], initial);
-                    train
-                        .iter()
-                        .min_by(|a, b| start(a).total_cmp(&start(b)))
-                        .map(|d| (d.rows.clone(), 0.0, 0.0, None))
-                        .ok_or_else(|| "no training demonstration".to_string())
-                }
-            };
-            let run = produced.and_then(|(postures, train_s, reproduce_s, fitted)| {
+            let run = produce(method).and_then(|(postures, train_s, reproduce_s, fitted)| {
                 let executed = executor.execute(method, &postures, input.targets)?;
                 Ok(MethodRun {
                     postures,

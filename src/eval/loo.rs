@@ -61,7 +61,12 @@ impl LooSettings {
     }
 }
 
-/// Errors of the study.
+/// Fewest demonstrations of a taught label in recognition held out: one held out leaves two
+/// to learn from, so that the label's threshold is still calibrated held out.
+pub const MIN_TAUGHT_DEMOS: usize = 3;
+
+/// Why a held-out study was refused: leave-one-out ([`leave_one_out`]) or recognition
+/// ([`recognition`](super::recognition)).
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum LooError {
@@ -76,6 +81,61 @@ pub enum LooError {
     /// No gesture given.
     #[error("no gesture to evaluate")]
     Empty,
+    /// Recognition: no taught gesture given.
+    #[error("no taught gesture: give at least one directory of demonstrations to teach")]
+    NoTaught,
+    /// Recognition: a taught label with too few demonstrations to hold one out.
+    #[error("taught gesture '{label}': recognition held out needs at least {MIN_TAUGHT_DEMOS} demonstrations (one held out, two to learn from), got {found}")]
+    TooFewTaught {
+        /// The label.
+        label: String,
+        /// Demonstrations given.
+        found: usize,
+    },
+    /// Recognition: a label given twice (taught twice, untaught twice, or both).
+    #[error("gesture label '{label}' is given twice ({first} and {second}): each label once, taught or untaught")]
+    DuplicateLabel {
+        /// The label.
+        label: String,
+        /// Where it was first given: `taught` or `untaught`.
+        first: &'static str,
+        /// Where it was given again.
+        second: &'static str,
+    },
+    /// Recognition: a path that is not a directory.
+    #[error("{path}: not a directory; give a directory of CSV files (one gesture, named after the directory) or of gesture subdirectories (DIR/<gesture>/*.csv)")]
+    NotADirectory {
+        /// The path.
+        path: String,
+    },
+    /// Recognition: a label (a directory's name) that is not a plain word.
+    #[error("{path}: the gesture label {label:?} is not a plain word: name the directory with letters, digits, '_' and '-' only")]
+    BadLabel {
+        /// The directory.
+        path: String,
+        /// The label.
+        label: String,
+    },
+    /// Recognition: a demonstration whose columns are not the first taught demonstration's.
+    #[error("{path}: columns {found:?}, but the first taught demonstration ({first}) has {expected:?}; every gesture must record the same variables")]
+    Columns {
+        /// The demonstration.
+        path: String,
+        /// Its columns.
+        found: Vec<String>,
+        /// The first taught demonstration.
+        first: String,
+        /// Its columns.
+        expected: Vec<String>,
+    },
+    /// Recognition: training or recognition refused (`what`: the model of which fold).
+    #[error("{what}: {source}")]
+    Gesture {
+        /// Which model: the fold's held-out demonstration, or the model of all.
+        what: String,
+        /// The cause.
+        source: Box<crate::hsom::GestureError>,
+    },
     /// A bad setting.
     #[error("threads = {0}: needs at least 1")]
     Threads(usize),
@@ -99,7 +159,7 @@ pub enum LooError {
     /// gesture, ...).
     #[error(transparent)]
     Demo(#[from] crate::demos::DemoError),
-    /// The demonstrations or a file given to `cosco heldout` could not be read or used.
+    /// The demonstrations or a file given to the study could not be read or used.
     #[error(transparent)]
     App(#[from] crate::app::Error),
     /// The hierarchy produced no reproduction on any fold: nothing to compare.
@@ -117,6 +177,30 @@ pub enum LooError {
     #[cfg(feature = "plot")]
     #[error(transparent)]
     Plot(#[from] crate::plot::PlotError),
+}
+
+/// Every demonstration of the configuration's `stateLength`, else the first that is not.
+pub(super) fn check_width<'a>(
+    mut demos: impl Iterator<Item = &'a Demonstration>,
+    config: &HsomConfig,
+) -> Result<(), LooError> {
+    let expected = config.params().state_length;
+    match demos.find(|d| d.width() != expected) {
+        Some(d) => Err(LooError::Width {
+            path: d.source.clone(),
+            expected,
+            found: d.width(),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Write `bytes` atomically to `path`, naming it on failure.
+pub(super) fn write(path: &std::path::Path, bytes: &[u8]) -> Result<(), LooError> {
+    crate::fsutil::write_atomic(path, bytes).map_err(|source| LooError::Write {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// The gestures of `paths` as `cosco train` reads them: a directory of CSV files or files
@@ -175,18 +259,7 @@ pub fn leave_one_out<E: Executor>(
             found: d.len(),
         });
     }
-    let expected = config.params().state_length;
-    if let Some(d) = gestures
-        .iter()
-        .flat_map(|(_, d)| d)
-        .find(|d| d.width() != expected)
-    {
-        return Err(LooError::Width {
-            path: d.source.clone(),
-            expected,
-            found: d.width(),
-        });
-    }
+    check_width(gestures.iter().flat_map(|(_, d)| d), config)?;
     for (_, demos) in &gestures {
         crate::demos::validate_set(demos, None)?;
     }

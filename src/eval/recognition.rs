@@ -8,19 +8,22 @@
 //! fail the gates ([`ACCEPT_GATE`], [`UNKNOWN_GATE`]).
 //!
 //! Used by `cosco recognition` (any recorded data, [`recognition`]) and the tests
-//! ([`recognition_study`]).
+//! ([`recognition_study`]). Its errors are the held-out studies' [`LooError`].
 
 mod report;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use serde::Serialize;
+
+use super::loo::{check_width, write};
+use super::{LooError, MIN_TAUGHT_DEMOS};
 
 use crate::app;
 use crate::app::{read_demo_sets, DemoSets};
 use crate::config::HsomConfig;
 use crate::demos::Demonstration;
-use crate::hsom::{is_plain_label, GestureError, GestureModel};
+use crate::hsom::{is_plain_label, GestureModel};
 
 pub use report::{recognition_json, recognition_markdown};
 
@@ -33,10 +36,6 @@ pub const ACCEPT_GATE: f64 = 0.97;
 
 /// The gate on demonstrations of untaught gestures: at least this fraction called `unknown`.
 pub const UNKNOWN_GATE: f64 = 0.90;
-
-/// Fewest demonstrations of a taught label: one held out leaves two to learn from, so that
-/// the label's threshold is still calibrated held out.
-pub const MIN_TAUGHT_DEMOS: usize = 3;
 
 /// What the study runs besides the trained model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -54,100 +53,6 @@ impl Default for RecognitionSettings {
             threads: 1,
         }
     }
-}
-
-/// Why the study was refused.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum RecognitionError {
-    /// No taught gesture given.
-    #[error("no taught gesture: give at least one directory of demonstrations to teach")]
-    NoTaught,
-    /// A taught label with too few demonstrations to hold one out.
-    #[error("taught gesture '{label}': recognition held out needs at least {MIN_TAUGHT_DEMOS} demonstrations (one held out, two to learn from), got {found}")]
-    TooFew {
-        /// The label.
-        label: String,
-        /// Demonstrations given.
-        found: usize,
-    },
-    /// A label given twice (taught twice, untaught twice, or both).
-    #[error("gesture label '{label}' is given twice ({first} and {second}): each label once, taught or untaught")]
-    DuplicateLabel {
-        /// The label.
-        label: String,
-        /// Where it was first given: `taught` or `untaught`.
-        first: &'static str,
-        /// Where it was given again.
-        second: &'static str,
-    },
-    /// A path that is not a directory.
-    #[error("{path}: not a directory; give a directory of CSV files (one gesture, named after the directory) or of gesture subdirectories (DIR/<gesture>/*.csv)")]
-    NotADirectory {
-        /// The path.
-        path: String,
-    },
-    /// A label (a directory's name) that is not a plain word.
-    #[error("{path}: the gesture label {label:?} is not a plain word: name the directory with letters, digits, '_' and '-' only")]
-    BadLabel {
-        /// The directory.
-        path: String,
-        /// The label.
-        label: String,
-    },
-    /// A demonstration whose columns are not the first taught demonstration's.
-    #[error("{path}: columns {found:?}, but the first taught demonstration ({first}) has {expected:?}; every gesture must record the same variables")]
-    Columns {
-        /// The demonstration.
-        path: String,
-        /// Its columns.
-        found: Vec<String>,
-        /// The first taught demonstration.
-        first: String,
-        /// Its columns.
-        expected: Vec<String>,
-    },
-    /// The demonstrations' width is not the configuration's state length.
-    #[error("{path}: {found} columns but the configuration's stateLength is {expected}; give a configuration for {found} variables, or take stateLength from the data")]
-    Width {
-        /// The first file of another width.
-        path: String,
-        /// The configuration's state length.
-        expected: usize,
-        /// The file's columns.
-        found: usize,
-    },
-    /// A bad setting.
-    #[error("threads = {0}: needs at least 1")]
-    Threads(usize),
-    /// The worker threads could not be started.
-    #[error("{0}")]
-    Pool(String),
-    /// A demonstration is not valid (too short, non-finite values, ...).
-    #[error(transparent)]
-    Demo(#[from] crate::demos::DemoError),
-    /// The configuration is not valid for the data.
-    #[error(transparent)]
-    Config(#[from] crate::config::ConfigError),
-    /// The demonstrations or a file given to the study could not be read or used.
-    #[error(transparent)]
-    App(#[from] crate::app::Error),
-    /// Training or recognition refused (`what`: the model of which fold).
-    #[error("{what}: {source}")]
-    Gesture {
-        /// Which model: the fold's held-out demonstration, or the model of all.
-        what: String,
-        /// The cause.
-        source: Box<GestureError>,
-    },
-    /// An output file could not be written.
-    #[error("writing {}", path.display())]
-    Write {
-        /// The file.
-        path: PathBuf,
-        /// The cause.
-        source: std::io::Error,
-    },
 }
 
 /// One demonstration recognised.
@@ -178,36 +83,49 @@ pub struct Answers {
     pub untaught: Vec<Answer>,
 }
 
-fn fraction<'a>(answers: &'a [Answer], right: impl Fn(&'a Answer) -> bool) -> Option<f64> {
+/// The fraction of `answers` that are `right` (`None` without any).
+pub(crate) fn fraction(answers: &[Answer], right: fn(&Answer) -> bool) -> Option<f64> {
     (!answers.is_empty())
         .then(|| answers.iter().filter(|a| right(a)).count() as f64 / answers.len() as f64)
 }
 
+impl Answer {
+    /// Recognised as its own label.
+    pub fn accepted(&self) -> bool {
+        self.answer.as_ref() == Some(&self.label)
+    }
+
+    /// Its own label scores lowest (whether or not it is below its threshold).
+    pub fn right_by_best(&self) -> bool {
+        self.best == self.label
+    }
+
+    /// Called `unknown`.
+    pub fn unknown(&self) -> bool {
+        self.answer.is_none()
+    }
+
+    /// Answered with a (taught) label other than its own.
+    pub fn other_label(&self) -> bool {
+        self.answer.as_ref().is_some_and(|l| *l != self.label)
+    }
+}
+
 impl Answers {
-    /// The held-out demonstrations of `label` (all when `None`).
-    pub fn held_out_of(&self, label: Option<&str>) -> Vec<Answer> {
-        of_label(&self.held_out, label)
-    }
-
-    /// The untaught demonstrations of `label` (all when `None`).
-    pub fn untaught_of(&self, label: Option<&str>) -> Vec<Answer> {
-        of_label(&self.untaught, label)
-    }
-
     /// Fraction of held-out taught demonstrations recognised as their own label.
     pub fn accepted(&self) -> Option<f64> {
-        accepted(&self.held_out)
+        fraction(&self.held_out, Answer::accepted)
     }
 
     /// Fraction of held-out taught demonstrations whose own label scores lowest (whether or
     /// not it is below its threshold).
     pub fn right_by_best(&self) -> Option<f64> {
-        right_by_best(&self.held_out)
+        fraction(&self.held_out, Answer::right_by_best)
     }
 
     /// Fraction of untaught demonstrations called `unknown` (`None` without any).
     pub fn unknown(&self) -> Option<f64> {
-        unknown(&self.untaught)
+        fraction(&self.untaught, Answer::unknown)
     }
 
     /// Whether both gates pass: held-out accepted at least [`ACCEPT_GATE`] and, when there
@@ -216,29 +134,6 @@ impl Answers {
         self.accepted().is_some_and(|a| a >= ACCEPT_GATE)
             && self.unknown().map_or(true, |u| u >= UNKNOWN_GATE)
     }
-}
-
-fn of_label(answers: &[Answer], label: Option<&str>) -> Vec<Answer> {
-    answers
-        .iter()
-        .filter(|a| label.map_or(true, |l| a.label == l))
-        .cloned()
-        .collect()
-}
-
-/// Fraction recognised as their own label.
-pub(crate) fn accepted(a: &[Answer]) -> Option<f64> {
-    fraction(a, |a| a.answer.as_ref() == Some(&a.label))
-}
-
-/// Fraction whose own label scores lowest.
-pub(crate) fn right_by_best(a: &[Answer]) -> Option<f64> {
-    fraction(a, |a| a.best == a.label)
-}
-
-/// Fraction called `unknown`.
-pub(crate) fn unknown(a: &[Answer]) -> Option<f64> {
-    fraction(a, |a| a.answer.is_none())
 }
 
 /// The study: the taught and untaught labels, the trained model's answers and the control's.
@@ -273,13 +168,11 @@ fn answer(
     label: &str,
     demo: &Demonstration,
     what: &str,
-) -> Result<Answer, RecognitionError> {
-    let r = model
-        .recognize(&demo.rows)
-        .map_err(|e| RecognitionError::Gesture {
-            what: format!("{what}, recognising {}", demo.source),
-            source: Box::new(e),
-        })?;
+) -> Result<Answer, LooError> {
+    let r = model.recognize(&demo.rows).map_err(|e| LooError::Gesture {
+        what: format!("{what}, recognising {}", demo.source),
+        source: Box::new(e),
+    })?;
     let b = model
         .labels()
         .iter()
@@ -301,12 +194,12 @@ fn train(
     sets: &[(String, Vec<Demonstration>)],
     learn: bool,
     what: &str,
-) -> Result<GestureModel, RecognitionError> {
+) -> Result<GestureModel, LooError> {
     let r = match learn {
         true => config.fit_gestures(sets, None),
         false => config.initialise_gestures(sets),
     };
-    r.map_err(|e| RecognitionError::Gesture {
+    r.map_err(|e| LooError::Gesture {
         what: what.to_string(),
         source: Box::new(e),
     })
@@ -317,7 +210,7 @@ fn run_job(
     taught: &[(String, Vec<Demonstration>)],
     untaught: &[(String, Vec<Demonstration>)],
     job: Job,
-) -> Result<Done, RecognitionError> {
+) -> Result<Done, LooError> {
     match job {
         Job::Fold { g, i, learn } => {
             let (label, demos) = &taught[g];
@@ -347,11 +240,11 @@ fn check_sets(
     config: &HsomConfig,
     taught: &[(String, Vec<Demonstration>)],
     untaught: &[(String, Vec<Demonstration>)],
-) -> Result<(), RecognitionError> {
+) -> Result<(), LooError> {
     let first = taught
         .first()
         .and_then(|(_, d)| d.first())
-        .ok_or(RecognitionError::NoTaught)?;
+        .ok_or(LooError::NoTaught)?;
     let named = taught
         .iter()
         .map(|s| (s, "taught"))
@@ -359,13 +252,13 @@ fn check_sets(
     let mut seen: Vec<(&str, &'static str)> = Vec::new();
     for ((label, demos), kind) in named {
         if !is_plain_label(label) {
-            return Err(RecognitionError::BadLabel {
+            return Err(LooError::BadLabel {
                 path: demos.first().map_or_else(String::new, |d| d.source.clone()),
                 label: label.clone(),
             });
         }
         if let Some(&(_, first)) = seen.iter().find(|(l, _)| l == label) {
-            return Err(RecognitionError::DuplicateLabel {
+            return Err(LooError::DuplicateLabel {
                 label: label.clone(),
                 first,
                 second: kind,
@@ -373,14 +266,14 @@ fn check_sets(
         }
         seen.push((label, kind));
         if kind == "taught" && demos.len() < MIN_TAUGHT_DEMOS {
-            return Err(RecognitionError::TooFew {
+            return Err(LooError::TooFewTaught {
                 label: label.clone(),
                 found: demos.len(),
             });
         }
         crate::demos::validate_set(demos, None)?;
         if let Some(d) = demos.iter().find(|d| d.columns != first.columns) {
-            return Err(RecognitionError::Columns {
+            return Err(LooError::Columns {
                 path: d.source.clone(),
                 found: d.columns.clone(),
                 first: first.source.clone(),
@@ -388,15 +281,8 @@ fn check_sets(
             });
         }
     }
-    let expected = config.params().state_length;
-    if first.width() != expected {
-        return Err(RecognitionError::Width {
-            path: first.source.clone(),
-            expected,
-            found: first.width(),
-        });
-    }
-    Ok(())
+    // every demonstration has the first one's columns by now
+    check_width(std::iter::once(first), config)
 }
 
 /// The study on labelled sets (`taught`: at least one label, each with at least
@@ -409,9 +295,9 @@ pub fn recognition_study(
     untaught: &[(String, Vec<Demonstration>)],
     settings: &RecognitionSettings,
     progress: Option<&(dyn Fn(usize, usize) + Sync)>,
-) -> Result<RecognitionStudy, RecognitionError> {
+) -> Result<RecognitionStudy, LooError> {
     if settings.threads == 0 {
-        return Err(RecognitionError::Threads(0));
+        return Err(LooError::Threads(0));
     }
     check_sets(config, taught, untaught)?;
     let mut jobs = Vec::new();
@@ -426,7 +312,7 @@ pub fn recognition_study(
             jobs.push(Job::All { learn });
         }
     }
-    let pool = super::Pool::new(settings.threads).map_err(RecognitionError::Pool)?;
+    let pool = super::Pool::new(settings.threads).map_err(LooError::Pool)?;
     let done = pool.map(&jobs, |&j| run_job(config, taught, untaught, j), progress);
     let (mut model, mut control) = (Answers::default(), Answers::default());
     for (job, d) in jobs.iter().zip(done) {
@@ -453,11 +339,11 @@ pub fn recognition_study(
 pub fn read_labelled_dirs(
     paths: &[PathBuf],
     resample_hz: Option<f64>,
-) -> Result<LabelledSets, RecognitionError> {
+) -> Result<LabelledSets, LooError> {
     let mut sets = Vec::new();
     for p in paths {
         if !p.is_dir() {
-            return Err(RecognitionError::NotADirectory {
+            return Err(LooError::NotADirectory {
                 path: p.display().to_string(),
             });
         }
@@ -469,7 +355,7 @@ pub fn read_labelled_dirs(
                     .and_then(|c| c.file_name().map(|n| n.to_string_lossy().to_string()))
                     .unwrap_or_default();
                 if !is_plain_label(&label) {
-                    return Err(RecognitionError::BadLabel {
+                    return Err(LooError::BadLabel {
                         path: p.display().to_string(),
                         label,
                     });
@@ -506,7 +392,7 @@ pub struct RecognitionJob {
 pub fn recognition(
     job: &RecognitionJob,
     progress: Option<&(dyn Fn(usize, usize) + Sync)>,
-) -> Result<String, RecognitionError> {
+) -> Result<String, LooError> {
     if let Some(p) = &job.json {
         app::check_output(p)?;
     }
@@ -516,7 +402,7 @@ pub fn recognition(
     let width = taught
         .first()
         .and_then(|(_, d)| d.first())
-        .ok_or(RecognitionError::NoTaught)?
+        .ok_or(LooError::NoTaught)?
         .width();
     let cfg = match job.state_length_from_data {
         true => cfg.for_width(width)?,
@@ -527,11 +413,4 @@ pub fn recognition(
         write(p, recognition_json(&study).as_bytes())?;
     }
     Ok(recognition_markdown(&study))
-}
-
-fn write(path: &Path, bytes: &[u8]) -> Result<(), RecognitionError> {
-    crate::fsutil::write_atomic(path, bytes).map_err(|source| RecognitionError::Write {
-        path: path.to_path_buf(),
-        source,
-    })
 }

@@ -81,6 +81,14 @@ pub fn markdown(study: &[GestureLoo]) -> String {
     };
     let opt = |v: Option<f64>, d: usize| v.map_or("-".to_string(), |v| format!("{v:.d$}"));
     for s in summaries {
+        // the hierarchy against itself: nothing to show
+        let against = |v: String| {
+            if s.method == Method::Hierarchy {
+                "-".into()
+            } else {
+                v
+            }
+        };
         let _ = writeln!(
             out,
             "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} of {} |",
@@ -92,16 +100,11 @@ pub fn markdown(study: &[GestureLoo]) -> String {
             opt(s.jerk_ratio, 2),
             folds(s.method, |s| s.start_in_range),
             folds(s.method, |s| s.end_within_spread),
-            if s.method == Method::Hierarchy {
-                "-".to_string()
-            } else {
-                opt(s.hierarchy_ratio, 3)
-            },
-            if s.method == Method::Hierarchy {
-                "-".to_string()
-            } else {
-                format!("{} of {}", s.hierarchy_closer.0, s.hierarchy_closer.1)
-            },
+            against(opt(s.hierarchy_ratio, 3)),
+            against(format!(
+                "{} of {}",
+                s.hierarchy_closer.0, s.hierarchy_closer.1
+            )),
             s.failed,
             s.folds
         );

@@ -199,15 +199,18 @@ pub struct MethodSummary {
     pub end_within_spread: Option<f64>,
 }
 
+/// The held-out runs of `method` in `study`.
+pub(super) fn held_out_runs(study: &[GestureLoo], method: Method) -> impl Iterator<Item = &Run> {
+    let folds = study.iter().flat_map(|g| &g.held_out);
+    folds
+        .flat_map(|f| &f.runs)
+        .filter(move |r| r.method == method)
+}
+
 /// The held-out folds of `method` in `study` where it produced a reproduction whose score
 /// passes `pass`, and the held-out folds it ran on.
 pub fn passed(study: &[GestureLoo], method: Method, pass: fn(&Score) -> bool) -> (usize, usize) {
-    let runs = study
-        .iter()
-        .flat_map(|g| &g.held_out)
-        .flat_map(|f| &f.runs)
-        .filter(|r| r.method == method);
-    runs.fold((0, 0), |(k, n), r| {
+    held_out_runs(study, method).fold((0, 0), |(k, n), r| {
         (k + usize::from(r.score.as_ref().is_some_and(pass)), n + 1)
     })
 }
@@ -217,37 +220,16 @@ fn fraction((k, n): (usize, usize)) -> Option<f64> {
     (n > 0).then(|| k as f64 / n as f64)
 }
 
-fn held(g: &GestureLoo) -> &[Fold] {
-    &g.held_out
-}
-
-fn ins(g: &GestureLoo) -> &[Fold] {
-    &g.in_sample
-}
-
 /// The summary of every method that ran.
 pub fn summary(study: &[GestureLoo]) -> Vec<MethodSummary> {
-    let ran = |m: Method| {
-        study.iter().any(|g| {
-            g.held_out
-                .iter()
-                .any(|f| f.runs.iter().any(|r| r.method == m))
-        })
-    };
+    let ran = |m: Method| held_out_runs(study, m).next().is_some();
     Method::ALL
         .into_iter()
         .filter(|&m| ran(m))
         .map(|m| {
-            let runs = || {
-                study
-                    .iter()
-                    .flat_map(|g| &g.held_out)
-                    .flat_map(|f| &f.runs)
-                    .filter(move |r| r.method == m)
-            };
-            let med = |folds: fn(&GestureLoo) -> &[Fold], f: fn(&Score) -> f64| {
-                median(study.iter().filter_map(|g| g.mean(folds(g), m, f)))
-            };
+            // the median over the gestures of a per-gesture figure
+            let med =
+                |per: &dyn Fn(&GestureLoo) -> Option<f64>| median(study.iter().filter_map(per));
             let pairs: Vec<(f64, f64)> = study
                 .iter()
                 .filter_map(|g| {
@@ -259,20 +241,17 @@ pub fn summary(study: &[GestureLoo]) -> Vec<MethodSummary> {
                 .collect();
             MethodSummary {
                 method: m,
-                folds: runs().count(),
-                failed: runs().filter(|r| r.score.is_none()).count(),
-                relative_dtw: med(held, |s| s.relative_dtw),
-                relative_dtw_in_sample: med(ins, |s| s.relative_dtw),
-                duration_ratio: med(held, |s| s.duration_ratio),
-                relative_final_error: median(study.iter().filter_map(|g| {
-                    g.mean(&g.held_out, m, |s| s.final_error)
-                        .map(|e| e / g.diagonal)
-                })),
-                jerk_ratio: median(
-                    study.iter().filter_map(|g| {
-                        g.mean(&g.held_out, m, |s| s.jerk_ratio.unwrap_or(f64::NAN))
-                    }),
-                ),
+                folds: held_out_runs(study, m).count(),
+                failed: held_out_runs(study, m)
+                    .filter(|r| r.score.is_none())
+                    .count(),
+                relative_dtw: med(&|g| g.mean(&g.held_out, m, |s| s.relative_dtw)),
+                relative_dtw_in_sample: med(&|g| g.mean(&g.in_sample, m, |s| s.relative_dtw)),
+                duration_ratio: med(&|g| g.mean(&g.held_out, m, |s| s.duration_ratio)),
+                relative_final_error: med(&|g| {
+                    Some(g.mean(&g.held_out, m, |s| s.final_error)? / g.diagonal)
+                }),
+                jerk_ratio: med(&|g| g.mean(&g.held_out, m, |s| s.jerk_ratio.unwrap_or(f64::NAN))),
                 hierarchy_ratio: median(pairs.iter().map(|(h, x)| h / x)),
                 hierarchy_closer: (pairs.iter().filter(|(h, x)| h < x).count(), pairs.len()),
                 start_in_range: fraction(passed(study, m, |s| s.start_in_range)),

@@ -20,13 +20,10 @@ pub mod executed;
 pub mod limits;
 pub mod naoqi;
 mod request;
-pub mod source;
 pub(crate) mod trajectory;
 
-pub use request::{export_request, ExportRequest};
+pub use request::{export_request, ExportRequest, DEFAULT_STEP_RATE_HZ};
 pub use trajectory::{ExportError, Trajectory};
-
-use std::path::Path;
 
 use serde::Serialize;
 
@@ -51,32 +48,6 @@ impl std::str::FromStr for Format {
             _ => Err(format!("`{s}`: expected naoqi, ros2 or csv")),
         }
     }
-}
-
-/// How to time the motion before the limits are checked.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Timing {
-    /// As recorded.
-    AsIs,
-    /// Played `factor` times faster (2: twice as fast).
-    Speed(f64),
-    /// Stretched or squeezed to last this long, s.
-    Duration(f64),
-}
-
-/// Everything `cosco export` decides besides the input and the output file.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ExportOptions {
-    /// Output format.
-    pub format: Format,
-    /// Time scaling.
-    pub timing: Timing,
-    /// Safety fraction of each joint's maximum velocity.
-    pub velocity_fraction: f64,
-    /// Slow the timing down instead of refusing a too-fast trajectory.
-    pub clamp: bool,
-    /// Rate of the CSV output, Hz (`None`: the trajectory's own points).
-    pub rate_hz: Option<f64>,
 }
 
 /// What an export did.
@@ -124,17 +95,18 @@ impl ExportReport {
     }
 }
 
-/// Time-scale, check against `limits` (or slow down with `clamp`): the trajectory to write
-/// and the report.
+/// Time-scale as `r` asks (`speed` times faster, or stretched to last `duration` s), check
+/// against `limits` at `r.velocity_fraction` (or slow down with `r.clamp`), resample a CSV to
+/// `r.rate`: the trajectory to write and the report.
 pub fn prepare(
     t: &Trajectory,
     limits: &limits::RobotLimits,
-    opts: &ExportOptions,
+    r: &ExportRequest,
 ) -> Result<(Trajectory, ExportReport), ExportError> {
     let source_duration = t.duration();
-    let timed = match opts.timing {
-        Timing::AsIs => t.clone(),
-        Timing::Speed(f) => {
+    let timed = match (r.speed, r.duration) {
+        (None, None) => t.clone(),
+        (Some(f), _) => {
             if !(f.is_finite() && f > 0.0) {
                 return Err(ExportError::Option {
                     option: "--speed",
@@ -144,7 +116,7 @@ pub fn prepare(
             }
             t.scaled(1.0 / f)?
         }
-        Timing::Duration(d) => {
+        (None, Some(d)) => {
             if !(d.is_finite() && d > 0.0) || source_duration <= 0.0 {
                 return Err(ExportError::Option {
                     option: "--duration",
@@ -155,14 +127,14 @@ pub fn prepare(
             t.scaled(d / source_duration)?
         }
     };
-    let (out, clamp) = if opts.clamp {
-        let (s, r) = limits::slow_to_limits(limits, &timed, opts.velocity_fraction)?;
-        (s, Some(r))
+    let (out, clamp) = if r.clamp {
+        let (s, slowdown) = limits::slow_to_limits(limits, &timed, r.velocity_fraction)?;
+        (s, Some(slowdown))
     } else {
-        limits.check(&timed, opts.velocity_fraction)?;
+        limits.check(&timed, r.velocity_fraction)?;
         (timed, None)
     };
-    let out = match (opts.format, opts.rate_hz) {
+    let out = match (r.format, r.rate) {
         (Format::Csv, Some(hz)) => out.at_rate(hz)?,
         _ => out,
     };
@@ -201,29 +173,6 @@ pub fn encode(
             })
         }
     }
-}
-
-/// A way to execute the prepared trajectory and record the joints (the simulated arm:
-/// `crate::export::executed` with the feature `sim`).
-pub type Execute<'a> = &'a dyn Fn(&Trajectory) -> Result<Trajectory, ExportError>;
-
-/// Prepare ([`prepare`]), execute when asked (its recording goes into the MCAP file), and
-/// write atomically to `out`.
-pub fn export_to(
-    t: &Trajectory,
-    limits: &limits::RobotLimits,
-    opts: &ExportOptions,
-    execute: Option<Execute<'_>>,
-    out: &Path,
-) -> Result<ExportReport, ExportError> {
-    let (t, report) = prepare(t, limits, opts)?;
-    let executed = execute.map(|f| f(&t)).transpose()?;
-    let bytes = encode(&t, opts.format, executed.as_ref())?;
-    crate::fsutil::write_atomic(out, &bytes).map_err(|source| ExportError::Write {
-        path: out.display().to_string(),
-        source,
-    })?;
-    Ok(report)
 }
 
 #[cfg(test)]

@@ -24,13 +24,24 @@ fn arm_trajectory(duration: f64) -> Trajectory {
     Trajectory::new(names, times, positions).unwrap()
 }
 
-fn opts(format: Format) -> ExportOptions {
-    ExportOptions {
+fn opts(format: Format) -> ExportRequest {
+    ExportRequest {
+        reproduction: None,
+        model: None,
+        initial: None,
+        initial_from: None,
+        gesture: None,
         format,
-        timing: Timing::AsIs,
+        out: "unused".into(),
+        speed: None,
+        duration: None,
         velocity_fraction: limits::DEFAULT_VELOCITY_FRACTION,
         clamp: false,
-        rate_hz: None,
+        rate: None,
+        step_rate: DEFAULT_STEP_RATE_HZ,
+        mjcf: None,
+        velocity_table: None,
+        executed: false,
     }
 }
 
@@ -41,20 +52,20 @@ fn a_sped_up_motion_is_refused_naming_the_joint_and_clamp_slows_it_to_the_limit(
     let (_, ok) = prepare(&t, &arm, &opts(Format::Naoqi)).unwrap();
     assert!(ok.peak_velocity_fraction < 0.5);
     // 40 times faster: the elbow roll (0.59 rad in 0.025 s at the steepest) is over the limit
-    let fast = Timing::Speed(40.0);
+    let fast = Some(40.0);
     let e = prepare(
         &t,
         &arm,
-        &ExportOptions {
-            timing: fast,
+        &ExportRequest {
+            speed: fast,
             ..opts(Format::Naoqi)
         },
     )
     .unwrap_err()
     .to_string();
     assert!(e.contains("LElbowRoll") && e.contains("--clamp"), "{e}");
-    let clamped = ExportOptions {
-        timing: fast,
+    let clamped = ExportRequest {
+        speed: fast,
         clamp: true,
         ..opts(Format::Naoqi)
     };
@@ -82,7 +93,7 @@ fn a_posture_out_of_range_is_refused_even_with_clamp() {
         let e = prepare(
             &t,
             &arm,
-            &ExportOptions {
+            &ExportRequest {
                 clamp,
                 ..opts(Format::Csv)
             },
@@ -116,9 +127,9 @@ fn naoqi_lists_have_equal_lengths_and_positive_increasing_times() {
 fn duration_and_rate_retime_the_motion() {
     let arm = nao_left_arm();
     let t = arm_trajectory(2.0);
-    let o = ExportOptions {
-        timing: Timing::Duration(4.0),
-        rate_hz: Some(10.0),
+    let o = ExportRequest {
+        duration: Some(4.0),
+        rate: Some(10.0),
         ..opts(Format::Csv)
     };
     let (out, r) = prepare(&t, &arm, &o).unwrap();
@@ -127,8 +138,8 @@ fn duration_and_rate_retime_the_motion() {
     assert!((out.times[1] - 0.1).abs() < 1e-12);
     // halfway: the apex (Stand), reached at 2 s
     assert!((out.position_at(2.0)[3] + 0.4173).abs() < 1e-9);
-    let bad = ExportOptions {
-        timing: Timing::Speed(-1.0),
+    let bad = ExportRequest {
+        speed: Some(-1.0),
         ..opts(Format::Csv)
     };
     assert!(prepare(&t, &arm, &bad)

@@ -47,16 +47,18 @@ pub fn trajectory_mcap(
         .library(concat!("cosco-hsom ", env!("CARGO_PKG_VERSION")))
         .create(Cursor::new(Vec::new()))
         .map_err(e)?;
-    let schema = w
-        .add_schema(
-            msgs::JOINT_TRAJECTORY,
-            "ros2msg",
-            msgs::JOINT_TRAJECTORY_DEF.as_bytes(),
-        )
-        .map_err(e)?;
-    let channel = w
-        .add_channel(schema, TRAJECTORY_TOPIC, "cdr", &BTreeMap::new())
-        .map_err(e)?;
+    // a channel of CDR messages of type `name` (its `ros2msg` text `def`) on `topic`
+    let channel = |w: &mut mcap::Writer<_>, name, def: &str, topic| {
+        let schema = w.add_schema(name, "ros2msg", def.as_bytes())?;
+        w.add_channel(schema, topic, "cdr", &BTreeMap::new())
+    };
+    let trajectory = channel(
+        &mut w,
+        msgs::JOINT_TRAJECTORY,
+        &msgs::JOINT_TRAJECTORY_DEF,
+        TRAJECTORY_TOPIC,
+    )
+    .map_err(e)?;
     let velocities = t.velocities();
     let msg = JointTrajectory {
         header: Header {
@@ -84,19 +86,11 @@ pub fn trajectory_mcap(
         log_time: ns,
         publish_time: ns,
     };
-    w.write_to_known_channel(&header(channel, 0, 0), &msgs::encode(&msg)?)
+    w.write_to_known_channel(&header(trajectory, 0, 0), &msgs::encode(&msg)?)
         .map_err(e)?;
     if let Some(x) = executed {
-        let schema = w
-            .add_schema(
-                msgs::JOINT_STATE,
-                "ros2msg",
-                msgs::JOINT_STATE_DEF.as_bytes(),
-            )
-            .map_err(e)?;
-        let channel = w
-            .add_channel(schema, JOINT_STATES_TOPIC, "cdr", &BTreeMap::new())
-            .map_err(e)?;
+        let states = &msgs::JOINT_STATE_DEF;
+        let channel = channel(&mut w, msgs::JOINT_STATE, states, JOINT_STATES_TOPIC).map_err(e)?;
         for (i, (&time, p)) in x.times.iter().zip(&x.positions).enumerate() {
             let msg = JointState {
                 header: Header {

@@ -54,7 +54,7 @@ pub enum Command {
     },
     /// Export a reproduction for a real robot: NAOqi JSON, ROS 2 MCAP or CSV, time-scaled
     /// and checked against the robot's joint ranges and velocity limits.
-    Export(super::export::ExportArgs),
+    Export(cosco_hsom::export::ExportRequest),
     /// Train a CoSCo-HSOM hierarchy on demonstration CSV files and save it (.bin or .txt).
     Train {
         /// XML configuration (default: the built-in configs/nao-gestures.xml, the recommended events extension).

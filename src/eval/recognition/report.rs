@@ -2,8 +2,7 @@
 
 use std::fmt::Write as _;
 
-use super::{accepted, right_by_best, unknown, Answer, Answers, RecognitionStudy};
-use super::{ACCEPT_GATE, UNKNOWN_GATE};
+use super::{fraction, Answer, Answers, RecognitionStudy, ACCEPT_GATE, UNKNOWN_GATE};
 
 /// A fraction as a percentage, `-` when there is nothing to count.
 fn pct(v: Option<f64>) -> String {
@@ -59,16 +58,6 @@ fn model_row(out: &mut String, name: &str, a: &Answers) {
     );
 }
 
-/// Fraction answered with a label (taught) other than their own.
-fn other_label(a: &[Answer]) -> Option<f64> {
-    (!a.is_empty()).then(|| {
-        a.iter()
-            .filter(|x| x.answer.as_ref().is_some_and(|l| *l != x.label))
-            .count() as f64
-            / a.len() as f64
-    })
-}
-
 /// The study as Markdown: the trained model beside the control against the gates, then per
 /// gesture.
 pub fn recognition_markdown(study: &RecognitionStudy) -> String {
@@ -98,30 +87,33 @@ pub fn recognition_markdown(study: &RecognitionStudy) -> String {
         "\n| gesture | taught | demos | accepted | lowest score right | called unknown | another label | control: accepted | control: unknown |"
     );
     let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
-    let control = |f: &dyn Fn(&Answers) -> Option<f64>| c.map_or("-".to_string(), |c| pct(f(c)));
+    // the answers of label `l` among `a`, and the percentage of them that are `right`
+    let of = |a: &[Answer], l: &str| -> Vec<Answer> {
+        a.iter().filter(|x| x.label == l).cloned().collect()
+    };
+    let share = |a: &[Answer], l: &str, right| pct(fraction(&of(a, l), right));
+    let control = |f: &dyn Fn(&Answers) -> String| c.map_or("-".to_string(), f);
     for l in &study.taught {
-        let a = m.held_out_of(Some(l));
         let _ = writeln!(
             out,
             "| {l} | yes | {} | {} | {} | {} | {} | {} | {} |",
-            a.len(),
-            pct(accepted(&a)),
-            pct(right_by_best(&a)),
-            pct(unknown(&a)),
-            pct(other_label(&a)),
-            control(&|c| accepted(&c.held_out_of(Some(l)))),
-            control(&|c| unknown(&c.held_out_of(Some(l)))),
+            of(&m.held_out, l).len(),
+            share(&m.held_out, l, Answer::accepted),
+            share(&m.held_out, l, Answer::right_by_best),
+            share(&m.held_out, l, Answer::unknown),
+            share(&m.held_out, l, Answer::other_label),
+            control(&|c| share(&c.held_out, l, Answer::accepted)),
+            control(&|c| share(&c.held_out, l, Answer::unknown)),
         );
     }
     for l in &study.untaught {
-        let a = m.untaught_of(Some(l));
         let _ = writeln!(
             out,
             "| {l} | no | {} | - | - | {} | {} | - | {} |",
-            a.len(),
-            pct(unknown(&a)),
-            pct(other_label(&a)),
-            control(&|c| unknown(&c.untaught_of(Some(l)))),
+            of(&m.untaught, l).len(),
+            share(&m.untaught, l, Answer::unknown),
+            share(&m.untaught, l, Answer::other_label),
+            control(&|c| share(&c.untaught, l, Answer::unknown)),
         );
     }
     out
