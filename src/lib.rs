@@ -9,11 +9,14 @@
 //!   and executing and scoring a reproduction on it.
 //! - [`som`]: a Kohonen map.
 //! - [`hsom`]: the CoSCo-HSOM hierarchy: activity lists, training, reproduction, save/load.
+//! - [`condition`]: a goal and via-points beyond the initial posture, and bending a trajectory
+//!   onto them exactly.
 //! - [`config`]: the XML configuration, validated once into a checked type.
 //! - [`demos`]: demonstration CSV files.
 //! - [`dtw`]: dynamic time warping.
 //! - [`gmr`]: the baseline, GMM/GMR.
 //! - [`promp`]: a second baseline, ProMP conditioned on the initial posture.
+//! - [`dmp`]: a third baseline, the dynamic movement primitive, conditioned on start and goal.
 //! - [`gesture`]: synthetic human-like demonstrations.
 //! - [`metrics`]: fidelity metrics.
 //! - [`plot`]: PNG plots.
@@ -39,8 +42,10 @@
 #![warn(missing_docs)]
 
 pub mod app;
+pub mod condition;
 pub mod config;
 pub mod demos;
+pub mod dmp;
 pub mod dtw;
 pub mod eval;
 #[cfg(feature = "sim")]

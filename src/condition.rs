@@ -1,0 +1,338 @@
+//! Conditions on a reproduction besides its initial posture: a goal (its last posture) and
+//! via-points (a posture and the phase, 0..1 of the reproduction's duration, at which it is
+//! passed); reading a trajectory at a phase; and bending a trajectory onto the conditions
+//! (docs/ALGORITHM.md, "Conditioning").
+//!
+//! A trajectory of `n` rows is at phase `p` at the fractional row `p (n - 1)`, read by linear
+//! interpolation between the two rows about it ([`at_phase`]): that is how a conditioned
+//! reproduction's rows are checked, so that is the reading [`bend`] makes exact.
+
+use nalgebra::{DMatrix, DVector};
+
+use crate::gmr::minimum_jerk_at;
+
+#[cfg(test)]
+mod tests;
+
+/// A posture to pass at a phase of the reproduction.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ViaPoint {
+    /// 0 (the start) to 1 (the end).
+    pub phase: f64,
+    /// One value per variable.
+    pub posture: Vec<f64>,
+}
+
+/// A reproduction's goal and via-points (none of either: the reproduction as the model makes
+/// it).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Conditions {
+    /// The last posture.
+    pub goal: Option<Vec<f64>>,
+    /// Postures to pass, in any order.
+    pub via: Vec<ViaPoint>,
+}
+
+/// A condition that cannot be met; each names the condition, the value and what is allowed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ConditionError {
+    /// A posture of the wrong width.
+    #[error("{what} has {found} values; the model has {expected} variables ({columns})")]
+    Width {
+        /// `the goal` or `the via-point at phase P`.
+        what: String,
+        /// Values given.
+        found: usize,
+        /// Variables of the model.
+        expected: usize,
+        /// Their names, comma-separated.
+        columns: String,
+    },
+    /// A value that is not a finite number.
+    #[error("{what}: {column} is {value}; need a finite number")]
+    NonFinite {
+        /// The condition.
+        what: String,
+        /// The variable.
+        column: String,
+        /// The value.
+        value: f64,
+    },
+    /// A phase outside [0, 1].
+    #[error("a via-point's phase is {0}; allowed 0 to 1 (0 the start, 1 the end)")]
+    Phase(f64),
+    /// Two conditions at one phase with different postures (the goal is at phase 1, the
+    /// initial posture at phase 0).
+    #[error("{first} and {second} are both at phase {phase} with different postures")]
+    Conflict {
+        /// The phase.
+        phase: f64,
+        /// One condition.
+        first: String,
+        /// The other.
+        second: String,
+    },
+    /// A value outside its variable's range.
+    #[error("{what}: {column} = {value} is outside its range [{lower}, {upper}]")]
+    Range {
+        /// The condition.
+        what: String,
+        /// The variable (a joint).
+        column: String,
+        /// The value.
+        value: f64,
+        /// The range's lower end.
+        lower: f64,
+        /// Its upper end.
+        upper: f64,
+    },
+    /// Text that is not a posture (`--goal`) or `PHASE:POSTURE` (`--via`).
+    #[error("{option} '{text}': {why}")]
+    Parse {
+        /// The option.
+        option: &'static str,
+        /// The text given.
+        text: String,
+        /// What is wrong and what is allowed.
+        why: String,
+    },
+}
+
+/// `"v1,v2,..."` as numbers (`option` names the option in the error).
+pub fn parse_posture(option: &'static str, text: &str) -> Result<Vec<f64>, ConditionError> {
+    text.split(',')
+        .enumerate()
+        .map(|(i, v)| match v.trim().parse::<f64>() {
+            Ok(x) if x.is_finite() => Ok(x),
+            _ => Err(ConditionError::Parse {
+                option,
+                text: text.into(),
+                why: format!("value {} is '{}': need a finite number", i + 1, v.trim()),
+            }),
+        })
+        .collect()
+}
+
+/// `"P:v1,v2,..."` (`--via`) as a via-point.
+pub fn parse_via(text: &str) -> Result<ViaPoint, ConditionError> {
+    let bad = |why: &str| ConditionError::Parse {
+        option: "--via",
+        text: text.into(),
+        why: why.into(),
+    };
+    let (phase, posture) = text
+        .split_once(':')
+        .ok_or_else(|| bad("need PHASE:V1,V2,... (the phase 0 to 1, then the posture)"))?;
+    let phase = phase
+        .trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|p| p.is_finite())
+        .ok_or_else(|| bad("the phase before ':' must be a number from 0 to 1"))?;
+    Ok(ViaPoint {
+        phase,
+        posture: parse_posture("--via", posture).map_err(|e| match e {
+            ConditionError::Parse { option, why, .. } => ConditionError::Parse {
+                option,
+                text: text.into(),
+                why,
+            },
+            e => e,
+        })?,
+    })
+}
+
+impl Conditions {
+    /// No goal and no via-point.
+    pub fn is_empty(&self) -> bool {
+        self.goal.is_none() && self.via.is_empty()
+    }
+
+    /// Every condition checked against the model's `columns`, their `ranges` (when known:
+    /// the arm's joints) and the `initial` posture: widths, finite values, phases in [0, 1],
+    /// no two different postures at one phase.
+    pub fn check(
+        &self,
+        columns: &[String],
+        ranges: Option<&[(f64, f64)]>,
+        initial: &[f64],
+    ) -> Result<(), ConditionError> {
+        let mut named: Vec<(f64, String, &[f64])> =
+            vec![(0.0, "the initial posture".into(), initial)];
+        if let Some(g) = &self.goal {
+            named.push((1.0, "the goal".into(), g));
+        }
+        for v in &self.via {
+            if !(0.0..=1.0).contains(&v.phase) {
+                return Err(ConditionError::Phase(v.phase));
+            }
+            named.push((
+                v.phase,
+                format!("the via-point at phase {}", v.phase),
+                &v.posture,
+            ));
+        }
+        for (_, what, p) in &named[1..] {
+            if p.len() != columns.len() {
+                return Err(ConditionError::Width {
+                    what: what.clone(),
+                    found: p.len(),
+                    expected: columns.len(),
+                    columns: columns.join(", "),
+                });
+            }
+            for (j, &value) in p.iter().enumerate() {
+                if !value.is_finite() {
+                    return Err(ConditionError::NonFinite {
+                        what: what.clone(),
+                        column: columns[j].clone(),
+                        value,
+                    });
+                }
+                if let Some(&(lower, upper)) = ranges.and_then(|r| r.get(j)) {
+                    if !(lower..=upper).contains(&value) {
+                        return Err(ConditionError::Range {
+                            what: what.clone(),
+                            column: columns[j].clone(),
+                            value,
+                            lower,
+                            upper,
+                        });
+                    }
+                }
+            }
+        }
+        for (i, (pa, a, va)) in named.iter().enumerate() {
+            for (pb, b, vb) in &named[i + 1..] {
+                if pa == pb && va != vb {
+                    return Err(ConditionError::Conflict {
+                        phase: *pa,
+                        first: a.clone(),
+                        second: b.clone(),
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The postures to meet after the start, by phase (the goal at phase 1; one of several
+    /// equal conditions at a phase; a via-point at phase 0 is the start's).
+    pub fn points(&self) -> Vec<(f64, Vec<f64>)> {
+        let mut p: Vec<(f64, Vec<f64>)> = self
+            .via
+            .iter()
+            .filter(|v| v.phase > 0.0)
+            .map(|v| (v.phase, v.posture.clone()))
+            .chain(self.goal.iter().map(|g| (1.0, g.clone())))
+            .collect();
+        p.sort_by(|a, b| a.0.total_cmp(&b.0));
+        p.dedup_by(|a, b| a.0 == b.0);
+        p
+    }
+}
+
+/// The posture of `rows` at `phase` (0..1): linear between the two rows about the fractional
+/// row `phase (n - 1)`.
+pub fn at_phase(rows: &[Vec<f64>], phase: f64) -> Vec<f64> {
+    let (i, a) = row_at(rows.len(), phase);
+    let next = &rows[(i + 1).min(rows.len() - 1)];
+    rows[i]
+        .iter()
+        .zip(next)
+        .map(|(p, q)| p + a * (q - p))
+        .collect()
+}
+
+/// The row before the fractional row of `phase` in `n` rows, and how far past it (0..1).
+fn row_at(n: usize, phase: f64) -> (usize, f64) {
+    let x = phase.clamp(0.0, 1.0) * (n.max(1) - 1) as f64;
+    let i = (x.floor() as usize).min(n.saturating_sub(2));
+    (i, x - i as f64)
+}
+
+/// `rows` bent onto `points` (phase, posture; phases in (0, 1], ascending) so that
+/// [`at_phase`] reads each posture exactly; the first row, the start, stays.
+///
+/// Per variable, the offset the trajectory needs at each point is spread over the trajectory
+/// by one blend per point: 1 at its point, 0 at the neighbouring points (and at the start),
+/// rising and falling along a minimum-jerk profile of the variable's own progress (its
+/// smoothed path length), so that the offset changes where the variable moves and hardly
+/// where it holds: swings and holds keep their shape. After the last point that is not the
+/// end, its offset fades out by the end. The offsets are solved together so that each point
+/// is read exactly between its two rows.
+pub fn bend(rows: &mut [Vec<f64>], points: &[(f64, Vec<f64>)]) {
+    let n = rows.len();
+    if n < 2 || points.is_empty() {
+        return;
+    }
+    let last = (n - 1) as f64;
+    // the knots in rows: the start, each point, and the end when no point is there
+    let mut knots: Vec<f64> = std::iter::once(0.0)
+        .chain(points.iter().map(|(p, _)| p * last))
+        .collect();
+    let open_end = *knots.last().expect("a point") < last;
+    if open_end {
+        knots.push(last);
+    }
+    for d in 0..rows[0].len() {
+        let y: Vec<f64> = rows.iter().map(|r| r[d]).collect();
+        let progress = progress(&y);
+        let at = |x: f64| {
+            let i = (x.floor() as usize).min(n - 2);
+            progress[i] + (x - i as f64) * (progress[i + 1] - progress[i])
+        };
+        // blend k (k = 1..=points): rising over (knot k-1, knot k), falling over (k, k+1)
+        let blend = |k: usize, x: f64| -> f64 {
+            let (a, b) = (knots[k - 1], knots[k]);
+            if x <= a {
+                return 0.0;
+            }
+            if x <= b {
+                return minimum_jerk_at((at(x) - at(a)) / (at(b) - at(a)).max(f64::MIN_POSITIVE));
+            }
+            match knots.get(k + 1) {
+                Some(&c) if x < c => {
+                    1.0 - minimum_jerk_at((at(x) - at(b)) / (at(c) - at(b)).max(f64::MIN_POSITIVE))
+                }
+                _ if k + 1 == knots.len() => 1.0,
+                _ => 0.0,
+            }
+        };
+        let read = |f: &dyn Fn(usize) -> f64, phase: f64| {
+            let (i, a) = row_at(n, phase);
+            f(i) + a * (f((i + 1).min(n - 1)) - f(i))
+        };
+        let m = points.len();
+        let a = DMatrix::from_fn(m, m, |j, k| read(&|i| blend(k + 1, i as f64), points[j].0));
+        let r = DVector::from_fn(m, |j, _| points[j].1[d] - read(&|i| y[i], points[j].0));
+        let Some(c) = a.lu().solve(&r) else {
+            continue;
+        };
+        for (i, row) in rows.iter_mut().enumerate().skip(1) {
+            row[d] += (0..m).map(|k| c[k] * blend(k + 1, i as f64)).sum::<f64>();
+        }
+    }
+}
+
+/// The smoothed path length of `y` at each row: the integral of sqrt(v² + ε²) with v the
+/// central-difference velocity and ε half its mean magnitude: a hold still progresses, at
+/// about half the pace of a swing, and the profile has no kink where v changes sign (a
+/// smaller ε keeps holds flatter and makes the bend's jerk larger; src/condition/tests.rs).
+fn progress(y: &[f64]) -> Vec<f64> {
+    let n = y.len();
+    let v: Vec<f64> = (0..n)
+        .map(|i| {
+            let (a, b) = (i.saturating_sub(1), (i + 1).min(n - 1));
+            (y[b] - y[a]) / (b - a).max(1) as f64
+        })
+        .collect();
+    let eps = (0.5 * v.iter().map(|x| x.abs()).sum::<f64>() / n as f64).max(1e-12);
+    let speed: Vec<f64> = v.iter().map(|x| x.hypot(eps)).collect();
+    let mut out = vec![0.0; n];
+    for i in 1..n {
+        out[i] = out[i - 1] + 0.5 * (speed[i - 1] + speed[i]);
+    }
+    out
+}
