@@ -336,3 +336,60 @@ fn progress(y: &[f64]) -> Vec<f64> {
     }
     out
 }
+
+/// A central band about a trajectory: per row, per variable, the lowest and the highest value
+/// (a 95 % band: where 95 % of the gesture's demonstrations are expected, docs/METRICS.md).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConfidenceBand {
+    /// Per row, the lower ends.
+    pub lo: Vec<Vec<f64>>,
+    /// Per row, the upper ends.
+    pub hi: Vec<Vec<f64>>,
+}
+
+impl ConfidenceBand {
+    /// `rows` minus and plus `half` (per row, per variable, >= 0).
+    pub fn around(rows: &[Vec<f64>], half: &[Vec<f64>]) -> Self {
+        let side = |sign: f64| -> Vec<Vec<f64>> {
+            rows.iter()
+                .zip(half)
+                .map(|(r, h)| r.iter().zip(h).map(|(v, h)| v + sign * h).collect())
+                .collect()
+        };
+        ConfidenceBand {
+            lo: side(-1.0),
+            hi: side(1.0),
+        }
+    }
+
+    /// The share of `other`'s values inside the band along `path` (pairs of a band row and a
+    /// row of `other`, as DTW aligns them): every pair and variable counts once.
+    pub fn coverage(&self, other: &[Vec<f64>], path: &[(usize, usize)]) -> f64 {
+        let (mut inside, mut all) = (0usize, 0usize);
+        for &(i, j) in path {
+            for (d, v) in other[j].iter().enumerate() {
+                all += 1;
+                inside += usize::from((self.lo[i][d]..=self.hi[i][d]).contains(v));
+            }
+        }
+        inside as f64 / all.max(1) as f64
+    }
+
+    /// The band as CSV (`cosco reproduce --band`): `step`, then `<variable>_lo` and
+    /// `<variable>_hi` for each of `columns`, one row per row of the trajectory.
+    pub fn csv(&self, columns: &[String]) -> csv::Result<Vec<u8>> {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        let header = columns
+            .iter()
+            .flat_map(|c| [format!("{c}_lo"), format!("{c}_hi")]);
+        w.write_record(std::iter::once("step".to_string()).chain(header))?;
+        for (step, (lo, hi)) in self.lo.iter().zip(&self.hi).enumerate() {
+            let values = lo
+                .iter()
+                .zip(hi)
+                .flat_map(|(l, h)| [l.to_string(), h.to_string()]);
+            w.write_record(std::iter::once(step.to_string()).chain(values))?;
+        }
+        w.into_inner().map_err(|e| e.into_error().into())
+    }
+}

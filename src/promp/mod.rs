@@ -347,33 +347,67 @@ impl Promp {
     /// `initial`, as postures at every sample of the mean duration; it starts at (within the
     /// observation noise of) `initial`.
     pub fn reproduce(&self, initial: &[f64]) -> Result<Vec<Vec<f64>>, PrompError> {
-        if initial.len() != self.width || initial.iter().any(|v| !v.is_finite()) {
-            return Err(PrompError::BadInitial {
-                found: initial.to_vec(),
-                expected: self.width,
-            });
+        Ok(self.conditioned(initial, &[])?.0)
+    }
+
+    /// The distribution conditioned on `initial` at phase 0 and on each `(phase, posture)` of
+    /// `points` (Gaussian conditioning on all of them at once, each observed with
+    /// [`PrompSettings::observation_noise`]): its mean at every sample of the mean duration,
+    /// and the central 95 % band of its trajectories (the mean ± 1.96 standard deviations of
+    /// each variable at each sample).
+    pub fn conditioned(
+        &self,
+        initial: &[f64],
+        points: &[(f64, Vec<f64>)],
+    ) -> Result<(Vec<Vec<f64>>, crate::condition::ConfidenceBand), PrompError> {
+        let all: Vec<(f64, &[f64])> = std::iter::once((0.0, initial))
+            .chain(points.iter().map(|(p, v)| (*p, v.as_slice())))
+            .collect();
+        for (_, p) in &all {
+            if p.len() != self.width || p.iter().any(|v| !v.is_finite()) {
+                return Err(PrompError::BadInitial {
+                    found: p.to_vec(),
+                    expected: self.width,
+                });
+            }
         }
-        let n = self.settings.basis;
-        let phi0 = basis_row(0.0, n);
-        // H (width x width n): block-diagonal, the basis at phase 0 for each dimension
-        let mut h = DMatrix::zeros(self.width, self.width * n);
-        for d in 0..self.width {
-            for (i, v) in phi0.iter().enumerate() {
-                h[(d, d * n + i)] = *v;
+        let (n, w) = (self.settings.basis, self.width);
+        // H (points x width, width x basis): block-diagonal, the basis at each point's phase
+        let mut h = DMatrix::zeros(all.len() * w, w * n);
+        let mut observed = DVector::zeros(all.len() * w);
+        for (k, (phase, posture)) in all.iter().enumerate() {
+            let phi = basis_row(phase.clamp(0.0, 1.0), n);
+            for d in 0..w {
+                observed[k * w + d] = posture[d];
+                for (i, v) in phi.iter().enumerate() {
+                    h[(k * w + d, d * n + i)] = *v;
+                }
             }
         }
         let sigma_ht = &self.cov * h.transpose();
         let mut s = &h * &sigma_ht;
-        for d in 0..self.width {
-            s[(d, d)] += self.settings.observation_noise;
+        for i in 0..s.nrows() {
+            s[(i, i)] += self.settings.observation_noise;
         }
-        let residual = DVector::from_column_slice(initial) - &h * &self.mean;
-        let a = s
-            .cholesky()
-            .ok_or(PrompError::NotPositiveDefinite {
-                what: "covariance of the initial posture",
-            })?
-            .solve(&residual);
-        Ok(self.trajectory(&(&self.mean + sigma_ht * a)))
+        let chol = s.cholesky().ok_or(PrompError::NotPositiveDefinite {
+            what: "covariance of the conditioned postures",
+        })?;
+        let mean = &self.mean + &sigma_ht * chol.solve(&(observed - &h * &self.mean));
+        let cov = &self.cov - &sigma_ht * chol.solve(&sigma_ht.transpose());
+        let rows = self.trajectory(&mean);
+        let phi = basis_matrix(self.samples, n);
+        let half: Vec<Vec<f64>> = (0..self.samples)
+            .map(|t| {
+                (0..w)
+                    .map(|d| {
+                        let p = phi.row(t).transpose();
+                        let block = cov.view((d * n, d * n), (n, n));
+                        1.96 * (p.dot(&(block * &p))).max(0.0).sqrt()
+                    })
+                    .collect()
+            })
+            .collect();
+        let band = crate::condition::ConfidenceBand::around(&rows, &half);
+        Ok((rows, band))
     }
 }
