@@ -53,8 +53,8 @@ pub use files::{
 };
 pub use recognize::{recognize_files, recognize_paths, RecognisedFile};
 pub use reproduce::{
-    continue_file, parse_posture, reproduce, reproduce_file, reproduce_gesture, resume,
-    ReproduceFile,
+    continue_file, parse_conditions, parse_posture, reproduce, reproduce_conditioned,
+    reproduce_file, reproduce_gesture, resume, ReproduceFile,
 };
 pub use train::{train, train_files, train_gestures};
 
@@ -72,6 +72,9 @@ pub enum Error {
     /// Training or reproduction was refused.
     #[error(transparent)]
     Hsom(#[from] crate::hsom::HsomError),
+    /// A goal or via-point was refused.
+    #[error(transparent)]
+    Condition(#[from] crate::condition::ConditionError),
     /// A model of several gestures refused a label, a set or a sequence.
     #[error(transparent)]
     Gesture(#[from] crate::hsom::GestureError),

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::files::{self, read_for_columns};
 use super::{Error, Result};
+use crate::condition::{self, Conditions};
 use crate::hsom::{GestureModel, Hsom, HsomError, Reproduction};
 
 /// Parse `"v1,v2,..."` (`--initial`) into numbers, naming the bad entry.
@@ -79,6 +80,41 @@ fn naming_model(e: HsomError, model: &Hsom, model_name: &str) -> Error {
     }
 }
 
+/// The ranges of the arm's joints when `columns` are theirs (in the simulator's builds).
+fn arm_ranges(columns: &[String]) -> Option<Vec<(f64, f64)>> {
+    use crate::export::limits::{are_arm_joints, nao_left_arm};
+    (cfg!(feature = "sim") && are_arm_joints(columns))
+        .then(|| nao_left_arm().joints.iter().map(|j| (j.lower, j.upper)).collect())
+}
+
+/// Reproduce from `initial` through `conditions` (a goal, via-points; [`Hsom::reproduce_conditioned`]),
+/// each checked against the arm's joint ranges when the model's variables are the arm's.
+pub fn reproduce_conditioned(
+    model: &Hsom,
+    model_name: &str,
+    initial: &[f64],
+    conditions: &Conditions,
+) -> Result<Reproduction> {
+    check_arm_range(model.columns(), initial)?;
+    conditions.check(model.columns(), arm_ranges(model.columns()).as_deref(), initial)?;
+    model
+        .reproduce_conditioned(initial, conditions)
+        .map_err(|e| naming_model(e, model, model_name))
+}
+
+/// The conditions of `--goal TEXT` and `--via P:TEXT` (each of them).
+pub fn parse_conditions(goal: Option<&str>, via: &[String]) -> Result<Conditions> {
+    Ok(Conditions {
+        goal: goal
+            .map(|g| condition::parse_posture("--goal", g))
+            .transpose()?,
+        via: via
+            .iter()
+            .map(|v| condition::parse_via(v))
+            .collect::<std::result::Result<_, _>>()?,
+    })
+}
+
 /// Reproduce from `initial` (`model_name` names the model in messages: its file, or
 /// `in memory`).
 pub fn reproduce(model: &Hsom, model_name: &str, initial: &[f64]) -> Result<Reproduction> {
@@ -113,23 +149,45 @@ pub fn reproduce_gesture(
 }
 
 /// What `cosco reproduce` is asked, as given on its command line.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, clap::Args)]
 pub struct ReproduceFile {
-    /// A model saved by `cosco train`.
+    /// A model saved by `cosco train` (.bin or .txt).
+    #[arg(long)]
     pub model: PathBuf,
-    /// The gesture (required with a model of several).
-    pub gesture: Option<String>,
-    /// The initial posture, comma-separated.
+    /// The initial posture, comma-separated, one value per state variable.
+    #[arg(
+        long,
+        conflicts_with_all = ["initial_from", "prefix_from"],
+        required_unless_present_any = ["initial_from", "prefix_from"]
+    )]
     pub initial: Option<String>,
-    /// Or a CSV whose first row is the initial posture.
+    /// Take the initial posture from the first row of this demonstration CSV.
+    #[arg(long, conflicts_with = "prefix_from")]
     pub initial_from: Option<PathBuf>,
-    /// An encoder reading of part of the reproduction: write the rest of it.
-    pub resume_from: Option<PathBuf>,
-    /// Or continue the gesture begun in this CSV's first `prefix` samples.
+    /// The gesture to reproduce (required with a model of several gestures).
+    #[arg(long, conflicts_with = "prefix_from")]
+    pub gesture: Option<String>,
+    /// Continue the gesture begun in this demonstration CSV's first --prefix samples; the
+    /// hierarchy decides which gesture it is.
+    #[arg(long, requires = "prefix")]
     pub prefix_from: Option<PathBuf>,
-    /// Samples of `prefix_from` to continue from.
+    /// Samples of --prefix-from to continue from.
+    #[arg(long, requires = "prefix_from")]
     pub prefix: Option<usize>,
+    /// Resume the reproduction from the initial posture after part of it was executed:
+    /// this CSV (the model's columns) is what the encoders read meanwhile, possibly
+    /// disturbed; writes the rest, from the reading's last posture (`algorithm = events`).
+    #[arg(long, conflicts_with = "prefix_from")]
+    pub resume_from: Option<PathBuf>,
+    /// The last posture, comma-separated: the reproduction ends exactly there.
+    #[arg(long, conflicts_with_all = ["prefix_from", "resume_from"])]
+    pub goal: Option<String>,
+    /// A posture to pass at a phase of the reproduction (0 the start, 1 the end):
+    /// `PHASE:V1,V2,...`; repeatable.
+    #[arg(long, conflicts_with_all = ["prefix_from", "resume_from"])]
+    pub via: Vec<String>,
     /// Output CSV.
+    #[arg(long)]
     pub out: PathBuf,
 }
 
@@ -139,6 +197,13 @@ pub struct ReproduceFile {
 /// the file's first samples. Writes `step` then the model's columns; returns the line to
 /// print.
 pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
+    let conditions = parse_conditions(r.goal.as_deref(), &r.via)?;
+    if !conditions.is_empty() && (r.prefix_from.is_some() || r.resume_from.is_some()) {
+        return Err(Error::value(
+            "--goal and --via",
+            "apply to a reproduction from an initial posture, not with --prefix-from or --resume-from",
+        ));
+    }
     let m = files::load_gesture_model(&r.model)?;
     let name = r.model.display().to_string();
     let (rep, label) = match (&r.prefix_from, r.prefix) {
@@ -158,7 +223,7 @@ pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
                         source: Box::new(e),
                     })?
                 }
-                None => reproduce(branch, &name, &initial)?,
+                None => reproduce_conditioned(branch, &name, &initial, &conditions)?,
             };
             (rep, r.gesture.clone())
         }

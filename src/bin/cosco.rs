@@ -85,28 +85,7 @@ fn run(cli: Cli) -> Result<()> {
             }
             outln!("saved {}", out.display());
         }
-        Command::Reproduce {
-            model,
-            initial,
-            initial_from,
-            gesture,
-            prefix_from,
-            prefix,
-            resume_from,
-            out,
-        } => outln!(
-            "{}",
-            app::reproduce_file(&app::ReproduceFile {
-                model,
-                gesture,
-                initial,
-                initial_from,
-                resume_from,
-                prefix_from,
-                prefix,
-                out,
-            })?
-        ),
+        Command::Reproduce(r) => outln!("{}", app::reproduce_file(&r)?),
         Command::Recognize { model, demos, json } => {
             for line in app::recognize_files(&model, &demos, json.as_deref())? {
                 outln!("{line}");

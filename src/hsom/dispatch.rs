@@ -2,6 +2,7 @@
 //! model of that algorithm in one `match`. What only the events extension does (continuing a
 //! prefix, resuming) is refused for a model of the paper's algorithm.
 
+use crate::condition::{self, Conditions};
 use crate::config::{HsomConfig, ReproductionParams};
 use crate::demos::Demonstration;
 use crate::som::SelfOrganizingMap;
@@ -84,6 +85,20 @@ impl Hsom {
     /// data's units) with the configuration's reproduction settings.
     pub fn reproduce(&self, initial: &[f64]) -> Result<Reproduction, HsomError> {
         either!(self, m => m.reproduce(initial))
+    }
+    /// Reproduce from `initial` through the via-points of `conditions` and to their goal: the
+    /// reproduction bent onto them ([`condition::bend`]; docs/ALGORITHM.md, "Conditioning"),
+    /// each met exactly as [`condition::at_phase`] reads it. The conditions are checked
+    /// first, without ranges (the caller knows the variables' ranges, if any).
+    pub fn reproduce_conditioned(
+        &self,
+        initial: &[f64],
+        conditions: &Conditions,
+    ) -> Result<Reproduction, HsomError> {
+        conditions.check(self.columns(), None, initial)?;
+        let mut rep = self.reproduce(initial)?;
+        condition::bend(&mut rep.postures, &conditions.points());
+        Ok(rep)
     }
     /// Reproduce with other reproduction settings; out-of-range values are an error, as
     /// [`HsomConfig::with_reproduction`] says.

@@ -6,6 +6,9 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum HsomError {
+    /// A goal or via-point that cannot be met ([`crate::condition::Conditions::check`]).
+    #[error(transparent)]
+    Condition(#[from] crate::condition::ConditionError),
     /// Settings out of their documented range (e.g. reproduction settings given to
     /// [`Hsom::reproduce_with`](crate::hsom::Hsom::reproduce_with)).
     #[error(transparent)]

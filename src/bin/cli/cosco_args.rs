@@ -77,39 +77,7 @@ pub enum Command {
     },
     /// Reproduce a gesture from an initial posture with a saved model; writes `step` then the
     /// demonstrations' columns.
-    Reproduce {
-        /// A model saved by `cosco train` (.bin or .txt).
-        #[arg(long)]
-        model: PathBuf,
-        /// The initial posture, comma-separated, one value per state variable.
-        #[arg(
-            long,
-            conflicts_with_all = ["initial_from", "prefix_from"],
-            required_unless_present_any = ["initial_from", "prefix_from"]
-        )]
-        initial: Option<String>,
-        /// Take the initial posture from the first row of this demonstration CSV.
-        #[arg(long, conflicts_with = "prefix_from")]
-        initial_from: Option<PathBuf>,
-        /// The gesture to reproduce (required with a model of several gestures).
-        #[arg(long, conflicts_with = "prefix_from")]
-        gesture: Option<String>,
-        /// Continue the gesture begun in this demonstration CSV's first --prefix samples; the
-        /// hierarchy decides which gesture it is.
-        #[arg(long, requires = "prefix")]
-        prefix_from: Option<PathBuf>,
-        /// Samples of --prefix-from to continue from.
-        #[arg(long, requires = "prefix_from")]
-        prefix: Option<usize>,
-        /// Resume the reproduction from the initial posture after part of it was executed:
-        /// this CSV (the model's columns) is what the encoders read meanwhile, possibly
-        /// disturbed; writes the rest, from the reading's last posture (`algorithm = events`).
-        #[arg(long, conflicts_with = "prefix_from")]
-        resume_from: Option<PathBuf>,
-        /// Output CSV.
-        #[arg(long)]
-        out: PathBuf,
-    },
+    Reproduce(cosco_hsom::app::ReproduceFile),
     /// Recognise demonstrations with a model of several gestures: per file the label (or
     /// `unknown`), a score per label and the earliest sample from which the decision held.
     Recognize {
