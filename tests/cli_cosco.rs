@@ -453,3 +453,83 @@ fn evaluate_errors_name_the_reproduction_file() {
             );
     }
 }
+
+#[test]
+fn reproduce_meets_a_goal_and_a_via_point_exactly_and_refuses_bad_ones() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    write_strokes(&d.join("demos"));
+    let model = d.join("m.bin");
+    cosco()
+        .args(["train", "--state-length-from-data", "--demos"])
+        .arg(d.join("demos"))
+        .arg("--out")
+        .arg(&model)
+        .assert()
+        .success();
+    let reproduce = |extra: &[&str], out: &std::path::Path| {
+        let mut c = cosco();
+        c.arg("reproduce")
+            .arg("--model")
+            .arg(&model)
+            .args(["--initial", "0,0"])
+            .args(extra)
+            .arg("--out")
+            .arg(out);
+        c.assert()
+    };
+    let rows = |path: &std::path::Path| -> Vec<Vec<f64>> {
+        std::fs::read_to_string(path)
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').skip(1).map(|v| v.parse().unwrap()).collect())
+            .collect()
+    };
+    let (goal, via) = ([0.3, 2.1], [-0.4, 1.2]);
+    let phase = 0.43;
+    // the via-point read at its phase, between two rows
+    let at = |r: &[Vec<f64>]| -> Vec<f64> {
+        let x = phase * (r.len() - 1) as f64;
+        let (i, a) = (x.floor() as usize, x - x.floor());
+        (0..2)
+            .map(|j| r[i][j] + a * (r[i + 1][j] - r[i][j]))
+            .collect()
+    };
+    let miss = |r: &[Vec<f64>]| {
+        let v = at(r);
+        let last = r.last().unwrap();
+        (0..2)
+            .map(|j| (v[j] - via[j]).abs().max((last[j] - goal[j]).abs()))
+            .fold(0.0, f64::max)
+    };
+    // negative control: the unconditioned reproduction misses them
+    let plain = d.join("plain.csv");
+    reproduce(&[], &plain).success();
+    assert!(miss(&rows(&plain)) > 1e-3);
+    let bent = d.join("bent.csv");
+    reproduce(&["--goal", "0.3,2.1", "--via", "0.43:-0.4,1.2"], &bent).success();
+    let r = rows(&bent);
+    assert_eq!(r[0], vec![0.0, 0.0]);
+    assert!(miss(&r) < 1e-9, "missed by {}", miss(&r));
+    // bad conditions: a named error and nothing written
+    let none = d.join("none.csv");
+    for (args, says) in [
+        (
+            vec!["--goal", "1"],
+            "the goal has 1 values; the model has 2 variables (x, y)",
+        ),
+        (vec!["--via", "1.5:0,0"], "phase is 1.5; allowed 0 to 1"),
+        (vec!["--via", "0.5"], "--via '0.5': need PHASE:V1,V2,..."),
+        (
+            vec!["--via", "0.5:0,0", "--via", "0.5:1,1"],
+            "are both at phase 0.5 with different postures",
+        ),
+        (vec!["--goal", "0,nan"], "--goal '0,nan': value 2 is 'nan'"),
+    ] {
+        reproduce(&args, &none)
+            .failure()
+            .stderr(predicate::str::contains(says));
+        assert!(!none.exists(), "{args:?} wrote a file");
+    }
+}

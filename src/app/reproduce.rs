@@ -83,8 +83,13 @@ fn naming_model(e: HsomError, model: &Hsom, model_name: &str) -> Error {
 /// The ranges of the arm's joints when `columns` are theirs (in the simulator's builds).
 fn arm_ranges(columns: &[String]) -> Option<Vec<(f64, f64)>> {
     use crate::export::limits::{are_arm_joints, nao_left_arm};
-    (cfg!(feature = "sim") && are_arm_joints(columns))
-        .then(|| nao_left_arm().joints.iter().map(|j| (j.lower, j.upper)).collect())
+    (cfg!(feature = "sim") && are_arm_joints(columns)).then(|| {
+        nao_left_arm()
+            .joints
+            .iter()
+            .map(|j| (j.lower, j.upper))
+            .collect()
+    })
 }
 
 /// Reproduce from `initial` through `conditions` (a goal, via-points; [`Hsom::reproduce_conditioned`]),
@@ -96,7 +101,11 @@ pub fn reproduce_conditioned(
     conditions: &Conditions,
 ) -> Result<Reproduction> {
     check_arm_range(model.columns(), initial)?;
-    conditions.check(model.columns(), arm_ranges(model.columns()).as_deref(), initial)?;
+    conditions.check(
+        model.columns(),
+        arm_ranges(model.columns()).as_deref(),
+        initial,
+    )?;
     model
         .reproduce_conditioned(initial, conditions)
         .map_err(|e| naming_model(e, model, model_name))
