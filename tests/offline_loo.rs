@@ -267,6 +267,7 @@ fn cosco_heldout_on_directories_of_gestures() {
             "height1",
             "gmm_gmr",
             "promp",
+            "dmp",
             "replay"
         ]
     );
@@ -278,13 +279,14 @@ fn cosco_heldout_on_directories_of_gestures() {
     cosco()
         .arg("--demos")
         .arg(d.join("set/loops"))
-        .args(["--state-length-from-data", "--no-gmr", "--no-promp"])
+        .args(["--state-length-from-data", "--no-gmr", "--no-promp", "--no-dmp"])
         .assert()
         .success()
         .stdout(
             predicate::str::contains("| loops | 3 |")
                 .and(predicate::str::contains("GMM/GMR").not())
-                .and(predicate::str::contains("ProMP").not()),
+                .and(predicate::str::contains("ProMP").not())
+                .and(predicate::str::contains("DMP").not()),
         );
     // the retired overrides are no flags any more
     for flag in ["--consensus", "--plan", "--alignment", "--knots"] {
@@ -376,6 +378,7 @@ fn held_out(demos: &[Demonstration]) -> [Vec<f64>; 2] {
             height_1: false,
             gmr: false,
             promp: false,
+            dmp: false,
             replay: false,
             in_sample: false,
             threads: 2,

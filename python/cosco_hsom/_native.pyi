@@ -176,6 +176,7 @@ def heldout(
     height_1: bool = True,
     gmr: bool = True,
     promp: bool = True,
+    dmp: bool = True,
     in_sample: bool = True,
     threads: int = 1,
 ) -> Dict[str, Any]:

@@ -110,12 +110,12 @@ impl GmrModel {
 
 /// Leave-one-out on demonstrations (`cosco heldout`): for each demonstration of a gesture,
 /// learn from the others, reproduce from its first sample, score against it alone; the
-/// hierarchy beside the nearest sequence, height 1, GMM/GMR, ProMP and a replay on the same
+/// hierarchy beside the nearest sequence, height 1, GMM/GMR, ProMP, the DMP and a replay on the same
 /// folds.
 /// `gestures`: a list of 2-D arrays (one gesture) or a mapping label -> list. Returns the
 /// JSON document of `cosco heldout --json` as a dict. The GIL is released while it runs.
 #[pyfunction]
-#[pyo3(signature = (config, gestures, *, columns = None, sample_period = 0.025, height_1 = true, gmr = true, promp = true, in_sample = true, threads = 1))]
+#[pyo3(signature = (config, gestures, *, columns = None, sample_period = 0.025, height_1 = true, gmr = true, promp = true, dmp = true, in_sample = true, threads = 1))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn heldout<'py>(
     py: Python<'py>,
@@ -126,6 +126,7 @@ pub(crate) fn heldout<'py>(
     height_1: bool,
     gmr: bool,
     promp: bool,
+    dmp: bool,
     in_sample: bool,
     threads: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
@@ -151,6 +152,7 @@ pub(crate) fn heldout<'py>(
         height_1,
         gmr,
         promp,
+        dmp,
         replay: true,
         in_sample,
         threads,

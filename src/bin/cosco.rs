@@ -109,6 +109,7 @@ fn run(cli: Cli) -> Result<()> {
             no_height_1,
             no_gmr,
             no_promp,
+            no_dmp,
             no_in_sample,
             #[cfg(feature = "plot")]
             png,
@@ -128,6 +129,7 @@ fn run(cli: Cli) -> Result<()> {
                     height_1: !no_height_1,
                     gmr: !no_gmr,
                     promp: !no_promp,
+                    dmp: !no_dmp,
                     replay: true,
                     in_sample: !no_in_sample,
                     threads: threads.map_or_else(cli::cores, |t| t as usize),

@@ -8,6 +8,7 @@ use std::time::Instant;
 
 use crate::config::HsomConfig;
 use crate::demos::{sample_period, Demonstration};
+use crate::dmp::DmpSettings;
 use crate::dtw::euclidean;
 use crate::gmr::{plan_at, BicScore, ComponentChoice, GmrModel, GmrParams, GmrPlan, TrainingSet};
 use crate::hsom::{Hsom, Reproduction};
@@ -250,6 +251,12 @@ pub fn run_fold<E: Executor>(
             Method::ProMP => {
                 let (m, train_s) = timed(|| PrompSettings::default().fit(train));
                 let (p, reproduce_s) = timed(|| m.map_err(msg)?.reproduce(initial).map_err(msg));
+                Ok((p?, train_s, reproduce_s, None))
+            }
+            Method::Dmp => {
+                let (m, train_s) = timed(|| DmpSettings::default().fit(train));
+                let (p, reproduce_s) =
+                    timed(|| m.map_err(msg)?.reproduce(initial, None).map_err(msg));
                 Ok((p?, train_s, reproduce_s, None))
             }
             Method::Replay => {

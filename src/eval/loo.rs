@@ -23,6 +23,8 @@ pub struct LooSettings {
     pub gmr: bool,
     /// ProMP conditioned on the initial posture.
     pub promp: bool,
+    /// The DMP from the initial posture to the mean end.
+    pub dmp: bool,
     /// The replay of the nearest training demonstration.
     pub replay: bool,
     /// Learn from all and score against each too.
@@ -37,6 +39,7 @@ impl Default for LooSettings {
             height_1: true,
             gmr: true,
             promp: true,
+            dmp: true,
             replay: true,
             in_sample: true,
             threads: 1,
@@ -55,6 +58,7 @@ impl LooSettings {
                 Method::Height1 => self.height_1,
                 Method::GmmGmr => self.gmr,
                 Method::ProMP => self.promp,
+                Method::Dmp => self.dmp,
                 Method::Replay => self.replay && held_out,
             })
             .collect()

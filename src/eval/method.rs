@@ -34,18 +34,25 @@ pub enum Method {
     /// [`PrompSettings`]: crate::promp::PrompSettings
     #[serde(rename = "promp")]
     ProMP,
+    /// The third baseline: the discrete DMP ([`crate::dmp`], default [`DmpSettings`]) from
+    /// rest at the initial posture to the training demonstrations' mean end (or the given
+    /// goal), for their mean duration.
+    ///
+    /// [`DmpSettings`]: crate::dmp::DmpSettings
+    Dmp,
     /// The training demonstration whose first sample is nearest, as recorded (no model).
     Replay,
 }
 
 impl Method {
     /// Every method, in the order of the tables.
-    pub const ALL: [Method; 6] = [
+    pub const ALL: [Method; 7] = [
         Method::Hierarchy,
         Method::NearestSequence,
         Method::Height1,
         Method::GmmGmr,
         Method::ProMP,
+        Method::Dmp,
         Method::Replay,
     ];
 
@@ -57,6 +64,7 @@ impl Method {
             Method::Height1 => "height 1",
             Method::GmmGmr => "GMM/GMR",
             Method::ProMP => "ProMP",
+            Method::Dmp => "DMP",
             Method::Replay => "replay (no model)",
         }
     }

@@ -464,7 +464,7 @@ impl HeldOutSummary {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct HeldOut {
     /// One fold per demonstration, in order (written per method: `hsom`, `gmr`, `sequence`,
-    /// `promp`, each with its scores, and the reason where GMM/GMR or ProMP did not run).
+    /// `promp`, `dmp`, each with its scores, and the reason where a baseline did not run).
     #[serde(serialize_with = "per_method")]
     pub folds: Vec<Fold>,
     /// CoSCo-HSOM: means over all folds.
@@ -475,6 +475,8 @@ pub struct HeldOut {
     pub sequence: Option<HeldOutSummary>,
     /// ProMP: means over the folds where it ran (`None` when it was not run or ran on none).
     pub promp: Option<HeldOutSummary>,
+    /// The DMP: means over the folds where it ran (`None` when it was not run or ran on none).
+    pub dmp: Option<HeldOutSummary>,
 }
 
 /// The folds as the reports write them: per method.
@@ -489,6 +491,8 @@ fn per_method<S: serde::Serializer>(folds: &[Fold], s: S) -> Result<S::Ok, S::Er
         sequence: Option<&'a FoldScores>,
         promp: Option<&'a FoldScores>,
         promp_error: Option<&'a str>,
+        dmp: Option<&'a FoldScores>,
+        dmp_error: Option<&'a str>,
     }
     s.collect_seq(folds.iter().enumerate().map(|(i, f)| Row {
         held_out: i,
@@ -499,6 +503,8 @@ fn per_method<S: serde::Serializer>(folds: &[Fold], s: S) -> Result<S::Ok, S::Er
         sequence: f.scores(Method::NearestSequence),
         promp: f.scores(Method::ProMP),
         promp_error: f.error(Method::ProMP),
+        dmp: f.scores(Method::Dmp),
+        dmp_error: f.error(Method::Dmp),
     }))
 }
 
@@ -522,6 +528,7 @@ impl HeldOut {
             gmr: summary(Method::GmmGmr),
             sequence: summary(Method::NearestSequence),
             promp: summary(Method::ProMP),
+            dmp: summary(Method::Dmp),
             folds,
         })
     }

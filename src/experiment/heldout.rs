@@ -104,6 +104,7 @@ pub fn leave_one_out(
         Method::NearestSequence,
         Method::GmmGmr,
         Method::ProMP,
+        Method::Dmp,
     ];
     let all = folds(
         arm,

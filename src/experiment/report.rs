@@ -340,6 +340,9 @@ pub fn heldout_row(name: &str, f: Option<&FidelityReport>, h: Option<&HeldOutSum
 /// ProMP's name in the report's tables (held out only: no in-sample column).
 pub const PROMP_NAME: &str = "ProMP (held out only)";
 
+/// The DMP's name in the report's tables (held out only).
+pub const DMP_NAME: &str = "DMP (held out only)";
+
 /// A markdown table with one row per `(name, held-out summary)`: where the reproductions start
 /// and end against the folds' training demonstrations and how smooth they are, the motion the
 /// arm executed beside the postures the method handed the servos (docs/METRICS.md, "Start and
@@ -502,6 +505,9 @@ impl Report {
                 if let Some(p) = &h.promp {
                     md.push_str(&heldout_row(PROMP_NAME, None, Some(p)));
                 }
+                if let Some(d) = &h.dmp {
+                    md.push_str(&heldout_row(DMP_NAME, None, Some(d)));
+                }
                 if let Some(s) = &h.sequence {
                     let _ = writeln!(
                         md,
@@ -531,6 +537,7 @@ impl Report {
                 let mut rows: Vec<(&str, &HeldOutSummary)> = vec![("CoSCo-HSOM", &h.hsom)];
                 rows.extend(h.gmr.as_ref().map(|g| ("GMM/GMR", g)));
                 rows.extend(h.promp.as_ref().map(|p| (PROMP_NAME, p)));
+                rows.extend(h.dmp.as_ref().map(|d| (DMP_NAME, d)));
                 rows.extend(h.sequence.as_ref().map(|s| ("nearest sequence", s)));
                 md.push_str(&start_end_table(&rows));
                 let _ = writeln!(md);

@@ -174,7 +174,7 @@ impl Executor for ArmExecutor<'_> {
             ..MetricsParams::default()
         };
         let transition = match method {
-            Method::GmmGmr | Method::ProMP | Method::Replay => Transition::Linear,
+            Method::GmmGmr | Method::ProMP | Method::Dmp | Method::Replay => Transition::Linear,
             _ => self.transition,
         };
         execute_and_score(self.arm, postures, transition, targets, &metrics)

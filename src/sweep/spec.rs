@@ -45,6 +45,10 @@ pub enum MethodAxis {
     Gmr,
     /// Both, on the same demonstrations.
     Both,
+    /// The ProMP baseline alone ([`eval::Method::ProMP`]).
+    Promp,
+    /// The DMP baseline alone ([`eval::Method::Dmp`]).
+    Dmp,
 }
 
 impl MethodAxis {
@@ -54,6 +58,8 @@ impl MethodAxis {
             MethodAxis::CoscoHsom => "cosco-hsom",
             MethodAxis::Gmr => "gmr",
             MethodAxis::Both => "both",
+            MethodAxis::Promp => "promp",
+            MethodAxis::Dmp => "dmp",
         }
     }
 
@@ -63,16 +69,20 @@ impl MethodAxis {
             MethodAxis::CoscoHsom => &[Method::Hierarchy],
             MethodAxis::Gmr => &[Method::GmmGmr],
             MethodAxis::Both => &[Method::Hierarchy, Method::GmmGmr],
+            MethodAxis::Promp => &[Method::ProMP],
+            MethodAxis::Dmp => &[Method::Dmp],
         }
     }
 }
 
 /// A single method's name in run files and tables: the spec file's spelling
-/// (`cosco-hsom`, `gmr`) for the two a sweep runs, the evaluator's otherwise.
+/// (`cosco-hsom`, `gmr`, `promp`, `dmp`) for those a sweep runs, the evaluator's otherwise.
 pub fn method_name(m: Method) -> &'static str {
     match m {
         Method::Hierarchy => MethodAxis::CoscoHsom.name(),
         Method::GmmGmr => MethodAxis::Gmr.name(),
+        Method::ProMP => MethodAxis::Promp.name(),
+        Method::Dmp => MethodAxis::Dmp.name(),
         other => other.name(),
     }
 }
@@ -530,7 +540,7 @@ fn check_axes(a: RawAxes) -> Result<Axes, String> {
             word(w, "in-sample, leave-one-out")
         })?,
         method: axis("method", a.method, "both".into(), |w| {
-            word(w, "cosco-hsom, gmr, both")
+            word(w, "cosco-hsom, gmr, both, promp, dmp")
         })?,
     };
     if axes.method.contains(&MethodAxis::Both) && axes.method.len() > 1 {

@@ -115,7 +115,7 @@ pub enum Command {
         #[arg(long, num_args = 1.., required_unless_present = "recognition")]
         demos: Vec<PathBuf>,
         /// The recognition study (with --taught and --untaught) instead of reproduction.
-        #[arg(long, requires = "taught", conflicts_with_all = ["demos", "no_height_1", "no_gmr", "no_promp", "no_in_sample"])]
+        #[arg(long, requires = "taught", conflicts_with_all = ["demos", "no_height_1", "no_gmr", "no_promp", "no_dmp", "no_in_sample"])]
         recognition: bool,
         #[command(flatten)]
         study: Option<RecognitionArgs>,
@@ -130,6 +130,9 @@ pub enum Command {
         /// Leave out ProMP.
         #[arg(long)]
         no_promp: bool,
+        /// Leave out the DMP.
+        #[arg(long)]
+        no_dmp: bool,
         /// Leave out the in-sample result (learned from all).
         #[arg(long)]
         no_in_sample: bool,

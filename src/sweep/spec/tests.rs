@@ -74,7 +74,7 @@ fn bad_specs_name_the_axis_and_what_is_allowed() {
         ("[axes]\nmethod = [\"both\", \"gmr\"]\n", vec!["`both`"]),
         (
             "[axes]\nmethod = [\"svm\"]\n",
-            vec!["'svm'", "cosco-hsom, gmr, both"],
+            vec!["'svm'", "cosco-hsom, gmr, both, promp, dmp"],
         ),
         (
             "[axes]\nevaluation = [\"k-fold\"]\n",
