@@ -11,8 +11,11 @@ use nalgebra::{DMatrix, DVector};
 
 use crate::gmr::minimum_jerk_at;
 
+mod band;
 #[cfg(test)]
 mod tests;
+
+pub use band::{spread_band, ConfidenceBand};
 
 /// A posture to pass at a phase of the reproduction.
 #[derive(Debug, Clone, PartialEq)]
@@ -86,6 +89,18 @@ pub enum ConditionError {
         lower: f64,
         /// Its upper end.
         upper: f64,
+    },
+    /// A reproduction too short to be bent onto a condition between its rows.
+    #[error("the reproduction has {rows} rows: too few to pass the condition at phase {phase} (it reads {found:?}, the condition is {wanted:?})")]
+    Unmet {
+        /// Rows of the reproduction.
+        rows: usize,
+        /// The condition's phase.
+        phase: f64,
+        /// What the bent reproduction reads there.
+        found: Vec<f64>,
+        /// The condition's posture.
+        wanted: Vec<f64>,
     },
     /// Text that is not a posture (`--goal`) or `PHASE:POSTURE` (`--via`).
     #[error("{option} '{text}': {why}")]
@@ -217,6 +232,11 @@ impl Conditions {
         Ok(())
     }
 
+    /// The phases where a reproduction is pinned after its start ([`Conditions::points`]').
+    pub fn phases(&self) -> Vec<f64> {
+        self.points().into_iter().map(|(p, _)| p).collect()
+    }
+
     /// The postures to meet after the start, by phase (the goal at phase 1; one of several
     /// equal conditions at a phase; a via-point at phase 0 is the start's).
     pub fn points(&self) -> Vec<(f64, Vec<f64>)> {
@@ -250,6 +270,98 @@ fn row_at(n: usize, phase: f64) -> (usize, f64) {
     let x = phase.clamp(0.0, 1.0) * (n.max(1) - 1) as f64;
     let i = (x.floor() as usize).min(n.saturating_sub(2));
     (i, x - i as f64)
+}
+
+/// The largest change of a reproduction's pace [`meet`] makes when it re-times it: the pace
+/// stays between 0.5 and 1.5 times its own.
+pub const MAX_PACE_CHANGE: f64 = 0.5;
+
+/// `rows` conditioned on `points` (phase, posture; phases in (0, 1], ascending): first
+/// re-timed so that each via-point's phase falls where the trajectory passes nearest its
+/// posture ([`retime`]), then bent onto the points exactly ([`bend`]). The first row, the
+/// start, stays; the number of rows stays. An error when a point is not met within 1e-9 of
+/// the largest value (a reproduction of too few rows to pass a point between two of them).
+pub fn meet(
+    rows: &[Vec<f64>],
+    points: &[(f64, Vec<f64>)],
+) -> Result<Vec<Vec<f64>>, ConditionError> {
+    let mut out = retime(rows, points);
+    bend(&mut out, points);
+    let scale = out
+        .iter()
+        .flatten()
+        .chain(points.iter().flat_map(|(_, p)| p))
+        .fold(1.0f64, |m, v| m.max(v.abs()));
+    for (phase, wanted) in points {
+        let found = at_phase(&out, *phase);
+        let miss = found.iter().zip(wanted).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        if out.is_empty() || !(miss <= 1e-9 * scale) {
+            return Err(ConditionError::Unmet {
+                rows: out.len(),
+                phase: *phase,
+                found,
+                wanted: wanted.clone(),
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// `rows` re-timed so that at each via-point's phase `p` (a point before the end) the
+/// trajectory is where it passes nearest the point's posture (each variable scaled by its
+/// range in `rows`), within the shift of phase that keeps the pace between `1 -`
+/// [`MAX_PACE_CHANGE`] and `1 +` it: the phase `s` of the result reads `rows` at
+/// `s + Δ(s)`, `Δ` 0 at the start and the end and the chosen shift at each via-point,
+/// joined by minimum-jerk blends (whose steepest slope is 1.875 times the mean), read
+/// between two rows. The number of rows stays.
+pub fn retime(rows: &[Vec<f64>], points: &[(f64, Vec<f64>)]) -> Vec<Vec<f64>> {
+    let n = rows.len();
+    let via: Vec<&(f64, Vec<f64>)> = points.iter().filter(|(p, _)| *p > 0.0 && *p < 1.0).collect();
+    if n < 3 || via.is_empty() {
+        return rows.to_vec();
+    }
+    let width = rows[0].len();
+    let range: Vec<f64> = (0..width)
+        .map(|d| {
+            let (lo, hi) = rows
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| (l.min(r[d]), h.max(r[d])));
+            if hi > lo { hi - lo } else { 1.0 }
+        })
+        .collect();
+    let dist = |r: &[f64], q: &[f64]| -> f64 {
+        r.iter().zip(q).zip(&range).map(|((a, b), s)| ((a - b) / s).powi(2)).sum::<f64>()
+    };
+    // the slope of Δ between two knots is at most 1.875 |Δd| / Δp
+    let slope = MAX_PACE_CHANGE / 1.875;
+    let last = (n - 1) as f64;
+    // knots (phase, shift): the start, each via-point, the end
+    let mut knots: Vec<(f64, f64)> = vec![(0.0, 0.0)];
+    for (k, (p, posture)) in via.iter().enumerate() {
+        let (prev_p, prev_d) = *knots.last().expect("the start");
+        let next_p = via.get(k + 1).map_or(1.0, |(q, _)| *q);
+        let lo = (prev_d - slope * (p - prev_p)).max(-slope * (next_p - p));
+        let hi = (prev_d + slope * (p - prev_p)).min(slope * (next_p - p));
+        let first = ((p + lo) * last).ceil().max(0.0) as usize;
+        let end = (((p + hi) * last).floor() as usize).min(n - 1);
+        let best = (first..=end.max(first))
+            .min_by(|&a, &b| dist(&rows[a], posture).total_cmp(&dist(&rows[b], posture)))
+            .unwrap_or(first);
+        let d = (best as f64 / last - p).clamp(lo.min(hi), hi.max(lo));
+        knots.push((*p, d));
+    }
+    knots.push((1.0, 0.0));
+    let shift = |s: f64| -> f64 {
+        let k = knots.iter().rposition(|(p, _)| *p <= s).unwrap_or(0).min(knots.len() - 2);
+        let ((a, da), (b, db)) = (knots[k], knots[k + 1]);
+        da + (db - da) * minimum_jerk_at((s - a) / (b - a))
+    };
+    (0..n)
+        .map(|i| {
+            let s = i as f64 / last;
+            at_phase(rows, (s + shift(s)).clamp(0.0, 1.0))
+        })
+        .collect()
 }
 
 /// `rows` bent onto `points` (phase, posture; phases in (0, 1], ascending) so that
@@ -335,61 +447,4 @@ fn progress(y: &[f64]) -> Vec<f64> {
         out[i] = out[i - 1] + 0.5 * (speed[i - 1] + speed[i]);
     }
     out
-}
-
-/// A central band about a trajectory: per row, per variable, the lowest and the highest value
-/// (a 95 % band: where 95 % of the gesture's demonstrations are expected, docs/METRICS.md).
-#[derive(Debug, Clone, PartialEq)]
-pub struct ConfidenceBand {
-    /// Per row, the lower ends.
-    pub lo: Vec<Vec<f64>>,
-    /// Per row, the upper ends.
-    pub hi: Vec<Vec<f64>>,
-}
-
-impl ConfidenceBand {
-    /// `rows` minus and plus `half` (per row, per variable, >= 0).
-    pub fn around(rows: &[Vec<f64>], half: &[Vec<f64>]) -> Self {
-        let side = |sign: f64| -> Vec<Vec<f64>> {
-            rows.iter()
-                .zip(half)
-                .map(|(r, h)| r.iter().zip(h).map(|(v, h)| v + sign * h).collect())
-                .collect()
-        };
-        ConfidenceBand {
-            lo: side(-1.0),
-            hi: side(1.0),
-        }
-    }
-
-    /// The share of `other`'s values inside the band along `path` (pairs of a band row and a
-    /// row of `other`, as DTW aligns them): every pair and variable counts once.
-    pub fn coverage(&self, other: &[Vec<f64>], path: &[(usize, usize)]) -> f64 {
-        let (mut inside, mut all) = (0usize, 0usize);
-        for &(i, j) in path {
-            for (d, v) in other[j].iter().enumerate() {
-                all += 1;
-                inside += usize::from((self.lo[i][d]..=self.hi[i][d]).contains(v));
-            }
-        }
-        inside as f64 / all.max(1) as f64
-    }
-
-    /// The band as CSV (`cosco reproduce --band`): `step`, then `<variable>_lo` and
-    /// `<variable>_hi` for each of `columns`, one row per row of the trajectory.
-    pub fn csv(&self, columns: &[String]) -> csv::Result<Vec<u8>> {
-        let mut w = csv::Writer::from_writer(Vec::new());
-        let header = columns
-            .iter()
-            .flat_map(|c| [format!("{c}_lo"), format!("{c}_hi")]);
-        w.write_record(std::iter::once("step".to_string()).chain(header))?;
-        for (step, (lo, hi)) in self.lo.iter().zip(&self.hi).enumerate() {
-            let values = lo
-                .iter()
-                .zip(hi)
-                .flat_map(|(l, h)| [l.to_string(), h.to_string()]);
-            w.write_record(std::iter::once(step.to_string()).chain(values))?;
-        }
-        w.into_inner().map_err(|e| e.into_error().into())
-    }
 }

@@ -155,6 +155,7 @@ pub(crate) fn heldout<'py>(
         dmp,
         replay: true,
         in_sample,
+        conditioning: eval::Conditioning::Unconditioned,
         threads,
     };
     let cfg = config.inner.clone();

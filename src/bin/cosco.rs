@@ -110,6 +110,7 @@ fn run(cli: Cli) -> Result<()> {
             no_gmr,
             no_promp,
             no_dmp,
+            condition,
             no_in_sample,
             #[cfg(feature = "plot")]
             png,
@@ -132,6 +133,7 @@ fn run(cli: Cli) -> Result<()> {
                     dmp: !no_dmp,
                     replay: true,
                     in_sample: !no_in_sample,
+                    conditioning: condition.unwrap_or_default(),
                     threads: threads.map_or_else(cli::cores, |t| t as usize),
                 },
                 json,

@@ -5,10 +5,7 @@ use std::path::PathBuf;
 
 use crate::app;
 
-use super::{
-    failures, json, leave_one_out, markdown, read_gestures_at, Kinematic, LooError, LooSettings,
-    Method,
-};
+use super::{failures, read_gestures_at, study, Kinematic, LooError, LooSettings, Method};
 
 /// What `cosco heldout` does.
 pub struct HeldoutJob {
@@ -41,21 +38,22 @@ pub fn heldout(
     let cfg = app::config(job.config.as_deref())?;
     let (cfg, gestures) =
         read_gestures_at(&job.demos, &cfg, job.state_length_from_data, job.resample)?;
-    let study = leave_one_out(&cfg, gestures, &job.settings, &Kinematic, progress)?;
+    let all = study(&cfg, gestures, &job.settings, &Kinematic, progress)?;
     // nothing to compare when the hierarchy itself never ran: the reason, as an error
-    if !super::results::held_out_runs(&study, Method::Hierarchy).any(|r| r.score.is_some()) {
-        let why = failures(&study)
+    let plain = &all.unconditioned;
+    if !super::results::held_out_runs(plain, Method::Hierarchy).any(|r| r.score.is_some()) {
+        let why = failures(plain)
             .into_iter()
             .find(|(m, _, _)| *m == Method::Hierarchy)
             .map_or_else(|| "no fold ran".to_string(), |(_, why, _)| why);
         return Err(LooError::NoReproduction(why));
     }
     if let Some(p) = &job.json {
-        super::loo::write(p, json(&cfg, &study).as_bytes())?;
+        super::loo::write(p, all.json(&cfg).as_bytes())?;
     }
     #[cfg(feature = "plot")]
     if let Some(p) = &job.png {
-        super::png(p, &study, 0)?;
+        super::png(p, plain, 0)?;
     }
-    Ok(markdown(&study))
+    Ok(all.markdown())
 }

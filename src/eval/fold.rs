@@ -6,10 +6,11 @@
 use std::borrow::Cow;
 use std::time::Instant;
 
+use crate::condition::{at_phase, meet, Conditions, ConfidenceBand};
 use crate::config::HsomConfig;
 use crate::demos::{sample_period, Demonstration};
 use crate::dmp::DmpSettings;
-use crate::dtw::euclidean;
+use crate::dtw::{dtw, euclidean, Band};
 use crate::gmr::{plan_at, BicScore, ComponentChoice, GmrModel, GmrParams, GmrPlan, TrainingSet};
 use crate::hsom::{Hsom, Reproduction};
 use crate::metrics::{column_swings, trimmed_normalized_jerk, MetricsParams, StartEndReference};
@@ -17,7 +18,7 @@ use crate::promp::PrompSettings;
 
 use super::executor::{Executed, Executor};
 use super::method::{Method, GMR_COMPONENTS};
-use super::results::{Commanded, Fold, FoldScores, Run, Score, Swings};
+use super::results::{Commanded, ConditionErrors, Fold, FoldScores, Run, Score, Swings};
 
 /// Smallest excursion between turning points that counts as a swing, rad.
 pub const SWING_MIN_AMPLITUDE_RAD: f64 = 0.3;
@@ -56,6 +57,60 @@ impl Split {
     }
 }
 
+/// What a fold's reproductions are conditioned on besides the held-out demonstration's
+/// initial posture (`cosco heldout --condition`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, clap::ValueEnum)]
+pub enum Conditioning {
+    /// The initial posture only.
+    #[default]
+    #[value(skip)]
+    #[serde(rename = "none")]
+    Unconditioned,
+    /// Also the held-out demonstration's last posture, as the goal.
+    #[value(name = "end")]
+    #[serde(rename = "end")]
+    End,
+    /// Also its last posture and its posture at phase 0.5, as a via-point.
+    #[value(name = "end+mid")]
+    #[serde(rename = "end+mid")]
+    EndMid,
+}
+
+impl Conditioning {
+    /// The name on the command line (`none` unconditioned).
+    pub fn name(self) -> &'static str {
+        match self {
+            Conditioning::Unconditioned => "none",
+            Conditioning::End => "end",
+            Conditioning::EndMid => "end+mid",
+        }
+    }
+
+    /// The conditions on a reproduction scored against `target` (none for a target without
+    /// samples).
+    pub fn of(self, target: &Demonstration) -> Conditions {
+        let Some(last) = target.rows.last() else {
+            return Conditions::default();
+        };
+        let mut c = Conditions::default();
+        if self != Conditioning::Unconditioned {
+            c.goal = Some(last.clone());
+        }
+        if self == Conditioning::EndMid {
+            c.via.push(crate::condition::ViaPoint {
+                phase: 0.5,
+                posture: at_phase(&target.rows, 0.5),
+            });
+        }
+        c
+    }
+}
+
+/// Why GMM/GMR produces nothing on a conditioned fold.
+pub const GMR_UNCONDITIONED: &str = "GMM/GMR cannot be conditioned on a goal or a via-point: \
+    its regression gives each instant a mean and a covariance, but no covariance across \
+    instants through which a condition at one instant could move the others";
+
 fn one(demos: &[Demonstration], i: usize) -> &[Demonstration] {
     demos.get(i..=i).unwrap_or_default()
 }
@@ -87,6 +142,9 @@ pub struct FoldInput<'a> {
     pub targets: &'a [Demonstration],
     /// Whether the hierarchy (and height 1) learn, or keep their initial weights.
     pub training: Training,
+    /// What the reproductions are conditioned on besides the first target's first sample
+    /// (its last posture, its posture at phase 0.5).
+    pub conditioning: Conditioning,
     /// GMM/GMR's choice of the number of components.
     pub gmr_components: ComponentChoice,
     /// Called with `(done, total)` as the hierarchy trains.
@@ -103,6 +161,7 @@ impl<'a> FoldInput<'a> {
             train,
             targets,
             training: Training::Trained,
+            conditioning: Conditioning::Unconditioned,
             gmr_components: GMR_COMPONENTS,
             progress: None,
         }
@@ -146,6 +205,12 @@ pub struct MethodRun<T> {
     pub reproduce_s: f64,
     /// What the hierarchy or GMM/GMR learned (`None` for the other methods).
     pub fitted: Option<Fitted>,
+    /// What the postures were conditioned on besides the initial posture.
+    pub conditions: Conditions,
+    /// The central 95 % band about the postures, for the methods that give one (the
+    /// hierarchy, the nearest sequence and height 1 from their training paths; GMM/GMR and
+    /// ProMP their own).
+    pub band: Option<ConfidenceBand>,
 }
 
 /// Each method of a fold with its run, or the reason it produced none.
@@ -179,8 +244,30 @@ fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
     (r, t.elapsed().as_secs_f64())
 }
 
-/// What a method produced: postures, training and reproduction times, what it learned.
-type Produced = (Vec<Vec<f64>>, f64, f64, Option<Fitted>);
+/// What a method produced: postures, training and reproduction times, what it learned, its
+/// band.
+type Produced = (
+    Vec<Vec<f64>>,
+    f64,
+    f64,
+    Option<Fitted>,
+    Option<ConfidenceBand>,
+);
+
+/// `rep`'s postures conditioned on `points` ([`meet`], when there are any), with `model`'s band about them
+/// pinned at `phases`.
+fn bent(
+    model: &Hsom,
+    mut rep: Reproduction,
+    points: &[(f64, Vec<f64>)],
+    phases: &[f64],
+) -> Result<(Reproduction, Option<ConfidenceBand>), String> {
+    if !points.is_empty() {
+        rep.postures = meet(&rep.postures, points).map_err(msg)?;
+    }
+    let band = model.band(&rep.postures, phases);
+    Ok((rep, band))
+}
 
 /// Each of `methods` on one fold: learned from `input.train`, started from the first
 /// target's first sample, executed by `executor` and scored against `input.targets`; in
@@ -200,6 +287,8 @@ pub fn run_fold<E: Executor>(
         );
         return methods.iter().map(|&m| (m, Err(why.clone()))).collect();
     };
+    let conditions = input.conditioning.of(target);
+    let (points, phases) = (conditions.points(), conditions.phases());
     let mut model: Option<Result<(Hsom, f64), String>> = None;
     let mut produce = |method| -> Result<Produced, String> {
         match method {
@@ -215,19 +304,21 @@ pub fn run_fold<E: Executor>(
                     Method::Hierarchy => m.reproduce(initial),
                     _ => m.follow_nearest(train, initial),
                 });
-                let r = rep.map_err(msg)?;
+                let (r, band) = bent(m, rep.map_err(msg)?, &points, &phases)?;
                 let fitted = (method == Method::Hierarchy).then(|| Fitted::Hierarchy {
                     model: Box::new(m.clone()),
                     reproduction: r.clone(),
                 });
-                Ok((r.postures, *train_s, reproduce_s, fitted))
+                Ok((r.postures, *train_s, reproduce_s, fitted, band))
             }
             Method::Height1 => {
                 let h1 = input.height_1.ok_or("no configuration at height 1 given")?;
                 let (m, train_s) = fit(h1, input, None)?;
                 let (rep, reproduce_s) = timed(|| m.reproduce(initial));
-                Ok((rep.map_err(msg)?.postures, train_s, reproduce_s, None))
+                let (r, band) = bent(&m, rep.map_err(msg)?, &points, &phases)?;
+                Ok((r.postures, train_s, reproduce_s, None, band))
             }
+            Method::GmmGmr if !points.is_empty() => Err(GMR_UNCONDITIONED.to_string()),
             Method::GmmGmr => {
                 let period = sample_period(target);
                 let (fitted, train_s) = timed(|| {
@@ -240,31 +331,35 @@ pub fn run_fold<E: Executor>(
                     plan_at(&m, initial, 1.0 / period, speed)
                 });
                 let plan = plan.map_err(msg)?;
+                let band = plan.band();
                 let fitted = Fitted::GmmGmr {
                     model: Box::new(m),
                     training: Box::new(training),
                     bic,
                     plan: plan.clone(),
                 };
-                Ok((plan.postures, train_s, reproduce_s, Some(fitted)))
+                Ok((plan.postures, train_s, reproduce_s, Some(fitted), Some(band)))
             }
             Method::ProMP => {
                 let (m, train_s) = timed(|| PrompSettings::default().fit(train));
-                let (p, reproduce_s) = timed(|| m.map_err(msg)?.reproduce(initial).map_err(msg));
-                Ok((p?, train_s, reproduce_s, None))
+                let (p, reproduce_s) =
+                    timed(|| m.map_err(msg)?.conditioned(initial, &points).map_err(msg));
+                let (rows, band) = p?;
+                Ok((rows, train_s, reproduce_s, None, Some(band)))
             }
             Method::Dmp => {
                 let (m, train_s) = timed(|| DmpSettings::default().fit(train));
+                let goal = conditions.goal.as_deref();
                 let (p, reproduce_s) =
-                    timed(|| m.map_err(msg)?.reproduce(initial, None).map_err(msg));
-                Ok((p?, train_s, reproduce_s, None))
+                    timed(|| m.map_err(msg)?.reproduce(initial, goal).map_err(msg));
+                Ok((p?, train_s, reproduce_s, None, None))
             }
             Method::Replay => {
                 let start = |d: &Demonstration| euclidean(&d.rows[0], initial);
                 train
                     .iter()
                     .min_by(|a, b| start(a).total_cmp(&start(b)))
-                    .map(|d| (d.rows.clone(), 0.0, 0.0, None))
+                    .map(|d| (d.rows.clone(), 0.0, 0.0, None, None))
                     .ok_or_else(|| "no training demonstration".to_string())
             }
         }
@@ -272,7 +367,7 @@ pub fn run_fold<E: Executor>(
     methods
         .iter()
         .map(|&method| {
-            let run = produce(method).and_then(|(postures, train_s, reproduce_s, fitted)| {
+            let run = produce(method).and_then(|(postures, train_s, reproduce_s, fitted, band)| {
                 let executed = executor.execute(method, &postures, input.targets)?;
                 Ok(MethodRun {
                     postures,
@@ -280,6 +375,8 @@ pub fn run_fold<E: Executor>(
                     train_s,
                     reproduce_s,
                     fitted,
+                    conditions: conditions.clone(),
+                    band,
                 })
             });
             (method, run)
@@ -328,8 +425,17 @@ pub fn fold_scores<E: Executor>(
         }
         None => None,
     };
+    let coverage = match &run.band {
+        Some(b) if b.len() == run.postures.len() && !target.rows.is_empty() => {
+            let path = dtw(&run.postures, &target.rows, Band::None).map_err(|e| e.to_string())?;
+            Some(b.coverage(&target.rows, &path.path))
+        }
+        _ => None,
+    };
     Ok(FoldScores {
         swings,
+        conditions: ConditionErrors::of(&run.conditions, &run.postures),
+        coverage,
         postures: run.postures.len(),
         clamped_values: executed.clamped_values,
         train_s: run.train_s,
@@ -358,7 +464,7 @@ pub fn scored<E: Executor>(
     match scores {
         Ok((s, postures)) => Run {
             method,
-            score: (s.start_end.as_ref()).map(|se| Score::of(&s.fidelity, diag, se)),
+            score: (s.start_end.as_ref()).map(|se| Score::of(&s.fidelity, diag, se).with(&s, diag)),
             error: None,
             postures,
             scores: Some(s),

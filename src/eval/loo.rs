@@ -6,7 +6,7 @@ use crate::config::HsomConfig;
 use crate::demos::Demonstration;
 
 use super::executor::Executor;
-use super::fold::{diagonal, fold, FoldInput, Split};
+use super::fold::{diagonal, fold, Conditioning, FoldInput, Split};
 use super::method::Method;
 use super::results::GestureLoo;
 
@@ -29,6 +29,8 @@ pub struct LooSettings {
     pub replay: bool,
     /// Learn from all and score against each too.
     pub in_sample: bool,
+    /// What the reproductions are conditioned on besides the initial posture.
+    pub conditioning: Conditioning,
     /// Worker threads (at least 1).
     pub threads: usize,
 }
@@ -42,6 +44,7 @@ impl Default for LooSettings {
             dmp: true,
             replay: true,
             in_sample: true,
+            conditioning: Conditioning::Unconditioned,
             threads: 1,
         }
     }
@@ -290,6 +293,7 @@ pub fn leave_one_out<E: Executor>(
             let base = FoldInput {
                 config: Some(config),
                 height_1: height_1.as_ref(),
+                conditioning: settings.conditioning,
                 ..FoldInput::new(&[], &[])
             };
             let (methods, split) = match held {

@@ -27,12 +27,13 @@ mod pool;
 pub mod recognition;
 mod report;
 mod results;
+mod study;
 
 pub use executor::{Executed, Executor, Kinematic};
 pub use files::{heldout, HeldoutJob};
 pub use fold::{
-    all_but, diagonal, fold, fold_scores, run_fold, scored, Fitted, FoldInput, FoldRuns, MethodRun,
-    Split, Training, SWING_MIN_AMPLITUDE_RAD,
+    all_but, diagonal, fold, fold_scores, run_fold, scored, Conditioning, Fitted, FoldInput,
+    FoldRuns, MethodRun, Split, Training, GMR_UNCONDITIONED, SWING_MIN_AMPLITUDE_RAD,
 };
 pub use loo::{leave_one_out, read_gestures_at, Gestures, LooError, LooSettings, MIN_TAUGHT_DEMOS};
 pub use method::{peak_speed, Method, GMR_COMPONENTS};
@@ -40,7 +41,8 @@ pub use pool::Pool;
 #[cfg(feature = "plot")]
 pub use report::png;
 pub use report::{json, markdown};
+pub use study::{study, Study};
 pub use results::{
-    failures, passed, summary, Commanded, Fold, FoldScores, FoldsError, GestureLoo, HeldOut,
+    failures, passed, summary, Commanded, ConditionErrors, Fold, FoldScores, FoldsError, GestureLoo, HeldOut,
     HeldOutSummary, MethodSummary, Run, Score, Swings, MIN_DEMO_JERK,
 };

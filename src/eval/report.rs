@@ -12,13 +12,17 @@ use crate::demos::sample_period;
 /// The study as a JSON document (what `cosco heldout --json` writes): the configuration's
 /// name, the [`summary`] and every gesture's folds with every method's score.
 pub fn json(config: &HsomConfig, study: &[GestureLoo]) -> String {
-    let doc = serde_json::json!({
+    // cannot fail: plain numbers (non-finite ones become null), strings and enums
+    serde_json::to_string_pretty(&json_value(config, study)).unwrap_or_default()
+}
+
+/// [`json`]'s document as a value.
+pub(super) fn json_value(config: &HsomConfig, study: &[GestureLoo]) -> serde_json::Value {
+    serde_json::json!({
         "config": config.source(),
         "summary": summary(study),
         "gestures": study,
-    });
-    // cannot fail: plain numbers (non-finite ones become null), strings and enums
-    serde_json::to_string_pretty(&doc).unwrap_or_default()
+    })
 }
 
 /// The study as Markdown: per gesture, each method's mean relative DTW over the folds held
@@ -72,9 +76,9 @@ pub fn markdown(study: &[GestureLoo]) -> String {
     );
     let _ = writeln!(
         out,
-        "| method | relative DTW | in-sample | duration ratio | final error / diagonal | jerk ratio | start in range | end within spread | hierarchy / method | hierarchy closer | failed folds |"
+        "| method | relative DTW | in-sample | duration ratio | final error / diagonal | jerk ratio | band coverage | start in range | end within spread | hierarchy / method | hierarchy closer | failed folds |"
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|---|---|---|");
     let folds = |m: Method, pass: fn(&Score) -> bool| {
         let (k, n) = passed(study, m, pass);
         format!("{k} of {n}")
@@ -91,13 +95,15 @@ pub fn markdown(study: &[GestureLoo]) -> String {
         };
         let _ = writeln!(
             out,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} of {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} of {} |",
             s.method.name(),
             opt(s.relative_dtw, 4),
             opt(s.relative_dtw_in_sample, 4),
             opt(s.duration_ratio, 2),
             opt(s.relative_final_error, 4),
             opt(s.jerk_ratio, 2),
+            s.coverage
+                .map_or("-".to_string(), |c| format!("{:.1} %", 100.0 * c)),
             folds(s.method, |s| s.start_in_range),
             folds(s.method, |s| s.end_within_spread),
             against(opt(s.hierarchy_ratio, 3)),
@@ -108,6 +114,24 @@ pub fn markdown(study: &[GestureLoo]) -> String {
             s.failed,
             s.folds
         );
+    }
+    if summaries_conditioned(study) {
+        let _ = writeln!(
+            out,
+            "\nConditions met by the postures each method produced (before execution; each \
+             read at its phase between two rows), the largest error of any held-out fold over \
+             the gesture's diagonal:\n\n| method | goal | via-point |\n|---|---|---|"
+        );
+        let e = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.1e}"));
+        for s in summary(study) {
+            let _ = writeln!(
+                out,
+                "| {} | {} | {} |",
+                s.method.name(),
+                e(s.worst_goal_error),
+                e(s.worst_via_error)
+            );
+        }
     }
     let failed = failures(study);
     if !failed.is_empty() {
@@ -122,6 +146,13 @@ pub fn markdown(study: &[GestureLoo]) -> String {
         }
     }
     out
+}
+
+/// Whether any method's reproductions in `study` were conditioned on a goal or via-point.
+fn summaries_conditioned(study: &[GestureLoo]) -> bool {
+    summary(study)
+        .iter()
+        .any(|s| s.worst_goal_error.is_some() || s.worst_via_error.is_some())
 }
 
 /// A figure of one fold per gesture: the gesture's demonstrations (thin, grey), the held-out

@@ -43,6 +43,13 @@ pub struct Score {
     pub end_spread: f64,
     /// Whether `final_error` is at most 2 x `end_spread` or 1 % of the gesture's diagonal.
     pub end_within_spread: bool,
+    /// The share of the demonstration inside the method's 95 % band ([`FoldScores::coverage`];
+    /// `None` for a method without a band).
+    pub coverage: Option<f64>,
+    /// The goal's error over the gesture's diagonal (`None` without a goal).
+    pub goal_error: Option<f64>,
+    /// The largest via-point's error over the diagonal (`None` without via-points).
+    pub via_error: Option<f64>,
 }
 
 /// A method's result on one fold (equal to another with the same results, whatever the time
@@ -164,6 +171,21 @@ impl Score {
             start_in_range: start_end.start_in_range,
             end_spread: start_end.end_spread,
             end_within_spread: start_end.end_within_spread,
+            coverage: None,
+            goal_error: None,
+            via_error: None,
+        }
+    }
+
+    /// The score with the band's coverage and the conditions' errors (over the diagonal
+    /// `diag`) of `scores`.
+    pub fn with(self, scores: &FoldScores, diag: f64) -> Score {
+        let c = scores.conditions.as_ref();
+        Score {
+            coverage: scores.coverage,
+            goal_error: c.and_then(|c| c.goal).map(|e| e / diag),
+            via_error: c.and_then(|c| c.via).map(|e| e / diag),
+            ..self
         }
     }
 }
@@ -197,6 +219,13 @@ pub struct MethodSummary {
     pub start_in_range: Option<f64>,
     /// The same for ending within the spread ([`Score::end_within_spread`]).
     pub end_within_spread: Option<f64>,
+    /// Median band coverage, held out (`None` for a method without a band).
+    pub coverage: Option<f64>,
+    /// The largest goal error over the diagonal of any held-out fold (`None` without goals).
+    pub worst_goal_error: Option<f64>,
+    /// The largest via-point error over the diagonal of any held-out fold (`None` without
+    /// via-points).
+    pub worst_via_error: Option<f64>,
 }
 
 /// The held-out runs of `method` in `study`.
@@ -256,9 +285,19 @@ pub fn summary(study: &[GestureLoo]) -> Vec<MethodSummary> {
                 hierarchy_closer: (pairs.iter().filter(|(h, x)| h < x).count(), pairs.len()),
                 start_in_range: fraction(passed(study, m, |s| s.start_in_range)),
                 end_within_spread: fraction(passed(study, m, |s| s.end_within_spread)),
+                coverage: med(&|g| g.mean(&g.held_out, m, |s| s.coverage.unwrap_or(f64::NAN))),
+                worst_goal_error: worst(study, m, |s| s.goal_error),
+                worst_via_error: worst(study, m, |s| s.via_error),
             }
         })
         .collect()
+}
+
+/// The largest `f` of `method`'s held-out scores (`None` where none has one).
+fn worst(study: &[GestureLoo], method: Method, f: fn(&Score) -> Option<f64>) -> Option<f64> {
+    held_out_runs(study, method)
+        .filter_map(|r| r.score.as_ref().and_then(f))
+        .reduce(f64::max)
 }
 
 /// Every distinct reason a method produced nothing, with the folds it happened on
@@ -314,6 +353,14 @@ pub struct FoldScores {
     /// Large swings of the swing joint (`None` when the executor counts none).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub swings: Option<Swings>,
+    /// How far the postures (before execution) miss what they were conditioned on (`None`
+    /// when unconditioned).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub conditions: Option<ConditionErrors>,
+    /// The share of the held-out demonstration inside the method's 95 % band, the
+    /// demonstration aligned to the postures by DTW (docs/METRICS.md, "Confidence band";
+    /// `None` for a method without a band).
+    pub coverage: Option<f64>,
     /// Postures the method produced.
     pub postures: usize,
     /// Posture values clamped into the joint ranges before execution.
@@ -327,6 +374,37 @@ pub struct FoldScores {
     pub start_end: Option<StartEnd>,
     /// The postures handed to the servos, scored the same way (`None` where not judged).
     pub commanded: Option<Commanded>,
+}
+
+/// How far a reproduction's postures miss the postures it was conditioned on, data units:
+/// each read at its phase between two rows ([`crate::condition::at_phase`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ConditionErrors {
+    /// The last posture's distance from the goal (`None` without a goal).
+    pub goal: Option<f64>,
+    /// The largest distance from a via-point (`None` without via-points).
+    pub via: Option<f64>,
+}
+
+impl ConditionErrors {
+    /// The errors of `postures` conditioned on `c` (`None` when `c` has no condition or
+    /// `postures` no row).
+    pub fn of(c: &crate::condition::Conditions, postures: &[Vec<f64>]) -> Option<Self> {
+        use crate::condition::at_phase;
+        use crate::dtw::euclidean;
+        if c.is_empty() || postures.is_empty() {
+            return None;
+        }
+        let miss = |phase: f64, p: &[f64]| euclidean(&at_phase(postures, phase), p);
+        Some(ConditionErrors {
+            goal: c.goal.as_deref().map(|g| miss(1.0, g)),
+            via: c
+                .via
+                .iter()
+                .map(|v| miss(v.phase, &v.posture))
+                .reduce(f64::max),
+        })
+    }
 }
 
 /// What a method handed the servos on one fold (the postures clamped into the joint ranges and
@@ -392,6 +470,8 @@ pub struct HeldOutSummary {
     pub commanded_start_in_range: Option<f64>,
     /// Fraction of the judged folds whose commanded postures end within the spread.
     pub commanded_end_within_spread: Option<f64>,
+    /// Mean band coverage (over the folds with a band).
+    pub coverage: Option<f64>,
 }
 
 fn mean(values: impl Iterator<Item = f64>) -> Option<f64> {
@@ -455,6 +535,7 @@ impl HeldOutSummary {
             commanded_start_speed: mean(commanded().filter_map(|c| c.start_end.start_speed)),
             commanded_start_in_range: share(commanded().map(|c| c.start_end.start_in_range)),
             commanded_end_within_spread: share(commanded().map(|c| c.start_end.end_within_spread)),
+            coverage: mean(folds.iter().filter_map(|s| s.coverage)),
         })
     }
 }

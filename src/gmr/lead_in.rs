@@ -93,3 +93,24 @@ pub fn plan_at(
         predictions,
     })
 }
+
+impl GmrPlan {
+    /// GMR's own central 95 % band about the plan: its mean ± 1.96 conditional standard
+    /// deviations per variable at each of GMR's points; over the lead-in, from 0 at the
+    /// given initial posture growing by the lead-in's minimum-jerk profile to the band at
+    /// GMR's first point.
+    pub fn band(&self) -> crate::condition::ConfidenceBand {
+        let sd = |p: &Prediction| -> Vec<f64> {
+            (0..p.mean.len())
+                .map(|d| 1.96 * p.covariance[d][d].max(0.0).sqrt())
+                .collect()
+        };
+        let first = self.predictions.first().map(sd).unwrap_or_default();
+        let lead = (0..self.lead_in).map(|k| {
+            let h = minimum_jerk_at(k as f64 / self.lead_in.max(1) as f64);
+            first.iter().map(|v| v * h).collect::<Vec<f64>>()
+        });
+        let half: Vec<Vec<f64>> = lead.chain(self.predictions.iter().map(sd)).collect();
+        crate::condition::ConfidenceBand::around(&self.postures, &half)
+    }
+}

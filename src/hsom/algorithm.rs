@@ -15,7 +15,9 @@ use super::inputs::{
     bmu_known, check_series, demo_series, input_dim, level_buffers, node_means, spread, Series,
 };
 use super::memory::{Memory, Stm};
-use super::model::{EventsHsom, EventsModel, Hsom, Model, PaperModel, Part, MAX_NORMALISED};
+use super::model::{
+    band_path, EventsHsom, EventsModel, Hsom, Model, PaperModel, Part, MAX_NORMALISED,
+};
 
 fn demo_columns(demos: &[Demonstration]) -> Vec<String> {
     demos.first().map(|d| d.columns.clone()).unwrap_or_default()
@@ -326,6 +328,7 @@ impl HsomConfig {
             accuracy: vec![0.0; p.height],
             lookup: vec![0.0; p.height],
             part: (),
+            paths: norm.iter().map(|rows| band_path(rows)).collect(),
         };
         if events {
             let (mut m, ()) = model.with_part(EventsModel::untrained(p));
@@ -515,6 +518,23 @@ impl<A: Part> Model<A> {
     /// Normalised rows.
     pub(crate) fn normalise_rows(&self, rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
         rows.iter().map(|r| self.normalise(r)).collect()
+    }
+
+    /// The central 95 % band about `rows` (a reproduction, in the data's units) from the
+    /// training paths, pinned at its start and at `pinned` (phases;
+    /// [`crate::condition::spread_band`], measured where the bottom level sees the data);
+    /// `None` with fewer than 2 training paths.
+    pub(crate) fn band(
+        &self,
+        rows: &[Vec<f64>],
+        pinned: &[f64],
+    ) -> Option<crate::condition::ConfidenceBand> {
+        let b = crate::condition::spread_band(&self.normalise_rows(rows), &self.paths, pinned)?;
+        let back = |side: &[Vec<f64>]| side.iter().map(|r| self.denormalise(r)).collect();
+        Some(crate::condition::ConfidenceBand {
+            lo: back(&b.lo),
+            hi: back(&b.hi),
+        })
     }
 
     /// Back to the data's units: y * scale + offset.

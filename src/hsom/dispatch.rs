@@ -87,7 +87,8 @@ impl Hsom {
         either!(self, m => m.reproduce(initial))
     }
     /// Reproduce from `initial` through the via-points of `conditions` and to their goal: the
-    /// reproduction bent onto them ([`condition::bend`]; docs/ALGORITHM.md, "Conditioning"),
+    /// reproduction re-timed and bent onto them ([`condition::meet`]; docs/ALGORITHM.md,
+    /// "Conditioning"),
     /// each met exactly as [`condition::at_phase`] reads it. The conditions are checked
     /// first, without ranges (the caller knows the variables' ranges, if any).
     pub fn reproduce_conditioned(
@@ -97,8 +98,18 @@ impl Hsom {
     ) -> Result<Reproduction, HsomError> {
         conditions.check(self.columns(), None, initial)?;
         let mut rep = self.reproduce(initial)?;
-        condition::bend(&mut rep.postures, &conditions.points());
+        rep.postures = condition::meet(&rep.postures, &conditions.points())?;
         Ok(rep)
+    }
+    /// The central 95 % band about `rows` (a reproduction of this model), pinned at its start
+    /// and at the phases `pinned` where it was conditioned ([`crate::condition::spread_band`]
+    /// over the training demonstrations the model keeps); `None` with fewer than 2 of them.
+    pub fn band(
+        &self,
+        rows: &[Vec<f64>],
+        pinned: &[f64],
+    ) -> Option<crate::condition::ConfidenceBand> {
+        either!(self, m => m.band(rows, pinned))
     }
     /// Reproduce with other reproduction settings; out-of-range values are an error, as
     /// [`HsomConfig::with_reproduction`] says.

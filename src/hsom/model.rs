@@ -75,6 +75,10 @@ pub struct Model<A> {
     /// What only its algorithm reads; a model file names its algorithm (`Paper` or `Events`).
     #[serde(rename = "algo", serialize_with = "tagged")]
     pub(crate) part: A,
+    /// The training demonstrations as the bottom level sees them (normalised), each resampled
+    /// to at most [`BAND_ROWS`] rows: how far they lie from a reproduction is its confidence
+    /// band ([`crate::condition::spread_band`]).
+    pub(crate) paths: Vec<Vec<Vec<f64>>>,
     /// The maps, bottom first (last in a model file).
     pub(crate) maps: Vec<SelfOrganizingMap>,
 }
@@ -147,6 +151,7 @@ impl<A> Model<A> {
             accuracy: self.accuracy,
             lookup: self.lookup,
             part,
+            paths: self.paths,
             maps: self.maps,
         };
         (m, self.part)
@@ -535,6 +540,19 @@ pub struct Shape {
 
 const ACCURACY: &str = "an accuracy outside [0, 1]";
 const POSITION: &str = "a position negative or non-finite (at most 1e8)";
+/// The most rows of a training path a model keeps ([`Model::paths`]).
+pub const BAND_ROWS: usize = 400;
+
+/// `rows` linearly resampled to at most [`BAND_ROWS`] rows (as they are when not longer).
+pub(crate) fn band_path(rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    if rows.len() <= BAND_ROWS {
+        return rows.to_vec();
+    }
+    (0..BAND_ROWS)
+        .map(|k| crate::condition::at_phase(rows, k as f64 / (BAND_ROWS - 1) as f64))
+        .collect()
+}
+
 const NORMALISED: &str =
     "a normalised value beyond 1e100 or non-finite (training refuses data beyond 1e100 once normalised)";
 
@@ -644,6 +662,22 @@ impl<A: Part> Model<A> {
         sized("scale", self.scale.len(), state)?;
         sized("column names", self.columns.len(), state)?;
         sized("dwell", self.dwell.len(), nodes[0])?;
+        for (k, path) in self.paths.iter().enumerate() {
+            if path.len() > BAND_ROWS || path.iter().any(|r| r.len() != state) {
+                return Err(format!(
+                    "training path {k} has {} rows of widths {:?}: at most {BAND_ROWS} rows of \
+                     {state} values",
+                    path.len(),
+                    path.iter().map(Vec::len).collect::<std::collections::BTreeSet<_>>()
+                ));
+            }
+        }
+        each(
+            "the training paths",
+            self.paths.iter().flatten().flatten(),
+            normalised,
+            NORMALISED,
+        )?;
         // values that size the reproduction: no demonstration is longer than the longest, no
         // event longer than a demonstration
         let len = self.demo_len;

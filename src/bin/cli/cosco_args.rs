@@ -115,7 +115,7 @@ pub enum Command {
         #[arg(long, num_args = 1.., required_unless_present = "recognition")]
         demos: Vec<PathBuf>,
         /// The recognition study (with --taught and --untaught) instead of reproduction.
-        #[arg(long, requires = "taught", conflicts_with_all = ["demos", "no_height_1", "no_gmr", "no_promp", "no_dmp", "no_in_sample"])]
+        #[arg(long, requires = "taught", conflicts_with_all = ["demos", "no_height_1", "no_gmr", "no_promp", "no_dmp", "no_in_sample", "condition"])]
         recognition: bool,
         #[command(flatten)]
         study: Option<RecognitionArgs>,
@@ -133,6 +133,11 @@ pub enum Command {
         /// Leave out the DMP.
         #[arg(long)]
         no_dmp: bool,
+        /// Also run every fold conditioned on the held-out demonstration's last posture
+        /// (`end`), or on it and its posture at phase 0.5 (`end+mid`), beside the
+        /// unconditioned run.
+        #[arg(long, value_name = "end|end+mid")]
+        condition: Option<cosco_hsom::eval::Conditioning>,
         /// Leave out the in-sample result (learned from all).
         #[arg(long)]
         no_in_sample: bool,
