@@ -3,17 +3,23 @@
 //! (`cosco demos import`, [`crate::ros2`]).
 
 use super::files::{self, read_reproduction};
-use super::reproduce::{initial_posture, reproduce};
+use super::reproduce::{initial_posture, parse_conditions, reproduce_conditioned, write_band};
 use super::{Error, Result};
 use crate::demos::Demonstration;
 use crate::export::{export_request, ExportRequest, Trajectory};
 
 /// `cosco export`: check where the output goes, build the trajectory (the reproduction file's,
 /// or gesture `r.gesture` of the model reproduced from exactly one of `r.initial` and
-/// `r.initial_from`), then check, scale, execute when asked and write it
+/// `r.initial_from`, through `r.goal` and `r.via`, its band written to `r.band` when asked),
+/// then check, scale, execute when asked and write it
 /// ([`export_request`]). Returns the report's lines.
 pub fn export(r: &ExportRequest) -> Result<Vec<String>> {
     files::check_output(&r.out)?;
+    if let Some(b) = &r.band {
+        files::check_output(b)?;
+    }
+    let conditions = parse_conditions(r.goal.as_deref(), &r.via)?;
+    let mut band = None;
     let d = match (&r.reproduction, &r.model) {
         (Some(path), _) => read_reproduction(path)?,
         (None, Some(model)) => {
@@ -21,8 +27,10 @@ pub fn export(r: &ExportRequest) -> Result<Vec<String>> {
             let branch = m.branch(r.gesture.as_deref())?;
             let initial = initial_posture(branch, r.initial.as_deref(), r.initial_from.as_deref())?;
             let name = model.display().to_string();
+            let rep = reproduce_conditioned(branch, &name, &initial, &conditions)?;
+            band = Some((branch.clone(), rep.clone()));
             Demonstration {
-                rows: reproduce(branch, &name, &initial)?.postures,
+                rows: rep.postures,
                 source: name,
                 columns: m.columns().to_vec(),
                 time: None,
@@ -36,7 +44,12 @@ pub fn export(r: &ExportRequest) -> Result<Vec<String>> {
         }
     };
     let t = Trajectory::from_demonstration(&d, r.step_rate)?;
-    Ok(export_request(r, &t)?)
+    let lines = export_request(r, &t)?;
+    // the band once the trajectory is written
+    if let (Some(path), Some((model, rep))) = (&r.band, &band) {
+        write_band(model, rep, &conditions, path)?;
+    }
+    Ok(lines)
 }
 
 /// `cosco demos import`: the sensor_msgs/msg/JointState messages of `topic` in the bag,

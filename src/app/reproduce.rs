@@ -195,9 +195,37 @@ pub struct ReproduceFile {
     /// `PHASE:V1,V2,...`; repeatable.
     #[arg(long, conflicts_with_all = ["prefix_from", "resume_from"])]
     pub via: Vec<String>,
+    /// Also write the central 95 % confidence band about the reproduction to this CSV: one
+    /// row per reproduction row, `step` then `<variable>_lo` and `<variable>_hi`.
+    #[arg(long, conflicts_with_all = ["prefix_from", "resume_from"])]
+    pub band: Option<PathBuf>,
     /// Output CSV.
     #[arg(long)]
     pub out: PathBuf,
+}
+
+/// The band of `rep` (a reproduction of `model` conditioned on `conditions`) as `--band`
+/// writes it, to `path` (atomically); an error naming the file when the model keeps fewer
+/// than 2 training demonstrations.
+pub fn write_band(
+    model: &Hsom,
+    rep: &Reproduction,
+    conditions: &Conditions,
+    path: &Path,
+) -> Result<()> {
+    let band = model.band(&rep.postures, &conditions.phases()).ok_or_else(|| {
+        Error::file(
+            path,
+            "no band: the model keeps fewer than 2 training demonstrations to measure it from",
+        )
+    })?;
+    let bytes = band
+        .csv_at(model.columns(), &rep.steps)
+        .map_err(|e| Error::Write {
+            path: path.to_path_buf(),
+            source: e.into(),
+        })?;
+    files::write(path, &bytes)
 }
 
 /// `cosco reproduce`: gesture `gesture` (required with several) from the initial posture;
@@ -213,8 +241,12 @@ pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
             "apply to a reproduction from an initial posture, not with --prefix-from or --resume-from",
         ));
     }
+    if let Some(b) = &r.band {
+        files::check_output(b)?;
+    }
     let m = files::load_gesture_model(&r.model)?;
     let name = r.model.display().to_string();
+    let mut band = Ok(());
     let (rep, label) = match (&r.prefix_from, r.prefix) {
         (Some(path), Some(prefix)) => {
             let (label, rep) = continue_file(&m, path, prefix)?;
@@ -234,6 +266,9 @@ pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
                 }
                 None => reproduce_conditioned(branch, &name, &initial, &conditions)?,
             };
+            if let Some(path) = &r.band {
+                band = write_band(branch, &rep, &conditions, path);
+            }
             (rep, r.gesture.clone())
         }
     };
@@ -241,6 +276,7 @@ pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
         path: r.out.clone(),
         source: e.into(),
     })?;
+    band?;
     files::write(&r.out, &bytes)?;
     let n = rep.postures.len();
     Ok(match label {

@@ -64,15 +64,22 @@ impl ConfidenceBand {
         shares.iter().sum::<f64>() / shares.len().max(1) as f64
     }
 
-    /// The band as CSV (`cosco reproduce --band`): `step`, then `<variable>_lo` and
-    /// `<variable>_hi` for each of `columns`, one row per row of the trajectory.
+    /// The band as CSV (`cosco reproduce --band`): `step` (the row's index), then
+    /// `<variable>_lo` and `<variable>_hi` for each of `columns`, one row per row of the
+    /// trajectory.
     pub fn csv(&self, columns: &[String]) -> csv::Result<Vec<u8>> {
+        let steps: Vec<usize> = (0..self.len()).collect();
+        self.csv_at(columns, &steps)
+    }
+
+    /// [`ConfidenceBand::csv`] with the trajectory's own `steps` (one per row).
+    pub fn csv_at(&self, columns: &[String], steps: &[usize]) -> csv::Result<Vec<u8>> {
         let mut w = csv::Writer::from_writer(Vec::new());
         let header = columns
             .iter()
             .flat_map(|c| [format!("{c}_lo"), format!("{c}_hi")]);
         w.write_record(std::iter::once("step".to_string()).chain(header))?;
-        for (step, (lo, hi)) in self.lo.iter().zip(&self.hi).enumerate() {
+        for (step, (lo, hi)) in steps.iter().zip(self.lo.iter().zip(&self.hi)) {
             let values = lo
                 .iter()
                 .zip(hi)

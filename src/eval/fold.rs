@@ -459,14 +459,15 @@ pub fn scored<E: Executor>(
 ) -> Run {
     let scores = run.and_then(|r| {
         let target = targets.first().ok_or_else(|| NO_TARGET.to_string())?;
-        Ok((fold_scores(&r, executor, train, target, diag)?, r.postures))
+        Ok((fold_scores(&r, executor, train, target, diag)?, r))
     });
     match scores {
-        Ok((s, postures)) => Run {
+        Ok((s, r)) => Run {
             method,
             score: (s.start_end.as_ref()).map(|se| Score::of(&s.fidelity, diag, se).with(&s, diag)),
             error: None,
-            postures,
+            postures: r.postures,
+            band: r.band,
             scores: Some(s),
         },
         Err(e) => Run {
@@ -474,6 +475,7 @@ pub fn scored<E: Executor>(
             score: None,
             error: Some(e),
             postures: Vec::new(),
+            band: None,
             scores: None,
         },
     }

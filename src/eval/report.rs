@@ -162,7 +162,7 @@ fn summaries_conditioned(study: &[GestureLoo]) -> bool {
 /// demonstration (0-based; the last one where a gesture has fewer).
 #[cfg(feature = "plot")]
 pub fn png(path: &std::path::Path, study: &[GestureLoo], fold: usize) -> Result<(), LooError> {
-    use crate::plot::{panels_png, Panel, Series, BLACK, PALETTE};
+    use crate::plot::{panels_png, Band, Panel, Series, Tube, BLACK, PALETTE};
     use plotters::style::RGBColor;
     let color = |m: Method| match m {
         Method::Hierarchy => PALETTE[3],
@@ -206,6 +206,27 @@ pub fn png(path: &std::path::Path, study: &[GestureLoo], fold: usize) -> Result<
         panel
             .series
             .push(Series::new("held out", BLACK, points(&target.rows, period)));
+        // the hierarchy's 95 % band under everything
+        if let Some(b) = f.run(Method::Hierarchy).and_then(|r| r.band.as_ref()) {
+            let label = Some("hierarchy's 95 % band".to_string());
+            let color = color(Method::Hierarchy);
+            match target.columns.len() {
+                1 => panel.bands.push(Band {
+                    label,
+                    color,
+                    points: (b.lo.iter().zip(&b.hi).enumerate())
+                        .map(|(k, (lo, hi))| (k as f64 * period, lo[0], hi[0]))
+                        .collect(),
+                }),
+                _ => panel.tubes.push(Tube {
+                    label,
+                    color,
+                    boxes: (b.lo.iter().zip(&b.hi))
+                        .map(|(lo, hi)| ((lo[0], lo[1]), (hi[0], hi[1])))
+                        .collect(),
+                }),
+            }
+        }
         // GMM/GMR first, the hierarchy last (on top)
         for r in f.runs.iter().rev().filter(|r| !r.postures.is_empty()) {
             if r.method == Method::Height1 || r.method == Method::Replay {

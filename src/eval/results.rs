@@ -65,6 +65,9 @@ pub struct Run {
     /// The reproduction (not serialised).
     #[serde(skip)]
     pub postures: Vec<Vec<f64>>,
+    /// Its 95 % band, for a method that gives one (not serialised).
+    #[serde(skip)]
+    pub band: Option<crate::condition::ConfidenceBand>,
     /// Every metric of the executed reproduction (not serialised here: [`HeldOut`] writes it).
     #[serde(skip)]
     pub scores: Option<FoldScores>,

@@ -129,6 +129,7 @@ pub fn baseline_section(
         "Demonstrations (colour), CoSCo-HSOM (black), GMM/GMR (magenta: learned without the idle start)",
         &FIG4_JOINTS,
         &curves,
+        None,
         "rad",
     )?;
     files.push("joints_compare.png".into());

@@ -5,7 +5,8 @@ use std::path::Path;
 use plotters::style::RGBColor;
 
 use crate::demos::Demonstration;
-use crate::plot::{demo_color, panels_png, Panel, PlotError, Series};
+use crate::condition::ConfidenceBand;
+use crate::plot::{demo_color, panels_png, Band, Panel, PlotError, Series};
 use crate::sim::Recording;
 
 /// Something to draw as a line: a legend label, a colour, a line width and its data (a
@@ -79,19 +80,35 @@ pub fn demo_curves(demos: &[Demonstration]) -> Vec<Curve<'_>> {
         .collect()
 }
 
+/// A confidence band to draw under the curves: its legend label, colour, the seconds between
+/// its rows, and the band.
+pub type BandTrace<'a> = Trace<(f64, &'a ConfidenceBand)>;
+
 /// One panel per named column (`columns[k]` names column `k` of the rows), every curve in
-/// each, time in seconds: the paper's Fig. 4 when the columns are the four arm joints.
+/// each over `band` when given, time in seconds: the paper's Fig. 4 when the columns are the
+/// four arm joints.
 pub fn joint_panels_png(
     path: &Path,
     title: &str,
     columns: &[(usize, &str)],
     curves: &[Curve<'_>],
+    band: Option<&BandTrace<'_>>,
     unit: &str,
 ) -> Result<(), PlotError> {
     let panels: Vec<Panel> = columns
         .iter()
         .map(|&(k, name)| {
             let mut p = Panel::new(name, "time (s)", format!("{name} ({unit})"));
+            if let Some(b) = band {
+                let (period, rows) = b.data;
+                p.bands.push(Band {
+                    label: Some(b.label.clone()),
+                    color: b.color,
+                    points: (rows.lo.iter().zip(&rows.hi).enumerate())
+                        .filter_map(|(i, (lo, hi))| Some((i as f64 * period, *lo.get(k)?, *hi.get(k)?)))
+                        .collect(),
+                });
+            }
             for c in curves {
                 let (time, rows) = c.data;
                 let points = time.iter().zip(rows);

@@ -81,6 +81,7 @@ pub fn folds(
                     method.name(),
                 )),
                 postures: Vec::new(),
+                band: None,
                 scores: None,
             }));
             f

@@ -16,7 +16,9 @@ use crate::sim::{check_reachable, demo_wrist_paths, NaoArm, Transition, JOINT_NA
 use super::baseline::GMR_NAME;
 use super::compare;
 use super::demonstrate::write_demos;
-use super::figures::{demo_curves, demo_paths, joint_panels_png, reproduction, wrist_png};
+use super::figures::{
+    demo_curves, demo_paths, joint_panels_png, reproduction, wrist_png, BandTrace,
+};
 use super::heldout::hierarchy_held_out;
 use super::output::FIG4_JOINTS;
 use super::output::{config_name, hsom_model, hsom_on_arm, load_arm, write_hsom_run, Stopwatch};
@@ -194,11 +196,16 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     let (curve, path) = reproduction("CoSCo-HSOM reproduction", BLACK, executed);
     let mut curves = demo_curves(&demos);
     curves.push(curve);
+    let band = run.band.as_ref().map(|b| {
+        let period = demos.first().map_or(0.025, crate::demos::sample_period);
+        BandTrace::reproduction("its 95 % band", BLACK, (period, b))
+    });
     joint_panels_png(
         &out.join("joints.png"),
-        "Training demonstrations (colour) and the reproduced gesture (black)",
+        "Training demonstrations (colour) and the reproduced gesture (black) with its 95 % band",
         &FIG4_JOINTS,
         &curves,
+        band.as_ref(),
         "rad",
     )?;
     files.push("joints.png".into());

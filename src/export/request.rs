@@ -32,6 +32,16 @@ pub struct ExportRequest {
     /// The gesture to reproduce (a model of several gestures).
     #[arg(long, requires = "model")]
     pub gesture: Option<String>,
+    /// The last posture, comma-separated (with --model): the reproduction ends exactly there.
+    #[arg(long, requires = "model")]
+    pub goal: Option<String>,
+    /// A posture to pass at a phase (with --model): `PHASE:V1,V2,...`; repeatable.
+    #[arg(long, requires = "model")]
+    pub via: Vec<String>,
+    /// Also write the reproduction's 95 % confidence band to this CSV (with --model), as
+    /// `cosco reproduce --band` does.
+    #[arg(long, requires = "model")]
+    pub band: Option<PathBuf>,
     /// Output format: naoqi (JSON for ALMotion.angleInterpolation), ros2 (MCAP with a
     /// trajectory_msgs/msg/JointTrajectory) or csv.
     #[arg(long)]

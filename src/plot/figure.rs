@@ -82,6 +82,18 @@ pub struct Band {
     pub points: Vec<(f64, f64, f64)>,
 }
 
+/// A region in the plane made of axis-aligned boxes (a band about a path in the plane: per
+/// sample, the box of its lower and upper ends), filled in one pale colour.
+#[derive(Debug, Clone)]
+pub struct Tube {
+    /// Legend entry.
+    pub label: Option<String>,
+    /// Colour (drawn pale and opaque, so that overlapping boxes look as one).
+    pub color: RGBColor,
+    /// `((x lower, y lower), (x upper, y upper))` per box.
+    pub boxes: Vec<((f64, f64), (f64, f64))>,
+}
+
 /// A filled ellipse: a 2-D Gaussian's `n_sigma` contour.
 #[derive(Debug, Clone)]
 pub struct Ellipse {
@@ -117,7 +129,9 @@ pub struct Panel {
     pub x_label: String,
     /// Y axis label.
     pub y_label: String,
-    /// Envelopes, drawn first.
+    /// Regions of boxes, drawn first.
+    pub tubes: Vec<Tube>,
+    /// Envelopes, drawn after the regions.
     pub bands: Vec<Band>,
     /// Ellipses, drawn after the envelopes.
     pub ellipses: Vec<Ellipse>,
@@ -157,6 +171,12 @@ impl Panel {
         let lines = self.series.iter().map(|s| &s.points);
         for points in lines.chain(self.scatter.iter().map(|s| &s.points)) {
             points.iter().for_each(|&(x, y)| add(x, y));
+        }
+        for t in &self.tubes {
+            for &((x0, y0), (x1, y1)) in &t.boxes {
+                add(x0, y0);
+                add(x1, y1);
+            }
         }
         for b in &self.bands {
             for &(x, lo, hi) in &b.points {
@@ -222,7 +242,8 @@ pub(crate) fn register_font() {
 }
 
 /// Draw `panels` on a grid of `cols` columns, each panel `panel_size` pixels, with a figure
-/// title on top, and write the PNG atomically to `path`.
+/// title on top and one legend for the figure in a strip below the panels (every labelled
+/// line, envelope and cloud once), and write the PNG atomically to `path`.
 pub fn panels_png(
     path: &Path,
     title: &str,
@@ -230,9 +251,21 @@ pub fn panels_png(
     cols: usize,
     panel_size: (u32, u32),
 ) -> Result<(), PlotError> {
-    grid_png(path, title, panels.len(), cols, panel_size, |i, area| {
-        draw_panel(path, &panels[i], area)
-    })
+    let entries = super::legend::entries(panels);
+    let width = panel_size.0 * cols.clamp(1, panels.len().max(1)) as u32;
+    let footer = super::legend::height(&entries, width);
+    let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
+        path: path.to_path_buf(),
+        message: format!("legend: {e}"),
+    };
+    framed_png(
+        path,
+        title,
+        (panels.len(), cols, panel_size),
+        footer,
+        |area| super::legend::draw(area, &entries, &draw_err),
+        |i, area| draw_panel(path, &panels[i], area),
+    )
 }
 
 /// A drawing area of one panel of a figure.
@@ -249,6 +282,18 @@ pub(crate) fn grid_png(
     panel_size: (u32, u32),
     draw: impl Fn(usize, &Area<'_>) -> Result<(), PlotError>,
 ) -> Result<(), PlotError> {
+    framed_png(path, title, (n, cols, panel_size), 0, |_| Ok(()), draw)
+}
+
+/// [`grid_png`] with a strip `footer_h` pixels high below the panels, drawn by `footer`.
+fn framed_png(
+    path: &Path,
+    title: &str,
+    (n, cols, panel_size): (usize, usize, (u32, u32)),
+    footer_h: u32,
+    footer: impl Fn(&Area<'_>) -> Result<(), PlotError>,
+    draw: impl Fn(usize, &Area<'_>) -> Result<(), PlotError>,
+) -> Result<(), PlotError> {
     if n == 0 {
         return Err(PlotError::NoPanels {
             path: path.to_path_buf(),
@@ -260,7 +305,7 @@ pub(crate) fn grid_png(
     let title_h = 40u32;
     let (w, h) = (
         panel_size.0 * cols as u32,
-        panel_size.1 * rows as u32 + title_h,
+        panel_size.1 * rows as u32 + title_h + footer_h,
     );
     let mut buf = vec![255u8; (w * h * 3) as usize];
     let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
@@ -270,9 +315,11 @@ pub(crate) fn grid_png(
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| draw_err(&e))?;
-        let (top, body) = root.split_vertically(title_h);
+        let (top, rest) = root.split_vertically(title_h);
         top.titled(title, ("sans-serif", 24))
             .map_err(|e| draw_err(&e))?;
+        let (body, bottom) = rest.split_vertically(panel_size.1 * rows as u32);
+        footer(&bottom)?;
         let areas = body.split_evenly((rows, cols));
         for (i, area) in areas.iter().enumerate().take(n) {
             draw(i, area)?;
@@ -347,21 +394,25 @@ fn draw_panel(path: &Path, panel: &Panel, area: &Area<'_>) -> Result<(), PlotErr
         .light_line_style(RGBColor(235, 235, 235))
         .draw()
         .map_err(|e| draw_err(&e))?;
-    let mut legend = false;
+    for t in &panel.tubes {
+        let pale = |c: u8| 255 - ((255 - c as u32) / 4) as u8;
+        let fill = RGBColor(pale(t.color.0), pale(t.color.1), pale(t.color.2)).filled();
+        chart
+            .draw_series(
+                t.boxes
+                    .iter()
+                    .filter(|((a, b), (c, d))| [a, b, c, d].iter().all(|v| v.is_finite()))
+                    .map(|&(lo, hi)| Rectangle::new([lo, hi], fill)),
+            )
+            .map_err(|e| draw_err(&e))?;
+    }
     for b in &panel.bands {
         let mut poly: Vec<(f64, f64)> = b.points.iter().map(|&(x, _, hi)| (x, hi)).collect();
         poly.extend(b.points.iter().rev().map(|&(x, lo, _)| (x, lo)));
         let style = b.color.mix(0.25).filled();
-        let anno = chart
+        chart
             .draw_series(std::iter::once(Polygon::new(poly, style)))
             .map_err(|e| draw_err(&e))?;
-        if let Some(l) = &b.label {
-            let c = b.color;
-            anno.label(l.as_str()).legend(move |(x, y)| {
-                Rectangle::new([(x, y - 5), (x + 20, y + 5)], c.mix(0.25).filled())
-            });
-            legend = true;
-        }
     }
     for e in &panel.ellipses {
         let outline = ellipse_outline(e, 64);
@@ -383,7 +434,7 @@ fn draw_panel(path: &Path, panel: &Panel, area: &Area<'_>) -> Result<(), PlotErr
     for s in &panel.scatter {
         let c = s.color;
         let size = s.size;
-        let anno = chart
+        chart
             .draw_series(
                 s.points
                     .iter()
@@ -391,11 +442,6 @@ fn draw_panel(path: &Path, panel: &Panel, area: &Area<'_>) -> Result<(), PlotErr
                     .map(move |&p| Circle::new(p, size, c.filled())),
             )
             .map_err(|e| draw_err(&e))?;
-        if let Some(l) = &s.label {
-            anno.label(l.as_str())
-                .legend(move |(x, y)| Circle::new((x + 10, y), 3, c.filled()));
-            legend = true;
-        }
     }
     for s in &panel.series {
         let style = s.color.stroke_width(s.width);
@@ -405,17 +451,9 @@ fn draw_panel(path: &Path, panel: &Panel, area: &Area<'_>) -> Result<(), PlotErr
             .copied()
             .filter(|p| p.0.is_finite() && p.1.is_finite())
             .collect();
-        let anno = chart
+        chart
             .draw_series(LineSeries::new(pts, style))
             .map_err(|e| draw_err(&e))?;
-        if let Some(l) = &s.label {
-            anno.label(l.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
-            legend = true;
-        }
-    }
-    if legend {
-        draw_legend(&mut chart, &draw_err)?;
     }
     Ok(())
 }

@@ -10,11 +10,12 @@ mod boxplot;
 mod caption;
 mod confusion;
 mod figure;
+mod legend;
 
 pub use boxplot::{boxplots_png, quantile, BoxPanel};
 pub use caption::caption;
 pub use confusion::{confusion_png, ConfusionPanel};
-pub use figure::{panels_png, Band, Ellipse, Panel, PlotError, Scatter, Series};
+pub use figure::{panels_png, Band, Ellipse, Panel, PlotError, Scatter, Series, Tube};
 
 use plotters::style::RGBColor;
 
