@@ -55,7 +55,7 @@ test-python:
 	if [ ! -x $(PY_VENV)/bin/python ]; then \
 	  $(PYTHON) -m venv $(PY_VENV) || { $(SUDO) apt-get install -y --no-install-recommends python3-venv && $(PYTHON) -m venv $(PY_VENV); }; \
 	fi; \
-	$(PY_VENV)/bin/pip install -q --disable-pip-version-check "maturin>=1.5,<2" pytest numpy "mcap-ros2-support>=0.5,<1"; \
+	$(PY_VENV)/bin/pip install -q --disable-pip-version-check "maturin>=1.5,<2" pytest numpy "mcap-ros2-support>=0.5,<1" "movement_primitives==0.9.1" scipy pytransform3d; \
 	$(CARGO) build --no-default-features --features ros2 --bin cosco; \
 	PATH="$(CURDIR)/$(PY_VENV)/bin:$$PATH" CARGO_TARGET_DIR=$(CURDIR)/target $(PY_VENV)/bin/pip install -q --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python; \
 	COSCO_BIN=$(CURDIR)/target/debug/cosco $(PY_VENV)/bin/python -m pytest -q python/tests

@@ -26,12 +26,13 @@ also a ``FileNotFoundError`` / ``PermissionError`` / ``OSError`` (:class:`Missin
 """
 
 from ._errors import FileAccessError, FileError, MissingFileError
-from ._native import Config, GestureModel, Hsom, Recognition, dtw, heldout, read_demos
+from ._native import Config, Dmp, GestureModel, Hsom, Recognition, dtw, heldout, read_demos
 from . import gmr
 
 __all__ = [
     "Config",
     "Hsom",
+    "Dmp",
     "GestureModel",
     "Recognition",
     "dtw",

@@ -1,7 +1,7 @@
 """Type stubs of the native module (see the docstrings in cosco_hsom)."""
 
 from os import PathLike
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Literal, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -61,8 +61,28 @@ class Hsom:
         gestures is refused (GestureModel.load)."""
     def save(self, path: _Path) -> None:
         """Save the model (.bin binary, .txt plain text; written atomically)."""
-    def reproduce(self, initial: npt.ArrayLike) -> np.ndarray:
-        """Reproduce from an initial posture: one row per step, the first the initial posture."""
+    @overload
+    def reproduce(
+        self,
+        initial: npt.ArrayLike,
+        *,
+        goal: Optional[npt.ArrayLike] = None,
+        via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None,
+        band: Literal[False] = False,
+    ) -> np.ndarray: ...
+    @overload
+    def reproduce(
+        self,
+        initial: npt.ArrayLike,
+        *,
+        goal: Optional[npt.ArrayLike] = None,
+        via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None,
+        band: Literal[True],
+    ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]: ...
+    def reproduce(self, initial: npt.ArrayLike, *, goal: Optional[npt.ArrayLike] = None, via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None, band: bool = False) -> Any:  # type: ignore[misc]
+        """Reproduce from an initial posture: one row per step, the first the initial posture;
+        ending exactly at `goal` and passing each `(phase, posture)` of `via` when given; with
+        band=True, (postures, lower, upper): the central 95 % band about them."""
     def follow_nearest(self, demos: Sequence[npt.ArrayLike], initial: npt.ArrayLike) -> np.ndarray:
         """The nearest-sequence baseline: of `demos`, the one whose first posture is nearest
         `initial`, its bottom events through this model's bottom code, no level above."""
@@ -178,6 +198,8 @@ def heldout(
     promp: bool = True,
     dmp: bool = True,
     in_sample: bool = True,
+    condition: Optional[Literal["end", "end+mid"]] = None,
+    far: Sequence[float] = (),
     threads: int = 1,
 ) -> Dict[str, Any]:
     """Leave-one-out (``cosco heldout``): the JSON document of ``--json`` as a dict."""
@@ -191,3 +213,12 @@ def read_demos(
 
 def dtw(a: _Array2, b: _Array2, per_step: bool = False) -> float:
     """DTW with Euclidean local cost: the summed cost of the cheapest path (or per step)."""
+
+class Dmp:
+    """The discrete dynamic movement primitive baseline, learned from several demonstrations."""
+    @staticmethod
+    def fit(demos: Sequence[npt.ArrayLike], *, basis: int = 50) -> "Dmp": ...
+    def reproduce(self, start: npt.ArrayLike, goal: Optional[npt.ArrayLike] = None) -> np.ndarray:
+        """From rest at `start` to `goal` (the demonstrations' mean end when None)."""
+    @property
+    def samples(self) -> int: ...

@@ -113,9 +113,10 @@ impl GmrModel {
 /// hierarchy beside the nearest sequence, height 1, GMM/GMR, ProMP, the DMP and a replay on the same
 /// folds.
 /// `gestures`: a list of 2-D arrays (one gesture) or a mapping label -> list. Returns the
-/// JSON document of `cosco heldout --json` as a dict. The GIL is released while it runs.
+/// JSON document of `cosco heldout --json` as a dict (with `condition="end"` or `"end+mid"`,
+/// the conditioned folds under `conditioned`). The GIL is released while it runs.
 #[pyfunction]
-#[pyo3(signature = (config, gestures, *, columns = None, sample_period = 0.025, height_1 = true, gmr = true, promp = true, dmp = true, in_sample = true, threads = 1))]
+#[pyo3(signature = (config, gestures, *, columns = None, sample_period = 0.025, height_1 = true, gmr = true, promp = true, dmp = true, in_sample = true, condition = None, far = Vec::new(), threads = 1))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn heldout<'py>(
     py: Python<'py>,
@@ -128,6 +129,8 @@ pub(crate) fn heldout<'py>(
     promp: bool,
     dmp: bool,
     in_sample: bool,
+    condition: Option<String>,
+    far: Vec<f64>,
     threads: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
     use cosco_hsom::eval;
@@ -155,13 +158,23 @@ pub(crate) fn heldout<'py>(
         dmp,
         replay: true,
         in_sample,
-        conditioning: eval::Conditioning::Unconditioned,
+        conditioning: match condition.as_deref() {
+            None => eval::Conditioning::Unconditioned,
+            Some("end") => eval::Conditioning::End,
+            Some("end+mid") => eval::Conditioning::EndMid,
+            Some(other) => {
+                return Err(PyValueError::new_err(format!(
+                    "condition = {other:?}: allowed None, \"end\" or \"end+mid\""
+                )))
+            }
+        },
+        far: None,
         threads,
     };
     let cfg = config.inner.clone();
     let text = py
         .allow_threads(|| {
-            eval::leave_one_out(&cfg, sets, &settings, &eval::Kinematic, None).map(|s| eval::json(&cfg, &s))
+            eval::study(&cfg, sets, &settings, &far, &eval::Kinematic, None).map(|s| s.json(&cfg))
         })
         .map_err(|e| py_err(&e))?;
     py.import("json")?.call_method1("loads", (text,))
@@ -205,4 +218,54 @@ pub(crate) fn dtw(a: &Bound<'_, PyAny>, b: &Bound<'_, PyAny>, per_step: bool) ->
     } else {
         cost.distance
     })
+}
+
+/// The dynamic movement primitive baseline (discrete, Ijspeert et al. 2013), learned from
+/// several demonstrations.
+#[pyclass(module = "cosco_hsom", name = "Dmp", frozen)]
+pub(crate) struct Dmp {
+    inner: cosco_hsom::dmp::Dmp,
+}
+
+#[pymethods]
+impl Dmp {
+    /// Learn from demonstrations (a list of 2-D arrays, samples x variables, one sample
+    /// period apart) with `basis` basis functions per variable.
+    #[staticmethod]
+    #[pyo3(signature = (demos, *, basis = 50))]
+    fn fit(py: Python<'_>, demos: &Bound<'_, PyAny>, basis: usize) -> PyResult<Self> {
+        let demos = demonstrations_of(demos, None)?;
+        let settings = cosco_hsom::dmp::DmpSettings {
+            basis,
+            ..Default::default()
+        };
+        let inner = py
+            .allow_threads(|| settings.check()?.fit(&demos))
+            .map_err(|e| py_err(&e))?;
+        Ok(Dmp { inner })
+    }
+
+    /// The movement from rest at `start` to `goal` (the demonstrations' mean end when None)
+    /// over their mean number of samples: one row per sample.
+    #[pyo3(signature = (start, goal = None))]
+    fn reproduce<'py>(
+        &self,
+        py: Python<'py>,
+        start: &Bound<'py, PyAny>,
+        goal: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let start = crate::posture_of(start, "start")?;
+        let goal = goal.map(|g| crate::posture_of(g, "goal")).transpose()?;
+        let rows = self
+            .inner
+            .reproduce(&start, goal.as_deref())
+            .map_err(|e| py_err(&e))?;
+        Ok(array2(py, &rows, self.inner.width()))
+    }
+
+    /// Samples of a reproduction.
+    #[getter]
+    fn samples(&self) -> usize {
+        self.inner.samples()
+    }
 }

@@ -227,6 +227,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<gestures::GestureModel>()?;
     m.add_class::<gestures::Recognition>()?;
     m.add_class::<eval::GmrModel>()?;
+    m.add_class::<eval::Dmp>()?;
     m.add_function(wrap_pyfunction!(eval::dtw, m)?)?;
     m.add_function(wrap_pyfunction!(eval::heldout, m)?)?;
     m.add_function(wrap_pyfunction!(eval::read_demos, m)?)?;

@@ -199,14 +199,56 @@ impl Hsom {
     }
 
     /// Reproduce the gesture from an initial posture: a 2-D array, one row per step (the first
-    /// row is the initial posture).
+    /// row is the initial posture). `goal` (a posture) makes it end exactly there; `via`, a
+    /// list of `(phase, posture)` (phase 0 the start, 1 the end), makes it pass each posture
+    /// at its phase (read between two rows). With `band=True`, a tuple: the postures and the
+    /// lower and upper ends of their central 95 % band (2-D arrays of the same shape).
+    #[pyo3(signature = (initial, *, goal = None, via = None, band = false))]
     fn reproduce<'py>(
         &self,
         py: Python<'py>,
         initial: &Bound<'py, PyAny>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        goal: Option<&Bound<'py, PyAny>>,
+        via: Option<Vec<(f64, Bound<'py, PyAny>)>>,
+        band: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        use cosco_hsom::condition::{Conditions, ViaPoint};
         let initial = posture_of(initial, "initial")?;
-        self.postures(py, |m| app::reproduce(m, &self.name, &initial))
+        let mut conditions = Conditions {
+            goal: goal.map(|g| posture_of(g, "goal")).transpose()?,
+            via: Vec::new(),
+        };
+        for (k, (phase, posture)) in via.unwrap_or_default().iter().enumerate() {
+            conditions.via.push(ViaPoint {
+                phase: *phase,
+                posture: posture_of(posture, &format!("via[{k}]"))?,
+            });
+        }
+        let (name, width) = (&self.name, self.inner.columns().len());
+        let (rep, lohi) = py
+            .allow_threads(|| {
+                let rep = app::reproduce_conditioned(&self.inner, name, &initial, &conditions)?;
+                let lohi = match band {
+                    true => Some(self.inner.band(&rep.postures, &conditions.phases()).ok_or_else(
+                        || {
+                            app::Error::value(
+                                "band=True",
+                                "the model keeps fewer than 2 training demonstrations to measure a band from",
+                            )
+                        },
+                    )?),
+                    false => None,
+                };
+                Ok::<_, app::Error>((rep, lohi))
+            })
+            .map_err(|e| py_err(&e))?;
+        let postures = array2(py, &rep.postures, width);
+        Ok(match lohi {
+            Some(b) => (postures, array2(py, &b.lo, width), array2(py, &b.hi, width))
+                .into_pyobject(py)?
+                .into_any(),
+            None => postures.into_any(),
+        })
     }
 
     /// The nearest-sequence baseline (docs/ALGORITHM.md, section 3.6): of

@@ -111,6 +111,7 @@ fn run(cli: Cli) -> Result<()> {
             no_promp,
             no_dmp,
             condition,
+            far,
             no_in_sample,
             #[cfg(feature = "plot")]
             png,
@@ -134,10 +135,12 @@ fn run(cli: Cli) -> Result<()> {
                     replay: true,
                     in_sample: !no_in_sample,
                     conditioning: condition.unwrap_or_default(),
+                    far: None,
                     threads: threads.map_or_else(cli::cores, |t| t as usize),
                 },
                 json,
                 png,
+                far,
             };
             let (pb, on_fold) = cli::counter("folds");
             let tables = cosco_hsom::eval::heldout(&job, Some(&on_fold))?;

@@ -19,6 +19,8 @@ pub struct HeldoutJob {
     pub resample: Option<f64>,
     /// Which methods, which results, how many threads.
     pub settings: LooSettings,
+    /// Far goals to run the folds with besides (`K` each, [`super::far_target`]).
+    pub far: Vec<f64>,
     /// Where to write every fold's scores as JSON.
     pub json: Option<PathBuf>,
     /// Where to draw one fold per gesture.
@@ -38,7 +40,7 @@ pub fn heldout(
     let cfg = app::config(job.config.as_deref())?;
     let (cfg, gestures) =
         read_gestures_at(&job.demos, &cfg, job.state_length_from_data, job.resample)?;
-    let all = study(&cfg, gestures, &job.settings, &Kinematic, progress)?;
+    let all = study(&cfg, gestures, &job.settings, &job.far, &Kinematic, progress)?;
     // nothing to compare when the hierarchy itself never ran: the reason, as an error
     let plain = &all.unconditioned;
     if !super::results::held_out_runs(plain, Method::Hierarchy).any(|r| r.score.is_some()) {

@@ -145,6 +145,11 @@ pub struct FoldInput<'a> {
     /// What the reproductions are conditioned on besides the first target's first sample
     /// (its last posture, its posture at phase 0.5).
     pub conditioning: Conditioning,
+    /// A far goal ([`fold`]: each split's target moved by [`far_target`] with this `K`, and
+    /// the reproductions conditioned on its end), `None` for none.
+    ///
+    /// [`far_target`]: super::far_target
+    pub far: Option<f64>,
     /// GMM/GMR's choice of the number of components.
     pub gmr_components: ComponentChoice,
     /// Called with `(done, total)` as the hierarchy trains.
@@ -162,6 +167,7 @@ impl<'a> FoldInput<'a> {
             targets,
             training: Training::Trained,
             conditioning: Conditioning::Unconditioned,
+            far: None,
             gmr_components: GMR_COMPONENTS,
             progress: None,
         }
@@ -432,8 +438,15 @@ pub fn fold_scores<E: Executor>(
         }
         _ => None,
     };
+    let out_of_range = crate::export::limits::are_arm_joints(&target.columns).then(|| {
+        let joints = crate::export::limits::nao_left_arm().joints;
+        (run.postures.iter().flat_map(|r| r.iter().zip(&joints)))
+            .filter(|(v, j)| !(j.lower..=j.upper).contains(*v))
+            .count()
+    });
     Ok(FoldScores {
         swings,
+        out_of_range,
         conditions: ConditionErrors::of(&run.conditions, &run.postures),
         coverage,
         postures: run.postures.len(),
@@ -493,9 +506,19 @@ pub fn fold<E: Executor>(
     executor: &E,
 ) -> Fold {
     let (train, targets) = split.of(demos);
+    // a far goal: the target moved, and the reproduction conditioned on its end
+    let moved: Vec<Demonstration> = match base.far {
+        Some(k) => targets.iter().map(|t| super::far_target(&train, t, k)).collect(),
+        None => Vec::new(),
+    };
+    let (targets, conditioning) = match base.far {
+        Some(_) => (&moved[..], Conditioning::End),
+        None => (targets, base.conditioning),
+    };
     let input = FoldInput {
         train: &train,
         targets,
+        conditioning,
         ..*base
     };
     let runs = run_fold(methods, &input, executor).into_iter();

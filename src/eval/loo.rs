@@ -15,7 +15,7 @@ pub type Gestures = Vec<(String, Vec<Demonstration>)>;
 
 /// Which methods run besides the hierarchy and the nearest sequence, and whether the
 /// in-sample result is computed too.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LooSettings {
     /// The configuration at height 1.
     pub height_1: bool,
@@ -31,6 +31,8 @@ pub struct LooSettings {
     pub in_sample: bool,
     /// What the reproductions are conditioned on besides the initial posture.
     pub conditioning: Conditioning,
+    /// A far goal `K` ([`FoldInput::far`]), `None` for none.
+    pub far: Option<f64>,
     /// Worker threads (at least 1).
     pub threads: usize,
 }
@@ -45,6 +47,7 @@ impl Default for LooSettings {
             replay: true,
             in_sample: true,
             conditioning: Conditioning::Unconditioned,
+            far: None,
             threads: 1,
         }
     }
@@ -146,6 +149,9 @@ pub enum LooError {
     /// A bad setting.
     #[error("threads = {0}: needs at least 1")]
     Threads(usize),
+    /// A far goal that is not a finite number >= 0.
+    #[error("far goal K = {0}: needs a finite number >= 0 (times the demonstrations' end spread)")]
+    Far(f64),
     /// The worker threads could not be started.
     #[error("{0}")]
     Pool(String),
@@ -260,6 +266,9 @@ pub fn leave_one_out<E: Executor>(
     if settings.threads == 0 {
         return Err(LooError::Threads(0));
     }
+    if let Some(k) = settings.far.filter(|k| !(k.is_finite() && *k >= 0.0)) {
+        return Err(LooError::Far(k));
+    }
     if let Some((g, d)) = gestures.iter().find(|(_, d)| d.len() < 3) {
         return Err(LooError::TooFew {
             gesture: g.clone(),
@@ -294,6 +303,7 @@ pub fn leave_one_out<E: Executor>(
                 config: Some(config),
                 height_1: height_1.as_ref(),
                 conditioning: settings.conditioning,
+                far: settings.far,
                 ..FoldInput::new(&[], &[])
             };
             let (methods, split) = match held {

@@ -19,6 +19,7 @@
 //! Recognition of several gestures, held out likewise: [`recognition`] (`cosco recognition`).
 
 mod executor;
+mod far;
 mod files;
 mod fold;
 mod loo;
@@ -30,6 +31,7 @@ mod results;
 mod study;
 
 pub use executor::{Executed, Executor, Kinematic};
+pub use far::far_target;
 pub use files::{heldout, HeldoutJob};
 pub use fold::{
     all_but, diagonal, fold, fold_scores, run_fold, scored, Conditioning, Fitted, FoldInput,

@@ -115,6 +115,17 @@ pub fn markdown(study: &[GestureLoo]) -> String {
             s.folds
         );
     }
+    let outside: Vec<String> = (summary(study).iter())
+        .filter_map(|s| Some(format!("{} {}", s.method.name(), s.out_of_range?)))
+        .collect();
+    if !outside.is_empty() {
+        let _ = writeln!(
+            out,
+            "\nPosture values outside the Nao arm's joint ranges (before execution), over the \
+             held-out folds: {}.",
+            outside.join(", ")
+        );
+    }
     if summaries_conditioned(study) {
         let _ = writeln!(
             out,

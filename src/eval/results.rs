@@ -50,6 +50,8 @@ pub struct Score {
     pub goal_error: Option<f64>,
     /// The largest via-point's error over the diagonal (`None` without via-points).
     pub via_error: Option<f64>,
+    /// Posture values outside the Nao arm's joint ranges (`None` for other variables).
+    pub out_of_range: Option<usize>,
 }
 
 /// A method's result on one fold (equal to another with the same results, whatever the time
@@ -177,6 +179,7 @@ impl Score {
             coverage: None,
             goal_error: None,
             via_error: None,
+            out_of_range: None,
         }
     }
 
@@ -188,6 +191,7 @@ impl Score {
             coverage: scores.coverage,
             goal_error: c.and_then(|c| c.goal).map(|e| e / diag),
             via_error: c.and_then(|c| c.via).map(|e| e / diag),
+            out_of_range: scores.out_of_range,
             ..self
         }
     }
@@ -229,6 +233,9 @@ pub struct MethodSummary {
     /// The largest via-point error over the diagonal of any held-out fold (`None` without
     /// via-points).
     pub worst_via_error: Option<f64>,
+    /// Posture values outside the Nao arm's joint ranges over the held-out folds (`None` for
+    /// other variables).
+    pub out_of_range: Option<usize>,
 }
 
 /// The held-out runs of `method` in `study`.
@@ -291,6 +298,9 @@ pub fn summary(study: &[GestureLoo]) -> Vec<MethodSummary> {
                 coverage: med(&|g| g.mean(&g.held_out, m, |s| s.coverage.unwrap_or(f64::NAN))),
                 worst_goal_error: worst(study, m, |s| s.goal_error),
                 worst_via_error: worst(study, m, |s| s.via_error),
+                out_of_range: held_out_runs(study, m)
+                    .filter_map(|r| r.score.as_ref()?.out_of_range)
+                    .reduce(|a, b| a + b),
             }
         })
         .collect()
@@ -356,6 +366,10 @@ pub struct FoldScores {
     /// Large swings of the swing joint (`None` when the executor counts none).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub swings: Option<Swings>,
+    /// Values of the postures (before execution) outside the Nao arm's joint ranges (`None`
+    /// when the variables are not its joints).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub out_of_range: Option<usize>,
     /// How far the postures (before execution) miss what they were conditioned on (`None`
     /// when unconditioned).
     #[serde(skip_serializing_if = "Option::is_none")]

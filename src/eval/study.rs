@@ -17,32 +17,47 @@ pub struct Study {
     pub unconditioned: Vec<GestureLoo>,
     /// The same folds conditioned as the settings say (`None` when they say nothing).
     pub conditioned: Option<(Conditioning, Vec<GestureLoo>)>,
+    /// The same folds with a far goal, per `K` asked for ([`super::far_target`]).
+    pub far: Vec<(f64, Vec<GestureLoo>)>,
 }
 
 /// [`leave_one_out`] of `gestures` from the initial posture alone and, when
-/// `settings.conditioning` asks for it, again conditioned (`progress(done, total)` after each
-/// fold of each).
+/// `settings.conditioning` asks for it, again conditioned, and again with a far goal for each
+/// of `far` (`progress(done, total)` after each fold of each).
 pub fn study<E: Executor>(
     config: &HsomConfig,
     gestures: Gestures,
     settings: &LooSettings,
+    far: &[f64],
     executor: &E,
     progress: Option<&(dyn Fn(usize, usize) + Sync)>,
 ) -> Result<Study, LooError> {
     let plain = LooSettings {
         conditioning: Conditioning::Unconditioned,
+        far: None,
         ..*settings
     };
+    let far = far
+        .iter()
+        .map(|&k| {
+            let s = LooSettings {
+                far: Some(k),
+                ..plain
+            };
+            Ok((k, leave_one_out(config, gestures.clone(), &s, executor, progress)?))
+        })
+        .collect::<Result<Vec<_>, LooError>>()?;
     let conditioned = match settings.conditioning {
         Conditioning::Unconditioned => None,
-        c => Some((
-            c,
-            leave_one_out(config, gestures.clone(), settings, executor, progress)?,
-        )),
+        c => {
+            let s = LooSettings { far: None, ..*settings };
+            Some((c, leave_one_out(config, gestures.clone(), &s, executor, progress)?))
+        }
     };
     Ok(Study {
         unconditioned: leave_one_out(config, gestures, &plain, executor, progress)?,
         conditioned,
+        far,
     })
 }
 
@@ -62,6 +77,14 @@ impl Study {
                 }),
             );
         }
+        if let (false, Some(map)) = (self.far.is_empty(), doc.as_object_mut()) {
+            let far: Vec<serde_json::Value> = (self.far.iter())
+                .map(|(k, study)| {
+                    serde_json::json!({ "k": k, "summary": summary(study), "gestures": study })
+                })
+                .collect();
+            map.insert("far".into(), far.into());
+        }
         // cannot fail: plain numbers (non-finite ones become null), strings and enums
         serde_json::to_string_pretty(&doc).unwrap_or_default()
     }
@@ -80,6 +103,16 @@ impl Study {
                  each reproduction also conditioned on the held-out demonstration's {what}. \
                  GMM/GMR cannot be conditioned; the DMP takes the goal only; the replay is as \
                  recorded.\n\n"
+            ));
+            out.push_str(&markdown(study));
+        }
+        for (k, study) in &self.far {
+            out.push_str(&format!(
+                "\n## Far goals: {k} x the end spread\n\nThe same folds, each goal moved {k} times \
+                 the training demonstrations' end spread away from their mean end (toward the \
+                 held-out demonstration's end), every reproduction conditioned on it; scored \
+                 against the held-out demonstration shifted by the same offset, fading in as a \
+                 minimum-jerk profile of its phase (docs/METRICS.md, \"Far goals\").\n\n"
             ));
             out.push_str(&markdown(study));
         }

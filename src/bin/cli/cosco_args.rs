@@ -115,7 +115,7 @@ pub enum Command {
         #[arg(long, num_args = 1.., required_unless_present = "recognition")]
         demos: Vec<PathBuf>,
         /// The recognition study (with --taught and --untaught) instead of reproduction.
-        #[arg(long, requires = "taught", conflicts_with_all = ["demos", "no_height_1", "no_gmr", "no_promp", "no_dmp", "no_in_sample", "condition"])]
+        #[arg(long, requires = "taught", conflicts_with_all = ["demos", "no_height_1", "no_gmr", "no_promp", "no_dmp", "no_in_sample", "condition", "far"])]
         recognition: bool,
         #[command(flatten)]
         study: Option<RecognitionArgs>,
@@ -138,6 +138,11 @@ pub enum Command {
         /// unconditioned run.
         #[arg(long, value_name = "end|end+mid")]
         condition: Option<cosco_hsom::eval::Conditioning>,
+        /// Also run every fold with its goal moved K times the training demonstrations' end
+        /// spread away from their mean end (extrapolation), scored against the held-out
+        /// demonstration shifted as far; repeatable.
+        #[arg(long, value_name = "K")]
+        far: Vec<f64>,
         /// Leave out the in-sample result (learned from all).
         #[arg(long)]
         no_in_sample: bool,
