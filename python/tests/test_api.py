@@ -187,6 +187,7 @@ def test_heldout_scores_every_method_on_the_same_folds(demos):
         height_1=False,
         gmr=False,
         promp=False,
+        dmp=False,
         in_sample=False,
     )
     assert [g["gesture"] for g in two["gestures"]] == ["a", "b"]

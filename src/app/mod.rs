@@ -143,7 +143,7 @@ impl Error {
     }
 
     /// [`Error::Value`]: `what` is not allowed, `reason` says why and what is.
-    pub(crate) fn value(what: impl Into<String>, reason: impl Into<String>) -> Error {
+    pub fn value(what: impl Into<String>, reason: impl Into<String>) -> Error {
         Error::Value {
             what: what.into(),
             reason: reason.into(),

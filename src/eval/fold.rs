@@ -417,7 +417,15 @@ pub fn fold_scores<E: Executor>(
         }),
         _ => None,
     };
-    let swings = match executor.swing_joint() {
+    // without the arm's executor, data of its joints still count LElbowRoll's swings
+    let arm_swing = || {
+        let joints = crate::export::limits::nao_left_arm().joints;
+        (crate::export::limits::are_arm_joints(&target.columns))
+            .then(|| joints.iter().position(|j| j.name == "LElbowRoll"))
+            .flatten()
+            .map(|j| (j, "LElbowRoll"))
+    };
+    let swings = match executor.swing_joint().or_else(arm_swing) {
         Some((j, name)) => {
             let count = |rows: &[Vec<f64>]| {
                 column_swings(rows, j, SWING_MIN_AMPLITUDE_RAD).map_err(|e| e.to_string())

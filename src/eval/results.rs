@@ -52,6 +52,9 @@ pub struct Score {
     pub via_error: Option<f64>,
     /// Posture values outside the Nao arm's joint ranges (`None` for other variables).
     pub out_of_range: Option<usize>,
+    /// Large swings of LElbowRoll: the reproduction's and the demonstration's (`None` for
+    /// other variables; [`Swings`]).
+    pub swings: Option<[usize; 2]>,
 }
 
 /// A method's result on one fold (equal to another with the same results, whatever the time
@@ -180,6 +183,7 @@ impl Score {
             goal_error: None,
             via_error: None,
             out_of_range: None,
+            swings: None,
         }
     }
 
@@ -192,6 +196,7 @@ impl Score {
             goal_error: c.and_then(|c| c.goal).map(|e| e / diag),
             via_error: c.and_then(|c| c.via).map(|e| e / diag),
             out_of_range: scores.out_of_range,
+            swings: scores.swings.as_ref().map(|w| [w.reproduction, w.demo]),
             ..self
         }
     }
