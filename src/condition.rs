@@ -294,8 +294,11 @@ pub fn meet(
         .fold(1.0f64, |m, v| m.max(v.abs()));
     for (phase, wanted) in points {
         let found = at_phase(&out, *phase);
-        let miss = found.iter().zip(wanted).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-        if out.is_empty() || !(miss <= 1e-9 * scale) {
+        let miss = found
+            .iter()
+            .zip(wanted)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        if out.is_empty() || miss.is_nan() || miss > 1e-9 * scale {
             return Err(ConditionError::Unmet {
                 rows: out.len(),
                 phase: *phase,
@@ -316,7 +319,10 @@ pub fn meet(
 /// between two rows. The number of rows stays.
 pub fn retime(rows: &[Vec<f64>], points: &[(f64, Vec<f64>)]) -> Vec<Vec<f64>> {
     let n = rows.len();
-    let via: Vec<&(f64, Vec<f64>)> = points.iter().filter(|(p, _)| *p > 0.0 && *p < 1.0).collect();
+    let via: Vec<&(f64, Vec<f64>)> = points
+        .iter()
+        .filter(|(p, _)| *p > 0.0 && *p < 1.0)
+        .collect();
     if n < 3 || via.is_empty() {
         return rows.to_vec();
     }
@@ -325,12 +331,22 @@ pub fn retime(rows: &[Vec<f64>], points: &[(f64, Vec<f64>)]) -> Vec<Vec<f64>> {
         .map(|d| {
             let (lo, hi) = rows
                 .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| (l.min(r[d]), h.max(r[d])));
-            if hi > lo { hi - lo } else { 1.0 }
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| {
+                    (l.min(r[d]), h.max(r[d]))
+                });
+            if hi > lo {
+                hi - lo
+            } else {
+                1.0
+            }
         })
         .collect();
     let dist = |r: &[f64], q: &[f64]| -> f64 {
-        r.iter().zip(q).zip(&range).map(|((a, b), s)| ((a - b) / s).powi(2)).sum::<f64>()
+        r.iter()
+            .zip(q)
+            .zip(&range)
+            .map(|((a, b), s)| ((a - b) / s).powi(2))
+            .sum::<f64>()
     };
     // the slope of Δ between two knots is at most 1.875 |Δd| / Δp
     let slope = MAX_PACE_CHANGE / 1.875;
@@ -352,7 +368,11 @@ pub fn retime(rows: &[Vec<f64>], points: &[(f64, Vec<f64>)]) -> Vec<Vec<f64>> {
     }
     knots.push((1.0, 0.0));
     let shift = |s: f64| -> f64 {
-        let k = knots.iter().rposition(|(p, _)| *p <= s).unwrap_or(0).min(knots.len() - 2);
+        let k = knots
+            .iter()
+            .rposition(|(p, _)| *p <= s)
+            .unwrap_or(0)
+            .min(knots.len() - 2);
         let ((a, da), (b, db)) = (knots[k], knots[k + 1]);
         da + (db - da) * minimum_jerk_at((s - a) / (b - a))
     };

@@ -9,7 +9,7 @@ use cosco_hsom::condition::{at_phase, ConfidenceBand};
 use cosco_hsom::config::HsomConfig;
 use cosco_hsom::dtw::{dtw, Band};
 use cosco_hsom::eval::{
-    all_but, far_target, leave_one_out, Conditioning, ConditionErrors, GestureLoo, Kinematic,
+    all_but, far_target, leave_one_out, ConditionErrors, Conditioning, GestureLoo, Kinematic,
     LooSettings, Method,
 };
 use hsom_common::{handwriting, recommended_for};
@@ -34,9 +34,15 @@ fn study(conditioning: Conditioning) -> GestureLoo {
         threads: 2,
     };
     let demos = handwriting(6, 21);
-    leave_one_out(&quick(), vec![("w".into(), demos)], &settings, &Kinematic, None)
-        .unwrap()
-        .remove(0)
+    leave_one_out(
+        &quick(),
+        vec![("w".into(), demos)],
+        &settings,
+        &Kinematic,
+        None,
+    )
+    .unwrap()
+    .remove(0)
 }
 
 #[test]
@@ -50,16 +56,24 @@ fn conditioned_folds_meet_the_held_out_end_and_middle_exactly() {
         assert!(s.via_error.unwrap() < 1e-6, "fold {k}: via error {s:?}");
         // negative control: the reproduction that ignores the conditions misses them
         let conditions = Conditioning::EndMid.of(target);
-        let missed = ConditionErrors::of(&conditions, &p.run(Method::Hierarchy).unwrap().postures)
-            .unwrap();
+        let missed =
+            ConditionErrors::of(&conditions, &p.run(Method::Hierarchy).unwrap().postures).unwrap();
         let diag = conditioned.diagonal;
         assert!(missed.via.unwrap() / diag > 1e-3, "fold {k}: {missed:?}");
         // the via-point is the held-out demonstration's own posture at phase 0.5
         assert_eq!(conditions.via[0].posture, at_phase(&target.rows, 0.5));
     }
     // conditioned on where the held-out demonstration goes, the hierarchy is closer to it
-    let mean = |g: &GestureLoo| g.mean(&g.held_out, Method::Hierarchy, |s| s.relative_dtw).unwrap();
-    assert!(mean(&conditioned) < mean(&plain), "{} vs {}", mean(&conditioned), mean(&plain));
+    let mean = |g: &GestureLoo| {
+        g.mean(&g.held_out, Method::Hierarchy, |s| s.relative_dtw)
+            .unwrap()
+    };
+    assert!(
+        mean(&conditioned) < mean(&plain),
+        "{} vs {}",
+        mean(&conditioned),
+        mean(&plain)
+    );
 }
 
 #[test]
@@ -68,7 +82,10 @@ fn the_band_covers_the_held_out_demonstration_and_the_global_envelope_covers_too
     let covered = g
         .mean(&g.held_out, Method::Hierarchy, |s| s.coverage.unwrap())
         .unwrap();
-    assert!((0.85..=0.99).contains(&covered), "hierarchy's coverage {covered}");
+    assert!(
+        (0.85..=0.99).contains(&covered),
+        "hierarchy's coverage {covered}"
+    );
     // negative control: a band made of the demonstrations' global minimum and maximum of
     // each variable holds every sample, above the nominal 95 %'s bound
     let mut envelope = Vec::new();
@@ -78,7 +95,10 @@ fn the_band_covers_the_held_out_demonstration_and_the_global_envelope_covers_too
         let (lo, hi): (Vec<f64>, Vec<f64>) = (0..2)
             .map(|d| {
                 let v = all.iter().map(|r| r[d]);
-                (v.clone().fold(f64::INFINITY, f64::min), v.fold(f64::NEG_INFINITY, f64::max))
+                (
+                    v.clone().fold(f64::INFINITY, f64::min),
+                    v.fold(f64::NEG_INFINITY, f64::max),
+                )
             })
             .unzip();
         let band = ConfidenceBand {
@@ -105,7 +125,10 @@ fn a_far_goal_moves_the_held_out_end_and_keeps_its_start() {
         .map(|d| ends.iter().map(|e| e[d]).sum::<f64>() / ends.len() as f64)
         .collect();
     let away = cosco_hsom::dtw::euclidean(moved.rows.last().unwrap(), &mean);
-    assert!((away - 4.0 * spread).abs() < 1e-9 * (1.0 + spread), "{away} vs 4 x {spread}");
+    assert!(
+        (away - 4.0 * spread).abs() < 1e-9 * (1.0 + spread),
+        "{away} vs 4 x {spread}"
+    );
     // K = 0: the goal is the mean end
     let at_mean = far_target(&train, &demos[0], 0.0);
     assert!(cosco_hsom::dtw::euclidean(at_mean.rows.last().unwrap(), &mean) < 1e-9);

@@ -279,7 +279,12 @@ fn cosco_heldout_on_directories_of_gestures() {
     cosco()
         .arg("--demos")
         .arg(d.join("set/loops"))
-        .args(["--state-length-from-data", "--no-gmr", "--no-promp", "--no-dmp"])
+        .args([
+            "--state-length-from-data",
+            "--no-gmr",
+            "--no-promp",
+            "--no-dmp",
+        ])
         .assert()
         .success()
         .stdout(
@@ -382,6 +387,7 @@ fn held_out(demos: &[Demonstration]) -> [Vec<f64>; 2] {
             replay: false,
             in_sample: false,
             threads: 2,
+            ..LooSettings::default()
         },
         &Kinematic,
         None,

@@ -108,6 +108,9 @@ impl GrabbedFold<'_> {
             reproduce_s,
             start_end: None,
             commanded: None,
+            conditions: None,
+            coverage: None,
+            out_of_range: None,
         })
     }
 
@@ -131,6 +134,9 @@ impl GrabbedFold<'_> {
             reproduce_s,
             start_end: None,
             commanded: None,
+            conditions: None,
+            coverage: None,
+            out_of_range: None,
         };
         let (rec, c) = self.execute(plan, self.grab.1, None)?;
         let fold = ClosedLoopFold {

@@ -130,6 +130,8 @@ pub fn continuation_folds(
                     train_s,
                     reproduce_s,
                     fitted: None,
+                    conditions: Default::default(),
+                    band: None,
                 };
                 fold_scores(&run, &executor, &train, held, diagonal(demos))
                     .map_err(ExperimentError::Invalid)

@@ -178,15 +178,14 @@ impl Hsom {
     /// gestures is refused, naming `GestureModel.load`.
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
-        let inner =
-            app::load_model(&path).map_err(|e| match app::load_gesture_model(&path) {
-                Ok(m) if !m.labels().is_empty() => PyValueError::new_err(format!(
-                    "{}: a model of several gestures ({}): load it with GestureModel.load",
-                    path.display(),
-                    m.labels().join(", ")
-                )),
-                _ => app_err(e),
-            })?;
+        let inner = app::load_model(&path).map_err(|e| match app::load_gesture_model(&path) {
+            Ok(m) if !m.labels().is_empty() => PyValueError::new_err(format!(
+                "{}: a model of several gestures ({}): load it with GestureModel.load",
+                path.display(),
+                m.labels().join(", ")
+            )),
+            _ => app_err(e),
+        })?;
         Ok(Hsom {
             inner,
             name: path.display().to_string(),

@@ -213,12 +213,14 @@ pub fn write_band(
     conditions: &Conditions,
     path: &Path,
 ) -> Result<()> {
-    let band = model.band(&rep.postures, &conditions.phases()).ok_or_else(|| {
-        Error::file(
-            path,
-            "no band: the model keeps fewer than 2 training demonstrations to measure it from",
-        )
-    })?;
+    let band = model
+        .band(&rep.postures, &conditions.phases())
+        .ok_or_else(|| {
+            Error::file(
+                path,
+                "no band: the model keeps fewer than 2 training demonstrations to measure it from",
+            )
+        })?;
     let bytes = band
         .csv_at(model.columns(), &rep.steps)
         .map_err(|e| Error::Write {

@@ -135,7 +135,9 @@ pub fn spread_band(
             .collect();
         deviations.push(dev);
     }
-    let t = StudentsT::new(0.0, 1.0, (n - 1) as f64).ok()?.inverse_cdf(0.975);
+    let t = StudentsT::new(0.0, 1.0, (n - 1) as f64)
+        .ok()?
+        .inverse_cdf(0.975);
     let widen = t * (1.0 + 1.0 / n as f64).sqrt();
     let scale = length_scale(&deviations);
     let pinned_rows: Vec<f64> = std::iter::once(0.0)
@@ -161,17 +163,11 @@ pub fn spread_band(
 /// never does, and 1 at least.
 fn length_scale(deviations: &[Vec<Vec<f64>>]) -> f64 {
     let len = deviations.first().map_or(0, Vec::len);
-    let width = deviations
-        .first()
-        .and_then(|k| k.first())
-        .map_or(0, Vec::len);
     let lagged = |lag: usize| -> f64 {
-        let mut s = 0.0;
-        for k in deviations {
-            for d in 0..width {
-                s += (0..len - lag).map(|i| k[i][d] * k[i + lag][d]).sum::<f64>();
-            }
-        }
+        let s: f64 = (deviations.iter())
+            .flat_map(|k| k.iter().zip(&k[lag..]))
+            .map(|(a, b)| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>())
+            .sum();
         s / (len - lag) as f64
     };
     let zero = lagged(0);

@@ -20,7 +20,9 @@ pub fn far_target(train: &[Demonstration], target: &Demonstration, k: f64) -> De
     let mean = |f: &dyn Fn(&Demonstration) -> Vec<f64>| -> Vec<f64> {
         let mut m = vec![0.0; width];
         for d in train.iter().filter(|d| !d.rows.is_empty()) {
-            m.iter_mut().zip(f(d)).for_each(|(a, v)| *a += v / train.len() as f64);
+            m.iter_mut()
+                .zip(f(d))
+                .for_each(|(a, v)| *a += v / train.len() as f64);
         }
         m
     };
@@ -38,7 +40,11 @@ pub fn far_target(train: &[Demonstration], target: &Demonstration, k: f64) -> De
     });
     let first_axis = (0..width).map(|d| f64::from(u8::from(d == 0))).collect();
     let dir = unit(away).or_else(|| unit(travel)).unwrap_or(first_axis);
-    let goal: Vec<f64> = mean_end.iter().zip(&dir).map(|(m, u)| m + k * spread * u).collect();
+    let goal: Vec<f64> = mean_end
+        .iter()
+        .zip(&dir)
+        .map(|(m, u)| m + k * spread * u)
+        .collect();
     let offset: Vec<f64> = goal.iter().zip(end).map(|(g, e)| g - e).collect();
     let last = (target.rows.len().max(2) - 1) as f64;
     let mut moved = target.clone();

@@ -40,7 +40,14 @@ pub fn heldout(
     let cfg = app::config(job.config.as_deref())?;
     let (cfg, gestures) =
         read_gestures_at(&job.demos, &cfg, job.state_length_from_data, job.resample)?;
-    let all = study(&cfg, gestures, &job.settings, &job.far, &Kinematic, progress)?;
+    let all = study(
+        &cfg,
+        gestures,
+        &job.settings,
+        &job.far,
+        &Kinematic,
+        progress,
+    )?;
     // nothing to compare when the hierarchy itself never ran: the reason, as an error
     let plain = &all.unconditioned;
     if !super::results::held_out_runs(plain, Method::Hierarchy).any(|r| r.score.is_some()) {

@@ -344,7 +344,13 @@ pub fn run_fold<E: Executor>(
                     bic,
                     plan: plan.clone(),
                 };
-                Ok((plan.postures, train_s, reproduce_s, Some(fitted), Some(band)))
+                Ok((
+                    plan.postures,
+                    train_s,
+                    reproduce_s,
+                    Some(fitted),
+                    Some(band),
+                ))
             }
             Method::ProMP => {
                 let (m, train_s) = timed(|| PrompSettings::default().fit(train));
@@ -516,7 +522,10 @@ pub fn fold<E: Executor>(
     let (train, targets) = split.of(demos);
     // a far goal: the target moved, and the reproduction conditioned on its end
     let moved: Vec<Demonstration> = match base.far {
-        Some(k) => targets.iter().map(|t| super::far_target(&train, t, k)).collect(),
+        Some(k) => targets
+            .iter()
+            .map(|t| super::far_target(&train, t, k))
+            .collect(),
         None => Vec::new(),
     };
     let (targets, conditioning) = match base.far {

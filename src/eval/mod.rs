@@ -43,8 +43,8 @@ pub use pool::Pool;
 #[cfg(feature = "plot")]
 pub use report::png;
 pub use report::{json, markdown};
-pub use study::{study, Study};
 pub use results::{
-    failures, passed, summary, Commanded, ConditionErrors, Fold, FoldScores, FoldsError, GestureLoo, HeldOut,
-    HeldOutSummary, MethodSummary, Run, Score, Swings, MIN_DEMO_JERK,
+    failures, passed, summary, Commanded, ConditionErrors, Fold, FoldScores, FoldsError,
+    GestureLoo, HeldOut, HeldOutSummary, MethodSummary, Run, Score, Swings, MIN_DEMO_JERK,
 };
+pub use study::{study, Study};

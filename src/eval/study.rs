@@ -44,14 +44,23 @@ pub fn study<E: Executor>(
                 far: Some(k),
                 ..plain
             };
-            Ok((k, leave_one_out(config, gestures.clone(), &s, executor, progress)?))
+            Ok((
+                k,
+                leave_one_out(config, gestures.clone(), &s, executor, progress)?,
+            ))
         })
         .collect::<Result<Vec<_>, LooError>>()?;
     let conditioned = match settings.conditioning {
         Conditioning::Unconditioned => None,
         c => {
-            let s = LooSettings { far: None, ..*settings };
-            Some((c, leave_one_out(config, gestures.clone(), &s, executor, progress)?))
+            let s = LooSettings {
+                far: None,
+                ..*settings
+            };
+            Some((
+                c,
+                leave_one_out(config, gestures.clone(), &s, executor, progress)?,
+            ))
         }
     };
     Ok(Study {
@@ -94,8 +103,10 @@ impl Study {
         let mut out = markdown(&self.unconditioned);
         if let Some((c, study)) = &self.conditioned {
             let what = match c {
-                Conditioning::EndMid => "last posture (the goal) and its posture at phase 0.5 \
-                                         (a via-point)",
+                Conditioning::EndMid => {
+                    "last posture (the goal) and its posture at phase 0.5 \
+                                         (a via-point)"
+                }
                 _ => "last posture (the goal)",
             };
             out.push_str(&format!(

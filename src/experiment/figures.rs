@@ -4,8 +4,8 @@ use std::path::Path;
 
 use plotters::style::RGBColor;
 
-use crate::demos::Demonstration;
 use crate::condition::ConfidenceBand;
+use crate::demos::Demonstration;
 use crate::plot::{demo_color, panels_png, Band, Panel, PlotError, Series};
 use crate::sim::Recording;
 
@@ -105,7 +105,9 @@ pub fn joint_panels_png(
                     label: Some(b.label.clone()),
                     color: b.color,
                     points: (rows.lo.iter().zip(&rows.hi).enumerate())
-                        .filter_map(|(i, (lo, hi))| Some((i as f64 * period, *lo.get(k)?, *hi.get(k)?)))
+                        .filter_map(|(i, (lo, hi))| {
+                            Some((i as f64 * period, *lo.get(k)?, *hi.get(k)?))
+                        })
                         .collect(),
                 });
             }

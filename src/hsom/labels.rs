@@ -187,7 +187,10 @@ impl EventsHsom {
         b.part.threshold = vec![0.0; h];
         let lens: Vec<f64> = norm.iter().map(|d| d.len() as f64).collect();
         b.demo_len = spread(&lens);
-        b.paths = norm.iter().map(|rows| super::model::band_path(rows)).collect();
+        b.paths = norm
+            .iter()
+            .map(|rows| super::model::band_path(rows))
+            .collect();
         b.replay(norm);
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         b.fit_events(norm, learn, &mut rng);

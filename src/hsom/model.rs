@@ -668,7 +668,9 @@ impl<A: Part> Model<A> {
                     "training path {k} has {} rows of widths {:?}: at most {BAND_ROWS} rows of \
                      {state} values",
                     path.len(),
-                    path.iter().map(Vec::len).collect::<std::collections::BTreeSet<_>>()
+                    path.iter()
+                        .map(Vec::len)
+                        .collect::<std::collections::BTreeSet<_>>()
                 ));
             }
         }

@@ -398,7 +398,10 @@ impl<A: Part> Model<A> {
                 ("traced chunks", binary_len(&e.traces)),
             ]),
         }
-        fields.push(("training paths (the confidence band)", binary_len(&self.paths)));
+        fields.push((
+            "training paths (the confidence band)",
+            binary_len(&self.paths),
+        ));
         fields.push(("weights", binary_len(&self.maps)));
         let mut parts = vec![FilePart {
             part: "header and checksum",

@@ -45,9 +45,15 @@ pub(crate) fn entries(panels: &[Panel]) -> Vec<Entry> {
         }
     };
     for p in panels {
-        p.tubes.iter().for_each(|t| add(Mark::Fill, t.color, &t.label));
-        p.bands.iter().for_each(|b| add(Mark::Fill, b.color, &b.label));
-        p.scatter.iter().for_each(|s| add(Mark::Dot, s.color, &s.label));
+        p.tubes
+            .iter()
+            .for_each(|t| add(Mark::Fill, t.color, &t.label));
+        p.bands
+            .iter()
+            .for_each(|b| add(Mark::Fill, b.color, &b.label));
+        p.scatter
+            .iter()
+            .for_each(|s| add(Mark::Dot, s.color, &s.label));
         p.series
             .iter()
             .for_each(|s| add(Mark::Line(s.width), s.color, &s.label));

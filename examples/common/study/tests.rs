@@ -26,6 +26,7 @@ fn summary(dtw: f64, rev: (f64, f64), jerk: (f64, f64)) -> HeldOutSummary {
         commanded_start_speed: None,
         commanded_start_in_range: None,
         commanded_end_within_spread: None,
+        coverage: None,
     }
 }
 
