@@ -37,7 +37,7 @@ run settings $ex/heldout --seeds 11-15 --config configs/ablations/change-ratio-1
   --json "$out/settings.json"
 run simulate $bin/simulate --out "$out/simulate"
 run multi $ex/multi_heldout --seeds 11-15 --json "$out/multi.json"
-run lasa $bin/cosco heldout --demos "$out/lasa" --state-length-from-data --json "$out/lasa.json"
+run lasa $bin/cosco heldout --demos "$out/lasa" --state-length-from-data --condition end+mid --json "$out/lasa.json"
 # The same drawings with their own times, resampled to 40 Hz (docs/EXPORT.md).
 run lasa_raw $bin/cosco heldout --demos "$out/lasa-raw" --state-length-from-data --resample 40 --json "$out/lasa_raw.json"
 for seed in 11 12 13 14 15; do
@@ -46,7 +46,7 @@ for seed in 11 12 13 14 15; do
     mkdir -p "$out/nao-curves"; ln -sfn "$(cd "$g" && pwd)" "$out/nao-curves/$(basename "$g")-$seed"
   done
 done
-run nao_curves $bin/cosco heldout --demos "$out/nao-curves" --json "$out/nao_curves.json"
+run nao_curves $bin/cosco heldout --demos "$out/nao-curves" --condition end+mid --far 2 --far 4 --json "$out/nao_curves.json"
 # Recognition held out on LASA: seven shapes taught together, every other shape untaught;
 # groups not used to choose the score or the unknown threshold (docs/ALGORITHM.md, 4).
 lasa_group() { # lasa_group NAME SHAPE...: the shapes taught, the others untaught

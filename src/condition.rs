@@ -279,35 +279,123 @@ pub const MAX_PACE_CHANGE: f64 = 0.5;
 /// `rows` conditioned on `points` (phase, posture; phases in (0, 1], ascending): first
 /// re-timed so that each via-point's phase falls where the trajectory passes nearest its
 /// posture ([`retime`]), then bent onto the points exactly ([`bend`]). The first row, the
-/// start, stays; the number of rows stays. An error when a point is not met within 1e-9 of
-/// the largest value (a reproduction of too few rows to pass a point between two of them).
+/// start, stays; the number of rows stays.
+///
+/// With `ranges` (per variable, its lowest and highest value), each variable is bent where
+/// its range cannot be left: on `ln((y - lo) / (hi - y))`, the range widened to hold the
+/// re-timed rows and the points as they are. The bend then never takes a value further out
+/// than the reproduction or the conditions already are: near a limit it compresses instead
+/// of overshooting. The points are still met exactly as [`at_phase`] reads them (a few
+/// corrections of the bent variable's targets, since reading between two rows does not
+/// commute with the map).
+///
+/// An error when a point is not met within 1e-9 of the largest value (a reproduction of too
+/// few rows to pass a point between two of them).
 pub fn meet(
     rows: &[Vec<f64>],
     points: &[(f64, Vec<f64>)],
+    ranges: Option<&[(f64, f64)]>,
 ) -> Result<Vec<Vec<f64>>, ConditionError> {
-    let mut out = retime(rows, points);
-    bend(&mut out, points);
-    let scale = out
+    let timed = retime(rows, points);
+    let scale = timed
         .iter()
         .flatten()
         .chain(points.iter().flat_map(|(_, p)| p))
         .fold(1.0f64, |m, v| m.max(v.abs()));
-    for (phase, wanted) in points {
-        let found = at_phase(&out, *phase);
-        let miss = found
+    let misses = |out: &[Vec<f64>]| -> Vec<Vec<f64>> {
+        points
             .iter()
-            .zip(wanted)
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-        if out.is_empty() || miss.is_nan() || miss > 1e-9 * scale {
+            .map(|(phase, wanted)| {
+                let found = at_phase(out, *phase);
+                wanted.iter().zip(&found).map(|(w, f)| w - f).collect()
+            })
+            .collect()
+    };
+    let out = match ranges.filter(|r| r.len() == timed.first().map_or(0, Vec::len)) {
+        None => {
+            let mut out = timed;
+            bend(&mut out, points);
+            out
+        }
+        Some(ranges) => {
+            let maps: Vec<Limits> = (0..ranges.len())
+                .map(|d| {
+                    let values = (timed.iter().map(|r| r[d])).chain(points.iter().map(|p| p.1[d]));
+                    Limits::around(ranges[d], values)
+                })
+                .collect();
+            let to_u = |rows: &[Vec<f64>]| -> Vec<Vec<f64>> {
+                (rows.iter())
+                    .map(|r| r.iter().zip(&maps).map(|(y, m)| m.to_u(*y)).collect())
+                    .collect()
+            };
+            let base = to_u(&timed);
+            let mut targets: Vec<(f64, Vec<f64>)> = (points.iter())
+                .map(|(p, y)| (*p, y.iter().zip(&maps).map(|(y, m)| m.to_u(*y)).collect()))
+                .collect();
+            let mut out = timed.clone();
+            for _ in 0..50 {
+                let mut u = base.clone();
+                bend(&mut u, &targets);
+                out = (u.iter())
+                    .map(|r| r.iter().zip(&maps).map(|(u, m)| m.to_y(*u)).collect())
+                    .collect();
+                let miss = misses(&out);
+                if miss.iter().flatten().all(|m| m.abs() <= 1e-12 * scale) {
+                    break;
+                }
+                // move each target by how far the reading misses, in the bent variable
+                for ((_, wanted), t) in points.iter().zip(&mut targets) {
+                    let found = at_phase(&out, t.0);
+                    for (d, m) in maps.iter().enumerate() {
+                        t.1[d] += m.to_u(wanted[d]) - m.to_u(found[d]);
+                    }
+                }
+            }
+            out
+        }
+    };
+    for ((phase, wanted), miss) in points.iter().zip(misses(&out)) {
+        let worst = miss.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if out.is_empty() || worst.is_nan() || worst > 1e-9 * scale {
             return Err(ConditionError::Unmet {
                 rows: out.len(),
                 phase: *phase,
-                found,
+                found: at_phase(&out, *phase),
                 wanted: wanted.clone(),
             });
         }
     }
     Ok(out)
+}
+
+/// A variable's range as [`meet`] bends it: `u = ln((y - lo) / (hi - y))`, the range widened
+/// to hold what the variable already holds, and by a hair more so that a value at a limit
+/// maps to a finite `u`.
+#[derive(Debug, Clone, Copy)]
+struct Limits {
+    lo: f64,
+    hi: f64,
+}
+
+impl Limits {
+    /// `range` widened to hold `values`, then by 1e-9 of its width on each side.
+    fn around(range: (f64, f64), values: impl Iterator<Item = f64>) -> Limits {
+        let (lo, hi) = values.fold(range, |(l, h), v| (l.min(v), h.max(v)));
+        let pad = 1e-9 * (hi - lo).max(f64::MIN_POSITIVE);
+        Limits {
+            lo: lo - pad,
+            hi: hi + pad,
+        }
+    }
+
+    fn to_u(self, y: f64) -> f64 {
+        ((y - self.lo) / (self.hi - y)).ln()
+    }
+
+    fn to_y(self, u: f64) -> f64 {
+        self.lo + (self.hi - self.lo) / (1.0 + (-u).exp())
+    }
 }
 
 /// `rows` re-timed so that at each via-point's phase `p` (a point before the end) the

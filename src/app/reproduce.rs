@@ -101,13 +101,10 @@ pub fn reproduce_conditioned(
     conditions: &Conditions,
 ) -> Result<Reproduction> {
     check_arm_range(model.columns(), initial)?;
-    conditions.check(
-        model.columns(),
-        arm_ranges(model.columns()).as_deref(),
-        initial,
-    )?;
+    let ranges = arm_ranges(model.columns());
+    conditions.check(model.columns(), ranges.as_deref(), initial)?;
     model
-        .reproduce_conditioned(initial, conditions)
+        .reproduce_conditioned(initial, conditions, ranges.as_deref())
         .map_err(|e| naming_model(e, model, model_name))
 }
 

@@ -144,3 +144,41 @@ fn via_points_and_goals_parse_or_say_what_is_wrong() {
     }
     assert!(parse_posture("--goal", "1,inf").is_err());
 }
+
+#[test]
+fn meeting_a_point_near_a_limit_stays_inside_the_range_where_a_plain_bend_leaves_it() {
+    // the hold rises to 1.0, the range's upper limit; a via-point asking the rise to be
+    // nearly there already pulls the hold that follows it up by the bend's blend
+    let rows = gesture();
+    let rising = at_phase(&rows, 0.2);
+    assert!(rising[1] < 0.95, "{rising:?}");
+    let points = vec![(0.2, vec![rising[0], 0.999]), (1.0, vec![0.05, 0.05])];
+    let ranges = [(-1.5, 1.5), (0.0, 1.0)];
+    let plain = meet(&rows, &points, None).unwrap();
+    let ranged = meet(&rows, &points, Some(&ranges)).unwrap();
+    let highest = |r: &[Vec<f64>]| r.iter().map(|r| r[1]).fold(f64::NEG_INFINITY, f64::max);
+    // negative control: bent in the variable's own units, the hold overshoots the limit
+    assert!(
+        highest(&plain) > 1.0,
+        "plain bend's highest {}",
+        highest(&plain)
+    );
+    assert!(
+        highest(&ranged) <= 1.0 + 1e-9,
+        "ranged bend's highest {}",
+        highest(&ranged)
+    );
+    for (phase, posture) in &points {
+        let read = at_phase(&ranged, *phase);
+        for (a, b) in read.iter().zip(posture) {
+            assert!(
+                (a - b).abs() < 1e-9,
+                "phase {phase}: {read:?} vs {posture:?}"
+            );
+        }
+    }
+    // a variable already outside its range is bent no further out than it already is
+    let ranged = meet(&rows, &points, Some(&[(-0.5, 0.5), (0.0, 1.0)])).unwrap();
+    let lowest = ranged.iter().map(|r| r[0]).fold(f64::INFINITY, f64::min);
+    assert!(lowest >= -1.0 - 1e-6, "lowest {lowest}");
+}

@@ -260,6 +260,15 @@ type Produced = (
     Option<ConfidenceBand>,
 );
 
+/// The Nao arm's joint ranges when `columns` are its joints.
+fn arm_ranges(columns: &[String]) -> Option<Vec<(f64, f64)>> {
+    use crate::export::limits::{are_arm_joints, nao_left_arm};
+    are_arm_joints(columns).then(|| {
+        let joints = nao_left_arm().joints;
+        joints.iter().map(|j| (j.lower, j.upper)).collect()
+    })
+}
+
 /// `rep`'s postures conditioned on `points` ([`meet`], when there are any), with `model`'s band about them
 /// pinned at `phases`.
 fn bent(
@@ -269,7 +278,8 @@ fn bent(
     phases: &[f64],
 ) -> Result<(Reproduction, Option<ConfidenceBand>), String> {
     if !points.is_empty() {
-        rep.postures = meet(&rep.postures, points).map_err(msg)?;
+        let ranges = arm_ranges(model.columns());
+        rep.postures = meet(&rep.postures, points, ranges.as_deref()).map_err(msg)?;
     }
     let band = model.band(&rep.postures, phases);
     Ok((rep, band))
@@ -452,10 +462,9 @@ pub fn fold_scores<E: Executor>(
         }
         _ => None,
     };
-    let out_of_range = crate::export::limits::are_arm_joints(&target.columns).then(|| {
-        let joints = crate::export::limits::nao_left_arm().joints;
-        (run.postures.iter().flat_map(|r| r.iter().zip(&joints)))
-            .filter(|(v, j)| !(j.lower..=j.upper).contains(*v))
+    let out_of_range = arm_ranges(&target.columns).map(|ranges| {
+        (run.postures.iter().flat_map(|r| r.iter().zip(&ranges)))
+            .filter(|(v, (lo, hi))| !(lo..=hi).contains(v))
             .count()
     });
     Ok(FoldScores {

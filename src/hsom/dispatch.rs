@@ -88,17 +88,18 @@ impl Hsom {
     }
     /// Reproduce from `initial` through the via-points of `conditions` and to their goal: the
     /// reproduction re-timed and bent onto them ([`condition::meet`]; docs/ALGORITHM.md,
-    /// "Conditioning"),
-    /// each met exactly as [`condition::at_phase`] reads it. The conditions are checked
-    /// first, without ranges (the caller knows the variables' ranges, if any).
+    /// section 9), each met exactly as [`condition::at_phase`] reads it. With `ranges` (per
+    /// variable, its lowest and highest value) the conditions are checked against them and
+    /// the bend leaves none. The conditions are checked first.
     pub fn reproduce_conditioned(
         &self,
         initial: &[f64],
         conditions: &Conditions,
+        ranges: Option<&[(f64, f64)]>,
     ) -> Result<Reproduction, HsomError> {
-        conditions.check(self.columns(), None, initial)?;
+        conditions.check(self.columns(), ranges, initial)?;
         let mut rep = self.reproduce(initial)?;
-        rep.postures = condition::meet(&rep.postures, &conditions.points())?;
+        rep.postures = condition::meet(&rep.postures, &conditions.points(), ranges)?;
         Ok(rep)
     }
     /// The central 95 % band about `rows` (a reproduction of this model), pinned at its start

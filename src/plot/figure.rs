@@ -251,7 +251,17 @@ pub fn panels_png(
     cols: usize,
     panel_size: (u32, u32),
 ) -> Result<(), PlotError> {
-    let entries = super::legend::entries(panels);
+    use super::legend::{entries, Mark};
+    let entries = entries(panels.iter().flat_map(|p| {
+        let tubes = p.tubes.iter().map(|t| (Mark::Fill, t.color, &t.label));
+        let bands = p.bands.iter().map(|b| (Mark::Fill, b.color, &b.label));
+        let dots = p.scatter.iter().map(|s| (Mark::Dot, s.color, &s.label));
+        let lines = p
+            .series
+            .iter()
+            .map(|s| (Mark::Line(s.width), s.color, &s.label));
+        tubes.chain(bands).chain(dots).chain(lines)
+    }));
     let width = panel_size.0 * cols.clamp(1, panels.len().max(1)) as u32;
     let footer = super::legend::height(&entries, width);
     let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
@@ -263,7 +273,7 @@ pub fn panels_png(
         title,
         (panels.len(), cols, panel_size),
         footer,
-        |area| super::legend::draw(area, &entries, &draw_err),
+        |area| super::legend::draw(area, &entries).map_err(|e| draw_err(&e)),
         |i, area| draw_panel(path, &panels[i], area),
     )
 }

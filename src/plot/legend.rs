@@ -1,14 +1,13 @@
 //! One legend for a whole figure of panels, in a strip below them, so that no legend covers a
 //! curve: every labelled line, envelope and cloud of dots of any panel once, in the order met.
 
+use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::RGBColor;
 
-use super::figure::{Area, Panel, PlotError};
-
 /// How an entry's sample is drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Mark {
+pub(crate) enum Mark {
     /// A line of this width.
     Line(u32),
     /// A translucent fill.
@@ -30,10 +29,12 @@ const ROW_H: u32 = 24;
 /// Width of an entry's sample, pixels.
 const SAMPLE_W: i32 = 24;
 
-/// The labelled things of `panels`, each label once (its first appearance).
-pub(crate) fn entries(panels: &[Panel]) -> Vec<Entry> {
+/// `(mark, colour, label)` of everything labelled, each label once (its first appearance).
+pub(crate) fn entries<'a>(
+    labelled: impl IntoIterator<Item = (Mark, RGBColor, &'a Option<String>)>,
+) -> Vec<Entry> {
     let mut out: Vec<Entry> = Vec::new();
-    let mut add = |mark, color, label: &Option<String>| {
+    for (mark, color, label) in labelled {
         if let Some(l) = label {
             if !out.iter().any(|e| &e.label == l) {
                 out.push(Entry {
@@ -43,20 +44,6 @@ pub(crate) fn entries(panels: &[Panel]) -> Vec<Entry> {
                 });
             }
         }
-    };
-    for p in panels {
-        p.tubes
-            .iter()
-            .for_each(|t| add(Mark::Fill, t.color, &t.label));
-        p.bands
-            .iter()
-            .for_each(|b| add(Mark::Fill, b.color, &b.label));
-        p.scatter
-            .iter()
-            .for_each(|s| add(Mark::Dot, s.color, &s.label));
-        p.series
-            .iter()
-            .for_each(|s| add(Mark::Line(s.width), s.color, &s.label));
     }
     out
 }
@@ -91,12 +78,13 @@ pub(crate) fn height(entries: &[Entry], width: u32) -> u32 {
     }
 }
 
-/// Draw `entries` in `area` (a strip below the panels).
+/// Draw `entries` in `area` (a strip below the panels); the drawing library's complaint on
+/// failure.
 pub(crate) fn draw(
-    area: &Area<'_>,
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
     entries: &[Entry],
-    err: &dyn Fn(&dyn std::fmt::Display) -> PlotError,
-) -> Result<(), PlotError> {
+) -> Result<(), String> {
+    let err = |e: &dyn std::fmt::Display| e.to_string();
     let (width, _) = area.dim_in_pixel();
     for (e, (x, row)) in entries.iter().zip(layout(entries, width)) {
         let y = 6 + (row * ROW_H + ROW_H / 2) as i32;
