@@ -399,8 +399,8 @@ impl Limits {
 }
 
 /// `rows` re-timed so that at each via-point's phase `p` (a point before the end) the
-/// trajectory is where it passes nearest the point's posture (each variable scaled by its
-/// range in `rows`), within the shift of phase that keeps the pace between `1 -`
+/// trajectory is where it passes nearest the point's posture (Euclidean, in the data's
+/// units), within the shift of phase that keeps the pace between `1 -`
 /// [`MAX_PACE_CHANGE`] and `1 +` it: the phase `s` of the result reads `rows` at
 /// `s + Δ(s)`, `Δ` 0 at the start and the end and the chosen shift at each via-point,
 /// joined by minimum-jerk blends (whose steepest slope is 1.875 times the mean), read
@@ -414,28 +414,10 @@ pub fn retime(rows: &[Vec<f64>], points: &[(f64, Vec<f64>)]) -> Vec<Vec<f64>> {
     if n < 3 || via.is_empty() {
         return rows.to_vec();
     }
-    let width = rows[0].len();
-    let range: Vec<f64> = (0..width)
-        .map(|d| {
-            let (lo, hi) = rows
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| {
-                    (l.min(r[d]), h.max(r[d]))
-                });
-            if hi > lo {
-                hi - lo
-            } else {
-                1.0
-            }
-        })
-        .collect();
-    let dist = |r: &[f64], q: &[f64]| -> f64 {
-        r.iter()
-            .zip(q)
-            .zip(&range)
-            .map(|((a, b), s)| ((a - b) / s).powi(2))
-            .sum::<f64>()
-    };
+    // nearest in the data's own units, as DTW scores a reproduction: scaling each variable
+    // by its own range would let one that hardly moves decide where the others pass
+    let dist =
+        |r: &[f64], q: &[f64]| -> f64 { r.iter().zip(q).map(|(a, b)| (a - b).powi(2)).sum() };
     // the slope of Δ between two knots is at most 1.875 |Δd| / Δp
     let slope = MAX_PACE_CHANGE / 1.875;
     let last = (n - 1) as f64;
