@@ -20,9 +20,16 @@ fn panels_png_writes_a_nonblank_png() {
     });
     panels_png(&p, "test", &[panel], 1, (400, 300)).unwrap();
     let img = image::open(&p).unwrap().to_rgb8();
-    assert_eq!(img.dimensions(), (400, 340));
+    // the title (40), the panel (300), and one row of the figure's legend below the panel
+    assert_eq!(img.dimensions(), (400, 376));
     let non_white = img.pixels().filter(|px| px.0 != [255, 255, 255]).count();
     assert!(non_white > 1000, "only {non_white} drawn pixels");
+    // the legend is in the strip below the panel: the series' sample in its colour
+    let in_strip = (340..376)
+        .flat_map(|y| (0..400).map(move |x| (x, y)))
+        .filter(|&(x, y)| img.get_pixel(x, y).0 == [200, 0, 0])
+        .count();
+    assert!(in_strip > 10, "{in_strip} legend pixels below the panel");
 }
 
 #[test]
