@@ -76,8 +76,8 @@ pub struct Model<A> {
     #[serde(rename = "algo", serialize_with = "tagged")]
     pub(crate) part: A,
     /// The training demonstrations as the bottom level sees them (normalised), each resampled
-    /// to at most [`BAND_ROWS`] rows: how far they lie from a reproduction is its confidence
-    /// band ([`crate::condition::spread_band`]).
+    /// to [`BAND_ROWS`] rows: how far they lie from a reproduction is its confidence band
+    /// ([`crate::condition::spread_band`]).
     pub(crate) paths: Vec<Vec<Vec<f64>>>,
     /// The maps, bottom first (last in a model file).
     pub(crate) maps: Vec<SelfOrganizingMap>,
@@ -540,14 +540,12 @@ pub struct Shape {
 
 const ACCURACY: &str = "an accuracy outside [0, 1]";
 const POSITION: &str = "a position negative or non-finite (at most 1e8)";
-/// The most rows of a training path a model keeps ([`Model::paths`]).
-pub const BAND_ROWS: usize = 400;
+/// The rows of each training path a model keeps ([`Model::paths`]): however long the
+/// demonstrations, the model's size does not depend on it.
+pub const BAND_ROWS: usize = 200;
 
-/// `rows` linearly resampled to at most [`BAND_ROWS`] rows (as they are when not longer).
+/// `rows` linearly resampled to [`BAND_ROWS`] rows (evenly in phase, read between two rows).
 pub(crate) fn band_path(rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
-    if rows.len() <= BAND_ROWS {
-        return rows.to_vec();
-    }
     (0..BAND_ROWS)
         .map(|k| crate::condition::at_phase(rows, k as f64 / (BAND_ROWS - 1) as f64))
         .collect()
@@ -663,10 +661,10 @@ impl<A: Part> Model<A> {
         sized("column names", self.columns.len(), state)?;
         sized("dwell", self.dwell.len(), nodes[0])?;
         for (k, path) in self.paths.iter().enumerate() {
-            if path.len() > BAND_ROWS || path.iter().any(|r| r.len() != state) {
+            if path.len() != BAND_ROWS || path.iter().any(|r| r.len() != state) {
                 return Err(format!(
-                    "training path {k} has {} rows of widths {:?}: at most {BAND_ROWS} rows of \
-                     {state} values",
+                    "training path {k} has {} rows of widths {:?}: {BAND_ROWS} rows of {state} \
+                     values",
                     path.len(),
                     path.iter()
                         .map(Vec::len)
