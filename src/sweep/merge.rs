@@ -602,6 +602,8 @@ fn box_plot(
         .collect();
     let color = |m: Method| match m {
         Method::GmmGmr => GMR_COLOR,
+        Method::ProMP => crate::plot::PALETTE[1],
+        Method::Dmp => RGBColor(120, 90, 40),
         _ => RGBColor(31, 119, 180),
     };
     let panels: Vec<BoxPanel> = combos
