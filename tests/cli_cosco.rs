@@ -508,10 +508,43 @@ fn reproduce_meets_a_goal_and_a_via_point_exactly_and_refuses_bad_ones() {
     reproduce(&[], &plain).success();
     assert!(miss(&rows(&plain)) > 1e-3);
     let bent = d.join("bent.csv");
-    reproduce(&["--goal", "0.3,2.1", "--via", "0.43:-0.4,1.2"], &bent).success();
+    let band = d.join("band.csv");
+    let band_arg = band.to_str().unwrap();
+    let conditions = [
+        "--goal",
+        "0.3,2.1",
+        "--via",
+        "0.43:-0.4,1.2",
+        "--band",
+        band_arg,
+    ];
+    reproduce(&conditions, &bent).success();
     let r = rows(&bent);
     assert_eq!(r[0], vec![0.0, 0.0]);
     assert!(miss(&r) < 1e-9, "missed by {}", miss(&r));
+    // the band: one row per reproduction row, the reproduction's steps, lo <= value <= hi
+    let text = std::fs::read_to_string(&band).unwrap();
+    assert_eq!(text.lines().next().unwrap(), "step,x_lo,x_hi,y_lo,y_hi");
+    let steps = |t: &str| -> Vec<String> {
+        t.lines()
+            .skip(1)
+            .map(|l| l.split(',').next().unwrap().to_string())
+            .collect()
+    };
+    let rep_text = std::fs::read_to_string(&bent).unwrap();
+    assert_eq!(steps(&text), steps(&rep_text));
+    for (b, p) in rows(&band).iter().zip(&r) {
+        for j in 0..2 {
+            assert!(
+                b[2 * j] <= p[j] + 1e-12 && p[j] <= b[2 * j + 1] + 1e-12,
+                "{b:?} {p:?}"
+            );
+        }
+    }
+    assert!(
+        rows(&band).iter().any(|b| b[1] - b[0] > 1e-6),
+        "a band of no width"
+    );
     // bad conditions: a named error and nothing written
     let none = d.join("none.csv");
     for (args, says) in [

@@ -219,7 +219,7 @@ pub fn write_band(
             )
         })?;
     let bytes = band
-        .csv_at(model.columns(), &rep.steps)
+        .csv(model.columns(), &rep.steps)
         .map_err(|e| Error::Write {
             path: path.to_path_buf(),
             source: e.into(),

@@ -64,16 +64,10 @@ impl ConfidenceBand {
         shares.iter().sum::<f64>() / shares.len().max(1) as f64
     }
 
-    /// The band as CSV (`cosco reproduce --band`): `step` (the row's index), then
-    /// `<variable>_lo` and `<variable>_hi` for each of `columns`, one row per row of the
-    /// trajectory.
-    pub fn csv(&self, columns: &[String]) -> csv::Result<Vec<u8>> {
-        let steps: Vec<usize> = (0..self.len()).collect();
-        self.csv_at(columns, &steps)
-    }
-
-    /// [`ConfidenceBand::csv`] with the trajectory's own `steps` (one per row).
-    pub fn csv_at(&self, columns: &[String], steps: &[usize]) -> csv::Result<Vec<u8>> {
+    /// The band as CSV (`cosco reproduce --band`): `step` (the trajectory's own, one per
+    /// row), then `<variable>_lo` and `<variable>_hi` for each of `columns`, one row per row
+    /// of the trajectory.
+    pub fn csv(&self, columns: &[String], steps: &[usize]) -> csv::Result<Vec<u8>> {
         let mut w = csv::Writer::from_writer(Vec::new());
         let header = columns
             .iter()
