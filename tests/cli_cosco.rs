@@ -159,6 +159,16 @@ fn bad_input_is_a_named_error_not_a_panic() {
         .stderr(predicate::str::contains("bad.xml"));
 }
 
+/// The rows of a reproduction (or band) CSV after its `step` column.
+fn postures(path: &std::path::Path) -> Vec<Vec<f64>> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').skip(1).map(|v| v.parse().unwrap()).collect())
+        .collect()
+}
+
 /// Three noisy strokes of a 2-D "S" (columns x, y), 60 samples each, no `time` column.
 fn write_strokes(dir: &std::path::Path) {
     std::fs::create_dir_all(dir).unwrap();
@@ -227,15 +237,6 @@ fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
         .unwrap()
         .starts_with("step,x,y\n"));
     // resuming after the first half was executed (read back as x,y): the rest of it
-    // the postures of a reproduction CSV (after its `step` column)
-    let postures = |path: &std::path::Path| -> Vec<Vec<f64>> {
-        std::fs::read_to_string(path)
-            .unwrap()
-            .lines()
-            .skip(1)
-            .map(|l| l.split(',').skip(1).map(|v| v.parse().unwrap()).collect())
-            .collect()
-    };
     let rows = postures(&rep);
     let half = rows.len() / 2;
     let mut reading = String::from("x,y\n");
@@ -478,14 +479,7 @@ fn reproduce_meets_a_goal_and_a_via_point_exactly_and_refuses_bad_ones() {
             .arg(out);
         c.assert()
     };
-    let rows = |path: &std::path::Path| -> Vec<Vec<f64>> {
-        std::fs::read_to_string(path)
-            .unwrap()
-            .lines()
-            .skip(1)
-            .map(|l| l.split(',').skip(1).map(|v| v.parse().unwrap()).collect())
-            .collect()
-    };
+    let rows = postures;
     let (goal, via) = ([0.3, 2.1], [-0.4, 1.2]);
     let phase = 0.43;
     // the via-point read at its phase, between two rows

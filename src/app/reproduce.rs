@@ -82,14 +82,7 @@ fn naming_model(e: HsomError, model: &Hsom, model_name: &str) -> Error {
 
 /// The ranges of the arm's joints when `columns` are theirs (in the simulator's builds).
 fn arm_ranges(columns: &[String]) -> Option<Vec<(f64, f64)>> {
-    use crate::export::limits::{are_arm_joints, nao_left_arm};
-    (cfg!(feature = "sim") && are_arm_joints(columns)).then(|| {
-        nao_left_arm()
-            .joints
-            .iter()
-            .map(|j| (j.lower, j.upper))
-            .collect()
-    })
+    crate::export::limits::arm_ranges(columns).filter(|_| cfg!(feature = "sim"))
 }
 
 /// Reproduce from `initial` through `conditions` (a goal, via-points; [`Hsom::reproduce_conditioned`]),

@@ -11,6 +11,7 @@ use crate::config::HsomConfig;
 use crate::demos::{sample_period, Demonstration};
 use crate::dmp::DmpSettings;
 use crate::dtw::{dtw, euclidean, Band};
+use crate::export::limits::arm_ranges;
 use crate::gmr::{plan_at, BicScore, ComponentChoice, GmrModel, GmrParams, GmrPlan, TrainingSet};
 use crate::hsom::{Hsom, Reproduction};
 use crate::metrics::{column_swings, trimmed_normalized_jerk, MetricsParams, StartEndReference};
@@ -259,15 +260,6 @@ type Produced = (
     Option<Fitted>,
     Option<ConfidenceBand>,
 );
-
-/// The Nao arm's joint ranges when `columns` are its joints.
-fn arm_ranges(columns: &[String]) -> Option<Vec<(f64, f64)>> {
-    use crate::export::limits::{are_arm_joints, nao_left_arm};
-    are_arm_joints(columns).then(|| {
-        let joints = nao_left_arm().joints;
-        joints.iter().map(|j| (j.lower, j.upper)).collect()
-    })
-}
 
 /// `rep`'s postures conditioned on `points` ([`meet`], when there are any), with `model`'s band about them
 /// pinned at `phases`.

@@ -70,6 +70,15 @@ pub fn are_arm_joints(columns: &[String]) -> bool {
     columns.len() == arm.len() && columns.iter().zip(&arm).all(|(c, j)| *c == j.name)
 }
 
+/// The Nao left arm's joint ranges, `(lower, upper)` in NAOqi order, when `columns` are its
+/// joints ([`are_arm_joints`]); `None` otherwise.
+pub fn arm_ranges(columns: &[String]) -> Option<Vec<(f64, f64)>> {
+    are_arm_joints(columns).then(|| {
+        let joints = nao_left_arm().joints;
+        joints.iter().map(|j| (j.lower, j.upper)).collect()
+    })
+}
+
 /// How far beyond a joint's range a recorded or reproduced value may lie and still be scored,
 /// rad: encoders read a hair beyond a limit, and the simulated joints' soft limits let a
 /// motion driven into a limit pass it by up to 0.07 rad (measured on the shuffled controls of
