@@ -70,6 +70,7 @@ fn settings() -> RecognitionSettings {
     RecognitionSettings {
         control: true,
         threads: 2,
+        ..RecognitionSettings::default()
     }
 }
 
@@ -122,6 +123,55 @@ fn held_out_demonstrations_are_accepted_untaught_ones_unknown_and_the_untrained_
 }
 
 #[test]
+fn gestures_taught_one_at_a_time_are_recognised_and_not_forgotten_unlike_a_retraining_on_the_new_files_alone(
+) {
+    use cosco_hsom::eval::recognition::teaching::{forgetting, Reproduced};
+    let taught = labelled(&TAUGHT, 4);
+    let untaught = labelled(&UNTAUGHT, 3);
+    let settings = RecognitionSettings {
+        control: false,
+        one_at_a_time: true,
+        threads: 2,
+    };
+    let cfg = apex_config();
+    let s = recognition_study(&cfg, &taught, &untaught, &settings, None).unwrap();
+    let report = recognition_markdown(&s);
+    assert!(s.model.accepted().unwrap() >= ACCEPT_GATE, "{report}");
+    assert!(s.model.unknown().unwrap() >= UNKNOWN_GATE, "{report}");
+    // every held-out demonstration's gesture reproduced by the three models of its fold
+    assert_eq!(s.reproduced.len(), 16);
+    let gates = forgetting(&s.taught, &s.reproduced);
+    assert_eq!(gates.len(), 4);
+    for f in &gates {
+        assert!(f.passes, "{f:?}\n{report}");
+    }
+    assert!(report.contains("| down | 4 |"), "{report}");
+    // the negative control: the last "update" a training from scratch on the last gesture's
+    // files alone; every earlier gesture, reproduced from its held-out start by what that
+    // model knows, is forgotten
+    let (last, _) = taught.last().unwrap();
+    let alone = cfg.fit_gestures(&taught[taught.len() - 1..], None).unwrap();
+    let control: Vec<Reproduced> = (s.reproduced.iter())
+        .filter(|r| r.label != *last)
+        .map(|r| {
+            let (_, demos) = taught.iter().find(|(l, _)| *l == r.label).unwrap();
+            let held = demos.iter().find(|d| d.source == r.demonstration).unwrap();
+            let rep = alone.reproduce(Some(last), &held.rows[0]).unwrap();
+            let diag = cosco_hsom::eval::diagonal(demos);
+            let d = cosco_hsom::dtw::dtw_distance(&rep.postures, &held.rows, cosco_hsom::dtw::Band::None);
+            Reproduced {
+                after_last: d.unwrap().per_step() / diag,
+                ..r.clone()
+            }
+        })
+        .collect();
+    let taught_labels: Vec<String> = s.taught.iter().filter(|l| *l != last).cloned().collect();
+    for f in forgetting(&taught_labels, &control) {
+        assert!(!f.passes, "retrained on the new files alone, {} is not forgotten: {f:?}", f.label);
+    }
+}
+
+#[test]
 fn the_study_refuses_bad_input_naming_the_label_or_file() {
     let cfg = apex_config();
     let run = |taught: &[(String, Vec<Demonstration>)],
@@ -132,6 +182,7 @@ fn the_study_refuses_bad_input_naming_the_label_or_file() {
     let no_control = RecognitionSettings {
         control: false,
         threads: 1,
+        ..RecognitionSettings::default()
     };
     assert!(matches!(run(&[], &[], no_control), LooError::NoTaught));
     // too few to hold one out and still calibrate held out
@@ -173,6 +224,7 @@ fn the_study_refuses_bad_input_naming_the_label_or_file() {
         RecognitionSettings {
             control: false,
             threads: 0,
+            ..RecognitionSettings::default()
         },
     );
     assert!(e.to_string().contains("threads = 0"), "{e}");

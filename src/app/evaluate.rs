@@ -178,8 +178,22 @@ impl Evaluation {
 pub fn inspect(path: &Path) -> Result<String> {
     let m = files::load_gesture_model(path)?;
     let mut s = format!("{}\n", path.display());
+    let taught = |b: &crate::hsom::Hsom| {
+        let (learned, kept, updates) = b.learned();
+        format!(
+            "learned from {learned} demonstrations in {} (the first training and {updates} \
+             update{}); {kept} kept for updates and the band (at most {})\n",
+            match updates {
+                0 => "1 sitting".to_string(),
+                u => format!("{} sittings", u + 1),
+            },
+            if updates == 1 { "" } else { "s" },
+            crate::hsom::KEPT_DEMONSTRATIONS
+        )
+    };
     if m.labels().is_empty() {
         let model = &m.branches()[0];
+        s += &taught(model);
         s += &model.summary().to_string();
         let parts = model.file_parts();
         s += "binary model file by part (bytes):\n";
@@ -194,7 +208,7 @@ pub fn inspect(path: &Path) -> Result<String> {
         );
     }
     for (l, b) in m.labels().iter().zip(m.branches()) {
-        s += &format!("gesture {l}:\n{}", b.summary());
+        s += &format!("gesture {l}: {}{}", taught(b), b.summary());
     }
     Ok(s)
 }

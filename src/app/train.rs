@@ -60,6 +60,57 @@ pub fn train_gestures(
     Ok(cfg.fit_gestures(sets, progress)?)
 }
 
+/// `cosco train --from`: check where the model goes, load the model, read the new
+/// demonstrations (a directory of CSV files for a model of one gesture, labelled directories
+/// for a model of several; resampled to `resample` Hz when given; of the model's columns),
+/// teach them to the model (`progress(done, total)`) and save it atomically: the model it
+/// came from is never written, and nothing is written when anything is refused. `config`,
+/// when given, must be the model's configuration.
+pub fn update_files(
+    from: &Path,
+    config: Option<&Path>,
+    demo_paths: &[PathBuf],
+    out: &Path,
+    resample: Option<f64>,
+    progress: Option<&dyn Fn(usize, usize)>,
+) -> Result<GestureModel> {
+    files::check_model_output(out)?;
+    let model = files::load_gesture_model(from)?;
+    let cfg = model.branches()[0].config();
+    if let Some(path) = config {
+        let given = files::config(Some(path))?;
+        let mut p = cfg.params().clone();
+        // a model of several gestures trains its shared bottom trainingSteps per label
+        p.training_steps /= model.labels().len().max(1);
+        if given.params() != &p {
+            return Err(super::Error::file(
+                path,
+                format!(
+                    "is not the configuration of {} (its configuration: `cosco inspect {}`); \
+                     an update goes on with the model's own configuration: leave --config out",
+                    from.display(),
+                    from.display()
+                ),
+            ));
+        }
+    }
+    let state = cfg.params().state_length;
+    let updated = match files::read_demo_sets(demo_paths, Some(state), resample)? {
+        DemoSets::Plain(d) => {
+            demos::validate_set(&d, Some(state))?;
+            model.update(None, &d, progress)?
+        }
+        DemoSets::Labelled(s) => {
+            for (_, d) in &s {
+                demos::validate_set(d, Some(state))?;
+            }
+            model.update_labelled(&s, progress)?
+        }
+    };
+    files::save_gesture_model(&updated, out)?;
+    Ok(updated)
+}
+
 /// `cosco train`: check where the model goes, read the demonstrations (one gesture, or
 /// labelled directories of several; resampled to `resample` Hz when given), train
 /// (`progress(done, total)`) and save atomically.

@@ -61,18 +61,29 @@ fn run(cli: Cli) -> Result<()> {
             out,
             state_length_from_data,
             resample,
+            from,
         } => {
             resample_line(&demos, resample)?;
             let bars = cli::StageBars::default();
             let on_step = |done, total| bars.update("training", done, total);
-            let model = app::train_files(
-                config.as_deref(),
-                &demos,
-                &out,
-                state_length_from_data,
-                resample,
-                Some(&on_step),
-            )?;
+            let model = match &from {
+                Some(from) => app::update_files(
+                    from,
+                    config.as_deref(),
+                    &demos,
+                    &out,
+                    resample,
+                    Some(&on_step),
+                )?,
+                None => app::train_files(
+                    config.as_deref(),
+                    &demos,
+                    &out,
+                    state_length_from_data,
+                    resample,
+                    Some(&on_step),
+                )?,
+            };
             bars.finish();
             if model.labels().is_empty() {
                 out!("{}", model.branches()[0].summary());
@@ -112,6 +123,7 @@ fn run(cli: Cli) -> Result<()> {
             no_dmp,
             condition,
             far,
+            sittings,
             no_in_sample,
             #[cfg(feature = "plot")]
             png,
@@ -136,6 +148,7 @@ fn run(cli: Cli) -> Result<()> {
                     in_sample: !no_in_sample,
                     conditioning: condition.unwrap_or_default(),
                     far: None,
+                    sittings,
                     threads: threads.map_or_else(cli::cores, |t| t as usize),
                 },
                 json,
@@ -216,6 +229,7 @@ fn recognition(study: RecognitionArgs, common: StudyArgs) -> Result<()> {
         resample: common.data.resample,
         settings: RecognitionSettings {
             control: !study.no_control,
+            one_at_a_time: study.one_at_a_time,
             threads: common.threads.map_or_else(cli::cores, |t| t as usize),
         },
         json: common.json,

@@ -33,6 +33,33 @@ pub enum Training {
     Trained,
     /// Initial weights only.
     Untrained,
+    /// In two sittings: the first half of the training demonstrations (rounded down, at
+    /// least one), then an update with the rest ([`Hsom::update`]); GMM/GMR, ProMP, the DMP,
+    /// the nearest sequence and the replay refit on what a model keeps of the first half
+    /// ([`crate::hsom::kept_demonstrations`]) and the rest.
+    Sittings,
+}
+
+impl Training {
+    /// What the methods other than the hierarchy learn from under this training: `train`
+    /// itself, or in sittings what a model keeps of its first half and its second half.
+    fn refit<'t>(self, train: &'t [Demonstration], seed: u64) -> Cow<'t, [Demonstration]> {
+        match self {
+            Training::Sittings => {
+                let (first, rest) = train.split_at(sitting(train.len()));
+                let mut kept = crate::hsom::kept_demonstrations(first, seed);
+                kept.extend_from_slice(rest);
+                Cow::Owned(kept)
+            }
+            _ => Cow::Borrowed(train),
+        }
+    }
+}
+
+/// How many of `n` training demonstrations the first sitting learns from: half, rounded
+/// down, at least one.
+pub fn sitting(n: usize) -> usize {
+    (n / 2).max(1).min(n)
 }
 
 /// Which demonstrations of a set a fold learns from and which it is scored against.
@@ -240,6 +267,12 @@ fn fit(
     let (model, s) = timed(|| match input.training {
         Training::Trained => config.fit_with_progress(input.train, progress),
         Training::Untrained => config.initialise(input.train),
+        Training::Sittings => {
+            let (first, rest) = input.train.split_at(sitting(input.train.len()));
+            config
+                .fit_with_progress(first, progress)
+                .and_then(|m| m.update(rest))
+        }
     });
     Ok((model.map_err(msg)?, s))
 }
@@ -286,7 +319,9 @@ pub fn run_fold<E: Executor>(
     input: &FoldInput<'_>,
     executor: &E,
 ) -> FoldRuns<E::Trace> {
-    let train = input.train;
+    let seed = input.config.map_or(0, |c| c.params().seed);
+    let refit = input.training.refit(input.train, seed);
+    let train = &refit[..];
     let first = input.targets.first();
     let Some((target, initial)) = first.and_then(|t| t.rows.first().map(|r| (t, r))) else {
         let why = first.map_or_else(

@@ -6,7 +6,7 @@ use crate::config::HsomConfig;
 use crate::demos::Demonstration;
 
 use super::executor::Executor;
-use super::fold::{diagonal, fold, Conditioning, FoldInput, Split};
+use super::fold::{diagonal, fold, Conditioning, FoldInput, Split, Training};
 use super::method::Method;
 use super::results::GestureLoo;
 
@@ -33,6 +33,9 @@ pub struct LooSettings {
     pub conditioning: Conditioning,
     /// A far goal `K` ([`FoldInput::far`]), `None` for none.
     pub far: Option<f64>,
+    /// Teach every fold's hierarchy in two sittings ([`Training::Sittings`]): half its
+    /// training demonstrations, then an update with the rest.
+    pub sittings: bool,
     /// Worker threads (at least 1).
     pub threads: usize,
 }
@@ -48,6 +51,7 @@ impl Default for LooSettings {
             in_sample: true,
             conditioning: Conditioning::Unconditioned,
             far: None,
+            sittings: false,
             threads: 1,
         }
     }
@@ -304,6 +308,10 @@ pub fn leave_one_out<E: Executor>(
                 height_1: height_1.as_ref(),
                 conditioning: settings.conditioning,
                 far: settings.far,
+                training: match settings.sittings {
+                    true => Training::Sittings,
+                    false => Training::Trained,
+                },
                 ..FoldInput::new(&[], &[])
             };
             let (methods, split) = match held {

@@ -35,7 +35,7 @@ pub use far::far_target;
 pub use files::{heldout, HeldoutJob};
 pub use fold::{
     all_but, diagonal, fold, fold_scores, run_fold, scored, Conditioning, Fitted, FoldInput,
-    FoldRuns, MethodRun, Split, Training, GMR_UNCONDITIONED, SWING_MIN_AMPLITUDE_RAD,
+    sitting, FoldRuns, MethodRun, Split, Training, GMR_UNCONDITIONED, SWING_MIN_AMPLITUDE_RAD,
 };
 pub use loo::{leave_one_out, read_gestures_at, Gestures, LooError, LooSettings, MIN_TAUGHT_DEMOS};
 pub use method::{peak_speed, Method, GMR_COMPONENTS};
@@ -47,4 +47,4 @@ pub use results::{
     failures, passed, summary, Commanded, ConditionErrors, Fold, FoldScores, FoldsError,
     GestureLoo, HeldOut, HeldOutSummary, MethodSummary, Run, Score, Swings, MIN_DEMO_JERK,
 };
-pub use study::{study, Study};
+pub use study::{sittings_ratios, study, SittingsRatio, Study};

@@ -11,6 +11,7 @@
 //! ([`recognition_study`]). Its errors are the held-out studies' [`LooError`].
 
 mod report;
+pub mod teaching;
 
 use std::path::PathBuf;
 
@@ -42,6 +43,10 @@ pub const UNKNOWN_GATE: f64 = 0.90;
 pub struct RecognitionSettings {
     /// Also the untrained model (the negative control).
     pub control: bool,
+    /// Teach every model one gesture after another ([`teaching`]), and reproduce each
+    /// held-out demonstration's gesture with it, with the model taught at once and with the
+    /// model right after its gesture was taught.
+    pub one_at_a_time: bool,
     /// Worker threads (at least 1); the result does not depend on their number.
     pub threads: usize,
 }
@@ -50,6 +55,7 @@ impl Default for RecognitionSettings {
     fn default() -> Self {
         RecognitionSettings {
             control: true,
+            one_at_a_time: false,
             threads: 1,
         }
     }
@@ -147,6 +153,9 @@ pub struct RecognitionStudy {
     pub model: Answers,
     /// The untrained model's answers (`None` without the control).
     pub control: Option<Answers>,
+    /// Taught one gesture at a time: every held-out demonstration's gesture reproduced by
+    /// the three models of its fold (empty otherwise).
+    pub reproduced: Vec<teaching::Reproduced>,
 }
 
 /// One unit of work: a fold (taught label, demonstration held out) or the model of all
@@ -159,7 +168,7 @@ enum Job {
 
 /// What a job answered.
 enum Done {
-    Fold(Answer),
+    Fold(Answer, Option<teaching::Reproduced>),
     All(Vec<Answer>),
 }
 
@@ -210,15 +219,35 @@ fn run_job(
     taught: &[(String, Vec<Demonstration>)],
     untaught: &[(String, Vec<Demonstration>)],
     job: Job,
+    one_at_a_time: bool,
 ) -> Result<Done, LooError> {
     match job {
+        Job::Fold { g, i, learn: true } if one_at_a_time => {
+            let (m, r) = teaching::fold(config, taught, g, i)?;
+            let what = format!(
+                "the model taught one gesture at a time without {}",
+                taught[g].1[i].source
+            );
+            let a = answer(&m, &taught[g].0, &taught[g].1[i], &what)?;
+            Ok(Done::Fold(a, Some(r)))
+        }
+        Job::All { learn: true } if one_at_a_time => {
+            let what = "the model taught every taught gesture one at a time";
+            let m = teaching::in_turn(config, taught, what, |_, _| Ok(()))?;
+            untaught
+                .iter()
+                .flat_map(|(l, ds)| ds.iter().map(move |d| (l, d)))
+                .map(|(l, d)| answer(&m, l, d, what))
+                .collect::<Result<_, _>>()
+                .map(Done::All)
+        }
         Job::Fold { g, i, learn } => {
             let (label, demos) = &taught[g];
             let mut sets = taught.to_vec();
             sets[g].1.remove(i);
             let what = format!("the model trained without {}", demos[i].source);
             let m = train(config, &sets, learn, &what)?;
-            Ok(Done::Fold(answer(&m, label, &demos[i], &what)?))
+            Ok(Done::Fold(answer(&m, label, &demos[i], &what)?, None))
         }
         Job::All { learn } => {
             let what = "the model trained on every taught demonstration";
@@ -313,15 +342,20 @@ pub fn recognition_study(
         }
     }
     let pool = super::Pool::new(settings.threads).map_err(LooError::Pool)?;
-    let done = pool.map(&jobs, |&j| run_job(config, taught, untaught, j), progress);
+    let one = settings.one_at_a_time;
+    let done = pool.map(&jobs, |&j| run_job(config, taught, untaught, j, one), progress);
     let (mut model, mut control) = (Answers::default(), Answers::default());
+    let mut reproduced = Vec::new();
     for (job, d) in jobs.iter().zip(done) {
         let learn = match job {
             Job::Fold { learn, .. } | Job::All { learn } => *learn,
         };
         let to = if learn { &mut model } else { &mut control };
         match d? {
-            Done::Fold(a) => to.held_out.push(a),
+            Done::Fold(a, r) => {
+                to.held_out.push(a);
+                reproduced.extend(r);
+            }
             Done::All(a) => to.untaught = a,
         }
     }
@@ -330,6 +364,7 @@ pub fn recognition_study(
         untaught: untaught.iter().map(|(l, _)| l.clone()).collect(),
         model,
         control: settings.control.then_some(control),
+        reproduced,
     })
 }
 

@@ -19,6 +19,8 @@ pub struct Study {
     pub conditioned: Option<(Conditioning, Vec<GestureLoo>)>,
     /// The same folds with a far goal, per `K` asked for ([`super::far_target`]).
     pub far: Vec<(f64, Vec<GestureLoo>)>,
+    /// The same folds taught in two sittings (`None` unless the settings ask for it).
+    pub sittings: Option<Vec<GestureLoo>>,
 }
 
 /// [`leave_one_out`] of `gestures` from the initial posture alone and, when
@@ -35,7 +37,19 @@ pub fn study<E: Executor>(
     let plain = LooSettings {
         conditioning: Conditioning::Unconditioned,
         far: None,
+        sittings: false,
         ..*settings
+    };
+    let sittings = match settings.sittings {
+        false => None,
+        true => {
+            let s = LooSettings {
+                sittings: true,
+                in_sample: false,
+                ..plain
+            };
+            Some(leave_one_out(config, gestures.clone(), &s, executor, progress)?)
+        }
     };
     let far = far
         .iter()
@@ -55,6 +69,7 @@ pub fn study<E: Executor>(
         c => {
             let s = LooSettings {
                 far: None,
+                sittings: false,
                 ..*settings
             };
             Some((
@@ -67,6 +82,7 @@ pub fn study<E: Executor>(
         unconditioned: leave_one_out(config, gestures, &plain, executor, progress)?,
         conditioned,
         far,
+        sittings,
     })
 }
 
@@ -93,6 +109,16 @@ impl Study {
                 })
                 .collect();
             map.insert("far".into(), far.into());
+        }
+        if let (Some(study), Some(map)) = (&self.sittings, doc.as_object_mut()) {
+            map.insert(
+                "sittings".into(),
+                serde_json::json!({
+                    "summary": summary(study),
+                    "against_at_once": sittings_ratios(&self.unconditioned, study),
+                    "gestures": study,
+                }),
+            );
         }
         // cannot fail: plain numbers (non-finite ones become null), strings and enums
         serde_json::to_string_pretty(&doc).unwrap_or_default()
@@ -127,6 +153,82 @@ impl Study {
             ));
             out.push_str(&markdown(study));
         }
+        if let Some(study) = &self.sittings {
+            out.push_str(
+                "\n## Taught in two sittings\n\nThe same folds, each hierarchy (and height 1) \
+                 trained on the first half of its training demonstrations (rounded down) and \
+                 updated with the rest, from the model and the new demonstrations alone \
+                 (docs/ALGORITHM.md, section 10). GMM/GMR, ProMP, the DMP, the nearest sequence and \
+                 the replay refit on what a model keeps of the first half and the rest.\n\n",
+            );
+            out.push_str(&sittings_table(&self.unconditioned, study));
+            out.push('\n');
+            out.push_str(&markdown(study));
+        }
         out
     }
+}
+
+/// Per method: the median relative DTW taught at once and in two sittings, and their ratio
+/// (in sittings over at once).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SittingsRatio {
+    /// Which method.
+    pub method: super::Method,
+    /// Median relative DTW, held out, taught at once.
+    pub at_once: Option<f64>,
+    /// The same taught in two sittings.
+    pub in_sittings: Option<f64>,
+    /// `in_sittings / at_once`.
+    pub ratio: Option<f64>,
+    /// Held-out folds of the wave ("wave" in the gesture's name) whose reproduction in sittings
+    /// keeps the held-out demonstration's swing count, and the wave's folds.
+    pub wave_swings: (usize, usize),
+}
+
+/// [`SittingsRatio`] of every method in both studies.
+pub fn sittings_ratios(at_once: &[GestureLoo], sittings: &[GestureLoo]) -> Vec<SittingsRatio> {
+    let once = summary(at_once);
+    summary(sittings)
+        .into_iter()
+        .map(|s| {
+            let a = once.iter().find(|o| o.method == s.method).and_then(|o| o.relative_dtw);
+            let folds = sittings
+                .iter()
+                .filter(|g| g.gesture.contains("wave"))
+                .flat_map(|g| &g.held_out)
+                .filter_map(|f| f.score(s.method));
+            let (kept, n) = folds.fold((0, 0), |(k, n), sc| match sc.swings {
+                Some([rep, demo]) => (k + usize::from(rep == demo), n + 1),
+                None => (k, n),
+            });
+            SittingsRatio {
+                method: s.method,
+                at_once: a,
+                in_sittings: s.relative_dtw,
+                ratio: a.zip(s.relative_dtw).map(|(a, b)| b / a),
+                wave_swings: (kept, n),
+            }
+        })
+        .collect()
+}
+
+/// The Markdown table of [`sittings_ratios`].
+fn sittings_table(at_once: &[GestureLoo], sittings: &[GestureLoo]) -> String {
+    let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+    let mut out = String::from(
+        "| method | relative DTW at once | in two sittings | ratio | wave: swings kept |\n|---|---|---|---|---|\n",
+    );
+    for r in sittings_ratios(at_once, sittings) {
+        let (k, n) = r.wave_swings;
+        out.push_str(&format!(
+            "| {} | {} | {} | {} | {} |\n",
+            r.method.name(),
+            f(r.at_once),
+            f(r.in_sittings),
+            r.ratio.map_or("-".to_string(), |v| format!("{v:.3}")),
+            if n == 0 { "-".to_string() } else { format!("{k}/{n}") }
+        ));
+    }
+    out
 }

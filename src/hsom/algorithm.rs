@@ -15,9 +15,8 @@ use super::inputs::{
     bmu_known, check_series, demo_series, input_dim, level_buffers, node_means, spread, Series,
 };
 use super::memory::{Memory, Stm};
-use super::model::{
-    band_path, EventsHsom, EventsModel, Hsom, Model, PaperModel, Part, MAX_NORMALISED,
-};
+use super::model::{EventsHsom, EventsModel, Hsom, Model, PaperModel, Part, MAX_NORMALISED};
+use super::update::{kept, Warm};
 
 fn demo_columns(demos: &[Demonstration]) -> Vec<String> {
     demos.first().map(|d| d.columns.clone()).unwrap_or_default()
@@ -67,7 +66,9 @@ impl HsomConfig {
         presentation: Presentation,
     ) -> Result<Hsom, HsomError> {
         let series = demo_series(demos);
-        self.fit_inner(&series, progress, true, demo_columns(demos), presentation)
+        let mut model = self.fit_inner(&series, progress, true, demo_columns(demos), presentation)?;
+        model.set_period(demos.first().and_then(crate::demos::median_interval));
+        Ok(model)
     }
 
     /// An untrained hierarchy: the seeded initial weights (inside the data's bounding box)
@@ -119,6 +120,20 @@ impl HsomConfig {
         columns: Vec<String>,
         presentation: Presentation,
     ) -> Result<Hsom, HsomError> {
+        self.fit_from(series, progress, learn, columns, presentation, None)
+    }
+
+    /// [`HsomConfig::fit_inner`] from the seeded initial weights (`warm` `None`) or going on
+    /// from a trained model's maps and normalisation ([`Warm`]: an update).
+    pub(crate) fn fit_from(
+        &self,
+        series: &[Series<'_>],
+        progress: Option<&dyn Fn(usize, usize)>,
+        learn: bool,
+        columns: Vec<String>,
+        presentation: Presentation,
+        warm: Option<&Warm<'_>>,
+    ) -> Result<Hsom, HsomError> {
         let p = self.params();
         let state = p.state_length;
         check_series(series, state, p.action_horizon())?;
@@ -154,13 +169,15 @@ impl HsomConfig {
                 normalised: f64::INFINITY,
             });
         }
-        let (offset, scale) = match p.normalisation {
-            Normalisation::None => (vec![0.0; state], vec![1.0; state]),
-            Normalisation::Global => {
+        let (offset, scale) = match (warm, p.normalisation) {
+            // an update keeps the model's normalisation: the maps are in its units
+            (Some(w), _) => (w.offset.to_vec(), w.scale.to_vec()),
+            (None, Normalisation::None) => (vec![0.0; state], vec![1.0; state]),
+            (None, Normalisation::Global) => {
                 let m = range.iter().cloned().fold(0.0, f64::max);
                 (lo.clone(), vec![if m > 0.0 { m } else { 1.0 }; state])
             }
-            Normalisation::PerDimension => (
+            (None, Normalisation::PerDimension) => (
                 lo.clone(),
                 range
                     .iter()
@@ -195,9 +212,12 @@ impl HsomConfig {
             }
         }
         // initial weights: inside the (normalised) data's bounding box, from the seed
-        let mut rng = ChaCha8Rng::seed_from_u64(p.seed);
+        let mut rng = ChaCha8Rng::seed_from_u64(warm.map_or(p.seed, |w| w.seed));
         let mut maps = Vec::with_capacity(p.height);
-        for (l, lp) in p.levels.iter().enumerate() {
+        if let Some(w) = warm {
+            maps = w.maps.to_vec();
+        }
+        for (l, lp) in p.levels.iter().enumerate().skip(maps.len()) {
             let dim = input_dim(self, l);
             let (blo, bhi): (Vec<f64>, Vec<f64>) = if l == 0 {
                 let (a, b) = (
@@ -232,7 +252,15 @@ impl HsomConfig {
         }
         let mut stm = Stm::new(self);
         let (mut bufs, mut masks) = level_buffers(self);
-        let total = if learn { p.training_steps } else { 0 };
+        // an update goes on from the schedule's point `from` to its end: the steps and rates
+        // of the share of the training data that is new
+        let from = warm.map_or(0.0, |w| w.from);
+        let total = match (learn, warm) {
+            (false, _) => 0,
+            (true, None) => p.training_steps,
+            (true, Some(_)) => (p.training_steps as f64 * (1.0 - from)).ceil() as usize,
+        };
+        let at = |done: u64, expected: f64| from + (1.0 - from) * done as f64 / expected;
         let expected: Vec<f64> = (0..p.height)
             .map(|l| ((total as u64 / self.period(l)).max(2) - 1) as f64)
             .collect();
@@ -243,7 +271,7 @@ impl HsomConfig {
         let events = p.kind() == crate::config::Algorithm::Events;
         // the events extension trains the upper levels afterwards, so only the bottom's
         // samples are drawn (the paper's levels learn from the sequence as it is presented)
-        let shuffled = events && presentation == Presentation::Shuffled;
+        let shuffled = events && (presentation == Presentation::Shuffled || warm.is_some());
         let samples: usize = norm.iter().map(|r| r.len() - 1).sum();
         for s in 1..=total as u64 {
             if shuffled {
@@ -263,7 +291,7 @@ impl HsomConfig {
                 x[..state].copy_from_slice(&demo[pos]);
                 x[state..].copy_from_slice(&demo[(pos + horizon).min(demo.len() - 1)]);
                 let lp = &p.levels[0];
-                let prog = trained[0] as f64 / expected[0];
+                let prog = at(trained[0], expected[0]);
                 let (b, _) = maps[0].bmu(x);
                 stm.push_bottom(b, &maps[0]);
                 maps[0].update(
@@ -285,7 +313,7 @@ impl HsomConfig {
                     continue;
                 }
                 let lp = &p.levels[l];
-                let prog = trained[l] as f64 / expected[l];
+                let prog = at(trained[l], expected[l]);
                 let (b, _, full) = bmu_known(&maps[l], x, mask);
                 maps[l].update(
                     x,
@@ -311,7 +339,15 @@ impl HsomConfig {
                 }
             }
         }
+        if let Some(w) = warm {
+            trained.iter_mut().zip(w.trained).for_each(|(t, old)| *t += old);
+        }
         let lens: Vec<f64> = series.iter().map(|s| s.rows.len() as f64).collect();
+        let (paths, memory) = kept(
+            &norm,
+            series.iter().map(|s| s.rows.len()),
+            p.seed,
+        );
         let model = Model {
             config: self.clone(),
             maps,
@@ -328,7 +364,8 @@ impl HsomConfig {
             accuracy: vec![0.0; p.height],
             lookup: vec![0.0; p.height],
             part: (),
-            paths: norm.iter().map(|rows| band_path(rows)).collect(),
+            paths,
+            memory,
         };
         if events {
             let (mut m, ()) = model.with_part(EventsModel::untrained(p));
@@ -355,7 +392,7 @@ impl EventsHsom {
     /// Where reproduction places each bottom node's events, learned from these (raw)
     /// demonstrations ([`EventsHsom::fit_postures`]). A bottom shared by several gestures
     /// gets none of its own: each branch learns its own.
-    fn learn_postures<'a>(&mut self, demos: impl Iterator<Item = &'a [Vec<f64>]>) {
+    pub(super) fn learn_postures<'a>(&mut self, demos: impl Iterator<Item = &'a [Vec<f64>]>) {
         let norm: Vec<Vec<Vec<f64>>> = demos.map(|rows| self.normalise_rows(rows)).collect();
         self.fit_postures(&norm);
     }

@@ -16,6 +16,26 @@ pub enum HsomError {
     /// No demonstration was given.
     #[error("no demonstrations to train on")]
     NoDemonstrations,
+    /// An update's demonstration records other variables than the model learned.
+    #[error("demonstration {demo} has columns {found:?}, but the model learned {expected:?}: an update takes demonstrations of the same variables in the same order")]
+    UpdateColumns {
+        /// The demonstration's source.
+        demo: String,
+        /// Its columns.
+        found: Vec<String>,
+        /// The model's.
+        expected: Vec<String>,
+    },
+    /// An update's demonstration is sampled at another rate than the model's.
+    #[error("demonstration {demo} is sampled every {found} s, but the model learned demonstrations sampled every {expected} s: an update takes the same rate (within 1 %; resample it, e.g. `cosco train --resample`)")]
+    UpdatePeriod {
+        /// The demonstration's source.
+        demo: String,
+        /// Its median sample period, seconds.
+        found: f64,
+        /// The model's.
+        expected: f64,
+    },
     /// The operation needs another algorithm than the model's.
     #[error("{what} needs a model trained with algorithm = events (this one: {algorithm})")]
     NeedsEvents {
@@ -212,6 +232,9 @@ pub enum GestureError {
     /// at once, so its upper levels cannot be split by label).
     #[error("several gestures need algorithm = events (configs/nao-gestures.xml); this configuration uses the paper's algorithm")]
     NeedsEvents,
+    /// Labelled demonstrations given to a model of one unlabelled gesture.
+    #[error("the model holds one unlabelled gesture: teach it a directory of CSV files, not labelled directories (train on labelled directories, DIR/<label>/*.csv, to teach several gestures)")]
+    UnlabelledUpdate,
     /// Training or reproduction was refused.
     #[error(transparent)]
     Hsom(#[from] HsomError),

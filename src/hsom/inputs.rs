@@ -43,6 +43,7 @@ impl Layout {
 }
 
 /// A demonstration as borrowed rows with a name for messages.
+#[derive(Clone, Copy)]
 pub(crate) struct Series<'a> {
     pub(crate) source: &'a str,
     pub(crate) rows: &'a [Vec<f64>],

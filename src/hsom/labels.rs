@@ -187,10 +187,9 @@ impl EventsHsom {
         b.part.threshold = vec![0.0; h];
         let lens: Vec<f64> = norm.iter().map(|d| d.len() as f64).collect();
         b.demo_len = spread(&lens);
-        b.paths = norm
-            .iter()
-            .map(|rows| super::model::band_path(rows))
-            .collect();
+        let period = b.memory.period;
+        (b.paths, b.memory) = super::update::kept(norm, norm.iter().map(Vec::len), seed);
+        b.memory.period = period;
         b.replay(norm);
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         b.fit_events(norm, learn, &mut rng);

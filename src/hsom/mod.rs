@@ -37,12 +37,14 @@ mod recognize;
 mod record;
 mod reproduction;
 mod summary;
+pub(crate) mod update;
 
 pub use errors::{GestureError, HsomError, PersistError};
 pub use labels::{is_plain_label, GESTURES_FORMAT_VERSION, MAX_LABELS};
 pub use memory::{ActivityLevels, ActivityList};
-pub use model::{GestureModel, Hsom, Scoring};
+pub use model::{GestureModel, Hsom, Scoring, BAND_ROWS, KEPT_DEMONSTRATIONS};
 pub use persist::{FilePart, FORMAT_VERSION};
 pub use recognize::{Recognition, PREFIX_BLEND};
 pub use reproduction::{Reproduction, StopReason};
+pub use update::kept_demonstrations;
 pub use summary::{plans_word, LevelSummary, ModelSummary};

@@ -75,10 +75,15 @@ pub struct Model<A> {
     /// What only its algorithm reads; a model file names its algorithm (`Paper` or `Events`).
     #[serde(rename = "algo", serialize_with = "tagged")]
     pub(crate) part: A,
-    /// The training demonstrations as the bottom level sees them (normalised), each resampled
-    /// to [`BAND_ROWS`] rows: how far they lie from a reproduction is its confidence band
-    /// ([`crate::condition::spread_band`]).
+    /// The kept demonstrations as the bottom level sees them (normalised), each resampled
+    /// to [`BAND_ROWS`] rows: at most [`KEPT_DEMONSTRATIONS`], a uniform sample of every
+    /// demonstration learned from ([`Memory`]). How far they lie from a reproduction is its
+    /// confidence band ([`crate::condition::spread_band`]); an update learns from them again
+    /// beside the new demonstrations (docs/ALGORITHM.md, section 10).
     pub(crate) paths: Vec<Vec<Vec<f64>>>,
+    /// What the model learned from: how many demonstrations, in how many updates, and each
+    /// kept path's length.
+    pub(crate) memory: Memory,
     /// The maps, bottom first (last in a model file).
     pub(crate) maps: Vec<SelfOrganizingMap>,
 }
@@ -94,7 +99,7 @@ pub enum Algo<P = PaperModel, E = Box<EventsModel>> {
 }
 
 /// What an algorithm's own part tells the code both algorithms share.
-pub trait Part: Sized {
+pub trait Part: Sized + Clone {
     /// The algorithm whose part it is.
     const ALGORITHM: Algorithm;
     /// The events extension's part, where the shared code reads it if there is one (the
@@ -108,6 +113,8 @@ pub trait Part: Sized {
     fn check(&self, s: &Shape) -> Result<(), String>;
     /// `model`'s reproduction from the normalised posture `y0` with the settings `p`.
     fn reproduce(m: &Model<Self>, y0: Vec<f64>, p: &HsomParams) -> Result<Reproduction, HsomError>;
+    /// The model as an [`Hsom`].
+    fn wrap(m: Model<Self>) -> Hsom;
 }
 
 fn tagged<A: Part, S: serde::Serializer>(part: &A, s: S) -> Result<S::Ok, S::Error> {
@@ -131,6 +138,9 @@ impl Part for PaperModel {
     fn reproduce(m: &PaperHsom, y0: Vec<f64>, p: &HsomParams) -> Result<Reproduction, HsomError> {
         m.reproduce_paper(y0, p)
     }
+    fn wrap(m: PaperHsom) -> Hsom {
+        Hsom::Paper(Box::new(m))
+    }
 }
 
 impl<A> Model<A> {
@@ -152,6 +162,7 @@ impl<A> Model<A> {
             lookup: self.lookup,
             part,
             paths: self.paths,
+            memory: self.memory,
             maps: self.maps,
         };
         (m, self.part)
@@ -303,6 +314,9 @@ impl Part for EventsModel {
     }
     fn reproduce(m: &EventsHsom, y0: Vec<f64>, p: &HsomParams) -> Result<Reproduction, HsomError> {
         Ok(m.plan_events(&y0, &y0, &[], &p.reproduction))
+    }
+    fn wrap(m: EventsHsom) -> Hsom {
+        Hsom::Events(Box::new(m))
     }
     fn check(&self, s: &Shape) -> Result<(), String> {
         let (h, n0, state) = (s.nodes.len(), s.nodes[0], s.state);
@@ -540,6 +554,27 @@ pub struct Shape {
 
 const ACCURACY: &str = "an accuracy outside [0, 1]";
 const POSITION: &str = "a position negative or non-finite (at most 1e8)";
+/// What a model learned from, beside its kept paths ([`Model::paths`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Memory {
+    /// Demonstrations learned from, over the first training and every update.
+    pub(crate) learned: u64,
+    /// Updates since the first training ([`Hsom::update`]).
+    pub(crate) updates: u32,
+    /// Per kept path, the samples of the demonstration it was made from: an update restores
+    /// each kept demonstration to its own length.
+    pub(crate) lengths: Vec<u32>,
+    /// The demonstrations' sample period, seconds (`None`: recorded without times); an
+    /// update takes demonstrations of the same.
+    pub(crate) period: Option<f64>,
+}
+
+/// Most demonstrations a model keeps per gesture ([`Model::paths`]): its size is bounded by
+/// the configuration, whatever the number of demonstrations learned from; an update learns
+/// from at most this many earlier demonstrations beside the new ones, so that its cost does
+/// not grow with them (docs/ALGORITHM.md, section 10; docs/BENCHMARKS.md).
+pub const KEPT_DEMONSTRATIONS: usize = 6;
+
 /// The rows of each training path a model keeps ([`Model::paths`]): however long the
 /// demonstrations, the model's size does not depend on it.
 pub const BAND_ROWS: usize = 200;
@@ -660,6 +695,26 @@ impl<A: Part> Model<A> {
         sized("scale", self.scale.len(), state)?;
         sized("column names", self.columns.len(), state)?;
         sized("dwell", self.dwell.len(), nodes[0])?;
+        let kept = self.paths.len();
+        if kept > KEPT_DEMONSTRATIONS
+            || self.memory.lengths.len() != kept
+            || self.memory.learned < kept as u64
+        {
+            return Err(format!(
+                "{kept} kept demonstrations with {} lengths, of {} learned from: at most \
+                 {KEPT_DEMONSTRATIONS}, one length each, no more than were learned from",
+                self.memory.lengths.len(),
+                self.memory.learned
+            ));
+        }
+        if let Some(p) = self.memory.period.filter(|p| !(p.is_finite() && *p > 0.0)) {
+            return Err(format!("a sample period of {p} s: positive and finite"));
+        }
+        if let Some(n) = (self.memory.lengths.iter()).find(|&&n| n < 2 || f64::from(n) > MAX_DEMO_SAMPLES) {
+            return Err(format!(
+                "a kept demonstration of {n} samples: 2 to {MAX_DEMO_SAMPLES:e}"
+            ));
+        }
         for (k, path) in self.paths.iter().enumerate() {
             if path.len() != BAND_ROWS || path.iter().any(|r| r.len() != state) {
                 return Err(format!(

@@ -27,7 +27,7 @@ const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of model files, of one gesture or several (the header says which).
-pub const FORMAT_VERSION: u32 = 25;
+pub const FORMAT_VERSION: u32 = 26;
 /// The most bytes a model file may hold (what bincode may be asked to read).
 const MAX_MODEL_BYTES: usize = 1 << 30;
 
@@ -399,8 +399,8 @@ impl<A: Part> Model<A> {
             ]),
         }
         fields.push((
-            "training paths (the confidence band)",
-            binary_len(&self.paths),
+            "kept demonstrations (the band, updates)",
+            binary_len(&self.paths) + binary_len(&self.memory),
         ));
         fields.push(("weights", binary_len(&self.maps)));
         let mut parts = vec![FilePart {

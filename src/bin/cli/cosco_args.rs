@@ -74,6 +74,11 @@ pub enum Command {
         /// Resample demonstrations with `time` columns to this rate, Hz (shape-preserving).
         #[arg(long)]
         resample: Option<f64>,
+        /// Teach this saved model the demonstrations (more of its gesture; with labelled
+        /// directories, more of its gestures or new ones) instead of training a new one, from
+        /// the model and the new files alone; --out gets the updated model.
+        #[arg(long, conflicts_with = "state_length_from_data")]
+        from: Option<PathBuf>,
     },
     /// Reproduce a gesture from an initial posture with a saved model; writes `step` then the
     /// demonstrations' columns.
@@ -107,7 +112,7 @@ pub enum Command {
     /// demonstration is recognised by the hierarchy taught all (right: `unknown`); the
     /// untrained hierarchy beside it as the control. Markdown on stdout.
     #[command(group = clap::ArgGroup::new("recognition_study")
-        .args(["taught", "untaught", "no_control"]).multiple(true).requires("recognition"))]
+        .args(["taught", "untaught", "no_control", "one_at_a_time"]).multiple(true).requires("recognition"))]
     Heldout {
         /// Demonstrations: a directory of *.csv files or files (one gesture), or directories of
         /// gesture subdirectories (DIR/<gesture>/*.csv, each gesture on its own); at least 3
@@ -115,7 +120,7 @@ pub enum Command {
         #[arg(long, num_args = 1.., required_unless_present = "recognition")]
         demos: Vec<PathBuf>,
         /// The recognition study (with --taught and --untaught) instead of reproduction.
-        #[arg(long, requires = "taught", conflicts_with_all = ["demos", "no_height_1", "no_gmr", "no_promp", "no_dmp", "no_in_sample", "condition", "far"])]
+        #[arg(long, requires = "taught", conflicts_with_all = ["demos", "no_height_1", "no_gmr", "no_promp", "no_dmp", "no_in_sample", "condition", "far", "sittings"])]
         recognition: bool,
         #[command(flatten)]
         study: Option<RecognitionArgs>,
@@ -143,6 +148,10 @@ pub enum Command {
         /// demonstration shifted as far; repeatable.
         #[arg(long, value_name = "K")]
         far: Vec<f64>,
+        /// Also teach every fold in two sittings (half its training demonstrations, then an
+        /// update with the rest) beside the model taught at once.
+        #[arg(long)]
+        sittings: bool,
         /// Leave out the in-sample result (learned from all).
         #[arg(long)]
         no_in_sample: bool,
@@ -220,6 +229,11 @@ pub struct RecognitionArgs {
     /// Leave out the untrained hierarchy (the negative control).
     #[arg(long)]
     pub no_control: bool,
+    /// Teach every hierarchy one gesture after another (an update per gesture, with its
+    /// demonstrations alone), and reproduce each held-out demonstration's gesture with it, with
+    /// the hierarchy taught at once and with the one right after its gesture was taught.
+    #[arg(long)]
+    pub one_at_a_time: bool,
 }
 
 /// What both held-out studies share: how they read demonstrations, their threads, their JSON.

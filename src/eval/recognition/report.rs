@@ -41,6 +41,7 @@ pub fn recognition_json(study: &RecognitionStudy) -> String {
             "model": summary(&study.model),
             "control": study.control.as_ref().map(summary),
         },
+        "forgetting": super::teaching::forgetting(&study.taught, &study.reproduced),
         "study": study,
     });
     // cannot fail: plain numbers (non-finite ones become null), strings and options
@@ -67,9 +68,15 @@ pub fn recognition_markdown(study: &RecognitionStudy) -> String {
         out,
         "Recognition held out: {} taught gestures (each demonstration recognised by the model \
          trained on all the others), {} untaught (recognised by the model trained on every \
-         taught demonstration).\n",
+         taught demonstration).{}\n",
         study.taught.len(),
-        study.untaught.len()
+        study.untaught.len(),
+        if study.reproduced.is_empty() {
+            ""
+        } else {
+            " Every trained model was taught one gesture after another, each update with that \
+             gesture's demonstrations alone."
+        }
     );
     let _ = writeln!(
         out,
@@ -116,5 +123,44 @@ pub fn recognition_markdown(study: &RecognitionStudy) -> String {
             control(&|c| share(&c.untaught, l, Answer::unknown)),
         );
     }
+    if !study.reproduced.is_empty() {
+        forgetting_table(&mut out, study);
+    }
     out
+}
+
+/// Taught one gesture at a time: per gesture, its held-out reproduction by the three models
+/// of each fold and the forgetting gate.
+fn forgetting_table(out: &mut String, study: &RecognitionStudy) {
+    use super::teaching::{forgetting, FORGETTING_GATE};
+    let r = &study.reproduced;
+    let accepted = r.iter().filter(|x| x.at_once_accepted).count();
+    let _ = writeln!(
+        out,
+        "\nTaught one at a time against taught at once: the held-out demonstrations' own \
+         gesture reproduced from their first posture (relative DTW, median over the folds) by \
+         the model taught every gesture at once, the model right after the gesture was taught \
+         and the model after the last one (gate: after the last at most {FORGETTING_GATE} x \
+         each of the others). The model taught at once accepted {}.\n",
+        counted(Some(accepted as f64 / r.len() as f64), r.len())
+    );
+    let _ = writeln!(
+        out,
+        "| gesture | folds | at once | right after taught | after the last | last / at once | last / right after | gate |"
+    );
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
+    for f in forgetting(&study.taught, r) {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {:.4} | {:.4} | {:.4} | {:.3} | {:.3} | {} |",
+            f.label,
+            f.folds,
+            f.at_once,
+            f.after_taught,
+            f.after_last,
+            f.against_at_once,
+            f.against_taught,
+            if f.passes { "pass" } else { "fail" }
+        );
+    }
 }

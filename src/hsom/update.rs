@@ -1,0 +1,488 @@
+//! Teaching a trained model more (docs/ALGORITHM.md, section 10): new demonstrations of a
+//! gesture it knows, or a new labelled gesture, from the model and the new demonstrations
+//! alone.
+//!
+//! A model keeps at most [`KEPT_DEMONSTRATIONS`] of the demonstrations of each gesture it
+//! learned from, a uniform sample of them all (reservoir sampling, seeded), normalised and
+//! resampled to [`BAND_ROWS`] rows with each one's length ([`Memory`]). An update:
+//! 1. goes on training the bottom map from its weights, on samples drawn from the new
+//!    demonstrations and the kept ones of every gesture (rehearsal), over the end of its
+//!    schedule: the share of the steps and the rates that the new demonstrations' share of
+//!    all learned from would have had (a model of the paper's algorithm goes on training
+//!    every level, in order, the new demonstrations first);
+//! 2. fits every gesture's upper levels and plans again on its kept and new demonstrations
+//!    (the bottom moved under them), and recognition's calibration on all of them;
+//! 3. keeps the sample of demonstrations up to date.
+//!
+//! Its cost is bounded by the configuration: whatever the number of demonstrations learned
+//! from, it learns from at most [`KEPT_DEMONSTRATIONS`] earlier ones per gesture.
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use crate::demos::{median_interval, Demonstration};
+use crate::som::SelfOrganizingMap;
+
+use super::algorithm::Presentation;
+use super::errors::{GestureError, HsomError};
+use super::inputs::Series;
+use super::labels::is_plain_label;
+use super::model::{
+    band_path, EventsHsom, GestureModel, Hsom, Memory, Model, Part, KEPT_DEMONSTRATIONS,
+};
+use super::recognize::{branch_seed, calibrate};
+
+/// Where an update's training starts ([`crate::config::HsomConfig::fit_from`]): a trained
+/// model's maps (its bottom alone for the events extension, whose upper levels are fitted
+/// anew), its normalisation and training counts, the point of the schedule to go on from and
+/// the update's seed.
+pub(crate) struct Warm<'a> {
+    pub(crate) maps: &'a [SelfOrganizingMap],
+    pub(crate) offset: &'a [f64],
+    pub(crate) scale: &'a [f64],
+    pub(crate) trained: &'a [u64],
+    /// The share of the schedule already done: the earlier demonstrations' share of all.
+    pub(crate) from: f64,
+    pub(crate) seed: u64,
+}
+
+/// The paths kept of training demonstrations `norm` (normalised, of lengths `lens`), and
+/// what the model learned from: [`KEPT_DEMONSTRATIONS`] of them at most, drawn uniformly
+/// (from `seed`).
+pub(crate) fn kept(
+    norm: &[Vec<Vec<f64>>],
+    lens: impl Iterator<Item = usize>,
+    seed: u64,
+) -> (Vec<Vec<Vec<f64>>>, Memory) {
+    let mut paths = Vec::new();
+    let mut memory = Memory {
+        learned: 0,
+        updates: 0,
+        lengths: Vec::new(),
+        period: None,
+    };
+    keep(
+        &mut paths,
+        &mut memory,
+        norm.iter().zip(lens).map(|(rows, n)| (band_path(rows), n)),
+        seed,
+    );
+    (paths, memory)
+}
+
+/// Reservoir sampling (Vitter's algorithm R) of the kept paths: see [`reservoir`].
+fn keep(
+    paths: &mut Vec<Vec<Vec<f64>>>,
+    memory: &mut Memory,
+    new: impl Iterator<Item = (Vec<Vec<f64>>, usize)>,
+    seed: u64,
+) {
+    let mut slots: Vec<(Vec<Vec<f64>>, u32)> =
+        std::mem::take(paths).into_iter().zip(memory.lengths.drain(..)).collect();
+    let new = new.map(|(path, n)| (path, u32::try_from(n).unwrap_or(u32::MAX)));
+    reservoir(&mut slots, &mut memory.learned, new, seed);
+    (*paths, memory.lengths) = slots.into_iter().unzip();
+}
+
+/// Reservoir sampling (Vitter's algorithm R): each new item is kept while fewer than
+/// [`KEPT_DEMONSTRATIONS`] are, and afterwards replaces a kept one with probability
+/// `KEPT_DEMONSTRATIONS / (items seen)`, so that the kept items are a uniform sample of every
+/// item seen (`seen` counts them). The draws come from `seed` and the count seen before.
+fn reservoir<T>(slots: &mut Vec<T>, seen: &mut u64, new: impl Iterator<Item = T>, seed: u64) {
+    let mut rng = ChaCha8Rng::seed_from_u64(mixed(seed, *seen));
+    for item in new {
+        if slots.len() < KEPT_DEMONSTRATIONS {
+            slots.push(item);
+        } else if let Ok(r) = usize::try_from(rng.gen_range(0..=*seen)) {
+            if r < KEPT_DEMONSTRATIONS {
+                slots[r] = item;
+            }
+        }
+        *seen += 1;
+    }
+}
+
+/// Which of `n` demonstrations a model trained on them with seed `seed` keeps, in the order
+/// kept ([`reservoir`]).
+pub(crate) fn kept_indices(n: usize, seed: u64) -> Vec<usize> {
+    let mut slots = Vec::new();
+    reservoir(&mut slots, &mut 0, 0..n, seed);
+    slots
+}
+
+/// What a model trained on `demos` with seed `seed` keeps of them, as demonstrations: the
+/// same sample ([`KEPT_DEMONSTRATIONS`] at most), each read through its [`BAND_ROWS`]-row
+/// path back at its own length and sample times. What GMM/GMR, ProMP and the DMP refit on
+/// beside new demonstrations when they are updated (docs/ALGORITHM.md, section 10).
+pub fn kept_demonstrations(demos: &[Demonstration], seed: u64) -> Vec<Demonstration> {
+    kept_indices(demos.len(), seed)
+        .into_iter()
+        .map(|i| {
+            let d = &demos[i];
+            let path = band_path(&d.rows);
+            let n = d.rows.len();
+            let rows = (0..n)
+                .map(|k| crate::condition::at_phase(&path, k as f64 / (n.max(2) - 1) as f64))
+                .collect();
+            Demonstration {
+                rows,
+                ..d.clone()
+            }
+        })
+        .collect()
+}
+
+/// `seed` mixed with `k` (an update's number, a count learned): a seed of its own.
+fn mixed(seed: u64, k: u64) -> u64 {
+    seed ^ 0x9e37_79b9_7f4a_7c15u64.wrapping_mul(k.wrapping_add(1))
+}
+
+/// The sample period two recordings must share (within 1 %, as [`crate::demos::validate_set`]
+/// holds a set to).
+fn same_period(a: Option<f64>, b: Option<f64>) -> bool {
+    match (a, b) {
+        (Some(x), Some(y)) => (x - y).abs() <= 0.01 * x.max(y),
+        _ => true,
+    }
+}
+
+impl<A: Part> Model<A> {
+    /// The kept demonstrations in the data's units, each at its own length (read between two
+    /// rows of its path).
+    pub(crate) fn kept_rows(&self) -> Vec<Vec<Vec<f64>>> {
+        (self.paths.iter().zip(&self.memory.lengths))
+            .map(|(path, &n)| {
+                (0..n)
+                    .map(|k| {
+                        let phase = f64::from(k) / f64::from(n.max(2) - 1);
+                        self.denormalise(&crate::condition::at_phase(path, phase))
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Whether `demos` can teach this model more: its columns, in its order, and its sample
+    /// period; what is wrong, naming the demonstration.
+    fn accepts(&self, demos: &[Demonstration]) -> Result<(), HsomError> {
+        for d in demos {
+            if d.columns != self.columns {
+                return Err(HsomError::UpdateColumns {
+                    demo: d.source.clone(),
+                    found: d.columns.clone(),
+                    expected: self.columns.clone(),
+                });
+            }
+            if !same_period(self.memory.period, median_interval(d)) {
+                return Err(HsomError::UpdatePeriod {
+                    demo: d.source.clone(),
+                    found: median_interval(d).unwrap_or(f64::NAN),
+                    expected: self.memory.period.unwrap_or(f64::NAN),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Where an update of this model starts: its maps (`levels` of them), normalisation and
+    /// counts, going on from the earlier demonstrations' share `from`.
+    fn warm(&self, levels: usize, from: f64) -> Warm<'_> {
+        Warm {
+            maps: &self.maps[..levels],
+            offset: &self.offset,
+            scale: &self.scale,
+            trained: &self.trained,
+            from,
+            seed: mixed(
+                self.config.params().seed,
+                u64::from(self.memory.updates) + 1,
+            ),
+        }
+    }
+
+    /// This model's kept paths in `to`'s normalisation, and its memory, with `new`
+    /// (normalised as `to` normalises) kept as [`keep`] keeps them and `updates` more updates
+    /// counted.
+    fn remembered<B: Part>(
+        &self,
+        to: &Model<B>,
+        new: &[Vec<Vec<f64>>],
+        updates: u32,
+    ) -> (Vec<Vec<Vec<f64>>>, Memory) {
+        let mut paths: Vec<Vec<Vec<f64>>> = (self.paths.iter())
+            .map(|p| p.iter().map(|r| to.normalise(&self.denormalise(r))).collect())
+            .collect();
+        let mut memory = self.memory.clone();
+        keep(
+            &mut paths,
+            &mut memory,
+            new.iter().map(|rows| (band_path(rows), rows.len())),
+            self.config.params().seed,
+        );
+        memory.updates += updates;
+        (paths, memory)
+    }
+}
+
+/// Named series of demonstrations and kept rows: the new ones first (`new_first`), or the
+/// kept ones first, as they were learned.
+fn series<'a>(
+    new: &'a [Demonstration],
+    kept: &'a [Vec<Vec<f64>>],
+    names: &'a [String],
+    new_first: bool,
+) -> Vec<Series<'a>> {
+    let new = new.iter().map(|d| Series {
+        source: &d.source,
+        rows: &d.rows,
+    });
+    let kept = kept.iter().zip(names).map(|(rows, source)| Series { source, rows });
+    match new_first {
+        true => new.chain(kept).collect(),
+        false => kept.chain(new).collect(),
+    }
+}
+
+/// Names for `n` kept demonstrations in messages.
+fn kept_names(label: &str, n: usize) -> Vec<String> {
+    (0..n)
+        .map(|k| format!("kept demonstration #{k} of {label}"))
+        .collect()
+}
+
+impl Hsom {
+    /// This model taught `demos` more, from the model and them alone (docs/ALGORITHM.md,
+    /// section 10); with no demonstrations, the model as it is.
+    pub fn update(&self, demos: &[Demonstration]) -> Result<Hsom, HsomError> {
+        self.update_with_progress(demos, None)
+    }
+
+    /// [`Hsom::update`], calling `progress(done, total)` about a hundred times.
+    pub fn update_with_progress(
+        &self,
+        demos: &[Demonstration],
+        progress: Option<&dyn Fn(usize, usize)>,
+    ) -> Result<Hsom, HsomError> {
+        match self {
+            Hsom::Paper(m) => m.updated(demos, progress),
+            Hsom::Events(m) => m.updated(demos, progress),
+        }
+    }
+
+    /// The kept paths and memory this model's update leaves (see [`Model::remembered`]).
+    fn remember(&mut self, paths: Vec<Vec<Vec<f64>>>, memory: Memory) {
+        match self {
+            Hsom::Paper(m) => (m.paths, m.memory) = (paths, memory),
+            Hsom::Events(m) => (m.paths, m.memory) = (paths, memory),
+        }
+    }
+
+    /// Demonstrations learned from, kept, and updates ([`Memory`]).
+    pub fn learned(&self) -> (u64, usize, u32) {
+        let (paths, memory) = match self {
+            Hsom::Paper(m) => (&m.paths, &m.memory),
+            Hsom::Events(m) => (&m.paths, &m.memory),
+        };
+        (memory.learned, paths.len(), memory.updates)
+    }
+
+    /// The sample period of the demonstrations learned from, seconds (`None`: no times).
+    pub(crate) fn set_period(&mut self, period: Option<f64>) {
+        match self {
+            Hsom::Paper(m) => m.memory.period = period,
+            Hsom::Events(m) => m.memory.period = period,
+        }
+    }
+}
+
+impl<A: Part> Model<A> {
+    /// [`Hsom::update`] of a model of one gesture.
+    fn updated(
+        &self,
+        demos: &[Demonstration],
+        progress: Option<&dyn Fn(usize, usize)>,
+    ) -> Result<Hsom, HsomError> {
+        if demos.is_empty() {
+            return Ok(A::wrap(self.clone()));
+        }
+        self.accepts(demos)?;
+        let kept = self.kept_rows();
+        let names = kept_names("the model", kept.len());
+        let all = series(demos, &kept, &names, true);
+        let learned = self.memory.learned as f64;
+        let from = learned / (learned + demos.len() as f64);
+        // the events extension fits its upper levels anew; the paper's levels go on learning
+        let levels = match A::ALGORITHM {
+            crate::config::Algorithm::Events => 1,
+            crate::config::Algorithm::Paper => self.maps.len(),
+        };
+        let warm = self.warm(levels, from);
+        let mut model = self.config.fit_from(
+            &all,
+            progress,
+            true,
+            self.columns.clone(),
+            Presentation::InOrder,
+            Some(&warm),
+        )?;
+        if let Hsom::Events(m) = &mut model {
+            m.learn_postures(all.iter().map(|s| s.rows));
+        }
+        let new: Vec<Vec<Vec<f64>>> = demos.iter().map(|d| self.normalise_rows(&d.rows)).collect();
+        let (paths, memory) = match &model {
+            Hsom::Paper(m) => self.remembered(m, &new, 1),
+            Hsom::Events(m) => self.remembered(m, &new, 1),
+        };
+        model.remember(paths, memory);
+        Ok(model)
+    }
+}
+
+impl GestureModel {
+    /// This model taught `demos` of gesture `label` more (a label it does not hold adds the
+    /// gesture), from the model and them alone; `label` `None` for a model of one unlabelled
+    /// gesture. With no demonstrations, the model as it is.
+    pub fn update(
+        &self,
+        label: Option<&str>,
+        demos: &[Demonstration],
+        progress: Option<&dyn Fn(usize, usize)>,
+    ) -> Result<GestureModel, GestureError> {
+        match label {
+            None if self.labels.is_empty() => {
+                Ok(self.branches[0].update_with_progress(demos, progress)?.into())
+            }
+            None => Err(GestureError::LabelNeeded {
+                labels: self.labels.join(", "),
+            }),
+            Some(l) => self.update_labelled(&[(l.to_string(), demos.to_vec())], progress),
+        }
+    }
+
+    /// This model taught every `(label, demonstrations)` of `sets` more, in one update (a
+    /// label it does not hold adds the gesture): the shared bottom goes on learning from the
+    /// new demonstrations and every gesture's kept ones, every gesture's upper levels and
+    /// plans are fitted again on its kept and new demonstrations, and recognition is
+    /// calibrated again on all of them. Labels must be plain, distinct words, demonstrations
+    /// of the model's columns and sample period. With no demonstrations, the model as it is.
+    pub fn update_labelled(
+        &self,
+        sets: &[(String, Vec<Demonstration>)],
+        progress: Option<&dyn Fn(usize, usize)>,
+    ) -> Result<GestureModel, GestureError> {
+        if sets.iter().all(|(_, d)| d.is_empty()) {
+            return Ok(self.clone());
+        }
+        if self.labels.is_empty() {
+            return Err(GestureError::UnlabelledUpdate);
+        }
+        let Some(first) = self.branches[0].as_events() else {
+            return Err(GestureError::NeedsEvents);
+        };
+        for (i, (label, demos)) in sets.iter().enumerate() {
+            if !is_plain_label(label) {
+                return Err(GestureError::BadLabel {
+                    label: label.clone(),
+                    source_dir: "the update".into(),
+                });
+            }
+            if sets[..i].iter().any(|(l, _)| l == label) {
+                return Err(GestureError::DuplicateLabel {
+                    label: label.clone(),
+                });
+            }
+            first.accepts(demos)?;
+        }
+        // every label after the update: the model's, then the new ones in the order given
+        let mut labels = self.labels.clone();
+        for (l, _) in sets {
+            if !labels.contains(l) {
+                labels.push(l.clone());
+            }
+        }
+        let branch = |l: &str| {
+            (self.labels.iter().position(|x| x == l))
+                .and_then(|g| self.branches[g].as_events())
+        };
+        let none: Vec<Demonstration> = Vec::new();
+        let new_of = |l: &str| {
+            sets.iter()
+                .find(|(x, _)| x == l)
+                .map_or(&none, |(_, d)| d)
+        };
+        let earlier: Vec<Vec<Vec<Vec<f64>>>> = labels
+            .iter()
+            .map(|l| branch(l).map(|b| b.kept_rows()).unwrap_or_default())
+            .collect();
+        let names: Vec<Vec<String>> = (labels.iter().zip(&earlier))
+            .map(|(l, k)| kept_names(l, k.len()))
+            .collect();
+        let per_label: Vec<Vec<Series<'_>>> = (labels.iter().enumerate())
+            .map(|(g, l)| series(new_of(l), &earlier[g], &names[g], false))
+            .collect();
+        let all: Vec<Series<'_>> = per_label.iter().flatten().copied().collect();
+        // the shared bottom sees trainingSteps per label, as when taught at once
+        let base = first.config.params().training_steps / self.labels.len().max(1);
+        let cfg = if labels.len() > 1 {
+            let mut p = first.config.params().clone();
+            p.training_steps = base.saturating_mul(labels.len());
+            p.check(first.config.source()).map_err(HsomError::from)?
+        } else {
+            first.config.clone()
+        };
+        let columns = first.columns.clone();
+        let shared = match labels.len() > self.labels.len() {
+            // a new gesture needs room on the map, which only the whole schedule's early,
+            // wide neighbourhoods make: the bottom learns again, from the seeded initial
+            // weights, from every gesture's kept and new demonstrations, as training at once
+            // on them does
+            true => cfg.fit_inner(&all, progress, true, columns, Presentation::Shuffled)?,
+            // more of known gestures: the bottom goes on from its weights over the end of the
+            // schedule, the earlier demonstrations' share of it done
+            false => {
+                let learned: u64 = (self.branches.iter()).map(|b| b.learned().0).sum();
+                let new: usize = sets.iter().map(|(_, d)| d.len()).sum();
+                let from = learned as f64 / (learned as f64 + new as f64);
+                let warm = first.warm(1, from);
+                cfg.fit_from(&all, progress, true, columns, Presentation::Shuffled, Some(&warm))?
+            }
+        };
+        let Hsom::Events(shared) = shared else {
+            return Err(GestureError::NeedsEvents);
+        };
+        let norm: Vec<Vec<Vec<Vec<f64>>>> = per_label
+            .iter()
+            .map(|s| s.iter().map(|s| shared.normalise_rows(s.rows)).collect())
+            .collect();
+        let seed = first.config.params().seed;
+        let mut branches: Vec<EventsHsom> = (norm.iter().enumerate())
+            .map(|(g, n)| shared.branch(n, true, branch_seed(seed, g, None)))
+            .collect();
+        let calibration = calibrate(&shared, &branches, &norm, true, seed);
+        for (g, (l, b)) in labels.iter().zip(&mut branches).enumerate() {
+            let fresh = &norm[g][earlier[g].len()..];
+            let (paths, memory) = match branch(l) {
+                Some(old) => old.remembered(&shared, fresh, u32::from(!fresh.is_empty())),
+                None => {
+                    let (paths, mut memory) =
+                        kept(fresh, fresh.iter().map(Vec::len), seed);
+                    memory.period = first.memory.period;
+                    (paths, memory)
+                }
+            };
+            (b.paths, b.memory) = (paths, memory);
+        }
+        Ok(GestureModel {
+            labels,
+            branches: branches
+                .into_iter()
+                .map(|b| Hsom::Events(Box::new(b)))
+                .collect(),
+            calibration,
+            scoring: self.scoring,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests;
