@@ -114,9 +114,10 @@ impl GmrModel {
 /// folds.
 /// `gestures`: a list of 2-D arrays (one gesture) or a mapping label -> list. Returns the
 /// JSON document of `cosco heldout --json` as a dict (with `condition="end"` or `"end+mid"`,
-/// the conditioned folds under `conditioned`). The GIL is released while it runs.
+/// the conditioned folds under `conditioned`; with `sittings=True`, the folds taught in two
+/// sittings under `sittings`). The GIL is released while it runs.
 #[pyfunction]
-#[pyo3(signature = (config, gestures, *, columns = None, sample_period = 0.025, height_1 = true, gmr = true, promp = true, dmp = true, in_sample = true, condition = None, far = Vec::new(), threads = 1))]
+#[pyo3(signature = (config, gestures, *, columns = None, sample_period = 0.025, height_1 = true, gmr = true, promp = true, dmp = true, in_sample = true, condition = None, far = Vec::new(), sittings = false, threads = 1))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn heldout<'py>(
     py: Python<'py>,
@@ -131,6 +132,7 @@ pub(crate) fn heldout<'py>(
     in_sample: bool,
     condition: Option<String>,
     far: Vec<f64>,
+    sittings: bool,
     threads: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
     use cosco_hsom::eval;
@@ -169,6 +171,7 @@ pub(crate) fn heldout<'py>(
             }
         },
         far: None,
+        sittings,
         threads,
     };
     let cfg = config.inner.clone();

@@ -55,6 +55,43 @@ impl GestureModel {
         })
     }
 
+    /// The model taught `demos` (2-D arrays of the model's columns) as gesture `label`, from
+    /// the model and them alone: a new model; this one is unchanged. A label the model does
+    /// not hold adds the gesture; `label` None only for a model of one unlabelled gesture.
+    /// The GIL is released while it learns.
+    #[pyo3(signature = (demos, label = None))]
+    fn update(
+        &self,
+        py: Python<'_>,
+        demos: &Bound<'_, PyAny>,
+        label: Option<String>,
+    ) -> PyResult<Self> {
+        let demos = crate::demonstrations_of(demos, Some(self.inner.columns().to_vec()))?;
+        let updated = py
+            .allow_threads(|| app::update(&self.inner, label.as_deref(), &demos, None))
+            .map_err(app_err)?;
+        Ok(GestureModel {
+            inner: updated,
+            name: "in memory".into(),
+        })
+    }
+
+    /// What each gesture was learned from: `{label: {"demonstrations": n, "kept": k,
+    /// "updates": u}}` (`{"": ...}` for a model of one unlabelled gesture).
+    #[getter]
+    fn learned<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        let unlabelled = [String::new()];
+        let labels = match self.inner.labels().is_empty() {
+            true => &unlabelled[..],
+            false => self.inner.labels(),
+        };
+        for (l, b) in labels.iter().zip(self.inner.branches()) {
+            d.set_item(l, crate::model::learned_dict(py, b)?)?;
+        }
+        Ok(d)
+    }
+
     /// Save the model (.bin binary, .txt plain text; written atomically): the bytes
     /// `cosco train` writes for the same demonstrations and configuration.
     fn save(&self, path: PathBuf) -> PyResult<()> {

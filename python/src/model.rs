@@ -197,6 +197,35 @@ impl Hsom {
         app::save_model(&self.inner, &path).map_err(app_err)
     }
 
+    /// The model taught `demos` more (2-D arrays of the model's columns), from the model and
+    /// them alone: a new model; this one is unchanged. `label` must be None (a model of one
+    /// gesture). The GIL is released while it learns.
+    #[pyo3(signature = (demos, label = None))]
+    fn update(
+        &self,
+        py: Python<'_>,
+        demos: &Bound<'_, PyAny>,
+        label: Option<String>,
+    ) -> PyResult<Self> {
+        let demos = demonstrations_of(demos, Some(self.inner.columns().to_vec()))?;
+        let model: cosco_hsom::hsom::GestureModel = self.inner.clone().into();
+        let updated = py
+            .allow_threads(|| app::update(&model, label.as_deref(), &demos, None))
+            .map_err(app_err)?;
+        Ok(Hsom {
+            inner: updated.branches()[0].clone(),
+            name: "in memory".into(),
+        })
+    }
+
+    /// What the model learned from: `{"demonstrations": n, "kept": k, "updates": u}` (the
+    /// demonstrations over its first training and every update, how many of them it keeps,
+    /// its updates).
+    #[getter]
+    fn learned<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        learned_dict(py, &self.inner)
+    }
+
     /// Reproduce the gesture from an initial posture: a 2-D array, one row per step (the first
     /// row is the initial posture). `goal` (a posture) makes it end exactly there; `via`, a
     /// list of `(phase, posture)` (phase 0 the start, 1 the end), makes it pass each posture
@@ -370,4 +399,17 @@ impl Hsom {
             self.inner.height()
         )
     }
+}
+
+/// `{"demonstrations": n, "kept": k, "updates": u}` of `model` ([`cosco_hsom::hsom::Hsom::learned`]).
+pub(crate) fn learned_dict<'py>(
+    py: Python<'py>,
+    model: &cosco_hsom::hsom::Hsom,
+) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+    let (n, kept, updates) = model.learned();
+    let d = pyo3::types::PyDict::new(py);
+    d.set_item("demonstrations", n)?;
+    d.set_item("kept", kept)?;
+    d.set_item("updates", updates)?;
+    Ok(d)
 }

@@ -56,7 +56,7 @@ pub use reproduce::{
     continue_file, parse_conditions, parse_posture, reproduce, reproduce_conditioned,
     reproduce_file, reproduce_gesture, resume, ReproduceFile,
 };
-pub use train::{train, train_files, train_gestures, update_files};
+pub use train::{train, train_files, train_gestures, update, update_files};
 
 /// Why an operation was refused. The wrapped errors name their file, field and value; the
 /// others name them here, with what is allowed.

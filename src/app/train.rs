@@ -60,6 +60,23 @@ pub fn train_gestures(
     Ok(cfg.fit_gestures(sets, progress)?)
 }
 
+/// Check `demos` as a set against `model`'s configuration, then teach them to it as gesture
+/// `label` (`None` for a model of one unlabelled gesture; a label it does not hold adds the
+/// gesture), from the model and them alone ([`GestureModel::update`]).
+pub fn update(
+    model: &GestureModel,
+    label: Option<&str>,
+    demos: &[Demonstration],
+    progress: Option<&dyn Fn(usize, usize)>,
+) -> Result<GestureModel> {
+    if demos.is_empty() {
+        return Ok(model.clone());
+    }
+    let state = model.branches()[0].config().params().state_length;
+    demos::validate_set(demos, Some(state))?;
+    Ok(model.update(label, demos, progress)?)
+}
+
 /// `cosco train --from`: check where the model goes, load the model, read the new
 /// demonstrations (a directory of CSV files for a model of one gesture, labelled directories
 /// for a model of several; resampled to `resample` Hz when given; of the model's columns),
