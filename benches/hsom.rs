@@ -135,5 +135,30 @@ fn lists_vs_levels(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, step_vs_bmu, table1, events, lists_vs_levels);
+/// Teaching a model of twenty demonstrations one more (`Hsom::update`) against training on all
+/// twenty-one (the recommended configuration; 6-D gestures of 300 samples generated here).
+fn update(c: &mut Criterion) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/nao-gestures.xml");
+    let cfg = cosco_hsom::config::load_config(&path).unwrap();
+    let demos = gestures(21, 300);
+    let twenty = cfg.fit(&demos[..20]).unwrap();
+    let mut g = c.benchmark_group("update");
+    g.sample_size(10);
+    g.bench_function("fit_21x300", |b| {
+        b.iter(|| black_box(cfg.fit(&demos).unwrap()))
+    });
+    g.bench_function("update_20x300_with_1", |b| {
+        b.iter(|| black_box(twenty.update(&demos[20..]).unwrap()))
+    });
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    step_vs_bmu,
+    table1,
+    events,
+    lists_vs_levels,
+    update
+);
 criterion_main!(benches);

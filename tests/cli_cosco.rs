@@ -560,3 +560,124 @@ fn reproduce_meets_a_goal_and_a_via_point_exactly_and_refuses_bad_ones() {
         assert!(!none.exists(), "{args:?} wrote a file");
     }
 }
+
+#[test]
+fn train_from_a_saved_model_teaches_it_more_and_refuses_bad_input_leaving_it_untouched() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    write_strokes(&d.join("first"));
+    write_strokes(&d.join("more"));
+    let xml = std::fs::read_to_string("configs/nao-gestures.xml")
+        .unwrap()
+        .replace(
+            "<stateLength>6</stateLength>",
+            "<stateLength>2</stateLength>",
+        )
+        .replace(
+            "<actionLength>6</actionLength>",
+            "<actionLength>2</actionLength>",
+        )
+        .replace(
+            "<trainingSteps>5000</trainingSteps>",
+            "<trainingSteps>1500</trainingSteps>",
+        );
+    std::fs::write(d.join("c.xml"), &xml).unwrap();
+    let model = d.join("m.bin");
+    let train = |args: &[&std::ffi::OsStr]| cosco().arg("train").args(args).assert();
+    train(&[
+        "--config".as_ref(),
+        d.join("c.xml").as_os_str(),
+        "--demos".as_ref(),
+        d.join("first").as_os_str(),
+        "--out".as_ref(),
+        model.as_os_str(),
+    ])
+    .success();
+    let before = std::fs::read(&model).unwrap();
+    let updated = d.join("u.bin");
+    train(&[
+        "--from".as_ref(),
+        model.as_os_str(),
+        "--demos".as_ref(),
+        d.join("more").as_os_str(),
+        "--out".as_ref(),
+        updated.as_os_str(),
+    ])
+    .success();
+    assert_eq!(
+        std::fs::read(&model).unwrap(),
+        before,
+        "the model updated from was written"
+    );
+    cosco()
+        .arg("inspect")
+        .arg(&updated)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains(
+            "learned from 6 demonstrations in 2 sittings",
+        ));
+    cosco()
+        .arg("inspect")
+        .arg(&model)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains(
+            "learned from 3 demonstrations in 1 sitting",
+        ));
+    // other columns: the file is named, nothing written, the model untouched
+    std::fs::create_dir_all(d.join("other")).unwrap();
+    std::fs::write(
+        d.join("other/z.csv"),
+        "y,x\n0,0\n0.5,0.2\n1,0.4\n1.5,0.1\n2,0\n",
+    )
+    .unwrap();
+    let bad = d.join("bad.bin");
+    train(&[
+        "--from".as_ref(),
+        model.as_os_str(),
+        "--demos".as_ref(),
+        d.join("other").as_os_str(),
+        "--out".as_ref(),
+        bad.as_os_str(),
+    ])
+    .failure()
+    .stderr(predicate::str::contains("z.csv").and(predicate::str::contains("columns")));
+    assert!(!bad.exists());
+    // another configuration
+    std::fs::write(
+        d.join("c2.xml"),
+        xml.replace("<seed>1</seed>", "<seed>2</seed>"),
+    )
+    .unwrap();
+    train(&[
+        "--from".as_ref(),
+        model.as_os_str(),
+        "--config".as_ref(),
+        d.join("c2.xml").as_os_str(),
+        "--demos".as_ref(),
+        d.join("more").as_os_str(),
+        "--out".as_ref(),
+        bad.as_os_str(),
+    ])
+    .failure()
+    .stderr(
+        predicate::str::contains("c2.xml").and(predicate::str::contains("not the configuration")),
+    );
+    // a model file of another format version
+    let mut old = before.clone();
+    old[8] = old[8].wrapping_sub(1);
+    std::fs::write(d.join("old.bin"), &old).unwrap();
+    train(&[
+        "--from".as_ref(),
+        d.join("old.bin").as_os_str(),
+        "--demos".as_ref(),
+        d.join("more").as_os_str(),
+        "--out".as_ref(),
+        bad.as_os_str(),
+    ])
+    .failure()
+    .stderr(predicate::str::contains("old.bin").and(predicate::str::contains("version")));
+    assert!(!bad.exists());
+    assert_eq!(std::fs::read(&model).unwrap(), before);
+}

@@ -158,7 +158,11 @@ fn gestures_taught_one_at_a_time_are_recognised_and_not_forgotten_unlike_a_retra
             let held = demos.iter().find(|d| d.source == r.demonstration).unwrap();
             let rep = alone.reproduce(Some(last), &held.rows[0]).unwrap();
             let diag = cosco_hsom::eval::diagonal(demos);
-            let d = cosco_hsom::dtw::dtw_distance(&rep.postures, &held.rows, cosco_hsom::dtw::Band::None);
+            let d = cosco_hsom::dtw::dtw_distance(
+                &rep.postures,
+                &held.rows,
+                cosco_hsom::dtw::Band::None,
+            );
             Reproduced {
                 after_last: d.unwrap().per_step() / diag,
                 ..r.clone()
@@ -167,7 +171,11 @@ fn gestures_taught_one_at_a_time_are_recognised_and_not_forgotten_unlike_a_retra
         .collect();
     let taught_labels: Vec<String> = s.taught.iter().filter(|l| *l != last).cloned().collect();
     for f in forgetting(&taught_labels, &control) {
-        assert!(!f.passes, "retrained on the new files alone, {} is not forgotten: {f:?}", f.label);
+        assert!(
+            !f.passes,
+            "retrained on the new files alone, {} is not forgotten: {f:?}",
+            f.label
+        );
     }
 }
 

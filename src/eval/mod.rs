@@ -34,8 +34,8 @@ pub use executor::{Executed, Executor, Kinematic};
 pub use far::far_target;
 pub use files::{heldout, HeldoutJob};
 pub use fold::{
-    all_but, diagonal, fold, fold_scores, run_fold, scored, Conditioning, Fitted, FoldInput,
-    sitting, FoldRuns, MethodRun, Split, Training, GMR_UNCONDITIONED, SWING_MIN_AMPLITUDE_RAD,
+    all_but, diagonal, fold, fold_scores, run_fold, scored, sitting, Conditioning, Fitted,
+    FoldInput, FoldRuns, MethodRun, Split, Training, GMR_UNCONDITIONED, SWING_MIN_AMPLITUDE_RAD,
 };
 pub use loo::{leave_one_out, read_gestures_at, Gestures, LooError, LooSettings, MIN_TAUGHT_DEMOS};
 pub use method::{peak_speed, Method, GMR_COMPONENTS};

@@ -343,7 +343,11 @@ pub fn recognition_study(
     }
     let pool = super::Pool::new(settings.threads).map_err(LooError::Pool)?;
     let one = settings.one_at_a_time;
-    let done = pool.map(&jobs, |&j| run_job(config, taught, untaught, j, one), progress);
+    let done = pool.map(
+        &jobs,
+        |&j| run_job(config, taught, untaught, j, one),
+        progress,
+    );
     let (mut model, mut control) = (Answers::default(), Answers::default());
     let mut reproduced = Vec::new();
     for (job, d) in jobs.iter().zip(done) {

@@ -48,7 +48,13 @@ pub fn study<E: Executor>(
                 in_sample: false,
                 ..plain
             };
-            Some(leave_one_out(config, gestures.clone(), &s, executor, progress)?)
+            Some(leave_one_out(
+                config,
+                gestures.clone(),
+                &s,
+                executor,
+                progress,
+            )?)
         }
     };
     let far = far
@@ -192,7 +198,10 @@ pub fn sittings_ratios(at_once: &[GestureLoo], sittings: &[GestureLoo]) -> Vec<S
     summary(sittings)
         .into_iter()
         .map(|s| {
-            let a = once.iter().find(|o| o.method == s.method).and_then(|o| o.relative_dtw);
+            let a = once
+                .iter()
+                .find(|o| o.method == s.method)
+                .and_then(|o| o.relative_dtw);
             let folds = sittings
                 .iter()
                 .filter(|g| g.gesture.contains("wave"))
@@ -227,7 +236,11 @@ fn sittings_table(at_once: &[GestureLoo], sittings: &[GestureLoo]) -> String {
             f(r.at_once),
             f(r.in_sittings),
             r.ratio.map_or("-".to_string(), |v| format!("{v:.3}")),
-            if n == 0 { "-".to_string() } else { format!("{k}/{n}") }
+            if n == 0 {
+                "-".to_string()
+            } else {
+                format!("{k}/{n}")
+            }
         ));
     }
     out

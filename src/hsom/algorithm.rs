@@ -66,7 +66,8 @@ impl HsomConfig {
         presentation: Presentation,
     ) -> Result<Hsom, HsomError> {
         let series = demo_series(demos);
-        let mut model = self.fit_inner(&series, progress, true, demo_columns(demos), presentation)?;
+        let mut model =
+            self.fit_inner(&series, progress, true, demo_columns(demos), presentation)?;
         model.set_period(demos.first().and_then(crate::demos::median_interval));
         Ok(model)
     }
@@ -340,14 +341,13 @@ impl HsomConfig {
             }
         }
         if let Some(w) = warm {
-            trained.iter_mut().zip(w.trained).for_each(|(t, old)| *t += old);
+            trained
+                .iter_mut()
+                .zip(w.trained)
+                .for_each(|(t, old)| *t += old);
         }
         let lens: Vec<f64> = series.iter().map(|s| s.rows.len() as f64).collect();
-        let (paths, memory) = kept(
-            &norm,
-            series.iter().map(|s| s.rows.len()),
-            p.seed,
-        );
+        let (paths, memory) = kept(&norm, series.iter().map(|s| s.rows.len()), p.seed);
         let model = Model {
             config: self.clone(),
             maps,

@@ -46,5 +46,5 @@ pub use model::{GestureModel, Hsom, Scoring, BAND_ROWS, KEPT_DEMONSTRATIONS};
 pub use persist::{FilePart, FORMAT_VERSION};
 pub use recognize::{Recognition, PREFIX_BLEND};
 pub use reproduction::{Reproduction, StopReason};
-pub use update::kept_demonstrations;
 pub use summary::{plans_word, LevelSummary, ModelSummary};
+pub use update::kept_demonstrations;

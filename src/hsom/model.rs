@@ -710,7 +710,9 @@ impl<A: Part> Model<A> {
         if let Some(p) = self.memory.period.filter(|p| !(p.is_finite() && *p > 0.0)) {
             return Err(format!("a sample period of {p} s: positive and finite"));
         }
-        if let Some(n) = (self.memory.lengths.iter()).find(|&&n| n < 2 || f64::from(n) > MAX_DEMO_SAMPLES) {
+        if let Some(n) =
+            (self.memory.lengths.iter()).find(|&&n| n < 2 || f64::from(n) > MAX_DEMO_SAMPLES)
+        {
             return Err(format!(
                 "a kept demonstration of {n} samples: 2 to {MAX_DEMO_SAMPLES:e}"
             ));

@@ -77,8 +77,10 @@ fn keep(
     new: impl Iterator<Item = (Vec<Vec<f64>>, usize)>,
     seed: u64,
 ) {
-    let mut slots: Vec<(Vec<Vec<f64>>, u32)> =
-        std::mem::take(paths).into_iter().zip(memory.lengths.drain(..)).collect();
+    let mut slots: Vec<(Vec<Vec<f64>>, u32)> = std::mem::take(paths)
+        .into_iter()
+        .zip(memory.lengths.drain(..))
+        .collect();
     let new = new.map(|(path, n)| (path, u32::try_from(n).unwrap_or(u32::MAX)));
     reservoir(&mut slots, &mut memory.learned, new, seed);
     (*paths, memory.lengths) = slots.into_iter().unzip();
@@ -124,10 +126,7 @@ pub fn kept_demonstrations(demos: &[Demonstration], seed: u64) -> Vec<Demonstrat
             let rows = (0..n)
                 .map(|k| crate::condition::at_phase(&path, k as f64 / (n.max(2) - 1) as f64))
                 .collect();
-            Demonstration {
-                rows,
-                ..d.clone()
-            }
+            Demonstration { rows, ..d.clone() }
         })
         .collect()
 }
@@ -210,7 +209,11 @@ impl<A: Part> Model<A> {
         updates: u32,
     ) -> (Vec<Vec<Vec<f64>>>, Memory) {
         let mut paths: Vec<Vec<Vec<f64>>> = (self.paths.iter())
-            .map(|p| p.iter().map(|r| to.normalise(&self.denormalise(r))).collect())
+            .map(|p| {
+                p.iter()
+                    .map(|r| to.normalise(&self.denormalise(r)))
+                    .collect()
+            })
             .collect();
         let mut memory = self.memory.clone();
         keep(
@@ -236,7 +239,10 @@ fn series<'a>(
         source: &d.source,
         rows: &d.rows,
     });
-    let kept = kept.iter().zip(names).map(|(rows, source)| Series { source, rows });
+    let kept = kept
+        .iter()
+        .zip(names)
+        .map(|(rows, source)| Series { source, rows });
     match new_first {
         true => new.chain(kept).collect(),
         false => kept.chain(new).collect(),
@@ -349,9 +355,9 @@ impl GestureModel {
         progress: Option<&dyn Fn(usize, usize)>,
     ) -> Result<GestureModel, GestureError> {
         match label {
-            None if self.labels.is_empty() => {
-                Ok(self.branches[0].update_with_progress(demos, progress)?.into())
-            }
+            None if self.labels.is_empty() => Ok(self.branches[0]
+                .update_with_progress(demos, progress)?
+                .into()),
             None => Err(GestureError::LabelNeeded {
                 labels: self.labels.join(", "),
             }),
@@ -401,15 +407,10 @@ impl GestureModel {
             }
         }
         let branch = |l: &str| {
-            (self.labels.iter().position(|x| x == l))
-                .and_then(|g| self.branches[g].as_events())
+            (self.labels.iter().position(|x| x == l)).and_then(|g| self.branches[g].as_events())
         };
         let none: Vec<Demonstration> = Vec::new();
-        let new_of = |l: &str| {
-            sets.iter()
-                .find(|(x, _)| x == l)
-                .map_or(&none, |(_, d)| d)
-        };
+        let new_of = |l: &str| sets.iter().find(|(x, _)| x == l).map_or(&none, |(_, d)| d);
         let earlier: Vec<Vec<Vec<Vec<f64>>>> = labels
             .iter()
             .map(|l| branch(l).map(|b| b.kept_rows()).unwrap_or_default())
@@ -444,7 +445,14 @@ impl GestureModel {
                 let new: usize = sets.iter().map(|(_, d)| d.len()).sum();
                 let from = learned as f64 / (learned as f64 + new as f64);
                 let warm = first.warm(1, from);
-                cfg.fit_from(&all, progress, true, columns, Presentation::Shuffled, Some(&warm))?
+                cfg.fit_from(
+                    &all,
+                    progress,
+                    true,
+                    columns,
+                    Presentation::Shuffled,
+                    Some(&warm),
+                )?
             }
         };
         let Hsom::Events(shared) = shared else {
@@ -464,8 +472,7 @@ impl GestureModel {
             let (paths, memory) = match branch(l) {
                 Some(old) => old.remembered(&shared, fresh, u32::from(!fresh.is_empty())),
                 None => {
-                    let (paths, mut memory) =
-                        kept(fresh, fresh.iter().map(Vec::len), seed);
+                    let (paths, mut memory) = kept(fresh, fresh.iter().map(Vec::len), seed);
                     memory.period = first.memory.period;
                     (paths, memory)
                 }

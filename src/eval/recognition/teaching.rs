@@ -80,8 +80,9 @@ fn relative_dtw(
     let rep = model
         .reproduce(Some(label), &demo.rows[0])
         .map_err(refused(what))?;
-    let d = dtw_distance(&rep.postures, &demo.rows, Band::None)
-        .map_err(|e| LooError::NoReproduction(format!("{what}: DTW against {}: {e}", demo.source)))?;
+    let d = dtw_distance(&rep.postures, &demo.rows, Band::None).map_err(|e| {
+        LooError::NoReproduction(format!("{what}: DTW against {}: {e}", demo.source))
+    })?;
     Ok(d.per_step() / diag.max(f64::MIN_POSITIVE))
 }
 
@@ -98,7 +99,10 @@ pub(super) fn fold(
     let held = &demos[i];
     let mut sets = taught.to_vec();
     sets[g].1.remove(i);
-    let what = format!("the model taught one gesture at a time without {}", held.source);
+    let what = format!(
+        "the model taught one gesture at a time without {}",
+        held.source
+    );
     let diag = diagonal(demos);
     let mut after_taught = f64::NAN;
     let last = in_turn(config, &sets, &what, |k, m| {

@@ -86,13 +86,25 @@ fn the_kept_sample_is_bounded_by_the_configuration_and_counts_what_was_learned()
         u = u.update(&demos(10 + 5 * k..15 + 5 * k, false)).unwrap();
     }
     assert_eq!(u.learned(), (25, KEPT_DEMONSTRATIONS, 3));
-    assert_eq!(size(&u), size(&m), "the kept part grew with the demonstrations");
+    assert_eq!(
+        size(&u),
+        size(&m),
+        "the kept part grew with the demonstrations"
+    );
     // kept paths are restored at their own lengths, in the data's units
     let Hsom::Events(e) = &u else { panic!() };
     let rows = e.kept_rows();
     assert_eq!(rows.len(), KEPT_DEMONSTRATIONS);
-    assert!(rows.iter().all(|r| (80..=90).contains(&r.len())), "{:?}", rows.iter().map(Vec::len).collect::<Vec<_>>());
-    assert!(rows.iter().flatten().flatten().all(|v| (-0.1..1.1).contains(v)));
+    assert!(
+        rows.iter().all(|r| (80..=90).contains(&r.len())),
+        "{:?}",
+        rows.iter().map(Vec::len).collect::<Vec<_>>()
+    );
+    assert!(rows
+        .iter()
+        .flatten()
+        .flatten()
+        .all(|v| (-0.1..1.1).contains(v)));
 }
 
 #[test]
@@ -126,11 +138,17 @@ fn an_update_refuses_other_columns_and_rates_naming_the_file() {
     let mut other = stroke(7, false);
     other.columns = vec!["y".into(), "x".into()];
     let e = m.update(&[other]).unwrap_err().to_string();
-    assert!(e.contains("stroke-7.csv") && e.contains("[\"y\", \"x\"]"), "{e}");
+    assert!(
+        e.contains("stroke-7.csv") && e.contains("[\"y\", \"x\"]"),
+        "{e}"
+    );
     let mut slow = stroke(8, false);
     slow.time = Some((0..slow.rows.len()).map(|k| k as f64 * 0.05).collect());
     let e = m.update(&[slow]).unwrap_err().to_string();
-    assert!(e.contains("stroke-8.csv") && e.contains("0.05") && e.contains("0.025"), "{e}");
+    assert!(
+        e.contains("stroke-8.csv") && e.contains("0.05") && e.contains("0.025"),
+        "{e}"
+    );
     // a model of one unlabelled gesture takes no labels
     let g: GestureModel = m.into();
     let e = g.update(Some("a"), &demos(3..4, false), None).unwrap_err();
@@ -150,9 +168,15 @@ fn a_gesture_in_two_sittings_reproduces_as_well_as_taught_at_once() {
     };
     let once = score(&cfg.fit(&all).unwrap());
     let sittings = score(&cfg.fit(&all[..3]).unwrap().update(&all[3..]).unwrap());
-    assert!(sittings <= 1.05 * once, "in sittings {sittings}, at once {once}");
+    assert!(
+        sittings <= 1.05 * once,
+        "in sittings {sittings}, at once {once}"
+    );
     // the negative control: an update that is a training from scratch on another gesture's
     // files alone reproduces that gesture instead
     let other = score(&cfg.fit(&demos(0..3, true)).unwrap());
-    assert!(other > 1.05 * once, "another gesture {other}, at once {once}");
+    assert!(
+        other > 1.05 * once,
+        "another gesture {other}, at once {once}"
+    );
 }
