@@ -37,7 +37,7 @@ run settings $ex/heldout --seeds 11-15 --config configs/ablations/change-ratio-1
   --json "$out/settings.json"
 run simulate $bin/simulate --out "$out/simulate"
 run multi $ex/multi_heldout --seeds 11-15 --json "$out/multi.json"
-run lasa $bin/cosco heldout --demos "$out/lasa" --state-length-from-data --condition end+mid --json "$out/lasa.json"
+run lasa $bin/cosco heldout --demos "$out/lasa" --state-length-from-data --condition end+mid --sittings --json "$out/lasa.json"
 # The same drawings with their own times, resampled to 40 Hz (docs/EXPORT.md).
 run lasa_raw $bin/cosco heldout --demos "$out/lasa-raw" --state-length-from-data --resample 40 --json "$out/lasa_raw.json"
 for seed in 11 12 13 14 15; do
@@ -47,21 +47,45 @@ for seed in 11 12 13 14 15; do
   done
 done
 run nao_curves $bin/cosco heldout --demos "$out/nao-curves" --condition end+mid --far 2 --far 4 --json "$out/nao_curves.json"
+# Teaching more after training, on Nao seeds used nowhere else (21-25): each set taught in two
+# sittings; the four gestures of each seed taught one at a time, and each gesture left untaught
+# in turn (the other three taught one at a time) for "unknown".
+for seed in 21 22 23 24 25; do
+  [ -d "$out/nao-demos/$seed" ] || $bin/cosco demos --gesture all --count 4 --seed $seed --out "$out/nao-demos/$seed" > /dev/null
+  for g in "$out/nao-demos/$seed"/*/; do
+    mkdir -p "$out/nao-sittings"; ln -sfn "$(cd "$g" && pwd)" "$out/nao-sittings/$(basename "$g")-$seed"
+  done
+done
+run nao_sittings $bin/cosco heldout --demos "$out/nao-sittings" --sittings --no-in-sample --json "$out/nao_sittings.json"
+nao_gestures="reach-point reading-watch salute wave"
+for seed in 21 22 23 24 25; do
+  run "teach_nao_$seed" $bin/cosco heldout --recognition --one-at-a-time --no-control \
+    --taught $(for g in $nao_gestures; do printf '%s ' "$out/nao-demos/$seed/$g"; done) --json "$out/teach_nao_$seed.json"
+  for left in $nao_gestures; do
+    run "teach_nao_${seed}_without_$left" $bin/cosco heldout --recognition --one-at-a-time --no-control \
+      --taught $(for g in $nao_gestures; do [ "$g" = "$left" ] || printf '%s ' "$out/nao-demos/$seed/$g"; done) \
+      --untaught "$out/nao-demos/$seed/$left" --json "$out/teach_nao_${seed}_without_$left.json"
+  done
+done
 # Recognition held out on LASA: seven shapes taught together, every other shape untaught;
 # groups not used to choose the score or the unknown threshold (docs/ALGORITHM.md, 4).
-lasa_group() { # lasa_group NAME SHAPE...: the shapes taught, the others untaught
+lasa_group() { # lasa_group NAME SHAPE... [-- OPTION...]: the shapes taught, the others untaught
   local name=$1 d s; shift
+  local shapes=() options=()
+  while [ $# -gt 0 ] && [ "$1" != "--" ]; do shapes+=("$1"); shift; done
+  [ "${1:-}" = "--" ] && { shift; options=("$@"); }
   local taught=() untaught=()
   for d in "$out"/lasa/*; do
     s=$(basename "$d")
-    if printf '%s\n' "$@" | grep -qx -- "$s"; then taught+=("$d"); else untaught+=("$d"); fi
+    if printf '%s\n' "${shapes[@]}" | grep -qx -- "$s"; then taught+=("$d"); else untaught+=("$d"); fi
   done
   SECONDS=0
-  run "$name" $bin/cosco heldout --recognition --taught "${taught[@]}" --untaught "${untaught[@]}" \
+  run "$name" $bin/cosco heldout --recognition "${options[@]}" --taught "${taught[@]}" --untaught "${untaught[@]}" \
     --state-length-from-data --json "$out/$name.json"
   echo "$SECONDS" > "$out/$name.time"
 }
 lasa_group recognition_a Multi_Models_3 Multi_Models_4 NShape PShape RShape Saeghe Sharpc
+lasa_group teach_lasa Multi_Models_3 Multi_Models_4 NShape PShape RShape Saeghe Sharpc -- --one-at-a-time --no-control
 lasa_group recognition_b Sine Snake Spoon Sshape Trapezoid WShape Worm
 run families $ex/families --seeds 1-6
 run closed_loop $ex/closed_loop --seeds 11-15

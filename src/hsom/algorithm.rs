@@ -272,7 +272,7 @@ impl HsomConfig {
         let events = p.kind() == crate::config::Algorithm::Events;
         // the events extension trains the upper levels afterwards, so only the bottom's
         // samples are drawn (the paper's levels learn from the sequence as it is presented)
-        let shuffled = events && (presentation == Presentation::Shuffled || warm.is_some());
+        let shuffled = events && presentation == Presentation::Shuffled;
         let samples: usize = norm.iter().map(|r| r.len() - 1).sum();
         for s in 1..=total as u64 {
             if shuffled {

@@ -5,11 +5,14 @@
 //! A model keeps at most [`KEPT_DEMONSTRATIONS`] of the demonstrations of each gesture it
 //! learned from, a uniform sample of them all (reservoir sampling, seeded), normalised and
 //! resampled to [`BAND_ROWS`] rows with each one's length ([`Memory`]). An update:
-//! 1. goes on training the bottom map from its weights, on samples drawn from the new
-//!    demonstrations and the kept ones of every gesture (rehearsal), over the end of its
-//!    schedule: the share of the steps and the rates that the new demonstrations' share of
-//!    all learned from would have had (a model of the paper's algorithm goes on training
-//!    every level, in order, the new demonstrations first);
+//! 1. trains the bottom map on the new demonstrations and the kept ones (rehearsal), as
+//!    training at once presents them (one gesture: in order, the new ones first; several:
+//!    drawn at random from every gesture's). More of known gestures: it goes on from its
+//!    weights over the end of its schedule, the share of the steps and the rates that the new
+//!    demonstrations' share of all learned from would have had (a model of the paper's
+//!    algorithm goes on training every level so). A new gesture: the whole schedule from the
+//!    seeded initial weights, as training at once on the kept and new demonstrations does,
+//!    since the map must make room for postures it never saw;
 //! 2. fits every gesture's upper levels and plans again on its kept and new demonstrations
 //!    (the bottom moved under them), and recognition's calibration on all of them;
 //! 3. keeps the sample of demonstrations up to date.
