@@ -31,6 +31,7 @@ fn study(conditioning: Conditioning) -> GestureLoo {
         in_sample: false,
         conditioning,
         far: None,
+        sittings: false,
         threads: 2,
     };
     let demos = handwriting(6, 21);
