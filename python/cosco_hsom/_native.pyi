@@ -61,6 +61,12 @@ class Hsom:
         gestures is refused (GestureModel.load)."""
     def save(self, path: _Path) -> None:
         """Save the model (.bin binary, .txt plain text; written atomically)."""
+    def update(self, demos: Sequence[_Array2], label: Optional[str] = None) -> "Hsom":
+        """The model taught `demos` more, from the model and them alone: a new model (this one
+        is unchanged); `label` must be None."""
+    @property
+    def learned(self) -> Dict[str, int]:
+        """`{"demonstrations": n, "kept": k, "updates": u}`: what the model learned from."""
     @overload
     def reproduce(
         self,
@@ -121,6 +127,12 @@ class GestureModel:
         as one unlabelled gesture)."""
     def save(self, path: _Path) -> None:
         """Save the model (.bin or .txt, atomically): the bytes `cosco train` writes."""
+    def update(self, demos: Sequence[_Array2], label: Optional[str] = None) -> "GestureModel":
+        """The model taught `demos` as gesture `label` (a new label adds the gesture), from the
+        model and them alone: a new model (this one is unchanged)."""
+    @property
+    def learned(self) -> Dict[str, Dict[str, int]]:
+        """Per label, `{"demonstrations": n, "kept": k, "updates": u}`."""
     def reproduce(self, label: Optional[str], initial: npt.ArrayLike) -> np.ndarray:
         """Reproduce gesture `label` from an initial posture: one row per step, the first the
         initial posture. None only for a single-gesture model."""
@@ -200,6 +212,7 @@ def heldout(
     in_sample: bool = True,
     condition: Optional[Literal["end", "end+mid"]] = None,
     far: Sequence[float] = (),
+    sittings: bool = False,
     threads: int = 1,
 ) -> Dict[str, Any]:
     """Leave-one-out (``cosco heldout``): the JSON document of ``--json`` as a dict."""

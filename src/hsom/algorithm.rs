@@ -14,9 +14,9 @@ use super::followers::{followers_table, fraction, most_frequent};
 use super::inputs::{
     bmu_known, check_series, demo_series, input_dim, level_buffers, node_means, spread, Series,
 };
+use super::kept::{kept, Warm};
 use super::memory::{Memory, Stm};
 use super::model::{EventsHsom, EventsModel, Hsom, Model, PaperModel, Part, MAX_NORMALISED};
-use super::update::{kept, Warm};
 
 fn demo_columns(demos: &[Demonstration]) -> Vec<String> {
     demos.first().map(|d| d.columns.clone()).unwrap_or_default()

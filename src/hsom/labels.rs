@@ -188,7 +188,7 @@ impl EventsHsom {
         let lens: Vec<f64> = norm.iter().map(|d| d.len() as f64).collect();
         b.demo_len = spread(&lens);
         let period = b.memory.period;
-        (b.paths, b.memory) = super::update::kept(norm, norm.iter().map(Vec::len), seed);
+        (b.paths, b.memory) = super::kept::kept(norm, norm.iter().map(Vec::len), seed);
         b.memory.period = period;
         b.replay(norm);
         let mut rng = ChaCha8Rng::seed_from_u64(seed);

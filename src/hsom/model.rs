@@ -16,6 +16,7 @@ use crate::som::SelfOrganizingMap;
 use super::errors::HsomError;
 use super::followers::FOLLOWERS;
 use super::inputs::input_dim;
+use super::kept::{Memory, BAND_ROWS, KEPT_DEMONSTRATIONS};
 use super::reproduction::Reproduction;
 
 /// A trained CoSCo-HSOM: a model of the paper's algorithm or of the events extension, each
@@ -554,38 +555,6 @@ pub struct Shape {
 
 const ACCURACY: &str = "an accuracy outside [0, 1]";
 const POSITION: &str = "a position negative or non-finite (at most 1e8)";
-/// What a model learned from, beside its kept paths ([`Model::paths`]).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Memory {
-    /// Demonstrations learned from, over the first training and every update.
-    pub(crate) learned: u64,
-    /// Updates since the first training ([`Hsom::update`]).
-    pub(crate) updates: u32,
-    /// Per kept path, the samples of the demonstration it was made from: an update restores
-    /// each kept demonstration to its own length.
-    pub(crate) lengths: Vec<u32>,
-    /// The demonstrations' sample period, seconds (`None`: recorded without times); an
-    /// update takes demonstrations of the same.
-    pub(crate) period: Option<f64>,
-}
-
-/// Most demonstrations a model keeps per gesture ([`Model::paths`]): its size is bounded by
-/// the configuration, whatever the number of demonstrations learned from; an update learns
-/// from at most this many earlier demonstrations beside the new ones, so that its cost does
-/// not grow with them (docs/ALGORITHM.md, section 10; docs/BENCHMARKS.md).
-pub const KEPT_DEMONSTRATIONS: usize = 6;
-
-/// The rows of each training path a model keeps ([`Model::paths`]): however long the
-/// demonstrations, the model's size does not depend on it.
-pub const BAND_ROWS: usize = 200;
-
-/// `rows` linearly resampled to [`BAND_ROWS`] rows (evenly in phase, read between two rows).
-pub(crate) fn band_path(rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
-    (0..BAND_ROWS)
-        .map(|k| crate::condition::at_phase(rows, k as f64 / (BAND_ROWS - 1) as f64))
-        .collect()
-}
-
 const NORMALISED: &str =
     "a normalised value beyond 1e100 or non-finite (training refuses data beyond 1e100 once normalised)";
 

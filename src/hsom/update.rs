@@ -2,9 +2,9 @@
 //! gesture it knows, or a new labelled gesture, from the model and the new demonstrations
 //! alone.
 //!
-//! A model keeps at most [`KEPT_DEMONSTRATIONS`] of the demonstrations of each gesture it
+//! A model keeps at most [`KEPT_DEMONSTRATIONS`](super::KEPT_DEMONSTRATIONS) of the demonstrations of each gesture it
 //! learned from, a uniform sample of them all (reservoir sampling, seeded), normalised and
-//! resampled to [`BAND_ROWS`] rows with each one's length ([`Memory`]). An update:
+//! resampled to [`BAND_ROWS`](super::BAND_ROWS) rows with each one's length ([`Memory`]). An update:
 //! 1. trains the bottom map on the new demonstrations and the kept ones (rehearsal), as
 //!    training at once presents them (one gesture: in order, the new ones first; several:
 //!    drawn at random from every gesture's). More of known gestures: it goes on from its
@@ -18,126 +18,18 @@
 //! 3. keeps the sample of demonstrations up to date.
 //!
 //! Its cost is bounded by the configuration: whatever the number of demonstrations learned
-//! from, it learns from at most [`KEPT_DEMONSTRATIONS`] earlier ones per gesture.
-
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
+//! from, it learns from at most [`KEPT_DEMONSTRATIONS`](super::KEPT_DEMONSTRATIONS) earlier ones per gesture.
 
 use crate::demos::{median_interval, Demonstration};
-use crate::som::SelfOrganizingMap;
 
 use super::algorithm::Presentation;
 use super::errors::{GestureError, HsomError};
 use super::inputs::Series;
+use super::kept::{band_path, Memory};
+use super::kept::{keep, kept, mixed, Warm};
 use super::labels::is_plain_label;
-use super::model::{
-    band_path, EventsHsom, GestureModel, Hsom, Memory, Model, Part, KEPT_DEMONSTRATIONS,
-};
+use super::model::{EventsHsom, GestureModel, Hsom, Model, Part};
 use super::recognize::{branch_seed, calibrate};
-
-/// Where an update's training starts ([`crate::config::HsomConfig::fit_from`]): a trained
-/// model's maps (its bottom alone for the events extension, whose upper levels are fitted
-/// anew), its normalisation and training counts, the point of the schedule to go on from and
-/// the update's seed.
-pub(crate) struct Warm<'a> {
-    pub(crate) maps: &'a [SelfOrganizingMap],
-    pub(crate) offset: &'a [f64],
-    pub(crate) scale: &'a [f64],
-    pub(crate) trained: &'a [u64],
-    /// The share of the schedule already done: the earlier demonstrations' share of all.
-    pub(crate) from: f64,
-    pub(crate) seed: u64,
-}
-
-/// The paths kept of training demonstrations `norm` (normalised, of lengths `lens`), and
-/// what the model learned from: [`KEPT_DEMONSTRATIONS`] of them at most, drawn uniformly
-/// (from `seed`).
-pub(crate) fn kept(
-    norm: &[Vec<Vec<f64>>],
-    lens: impl Iterator<Item = usize>,
-    seed: u64,
-) -> (Vec<Vec<Vec<f64>>>, Memory) {
-    let mut paths = Vec::new();
-    let mut memory = Memory {
-        learned: 0,
-        updates: 0,
-        lengths: Vec::new(),
-        period: None,
-    };
-    keep(
-        &mut paths,
-        &mut memory,
-        norm.iter().zip(lens).map(|(rows, n)| (band_path(rows), n)),
-        seed,
-    );
-    (paths, memory)
-}
-
-/// Reservoir sampling (Vitter's algorithm R) of the kept paths: see [`reservoir`].
-fn keep(
-    paths: &mut Vec<Vec<Vec<f64>>>,
-    memory: &mut Memory,
-    new: impl Iterator<Item = (Vec<Vec<f64>>, usize)>,
-    seed: u64,
-) {
-    let mut slots: Vec<(Vec<Vec<f64>>, u32)> = std::mem::take(paths)
-        .into_iter()
-        .zip(memory.lengths.drain(..))
-        .collect();
-    let new = new.map(|(path, n)| (path, u32::try_from(n).unwrap_or(u32::MAX)));
-    reservoir(&mut slots, &mut memory.learned, new, seed);
-    (*paths, memory.lengths) = slots.into_iter().unzip();
-}
-
-/// Reservoir sampling (Vitter's algorithm R): each new item is kept while fewer than
-/// [`KEPT_DEMONSTRATIONS`] are, and afterwards replaces a kept one with probability
-/// `KEPT_DEMONSTRATIONS / (items seen)`, so that the kept items are a uniform sample of every
-/// item seen (`seen` counts them). The draws come from `seed` and the count seen before.
-fn reservoir<T>(slots: &mut Vec<T>, seen: &mut u64, new: impl Iterator<Item = T>, seed: u64) {
-    let mut rng = ChaCha8Rng::seed_from_u64(mixed(seed, *seen));
-    for item in new {
-        if slots.len() < KEPT_DEMONSTRATIONS {
-            slots.push(item);
-        } else if let Ok(r) = usize::try_from(rng.gen_range(0..=*seen)) {
-            if r < KEPT_DEMONSTRATIONS {
-                slots[r] = item;
-            }
-        }
-        *seen += 1;
-    }
-}
-
-/// Which of `n` demonstrations a model trained on them with seed `seed` keeps, in the order
-/// kept ([`reservoir`]).
-pub(crate) fn kept_indices(n: usize, seed: u64) -> Vec<usize> {
-    let mut slots = Vec::new();
-    reservoir(&mut slots, &mut 0, 0..n, seed);
-    slots
-}
-
-/// What a model trained on `demos` with seed `seed` keeps of them, as demonstrations: the
-/// same sample ([`KEPT_DEMONSTRATIONS`] at most), each read through its [`BAND_ROWS`]-row
-/// path back at its own length and sample times. What GMM/GMR, ProMP and the DMP refit on
-/// beside new demonstrations when they are updated (docs/ALGORITHM.md, section 10).
-pub fn kept_demonstrations(demos: &[Demonstration], seed: u64) -> Vec<Demonstration> {
-    kept_indices(demos.len(), seed)
-        .into_iter()
-        .map(|i| {
-            let d = &demos[i];
-            let path = band_path(&d.rows);
-            let n = d.rows.len();
-            let rows = (0..n)
-                .map(|k| crate::condition::at_phase(&path, k as f64 / (n.max(2) - 1) as f64))
-                .collect();
-            Demonstration { rows, ..d.clone() }
-        })
-        .collect()
-}
-
-/// `seed` mixed with `k` (an update's number, a count learned): a seed of its own.
-fn mixed(seed: u64, k: u64) -> u64 {
-    seed ^ 0x9e37_79b9_7f4a_7c15u64.wrapping_mul(k.wrapping_add(1))
-}
 
 /// The sample period two recordings must share (within 1 %, as [`crate::demos::validate_set`]
 /// holds a set to).

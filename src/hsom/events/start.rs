@@ -102,7 +102,7 @@ impl StartKnots {
         // the width is fitted on every demonstration; the model keeps the placements of the
         // sample of them it keeps (crate::hsom::KEPT_DEMONSTRATIONS): its size never grows
         // with their number
-        let kept = crate::hsom::update::kept_indices(starts.len(), seed);
+        let kept = crate::hsom::kept::kept_indices(starts.len(), seed);
         let pick = |v: Vec<Vec<f64>>| {
             let mut v: Vec<Option<Vec<f64>>> = v.into_iter().map(Some).collect();
             kept.iter().filter_map(|&i| v[i].take()).collect()

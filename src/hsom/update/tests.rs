@@ -5,6 +5,9 @@ use rand::{Rng, SeedableRng};
 
 use super::*;
 use crate::config::HsomConfig;
+use crate::hsom::kept::reservoir;
+use crate::hsom::KEPT_DEMONSTRATIONS;
+use rand_chacha::ChaCha8Rng;
 
 /// A 2-D stroke out and back, `seed` varying its holds and noise.
 fn stroke(seed: u64, flip: bool) -> Demonstration {

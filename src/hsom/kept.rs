@@ -1,0 +1,155 @@
+//! What a model keeps of the demonstrations it learned from (docs/ALGORITHM.md, section 10):
+//! at most [`KEPT_DEMONSTRATIONS`] per gesture, a uniform sample of them all drawn by
+//! reservoir sampling from the configuration's seed, each normalised and resampled to
+//! [`BAND_ROWS`](super::BAND_ROWS) rows with its own length ([`Memory`]); and where an update's training starts
+//! ([`Warm`]). The confidence band is measured from them, and an update rehearses them
+//! (`update.rs`).
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use crate::demos::Demonstration;
+use crate::som::SelfOrganizingMap;
+
+use serde::{Deserialize, Serialize};
+
+/// What a model learned from, beside its kept paths ([`Model::paths`](super::model::Model)).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Memory {
+    /// Demonstrations learned from, over the first training and every update.
+    pub(crate) learned: u64,
+    /// Updates since the first training ([`Hsom::update`](super::Hsom::update)).
+    pub(crate) updates: u32,
+    /// Per kept path, the samples of the demonstration it was made from: an update restores
+    /// each kept demonstration to its own length.
+    pub(crate) lengths: Vec<u32>,
+    /// The demonstrations' sample period, seconds (`None`: recorded without times); an
+    /// update takes demonstrations of the same.
+    pub(crate) period: Option<f64>,
+}
+
+/// Most demonstrations a model keeps per gesture ([`Model::paths`](super::model::Model)): its size is bounded by
+/// the configuration, whatever the number of demonstrations learned from; an update learns
+/// from at most this many earlier demonstrations beside the new ones, so that its cost does
+/// not grow with them (docs/ALGORITHM.md, section 10; docs/BENCHMARKS.md).
+pub const KEPT_DEMONSTRATIONS: usize = 6;
+
+/// The rows of each training path a model keeps ([`Model::paths`](super::model::Model)): however long the
+/// demonstrations, the model's size does not depend on it.
+pub const BAND_ROWS: usize = 200;
+
+/// `rows` linearly resampled to [`BAND_ROWS`] rows (evenly in phase, read between two rows).
+pub(crate) fn band_path(rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    (0..BAND_ROWS)
+        .map(|k| crate::condition::at_phase(rows, k as f64 / (BAND_ROWS - 1) as f64))
+        .collect()
+}
+
+/// Where an update's training starts ([`crate::config::HsomConfig::fit_from`]): a trained
+/// model's maps (its bottom alone for the events extension, whose upper levels are fitted
+/// anew), its normalisation and training counts, the point of the schedule to go on from and
+/// the update's seed.
+pub(crate) struct Warm<'a> {
+    pub(crate) maps: &'a [SelfOrganizingMap],
+    pub(crate) offset: &'a [f64],
+    pub(crate) scale: &'a [f64],
+    pub(crate) trained: &'a [u64],
+    /// The share of the schedule already done: the earlier demonstrations' share of all.
+    pub(crate) from: f64,
+    pub(crate) seed: u64,
+}
+
+/// The paths kept of training demonstrations `norm` (normalised, of lengths `lens`), and
+/// what the model learned from: [`KEPT_DEMONSTRATIONS`] of them at most, drawn uniformly
+/// (from `seed`).
+pub(crate) fn kept(
+    norm: &[Vec<Vec<f64>>],
+    lens: impl Iterator<Item = usize>,
+    seed: u64,
+) -> (Vec<Vec<Vec<f64>>>, Memory) {
+    let mut paths = Vec::new();
+    let mut memory = Memory {
+        learned: 0,
+        updates: 0,
+        lengths: Vec::new(),
+        period: None,
+    };
+    keep(
+        &mut paths,
+        &mut memory,
+        norm.iter().zip(lens).map(|(rows, n)| (band_path(rows), n)),
+        seed,
+    );
+    (paths, memory)
+}
+
+/// Reservoir sampling (Vitter's algorithm R) of the kept paths: see [`reservoir`].
+pub(crate) fn keep(
+    paths: &mut Vec<Vec<Vec<f64>>>,
+    memory: &mut Memory,
+    new: impl Iterator<Item = (Vec<Vec<f64>>, usize)>,
+    seed: u64,
+) {
+    let mut slots: Vec<(Vec<Vec<f64>>, u32)> = std::mem::take(paths)
+        .into_iter()
+        .zip(memory.lengths.drain(..))
+        .collect();
+    let new = new.map(|(path, n)| (path, u32::try_from(n).unwrap_or(u32::MAX)));
+    reservoir(&mut slots, &mut memory.learned, new, seed);
+    (*paths, memory.lengths) = slots.into_iter().unzip();
+}
+
+/// Reservoir sampling (Vitter's algorithm R): each new item is kept while fewer than
+/// [`KEPT_DEMONSTRATIONS`] are, and afterwards replaces a kept one with probability
+/// `KEPT_DEMONSTRATIONS / (items seen)`, so that the kept items are a uniform sample of every
+/// item seen (`seen` counts them). The draws come from `seed` and the count seen before.
+pub(crate) fn reservoir<T>(
+    slots: &mut Vec<T>,
+    seen: &mut u64,
+    new: impl Iterator<Item = T>,
+    seed: u64,
+) {
+    let mut rng = ChaCha8Rng::seed_from_u64(mixed(seed, *seen));
+    for item in new {
+        if slots.len() < KEPT_DEMONSTRATIONS {
+            slots.push(item);
+        } else if let Ok(r) = usize::try_from(rng.gen_range(0..=*seen)) {
+            if r < KEPT_DEMONSTRATIONS {
+                slots[r] = item;
+            }
+        }
+        *seen += 1;
+    }
+}
+
+/// Which of `n` demonstrations a model trained on them with seed `seed` keeps, in the order
+/// kept ([`reservoir`]).
+pub(crate) fn kept_indices(n: usize, seed: u64) -> Vec<usize> {
+    let mut slots = Vec::new();
+    reservoir(&mut slots, &mut 0, 0..n, seed);
+    slots
+}
+
+/// What a model trained on `demos` with seed `seed` keeps of them, as demonstrations: the
+/// same sample ([`KEPT_DEMONSTRATIONS`] at most), each read through its [`BAND_ROWS`](super::BAND_ROWS)-row
+/// path back at its own length and sample times. What GMM/GMR, ProMP and the DMP refit on
+/// beside new demonstrations when they are updated (docs/ALGORITHM.md, section 10).
+pub fn kept_demonstrations(demos: &[Demonstration], seed: u64) -> Vec<Demonstration> {
+    kept_indices(demos.len(), seed)
+        .into_iter()
+        .map(|i| {
+            let d = &demos[i];
+            let path = band_path(&d.rows);
+            let n = d.rows.len();
+            let rows = (0..n)
+                .map(|k| crate::condition::at_phase(&path, k as f64 / (n.max(2) - 1) as f64))
+                .collect();
+            Demonstration { rows, ..d.clone() }
+        })
+        .collect()
+}
+
+/// `seed` mixed with `k` (an update's number, a count learned): a seed of its own.
+pub(crate) fn mixed(seed: u64, k: u64) -> u64 {
+    seed ^ 0x9e37_79b9_7f4a_7c15u64.wrapping_mul(k.wrapping_add(1))
+}
