@@ -185,12 +185,9 @@ fn write_strokes(dir: &std::path::Path) {
     }
 }
 
-#[test]
-fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
-    let dir = tempfile::tempdir().unwrap();
-    let d = dir.path();
-    write_strokes(&d.join("demos"));
-    let xml = std::fs::read_to_string("configs/nao-gestures.xml")
+/// The recommended configuration for the 2-D strokes of [`write_strokes`], quick to train.
+fn strokes_config() -> String {
+    std::fs::read_to_string("configs/nao-gestures.xml")
         .unwrap()
         .replace(
             "<stateLength>6</stateLength>",
@@ -203,8 +200,15 @@ fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
         .replace(
             "<trainingSteps>5000</trainingSteps>",
             "<trainingSteps>1500</trainingSteps>",
-        );
-    std::fs::write(d.join("c.xml"), xml).unwrap();
+        )
+}
+
+#[test]
+fn train_reproduce_inspect_evaluate_2d_data_in_either_build() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    write_strokes(&d.join("demos"));
+    std::fs::write(d.join("c.xml"), strokes_config()).unwrap();
     let model = d.join("m.txt");
     cosco()
         .arg("train")
@@ -567,20 +571,7 @@ fn train_from_a_saved_model_teaches_it_more_and_refuses_bad_input_leaving_it_unt
     let d = dir.path();
     write_strokes(&d.join("first"));
     write_strokes(&d.join("more"));
-    let xml = std::fs::read_to_string("configs/nao-gestures.xml")
-        .unwrap()
-        .replace(
-            "<stateLength>6</stateLength>",
-            "<stateLength>2</stateLength>",
-        )
-        .replace(
-            "<actionLength>6</actionLength>",
-            "<actionLength>2</actionLength>",
-        )
-        .replace(
-            "<trainingSteps>5000</trainingSteps>",
-            "<trainingSteps>1500</trainingSteps>",
-        );
+    let xml = strokes_config();
     std::fs::write(d.join("c.xml"), &xml).unwrap();
     let model = d.join("m.bin");
     let train = |args: &[&std::ffi::OsStr]| cosco().arg("train").args(args).assert();

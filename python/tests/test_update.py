@@ -65,3 +65,18 @@ def test_a_new_gesture_is_added_without_forgetting_the_first():
         assert two.recognize(held[label][0]).label == label
     with pytest.raises(ValueError, match="several gestures"):
         two.update(taught[a])
+
+
+def test_heldout_in_two_sittings_beside_at_once(demos):
+    cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
+    report = cosco_hsom.heldout(
+        cfg, demos[:5], columns=["x", "y"], height_1=False, gmr=False, in_sample=False, sittings=True
+    )
+    ratios = {r["method"]: r for r in report["sittings"]["against_at_once"]}
+    h = ratios["hierarchy"]
+    assert h["at_once"] > 0 and h["in_sittings"] > 0
+    assert h["ratio"] == pytest.approx(h["in_sittings"] / h["at_once"])
+    # ProMP refits on what a model keeps of the first half and the rest: with every
+    # demonstration kept, the same fit
+    assert ratios["promp"]["ratio"] == pytest.approx(1.0, abs=0.02)
+    assert "sittings" not in cosco_hsom.heldout(cfg, demos[:4], columns=["x", "y"], in_sample=False)

@@ -181,13 +181,13 @@ pub fn inspect(path: &Path) -> Result<String> {
     let taught = |b: &crate::hsom::Hsom| {
         let (learned, kept, updates) = b.learned();
         format!(
-            "learned from {learned} demonstrations in {} (the first training and {updates} \
-             update{}); {kept} kept for updates and the band (at most {})\n",
+            "learned from {learned} demonstrations in {} (the training or update that \
+             taught it, then every update that brought it more); {kept} kept for updates and \
+             the band (at most {})\n",
             match updates {
                 0 => "1 sitting".to_string(),
                 u => format!("{} sittings", u + 1),
             },
-            if updates == 1 { "" } else { "s" },
             crate::hsom::KEPT_DEMONSTRATIONS
         )
     };

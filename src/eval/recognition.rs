@@ -214,6 +214,20 @@ fn train(
     })
 }
 
+/// `model`'s answer to every untaught demonstration.
+fn untaught_answers(
+    model: &GestureModel,
+    untaught: &[(String, Vec<Demonstration>)],
+    what: &str,
+) -> Result<Done, LooError> {
+    untaught
+        .iter()
+        .flat_map(|(l, ds)| ds.iter().map(move |d| (l, d)))
+        .map(|(l, d)| answer(model, l, d, what))
+        .collect::<Result<_, _>>()
+        .map(Done::All)
+}
+
 fn run_job(
     config: &HsomConfig,
     taught: &[(String, Vec<Demonstration>)],
@@ -234,12 +248,7 @@ fn run_job(
         Job::All { learn: true } if one_at_a_time => {
             let what = "the model taught every taught gesture one at a time";
             let m = teaching::in_turn(config, taught, what, |_, _| Ok(()))?;
-            untaught
-                .iter()
-                .flat_map(|(l, ds)| ds.iter().map(move |d| (l, d)))
-                .map(|(l, d)| answer(&m, l, d, what))
-                .collect::<Result<_, _>>()
-                .map(Done::All)
+            untaught_answers(&m, untaught, what)
         }
         Job::Fold { g, i, learn } => {
             let (label, demos) = &taught[g];
@@ -252,12 +261,7 @@ fn run_job(
         Job::All { learn } => {
             let what = "the model trained on every taught demonstration";
             let m = train(config, taught, learn, what)?;
-            untaught
-                .iter()
-                .flat_map(|(l, ds)| ds.iter().map(move |d| (l, d)))
-                .map(|(l, d)| answer(&m, l, d, what))
-                .collect::<Result<_, _>>()
-                .map(Done::All)
+            untaught_answers(&m, untaught, what)
         }
     }
 }

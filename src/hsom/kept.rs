@@ -18,7 +18,8 @@ use serde::{Deserialize, Serialize};
 pub struct Memory {
     /// Demonstrations learned from, over the first training and every update.
     pub(crate) learned: u64,
-    /// Updates since the first training ([`Hsom::update`](super::Hsom::update)).
+    /// Updates that brought this gesture demonstrations after the training or update that
+    /// taught it ([`Hsom::update`](super::Hsom::update)).
     pub(crate) updates: u32,
     /// Per kept path, the samples of the demonstration it was made from: an update restores
     /// each kept demonstration to its own length.
