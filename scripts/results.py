@@ -178,7 +178,7 @@ def beyond_table(out):
     return "\n".join(lines)
 
 
-NAMES = {**BEYOND_NAMES, "height_1": "height 1", "replay": "replay (no model)"}
+NAMES = {**BEYOND_NAMES, "height1": "height 1", "replay": "replay (no model)"}
 
 
 def sittings_table(out):
@@ -200,11 +200,12 @@ def sittings_table(out):
     return "\n".join(lines)
 
 
-def one_at_a_time(docs, untaught_docs=()):
+def one_at_a_time(docs, untaught_docs=(), at_once=None):
     """Gestures taught one at a time, pooled over `docs` (JSON of `cosco heldout --recognition
     --one-at-a-time`): per gesture the folds, the median relative DTW of the three models of
     each fold, the ratios and the gate; then recognition (held-out accepted, one at a time and
-    at once) and, over `untaught_docs`, untaught demonstrations called unknown."""
+    at once) and, over `untaught_docs`, untaught demonstrations called unknown (taught at once:
+    the recognition study `at_once`, when given)."""
     reproduced, held, untaught = [], [], []
     for doc in docs:
         reproduced += doc["study"]["reproduced"]
@@ -241,7 +242,11 @@ def one_at_a_time(docs, untaught_docs=()):
     ]
     if untaught:
         unknown = sum(a["answer"] is None for a in untaught)
-        lines.append(f"| untaught gestures called unknown (gate 90 %) | {pct(unknown, len(untaught))} | - |")
+        once_cell = "-"
+        if at_once is not None:
+            u = at_once["study"]["model"]["untaught"]
+            once_cell = pct(sum(a["answer"] is None for a in u), len(u))
+        lines.append(f"| untaught gestures called unknown (gate 90 %) | {pct(unknown, len(untaught))} | {once_cell} |")
     return "\n".join(lines)
 
 
@@ -277,7 +282,8 @@ def teaching_parts(out):
         "reproduced from the held-out start by the hierarchy taught every gesture at once, the one",
         "right after the gesture was taught and the one after the last; medians over the 20 folds",
         "of each gesture. Untaught: each gesture in turn left out, the other three taught one at a",
-        "time, its demonstrations recognised by the hierarchy taught the three.",
+        "time, its demonstrations recognised by the hierarchy taught the three (taught at once, the",
+        "same study is in \"Several gestures and recognition\" above).",
         "",
         command(out, "teach_nao_21"),
         "",
@@ -288,11 +294,11 @@ def teaching_parts(out):
         one_at_a_time(nao, without),
         "",
         "**Gestures one at a time, LASA:** the seven shapes of the first recognition group below",
-        "taught one after another, the other 23 untaught:",
+        "taught one after another, the other 23 untaught (taught at once: that group's study):",
         "",
         command(out, "teach_lasa"),
         "",
-        one_at_a_time([lasa], [lasa]),
+        one_at_a_time([lasa], [lasa], json.loads(read(os.path.join(out, "recognition_a.json")))),
         "",
     ]
 
