@@ -42,6 +42,27 @@ pub fn is_plain_label(label: &str) -> bool {
             .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
 }
 
+/// Label `i` of `sets` (given `source_dir`, for messages) a plain word not given before.
+pub(super) fn check_label(
+    sets: &[(String, Vec<Demonstration>)],
+    i: usize,
+    source_dir: &str,
+) -> Result<(), GestureError> {
+    let label = &sets[i].0;
+    if !is_plain_label(label) {
+        return Err(GestureError::BadLabel {
+            label: label.clone(),
+            source_dir: source_dir.into(),
+        });
+    }
+    if sets[..i].iter().any(|(l, _)| l == label) {
+        return Err(GestureError::DuplicateLabel {
+            label: label.clone(),
+        });
+    }
+    Ok(())
+}
+
 impl From<Hsom> for GestureModel {
     fn from(model: Hsom) -> Self {
         GestureModel {
@@ -88,17 +109,7 @@ impl HsomConfig {
             return Err(HsomError::NoDemonstrations.into());
         }
         for (i, (label, demos)) in sets.iter().enumerate() {
-            if !is_plain_label(label) {
-                return Err(GestureError::BadLabel {
-                    label: label.clone(),
-                    source_dir: "in memory".into(),
-                });
-            }
-            if sets[..i].iter().any(|(l, _)| l == label) {
-                return Err(GestureError::DuplicateLabel {
-                    label: label.clone(),
-                });
-            }
+            check_label(sets, i, "in memory")?;
             if demos.is_empty() {
                 return Err(GestureError::EmptyLabel {
                     label: label.clone(),

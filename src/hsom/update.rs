@@ -27,7 +27,7 @@ use super::errors::{GestureError, HsomError};
 use super::inputs::Series;
 use super::kept::{band_path, Memory};
 use super::kept::{keep, kept, mixed, Warm};
-use super::labels::is_plain_label;
+use super::labels::check_label;
 use super::model::{EventsHsom, GestureModel, Hsom, Model, Part};
 use super::recognize::{branch_seed, calibrate};
 
@@ -280,18 +280,8 @@ impl GestureModel {
         let Some(first) = self.branches[0].as_events() else {
             return Err(GestureError::NeedsEvents);
         };
-        for (i, (label, demos)) in sets.iter().enumerate() {
-            if !is_plain_label(label) {
-                return Err(GestureError::BadLabel {
-                    label: label.clone(),
-                    source_dir: "the update".into(),
-                });
-            }
-            if sets[..i].iter().any(|(l, _)| l == label) {
-                return Err(GestureError::DuplicateLabel {
-                    label: label.clone(),
-                });
-            }
+        for (i, (_, demos)) in sets.iter().enumerate() {
+            check_label(sets, i, "the update")?;
             first.accepts(demos)?;
         }
         // every label after the update: the model's, then the new ones in the order given
