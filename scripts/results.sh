@@ -40,22 +40,21 @@ run multi $ex/multi_heldout --seeds 11-15 --json "$out/multi.json"
 run lasa $bin/cosco heldout --demos "$out/lasa" --state-length-from-data --condition end+mid --sittings --json "$out/lasa.json"
 # The same drawings with their own times, resampled to 40 Hz (docs/EXPORT.md).
 run lasa_raw $bin/cosco heldout --demos "$out/lasa-raw" --state-length-from-data --resample 40 --json "$out/lasa_raw.json"
-for seed in 11 12 13 14 15; do
-  [ -d "$out/nao-demos/$seed" ] || $bin/cosco demos --gesture all --count 4 --seed $seed --out "$out/nao-demos/$seed" > /dev/null
-  for g in "$out/nao-demos/$seed"/*/; do
-    mkdir -p "$out/nao-curves"; ln -sfn "$(cd "$g" && pwd)" "$out/nao-curves/$(basename "$g")-$seed"
+nao_sets() { # nao_sets DIR SEED...: each seed's four gestures (4 demonstrations each) as sets DIR/<gesture>-<seed>
+  local dir=$1 seed g; shift
+  for seed in "$@"; do
+    [ -d "$out/nao-demos/$seed" ] || $bin/cosco demos --gesture all --count 4 --seed $seed --out "$out/nao-demos/$seed" > /dev/null
+    for g in "$out/nao-demos/$seed"/*/; do
+      mkdir -p "$dir"; ln -sfn "$(cd "$g" && pwd)" "$dir/$(basename "$g")-$seed"
+    done
   done
-done
+}
+nao_sets "$out/nao-curves" 11 12 13 14 15
 run nao_curves $bin/cosco heldout --demos "$out/nao-curves" --condition end+mid --far 2 --far 4 --json "$out/nao_curves.json"
 # Teaching more after training, on Nao seeds used nowhere else (21-25): each set taught in two
 # sittings; the four gestures of each seed taught one at a time, and each gesture left untaught
 # in turn (the other three taught one at a time) for "unknown".
-for seed in 21 22 23 24 25; do
-  [ -d "$out/nao-demos/$seed" ] || $bin/cosco demos --gesture all --count 4 --seed $seed --out "$out/nao-demos/$seed" > /dev/null
-  for g in "$out/nao-demos/$seed"/*/; do
-    mkdir -p "$out/nao-sittings"; ln -sfn "$(cd "$g" && pwd)" "$out/nao-sittings/$(basename "$g")-$seed"
-  done
-done
+nao_sets "$out/nao-sittings" 21 22 23 24 25
 run nao_sittings $bin/cosco heldout --demos "$out/nao-sittings" --sittings --no-in-sample --json "$out/nao_sittings.json"
 nao_gestures="reach-point reading-watch salute wave"
 for seed in 21 22 23 24 25; do

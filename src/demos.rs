@@ -561,7 +561,7 @@ pub fn validate_set(
         let (a, b) = (median_interval(first), median_interval(d));
         let same = match (a, b) {
             (None, None) => true,
-            (Some(x), Some(y)) => (x - y).abs() <= 0.01 * x.max(y),
+            (Some(x), Some(y)) => same_rate(x, y),
             _ => false,
         };
         if !same {
@@ -585,6 +585,12 @@ pub fn sample_period(d: &Demonstration) -> f64 {
         Some(t) if t.len() >= 2 => (t[t.len() - 1] - t[0]) / (t.len() - 1) as f64,
         _ => 0.025,
     }
+}
+
+/// Whether two sample periods are one rate: within 1 % of each other (what [`validate_set`]
+/// holds a set to, and an update holds new demonstrations to against a model's).
+pub fn same_rate(x: f64, y: f64) -> bool {
+    (x - y).abs() <= 0.01 * x.max(y)
 }
 
 /// The median interval of a demonstration's `time` column, s (None without one or with a

@@ -20,7 +20,7 @@
 //! Its cost is bounded by the configuration: whatever the number of demonstrations learned
 //! from, it learns from at most [`KEPT_DEMONSTRATIONS`](super::KEPT_DEMONSTRATIONS) earlier ones per gesture.
 
-use crate::demos::{median_interval, Demonstration};
+use crate::demos::{median_interval, same_rate, Demonstration};
 
 use super::algorithm::Presentation;
 use super::errors::{GestureError, HsomError};
@@ -30,15 +30,6 @@ use super::kept::{keep, kept, mixed, Warm};
 use super::labels::check_label;
 use super::model::{EventsHsom, GestureModel, Hsom, Model, Part};
 use super::recognize::{branch_seed, calibrate};
-
-/// The sample period two recordings must share (within 1 %, as [`crate::demos::validate_set`]
-/// holds a set to).
-fn same_period(a: Option<f64>, b: Option<f64>) -> bool {
-    match (a, b) {
-        (Some(x), Some(y)) => (x - y).abs() <= 0.01 * x.max(y),
-        _ => true,
-    }
-}
 
 impl<A: Part> Model<A> {
     /// The kept demonstrations in the data's units, each at its own length (read between two
@@ -67,7 +58,12 @@ impl<A: Part> Model<A> {
                     expected: self.columns.clone(),
                 });
             }
-            if !same_period(self.memory.period, median_interval(d)) {
+            // a rate not recorded on either side cannot be compared
+            let same = match (self.memory.period, median_interval(d)) {
+                (Some(a), Some(b)) => same_rate(a, b),
+                _ => true,
+            };
+            if !same {
                 return Err(HsomError::UpdatePeriod {
                     demo: d.source.clone(),
                     found: median_interval(d).unwrap_or(f64::NAN),
