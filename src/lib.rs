@@ -5,6 +5,8 @@
 //! - [`mujoco`]: bindings to Debian's MuJoCo 2.2.2 and a safe layer; with [`render`], the only
 //!   places with `unsafe`.
 //! - [`render`]: off-screen rendering with OSMesa, PNG frames, GIF clips, contact sheets.
+//! - [`robot`]: the Nao as one description: joints (ranges, velocity and torque limits),
+//!   named postures and the MJCF model they are read from.
 //! - [`sim`]: the Nao left arm model, its position controller with 40 Hz encoder recording,
 //!   and executing and scoring a reproduction on it.
 //! - [`som`]: a Kohonen map.
@@ -66,6 +68,7 @@ pub mod plot;
 #[cfg(feature = "sim")]
 pub mod render;
 pub mod resample;
+pub mod robot;
 #[cfg(feature = "ros2")]
 pub mod ros2;
 #[cfg(feature = "sim")]

@@ -85,7 +85,7 @@ pub fn evaluate_files(
         source,
     };
     let (fidelity, unit) = match arm {
-        Some(score) if crate::export::limits::are_arm_joints(&rep.columns) => {
+        Some(score) if crate::robot::are_arm_joints(&rep.columns) => {
             (score(&demos, &rep.rows, &params).map_err(failed)?, "rad")
         }
         _ => (

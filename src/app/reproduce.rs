@@ -43,19 +43,21 @@ pub(super) fn initial_posture(
 }
 
 /// An initial posture of the arm's joints within their ranges, give or take
-/// [`RANGE_TOLERANCE_RAD`](crate::export::limits::RANGE_TOLERANCE_RAD). Held in the
+/// [`RANGE_TOLERANCE_RAD`](crate::robot::RANGE_TOLERANCE_RAD). Held in the
 /// simulator's builds, whose models are of the simulated arm; of another length, the
 /// hierarchy's own check names the lengths.
 fn check_arm_range(columns: &[String], initial: &[f64]) -> Result<()> {
-    use crate::export::limits::{are_arm_joints, nao_left_arm, RANGE_TOLERANCE_RAD as TOL};
-    if !cfg!(feature = "sim") || initial.len() != columns.len() || !are_arm_joints(columns) {
+    use crate::robot::{Robot, RANGE_TOLERANCE_RAD as TOL};
+    let robot = Robot::of_columns(columns).filter(|_| cfg!(feature = "sim"));
+    let Some(robot) = robot.filter(|_| initial.len() == columns.len()) else {
         return Ok(());
-    }
-    for (v, j) in initial.iter().zip(nao_left_arm().joints) {
-        if v.is_finite() && !(j.lower - TOL..=j.upper + TOL).contains(v) {
+    };
+    for (v, j) in initial.iter().zip(robot.joints()) {
+        let (lower, upper) = j.range;
+        if v.is_finite() && !(lower - TOL..=upper + TOL).contains(v) {
             return Err(Error::value(
                 format!("the initial posture's {} = {v}", j.name),
-                format!("is outside its range [{}, {}] by more than {TOL} rad: not a posture the arm can start from", j.lower, j.upper),
+                format!("is outside its range [{lower}, {upper}] by more than {TOL} rad: not a posture the arm can start from"),
             ));
         }
     }
@@ -82,7 +84,7 @@ fn naming_model(e: HsomError, model: &Hsom, model_name: &str) -> Error {
 
 /// The ranges of the arm's joints when `columns` are theirs (in the simulator's builds).
 fn arm_ranges(columns: &[String]) -> Option<Vec<(f64, f64)>> {
-    crate::export::limits::arm_ranges(columns).filter(|_| cfg!(feature = "sim"))
+    crate::robot::arm_ranges(columns).filter(|_| cfg!(feature = "sim"))
 }
 
 /// Reproduce from `initial` through `conditions` (a goal, via-points; [`Hsom::reproduce_conditioned`]),

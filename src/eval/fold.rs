@@ -11,11 +11,11 @@ use crate::config::HsomConfig;
 use crate::demos::{sample_period, Demonstration};
 use crate::dmp::DmpSettings;
 use crate::dtw::{dtw, euclidean, Band};
-use crate::export::limits::arm_ranges;
 use crate::gmr::{plan_at, BicScore, ComponentChoice, GmrModel, GmrParams, GmrPlan, TrainingSet};
 use crate::hsom::{Hsom, Reproduction};
 use crate::metrics::{column_swings, trimmed_normalized_jerk, MetricsParams, StartEndReference};
 use crate::promp::PrompSettings;
+use crate::robot::arm_ranges;
 
 use super::executor::{Executed, Executor};
 use super::method::{Method, GMR_COMPONENTS};
@@ -462,11 +462,12 @@ pub fn fold_scores<E: Executor>(
     };
     // without the arm's executor, data of its joints still count LElbowRoll's swings
     let arm_swing = || {
-        let joints = crate::export::limits::nao_left_arm().joints;
-        (crate::export::limits::are_arm_joints(&target.columns))
-            .then(|| joints.iter().position(|j| j.name == "LElbowRoll"))
-            .flatten()
-            .map(|j| (j, "LElbowRoll"))
+        let robot = crate::robot::Robot::of_columns(&target.columns)?;
+        let j = robot
+            .joint_names()
+            .iter()
+            .position(|n| *n == "LElbowRoll")?;
+        Some((j, "LElbowRoll"))
     };
     let swings = match executor.swing_joint().or_else(arm_swing) {
         Some((j, name)) => {

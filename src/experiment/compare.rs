@@ -19,7 +19,7 @@ use super::output::FIG4_JOINTS;
 use super::output::{config_name, file_size, hsom_on_arm, load_arm, write_hsom_run, Stopwatch};
 use super::report::{DemoInfo, MethodResult, Report};
 use super::{ExperimentError, Progress};
-use crate::export::limits::are_arm_joints;
+use crate::robot::are_arm_joints;
 
 /// The result of a job's step.
 type Result<T> = std::result::Result<T, ExperimentError>;

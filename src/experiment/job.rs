@@ -27,7 +27,7 @@ use super::variants::{reference_variants, run_variant, variants};
 use super::{
     film, leave_one_out, synthetic_demonstrations, DemoSettings, ExperimentError, Progress,
 };
-use crate::export::limits::are_arm_joints;
+use crate::robot::are_arm_joints;
 
 /// The result of a job's step.
 type Result<T> = std::result::Result<T, ExperimentError>;

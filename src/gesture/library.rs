@@ -7,8 +7,13 @@ pub const N_JOINTS: usize = 6;
 /// A posture of the six joints (radians; LHand as an open fraction in 0..1).
 pub type Pose = [f64; N_JOINTS];
 
-/// NAOqi's StandInit posture: the initial and final posture of every gesture here.
-pub const STAND_INIT: Pose = [1.40, 0.30, -1.39, -1.01, 0.0, 0.25];
+/// NAOqi's StandInit posture (the robot description's): the initial and final posture of
+/// every gesture here.
+pub fn stand_init() -> Pose {
+    let p = crate::robot::Robot::LeftArm.posture("StandInit");
+    p.and_then(|p| Pose::try_from(p).ok())
+        .expect("StandInit is a keyframe of the left-arm model")
+}
 
 /// One part of a gesture, in nominal (unperturbed) timing.
 #[derive(Debug, Clone, PartialEq)]
@@ -98,7 +103,7 @@ pub fn reading_watch() -> Gesture {
     Gesture {
         name: "reading-watch",
         description: "raise the forearm across the chest to read a wristwatch, hold, return",
-        initial: STAND_INIT,
+        initial: stand_init(),
         segments: vec![
             Segment::Move {
                 to: READING_WATCH,
@@ -107,7 +112,7 @@ pub fn reading_watch() -> Gesture {
             },
             Segment::Hold { duration: 1.2 },
             Segment::Move {
-                to: STAND_INIT,
+                to: stand_init(),
                 duration: 1.7,
                 perturb: false,
             },
@@ -127,7 +132,7 @@ pub fn wave() -> Gesture {
     Gesture {
         name: "wave",
         description: "raise the hand, wave three times with the elbow, lower it",
-        initial: STAND_INIT,
+        initial: stand_init(),
         segments: vec![
             Segment::Move {
                 to: WAVE_UP,
@@ -141,7 +146,7 @@ pub fn wave() -> Gesture {
                 cycles: 3.0,
             },
             Segment::Move {
-                to: STAND_INIT,
+                to: stand_init(),
                 duration: 1.5,
                 perturb: false,
             },
@@ -157,7 +162,7 @@ pub fn reach_point() -> Gesture {
     Gesture {
         name: "reach-point",
         description: "stretch the arm forward and point, hold, come back",
-        initial: STAND_INIT,
+        initial: stand_init(),
         segments: vec![
             Segment::Move {
                 to: POINT_FORWARD,
@@ -166,7 +171,7 @@ pub fn reach_point() -> Gesture {
             },
             Segment::Hold { duration: 0.9 },
             Segment::Move {
-                to: STAND_INIT,
+                to: stand_init(),
                 duration: 1.4,
                 perturb: false,
             },
@@ -183,7 +188,7 @@ pub fn salute() -> Gesture {
     Gesture {
         name: "salute",
         description: "bring the hand to the temple quickly, hold briefly, lower it",
-        initial: STAND_INIT,
+        initial: stand_init(),
         segments: vec![
             Segment::Move {
                 to: SALUTE,
@@ -192,7 +197,7 @@ pub fn salute() -> Gesture {
             },
             Segment::Hold { duration: 0.6 },
             Segment::Move {
-                to: STAND_INIT,
+                to: stand_init(),
                 duration: 1.2,
                 perturb: false,
             },

@@ -7,8 +7,7 @@ use super::spec::{check_posture, clamp_posture, Posture, JOINT_NAMES, JOINT_SPEC
 use crate::mujoco::{Data, Model};
 
 /// Path of the shipped model, models/nao_left_arm.xml in the crate.
-pub const DEFAULT_MODEL_PATH: &str =
-    concat!(env!("CARGO_MANIFEST_DIR"), "/models/nao_left_arm.xml");
+pub const DEFAULT_MODEL_PATH: &str = crate::robot::Robot::LeftArm.model_path();
 
 /// Name of the site at the LWristYaw joint origin.
 pub const WRIST_SITE: &str = "l_wrist";

@@ -173,7 +173,7 @@ pub fn clamp_to_ranges(postures: &[Vec<f64>]) -> Result<(Vec<Vec<f64>>, usize), 
         }
         let mut row = Vec::with_capacity(NJ);
         for (spec, &v) in JOINT_SPECS.iter().zip(p) {
-            let c = spec.clamp(v)?;
+            let c = super::spec::clamp_joint(spec, v)?;
             if c != v {
                 clamped += 1;
             }

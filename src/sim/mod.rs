@@ -1,7 +1,8 @@
 //! The Nao H25 V5 left arm in MuJoCo (models/nao_left_arm.xml) and its position controller
 //! with encoder recording (40 Hz by default).
 //!
-//! - [`spec`]: the reference joint table, [`JOINT_NAMES`], named postures, posture checks.
+//! - [`spec`]: the left arm's joint table ([`crate::robot`]'s, as fixed-size postures),
+//!   [`JOINT_NAMES`], named postures, posture checks.
 //! - [`arm`]: [`NaoArm`] (the checked model) and [`ArmSim`] (one simulation of it).
 //! - [`interp`]: transition profiles ([`Interpolation`]).
 //! - [`controller`]: [`Controller`] for key-pose sequences and dense target trajectories.
@@ -33,5 +34,6 @@ pub use score::{
     ArmExecutor, LEAD_IN_PEAK_SPEED, SWING_JOINT,
 };
 pub use spec::{
-    check_posture, clamp_posture, JointSpec, NamedPosture, Posture, JOINT_NAMES, JOINT_SPECS, NJ,
+    check_joint, check_posture, clamp_joint, clamp_posture, JointSpec, NamedPosture, Posture,
+    JOINT_NAMES, JOINT_SPECS, NJ,
 };

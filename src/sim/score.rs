@@ -7,8 +7,8 @@
 
 use crate::demos::{sample_period, Demonstration};
 use crate::eval::{Executed, Executor, Method};
-use crate::export::limits::{are_arm_joints, RANGE_TOLERANCE_RAD};
 use crate::metrics::{fidelity_named, FidelityReport, MetricsParams, Trajectory};
+use crate::robot::{are_arm_joints, RANGE_TOLERANCE_RAD};
 
 use super::execute::{clamp_to_ranges, execute_postures, Transition};
 use super::{NaoArm, Recording, SimError, JOINT_NAMES, JOINT_SPECS};

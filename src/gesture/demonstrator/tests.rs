@@ -1,4 +1,4 @@
-use super::super::library::{reading_watch, wave, STAND_INIT};
+use super::super::library::{reading_watch, stand_init, wave};
 use super::*;
 use rand::SeedableRng;
 
@@ -24,8 +24,8 @@ fn starts_and_ends_at_the_initial_posture_and_reaches_the_apex() {
     let g = reading_watch();
     let mut rng = ChaCha8Rng::seed_from_u64(7);
     let h = HumanTrajectory::sample(&g, &Variation::default(), &LIMITS, &mut rng).unwrap();
-    assert!(dist(&h.at(0.0), &STAND_INIT) < 1e-12);
-    assert!(dist(&h.at(h.duration()), &STAND_INIT) < 1e-9);
+    assert!(dist(&h.at(0.0), &stand_init()) < 1e-12);
+    assert!(dist(&h.at(h.duration()), &stand_init()) < 1e-9);
     let closest = h
         .sampled(0.01)
         .iter()
