@@ -27,7 +27,7 @@ fn recommended() -> HsomConfig {
 }
 
 fn demos(arm: &NaoArm, name: &str) -> Vec<Demonstration> {
-    let g = Gesture::by_name(name).unwrap();
+    let g = Gesture::by_name(cosco_hsom::robot::Robot::LeftArm, name).unwrap();
     let settings = DemoSettings {
         encoder_noise: 0.001,
         ..DemoSettings::default()

@@ -43,7 +43,7 @@ fn each_gesture_of_the_shared_hierarchy_is_reproduced_within_1_2x_of_the_gesture
         let mut sets: Vec<(String, Vec<Demonstration>)> = Vec::new();
         let mut tests: Vec<Vec<Demonstration>> = Vec::new();
         for name in GESTURES {
-            let g = Gesture::by_name(name).unwrap();
+            let g = Gesture::by_name(cosco_hsom::robot::Robot::LeftArm, name).unwrap();
             let mut d = synthetic_demonstrations(&arm, &g, 5, seed, &settings, |_| {}).unwrap();
             tests.push(d.split_off(3));
             sets.push((name.to_string(), d));

@@ -244,7 +244,13 @@ pub fn all_gestures_job(job: &Job, progress: Progress<'_>) -> Result<Vec<String>
     std::fs::create_dir_all(out).map_err(ExperimentError::io("creating", out))?;
     let cfg = app::config(job.config.as_deref())?;
     let arm = load_arm(job.model.as_deref())?;
-    let report = run_all_gestures(&arm, &cfg, &Gesture::all(), job, progress)?;
+    let report = run_all_gestures(
+        &arm,
+        &cfg,
+        &Gesture::all(crate::robot::Robot::LeftArm),
+        job,
+        progress,
+    )?;
     let mut lines: Vec<String> = report
         .fidelity
         .iter()

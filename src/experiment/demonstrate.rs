@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use crate::demos::{write_csv, Demonstration};
 use crate::gesture::{Gesture, HumanTrajectory, Variation};
-use crate::sim::{Controller, ControllerConfig, NaoArm, Recording, TargetTrajectory, JOINT_SPECS};
+use crate::sim::{Controller, ControllerConfig, NaoArm, Recording, TargetTrajectory};
 
 use super::ExperimentError;
 
@@ -52,13 +52,11 @@ pub fn record_demonstrations(
             "demonstration count is 0: need at least 1".into(),
         ));
     }
-    // the joints' ranges in model order, for the demonstrator
-    let limits: Vec<(f64, f64)> = JOINT_SPECS.iter().map(|s| s.range).collect();
     let mut out = Vec::with_capacity(count);
     for i in 0..count {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         rng.set_stream(i as u64 + 1);
-        let human = HumanTrajectory::sample(gesture, &settings.variation, &limits, &mut rng)
+        let human = HumanTrajectory::sample(gesture, &settings.variation, &mut rng)
             .map_err(ExperimentError::Invalid)?;
         let controller = Controller::new(ControllerConfig {
             record_rate_hz: settings.record_rate_hz,
@@ -154,10 +152,10 @@ pub fn parse_gestures(text: &str) -> Result<Vec<Gesture>, ExperimentError> {
     text.split(',')
         .map(|name| {
             let name = name.trim();
-            Gesture::by_name(name).ok_or_else(|| {
+            Gesture::by_name(crate::robot::Robot::LeftArm, name).ok_or_else(|| {
                 ExperimentError::Invalid(format!(
                     "unknown gesture '{name}' in '{text}': allowed {}",
-                    Gesture::names().join(", ")
+                    Gesture::names(crate::robot::Robot::LeftArm).join(", ")
                 ))
             })
         })

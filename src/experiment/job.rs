@@ -37,11 +37,11 @@ pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
 
 /// Look a gesture up by name, with the list of known names on failure.
 pub fn gesture(name: &str) -> Result<Gesture> {
-    match Gesture::by_name(name) {
+    match Gesture::by_name(crate::robot::Robot::LeftArm, name) {
         Some(g) => Ok(g),
         None => Err(ExperimentError::Invalid(format!(
             "unknown gesture '{name}': allowed {}, or all (every gesture)",
-            Gesture::names().join(", ")
+            Gesture::names(crate::robot::Robot::LeftArm).join(", ")
         ))),
     }
 }
@@ -82,7 +82,7 @@ pub fn demos(
     if gesture_name == "all" {
         // every gesture into its labelled subdirectory: OUT/<gesture>/demo_NN.csv
         let mut files = Vec::new();
-        for g in Gesture::all() {
+        for g in Gesture::all(crate::robot::Robot::LeftArm) {
             let demos = record(&arm, &g, count, seed, noise, on_progress)?;
             files.extend(write_demos(&out.join(g.name), &demos)?);
         }

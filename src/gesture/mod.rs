@@ -9,4 +9,4 @@ pub mod demonstrator;
 pub mod library;
 
 pub use demonstrator::{HumanTrajectory, Variation};
-pub use library::{stand_init, Gesture, Pose, Segment, N_JOINTS};
+pub use library::{mirror, stand_init, upper, ArmPose, Gesture, Pose, Segment};

@@ -145,8 +145,8 @@ fn run_methods(spec: &SweepSpec, plan: &RunPlan) -> Result<Vec<MethodRecord>, St
         None => NaoArm::load_default(),
     }
     .map_err(|e| format!("loading the arm model: {e}"))?;
-    let gesture =
-        Gesture::by_name(&a.gesture).ok_or_else(|| format!("unknown gesture '{}'", a.gesture))?;
+    let gesture = Gesture::by_name(crate::robot::Robot::LeftArm, &a.gesture)
+        .ok_or_else(|| format!("unknown gesture '{}'", a.gesture))?;
     let config = spec.config_of(a).ok_or_else(|| {
         format!(
             "no configuration '{}' at height {}",
