@@ -352,6 +352,17 @@ impl<'m> Data<'m> {
         self.run(ffi::mj_forward)
     }
 
+    /// Reset the state to keyframe `key` of the model (`mj_resetDataKeyframe`: time, `qpos`,
+    /// `qvel`, `act`, `ctrl` and mocap poses from the keyframe) and clear the poison. Call
+    /// [`Data::forward`] for the derived quantities. Panics when `key >= nkey()`.
+    pub fn reset_to_key(&mut self, key: usize) {
+        let n = self.model.nkey();
+        assert!(key < n, "keyframe id {key} out of range 0..{n}");
+        // Safety: valid model and data, exclusive access, a keyframe id checked above.
+        unsafe { ffi::mj_resetDataKeyframe(self.model.as_ptr(), self.ptr.as_ptr(), key as i32) };
+        self.poisoned = None;
+    }
+
     /// Reset the state to the model's defaults (`mj_resetData`) and clear the poison.
     pub fn reset(&mut self) {
         // Safety: valid model and data, exclusive access.

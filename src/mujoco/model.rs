@@ -53,6 +53,7 @@ enum Obj {
     Camera,
     Actuator,
     Geom,
+    Key,
 }
 
 impl Obj {
@@ -64,6 +65,7 @@ impl Obj {
             Obj::Camera => ffi::mjtObj__mjOBJ_CAMERA,
             Obj::Actuator => ffi::mjtObj__mjOBJ_ACTUATOR,
             Obj::Geom => ffi::mjtObj__mjOBJ_GEOM,
+            Obj::Key => ffi::mjtObj__mjOBJ_KEY,
         };
         code as c_int
     }
@@ -223,6 +225,10 @@ impl Model {
     pub fn ngeom(&self) -> usize {
         self.raw().ngeom as usize
     }
+    /// Number of keyframes.
+    pub fn nkey(&self) -> usize {
+        self.raw().nkey as usize
+    }
     /// Number of cameras defined in the model.
     pub fn ncam(&self) -> usize {
         self.raw().ncam as usize
@@ -281,6 +287,10 @@ impl Model {
     pub fn geom_id(&self, name: &str) -> Option<usize> {
         self.name2id(Obj::Geom, name)
     }
+    /// Id of the keyframe called `name`.
+    pub fn key_id(&self, name: &str) -> Option<usize> {
+        self.name2id(Obj::Key, name)
+    }
     /// Name of joint `id` (None when out of range or unnamed).
     pub fn joint_name(&self, id: usize) -> Option<String> {
         self.id2name(Obj::Joint, id, self.njnt())
@@ -302,6 +312,10 @@ impl Model {
         self.id2name(Obj::Camera, id, self.ncam())
     }
 
+    /// Name of keyframe `id` (None when out of range or unnamed).
+    pub fn key_name(&self, id: usize) -> Option<String> {
+        self.id2name(Obj::Key, id, self.nkey())
+    }
     /// Name of geom `id` (None when out of range or unnamed).
     pub fn geom_name(&self, id: usize) -> Option<String> {
         self.id2name(Obj::Geom, id, self.ngeom())
@@ -479,5 +493,21 @@ impl Model {
     pub fn camera_fovy(&self, id: usize) -> f64 {
         // Safety: cam_fovy has ncam entries.
         unsafe { Self::at(self.raw().cam_fovy, id, self.ncam()) }
+    }
+    /// Positions of keyframe `id` (`nq` numbers). Panics when `id >= nkey()`.
+    pub fn key_qpos(&self, id: usize) -> Vec<f64> {
+        self.key_array(self.raw().key_qpos, id, self.nq())
+    }
+    /// Controls of keyframe `id` (`nu` numbers). Panics when `id >= nkey()`.
+    pub fn key_ctrl(&self, id: usize) -> Vec<f64> {
+        self.key_array(self.raw().key_ctrl, id, self.nu())
+    }
+    fn key_array(&self, p: *const f64, id: usize, width: usize) -> Vec<f64> {
+        let n = self.nkey();
+        assert!(id < n, "keyframe id {id} out of range 0..{n}");
+        // Safety: key_qpos and key_ctrl hold `width` (nq or nu) numbers per keyframe.
+        (0..width)
+            .map(|k| unsafe { Self::at(p, width * id + k, width * n) })
+            .collect()
     }
 }

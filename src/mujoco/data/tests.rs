@@ -22,6 +22,9 @@ const SCENE: &str = r#"
       <geom name="probe_geom" type="sphere" size="0.05" mass="0.1" margin="0.04" gap="0.04"/>
     </body>
   </worldbody>
+  <keyframe>
+    <key name="lifted" qpos="0 0 0.5 1 0 0 0  0.1 0 0.12 1 0 0 0  -0.2 0 0.17 1 0 0 0"/>
+  </keyframe>
 </mujoco>"#;
 
 #[test]
@@ -98,4 +101,22 @@ fn geom_and_inertia_lookups() {
     }
     assert_eq!(model.body_ipos(b), [0.0; 3]);
     assert_eq!(model.body_iquat(b), [1.0, 0.0, 0.0, 0.0]);
+}
+
+#[test]
+fn keyframes_by_name_and_reset() {
+    let model = Model::from_xml_str(SCENE).unwrap();
+    assert_eq!(model.nkey(), 1);
+    let k = model.key_id("lifted").unwrap();
+    assert_eq!(model.key_id("nope"), None);
+    assert_eq!(model.key_qpos(k).len(), model.nq());
+    assert_eq!(model.key_qpos(k)[2], 0.5);
+    assert!(model.key_ctrl(k).is_empty());
+    let mut data = Data::new(&model).unwrap();
+    data.forward().unwrap();
+    assert!(data.contacts().iter().any(|c| c.touches("ball")));
+    data.reset_to_key(k);
+    data.forward().unwrap();
+    assert_eq!(data.qpos()[2], 0.5);
+    assert!(data.contacts().iter().all(|c| !c.touches("ball")));
 }
