@@ -30,6 +30,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Export(a) => cli::export::export(&a)?.iter().for_each(|l| outln!("{l}")),
         #[cfg(feature = "sim")]
         Command::Demos {
+            robot,
             gesture,
             count,
             seed,
@@ -41,15 +42,15 @@ fn run(cli: Cli) -> Result<()> {
             let out = out.ok_or_else(|| anyhow::anyhow!("give --out DIR"))?;
             let bars = cli::StageBars::default();
             let on_progress = |stage: &str, done, total| bars.update(stage, done, total);
-            let files = cosco_hsom::experiment::job::demos(
-                &gesture,
+            let request = cosco_hsom::experiment::job::DemosRequest {
+                robot,
+                gesture: &gesture,
                 count,
                 seed,
-                &out,
                 noise,
-                model.as_deref(),
-                &on_progress,
-            )?;
+                model: model.as_deref(),
+            };
+            let files = cosco_hsom::experiment::job::demos(&request, &out, &on_progress)?;
             bars.finish();
             for f in files {
                 outln!("{}", f.display());

@@ -39,8 +39,8 @@ impl Default for DemoSettings {
 /// Record `count` demonstrations of `gesture` on the simulated arm. Everything random comes
 /// from `seed`: demonstration `i` uses its own sub-stream, so demonstration 0 is the same
 /// whatever `count` is.
-pub fn record_demonstrations(
-    arm: &NaoArm,
+pub fn record_demonstrations<const N: usize>(
+    arm: &NaoArm<N>,
     gesture: &Gesture,
     count: usize,
     seed: u64,
@@ -51,6 +51,14 @@ pub fn record_demonstrations(
         return Err(ExperimentError::Invalid(
             "demonstration count is 0: need at least 1".into(),
         ));
+    }
+    if gesture.robot != arm.robot() {
+        return Err(ExperimentError::Invalid(format!(
+            "gesture '{}' moves the {} and the model is the {}",
+            gesture.name,
+            gesture.robot.name(),
+            arm.robot().name()
+        )));
     }
     let mut out = Vec::with_capacity(count);
     for i in 0..count {
@@ -67,8 +75,8 @@ pub fn record_demonstrations(
         let samples = human.sampled(1.0 / settings.guide_rate_hz);
         let times: Vec<f64> = samples.iter().map(|(t, _)| *t).collect();
         let targets: Vec<Vec<f64>> = samples.iter().map(|(_, q)| q.to_vec()).collect();
-        let trajectory =
-            TargetTrajectory::new(&times, &targets)?.with_hold(1.0 / settings.record_rate_hz)?;
+        let trajectory = TargetTrajectory::<N>::new_for(arm.robot(), &times, &targets)?
+            .with_hold(1.0 / settings.record_rate_hz)?;
         let mut sim = arm.sim()?;
         sim.set_posture(&targets[0])?;
         out.push(controller.follow(&mut sim, &trajectory)?);
@@ -79,8 +87,8 @@ pub fn record_demonstrations(
 
 /// [`record_demonstrations`] as demonstrations named `"<gesture> demonstration N (seed S)"`
 /// (N from 1), each with the recording's `time` column.
-pub fn synthetic_demonstrations(
-    arm: &NaoArm,
+pub fn synthetic_demonstrations<const N: usize>(
+    arm: &NaoArm<N>,
     gesture: &Gesture,
     count: usize,
     seed: u64,

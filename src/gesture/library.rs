@@ -86,6 +86,7 @@ impl Gesture {
     pub fn all(robot: Robot) -> Vec<Gesture> {
         match robot {
             Robot::LeftArm => vec![reading_watch(), wave(), reach_point(), salute()],
+            Robot::UpperBody => super::upper_body::all(),
         }
     }
 

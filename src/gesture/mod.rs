@@ -7,6 +7,7 @@
 
 pub mod demonstrator;
 pub mod library;
+pub mod upper_body;
 
 pub use demonstrator::{HumanTrajectory, Variation};
 pub use library::{mirror, stand_init, upper, ArmPose, Gesture, Pose, Segment};

@@ -24,6 +24,9 @@ pub use mjcf::joint_ranges;
 pub enum Robot {
     /// The left arm of the paper's experiment: five arm joints and the hand.
     LeftArm,
+    /// The upper body, torso fixed: the head's two joints, then the left arm's six and the
+    /// right arm's six.
+    UpperBody,
 }
 
 /// One joint of a robot.
@@ -49,10 +52,31 @@ pub const LEFT_ARM_JOINTS: [&str; 6] = [
     "LHand",
 ];
 
+/// The upper body's joints in NAOqi order.
+pub const UPPER_BODY_JOINTS: [&str; 14] = [
+    "HeadYaw",
+    "HeadPitch",
+    "LShoulderPitch",
+    "LShoulderRoll",
+    "LElbowYaw",
+    "LElbowRoll",
+    "LWristYaw",
+    "LHand",
+    "RShoulderPitch",
+    "RShoulderRoll",
+    "RElbowYaw",
+    "RElbowRoll",
+    "RWristYaw",
+    "RHand",
+];
+
 const LEFT_ARM_MJCF: &str = include_str!("../../models/nao_left_arm.xml");
+const UPPER_BODY_MJCF: &str = include_str!("../../models/nao_upper_body.xml");
 
 static LEFT_ARM: LazyLock<Description> =
     LazyLock::new(|| Description::read(&LEFT_ARM_JOINTS, LEFT_ARM_MJCF));
+static UPPER_BODY: LazyLock<Description> =
+    LazyLock::new(|| Description::read(&UPPER_BODY_JOINTS, UPPER_BODY_MJCF));
 
 /// What is read once from a robot's MJCF model and the published velocities.
 struct Description {
@@ -88,12 +112,13 @@ impl Description {
 
 impl Robot {
     /// Every robot, the default first.
-    pub const ALL: [Robot; 1] = [Robot::LeftArm];
+    pub const ALL: [Robot; 2] = [Robot::LeftArm, Robot::UpperBody];
 
     /// The name on the command line (`--robot`).
     pub fn name(self) -> &'static str {
         match self {
             Robot::LeftArm => "left-arm",
+            Robot::UpperBody => "upper-body",
         }
     }
 
@@ -111,6 +136,7 @@ impl Robot {
     fn description(self) -> &'static Description {
         match self {
             Robot::LeftArm => &LEFT_ARM,
+            Robot::UpperBody => &UPPER_BODY,
         }
     }
 
@@ -123,6 +149,7 @@ impl Robot {
     pub fn joint_names(self) -> &'static [&'static str] {
         match self {
             Robot::LeftArm => &LEFT_ARM_JOINTS,
+            Robot::UpperBody => &UPPER_BODY_JOINTS,
         }
     }
 
@@ -144,6 +171,7 @@ impl Robot {
     pub const fn model_path(self) -> &'static str {
         match self {
             Robot::LeftArm => concat!(env!("CARGO_MANIFEST_DIR"), "/models/nao_left_arm.xml"),
+            Robot::UpperBody => concat!(env!("CARGO_MANIFEST_DIR"), "/models/nao_upper_body.xml"),
         }
     }
 

@@ -22,6 +22,37 @@ fn the_left_arm_is_the_published_one() {
     }
 }
 
+/// The published upper body (docs: nao-upper-body.md, the left arm as above).
+const PUBLISHED_HEAD_AND_RIGHT_ARM: [(&str, f64, f64, f64, f64); 8] = [
+    ("HeadYaw", -2.08567, 2.08567, 8.26797, 1.547),
+    ("HeadPitch", -0.671952, 0.514872, 7.19407, 1.532),
+    ("RShoulderPitch", -2.08567, 2.08567, 8.26797, 1.329),
+    ("RShoulderRoll", -1.32645, 0.314159, 7.19407, 1.783),
+    ("RElbowYaw", -2.08567, 2.08567, 8.26797, 1.547),
+    ("RElbowRoll", 0.0349066, 1.54462, 7.19407, 1.532),
+    ("RWristYaw", -1.82387, 1.82387, 24.6229, 0.4075),
+    ("RHand", 0.0, 1.0, 8.33, 0.292),
+];
+
+#[test]
+fn the_upper_body_is_the_published_one() {
+    let joints = Robot::UpperBody.joints();
+    let published: Vec<_> = PUBLISHED_HEAD_AND_RIGHT_ARM[..2]
+        .iter()
+        .chain(&PUBLISHED_LEFT_ARM)
+        .chain(&PUBLISHED_HEAD_AND_RIGHT_ARM[2..])
+        .collect();
+    assert_eq!(joints.len(), 14);
+    for (j, &&(name, lo, hi, v, tau)) in joints.iter().zip(&published) {
+        assert_eq!(
+            (j.name, j.range, j.max_velocity, j.max_torque),
+            (name, (lo, hi), v, tau)
+        );
+    }
+    let rest = Robot::UpperBody.posture("StandInit").unwrap();
+    assert_eq!(&rest[2..8], Robot::LeftArm.posture("StandInit").unwrap());
+}
+
 #[test]
 fn named_postures_come_from_the_keyframes_within_range() {
     let r = Robot::LeftArm;

@@ -28,7 +28,7 @@ pub use controller::{
 pub use error::{Result, SimError};
 pub use execute::{clamp_to_ranges, execute_postures, key_pose_indices, Transition};
 pub use interp::Interpolation;
-pub use recording::Recording;
+pub use recording::{Recording, Touch};
 pub use score::{
     check_reachable, demo_wrist_paths, evaluate, execute_and_score, trajectory, wrist_path,
     ArmExecutor, LEAD_IN_PEAK_SPEED, SWING_JOINT,

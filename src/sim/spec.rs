@@ -59,26 +59,36 @@ pub fn clamp_joint(spec: &JointSpec, value: f64) -> Result<f64> {
 /// Check a posture given as a slice: six values, each finite and within its joint's range.
 /// The error names the first offending joint, its value and its range.
 pub fn check_posture(values: &[f64]) -> Result<Posture> {
-    let mut p = to_array(values)?;
-    for (v, spec) in p.iter_mut().zip(JOINT_SPECS.iter()) {
-        *v = check_joint(spec, *v)?;
-    }
-    Ok(p)
+    check_posture_of(Robot::LeftArm, values)
 }
 
 /// Clamp a posture into the joint ranges (documented as such: out-of-range values are moved to
 /// the nearest limit). Wrong joint counts and NaN are still errors.
 pub fn clamp_posture(values: &[f64]) -> Result<Posture> {
+    clamp_posture_of(Robot::LeftArm, values)
+}
+
+/// [`check_posture`] for `robot`'s `N` joints.
+pub fn check_posture_of<const N: usize>(robot: Robot, values: &[f64]) -> Result<[f64; N]> {
     let mut p = to_array(values)?;
-    for (v, spec) in p.iter_mut().zip(JOINT_SPECS.iter()) {
+    for (v, spec) in p.iter_mut().zip(robot.joints()) {
+        *v = check_joint(spec, *v)?;
+    }
+    Ok(p)
+}
+
+/// [`clamp_posture`] for `robot`'s `N` joints.
+pub fn clamp_posture_of<const N: usize>(robot: Robot, values: &[f64]) -> Result<[f64; N]> {
+    let mut p = to_array(values)?;
+    for (v, spec) in p.iter_mut().zip(robot.joints()) {
         *v = clamp_joint(spec, *v)?;
     }
     Ok(p)
 }
 
-fn to_array(values: &[f64]) -> Result<Posture> {
-    <Posture>::try_from(values).map_err(|_| SimError::WrongJointCount {
-        expected: NJ,
+fn to_array<const N: usize>(values: &[f64]) -> Result<[f64; N]> {
+    <[f64; N]>::try_from(values).map_err(|_| SimError::WrongJointCount {
+        expected: N,
         got: values.len(),
     })
 }

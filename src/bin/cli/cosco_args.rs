@@ -25,8 +25,14 @@ pub enum Command {
         #[cfg(feature = "ros2")]
         #[command(subcommand)]
         action: Option<super::export::DemosAction>,
-        /// Gesture name (reading-watch, wave, reach-point, salute), or `all`: every gesture,
-        /// each in its own labelled subdirectory of --out (OUT/<gesture>/demo_01.csv, ...).
+        /// The robot: `left-arm` (the paper's experiment) or `upper-body` (the head and both
+        /// arms, 14 joints).
+        #[arg(long, default_value = "left-arm", value_parser = super::parse_robot)]
+        robot: cosco_hsom::robot::Robot,
+        /// Gesture name (left arm: reading-watch, wave, reach-point, salute; upper body:
+        /// wave-right, clap, welcome, shrug, nod, shake-head, reading-watch, salute), or `all`:
+        /// every gesture of the robot, each in its own labelled subdirectory of --out
+        /// (OUT/<gesture>/demo_01.csv, ...).
         #[arg(long, default_value = "reading-watch")]
         gesture: String,
         /// Number of demonstrations.
@@ -42,7 +48,7 @@ pub enum Command {
         /// far below 0.1 rad, about 6 degrees; more would hide the gesture).
         #[arg(long, default_value_t = cosco_hsom::experiment::job::DEFAULT_ENCODER_NOISE, allow_negative_numbers = true, value_parser = super::parse_noise)]
         noise: f64,
-        /// MJCF model of the arm.
+        /// MJCF model of the robot (default: its shipped model under models/).
         #[arg(long)]
         model: Option<PathBuf>,
     },
