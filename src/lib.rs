@@ -46,6 +46,7 @@
 pub mod app;
 pub mod condition;
 pub mod config;
+pub mod curve;
 pub mod demos;
 pub mod dmp;
 pub mod dtw;

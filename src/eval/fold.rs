@@ -6,8 +6,9 @@
 use std::borrow::Cow;
 use std::time::Instant;
 
-use crate::condition::{at_phase, meet, Conditions, ConfidenceBand};
+use crate::condition::{meet, Conditions, ConfidenceBand};
 use crate::config::HsomConfig;
+use crate::curve::at_phase;
 use crate::demos::{sample_period, Demonstration};
 use crate::dmp::DmpSettings;
 use crate::dtw::{dtw, euclidean, Band};
@@ -374,7 +375,7 @@ pub fn run_fold<E: Executor>(
                     plan_at(&m, initial, 1.0 / period, speed)
                 });
                 let plan = plan.map_err(msg)?;
-                let band = plan.band();
+                let band = ConfidenceBand::around(&plan.postures, &plan.band_half_widths());
                 let fitted = Fitted::GmmGmr {
                     model: Box::new(m),
                     training: Box::new(training),

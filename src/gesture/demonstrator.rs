@@ -7,7 +7,7 @@
 //! present only while the person moves the arm. Idle time before and after varies widely
 //! (the paper's footnote 3), overall speed by about +-20 %, key poses by a few degrees.
 
-use crate::gmr::minimum_jerk_at;
+use crate::curve::minimum_jerk_at;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};

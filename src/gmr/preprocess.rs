@@ -28,7 +28,8 @@
 //! the DTW path pairs with `r`. Every aligned demonstration has the reference's length.
 //!
 //! **Resampling.** Each sequence of `L` samples becomes `n` samples by linear
-//! interpolation at the fractional indices `u_k = k (L−1)/(n−1)`. Samples are assumed
+//! interpolation at the fractional indices `u_k = k (L−1)/(n−1)`
+//! ([`crate::curve::resample_linear`]). Samples are assumed
 //! evenly spaced (the recordings are at a fixed rate); a `time` column only sets speeds
 //! and durations.
 
@@ -36,6 +37,7 @@ use std::ops::Range;
 
 use super::errors::GmrError;
 use super::hyperparams::{GmrValidParams, IdleTrim, MIN_DEMONSTRATIONS};
+use crate::curve::resample_linear;
 use crate::demos::{validate_set, Demonstration};
 use crate::dtw::{dtw, dtw_distance, Band, DtwError};
 
@@ -214,28 +216,6 @@ pub fn align_to(
         }
     }
     Ok(sum)
-}
-
-/// Resample a sequence to `n` samples by linear interpolation at fractional indices
-/// `k (L−1)/(n−1)`. An empty sequence or `n == 0` gives an empty result; a single sample
-/// is repeated; `n == 1` gives the first sample.
-pub fn resample_linear<R: AsRef<[f64]>>(seq: &[R], n: usize) -> Vec<Vec<f64>> {
-    if seq.is_empty() || n == 0 {
-        return Vec::new();
-    }
-    let len = seq.len();
-    if len == 1 || n == 1 {
-        return vec![seq[0].as_ref().to_vec(); n];
-    }
-    (0..n)
-        .map(|k| {
-            let u = k as f64 * (len - 1) as f64 / (n - 1) as f64;
-            let i = (u.floor() as usize).min(len - 2);
-            let f = u - i as f64;
-            let (a, b) = (seq[i].as_ref(), seq[i + 1].as_ref());
-            a.iter().zip(b).map(|(x, y)| x + f * (y - x)).collect()
-        })
-        .collect()
 }
 
 fn duration_of(demo: &Demonstration, range: &Range<usize>, period: f64) -> f64 {

@@ -257,7 +257,7 @@ pub(crate) fn start_fade(norm: &[Vec<Vec<f64>>], s: usize) -> Option<f64> {
                         let keep = if u >= f {
                             0.0
                         } else {
-                            1.0 - crate::gmr::minimum_jerk_at(u / f)
+                            1.0 - crate::curve::minimum_jerk_at(u / f)
                         };
                         x.iter()
                             .zip(&o[0])
