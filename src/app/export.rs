@@ -14,9 +14,9 @@ use crate::export::{export_request, ExportRequest, Trajectory};
 /// then check, scale, execute when asked and write it
 /// ([`export_request`]). Returns the report's lines.
 pub fn export(r: &ExportRequest) -> Result<Vec<String>> {
-    files::check_output(&r.out)?;
+    crate::fsutil::check_output(&r.out)?;
     if let Some(b) = &r.band {
-        files::check_output(b)?;
+        crate::fsutil::check_output(b)?;
     }
     let conditions = parse_conditions(r.goal.as_deref(), &r.via)?;
     let mut band = None;

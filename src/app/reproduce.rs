@@ -234,7 +234,7 @@ pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
         ));
     }
     if let Some(b) = &r.band {
-        files::check_output(b)?;
+        crate::fsutil::check_output(b)?;
     }
     let m = files::load_gesture_model(&r.model)?;
     let name = r.model.display().to_string();

@@ -255,7 +255,7 @@ const NO_TARGET: &str = "no demonstration to score against";
 
 /// The error and its causes on one line.
 fn msg(e: impl std::error::Error + 'static) -> String {
-    crate::app::error_line(&e)
+    crate::errors::error_line(&e)
 }
 
 /// Train with `config` (or only initialise, the negative control), timed.
