@@ -44,9 +44,9 @@ pub mod train;
 use std::path::PathBuf;
 
 pub use evaluate::{evaluate_files, inspect, Evaluation};
-pub use export::export;
 #[cfg(feature = "ros2")]
 pub use export::import;
+pub use export::{export, ExportFrom};
 pub use files::{
     check_model_output, config, demonstrations_from_rows, load_gesture_model, load_model,
     read_demos, read_reproduction, save_gesture_model, save_model,
@@ -54,7 +54,7 @@ pub use files::{
 pub use recognize::{recognize_files, recognize_paths, RecognisedFile};
 pub use reproduce::{
     continue_file, parse_conditions, parse_posture, reproduce, reproduce_conditioned,
-    reproduce_file, reproduce_gesture, resume, ReproduceFile,
+    reproduce_file, reproduce_gesture, resume, ReproduceFile, ReproduceRequest,
 };
 pub use train::{train, train_files, train_gestures, update, update_files};
 
