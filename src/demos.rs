@@ -5,7 +5,9 @@
 //! first problem: empty files, a header without samples, ragged rows, cells that are not
 //! numbers or not finite, empty or duplicate column names, and time stamps that do not
 //! increase. [`validate_set`] then checks that a set of demonstrations agrees on its
-//! columns (and, optionally, on a configured state length).
+//! columns (and, optionally, on a configured state length); labelled sets, one per gesture,
+//! take plain words as labels ([`is_plain_label`]) and record the same variables
+//! ([`check_gesture_columns`]). Reading sets from paths: [`crate::demo_sets`].
 //!
 //! ```
 //! use cosco_hsom::demos::{read_csv, write_csv, Demonstration};
