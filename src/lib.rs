@@ -14,7 +14,9 @@
 //! - [`condition`]: a goal and via-points beyond the initial posture, and bending a trajectory
 //!   onto them exactly.
 //! - [`config`]: the XML configuration, validated once into a checked type.
-//! - [`demos`]: demonstration CSV files.
+//! - [`demos`]: demonstration CSV files, and the rules of a set of them.
+//! - [`demo_sets`]: demonstration sets as the commands read them from paths: one gesture, or
+//!   labelled directories.
 //! - [`dtw`]: dynamic time warping.
 //! - [`gmr`]: the baseline, GMM/GMR.
 //! - [`promp`]: a second baseline, ProMP conditioned on the initial posture.
@@ -23,15 +25,17 @@
 //! - [`metrics`]: fidelity metrics.
 //! - [`plot`]: PNG plots.
 //! - [`experiment`]: the jobs on the simulated arm (the paper's experiment end to end, compare,
-//!   several gestures, variants, held out) and their reports, figures and film.
+//!   several gestures, variants, held out), the arm as the evaluator's executor, and their
+//!   reports, figures and film.
 //! - [`sweep`]: grids of runs from a TOML spec, on a thread pool or a cluster's job arrays,
 //!   merged into tables and box plots.
 //! - [`app`]: one way in: train, reproduce, recognize, evaluate, inspect, export, import,
 //!   each one function the `cosco` binary and the Python package call (same checks, same
-//!   messages), with one error type.
+//!   messages), with one error type; no room of the library calls it.
 //! - [`eval`]: one evaluator (methods x an executor; in-sample and leave-one-out as two splits
 //!   of one fold; one result family; one worker pool).
-//! - [`fsutil`]: atomic file writes.
+//! - [`fsutil`]: atomic file writes, and the check that an output can be written.
+//! - [`errors`]: an error and its causes on one line.
 //! - [`export`]: a reproduction to a robot: time scaling, the robot's limits, NAOqi JSON,
 //!   ROS 2 MCAP ([`ros2`], feature `ros2`, on by default, which also imports bags) and CSV.
 //! - [`resample`]: demonstrations at different sampling rates brought to one.
@@ -47,9 +51,11 @@ pub mod app;
 pub mod condition;
 pub mod config;
 pub mod curve;
+pub mod demo_sets;
 pub mod demos;
 pub mod dmp;
 pub mod dtw;
+pub mod errors;
 pub mod eval;
 #[cfg(feature = "sim")]
 pub mod experiment;

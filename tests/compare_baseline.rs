@@ -3,10 +3,11 @@
 #![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use cosco_hsom::eval::{run_fold, Fitted, FoldInput, Method};
+use cosco_hsom::experiment::ArmExecutor;
 use cosco_hsom::experiment::{record_demonstrations, DemoSettings};
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::gmr::{active_range, load_model, save_model, ComponentChoice, IdleTrim};
-use cosco_hsom::sim::{ArmExecutor, NaoArm, Transition, LEAD_IN_PEAK_SPEED};
+use cosco_hsom::sim::{NaoArm, Transition, LEAD_IN_PEAK_SPEED};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};

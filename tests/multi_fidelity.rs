@@ -8,10 +8,12 @@
 
 use cosco_hsom::config::load_config;
 use cosco_hsom::demos::{sample_period, Demonstration};
-use cosco_hsom::experiment::{synthetic_demonstrations, DemoSettings, Transition};
+use cosco_hsom::experiment::{
+    execute_and_score, synthetic_demonstrations, DemoSettings, Transition,
+};
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::metrics::MetricsParams;
-use cosco_hsom::sim::{execute_and_score, NaoArm};
+use cosco_hsom::sim::NaoArm;
 
 const GESTURES: [&str; 4] = ["reading-watch", "wave", "reach-point", "salute"];
 

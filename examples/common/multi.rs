@@ -24,8 +24,7 @@ use cosco_hsom::sim::NaoArm;
 use cosco_hsom::demos::sample_period;
 use cosco_hsom::experiment::all_gestures::{confusion_counts, confusion_markdown};
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
-use cosco_hsom::experiment::{ExperimentError, Transition};
-use cosco_hsom::sim::execute_and_score;
+use cosco_hsom::experiment::{execute_and_score, ExperimentError, Transition};
 
 /// What the study does.
 #[derive(Debug, Clone)]

@@ -27,7 +27,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Demos { action } => cli::export::demos_action(&action)?
             .iter()
             .for_each(|l| outln!("{l}")),
-        Command::Export(a) => cli::export::export(&a)?.iter().for_each(|l| outln!("{l}")),
+        Command::Export(a) => cli::export::export(a)?.iter().for_each(|l| outln!("{l}")),
         #[cfg(feature = "sim")]
         Command::Demos {
             robot,
@@ -97,7 +97,7 @@ fn run(cli: Cli) -> Result<()> {
             }
             outln!("saved {}", out.display());
         }
-        Command::Reproduce(r) => outln!("{}", app::reproduce_file(&r)?),
+        Command::Reproduce(r) => outln!("{}", app::reproduce_file(&r.into())?),
         Command::Recognize { model, demos, json } => {
             for line in app::recognize_files(&model, &demos, json.as_deref())? {
                 outln!("{line}");
@@ -147,7 +147,7 @@ fn run(cli: Cli) -> Result<()> {
                     dmp: !no_dmp,
                     replay: true,
                     in_sample: !no_in_sample,
-                    conditioning: condition.unwrap_or_default(),
+                    conditioning: condition.map(Into::into).unwrap_or_default(),
                     far: None,
                     sittings,
                     threads: threads.map_or_else(cli::cores, |t| t as usize),

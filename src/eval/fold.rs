@@ -88,19 +88,16 @@ impl Split {
 
 /// What a fold's reproductions are conditioned on besides the held-out demonstration's
 /// initial posture (`cosco heldout --condition`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 pub enum Conditioning {
     /// The initial posture only.
     #[default]
-    #[value(skip)]
     #[serde(rename = "none")]
     Unconditioned,
     /// Also the held-out demonstration's last posture, as the goal.
-    #[value(name = "end")]
     #[serde(rename = "end")]
     End,
     /// Also its last posture and its posture at phase 0.5, as a via-point.
-    #[value(name = "end+mid")]
     #[serde(rename = "end+mid")]
     EndMid,
 }
@@ -256,7 +253,7 @@ const NO_TARGET: &str = "no demonstration to score against";
 
 /// The error and its causes on one line.
 fn msg(e: impl std::error::Error + 'static) -> String {
-    crate::app::error_line(&e)
+    crate::errors::error_line(&e)
 }
 
 /// Train with `config` (or only initialise, the negative control), timed.

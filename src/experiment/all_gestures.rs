@@ -12,8 +12,7 @@
 
 use serde::Serialize;
 
-use crate::app;
-use crate::config::HsomConfig;
+use crate::config::{load_config_or_default, HsomConfig};
 use crate::demos::{write_csv, Demonstration};
 use crate::dtw::Band;
 use crate::eval::{Executed, Executor, FoldInput, Method};
@@ -22,9 +21,10 @@ use crate::hsom::{GestureError, GestureModel};
 use crate::nearest::NearestNeighbour;
 use crate::plot::{caption, confusion_png, ConfusionPanel};
 use crate::render::{contact_sheet, save_png, Clip};
-use crate::sim::{ArmExecutor, NaoArm, Recording};
+use crate::sim::{NaoArm, Recording};
 
 use super::demonstrate::{synthetic_demonstrations, write_demos, DemoSettings};
+use super::executor::ArmExecutor;
 use super::film::{clip_options, film};
 use super::heldout::on_arm;
 use super::job::Job;
@@ -242,7 +242,7 @@ pub fn all_gestures_job(job: &Job, progress: Progress<'_>) -> Result<Vec<String>
     }
     let out = &job.out;
     std::fs::create_dir_all(out).map_err(ExperimentError::io("creating", out))?;
-    let cfg = app::config(job.config.as_deref())?;
+    let cfg = load_config_or_default(job.config.as_deref())?;
     let arm = load_arm(job.model.as_deref())?;
     let report = run_all_gestures(
         &arm,

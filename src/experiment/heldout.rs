@@ -12,8 +12,9 @@ use crate::eval::{
     Split, Training,
 };
 use crate::gmr::MIN_DEMONSTRATIONS;
-use crate::sim::{ArmExecutor, NaoArm, Recording, Transition, JOINT_NAMES, SWING_JOINT};
+use crate::sim::{NaoArm, Recording, Transition, JOINT_NAMES, SWING_JOINT};
 
+use super::executor::ArmExecutor;
 use super::ExperimentError;
 use crate::robot::are_arm_joints;
 

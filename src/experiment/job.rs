@@ -6,7 +6,8 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::app;
+use crate::config::load_config_or_default;
+use crate::demo_sets::read_demos;
 use crate::demos::Demonstration;
 use crate::eval::Training;
 use crate::gesture::Gesture;
@@ -163,14 +164,14 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     let mut clock = Stopwatch::default();
     let out = &job.out;
     std::fs::create_dir_all(out.join("demos")).map_err(ExperimentError::io("creating", out))?;
-    let cfg = app::config(job.config.as_deref())?;
+    let cfg = load_config_or_default(job.config.as_deref())?;
     let arm = load_arm(job.model.as_deref())?;
     let mut files = Vec::new();
 
     // 1. Demonstrations.
     let (demos, gesture) = match &job.demos {
         Some(dir) => (
-            app::read_demos(
+            read_demos(
                 std::slice::from_ref(dir),
                 Some(cfg.params().state_length),
                 job.resample,

@@ -5,8 +5,8 @@
 use std::path::Path;
 use std::time::Instant;
 
-use crate::app::DEFAULT_CONFIG_NAME;
 use crate::config::HsomConfig;
+use crate::config::DEFAULT_CONFIG_NAME;
 use crate::demos::{write_csv, Demonstration};
 use crate::eval::{Fitted, FoldInput, Method, MethodRun};
 use crate::hsom::{Hsom, Reproduction};

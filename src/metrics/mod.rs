@@ -10,8 +10,8 @@ mod start_end;
 
 pub use errors::MetricsError;
 pub use fidelity::{
-    fidelity, fidelity_named, trimmed_normalized_jerk, DemoScores, FidelityReport, MetricsParams,
-    Stat, Trajectory,
+    fidelity, fidelity_named, fidelity_of_rows, trimmed_normalized_jerk, DemoScores,
+    FidelityReport, MetricsParams, Stat, Trajectory,
 };
 pub use smoothness::{
     apex_dwell, column_swings, key_pose, large_swings, normalized_jerk, smoothness,

@@ -8,8 +8,7 @@
 //! - [`controller`]: [`Controller`] for key-pose sequences and dense target trajectories.
 //! - [`recording`]: [`Recording`], what the controller records.
 //! - [`execute`]: postures executed on the arm ([`execute_postures`]), their [`Transition`].
-//! - [`score`]: scoring on the arm with wrist paths ([`evaluate`]), the evaluator's
-//!   [`ArmExecutor`].
+//! - [`score`]: scoring on the arm with wrist paths ([`evaluate`]).
 //! - [`error`]: [`SimError`], the room's error type.
 
 pub mod arm;
@@ -30,8 +29,8 @@ pub use execute::{clamp_to_ranges, execute_postures, key_pose_indices, Transitio
 pub use interp::Interpolation;
 pub use recording::{Recording, Touch};
 pub use score::{
-    check_reachable, demo_wrist_paths, evaluate, execute_and_score, trajectory, wrist_path,
-    ArmExecutor, LEAD_IN_PEAK_SPEED, SWING_JOINT,
+    check_reachable, demo_wrist_paths, evaluate, trajectory, wrist_path, LEAD_IN_PEAK_SPEED,
+    SWING_JOINT,
 };
 pub use spec::{
     check_joint, check_posture, clamp_joint, clamp_posture, JointSpec, NamedPosture, Posture,

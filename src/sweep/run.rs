@@ -14,10 +14,10 @@ use crate::eval::{
     diagonal, fold, FoldInput, FoldScores, HeldOutSummary, Method, Split, Training,
     SWING_MIN_AMPLITUDE_RAD,
 };
-use crate::experiment::{folds, synthetic_demonstrations, DemoSettings};
+use crate::experiment::{folds, synthetic_demonstrations, ArmExecutor, DemoSettings};
 use crate::gesture::Gesture;
 use crate::metrics::column_swings;
-use crate::sim::{ArmExecutor, NaoArm, SWING_JOINT};
+use crate::sim::{NaoArm, SWING_JOINT};
 
 use super::spec::{AxisValues, Evaluation, RunPlan, SweepSpec};
 use super::{read_json, write_json, SweepError};

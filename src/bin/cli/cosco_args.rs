@@ -60,7 +60,7 @@ pub enum Command {
     },
     /// Export a reproduction for a real robot: NAOqi JSON, ROS 2 MCAP or CSV, time-scaled
     /// and checked against the robot's joint ranges and velocity limits.
-    Export(cosco_hsom::export::ExportRequest),
+    Export(super::export::ExportArgs),
     /// Train a CoSCo-HSOM hierarchy on demonstration CSV files and save it (.bin or .txt).
     Train {
         /// XML configuration (default: the built-in configs/nao-gestures.xml, the recommended events extension).
@@ -88,7 +88,7 @@ pub enum Command {
     },
     /// Reproduce a gesture from an initial posture with a saved model; writes `step` then the
     /// demonstrations' columns.
-    Reproduce(cosco_hsom::app::ReproduceFile),
+    Reproduce(super::reproduce::ReproduceArgs),
     /// Recognise demonstrations with a model of several gestures: per file the label (or
     /// `unknown`), a score per label and the earliest sample from which the decision held.
     Recognize {
@@ -148,7 +148,7 @@ pub enum Command {
         /// (`end`), or on it and its posture at phase 0.5 (`end+mid`), beside the
         /// unconditioned run.
         #[arg(long, value_name = "end|end+mid")]
-        condition: Option<cosco_hsom::eval::Conditioning>,
+        condition: Option<Condition>,
         /// Also run every fold with its goal moved K times the training demonstrations' end
         /// spread away from their mean end (extrapolation), scored against the held-out
         /// demonstration shifted as far; repeatable.
@@ -219,6 +219,26 @@ pub enum Command {
     /// file per run in DIR/runs, finished runs skipped; `merge` makes the tables and plots.
     #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
     Sweep(super::sweep::SweepArgs),
+}
+
+/// `--condition`: what every fold is also conditioned on ([`cosco_hsom::eval::Conditioning`]).
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub enum Condition {
+    /// Also the held-out demonstration's last posture, as the goal.
+    #[value(name = "end")]
+    End,
+    /// Also its last posture and its posture at phase 0.5, as a via-point.
+    #[value(name = "end+mid")]
+    EndMid,
+}
+
+impl From<Condition> for cosco_hsom::eval::Conditioning {
+    fn from(c: Condition) -> Self {
+        match c {
+            Condition::End => cosco_hsom::eval::Conditioning::End,
+            Condition::EndMid => cosco_hsom::eval::Conditioning::EndMid,
+        }
+    }
 }
 
 /// The recognition study's demonstrations (`cosco heldout --recognition`).

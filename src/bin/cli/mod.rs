@@ -26,6 +26,7 @@ pub mod sweep;
 
 pub mod cosco_args;
 pub mod export;
+pub mod reproduce;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
