@@ -30,6 +30,7 @@
 //! - [`eval`]: one evaluator (methods x an executor; in-sample and leave-one-out as two splits
 //!   of one fold; one result family; one worker pool).
 //! - [`fsutil`]: atomic file writes.
+//! - [`table`]: Markdown tables, as the reports print them.
 //! - [`export`]: a reproduction to a robot: time scaling, the robot's limits, NAOqi JSON,
 //!   ROS 2 MCAP ([`ros2`], feature `ros2`, on by default, which also imports bags) and CSV.
 //! - [`resample`]: demonstrations at different sampling rates brought to one.
@@ -73,3 +74,4 @@ pub mod sim;
 pub mod som;
 #[cfg(feature = "sim")]
 pub mod sweep;
+pub mod table;
