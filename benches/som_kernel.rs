@@ -23,6 +23,7 @@ use std::time::Instant;
 use common::gestures;
 use cosco_hsom::som::reference::NodeMajorMap;
 use cosco_hsom::som::{Neighbourhood, Reach, SelfOrganizingMap, Topology};
+use cosco_hsom::stats::upper_median;
 use cosco_hsom::table::Table;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -41,8 +42,7 @@ fn time_ns(batches: usize, per_batch: usize, mut f: impl FnMut()) -> f64 {
             t.elapsed().as_nanos() as f64 / per_batch as f64
         })
         .collect();
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
+    upper_median(&mut v).unwrap_or(f64::NAN)
 }
 
 /// Roofline probes, run under `pulp`'s dispatch like the kernels: L1 read bandwidth

@@ -33,7 +33,7 @@ use closed_loop::{closed_loop_folds, closed_loop_png, ClosedLoop, ClosedLoopFold
 use cosco_hsom::eval::FoldScores;
 use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{synthetic_demonstrations, Transition};
-use cosco_hsom::metrics::median;
+use cosco_hsom::stats::median;
 use cosco_hsom::table::Table;
 
 /// A grab during execution: the hierarchy's and the nearest sequence's closed loops, and

@@ -28,7 +28,7 @@ use continuation::{continuation_folds, Disturbance};
 use cosco_hsom::eval::FoldScores;
 use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{synthetic_demonstrations, Transition};
-use cosco_hsom::metrics::median;
+use cosco_hsom::stats::median;
 use cosco_hsom::table::Table;
 
 /// Continuing a held-out demonstration's prefix: the hierarchy and the nearest sequence.

@@ -30,9 +30,9 @@ use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
 use cosco_hsom::hsom::Hsom;
 use cosco_hsom::metrics::column_swings;
-use cosco_hsom::metrics::median;
 use cosco_hsom::sim::NaoArm;
 use cosco_hsom::sim::SWING_JOINT;
+use cosco_hsom::stats::median;
 use cosco_hsom::table::Table;
 
 /// Re-encode demonstrations through the bottom level and score what survives.

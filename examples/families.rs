@@ -29,7 +29,7 @@ use clap::Parser;
 use cosco_hsom::config::{HsomConfig, HsomParams};
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::experiment::demonstrate::parse_seeds;
-use cosco_hsom::metrics::median;
+use cosco_hsom::stats::median;
 use cosco_hsom::table::Table;
 use hsom_common::{diagonal, dtw, figure_eight, handwriting, joints6, recommended_for, stroke};
 

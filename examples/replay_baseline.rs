@@ -17,10 +17,10 @@ use clap::Parser;
 
 use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{record_demonstrations, DemoSettings};
-use cosco_hsom::metrics::median;
 use cosco_hsom::metrics::MetricsParams;
 use cosco_hsom::sim::evaluate;
 use cosco_hsom::sim::NaoArm;
+use cosco_hsom::stats::median;
 use cosco_hsom::table::Table;
 
 /// Held-out score of replaying a training demonstration.

@@ -20,6 +20,7 @@ use cosco_hsom::hsom::{GestureModel, Scoring};
 use cosco_hsom::metrics::MetricsParams;
 use cosco_hsom::nearest::NearestNeighbour;
 use cosco_hsom::sim::NaoArm;
+use cosco_hsom::stats::median;
 use cosco_hsom::table::Table;
 
 use cosco_hsom::demos::sample_period;
@@ -346,11 +347,6 @@ pub fn run_seed(
     })
 }
 
-/// The median of values (NaN-free); `None` when empty.
-fn median(mut v: Vec<f64>) -> Option<f64> {
-    cosco_hsom::metrics::median(std::mem::take(&mut v))
-}
-
 /// Markdown tables of the results over seeds.
 pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
     use std::fmt::Write;
@@ -363,8 +359,7 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
     );
     let best_acc = frac(q.iter().filter(|x| x.hsom_best == x.expected), n);
     let nn_acc = frac(q.iter().filter(|x| x.nn == x.expected), n);
-    let med =
-        |f: &dyn Fn(&Query) -> f64| median(q.iter().map(|x| f(x)).collect()).unwrap_or(f64::NAN);
+    let med = |f: &dyn Fn(&Query) -> f64| median(q.iter().map(|x| f(x))).unwrap_or(f64::NAN);
     let _ = writeln!(s, "### Recognition, held out ({n} queries)\n");
     let mut table = Table::new([
         "method",
@@ -412,18 +407,8 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
         );
         let mut table = Table::new(["gesture", "shared hierarchy", "learned alone", "ratio"]);
         for l in labels {
-            let sh = median(
-                fid.iter()
-                    .filter(|f| &f.gesture == l)
-                    .map(|f| f.shared)
-                    .collect(),
-            );
-            let al = median(
-                fid.iter()
-                    .filter(|f| &f.gesture == l)
-                    .map(|f| f.alone)
-                    .collect(),
-            );
+            let sh = median(fid.iter().filter(|f| &f.gesture == l).map(|f| f.shared));
+            let al = median(fid.iter().filter(|f| &f.gesture == l).map(|f| f.alone));
             if let (Some(a), Some(b)) = (sh, al) {
                 table.row([
                     l.clone(),
@@ -453,8 +438,7 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
                     fid.iter()
                         .filter(|p| &p.gesture == l)
                         .map(|p| f(p))
-                        .filter(|v| v.is_finite())
-                        .collect(),
+                        .filter(|v| v.is_finite()),
                 )
                 .unwrap_or(f64::NAN)
             };
@@ -517,7 +501,7 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
         s,
         "\nModel file: {} bytes; training {:.2} s (median)",
         bytes.first().copied().unwrap_or(0),
-        median(results.iter().map(|r| r.train_s).collect()).unwrap_or(f64::NAN)
+        median(results.iter().map(|r| r.train_s)).unwrap_or(f64::NAN)
     );
     s
 }

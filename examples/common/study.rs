@@ -15,9 +15,9 @@ use cosco_hsom::demos::Demonstration;
 use cosco_hsom::fsutil::write_atomic;
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::hsom::LevelSummary;
-pub use cosco_hsom::metrics::median;
 use cosco_hsom::metrics::FidelityReport;
 use cosco_hsom::sim::NaoArm;
+pub use cosco_hsom::stats::median;
 
 use cosco_hsom::eval::{FoldInput, FoldScores, HeldOut, HeldOutSummary, Method, Pool, Training};
 use cosco_hsom::experiment::heldout::{folds, on_arm};

@@ -32,7 +32,7 @@ use super::job::Job;
 use super::output::{config_name, load_arm};
 use super::report::{files_section, write_report};
 use super::{ExperimentError, Progress};
-use crate::metrics::median;
+use crate::stats::median;
 
 /// Frames of each gesture on the contact sheet (one row per gesture).
 const SHEET_COLUMNS: usize = 4;

@@ -12,7 +12,8 @@ use plotters::style::RGBColor;
 
 use crate::experiment::baseline::GMR_COLOR;
 use crate::fsutil::write_atomic;
-use crate::plot::{boxplots_png, quantile, BoxPanel};
+use crate::plot::{boxplots_png, BoxPanel};
+use crate::stats::quantile;
 use crate::table::Table;
 
 use super::run::RunRecord;
