@@ -663,11 +663,7 @@ pub fn same_rate(x: f64, y: f64) -> bool {
 pub fn median_interval(d: &Demonstration) -> Option<f64> {
     let t = d.time.as_ref()?;
     let mut dt: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
-    if dt.is_empty() {
-        return None;
-    }
-    dt.sort_by(f64::total_cmp);
-    Some(dt[dt.len() / 2])
+    crate::stats::upper_median(&mut dt)
 }
 
 #[cfg(test)]

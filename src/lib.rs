@@ -36,6 +36,8 @@
 //!   of one fold; one result family; one worker pool).
 //! - [`fsutil`]: atomic file writes, and the check that an output can be written.
 //! - [`errors`]: an error and its causes on one line.
+//! - [`table`]: Markdown tables, as the reports print them.
+//! - [`stats`]: order statistics (median, quantiles, upper median).
 //! - [`export`]: a reproduction to a robot: time scaling, the robot's limits, NAOqi JSON,
 //!   ROS 2 MCAP ([`ros2`], feature `ros2`, on by default, which also imports bags) and CSV.
 //! - [`resample`]: demonstrations at different sampling rates brought to one.
@@ -81,5 +83,7 @@ pub mod ros2;
 #[cfg(feature = "sim")]
 pub mod sim;
 pub mod som;
+pub mod stats;
 #[cfg(feature = "sim")]
 pub mod sweep;
+pub mod table;

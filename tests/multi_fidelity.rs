@@ -17,14 +17,8 @@ use cosco_hsom::sim::NaoArm;
 
 const GESTURES: [&str; 4] = ["reading-watch", "wave", "reach-point", "salute"];
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
+fn median(v: Vec<f64>) -> f64 {
+    cosco_hsom::stats::median(v).unwrap()
 }
 
 #[test]

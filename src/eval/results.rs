@@ -7,7 +7,8 @@
 use serde::Serialize;
 
 use crate::demos::Demonstration;
-use crate::metrics::{median, FidelityReport, StartEnd};
+use crate::metrics::{FidelityReport, StartEnd};
+use crate::stats::median;
 
 use super::method::Method;
 

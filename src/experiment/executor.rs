@@ -6,8 +6,8 @@
 
 use crate::demos::{sample_period, Demonstration};
 use crate::eval::{Executed, Executor, Method};
-use crate::robot::are_arm_joints;
 use crate::metrics::MetricsParams;
+use crate::robot::are_arm_joints;
 use crate::sim::{
     clamp_to_ranges, evaluate, execute_postures, NaoArm, Recording, SimError, Transition,
     JOINT_NAMES, LEAD_IN_PEAK_SPEED, SWING_JOINT,

@@ -40,6 +40,7 @@ use super::hyperparams::{GmrValidParams, IdleTrim, MIN_DEMONSTRATIONS};
 use crate::curve::resample_linear;
 use crate::demos::{validate_set, Demonstration};
 use crate::dtw::{dtw, dtw_distance, Band, DtwError};
+use crate::stats::upper_median;
 
 /// Smoothed joint-space speeds `s_k` (rad/s), `k = 0..n−1` for `n + 1` samples (see the
 /// module documentation), of evenly or explicitly timed samples: `times` when given (one per
@@ -118,9 +119,9 @@ pub fn noise_displacement<R: AsRef<[f64]>>(rows: &[R]) -> f64 {
             rows.windows(3)
                 .map(|w| (w[2].as_ref()[j] - 2.0 * w[1].as_ref()[j] + w[0].as_ref()[j]).abs()),
         );
-        let mid = d2.len() / 2;
-        let (_, m, _) = d2.select_nth_unstable_by(mid, f64::total_cmp);
-        let sigma = *m / (0.6745 * 6f64.sqrt());
+        // at least one second difference: 3 rows or more
+        let m = upper_median(&mut d2).unwrap_or(0.0);
+        let sigma = m / (0.6745 * 6f64.sqrt());
         a.push(2.0 * sigma * sigma);
     }
     let t = ((rows.len() - 1) as f64 / NOISE_FALSE_ALARM).ln();
