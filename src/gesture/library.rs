@@ -82,24 +82,6 @@ pub struct Gesture {
 }
 
 impl Gesture {
-    /// Every gesture this crate can demonstrate on `robot`.
-    pub fn all(robot: Robot) -> Vec<Gesture> {
-        match robot {
-            Robot::LeftArm => vec![reading_watch(), wave(), reach_point(), salute()],
-            Robot::UpperBody => super::upper_body::all(),
-        }
-    }
-
-    /// The names of [`Gesture::all`], for messages.
-    pub fn names(robot: Robot) -> Vec<&'static str> {
-        Gesture::all(robot).iter().map(|g| g.name).collect()
-    }
-
-    /// Look a gesture of `robot` up by name.
-    pub fn by_name(robot: Robot, name: &str) -> Option<Gesture> {
-        Gesture::all(robot).into_iter().find(|g| g.name == name)
-    }
-
     /// The key pose farthest (Euclidean, joint space) from the initial posture: the apex.
     pub fn apex(&self) -> Pose {
         let mut best = &self.initial;

@@ -5,6 +5,7 @@
 //! variability. Recording it from the simulated joint encoders happens in the simulator
 //! (see `crate::sim`), as in kinesthetic teaching.
 
+mod catalog;
 pub mod demonstrator;
 pub mod library;
 pub mod upper_body;
