@@ -26,12 +26,15 @@ demo: deps
 	$(CARGO) build --release --bins
 	$(CARGO) run --release --bin simulate -- --out out
 
-## test: the whole test suite, headless: with the simulator (default), without it (the
-## algorithm alone, as the Python package builds it), then the Python package's tests
+## test: the whole test suite, headless: with the simulator (default); without it (the
+## algorithm alone, as the Python package builds it: every target compiled, the unit tests,
+## the binaries' and the command line's tests run, the rest being the same code as above);
+## then the Python package's tests and the docs' commands
 test: deps structure
 	$(CARGO) test --all-targets
 	$(CARGO) test --doc
-	$(CARGO) test --no-default-features --all-targets
+	$(CARGO) check --no-default-features --all-targets
+	$(CARGO) test --no-default-features --lib --bins --test cli_cosco --test bad_input
 	$(CARGO) test --no-default-features --doc
 	$(MAKE) test-python
 	$(MAKE) doc-commands
@@ -46,9 +49,10 @@ structure:
 	@big=$$(find src -name '*.rs' ! -name ffi.rs -exec wc -l {} + | awk '$$2 != "total" && $$1 > 800 {print "  " $$2 " (" $$1 " lines)"}'); \
 	if [ -n "$$big" ]; then echo "files over 800 lines under src/:"; echo "$$big"; exit 1; else echo "no file under src/ over 800 lines"; fi
 
-## test-python: build the Python package (python/) into a local virtual environment and run
-## its tests against the `cosco` binary (without the simulator, with ROS 2 bags: the export
-## round trips are read back by mcap-ros2-support); skipped when python3 is absent
+## test-python: build the Python package (python/, without the simulator; in the dev profile,
+## as the tests above) into a local virtual environment and run its tests against the `cosco`
+## binary (the export round trips are read back by mcap-ros2-support); skipped when python3
+## is absent
 test-python:
 	@if ! command -v $(PYTHON) >/dev/null 2>&1; then echo "$(PYTHON) not found: Python tests skipped"; exit 0; fi; \
 	set -e; \
@@ -56,8 +60,8 @@ test-python:
 	  $(PYTHON) -m venv $(PY_VENV) || { $(SUDO) apt-get install -y --no-install-recommends python3-venv && $(PYTHON) -m venv $(PY_VENV); }; \
 	fi; \
 	$(PY_VENV)/bin/pip install -q --disable-pip-version-check "maturin>=1.5,<2" pytest numpy "mcap-ros2-support>=0.5,<1" "movement_primitives==0.9.1" scipy pytransform3d; \
-	$(CARGO) build --no-default-features --features ros2 --bin cosco; \
-	PATH="$(CURDIR)/$(PY_VENV)/bin:$$PATH" CARGO_TARGET_DIR=$(CURDIR)/target $(PY_VENV)/bin/pip install -q --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python; \
+	$(CARGO) build --bins; \
+	PATH="$(CURDIR)/$(PY_VENV)/bin:$$PATH" CARGO_TARGET_DIR=$(CURDIR)/target MATURIN_PEP517_ARGS="--profile dev" $(PY_VENV)/bin/pip install -q --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python; \
 	COSCO_BIN=$(CURDIR)/target/debug/cosco $(PY_VENV)/bin/python -m pytest -q python/tests
 
 ## doc-commands: run every command block of README.md, CONTRIBUTING.md and docs/ as written,
