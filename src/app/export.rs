@@ -3,7 +3,7 @@
 //! (`cosco demos import`, [`crate::ros2`]).
 
 use super::files::{self, read_reproduction};
-use super::reproduce::{initial_posture, parse_conditions, reproduce_conditioned, write_band};
+use super::reproduce::{conditions, initial_posture, reproduce_conditioned, write_band};
 use super::{Error, Result};
 use crate::demos::Demonstration;
 use crate::export::{export_request, ExportRequest, Trajectory};
@@ -18,14 +18,14 @@ pub fn export(r: &ExportRequest) -> Result<Vec<String>> {
     if let Some(b) = &r.band {
         files::check_output(b)?;
     }
-    let conditions = parse_conditions(r.goal.as_deref(), &r.via)?;
+    let conditions = conditions(r.goal.as_ref(), &r.via);
     let mut band = None;
     let d = match (&r.reproduction, &r.model) {
         (Some(path), _) => read_reproduction(path)?,
         (None, Some(model)) => {
             let m = files::load_gesture_model(model)?;
             let branch = m.branch(r.gesture.as_deref())?;
-            let initial = initial_posture(branch, r.initial.as_deref(), r.initial_from.as_deref())?;
+            let initial = initial_posture(branch, r.initial.as_ref(), r.initial_from.as_deref())?;
             let name = model.display().to_string();
             let rep = reproduce_conditioned(branch, &name, &initial, &conditions)?;
             band = Some((branch.clone(), rep.clone()));

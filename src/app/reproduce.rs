@@ -5,35 +5,18 @@ use std::path::{Path, PathBuf};
 
 use super::files::{self, read_for_columns};
 use super::{Error, Result};
-use crate::condition::{self, Conditions};
+use crate::condition::{Conditions, PostureArg, ViaPoint};
 use crate::hsom::{GestureModel, Hsom, HsomError, Reproduction};
 
-/// Parse `"v1,v2,..."` (`--initial`) into numbers, naming the bad entry.
-pub fn parse_posture(text: &str) -> Result<Vec<f64>> {
-    text.split(',')
-        .enumerate()
-        .map(|(i, v)| {
-            let v = v.trim();
-            match v.parse::<f64>() {
-                Ok(x) if x.is_finite() => Ok(x),
-                _ => Err(Error::value(
-                    "--initial:",
-                    format!("value {} is '{v}': need a finite number", i + 1),
-                )),
-            }
-        })
-        .collect()
-}
-
-/// The initial posture of `--initial TEXT` or `--initial-from CSV` (its first row, whose
+/// The initial posture of `--initial V1,V2,...` or `--initial-from CSV` (its first row, whose
 /// columns must be the model's): exactly one of them.
 pub(super) fn initial_posture(
     model: &Hsom,
-    initial: Option<&str>,
+    initial: Option<&PostureArg>,
     initial_from: Option<&Path>,
 ) -> Result<Vec<f64>> {
     match (initial, initial_from) {
-        (Some(text), None) => parse_posture(text),
+        (Some(posture), None) => Ok(posture.0.clone()),
         (None, Some(p)) => Ok(read_for_columns(p, model.columns())?.rows.swap_remove(0)),
         _ => Err(Error::value(
             "--initial:",
@@ -101,17 +84,12 @@ pub fn reproduce_conditioned(
         .map_err(|e| naming_model(e, model, model_name))
 }
 
-/// The conditions of `--goal TEXT` and `--via P:TEXT` (each of them).
-pub fn parse_conditions(goal: Option<&str>, via: &[String]) -> Result<Conditions> {
-    Ok(Conditions {
-        goal: goal
-            .map(|g| condition::parse_posture("--goal", g))
-            .transpose()?,
-        via: via
-            .iter()
-            .map(|v| condition::parse_via(v))
-            .collect::<std::result::Result<_, _>>()?,
-    })
+/// The conditions of `--goal V1,V2,...` and `--via P:V1,V2,...` (each of them).
+pub fn conditions(goal: Option<&PostureArg>, via: &[ViaPoint]) -> Conditions {
+    Conditions {
+        goal: goal.map(|g| g.0.clone()),
+        via: via.to_vec(),
+    }
 }
 
 /// Reproduce from `initial` (`model_name` names the model in messages: its file, or
@@ -156,10 +134,11 @@ pub struct ReproduceFile {
     /// The initial posture, comma-separated, one value per state variable.
     #[arg(
         long,
+        allow_hyphen_values = true,
         conflicts_with_all = ["initial_from", "prefix_from"],
         required_unless_present_any = ["initial_from", "prefix_from"]
     )]
-    pub initial: Option<String>,
+    pub initial: Option<PostureArg>,
     /// Take the initial posture from the first row of this demonstration CSV.
     #[arg(long, conflicts_with = "prefix_from")]
     pub initial_from: Option<PathBuf>,
@@ -179,12 +158,12 @@ pub struct ReproduceFile {
     #[arg(long, conflicts_with = "prefix_from")]
     pub resume_from: Option<PathBuf>,
     /// The last posture, comma-separated: the reproduction ends exactly there.
-    #[arg(long, conflicts_with_all = ["prefix_from", "resume_from"])]
-    pub goal: Option<String>,
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["prefix_from", "resume_from"])]
+    pub goal: Option<PostureArg>,
     /// A posture to pass at a phase of the reproduction (0 the start, 1 the end):
     /// `PHASE:V1,V2,...`; repeatable.
-    #[arg(long, conflicts_with_all = ["prefix_from", "resume_from"])]
-    pub via: Vec<String>,
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["prefix_from", "resume_from"])]
+    pub via: Vec<ViaPoint>,
     /// Also write the central 95 % confidence band about the reproduction to this CSV: one
     /// row per reproduction row, `step` then `<variable>_lo` and `<variable>_hi`.
     #[arg(long, conflicts_with_all = ["prefix_from", "resume_from"])]
@@ -226,7 +205,7 @@ pub fn write_band(
 /// the file's first samples. Writes `step` then the model's columns; returns the line to
 /// print.
 pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
-    let conditions = parse_conditions(r.goal.as_deref(), &r.via)?;
+    let conditions = conditions(r.goal.as_ref(), &r.via);
     if !conditions.is_empty() && (r.prefix_from.is_some() || r.resume_from.is_some()) {
         return Err(Error::value(
             "--goal and --via",
@@ -247,7 +226,7 @@ pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
         _ => {
             // the gesture is checked before the initial posture is read
             let branch = m.branch(r.gesture.as_deref())?;
-            let initial = initial_posture(branch, r.initial.as_deref(), r.initial_from.as_deref())?;
+            let initial = initial_posture(branch, r.initial.as_ref(), r.initial_from.as_deref())?;
             let rep = match &r.resume_from {
                 Some(path) => {
                     let reading = read_for_columns(path, branch.columns())?.rows;

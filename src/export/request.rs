@@ -7,6 +7,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 
+use crate::condition::{PostureArg, ViaPoint};
+
 use super::{encode, limits, prepare, ExportError, Format, Trajectory};
 
 /// Rate of a reproduction's `step` column when the file has no `time` column: the arm's
@@ -24,8 +26,13 @@ pub struct ExportRequest {
     #[arg(long)]
     pub model: Option<PathBuf>,
     /// The initial posture, comma-separated (with --model).
-    #[arg(long, requires = "model", conflicts_with = "initial_from")]
-    pub initial: Option<String>,
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        requires = "model",
+        conflicts_with = "initial_from"
+    )]
+    pub initial: Option<PostureArg>,
     /// Take the initial posture from the first row of this CSV (with --model).
     #[arg(long, requires = "model")]
     pub initial_from: Option<PathBuf>,
@@ -33,11 +40,11 @@ pub struct ExportRequest {
     #[arg(long, requires = "model")]
     pub gesture: Option<String>,
     /// The last posture, comma-separated (with --model): the reproduction ends exactly there.
-    #[arg(long, requires = "model")]
-    pub goal: Option<String>,
+    #[arg(long, allow_hyphen_values = true, requires = "model")]
+    pub goal: Option<PostureArg>,
     /// A posture to pass at a phase (with --model): `PHASE:V1,V2,...`; repeatable.
-    #[arg(long, requires = "model")]
-    pub via: Vec<String>,
+    #[arg(long, allow_hyphen_values = true, requires = "model")]
+    pub via: Vec<ViaPoint>,
     /// Also write the reproduction's 95 % confidence band to this CSV (with --model), as
     /// `cosco reproduce --band` does.
     #[arg(long, requires = "model")]
