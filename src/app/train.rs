@@ -26,7 +26,7 @@ use super::files::{self, DemoSets};
 use super::Result;
 use crate::config::HsomConfig;
 use crate::demos::{self, Demonstration};
-use crate::hsom::{GestureError, GestureModel, Hsom};
+use crate::hsom::{GestureError, GestureModel, Hsom, HsomError};
 
 /// Check the demonstrations as a set against the configuration (at least one; see
 /// [`demos::validate_set`]), then train, calling `progress(done, total)` now and then when
@@ -115,15 +115,22 @@ pub fn update_files(
     let updated = match files::read_demo_sets(demo_paths, Some(state), resample)? {
         DemoSets::Plain(d) => {
             demos::validate_set(&d, Some(state))?;
-            model.update(None, &d, progress)?
+            model.update(None, &d, progress)
         }
         DemoSets::Labelled(s) => {
             for (_, d) in &s {
                 demos::validate_set(d, Some(state))?;
             }
-            model.update_labelled(&s, progress)?
+            model.update_labelled(&s, progress)
         }
-    };
+    }
+    // a count the model file holds is named with the file
+    .map_err(|e| match e {
+        GestureError::Hsom(e @ HsomError::TooManyLearned { .. }) => {
+            super::Error::file(from, e.to_string())
+        }
+        e => e.into(),
+    })?;
     files::save_gesture_model(&updated, out)?;
     Ok(updated)
 }
