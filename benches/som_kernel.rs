@@ -23,6 +23,8 @@ use std::time::Instant;
 use common::gestures;
 use cosco_hsom::som::reference::NodeMajorMap;
 use cosco_hsom::som::{Neighbourhood, Reach, SelfOrganizingMap, Topology};
+use cosco_hsom::stats::upper_median;
+use cosco_hsom::table::Table;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -40,8 +42,7 @@ fn time_ns(batches: usize, per_batch: usize, mut f: impl FnMut()) -> f64 {
             t.elapsed().as_nanos() as f64 / per_batch as f64
         })
         .collect();
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
+    upper_median(&mut v).unwrap_or(f64::NAN)
 }
 
 /// Roofline probes, run under `pulp`'s dispatch like the kernels: L1 read bandwidth
@@ -312,50 +313,92 @@ fn main() -> anyhow::Result<()> {
         })
     };
     println!("\n16x16 map, 12-D input, radius 2 (ns per call):");
-    println!("| kernel | BMU scan | training step | step / scan | scan / roofline |");
-    println!("|---|---|---|---|---|");
-    println!(
-        "| node-major loops (before) | {old_scan:.0} | {old_step:.0} | {:.2} | {:.1} |",
-        old_step / old_scan,
-        old_scan / (roof * 256.0)
-    );
-    println!(
-        "| blocked, cut h < 1e-4 (default) | {scan:.0} | {cut:.0} | {:.2} | {:.1} |",
-        cut / scan,
-        scan / (roof * 256.0)
-    );
-    println!(
-        "| blocked, cut at 3 radii (h < exp(-4.5) = 0.011) | {scan:.0} | {three_sigma:.0} | {:.2} | |",
-        three_sigma / scan
-    );
-    println!(
-        "| blocked, exact (every node) | {scan:.0} | {exact:.0} | {:.2} | |",
-        exact / scan
-    );
+    let mut table = Table::new([
+        "kernel",
+        "BMU scan",
+        "training step",
+        "step / scan",
+        "scan / roofline",
+    ]);
+    let roofline = |scan: f64| format!("{:.1}", scan / (roof * 256.0));
+    for (name, s, step, per_roof) in [
+        (
+            "node-major loops (before)",
+            old_scan,
+            old_step,
+            roofline(old_scan),
+        ),
+        ("blocked, cut h < 1e-4 (default)", scan, cut, roofline(scan)),
+        (
+            "blocked, cut at 3 radii (h < exp(-4.5) = 0.011)",
+            scan,
+            three_sigma,
+            String::new(),
+        ),
+        ("blocked, exact (every node)", scan, exact, String::new()),
+    ] {
+        table.row([
+            name.to_string(),
+            format!("{s:.0}"),
+            format!("{step:.0}"),
+            format!("{:.2}", step / s),
+            per_roof,
+        ]);
+    }
+    print!("{table}");
 
     println!("\n16x16 step against the learning radius (cut h < 1e-4; ns per call):");
-    println!("| radius | nodes within the cut (4.29 r) | step | step / scan |");
-    println!("|---|---|---|---|");
+    print!(
+        "{}",
+        Table::new([
+            "radius",
+            "nodes within the cut (4.29 r)",
+            "step",
+            "step / scan"
+        ])
+    );
     for r in [0.5, 1.0, 2.0, 4.0] {
         let (s, c, _) = scan_and_step(16, r);
         let reach = (r * (2.0 * 1e4f64.ln()).sqrt()).min(16.0);
-        println!(
-            "| {r} | about {:.0} | {c:.0} | {:.2} |",
-            (std::f64::consts::PI * reach * reach).min(256.0),
-            c / s
+        print!(
+            "{}",
+            Table::line([
+                r.to_string(),
+                format!(
+                    "about {:.0}",
+                    (std::f64::consts::PI * reach * reach).min(256.0)
+                ),
+                format!("{c:.0}"),
+                format!("{:.2}", c / s),
+            ])
         );
     }
 
     println!("\nstep against map size (radius 2; ns per call):");
-    println!("| map | BMU scan | ns/node | step, cut | step / scan | step, exact |");
-    println!("|---|---|---|---|---|---|");
+    print!(
+        "{}",
+        Table::new([
+            "map",
+            "BMU scan",
+            "ns/node",
+            "step, cut",
+            "step / scan",
+            "step, exact",
+        ])
+    );
     let mut rows = Vec::new();
     for side in [8, 16, 32, 64] {
         let (s, c, e) = scan_and_step(side, 2.0);
-        println!(
-            "| {side}x{side} | {s:.0} | {:.2} | {c:.0} | {:.2} | {e:.0} |",
-            s / (side * side) as f64,
-            c / s
+        print!(
+            "{}",
+            Table::line([
+                format!("{side}x{side}"),
+                format!("{s:.0}"),
+                format!("{:.2}", s / (side * side) as f64),
+                format!("{c:.0}"),
+                format!("{:.2}", c / s),
+                format!("{e:.0}"),
+            ])
         );
         rows.push((side, s, c, e));
     }
@@ -380,11 +423,11 @@ fn main() -> anyhow::Result<()> {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/minisom");
         let (theirs, diff) = minisom(Path::new(&py), &dir, 2000)?;
         println!("\nMiniSom, same 16x16 map and 64 inputs, winner + update (sigma 2, learning rate 0.1):");
-        println!("| | training step (ns) |");
-        println!("|---|---|");
-        println!("| MiniSom | {theirs:.0} |");
-        println!("| cosco-hsom, cut (default) | {cut:.0} |");
-        println!("| cosco-hsom, exact | {exact:.0} |");
+        let mut table = Table::new(["", "training step (ns)"]);
+        table.row(["MiniSom".to_string(), format!("{theirs:.0}")]);
+        table.row(["cosco-hsom, cut (default)".to_string(), format!("{cut:.0}")]);
+        table.row(["cosco-hsom, exact".to_string(), format!("{exact:.0}")]);
+        print!("{table}");
         println!(
             "ratio MiniSom / cosco-hsom: {:.0}x (cut), {:.0}x (exact)",
             theirs / cut,

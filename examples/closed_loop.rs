@@ -33,7 +33,8 @@ use closed_loop::{closed_loop_folds, closed_loop_png, ClosedLoop, ClosedLoopFold
 use cosco_hsom::eval::FoldScores;
 use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{synthetic_demonstrations, Transition};
-use cosco_hsom::metrics::median;
+use cosco_hsom::stats::median;
+use cosco_hsom::table::Table;
 
 /// A grab during execution: the hierarchy's and the nearest sequence's closed loops, and
 /// every method by its clock.
@@ -133,7 +134,10 @@ fn print_row(gesture: &str, seed: &str, r: &[Mean; 11]) {
         .iter()
         .map(|m| format!("{:.4} ({:.2}x, {}/{})", m.dtw, m.duration, m.exact, m.folds))
         .collect();
-    println!("| {gesture} | {seed} | {} |", cells.join(" | "));
+    print!(
+        "{}",
+        Table::line([gesture, seed].map(String::from).into_iter().chain(cells))
+    );
 }
 
 fn print_median(gesture: &str, rows: &[[Mean; 11]]) {
@@ -150,7 +154,8 @@ fn print_median(gesture: &str, rows: &[[Mean; 11]]) {
             )
         })
         .collect();
-    println!("| **{gesture}** | median | {} |", cells.join(" | "));
+    let head = [format!("**{gesture}**"), "median".into()];
+    print!("{}", Table::line(head.into_iter().chain(cells)));
 }
 
 fn run(a: Args) -> Result<()> {
@@ -174,8 +179,10 @@ fn run(a: Args) -> Result<()> {
         a.sets.count,
         a.sets.noise
     );
-    println!("| gesture | seed | {} |", COLUMNS.join(" | "));
-    println!("|---|---|{}", "---|".repeat(COLUMNS.len()));
+    print!(
+        "{}",
+        Table::new(["gesture", "seed"].into_iter().chain(COLUMNS))
+    );
     let mut all = Vec::new();
     for g in parse_gestures(&a.sets.gestures)? {
         let mut rows = Vec::new();

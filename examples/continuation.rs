@@ -28,7 +28,8 @@ use continuation::{continuation_folds, Disturbance};
 use cosco_hsom::eval::FoldScores;
 use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{synthetic_demonstrations, Transition};
-use cosco_hsom::metrics::median;
+use cosco_hsom::stats::median;
+use cosco_hsom::table::Table;
 
 /// Continuing a held-out demonstration's prefix: the hierarchy and the nearest sequence.
 #[derive(Parser, Debug)]
@@ -75,7 +76,15 @@ fn run(a: Args) -> Result<()> {
         a.sets.count,
         a.sets.noise
     );
-    println!("| gesture | seed | hierarchy joint DTW | nearest sequence | hierarchy swings exact | nearest sequence swings exact |\n|---|---|---|---|---|---|");
+    let header = [
+        "gesture",
+        "seed",
+        "hierarchy joint DTW",
+        "nearest sequence",
+        "hierarchy swings exact",
+        "nearest sequence swings exact",
+    ];
+    print!("{}", Table::new(header));
     let mut all = Vec::new();
     for g in parse_gestures(&a.sets.gestures)? {
         let mut rows = Vec::new();
@@ -91,11 +100,16 @@ fn run(a: Args) -> Result<()> {
             )
             .with_context(|| format!("{} seed {seed}", g.name))?;
             let ((hd, he), (sd, se)) = (summary(&h), summary(&s));
-            println!(
-                "| {} | {seed} | {hd:.4} | {sd:.4} | {he} of {} | {se} of {} |",
-                g.name,
-                h.len(),
-                s.len()
+            print!(
+                "{}",
+                Table::line([
+                    g.name.to_string(),
+                    seed.to_string(),
+                    format!("{hd:.4}"),
+                    format!("{sd:.4}"),
+                    format!("{he} of {}", h.len()),
+                    format!("{se} of {}", s.len()),
+                ])
             );
             rows.push((hd, sd, he, se, h.len()));
         }
@@ -105,20 +119,30 @@ fn run(a: Args) -> Result<()> {
         let (he, se, n) = rows
             .iter()
             .fold((0, 0, 0), |(a, b, c), r| (a + r.2, b + r.3, c + r.4));
-        println!(
-            "| **{}** | median | {:.4} | {:.4} | {he} of {n} | {se} of {n} |",
-            g.name,
-            med(|r| r.0),
-            med(|r| r.1)
+        print!(
+            "{}",
+            Table::line([
+                format!("**{}**", g.name),
+                "median".into(),
+                format!("{:.4}", med(|r| r.0)),
+                format!("{:.4}", med(|r| r.1)),
+                format!("{he} of {n}"),
+                format!("{se} of {n}"),
+            ])
         );
         all.extend(rows);
     }
     let hsom_closer = all.iter().filter(|r| r.0 < r.1).count();
-    println!(
-        "| **all** | median | {:.4} | {:.4} | hierarchy closer in {hsom_closer} of {} runs | |",
-        median(all.iter().map(|r| r.0)).unwrap_or(f64::NAN),
-        median(all.iter().map(|r| r.1)).unwrap_or(f64::NAN),
-        all.len()
+    print!(
+        "{}",
+        Table::line([
+            "**all**".into(),
+            "median".into(),
+            format!("{:.4}", median(all.iter().map(|r| r.0)).unwrap_or(f64::NAN)),
+            format!("{:.4}", median(all.iter().map(|r| r.1)).unwrap_or(f64::NAN)),
+            format!("hierarchy closer in {hsom_closer} of {} runs", all.len()),
+            String::new(),
+        ])
     );
     Ok(())
 }

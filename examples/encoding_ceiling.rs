@@ -30,9 +30,10 @@ use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
 use cosco_hsom::hsom::Hsom;
 use cosco_hsom::metrics::column_swings;
-use cosco_hsom::metrics::median;
 use cosco_hsom::sim::NaoArm;
 use cosco_hsom::sim::SWING_JOINT;
+use cosco_hsom::stats::median;
+use cosco_hsom::table::Table;
 
 /// Re-encode demonstrations through the bottom level and score what survives.
 #[derive(Parser, Debug)]
@@ -81,8 +82,18 @@ fn ceiling(model: &Hsom, demos: &[Demonstration]) -> Result<(f64, f64, usize)> {
 fn shared(a: &Args, arm: &NaoArm, config: &HsomConfig, settings: &DemoSettings) -> Result<()> {
     let gestures = parse_gestures(&a.sets.gestures)?;
     println!("Each demonstration through the bottom level's events and back: the gesture learned alone, and through the bottom shared by {} gestures ({}, trained on all {} demonstrations of each): means over the demonstrations.\n", gestures.len(), a.config.display(), a.sets.count);
-    println!("| gesture | seed | joint DTW alone | joint DTW shared | shared / alone | events per demo alone | shared | bottom nodes used alone | shared |");
-    println!("|---|---|---|---|---|---|---|---|---|");
+    let header = [
+        "gesture",
+        "seed",
+        "joint DTW alone",
+        "joint DTW shared",
+        "shared / alone",
+        "events per demo alone",
+        "shared",
+        "bottom nodes used alone",
+        "shared",
+    ];
+    print!("{}", Table::new(header));
     let mut all: Vec<(String, f64)> = Vec::new();
     for &seed in &parse_seeds(&a.sets.seeds)? {
         let sets: Vec<(String, Vec<Demonstration>)> = gestures
@@ -98,16 +109,29 @@ fn shared(a: &Args, arm: &NaoArm, config: &HsomConfig, settings: &DemoSettings) 
         for (label, demos) in &sets {
             let (da, ea, ua) = ceiling(&config.fit(demos)?, demos)?;
             let (ds, es, us) = ceiling(model.branch(Some(label))?, demos)?;
-            println!(
-                "| {label} | {seed} | {da:.4} | {ds:.4} | {:.2} | {ea:.1} | {es:.1} | {ua} | {us} |",
-                ds / da
+            print!(
+                "{}",
+                Table::line([
+                    label.clone(),
+                    seed.to_string(),
+                    format!("{da:.4}"),
+                    format!("{ds:.4}"),
+                    format!("{:.2}", ds / da),
+                    format!("{ea:.1}"),
+                    format!("{es:.1}"),
+                    ua.to_string(),
+                    us.to_string(),
+                ])
             );
             all.push((label.to_string(), ds / da));
         }
     }
     for g in &gestures {
         let m = median(all.iter().filter(|r| r.0 == g.name).map(|r| r.1)).unwrap_or(f64::NAN);
-        println!("| **{}** | median | | | {m:.2} | | | | |", g.name);
+        let blank = String::new;
+        let (name, ratio) = (format!("**{}**", g.name), format!("{m:.2}"));
+        let cells = [name, "median".into(), blank(), blank(), ratio];
+        print!("{}", Table::line(cells.into_iter().chain(vec![blank(); 4])));
     }
     Ok(())
 }
@@ -120,8 +144,15 @@ fn run(a: Args) -> Result<()> {
         return shared(&a, &arm, &config, &settings);
     }
     println!("Each demonstration through the bottom level's events and back ({}, trained on all {} demonstrations of the set): means over the demonstrations.\n", a.config.display(), a.sets.count);
-    println!("| gesture | seed | joint DTW (rad/step) | LElbowRoll swings (re-encoded / demo) | LElbowRoll range ratio | events per demo |");
-    println!("|---|---|---|---|---|---|");
+    let header = [
+        "gesture",
+        "seed",
+        "joint DTW (rad/step)",
+        "LElbowRoll swings (re-encoded / demo)",
+        "LElbowRoll range ratio",
+        "events per demo",
+    ];
+    print!("{}", Table::new(header));
     let mut all: Vec<Row> = Vec::new();
     for g in parse_gestures(&a.sets.gestures)? {
         for &seed in &parse_seeds(&a.sets.seeds)? {
@@ -137,13 +168,16 @@ fn run(a: Args) -> Result<()> {
             }
             let n = demos.len() as f64;
             let events = model.summary().demo_events[1];
-            println!(
-                "| {} | {seed} | {:.4} | {:.1} / {:.1} | {:.2} | {events:.1} |",
-                g.name,
-                dtw / n,
-                sw / n,
-                dsw / n,
-                rr / n
+            print!(
+                "{}",
+                Table::line([
+                    g.name.to_string(),
+                    seed.to_string(),
+                    format!("{:.4}", dtw / n),
+                    format!("{:.1} / {:.1}", sw / n, dsw / n),
+                    format!("{:.2}", rr / n),
+                    format!("{events:.1}"),
+                ])
             );
             all.push((g.name.to_string(), dtw / n, sw / n, dsw / n, rr / n));
         }
@@ -156,12 +190,16 @@ fn run(a: Args) -> Result<()> {
     for name in names {
         let rows: Vec<_> = all.iter().filter(|r| r.0 == name).collect();
         let m = |f: &dyn Fn(&Row) -> f64| median(rows.iter().map(|r| f(r))).unwrap_or(f64::NAN);
-        println!(
-            "| **{name}** | median | {:.4} | {:.1} / {:.1} | {:.2} | |",
-            m(&|r| r.1),
-            m(&|r| r.2),
-            m(&|r| r.3),
-            m(&|r| r.4)
+        print!(
+            "{}",
+            Table::line([
+                format!("**{name}**"),
+                "median".into(),
+                format!("{:.4}", m(&|r| r.1)),
+                format!("{:.1} / {:.1}", m(&|r| r.2), m(&|r| r.3)),
+                format!("{:.2}", m(&|r| r.4)),
+                String::new(),
+            ])
         );
     }
     Ok(())

@@ -29,7 +29,8 @@ use clap::Parser;
 use cosco_hsom::config::{HsomConfig, HsomParams};
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::experiment::demonstrate::parse_seeds;
-use cosco_hsom::metrics::median;
+use cosco_hsom::stats::median;
+use cosco_hsom::table::Table;
 use hsom_common::{diagonal, dtw, figure_eight, handwriting, joints6, recommended_for, stroke};
 
 /// Leave-one-out on the synthetic families.
@@ -107,8 +108,17 @@ fn adapted(mut p: HsomParams, dims: usize, seed: u64) -> Result<HsomConfig> {
 fn run(a: Args) -> Result<()> {
     let seeds = parse_seeds(&a.seeds)?;
     println!("Leave-one-out relative DTW (held out | in-sample), CoSCo-HSOM seeds {}; medians over the seeds in the last rows.\n", a.seeds);
-    println!("| family | seed | recommended held out | Table I held out | replay held out | nearest-sequence held out | recommended in-sample | encoding ceiling |");
-    println!("|---|---|---|---|---|---|---|---|");
+    let header = [
+        "family",
+        "seed",
+        "recommended held out",
+        "Table I held out",
+        "replay held out",
+        "nearest-sequence held out",
+        "recommended in-sample",
+        "encoding ceiling",
+    ];
+    print!("{}", Table::new(header));
     let families = [
         ("eight", figure_eight(6, 7)),
         ("stroke", stroke(6, 8)),
@@ -130,10 +140,9 @@ fn run(a: Args) -> Result<()> {
             let (th, _, _) = loo(&adapted(HsomParams::table1(), dims, seed)?, demos, diag)?;
             let c = ceiling(&rec, demos, diag)?;
             let r = [rh, th, rp, rs, ri, c];
-            println!(
-                "| {name} | {seed} | {} |",
-                r.map(|v| format!("{v:.4}")).join(" | ")
-            );
+            let cells = r.map(|v| format!("{v:.4}"));
+            let head = [name.to_string(), seed.to_string()];
+            print!("{}", Table::line(head.into_iter().chain(cells)));
             rows.push(r);
         }
         let m: Vec<String> = (0..6)
@@ -144,7 +153,8 @@ fn run(a: Args) -> Result<()> {
                 )
             })
             .collect();
-        println!("| **{name}** | median | {} |", m.join(" | "));
+        let head = [format!("**{name}**"), "median".into()];
+        print!("{}", Table::line(head.into_iter().chain(m)));
     }
     Ok(())
 }

@@ -17,10 +17,11 @@ use clap::Parser;
 
 use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{record_demonstrations, DemoSettings};
-use cosco_hsom::metrics::median;
 use cosco_hsom::metrics::MetricsParams;
 use cosco_hsom::sim::evaluate;
 use cosco_hsom::sim::NaoArm;
+use cosco_hsom::stats::median;
+use cosco_hsom::table::Table;
 
 /// Held-out score of replaying a training demonstration.
 #[derive(Parser, Debug)]
@@ -52,7 +53,13 @@ fn run(a: Args) -> Result<()> {
     };
     let params = MetricsParams::default();
     let (gestures, seeds) = (parse_gestures(&a.gestures)?, parse_seeds(&a.seeds)?);
-    println!("| gesture | seed | joint DTW (rad/step) | wrist DTW (mm/step) |\n|---|---|---|---|");
+    let header = [
+        "gesture",
+        "seed",
+        "joint DTW (rad/step)",
+        "wrist DTW (mm/step)",
+    ];
+    print!("{}", Table::new(header));
     let (mut all_j, mut all_w) = (Vec::new(), Vec::new());
     for g in gestures {
         for &seed in &seeds {
@@ -76,15 +83,27 @@ fn run(a: Args) -> Result<()> {
                     n += 1.0;
                 }
             }
-            println!("| {} | {seed} | {:.4} | {:.2} |", g.name, j / n, w / n);
+            print!(
+                "{}",
+                Table::line([
+                    g.name.to_string(),
+                    seed.to_string(),
+                    format!("{:.4}", j / n),
+                    format!("{:.2}", w / n),
+                ])
+            );
             all_j.push(j / n);
             all_w.push(w / n);
         }
     }
-    println!(
-        "| **all** | median | {:.4} | {:.2} |",
-        median(all_j).unwrap_or(f64::NAN),
-        median(all_w).unwrap_or(f64::NAN)
+    print!(
+        "{}",
+        Table::line([
+            "**all**".into(),
+            "median".into(),
+            format!("{:.4}", median(all_j).unwrap_or(f64::NAN)),
+            format!("{:.2}", median(all_w).unwrap_or(f64::NAN)),
+        ])
     );
     Ok(())
 }

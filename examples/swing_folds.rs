@@ -22,6 +22,7 @@ use clap::Parser;
 use cosco_hsom::experiment::demonstrate::parse_seeds;
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
 use cosco_hsom::experiment::Transition;
+use cosco_hsom::table::Table;
 use swing::{swing_folds, swing_folds_png};
 
 /// Leave-one-out folds of one gesture, drawn.
@@ -57,19 +58,27 @@ fn run(a: Args) -> Result<()> {
         encoder_noise: a.noise,
         ..DemoSettings::default()
     };
-    println!("| seed | fold | swings (rep / demo) | joint DTW (rad/step) | duration ratio |");
-    println!("|---|---|---|---|---|");
+    let header = [
+        "seed",
+        "fold",
+        "swings (rep / demo)",
+        "joint DTW (rad/step)",
+        "duration ratio",
+    ];
+    print!("{}", Table::new(header));
     for seed in seeds {
         let demos = synthetic_demonstrations(&arm, &gesture, a.count, seed, &settings, |_| {})?;
         let folds = swing_folds(&arm, &config, &demos, Transition::Linear)?;
         for f in &folds {
-            println!(
-                "| {seed} | {} | {} / {} | {:.4} | {:.2} |",
-                f.held_out + 1,
-                f.swings.reproduction,
-                f.swings.demo,
-                f.joint_dtw,
-                f.duration_ratio
+            print!(
+                "{}",
+                Table::line([
+                    seed.to_string(),
+                    (f.held_out + 1).to_string(),
+                    format!("{} / {}", f.swings.reproduction, f.swings.demo),
+                    format!("{:.4}", f.joint_dtw),
+                    format!("{:.2}", f.duration_ratio),
+                ])
             );
         }
         let path = a

@@ -1,7 +1,7 @@
 //! Conditions on a reproduction besides its initial posture: a goal (its last posture) and
 //! via-points (a posture and the phase, 0..1 of the reproduction's duration, at which it is
-//! passed); reading a trajectory at a phase; and bending a trajectory onto the conditions
-//! (docs/ALGORITHM.md, "Conditioning").
+//! passed); bending a trajectory onto the conditions (docs/ALGORITHM.md, "Conditioning");
+//! the confidence band about a reproduction.
 //!
 //! A trajectory of `n` rows is at phase `p` at the fractional row `p (n - 1)`, read by linear
 //! interpolation between the two rows about it ([`at_phase`]): that is how a conditioned
@@ -9,7 +9,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::gmr::minimum_jerk_at;
+use crate::curve::{at_phase, minimum_jerk_at, split_phase, split_row, MINIMUM_JERK_PEAK};
 
 mod band;
 #[cfg(test)]
@@ -247,25 +247,6 @@ impl Conditions {
     }
 }
 
-/// The posture of `rows` at `phase` (0..1): linear between the two rows about the fractional
-/// row `phase (n - 1)`.
-pub fn at_phase(rows: &[Vec<f64>], phase: f64) -> Vec<f64> {
-    let (i, a) = row_at(rows.len(), phase);
-    let next = &rows[(i + 1).min(rows.len() - 1)];
-    rows[i]
-        .iter()
-        .zip(next)
-        .map(|(p, q)| p + a * (q - p))
-        .collect()
-}
-
-/// The row before the fractional row of `phase` in `n` rows, and how far past it (0..1).
-fn row_at(n: usize, phase: f64) -> (usize, f64) {
-    let x = phase.clamp(0.0, 1.0) * (n.max(1) - 1) as f64;
-    let i = (x.floor() as usize).min(n.saturating_sub(2));
-    (i, x - i as f64)
-}
-
 /// The largest change of a reproduction's pace [`meet`] makes when it re-times it: the pace
 /// stays between 0.5 and 1.5 times its own.
 pub const MAX_PACE_CHANGE: f64 = 0.5;
@@ -413,7 +394,7 @@ pub fn retime(rows: &[Vec<f64>], points: &[(f64, Vec<f64>)]) -> Vec<Vec<f64>> {
     let dist =
         |r: &[f64], q: &[f64]| -> f64 { r.iter().zip(q).map(|(a, b)| (a - b).powi(2)).sum() };
     // the slope of Δ between two knots is at most 1.875 |Δd| / Δp
-    let slope = MAX_PACE_CHANGE / 1.875;
+    let slope = MAX_PACE_CHANGE / MINIMUM_JERK_PEAK;
     let last = (n - 1) as f64;
     // knots (phase, shift): the start, each via-point, the end
     let mut knots: Vec<(f64, f64)> = vec![(0.0, 0.0)];
@@ -476,8 +457,8 @@ pub fn bend(rows: &mut [Vec<f64>], points: &[(f64, Vec<f64>)]) {
         let y: Vec<f64> = rows.iter().map(|r| r[d]).collect();
         let progress = progress(&y);
         let at = |x: f64| {
-            let i = (x.floor() as usize).min(n - 2);
-            progress[i] + (x - i as f64) * (progress[i + 1] - progress[i])
+            let (i, f) = split_row(n, x);
+            progress[i] + f * (progress[i + 1] - progress[i])
         };
         // blend k (k = 1..=points): rising over (knot k-1, knot k), falling over (k, k+1)
         let blend = |k: usize, x: f64| -> f64 {
@@ -497,7 +478,7 @@ pub fn bend(rows: &mut [Vec<f64>], points: &[(f64, Vec<f64>)]) {
             }
         };
         let read = |f: &dyn Fn(usize) -> f64, phase: f64| {
-            let (i, a) = row_at(n, phase);
+            let (i, a) = split_phase(n, phase);
             f(i) + a * (f((i + 1).min(n - 1)) - f(i))
         };
         let m = points.len();

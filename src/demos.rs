@@ -5,7 +5,9 @@
 //! first problem: empty files, a header without samples, ragged rows, cells that are not
 //! numbers or not finite, empty or duplicate column names, and time stamps that do not
 //! increase. [`validate_set`] then checks that a set of demonstrations agrees on its
-//! columns (and, optionally, on a configured state length).
+//! columns (and, optionally, on a configured state length); labelled sets, one per gesture,
+//! take plain words as labels ([`is_plain_label`]) and record the same variables
+//! ([`check_gesture_columns`]). Reading sets from paths: [`crate::demo_sets`].
 //!
 //! ```
 //! use cosco_hsom::demos::{read_csv, write_csv, Demonstration};
@@ -257,6 +259,38 @@ pub enum DemoError {
     EmptyDirectory {
         /// Directory path.
         path: String,
+    },
+    /// Directories or lists that hold no demonstration.
+    #[error("no demonstration files found in {paths}")]
+    NoFiles {
+        /// The paths given, comma-separated.
+        paths: String,
+    },
+    /// Plain demonstrations given beside directories of gesture subdirectories.
+    #[error("{path}: plain demonstrations given together with labelled directories: give only directories of gesture subdirectories (demos/<label>/*.csv)")]
+    MixedSets {
+        /// The plain file or directory.
+        path: String,
+    },
+    /// A gesture subdirectory whose name is not a plain word ([`is_plain_label`]).
+    #[error("{path}: the gesture label {label:?} is not a plain word: name the directory with letters, digits, '_' and '-' only")]
+    LabelDirectory {
+        /// The subdirectory.
+        path: String,
+        /// Its name.
+        label: String,
+    },
+    /// Gestures whose demonstrations record different variables.
+    #[error("gesture {label:?} has columns {found:?}, but gesture {first_label:?} has {expected:?}: every gesture must record the same variables")]
+    GestureColumns {
+        /// The label that differs.
+        label: String,
+        /// Its columns.
+        found: Vec<String>,
+        /// The first label.
+        first_label: String,
+        /// The first label's columns.
+        expected: Vec<String>,
     },
 }
 
@@ -578,6 +612,36 @@ pub fn validate_set(
     Ok(())
 }
 
+/// True for a plain word, as a gesture label must be: `[A-Za-z0-9_-]+`.
+pub fn is_plain_label(label: &str) -> bool {
+    !label.is_empty()
+        && label
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+}
+
+/// Gesture `i` of labelled `sets` records the variables of the first: each of its
+/// demonstrations has the columns of the first gesture's first demonstration.
+pub fn check_gesture_columns(
+    sets: &[(String, Vec<Demonstration>)],
+    i: usize,
+) -> Result<(), DemoError> {
+    let (Some((first_label, Some(first))), Some((label, demos))) =
+        (sets.first().map(|(l, d)| (l, d.first())), sets.get(i))
+    else {
+        return Ok(());
+    };
+    match demos.iter().find(|d| d.columns != first.columns) {
+        Some(d) => Err(DemoError::GestureColumns {
+            label: label.clone(),
+            found: d.columns.clone(),
+            first_label: first_label.clone(),
+            expected: first.columns.clone(),
+        }),
+        None => Ok(()),
+    }
+}
+
 /// Seconds between samples of a demonstration: from its `time` column (its span over the
 /// intervals), else 1/40 s. The one period that scoring, GMM/GMR and execution use.
 pub fn sample_period(d: &Demonstration) -> f64 {
@@ -599,11 +663,7 @@ pub fn same_rate(x: f64, y: f64) -> bool {
 pub fn median_interval(d: &Demonstration) -> Option<f64> {
     let t = d.time.as_ref()?;
     let mut dt: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
-    if dt.is_empty() {
-        return None;
-    }
-    dt.sort_by(f64::total_cmp);
-    Some(dt[dt.len() / 2])
+    crate::stats::upper_median(&mut dt)
 }
 
 #[cfg(test)]

@@ -5,6 +5,8 @@
 //! - [`mujoco`]: bindings to Debian's MuJoCo 2.2.2 and a safe layer; with [`render`], the only
 //!   places with `unsafe`.
 //! - [`render`]: off-screen rendering with OSMesa, PNG frames, GIF clips, contact sheets.
+//! - [`robot`]: the Nao as one description: joints (ranges, velocity and torque limits),
+//!   named postures and the MJCF model they are read from.
 //! - [`sim`]: the Nao left arm model, its position controller with 40 Hz encoder recording,
 //!   and executing and scoring a reproduction on it.
 //! - [`som`]: a Kohonen map.
@@ -12,7 +14,9 @@
 //! - [`condition`]: a goal and via-points beyond the initial posture, and bending a trajectory
 //!   onto them exactly.
 //! - [`config`]: the XML configuration, validated once into a checked type.
-//! - [`demos`]: demonstration CSV files.
+//! - [`demos`]: demonstration CSV files, and the rules of a set of them.
+//! - [`demo_sets`]: demonstration sets as the commands read them from paths: one gesture, or
+//!   labelled directories.
 //! - [`dtw`]: dynamic time warping.
 //! - [`gmr`]: the baseline, GMM/GMR.
 //! - [`promp`]: a second baseline, ProMP conditioned on the initial posture.
@@ -21,15 +25,19 @@
 //! - [`metrics`]: fidelity metrics.
 //! - [`plot`]: PNG plots.
 //! - [`experiment`]: the jobs on the simulated arm (the paper's experiment end to end, compare,
-//!   several gestures, variants, held out) and their reports, figures and film.
+//!   several gestures, variants, held out), the arm as the evaluator's executor, and their
+//!   reports, figures and film.
 //! - [`sweep`]: grids of runs from a TOML spec, on a thread pool or a cluster's job arrays,
 //!   merged into tables and box plots.
 //! - [`app`]: one way in: train, reproduce, recognize, evaluate, inspect, export, import,
 //!   each one function the `cosco` binary and the Python package call (same checks, same
-//!   messages), with one error type.
+//!   messages), with one error type; no room of the library calls it.
 //! - [`eval`]: one evaluator (methods x an executor; in-sample and leave-one-out as two splits
 //!   of one fold; one result family; one worker pool).
-//! - [`fsutil`]: atomic file writes.
+//! - [`fsutil`]: atomic file writes, and the check that an output can be written.
+//! - [`errors`]: an error and its causes on one line.
+//! - [`table`]: Markdown tables, as the reports print them.
+//! - [`stats`]: order statistics (median, quantiles, upper median).
 //! - [`export`]: a reproduction to a robot: time scaling, the robot's limits, NAOqi JSON,
 //!   ROS 2 MCAP ([`ros2`], feature `ros2`, on by default, which also imports bags) and CSV.
 //! - [`resample`]: demonstrations at different sampling rates brought to one.
@@ -44,9 +52,12 @@
 pub mod app;
 pub mod condition;
 pub mod config;
+pub mod curve;
+pub mod demo_sets;
 pub mod demos;
 pub mod dmp;
 pub mod dtw;
+pub mod errors;
 pub mod eval;
 #[cfg(feature = "sim")]
 pub mod experiment;
@@ -66,10 +77,13 @@ pub mod plot;
 #[cfg(feature = "sim")]
 pub mod render;
 pub mod resample;
+pub mod robot;
 #[cfg(feature = "ros2")]
 pub mod ros2;
 #[cfg(feature = "sim")]
 pub mod sim;
 pub mod som;
+pub mod stats;
 #[cfg(feature = "sim")]
 pub mod sweep;
+pub mod table;

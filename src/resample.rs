@@ -2,11 +2,9 @@
 //! rate, every `1 / hz` s from its first time to its last, by shape-preserving piecewise
 //! cubic Hermite interpolation (PCHIP, Fritsch & Carlson 1980: monotone between samples, no
 //! overshoot beyond neighbouring samples, so a resampled joint never leaves the range the
-//! demonstration covered). Reading paths call [`resample_all`] when given a rate
-//! (`--resample HZ`, Python's `resample=`); [`survey`] reports what it does.
-//!
-//! Hand-written (some 40 lines) rather than taken from a crate: no maintained Rust crate
-//! offers PCHIP on plain slices without a numerical framework around it.
+//! demonstration covered; [`crate::curve::pchip`], with the three-point end slopes). Reading
+//! paths call [`resample_all`] when given a rate (`--resample HZ`, Python's `resample=`);
+//! [`survey`] reports what it does.
 //!
 //! ```
 //! use cosco_hsom::demos::Demonstration;
@@ -26,57 +24,8 @@ use std::path::PathBuf;
 
 use serde::Serialize;
 
+use crate::curve::pchip;
 use crate::demos::{median_interval, DemoError, Demonstration};
-
-/// PCHIP slopes at the knots (Fritsch–Carlson, with the three-point end formulas).
-fn pchip_slopes(x: &[f64], y: &[f64]) -> Vec<f64> {
-    let n = x.len();
-    let h: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
-    let delta: Vec<f64> = (0..n - 1).map(|i| (y[i + 1] - y[i]) / h[i]).collect();
-    if n == 2 {
-        return vec![delta[0]; 2];
-    }
-    let mut d = vec![0.0; n];
-    for i in 1..n - 1 {
-        if delta[i - 1] * delta[i] > 0.0 {
-            let (w1, w2) = (2.0 * h[i] + h[i - 1], h[i] + 2.0 * h[i - 1]);
-            d[i] = (w1 + w2) / (w1 / delta[i - 1] + w2 / delta[i]);
-        }
-    }
-    let end = |h0: f64, h1: f64, d0: f64, d1: f64| {
-        let s = ((2.0 * h0 + h1) * d0 - h0 * d1) / (h0 + h1);
-        if s * d0 <= 0.0 {
-            0.0
-        } else if d0 * d1 <= 0.0 && s.abs() > 3.0 * d0.abs() {
-            3.0 * d0
-        } else {
-            s
-        }
-    };
-    d[0] = end(h[0], h[1], delta[0], delta[1]);
-    d[n - 1] = end(h[n - 2], h[n - 3], delta[n - 2], delta[n - 3]);
-    d
-}
-
-/// Values at `at` (within `x`'s span) of the PCHIP interpolant through `(x, y)`.
-fn pchip(x: &[f64], y: &[f64], at: &[f64]) -> Vec<f64> {
-    if x.len() == 1 {
-        return vec![y[0]; at.len()];
-    }
-    let d = pchip_slopes(x, y);
-    at.iter()
-        .map(|&t| {
-            let i = (x.partition_point(|&v| v <= t).max(1) - 1).min(x.len() - 2);
-            let h = x[i + 1] - x[i];
-            let s = ((t - x[i]) / h).clamp(0.0, 1.0);
-            let (s2, s3) = (s * s, s * s * s);
-            (2.0 * s3 - 3.0 * s2 + 1.0) * y[i]
-                + (s3 - 2.0 * s2 + s) * h * d[i]
-                + (-2.0 * s3 + 3.0 * s2) * y[i + 1]
-                + (s3 - s2) * h * d[i + 1]
-        })
-        .collect()
-}
 
 fn check_rate(hz: f64) -> Result<(), DemoError> {
     if hz.is_finite() && hz > 0.0 && hz <= 10_000.0 {

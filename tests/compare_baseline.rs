@@ -3,10 +3,11 @@
 #![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use cosco_hsom::eval::{run_fold, Fitted, FoldInput, Method};
+use cosco_hsom::experiment::ArmExecutor;
 use cosco_hsom::experiment::{record_demonstrations, DemoSettings};
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::gmr::{active_range, load_model, save_model, ComponentChoice, IdleTrim};
-use cosco_hsom::sim::{ArmExecutor, NaoArm, Transition, LEAD_IN_PEAK_SPEED};
+use cosco_hsom::sim::{NaoArm, Transition, LEAD_IN_PEAK_SPEED};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
@@ -49,7 +50,7 @@ fn idle_trimming_ignores_one_milliradian_of_encoder_noise() {
 #[test]
 fn baseline_runs_on_the_arm_from_the_initial_posture_and_follows_the_demonstrations() {
     let arm = NaoArm::load_default().unwrap();
-    let g = Gesture::by_name("reading-watch").unwrap();
+    let g = Gesture::by_name(cosco_hsom::robot::Robot::LeftArm, "reading-watch").unwrap();
     let settings = DemoSettings {
         encoder_noise: 0.001,
         ..DemoSettings::default()
@@ -127,7 +128,7 @@ fn baseline_runs_on_the_arm_from_the_initial_posture_and_follows_the_demonstrati
 #[test]
 fn baseline_needs_two_demonstrations() {
     let arm = NaoArm::load_default().unwrap();
-    let g = Gesture::by_name("wave").unwrap();
+    let g = Gesture::by_name(cosco_hsom::robot::Robot::LeftArm, "wave").unwrap();
     let recs = record_demonstrations(&arm, &g, 1, 1, &DemoSettings::default(), |_| {}).unwrap();
     let demos = vec![recs[0].to_demonstration("only")];
     let executor = ArmExecutor {

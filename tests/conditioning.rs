@@ -5,8 +5,9 @@
 
 mod hsom_common;
 
-use cosco_hsom::condition::{at_phase, ConfidenceBand};
+use cosco_hsom::condition::ConfidenceBand;
 use cosco_hsom::config::HsomConfig;
+use cosco_hsom::curve::at_phase;
 use cosco_hsom::dtw::{dtw, Band};
 use cosco_hsom::eval::{
     all_but, far_target, leave_one_out, ConditionErrors, Conditioning, GestureLoo, Kinematic,

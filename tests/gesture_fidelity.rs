@@ -147,8 +147,8 @@ fn learn_and_reproduce(
 fn check_gesture(name: &str, other: &str) {
     let arm = NaoArm::load_default().unwrap();
     let cfg = table1();
-    let g = Gesture::by_name(name).unwrap();
-    let og = Gesture::by_name(other).unwrap();
+    let g = Gesture::by_name(cosco_hsom::robot::Robot::LeftArm, name).unwrap();
+    let og = Gesture::by_name(cosco_hsom::robot::Robot::LeftArm, other).unwrap();
     let mut passing = 0;
     let mut report = Vec::new();
     for seed in SEEDS {

@@ -3,7 +3,7 @@
 
 use cosco_hsom::demos::{DemoError, Demonstration};
 use cosco_hsom::dtw::{dtw, Band};
-use cosco_hsom::gmr::preprocess::{align_to, choose_reference, preprocess, resample_linear};
+use cosco_hsom::gmr::preprocess::{align_to, choose_reference, preprocess};
 use cosco_hsom::gmr::{active_range, ComponentChoice, GmrError, GmrParams, IdleTrim};
 use std::f64::consts::PI;
 
@@ -96,21 +96,6 @@ fn motionless_sequence_has_no_active_part() {
     assert_eq!(active_range(&rows, None, 0.025, &IdleTrim::default()), None);
     let one = vec![vec![0.3]];
     assert_eq!(active_range(&one, None, 0.025, &IdleTrim::default()), None);
-}
-
-#[test]
-fn resample_is_exact_on_lines_and_keeps_ends() {
-    let seq: Vec<Vec<f64>> = (0..7).map(|i| vec![i as f64, 2.0 * i as f64]).collect();
-    let r = resample_linear(&seq, 13);
-    assert_eq!(r.len(), 13);
-    for (k, p) in r.iter().enumerate() {
-        assert!((p[0] - k as f64 * 0.5).abs() < 1e-12);
-        assert!((p[1] - k as f64).abs() < 1e-12);
-    }
-    assert_eq!(
-        resample_linear(&seq, 2),
-        vec![seq[0].clone(), seq[6].clone()]
-    );
 }
 
 #[test]

@@ -54,7 +54,7 @@ fn fixture() -> &'static Fixture {
             encoder_noise: 0.001,
             ..DemoSettings::default()
         };
-        let g = Gesture::by_name("reading-watch").unwrap();
+        let g = Gesture::by_name(cosco_hsom::robot::Robot::LeftArm, "reading-watch").unwrap();
         let demos = synthetic_demonstrations(&arm, &g, COUNT, SEED, &settings, |_| {}).unwrap();
         let heldout = leave_one_out(&arm, &config, &demos, Transition::Linear).unwrap();
         Fixture {

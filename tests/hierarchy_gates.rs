@@ -27,7 +27,7 @@ fn recommended() -> HsomConfig {
 }
 
 fn demos(arm: &NaoArm, name: &str) -> Vec<Demonstration> {
-    let g = Gesture::by_name(name).unwrap();
+    let g = Gesture::by_name(cosco_hsom::robot::Robot::LeftArm, name).unwrap();
     let settings = DemoSettings {
         encoder_noise: 0.001,
         ..DemoSettings::default()
@@ -147,10 +147,7 @@ fn the_hierarchy_beats_height_one_held_out_and_the_controls_fail() {
 fn held_out_fidelity_is_within_a_tenth_of_gmm_gmr_and_an_untrained_hierarchy_is_not() {
     let arm = NaoArm::load_default().unwrap();
     let cfg = recommended();
-    let median = |mut v: Vec<f64>| {
-        v.sort_by(f64::total_cmp);
-        (v[(v.len() - 1) / 2] + v[v.len() / 2]) / 2.0
-    };
+    let median = |v: Vec<f64>| cosco_hsom::stats::median(v).unwrap();
     let (mut joint, mut wrist, mut untrained) = (Vec::new(), Vec::new(), Vec::new());
     for g in GESTURES {
         let d = demos(&arm, g);

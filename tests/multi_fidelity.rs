@@ -8,21 +8,17 @@
 
 use cosco_hsom::config::load_config;
 use cosco_hsom::demos::{sample_period, Demonstration};
-use cosco_hsom::experiment::{synthetic_demonstrations, DemoSettings, Transition};
+use cosco_hsom::experiment::{
+    execute_and_score, synthetic_demonstrations, DemoSettings, Transition,
+};
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::metrics::MetricsParams;
-use cosco_hsom::sim::{execute_and_score, NaoArm};
+use cosco_hsom::sim::NaoArm;
 
 const GESTURES: [&str; 4] = ["reading-watch", "wave", "reach-point", "salute"];
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
+fn median(v: Vec<f64>) -> f64 {
+    cosco_hsom::stats::median(v).unwrap()
 }
 
 #[test]
@@ -43,7 +39,7 @@ fn each_gesture_of_the_shared_hierarchy_is_reproduced_within_1_2x_of_the_gesture
         let mut sets: Vec<(String, Vec<Demonstration>)> = Vec::new();
         let mut tests: Vec<Vec<Demonstration>> = Vec::new();
         for name in GESTURES {
-            let g = Gesture::by_name(name).unwrap();
+            let g = Gesture::by_name(cosco_hsom::robot::Robot::LeftArm, name).unwrap();
             let mut d = synthetic_demonstrations(&arm, &g, 5, seed, &settings, |_| {}).unwrap();
             tests.push(d.split_off(3));
             sets.push((name.to_string(), d));

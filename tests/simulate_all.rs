@@ -19,7 +19,7 @@ fn simulate_all_learns_every_gesture_in_one_model_and_reports_fidelity_and_recog
         .assert()
         .success();
     let stdout = String::from_utf8_lossy(&assert.get_output().stdout).to_string();
-    let names = Gesture::names();
+    let names = Gesture::names(cosco_hsom::robot::Robot::LeftArm);
     for g in &names {
         assert!(
             stdout.contains(&format!("{g:<14} held-out joint DTW")),

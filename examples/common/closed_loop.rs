@@ -12,12 +12,12 @@ use cosco_hsom::demos::Demonstration;
 use cosco_hsom::eval::{all_but, FoldScores, Swings, SWING_MIN_AMPLITUDE_RAD};
 use cosco_hsom::gmr::MIN_DEMONSTRATIONS;
 use cosco_hsom::metrics::{column_swings, MetricsParams};
-use cosco_hsom::sim::{clamp_to_ranges, evaluate, execute_and_score};
+use cosco_hsom::sim::{clamp_to_ranges, evaluate};
 use cosco_hsom::sim::{NaoArm, Recording, Transition, JOINT_NAMES, SWING_JOINT};
 
 use cosco_hsom::experiment::baseline::{gmr_params, plan as gmr_plan, DEFAULT_COMPONENTS};
 use cosco_hsom::experiment::heldout::{check_demos, demo_trace, joint_trace};
-use cosco_hsom::experiment::ExperimentError;
+use cosco_hsom::experiment::{execute_and_score, ExperimentError};
 use cosco_hsom::sim::{Controller, ControllerConfig, Grab, TargetTrajectory};
 
 /// The large swings of [`SWING_JOINT`] in an executed motion and in the held-out

@@ -9,8 +9,8 @@ use cosco_hsom::config::HsomConfig;
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::eval::{all_but, diagonal, fold_scores, Executor, FoldScores, Method, MethodRun};
 use cosco_hsom::experiment::heldout::check_demos;
-use cosco_hsom::experiment::ExperimentError;
-use cosco_hsom::sim::{ArmExecutor, NaoArm, Transition};
+use cosco_hsom::experiment::{ArmExecutor, ExperimentError};
+use cosco_hsom::sim::{NaoArm, Transition};
 
 /// What happens to the arm at the end of a shown prefix, before the continuation takes over
 /// ([`continuation_folds`]): nothing, held still for a number of samples, or pushed back

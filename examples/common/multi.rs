@@ -20,12 +20,13 @@ use cosco_hsom::hsom::{GestureModel, Scoring};
 use cosco_hsom::metrics::MetricsParams;
 use cosco_hsom::nearest::NearestNeighbour;
 use cosco_hsom::sim::NaoArm;
+use cosco_hsom::stats::median;
+use cosco_hsom::table::Table;
 
 use cosco_hsom::demos::sample_period;
 use cosco_hsom::experiment::all_gestures::{confusion_counts, confusion_markdown};
 use cosco_hsom::experiment::demonstrate::{synthetic_demonstrations, DemoSettings};
-use cosco_hsom::experiment::{ExperimentError, Transition};
-use cosco_hsom::sim::execute_and_score;
+use cosco_hsom::experiment::{execute_and_score, ExperimentError, Transition};
 
 /// What the study does.
 #[derive(Debug, Clone)]
@@ -345,11 +346,6 @@ pub fn run_seed(
     })
 }
 
-/// The median of values (NaN-free); `None` when empty.
-fn median(mut v: Vec<f64>) -> Option<f64> {
-    cosco_hsom::metrics::median(std::mem::take(&mut v))
-}
-
 /// Markdown tables of the results over seeds.
 pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
     use std::fmt::Write;
@@ -362,27 +358,30 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
     );
     let best_acc = frac(q.iter().filter(|x| x.hsom_best == x.expected), n);
     let nn_acc = frac(q.iter().filter(|x| x.nn == x.expected), n);
-    let med =
-        |f: &dyn Fn(&Query) -> f64| median(q.iter().map(|x| f(x)).collect()).unwrap_or(f64::NAN);
+    let med = |f: &dyn Fn(&Query) -> f64| median(q.iter().map(|x| f(x))).unwrap_or(f64::NAN);
     let _ = writeln!(s, "### Recognition, held out ({n} queries)\n");
-    let _ = writeln!(s, "| method | accuracy | lowest score right (no unknown) | median early fraction | median time per query |");
-    let _ = writeln!(s, "|---|---|---|---|---|");
-    let _ = writeln!(
-        s,
-        "| CoSCo-HSOM (one hierarchy) | {:.1} % | {:.1} % | {:.2} | {:.3} ms |",
-        100.0 * hsom_acc,
-        100.0 * best_acc,
-        med(&|x| x.hsom_early),
-        1e3 * med(&|x| x.hsom_s)
-    );
-    let _ = writeln!(
-        s,
-        "| 1-NN DTW | {:.1} % | {:.1} % | {:.2} | {:.3} ms |\n",
-        100.0 * nn_acc,
-        100.0 * nn_acc,
-        med(&|x| x.nn_early),
-        1e3 * med(&|x| x.nn_s)
-    );
+    let mut table = Table::new([
+        "method",
+        "accuracy",
+        "lowest score right (no unknown)",
+        "median early fraction",
+        "median time per query",
+    ]);
+    table.row([
+        "CoSCo-HSOM (one hierarchy)".to_string(),
+        format!("{:.1} %", 100.0 * hsom_acc),
+        format!("{:.1} %", 100.0 * best_acc),
+        format!("{:.2}", med(&|x| x.hsom_early)),
+        format!("{:.3} ms", 1e3 * med(&|x| x.hsom_s)),
+    ]);
+    table.row([
+        "1-NN DTW".to_string(),
+        format!("{:.1} %", 100.0 * nn_acc),
+        format!("{:.1} %", 100.0 * nn_acc),
+        format!("{:.2}", med(&|x| x.nn_early)),
+        format!("{:.3} ms", 1e3 * med(&|x| x.nn_s)),
+    ]);
+    let _ = writeln!(s, "{table}");
     let _ = writeln!(
         s,
         "Alternative scorings (lowest score right): level 1 alone {:.1} %, relative to the held-out reference {:.1} %, the bottom's postures alone {:.1} %\n",
@@ -405,52 +404,55 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
             s,
             "\n### Fidelity held out, joint DTW rad/step (median over held-out demonstrations)\n"
         );
-        let _ = writeln!(s, "| gesture | shared hierarchy | learned alone | ratio |");
-        let _ = writeln!(s, "|---|---|---|---|");
+        let mut table = Table::new(["gesture", "shared hierarchy", "learned alone", "ratio"]);
         for l in labels {
-            let sh = median(
-                fid.iter()
-                    .filter(|f| &f.gesture == l)
-                    .map(|f| f.shared)
-                    .collect(),
-            );
-            let al = median(
-                fid.iter()
-                    .filter(|f| &f.gesture == l)
-                    .map(|f| f.alone)
-                    .collect(),
-            );
+            let sh = median(fid.iter().filter(|f| &f.gesture == l).map(|f| f.shared));
+            let al = median(fid.iter().filter(|f| &f.gesture == l).map(|f| f.alone));
             if let (Some(a), Some(b)) = (sh, al) {
-                let _ = writeln!(s, "| {l} | {a:.4} | {b:.4} | {:.2} |", a / b);
+                table.row([
+                    l.clone(),
+                    format!("{a:.4}"),
+                    format!("{b:.4}"),
+                    format!("{:.2}", a / b),
+                ]);
             }
         }
+        s += &table.to_string();
         let _ = writeln!(
             s,
-            "\nWrist-path DTW (mm/step) and velocity reversals (all joints), medians:\n\n\
-             | gesture | wrist shared | wrist alone | ratio | reversals shared | alone | demonstrations |\n\
-             |---|---|---|---|---|---|---|"
+            "\nWrist-path DTW (mm/step) and velocity reversals (all joints), medians:\n"
         );
+        let mut table = Table::new([
+            "gesture",
+            "wrist shared",
+            "wrist alone",
+            "ratio",
+            "reversals shared",
+            "alone",
+            "demonstrations",
+        ]);
         for l in labels {
             let of = |f: &dyn Fn(&FidelityPair) -> f64| {
                 median(
                     fid.iter()
                         .filter(|p| &p.gesture == l)
                         .map(|p| f(p))
-                        .filter(|v| v.is_finite())
-                        .collect(),
+                        .filter(|v| v.is_finite()),
                 )
                 .unwrap_or(f64::NAN)
             };
             let (ws, wa) = (of(&|p| p.shared_wrist_mm), of(&|p| p.alone_wrist_mm));
-            let _ = writeln!(
-                s,
-                "| {l} | {ws:.2} | {wa:.2} | {:.2} | {:.1} | {:.1} | {:.1} |",
-                ws / wa,
-                of(&|p| p.shared_reversals),
-                of(&|p| p.alone_reversals),
-                of(&|p| p.demo_reversals)
-            );
+            table.row([
+                l.clone(),
+                format!("{ws:.2}"),
+                format!("{wa:.2}"),
+                format!("{:.2}", ws / wa),
+                format!("{:.1}", of(&|p| p.shared_reversals)),
+                format!("{:.1}", of(&|p| p.alone_reversals)),
+                format!("{:.1}", of(&|p| p.demo_reversals)),
+            ]);
         }
+        s += &table.to_string();
     }
     let cat = |f: &dyn Fn(&SeedResult) -> &Answers| Answers {
         pairs: results.iter().flat_map(|r| f(r).pairs.clone()).collect(),
@@ -459,19 +461,18 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
     if !lo.pairs.is_empty() {
         let kn = cat(&|r| &r.unknown_known);
         let _ = writeln!(s, "\n### Unknown: taught three, shown the fourth\n");
-        let _ = writeln!(s, "| | answered right | cases |\n|---|---|---|");
-        let _ = writeln!(
-            s,
-            "| left-out gesture: `unknown` | {:.1} % | {} |",
-            100.0 * lo.accuracy(),
-            lo.pairs.len()
-        );
-        let _ = writeln!(
-            s,
-            "| taught gestures: their label | {:.1} % | {} |",
-            100.0 * kn.accuracy(),
-            kn.pairs.len()
-        );
+        let mut table = Table::new(["", "answered right", "cases"]);
+        table.row([
+            "left-out gesture: `unknown`".to_string(),
+            format!("{:.1} %", 100.0 * lo.accuracy()),
+            lo.pairs.len().to_string(),
+        ]);
+        table.row([
+            "taught gestures: their label".to_string(),
+            format!("{:.1} %", 100.0 * kn.accuracy()),
+            kn.pairs.len().to_string(),
+        ]);
+        s += &table.to_string();
     }
     let un = cat(&|r| &r.untrained);
     if !un.pairs.is_empty() {
@@ -480,25 +481,26 @@ pub fn to_markdown(results: &[SeedResult], labels: &[String]) -> String {
             s,
             "\n### Negative controls (held-out accuracy, must fail the 95 % gate)\n"
         );
-        let _ = writeln!(s, "| control | accuracy | chance |\n|---|---|---|");
         let chance = 100.0 / labels.len().max(1) as f64;
-        let _ = writeln!(
-            s,
-            "| untrained hierarchy | {:.1} % | {chance:.1} % |",
-            100.0 * un.accuracy()
-        );
-        let _ = writeln!(
-            s,
-            "| shuffled labels | {:.1} % | {chance:.1} % |",
-            100.0 * sh.accuracy()
-        );
+        let mut table = Table::new(["control", "accuracy", "chance"]);
+        table.row([
+            "untrained hierarchy".to_string(),
+            format!("{:.1} %", 100.0 * un.accuracy()),
+            format!("{chance:.1} %"),
+        ]);
+        table.row([
+            "shuffled labels".to_string(),
+            format!("{:.1} %", 100.0 * sh.accuracy()),
+            format!("{chance:.1} %"),
+        ]);
+        s += &table.to_string();
     }
     let bytes: Vec<usize> = results.iter().map(|r| r.model_bytes).collect();
     let _ = writeln!(
         s,
         "\nModel file: {} bytes; training {:.2} s (median)",
         bytes.first().copied().unwrap_or(0),
-        median(results.iter().map(|r| r.train_s).collect()).unwrap_or(f64::NAN)
+        median(results.iter().map(|r| r.train_s)).unwrap_or(f64::NAN)
     );
     s
 }

@@ -7,8 +7,8 @@ use cosco_hsom::config::HsomConfig;
 use cosco_hsom::demos::Demonstration;
 use cosco_hsom::eval::{all_but, fold_scores, run_fold, FoldInput, Method, Swings};
 use cosco_hsom::experiment::heldout::{check_demos, demo_trace, joint_trace};
-use cosco_hsom::experiment::ExperimentError;
-use cosco_hsom::sim::{ArmExecutor, NaoArm, Transition, JOINT_NAMES, SWING_JOINT};
+use cosco_hsom::experiment::{ArmExecutor, ExperimentError};
+use cosco_hsom::sim::{NaoArm, Transition, JOINT_NAMES, SWING_JOINT};
 
 /// One fold of [`swing_folds`]: the large swings of [`SWING_JOINT`] in the executed
 /// reproduction and in the held-out demonstration, and both traces to draw.

@@ -7,8 +7,7 @@ use super::files::{self, read_demos, read_reproduction};
 use super::{Error, Result};
 use crate::demos::{sample_period, Demonstration};
 use crate::metrics::{
-    diagonal, fidelity_named, FidelityReport, MetricsError, MetricsParams, StartEnd,
-    StartEndReference, Trajectory,
+    diagonal, fidelity_of_rows, FidelityReport, MetricsParams, StartEnd, StartEndReference,
 };
 
 /// Any error, as an [`ArmScorer`] gives it.
@@ -35,23 +34,6 @@ pub struct Evaluation {
     /// The unit of the distances: `rad` for the arm's joints, the data's own units otherwise.
     #[serde(skip)]
     pub unit: &'static str,
-}
-
-/// The fidelity of `rows` against the demonstrations in the data's own variables, without
-/// wrist paths (those need the simulated arm's kinematics: `experiment::evaluate`).
-pub fn evaluate_rows(
-    demos: &[Demonstration],
-    rows: &[Vec<f64>],
-    params: &MetricsParams,
-) -> std::result::Result<FidelityReport, MetricsError> {
-    let trajs: Vec<Trajectory> = demos.iter().map(Trajectory::from).collect();
-    let names: Vec<String> = demos.iter().map(|d| d.source.clone()).collect();
-    fidelity_named(
-        &trajs,
-        &names,
-        &Trajectory::from_joints(rows.to_vec()),
-        params,
-    )
 }
 
 /// `cosco evaluate`: the fidelity metrics of a reproduction CSV against demonstrations, and
@@ -85,11 +67,11 @@ pub fn evaluate_files(
         source,
     };
     let (fidelity, unit) = match arm {
-        Some(score) if crate::export::limits::are_arm_joints(&rep.columns) => {
+        Some(score) if crate::robot::are_arm_joints(&rep.columns) => {
             (score(&demos, &rep.rows, &params).map_err(failed)?, "rad")
         }
         _ => (
-            evaluate_rows(&demos, &rep.rows, &params).map_err(|e| failed(e.into()))?,
+            fidelity_of_rows(&demos, &rep.rows, &params).map_err(|e| failed(e.into()))?,
             "data units",
         ),
     };

@@ -2,52 +2,52 @@
 //! model reproduced on the spot, then [`crate::export`]), and demonstrations from a ROS 2 bag
 //! (`cosco demos import`, [`crate::ros2`]).
 
+use std::path::PathBuf;
+
 use super::files::{self, read_reproduction};
-use super::reproduce::{conditions, initial_posture, reproduce_conditioned, write_band};
-use super::{Error, Result};
+use super::reproduce::{conditions, ReproduceRequest};
+use super::Result;
 use crate::demos::Demonstration;
 use crate::export::{export_request, ExportRequest, Trajectory};
 
+/// Where `cosco export`'s trajectory comes from.
+#[derive(Debug, Clone)]
+pub enum ExportFrom {
+    /// A reproduction CSV (`cosco reproduce`'s, GMM/GMR's, any CSV with `time` or `step` then
+    /// one column per joint).
+    Reproduction(PathBuf),
+    /// A gesture of a saved model reproduced on the spot, as `cosco reproduce` does.
+    Model(ReproduceRequest),
+}
+
 /// `cosco export`: check where the output goes, build the trajectory (the reproduction file's,
-/// or gesture `r.gesture` of the model reproduced from exactly one of `r.initial` and
-/// `r.initial_from`, through `r.goal` and `r.via`, its band written to `r.band` when asked),
-/// then check, scale, execute when asked and write it
-/// ([`export_request`]). Returns the report's lines.
-pub fn export(r: &ExportRequest) -> Result<Vec<String>> {
-    files::check_output(&r.out)?;
-    if let Some(b) = &r.band {
-        files::check_output(b)?;
-    }
-    let conditions = conditions(r.goal.as_ref(), &r.via);
-    let mut band = None;
-    let d = match (&r.reproduction, &r.model) {
-        (Some(path), _) => read_reproduction(path)?,
-        (None, Some(model)) => {
-            let m = files::load_gesture_model(model)?;
-            let branch = m.branch(r.gesture.as_deref())?;
-            let initial = initial_posture(branch, r.initial.as_ref(), r.initial_from.as_deref())?;
-            let name = model.display().to_string();
-            let rep = reproduce_conditioned(branch, &name, &initial, &conditions)?;
-            band = Some((branch.clone(), rep.clone()));
-            Demonstration {
-                rows: rep.postures,
-                source: name,
-                columns: m.columns().to_vec(),
-                time: None,
+/// or the model's gesture reproduced as `cosco reproduce` does, [`ReproduceRequest`]), then
+/// check, scale, execute when asked and write it ([`export_request`]), and the band last,
+/// when asked. Returns the report's lines.
+pub fn export(from: &ExportFrom, r: &ExportRequest) -> Result<Vec<String>> {
+    crate::fsutil::check_output(&r.out)?;
+    let (d, band) = match from {
+        ExportFrom::Reproduction(path) => (read_reproduction(path)?, None),
+        ExportFrom::Model(q) => {
+            if let Some(b) = &q.band {
+                crate::fsutil::check_output(b)?;
             }
-        }
-        (None, None) => {
-            return Err(Error::value(
-                "--reproduction:",
-                "give --reproduction FILE or --model FILE",
-            ))
+            let conditions = conditions(q.goal.as_ref(), &q.via);
+            let done = q.run(&conditions, None)?;
+            let d = Demonstration {
+                rows: done.rep.postures,
+                source: q.model.display().to_string(),
+                columns: done.columns,
+                time: None,
+            };
+            (d, done.band)
         }
     };
     let t = Trajectory::from_demonstration(&d, r.step_rate)?;
     let lines = export_request(r, &t)?;
     // the band once the trajectory is written
-    if let (Some(path), Some((model, rep))) = (&r.band, &band) {
-        write_band(model, rep, &conditions, path)?;
+    if let Some((path, bytes)) = band {
+        files::write(&path, &bytes?)?;
     }
     Ok(lines)
 }

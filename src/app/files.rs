@@ -1,27 +1,16 @@
-//! What the operations read and write: the configuration, demonstrations (one gesture, or
-//! labelled directories `DIR/<label>/*.csv`), model files, reproduction files, and the
-//! output paths, each checked as it is read.
+//! What the operations read and write: the configuration, demonstrations (one gesture:
+//! [`crate::demo_sets`]), model files and reproduction files, each checked as it is read.
 
 use std::path::{Path, PathBuf};
 
 use super::{Error, Result};
-use crate::config::{load_config, parse_config, HsomConfig};
-use crate::demos::{self, DemoError, Demonstration};
-use crate::hsom::{is_plain_label, GestureError, GestureModel, Hsom};
-
-/// The recommended configuration for the simulated Nao (the events extension), built in so
-/// that the binaries run from any directory; the default of `simulate` and `cosco`.
-pub const NAO_GESTURES_XML: &str = include_str!("../../configs/nao-gestures.xml");
-
-/// Name of the built-in default configuration in reports and messages.
-pub const DEFAULT_CONFIG_NAME: &str = "configs/nao-gestures.xml (built in)";
+use crate::config::{load_config_or_default, HsomConfig};
+use crate::demos::{self, Demonstration};
+use crate::hsom::{GestureModel, Hsom};
 
 /// Load a CoSCo-HSOM configuration file, or the built-in recommended configuration.
 pub fn config(path: Option<&Path>) -> Result<HsomConfig> {
-    Ok(match path {
-        Some(p) => load_config(p)?,
-        None => parse_config(NAO_GESTURES_XML, DEFAULT_CONFIG_NAME)?,
-    })
+    Ok(load_config_or_default(path)?)
 }
 
 /// Write `bytes` atomically to `path`, naming it on failure.
@@ -47,32 +36,7 @@ fn check_model_extension(path: &Path) -> Result<()> {
 /// an existing directory where a file can be created (a temporary file is made and removed).
 pub fn check_model_output(path: &Path) -> Result<()> {
     check_model_extension(path)?;
-    check_output(path)
-}
-
-/// Check, before any work, that a file can be written to `path`: its directory exists and a
-/// file can be created there (a temporary file is made and removed).
-pub fn check_output(path: &Path) -> Result<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let err = |reason: String| Error::file(path, format!("cannot write the model there: {reason}"));
-    if !dir.exists() {
-        return Err(err(format!(
-            "the directory {} does not exist",
-            dir.display()
-        )));
-    }
-    if !dir.is_dir() {
-        return Err(err(format!("{} is not a directory", dir.display())));
-    }
-    tempfile::NamedTempFile::new_in(dir).map(drop).map_err(|e| {
-        err(format!(
-            "the directory {} is not writable ({e})",
-            dir.display()
-        ))
-    })
+    Ok(crate::fsutil::check_output(path)?)
 }
 
 /// Save a model of one gesture (`.bin` or `.txt`, atomically).
@@ -134,163 +98,18 @@ pub fn demonstrations_from_rows(
 }
 
 /// Read demonstration files (a directory of *.csv or explicit files), each first resampled
-/// to `resample_hz` when given ([`crate::resample::resample_all`]), checked as a set (against
-/// `state_length` when given).
+/// to `resample_hz` when given, checked as a set (against `state_length` when given):
+/// [`crate::demo_sets::read_demos`].
 pub fn read_demos(
     paths: &[PathBuf],
     state_length: Option<usize>,
     resample_hz: Option<f64>,
 ) -> Result<Vec<Demonstration>> {
-    let demos = crate::resample::resample_all(demos::read_dir_or_files(paths)?, resample_hz)?;
-    if demos.is_empty() {
-        return Err(Error::NoDemonstrations {
-            paths: paths
-                .iter()
-                .map(|p| p.display().to_string())
-                .collect::<Vec<_>>()
-                .join(", "),
-        });
-    }
-    demos::validate_set(&demos, state_length)?;
-    Ok(demos)
-}
-
-/// Demonstrations as read from `--demos`: one unlabelled gesture (a directory of CSV files or
-/// files), or labelled sets (directories whose subdirectories are the labels).
-#[derive(Debug, Clone)]
-pub enum DemoSets {
-    /// One gesture, no label.
-    Plain(Vec<Demonstration>),
-    /// `(label, demonstrations)` in the order of the paths, labels sorted within a directory.
-    Labelled(Vec<(String, Vec<Demonstration>)>),
-}
-
-impl DemoSets {
-    /// The number of variables of the first demonstration.
-    pub fn width(&self) -> usize {
-        match self {
-            DemoSets::Plain(d) => d[0].width(),
-            DemoSets::Labelled(s) => s[0].1[0].width(),
-        }
-    }
-}
-
-/// Read `--demos`: a directory whose subdirectories hold CSV files is labelled (each
-/// subdirectory's name a label, a plain word, with at least one CSV); otherwise the paths are
-/// read as one gesture ([`read_demos`]). Each demonstration is first resampled to
-/// `resample_hz` when given. Every label's set is checked on its own and against
-/// `state_length` when given; labels must record the same columns.
-pub fn read_demo_sets(
-    paths: &[PathBuf],
-    state_length: Option<usize>,
-    resample_hz: Option<f64>,
-) -> Result<DemoSets> {
-    let subs: Vec<Vec<PathBuf>> = paths
-        .iter()
-        .map(|p| subdirectories(p))
-        .collect::<Result<_>>()?;
-    let labelled: Vec<bool> = paths
-        .iter()
-        .zip(&subs)
-        .map(|(p, s)| !s.is_empty() && !has_csv(p))
-        .collect();
-    if !labelled.iter().any(|&l| l) {
-        return Ok(DemoSets::Plain(read_demos(
-            paths,
-            state_length,
-            resample_hz,
-        )?));
-    }
-    if let Some(i) = labelled.iter().position(|&l| !l) {
-        return Err(Error::file(
-            &paths[i],
-            "plain demonstrations given together with labelled directories: give only directories of gesture subdirectories (demos/<label>/*.csv)",
-        ));
-    }
-    let mut sets: Vec<(String, Vec<Demonstration>)> = Vec::new();
-    for dir in subs.iter().flatten() {
-        let label = dir_label(dir);
-        if !is_plain_label(&label) {
-            return Err(Error::file(
-                dir,
-                format!("the gesture label {label:?} is not a plain word: name the directory with letters, digits, '_' and '-' only"),
-            ));
-        }
-        let demos = demos::read_dir_or_files(std::slice::from_ref(dir))?;
-        let demos = crate::resample::resample_all(demos, resample_hz)?;
-        demos::validate_set(&demos, state_length)?;
-        match sets.iter_mut().find(|(l, _)| *l == label) {
-            Some((_, d)) => d.extend(demos),
-            None => sets.push((label, demos)),
-        }
-    }
-    let (first_label, first) = (&sets[0].0, &sets[0].1[0].columns);
-    for (label, demos) in &sets {
-        if let Some(d) = demos.iter().find(|d| &d.columns != first) {
-            return Err(GestureError::ColumnsDiffer {
-                label: label.clone(),
-                found: d.columns.clone(),
-                first_label: first_label.clone(),
-                expected: first.clone(),
-            }
-            .into());
-        }
-    }
-    Ok(DemoSets::Labelled(sets))
-}
-
-/// A directory's name, as a gesture label.
-pub(super) fn dir_label(dir: &Path) -> String {
-    dir.file_name()
-        .map(|n| n.to_string_lossy().to_string())
-        .unwrap_or_default()
-}
-
-/// The entries of a directory, naming it when it cannot be read.
-fn entries(dir: &Path) -> Result<Vec<PathBuf>> {
-    let io = |source| DemoError::Io {
-        path: dir.display().to_string(),
-        source,
-    };
-    let mut paths = Vec::new();
-    for e in std::fs::read_dir(dir).map_err(io)? {
-        paths.push(e.map_err(io)?.path());
-    }
-    paths.sort();
-    Ok(paths)
-}
-
-/// Subdirectories of a directory, sorted (empty for a file).
-pub(super) fn subdirectories(path: &Path) -> Result<Vec<PathBuf>> {
-    if !path.is_dir() {
-        return Ok(Vec::new());
-    }
-    Ok(entries(path)?.into_iter().filter(|p| p.is_dir()).collect())
-}
-
-/// True when `p` names a `*.csv` file.
-fn is_csv(p: &Path) -> bool {
-    p.is_file()
-        && p.extension()
-            .and_then(|x| x.to_str())
-            .is_some_and(|x| x.eq_ignore_ascii_case("csv"))
-}
-
-/// True when the directory holds a `*.csv` file.
-pub(super) fn has_csv(path: &Path) -> bool {
-    std::fs::read_dir(path).is_ok_and(|rd| rd.flatten().any(|e| is_csv(&e.path())))
-}
-
-/// The `*.csv` files of a directory, sorted; an error naming it when there is none.
-pub(super) fn csv_files(dir: &Path) -> Result<Vec<PathBuf>> {
-    let files: Vec<PathBuf> = entries(dir)?.into_iter().filter(|p| is_csv(p)).collect();
-    if files.is_empty() {
-        return Err(DemoError::EmptyDirectory {
-            path: dir.display().to_string(),
-        }
-        .into());
-    }
-    Ok(files)
+    Ok(crate::demo_sets::read_demos(
+        paths,
+        state_length,
+        resample_hz,
+    )?)
 }
 
 /// A reproduction CSV (a `time` or `step` first column, then the variables): a `step`

@@ -1,10 +1,11 @@
 //! One way in: the library's user-level operations on files and values, each one function
 //! that the `cosco` binary and the Python package (`python/`) both call, so that the checks
 //! and messages are the same from either. Needs no simulator: where an operation can use the
-//! simulated arm (`cosco evaluate`'s wrist paths), the caller passes it in.
+//! simulated arm (`cosco evaluate`'s wrist paths), the caller passes it in. It only calls
+//! down: the rooms below it never reach up into it.
 //!
-//! - [`files`]: the configuration, demonstration files (one gesture, or labelled
-//!   directories `DIR/<label>/*.csv`), model files, reproduction files, output paths.
+//! - [`files`]: the configuration ([`crate::config`]'s, or its built-in default),
+//!   demonstration files ([`crate::demo_sets`]), model files, reproduction files.
 //! - [`train`]: train one gesture or several, from values or from files.
 //! - [`reproduce`]: reproduce from an initial posture, resume after a reading, continue a
 //!   prefix; the reproduction CSV.
@@ -42,21 +43,22 @@ pub mod train;
 
 use std::path::PathBuf;
 
-pub use evaluate::{evaluate_files, evaluate_rows, inspect, Evaluation};
-pub use export::export;
+pub use evaluate::{evaluate_files, inspect, Evaluation};
 #[cfg(feature = "ros2")]
 pub use export::import;
+pub use export::{export, ExportFrom};
 pub use files::{
-    check_model_output, check_output, config, demonstrations_from_rows, load_gesture_model,
-    load_model, read_demo_sets, read_demos, read_reproduction, save_gesture_model, save_model,
-    DemoSets, DEFAULT_CONFIG_NAME, NAO_GESTURES_XML,
+    check_model_output, config, demonstrations_from_rows, load_gesture_model, load_model,
+    read_demos, read_reproduction, save_gesture_model, save_model,
 };
 pub use recognize::{recognize_files, recognize_paths, RecognisedFile};
 pub use reproduce::{
     conditions, continue_file, reproduce, reproduce_conditioned, reproduce_file, reproduce_gesture,
-    resume, ReproduceFile,
+    resume, ReproduceFile, ReproduceRequest,
 };
 pub use train::{train, train_files, train_gestures, update, update_files};
+
+pub use crate::errors::error_line;
 
 /// Why an operation was refused. The wrapped errors name their file, field and value; the
 /// others name them here, with what is allowed.
@@ -84,6 +86,9 @@ pub enum Error {
     /// Exporting a trajectory or importing a bag was refused.
     #[error(transparent)]
     Export(#[from] crate::export::ExportError),
+    /// An output cannot be written where it was asked.
+    #[error(transparent)]
+    Output(#[from] crate::fsutil::NotWritable),
     /// A file or directory that cannot be used as given: its extension, its place, its
     /// layout or its columns.
     #[error("{path}: {reason}")]
@@ -100,12 +105,6 @@ pub enum Error {
         what: String,
         /// What is wrong and what is allowed.
         reason: String,
-    },
-    /// Directories or lists that hold no demonstration.
-    #[error("no demonstration files found in {paths}")]
-    NoDemonstrations {
-        /// The paths given, comma-separated.
-        paths: String,
     },
     /// An output file could not be written.
     #[error("writing {}", path.display())]
@@ -153,20 +152,3 @@ impl Error {
 
 /// The result of an operation.
 pub type Result<T> = std::result::Result<T, Error>;
-
-/// An error and its causes on one line, leaving out causes whose text the message above
-/// already contains (many errors quote their cause): what `cosco` prints after `Error: `, and
-/// the message of the Python package's exceptions.
-pub fn error_line(e: &(dyn std::error::Error + 'static)) -> String {
-    let mut line = e.to_string();
-    let mut cause = e.source();
-    while let Some(c) = cause {
-        let text = c.to_string();
-        if !line.contains(&text) {
-            line.push_str(": ");
-            line.push_str(&text);
-        }
-        cause = c.source();
-    }
-    line
-}

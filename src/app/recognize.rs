@@ -2,8 +2,9 @@
 
 use std::path::{Path, PathBuf};
 
-use super::files::{self, csv_files, dir_label, has_csv, read_for_columns, subdirectories};
+use super::files::{self, read_for_columns};
 use super::{error_line, Error, Result};
+use crate::demo_sets::{csv_files, dir_label, has_csv, subdirectories};
 use crate::hsom::{GestureModel, Recognition};
 
 /// One recognised file.

@@ -10,7 +10,7 @@ use crate::hsom::{GestureModel, Hsom, HsomError, Reproduction};
 
 /// The initial posture of `--initial V1,V2,...` or `--initial-from CSV` (its first row, whose
 /// columns must be the model's): exactly one of them.
-pub(super) fn initial_posture(
+fn initial_posture(
     model: &Hsom,
     initial: Option<&PostureArg>,
     initial_from: Option<&Path>,
@@ -26,19 +26,21 @@ pub(super) fn initial_posture(
 }
 
 /// An initial posture of the arm's joints within their ranges, give or take
-/// [`RANGE_TOLERANCE_RAD`](crate::export::limits::RANGE_TOLERANCE_RAD). Held in the
+/// [`RANGE_TOLERANCE_RAD`](crate::robot::RANGE_TOLERANCE_RAD). Held in the
 /// simulator's builds, whose models are of the simulated arm; of another length, the
 /// hierarchy's own check names the lengths.
 fn check_arm_range(columns: &[String], initial: &[f64]) -> Result<()> {
-    use crate::export::limits::{are_arm_joints, nao_left_arm, RANGE_TOLERANCE_RAD as TOL};
-    if !cfg!(feature = "sim") || initial.len() != columns.len() || !are_arm_joints(columns) {
+    use crate::robot::{Robot, RANGE_TOLERANCE_RAD as TOL};
+    let robot = Robot::of_columns(columns).filter(|_| cfg!(feature = "sim"));
+    let Some(robot) = robot.filter(|_| initial.len() == columns.len()) else {
         return Ok(());
-    }
-    for (v, j) in initial.iter().zip(nao_left_arm().joints) {
-        if v.is_finite() && !(j.lower - TOL..=j.upper + TOL).contains(v) {
+    };
+    for (v, j) in initial.iter().zip(robot.joints()) {
+        let (lower, upper) = j.range;
+        if v.is_finite() && !(lower - TOL..=upper + TOL).contains(v) {
             return Err(Error::value(
                 format!("the initial posture's {} = {v}", j.name),
-                format!("is outside its range [{}, {}] by more than {TOL} rad: not a posture the arm can start from", j.lower, j.upper),
+                format!("is outside its range [{lower}, {upper}] by more than {TOL} rad: not a posture the arm can start from"),
             ));
         }
     }
@@ -65,7 +67,7 @@ fn naming_model(e: HsomError, model: &Hsom, model_name: &str) -> Error {
 
 /// The ranges of the arm's joints when `columns` are theirs (in the simulator's builds).
 fn arm_ranges(columns: &[String]) -> Option<Vec<(f64, f64)>> {
-    crate::export::limits::arm_ranges(columns).filter(|_| cfg!(feature = "sim"))
+    crate::robot::arm_ranges(columns).filter(|_| cfg!(feature = "sim"))
 }
 
 /// Reproduce from `initial` through `conditions` (a goal, via-points; [`Hsom::reproduce_conditioned`]),
@@ -84,7 +86,7 @@ pub fn reproduce_conditioned(
         .map_err(|e| naming_model(e, model, model_name))
 }
 
-/// The conditions of `--goal V1,V2,...` and `--via P:V1,V2,...` (each of them).
+/// The conditions of `--goal V1,V2,...` and `--via PHASE:V1,V2,...` (each of them).
 pub fn conditions(goal: Option<&PostureArg>, via: &[ViaPoint]) -> Conditions {
     Conditions {
         goal: goal.map(|g| g.0.clone()),
@@ -125,63 +127,99 @@ pub fn reproduce_gesture(
     reproduce(model.branch(label)?, model_name, initial)
 }
 
-/// What `cosco reproduce` is asked, as given on its command line.
-#[derive(Debug, Clone, Default, clap::Args)]
-pub struct ReproduceFile {
+/// A gesture of a saved model reproduced from an initial posture, as `cosco reproduce` and
+/// `cosco export --model` ask it: the model, the gesture (required with several), the initial
+/// posture (exactly one of `initial` and `initial_from`), the goal and via-points, and where
+/// the band goes.
+#[derive(Debug, Clone, Default)]
+pub struct ReproduceRequest {
     /// A model saved by `cosco train` (.bin or .txt).
-    #[arg(long)]
     pub model: PathBuf,
-    /// The initial posture, comma-separated, one value per state variable.
-    #[arg(
-        long,
-        allow_hyphen_values = true,
-        conflicts_with_all = ["initial_from", "prefix_from"],
-        required_unless_present_any = ["initial_from", "prefix_from"]
-    )]
-    pub initial: Option<PostureArg>,
-    /// Take the initial posture from the first row of this demonstration CSV.
-    #[arg(long, conflicts_with = "prefix_from")]
-    pub initial_from: Option<PathBuf>,
     /// The gesture to reproduce (required with a model of several gestures).
-    #[arg(long, conflicts_with = "prefix_from")]
     pub gesture: Option<String>,
-    /// Continue the gesture begun in this demonstration CSV's first --prefix samples; the
-    /// hierarchy decides which gesture it is.
-    #[arg(long, requires = "prefix")]
-    pub prefix_from: Option<PathBuf>,
-    /// Samples of --prefix-from to continue from.
-    #[arg(long, requires = "prefix_from")]
-    pub prefix: Option<usize>,
-    /// Resume the reproduction from the initial posture after part of it was executed:
-    /// this CSV (the model's columns) is what the encoders read meanwhile, possibly
-    /// disturbed; writes the rest, from the reading's last posture (`algorithm = events`).
-    #[arg(long, conflicts_with = "prefix_from")]
-    pub resume_from: Option<PathBuf>,
+    /// The initial posture, one value per state variable.
+    pub initial: Option<PostureArg>,
+    /// Or the first row of this CSV (the model's columns).
+    pub initial_from: Option<PathBuf>,
     /// The last posture, comma-separated: the reproduction ends exactly there.
-    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["prefix_from", "resume_from"])]
     pub goal: Option<PostureArg>,
-    /// A posture to pass at a phase of the reproduction (0 the start, 1 the end):
-    /// `PHASE:V1,V2,...`; repeatable.
-    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["prefix_from", "resume_from"])]
+    /// Postures to pass at a phase of the reproduction.
     pub via: Vec<ViaPoint>,
-    /// Also write the central 95 % confidence band about the reproduction to this CSV: one
-    /// row per reproduction row, `step` then `<variable>_lo` and `<variable>_hi`.
-    #[arg(long, conflicts_with_all = ["prefix_from", "resume_from"])]
+    /// Where to write the central 95 % confidence band about the reproduction, when asked.
     pub band: Option<PathBuf>,
+}
+
+/// What `cosco reproduce` is asked: a [`ReproduceRequest`], or the continuation of a prefix,
+/// or the rest after an encoder reading; and the output.
+#[derive(Debug, Clone, Default)]
+pub struct ReproduceFile {
+    /// The model, the gesture, the initial posture, the goal, via-points and band.
+    pub request: ReproduceRequest,
+    /// Continue the gesture begun in this demonstration CSV's first `prefix` samples (the
+    /// hierarchy decides which gesture it is), instead of reproducing from an initial posture.
+    pub prefix_from: Option<PathBuf>,
+    /// Samples of `prefix_from` to continue from.
+    pub prefix: Option<usize>,
+    /// Resume the reproduction from the initial posture after part of it was executed: this
+    /// CSV (the model's columns) is what the encoders read meanwhile.
+    pub resume_from: Option<PathBuf>,
     /// Output CSV.
-    #[arg(long)]
     pub out: PathBuf,
 }
 
+/// A gesture of a saved model reproduced ([`ReproduceRequest::run`]).
+pub(super) struct Reproduced {
+    /// The model's variables.
+    pub columns: Vec<String>,
+    /// The reproduction.
+    pub rep: Reproduction,
+    /// The band as `--band` writes it, when asked: its file, and its bytes or why there are
+    /// none.
+    pub band: Option<(PathBuf, Result<Vec<u8>>)>,
+}
+
+impl ReproduceRequest {
+    /// Load the model, choose the gesture (checked before the initial posture is read), read
+    /// the initial posture and reproduce through `conditions`, or with `resume_from` the rest
+    /// after that reading ([`resume`]); the band when asked. Nothing is written.
+    pub(super) fn run(
+        &self,
+        conditions: &Conditions,
+        resume_from: Option<&Path>,
+    ) -> Result<Reproduced> {
+        let m = files::load_gesture_model(&self.model)?;
+        let name = self.model.display().to_string();
+        let branch = m.branch(self.gesture.as_deref())?;
+        let initial = initial_posture(branch, self.initial.as_ref(), self.initial_from.as_deref())?;
+        let rep = match resume_from {
+            Some(path) => {
+                let reading = read_for_columns(path, branch.columns())?.rows;
+                resume(branch, &name, &initial, &reading).map_err(|e| Error::Resume {
+                    path: path.to_path_buf(),
+                    source: Box::new(e),
+                })?
+            }
+            None => reproduce_conditioned(branch, &name, &initial, conditions)?,
+        };
+        let band = (self.band.as_ref())
+            .map(|path| (path.clone(), band_csv(branch, &rep, conditions, path)));
+        Ok(Reproduced {
+            columns: m.columns().to_vec(),
+            rep,
+            band,
+        })
+    }
+}
+
 /// The band of `rep` (a reproduction of `model` conditioned on `conditions`) as `--band`
-/// writes it, to `path` (atomically); an error naming the file when the model keeps fewer
-/// than 2 training demonstrations.
-pub fn write_band(
+/// writes it to `path`; an error naming the file when the model keeps fewer than 2 training
+/// demonstrations.
+fn band_csv(
     model: &Hsom,
     rep: &Reproduction,
     conditions: &Conditions,
     path: &Path,
-) -> Result<()> {
+) -> Result<Vec<u8>> {
     let band = model
         .band(&rep.postures, &conditions.phases())
         .ok_or_else(|| {
@@ -190,60 +228,46 @@ pub fn write_band(
                 "no band: the model keeps fewer than 2 training demonstrations to measure it from",
             )
         })?;
-    let bytes = band
-        .csv(model.columns(), &rep.steps)
+    band.csv(model.columns(), &rep.steps)
         .map_err(|e| Error::Write {
             path: path.to_path_buf(),
             source: e.into(),
-        })?;
-    files::write(path, &bytes)
+        })
 }
 
 /// `cosco reproduce`: gesture `gesture` (required with several) from the initial posture;
 /// with `resume_from`, the rest of it after that reading ([`Hsom::resume`]); with
 /// `prefix_from` and `prefix`, the continuation of the gesture the hierarchy recognises in
-/// the file's first samples. Writes `step` then the model's columns; returns the line to
-/// print.
+/// the file's first samples. Writes `step` then the model's columns (the band first, when
+/// asked); returns the line to print.
 pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
-    let conditions = conditions(r.goal.as_ref(), &r.via);
+    let q = &r.request;
+    let conditions = conditions(q.goal.as_ref(), &q.via);
     if !conditions.is_empty() && (r.prefix_from.is_some() || r.resume_from.is_some()) {
         return Err(Error::value(
             "--goal and --via",
             "apply to a reproduction from an initial posture, not with --prefix-from or --resume-from",
         ));
     }
-    if let Some(b) = &r.band {
-        files::check_output(b)?;
+    if let Some(b) = &q.band {
+        crate::fsutil::check_output(b)?;
     }
-    let m = files::load_gesture_model(&r.model)?;
-    let name = r.model.display().to_string();
-    let mut band = Ok(());
-    let (rep, label) = match (&r.prefix_from, r.prefix) {
+    let (columns, rep, label, band) = match (&r.prefix_from, r.prefix) {
         (Some(path), Some(prefix)) => {
+            let m = files::load_gesture_model(&q.model)?;
             let (label, rep) = continue_file(&m, path, prefix)?;
-            (rep, Some(label))
+            (m.columns().to_vec(), rep, Some(label), Ok(()))
         }
         _ => {
-            // the gesture is checked before the initial posture is read
-            let branch = m.branch(r.gesture.as_deref())?;
-            let initial = initial_posture(branch, r.initial.as_ref(), r.initial_from.as_deref())?;
-            let rep = match &r.resume_from {
-                Some(path) => {
-                    let reading = read_for_columns(path, branch.columns())?.rows;
-                    resume(branch, &name, &initial, &reading).map_err(|e| Error::Resume {
-                        path: path.clone(),
-                        source: Box::new(e),
-                    })?
-                }
-                None => reproduce_conditioned(branch, &name, &initial, &conditions)?,
+            let Reproduced { columns, rep, band } = q.run(&conditions, r.resume_from.as_deref())?;
+            let band = match band {
+                Some((path, bytes)) => bytes.and_then(|b| files::write(&path, &b)),
+                None => Ok(()),
             };
-            if let Some(path) = &r.band {
-                band = write_band(branch, &rep, &conditions, path);
-            }
-            (rep, r.gesture.clone())
+            (columns, rep, q.gesture.clone(), band)
         }
     };
-    let bytes = reproduction_csv(m.columns(), &rep).map_err(|e| Error::Write {
+    let bytes = reproduction_csv(&columns, &rep).map_err(|e| Error::Write {
         path: r.out.clone(),
         source: e.into(),
     })?;

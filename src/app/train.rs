@@ -22,9 +22,10 @@
 
 use std::path::{Path, PathBuf};
 
-use super::files::{self, DemoSets};
+use super::files;
 use super::Result;
 use crate::config::HsomConfig;
+use crate::demo_sets::{read_demo_sets, DemoSets};
 use crate::demos::{self, Demonstration};
 use crate::hsom::{GestureError, GestureModel, Hsom, HsomError};
 
@@ -111,18 +112,11 @@ pub fn update_files(
             ));
         }
     }
+    // the sets are checked as they are read, against the model's stateLength
     let state = cfg.params().state_length;
-    let updated = match files::read_demo_sets(demo_paths, Some(state), resample)? {
-        DemoSets::Plain(d) => {
-            demos::validate_set(&d, Some(state))?;
-            model.update(None, &d, progress)
-        }
-        DemoSets::Labelled(s) => {
-            for (_, d) in &s {
-                demos::validate_set(d, Some(state))?;
-            }
-            model.update_labelled(&s, progress)
-        }
+    let updated = match read_demo_sets(demo_paths, Some(state), resample)? {
+        DemoSets::Plain(d) => model.update(None, &d, progress),
+        DemoSets::Labelled(s) => model.update_labelled(&s, progress),
     }
     // a count the model file holds is named with the file
     .map_err(|e| match e {
@@ -150,13 +144,13 @@ pub fn train_files(
     files::check_model_output(out)?;
     let mut cfg = files::config(config)?;
     if state_length_from_data {
-        let width = files::read_demo_sets(demo_paths, None, resample)?.width();
+        let width = read_demo_sets(demo_paths, None, resample)?.width();
         cfg = cfg.for_width(width)?;
     }
-    let sets = files::read_demo_sets(demo_paths, Some(cfg.params().state_length), resample)?;
-    let model = match &sets {
-        DemoSets::Plain(d) => train(&cfg, d, progress)?.into(),
-        DemoSets::Labelled(s) => train_gestures(&cfg, s, progress)?,
+    // the sets are checked as they are read, against the configuration's stateLength
+    let model = match read_demo_sets(demo_paths, Some(cfg.params().state_length), resample)? {
+        DemoSets::Plain(d) => cfg.fit_with_progress(&d, progress)?.into(),
+        DemoSets::Labelled(s) => cfg.fit_gestures(&s, progress)?,
     };
     files::save_gesture_model(&model, out)?;
     Ok(model)

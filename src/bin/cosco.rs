@@ -27,9 +27,10 @@ fn run(cli: Cli) -> Result<()> {
         Command::Demos { action } => cli::export::demos_action(&action)?
             .iter()
             .for_each(|l| outln!("{l}")),
-        Command::Export(a) => cli::export::export(&a)?.iter().for_each(|l| outln!("{l}")),
+        Command::Export(a) => cli::export::export(a)?.iter().for_each(|l| outln!("{l}")),
         #[cfg(feature = "sim")]
         Command::Demos {
+            robot,
             gesture,
             count,
             seed,
@@ -41,15 +42,15 @@ fn run(cli: Cli) -> Result<()> {
             let out = out.ok_or_else(|| anyhow::anyhow!("give --out DIR"))?;
             let bars = cli::StageBars::default();
             let on_progress = |stage: &str, done, total| bars.update(stage, done, total);
-            let files = cosco_hsom::experiment::job::demos(
-                &gesture,
+            let request = cosco_hsom::experiment::job::DemosRequest {
+                robot,
+                gesture: &gesture,
                 count,
                 seed,
-                &out,
                 noise,
-                model.as_deref(),
-                &on_progress,
-            )?;
+                model: model.as_deref(),
+            };
+            let files = cosco_hsom::experiment::job::demos(&request, &out, &on_progress)?;
             bars.finish();
             for f in files {
                 outln!("{}", f.display());
@@ -96,7 +97,7 @@ fn run(cli: Cli) -> Result<()> {
             }
             outln!("saved {}", out.display());
         }
-        Command::Reproduce(r) => outln!("{}", app::reproduce_file(&r)?),
+        Command::Reproduce(r) => outln!("{}", app::reproduce_file(&r.into())?),
         Command::Recognize { model, demos, json } => {
             for line in app::recognize_files(&model, &demos, json.as_deref())? {
                 outln!("{line}");
@@ -146,7 +147,7 @@ fn run(cli: Cli) -> Result<()> {
                     dmp: !no_dmp,
                     replay: true,
                     in_sample: !no_in_sample,
-                    conditioning: condition.unwrap_or_default(),
+                    conditioning: condition.map(Into::into).unwrap_or_default(),
                     far: None,
                     sittings,
                     threads: threads.map_or_else(cli::cores, |t| t as usize),

@@ -24,15 +24,6 @@ fn third_difference(rows: &[Vec<f64>], d: usize) -> f64 {
 }
 
 #[test]
-fn reads_rows_at_their_phases_and_between_them_linearly() {
-    let rows = vec![vec![0.0], vec![1.0], vec![3.0]];
-    assert_eq!(at_phase(&rows, 0.0), vec![0.0]);
-    assert_eq!(at_phase(&rows, 0.5), vec![1.0]);
-    assert_eq!(at_phase(&rows, 1.0), vec![3.0]);
-    assert_eq!(at_phase(&rows, 0.75), vec![2.0]);
-}
-
-#[test]
 fn a_bent_trajectory_meets_its_goal_and_via_points_and_keeps_its_shape() {
     let original = gesture();
     let points = vec![

@@ -13,4 +13,6 @@ pub use hyperparams::{
     PAPER_MIN_LENGTH_FRACTION, PAPER_STATIONARY_STEPS, PAPER_STATIONARY_TOLERANCE,
 };
 pub(crate) use xml::Text;
-pub use xml::{load_config, parse_config};
+pub use xml::{
+    load_config, load_config_or_default, parse_config, DEFAULT_CONFIG_NAME, NAO_GESTURES_XML,
+};

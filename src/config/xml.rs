@@ -201,6 +201,22 @@ const RETIRED: &[(&str, &str)] = &[
 const LOOPS: &str =
     "the paper algorithm executes what the hierarchy predicts, with no loop breaking";
 
+/// The recommended configuration for the simulated Nao (the events extension), built in so
+/// that the binaries run from any directory; the default of `simulate` and `cosco`.
+pub const NAO_GESTURES_XML: &str = include_str!("../../configs/nao-gestures.xml");
+
+/// Name of the built-in default configuration in reports and messages.
+pub const DEFAULT_CONFIG_NAME: &str = "configs/nao-gestures.xml (built in)";
+
+/// Load a configuration file ([`load_config`]), or without one the built-in recommended
+/// configuration ([`NAO_GESTURES_XML`]).
+pub fn load_config_or_default(path: Option<&Path>) -> Result<HsomConfig, ConfigError> {
+    match path {
+        Some(p) => load_config(p),
+        None => parse_config(NAO_GESTURES_XML, DEFAULT_CONFIG_NAME),
+    }
+}
+
 /// Read, parse and validate a configuration file.
 pub fn load_config(path: &Path) -> Result<HsomConfig, ConfigError> {
     let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Io {
@@ -280,10 +296,7 @@ fn shipped(algorithm: Algorithm) -> HsomParams {
             "configs/table1.xml",
             include_str!("../../configs/table1.xml"),
         ),
-        Algorithm::Events => (
-            "configs/nao-gestures.xml",
-            include_str!("../../configs/nao-gestures.xml"),
-        ),
+        Algorithm::Events => ("configs/nao-gestures.xml", NAO_GESTURES_XML),
     };
     let none =
         |_: Algorithm| -> HsomParams { unreachable!("{file} omits only reproduction settings") };

@@ -1,6 +1,6 @@
 //! Where a method's postures are carried out before they are scored: the executor. The
 //! kinematic one ([`Kinematic`]) takes the postures as they are, with no simulator; the
-//! simulated Nao arm's is `sim::ArmExecutor` (feature `sim`), recording the executed motion
+//! simulated Nao arm's is `experiment::ArmExecutor` (feature `sim`), recording the executed motion
 //! at the demonstration's rate. Both produce an [`Executed`].
 
 use crate::demos::{sample_period, Demonstration};
@@ -69,8 +69,8 @@ impl Executor for Kinematic {
             sample_period: targets.first().map_or(f64::NAN, sample_period),
             ..MetricsParams::default()
         };
-        let fidelity = crate::app::evaluate_rows(targets, postures, &params)
-            .map_err(|e| crate::app::error_line(&e))?;
+        let fidelity = crate::metrics::fidelity_of_rows(targets, postures, &params)
+            .map_err(|e| crate::errors::error_line(&e))?;
         Ok(Executed {
             trace: (),
             fidelity,

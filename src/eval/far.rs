@@ -2,9 +2,9 @@
 //! demonstrations' end spread away from their mean end, and the held-out demonstration shifted
 //! by the same offset, fading in as the goal does, to score the reproduction's shape against.
 
+use crate::curve::minimum_jerk_at;
 use crate::demos::Demonstration;
 use crate::dtw::euclidean;
-use crate::gmr::minimum_jerk_at;
 use crate::metrics::end_spread;
 
 /// The held-out demonstration `target` moved to a far goal: the training demonstrations'

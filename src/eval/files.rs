@@ -3,7 +3,8 @@
 
 use std::path::PathBuf;
 
-use crate::app;
+use crate::config::load_config_or_default;
+use crate::fsutil::check_output;
 
 use super::{failures, read_gestures_at, study, Kinematic, LooError, LooSettings, Method};
 
@@ -35,9 +36,9 @@ pub fn heldout(
     progress: Option<&(dyn Fn(usize, usize) + Sync)>,
 ) -> Result<String, LooError> {
     for p in job.json.iter().chain(&job.png) {
-        app::check_output(p)?;
+        check_output(p)?;
     }
-    let cfg = app::config(job.config.as_deref())?;
+    let cfg = load_config_or_default(job.config.as_deref())?;
     let (cfg, gestures) =
         read_gestures_at(&job.demos, &cfg, job.state_length_from_data, job.resample)?;
     let all = study(

@@ -6,16 +6,17 @@
 use std::borrow::Cow;
 use std::time::Instant;
 
-use crate::condition::{at_phase, meet, Conditions, ConfidenceBand};
+use crate::condition::{meet, Conditions, ConfidenceBand};
 use crate::config::HsomConfig;
+use crate::curve::at_phase;
 use crate::demos::{sample_period, Demonstration};
 use crate::dmp::DmpSettings;
 use crate::dtw::{dtw, euclidean, Band};
-use crate::export::limits::arm_ranges;
 use crate::gmr::{plan_at, BicScore, ComponentChoice, GmrModel, GmrParams, GmrPlan, TrainingSet};
 use crate::hsom::{Hsom, Reproduction};
 use crate::metrics::{column_swings, trimmed_normalized_jerk, MetricsParams, StartEndReference};
 use crate::promp::PrompSettings;
+use crate::robot::arm_ranges;
 
 use super::executor::{Executed, Executor};
 use super::method::{Method, GMR_COMPONENTS};
@@ -87,19 +88,16 @@ impl Split {
 
 /// What a fold's reproductions are conditioned on besides the held-out demonstration's
 /// initial posture (`cosco heldout --condition`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 pub enum Conditioning {
     /// The initial posture only.
     #[default]
-    #[value(skip)]
     #[serde(rename = "none")]
     Unconditioned,
     /// Also the held-out demonstration's last posture, as the goal.
-    #[value(name = "end")]
     #[serde(rename = "end")]
     End,
     /// Also its last posture and its posture at phase 0.5, as a via-point.
-    #[value(name = "end+mid")]
     #[serde(rename = "end+mid")]
     EndMid,
 }
@@ -255,7 +253,7 @@ const NO_TARGET: &str = "no demonstration to score against";
 
 /// The error and its causes on one line.
 fn msg(e: impl std::error::Error + 'static) -> String {
-    crate::app::error_line(&e)
+    crate::errors::error_line(&e)
 }
 
 /// Train with `config` (or only initialise, the negative control), timed.
@@ -374,7 +372,7 @@ pub fn run_fold<E: Executor>(
                     plan_at(&m, initial, 1.0 / period, speed)
                 });
                 let plan = plan.map_err(msg)?;
-                let band = plan.band();
+                let band = ConfidenceBand::around(&plan.postures, &plan.band_half_widths());
                 let fitted = Fitted::GmmGmr {
                     model: Box::new(m),
                     training: Box::new(training),
@@ -462,11 +460,12 @@ pub fn fold_scores<E: Executor>(
     };
     // without the arm's executor, data of its joints still count LElbowRoll's swings
     let arm_swing = || {
-        let joints = crate::export::limits::nao_left_arm().joints;
-        (crate::export::limits::are_arm_joints(&target.columns))
-            .then(|| joints.iter().position(|j| j.name == "LElbowRoll"))
-            .flatten()
-            .map(|j| (j, "LElbowRoll"))
+        let robot = crate::robot::Robot::of_columns(&target.columns)?;
+        let j = robot
+            .joint_names()
+            .iter()
+            .position(|n| *n == "LElbowRoll")?;
+        Some((j, "LElbowRoll"))
     };
     let swings = match executor.swing_joint().or_else(arm_swing) {
         Some((j, name)) => {

@@ -3,6 +3,7 @@
 //! sample, execute, and score against it alone; in-sample, learn from all.
 
 use crate::config::HsomConfig;
+use crate::demo_sets::{read_demo_sets, DemoSets};
 use crate::demos::Demonstration;
 
 use super::executor::Executor;
@@ -176,9 +177,9 @@ pub enum LooError {
     /// gesture, ...).
     #[error(transparent)]
     Demo(#[from] crate::demos::DemoError),
-    /// The demonstrations or a file given to the study could not be read or used.
+    /// An output cannot be written where it was asked.
     #[error(transparent)]
-    App(#[from] crate::app::Error),
+    Output(#[from] crate::fsutil::NotWritable),
     /// The hierarchy produced no reproduction on any fold: nothing to compare.
     #[error("the hierarchy produced no reproduction on any fold: {0}")]
     NoReproduction(String),
@@ -233,15 +234,15 @@ pub fn read_gestures_at(
     from_data: bool,
     resample_hz: Option<f64>,
 ) -> Result<(HsomConfig, Gestures), LooError> {
-    let sets = match crate::app::read_demo_sets(paths, None, resample_hz)? {
-        crate::app::DemoSets::Plain(d) => {
+    let sets = match read_demo_sets(paths, None, resample_hz)? {
+        DemoSets::Plain(d) => {
             let name = match paths {
                 [one] if one.is_dir() => one.file_name().map(|n| n.to_string_lossy().to_string()),
                 _ => None,
             };
             vec![(name.unwrap_or_else(|| "gesture".into()), d)]
         }
-        crate::app::DemoSets::Labelled(sets) => sets,
+        DemoSets::Labelled(sets) => sets,
     };
     let width = sets[0].1[0].width();
     let config = if from_data {

@@ -4,7 +4,7 @@ use serde::Serialize;
 
 use crate::demos::Demonstration;
 use crate::gmr::ComponentChoice;
-use crate::metrics::median;
+use crate::stats::median;
 
 /// The components the GMM/GMR baseline chooses among (lowest BIC): 1..=16, wider than the
 /// library's default 1..=8 (on the four gestures BIC still fell at 8 components; a wave needs

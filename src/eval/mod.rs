@@ -1,7 +1,7 @@
 //! One evaluator, without the simulator: the methods compared on the same folds
 //! ([`Method`]: the hierarchy, the nearest sequence, height 1, GMM/GMR, ProMP, the replay of
 //! the training demonstration that starts nearest), an [`Executor`] that carries their
-//! postures out ([`Kinematic`]: as they are; the simulated arm's is `sim::ArmExecutor`), one
+//! postures out ([`Kinematic`]: as they are; the simulated arm's is `experiment::ArmExecutor`), one
 //! fold ([`run_fold`]) whose held-out and in-sample [`Split`]s make every study
 //! ([`leave_one_out`] with the in-sample result beside it), one result family ([`Run`],
 //! [`Fold`], [`GestureLoo`], [`HeldOut`] and their summaries), and one worker pool

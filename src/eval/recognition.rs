@@ -20,11 +20,11 @@ use serde::Serialize;
 use super::loo::{check_width, write};
 use super::{LooError, MIN_TAUGHT_DEMOS};
 
-use crate::app;
-use crate::app::{read_demo_sets, DemoSets};
-use crate::config::HsomConfig;
-use crate::demos::Demonstration;
-use crate::hsom::{is_plain_label, GestureModel};
+use crate::config::{load_config_or_default, HsomConfig};
+use crate::demo_sets::{read_demo_sets, DemoSets};
+use crate::demos::{is_plain_label, Demonstration};
+use crate::fsutil::check_output;
+use crate::hsom::GestureModel;
 
 pub use report::{recognition_json, recognition_markdown};
 
@@ -437,9 +437,9 @@ pub fn recognition(
     progress: Option<&(dyn Fn(usize, usize) + Sync)>,
 ) -> Result<String, LooError> {
     if let Some(p) = &job.json {
-        app::check_output(p)?;
+        check_output(p)?;
     }
-    let cfg = app::config(job.config.as_deref())?;
+    let cfg = load_config_or_default(job.config.as_deref())?;
     let taught = read_labelled_dirs(&job.taught, job.resample)?;
     let untaught = read_labelled_dirs(&job.untaught, job.resample)?;
     let width = taught

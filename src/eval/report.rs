@@ -1,6 +1,7 @@
 //! An evaluation as JSON, Markdown and a figure (`cosco heldout`).
 
 use crate::config::HsomConfig;
+use crate::table::Table;
 
 #[cfg(feature = "plot")]
 use super::loo::LooError;
@@ -38,35 +39,26 @@ pub fn markdown(study: &[GestureLoo]) -> String {
         "Relative DTW (per-step DTW / the gesture's bounding-box diagonal), mean over the \
          leave-one-out folds, held out (in-sample in brackets where learned from all):\n"
     );
-    let _ = writeln!(
-        out,
-        "| gesture | demos | {} |",
-        methods
-            .iter()
-            .map(|m| m.name())
-            .collect::<Vec<_>>()
-            .join(" | ")
+    let mut table = Table::new(
+        ["gesture", "demos"]
+            .into_iter()
+            .chain(methods.iter().map(|m| m.name())),
     );
-    let _ = writeln!(out, "|---|---|{}", "---|".repeat(methods.len()));
     for g in study {
-        let cells: Vec<String> = methods
-            .iter()
-            .map(|&m| {
-                let h = cell(g.mean(&g.held_out, m, |s| s.relative_dtw));
-                match g.mean(&g.in_sample, m, |s| s.relative_dtw) {
-                    Some(i) => format!("{h} ({i:.4})"),
-                    None => h,
-                }
-            })
-            .collect();
-        let _ = writeln!(
-            out,
-            "| {} | {} | {} |",
-            g.gesture,
-            g.demonstrations.len(),
-            cells.join(" | ")
+        let cells = methods.iter().map(|&m| {
+            let h = cell(g.mean(&g.held_out, m, |s| s.relative_dtw));
+            match g.mean(&g.in_sample, m, |s| s.relative_dtw) {
+                Some(i) => format!("{h} ({i:.4})"),
+                None => h,
+            }
+        });
+        table.row(
+            [g.gesture.clone(), g.demonstrations.len().to_string()]
+                .into_iter()
+                .chain(cells),
         );
     }
+    out.push_str(&table.to_string());
     let _ = writeln!(
         out,
         "\nMedians over the {} gestures (held out; per-gesture means over the folds); start in \
@@ -74,11 +66,20 @@ pub fn markdown(study: &[GestureLoo]) -> String {
          end\"):\n",
         study.len()
     );
-    let _ = writeln!(
-        out,
-        "| method | relative DTW | in-sample | duration ratio | final error / diagonal | jerk ratio | band coverage | start in range | end within spread | hierarchy / method | hierarchy closer | failed folds |"
-    );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let mut table = Table::new([
+        "method",
+        "relative DTW",
+        "in-sample",
+        "duration ratio",
+        "final error / diagonal",
+        "jerk ratio",
+        "band coverage",
+        "start in range",
+        "end within spread",
+        "hierarchy / method",
+        "hierarchy closer",
+        "failed folds",
+    ]);
     let folds = |m: Method, pass: fn(&Score) -> bool| {
         let (k, n) = passed(study, m, pass);
         format!("{k} of {n}")
@@ -93,10 +94,8 @@ pub fn markdown(study: &[GestureLoo]) -> String {
                 v
             }
         };
-        let _ = writeln!(
-            out,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} of {} |",
-            s.method.name(),
+        table.row([
+            s.method.name().to_string(),
             opt(s.relative_dtw, 4),
             opt(s.relative_dtw_in_sample, 4),
             opt(s.duration_ratio, 2),
@@ -111,10 +110,10 @@ pub fn markdown(study: &[GestureLoo]) -> String {
                 "{} of {}",
                 s.hierarchy_closer.0, s.hierarchy_closer.1
             )),
-            s.failed,
-            s.folds
-        );
+            format!("{} of {}", s.failed, s.folds),
+        ]);
     }
+    out.push_str(&table.to_string());
     let outside: Vec<String> = (summary(study).iter())
         .filter_map(|s| Some(format!("{} {}", s.method.name(), s.out_of_range?)))
         .collect();
@@ -131,18 +130,18 @@ pub fn markdown(study: &[GestureLoo]) -> String {
             out,
             "\nConditions met by the postures each method produced (before execution; each \
              read at its phase between two rows), the largest error of any held-out fold over \
-             the gesture's diagonal:\n\n| method | goal | via-point |\n|---|---|---|"
+             the gesture's diagonal:\n"
         );
         let e = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.1e}"));
+        let mut table = Table::new(["method", "goal", "via-point"]);
         for s in summary(study) {
-            let _ = writeln!(
-                out,
-                "| {} | {} | {} |",
-                s.method.name(),
+            table.row([
+                s.method.name().to_string(),
                 e(s.worst_goal_error),
-                e(s.worst_via_error)
-            );
+                e(s.worst_via_error),
+            ]);
         }
+        out.push_str(&table.to_string());
     }
     let failed = failures(study);
     if !failed.is_empty() {

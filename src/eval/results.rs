@@ -7,7 +7,8 @@
 use serde::Serialize;
 
 use crate::demos::Demonstration;
-use crate::metrics::{median, FidelityReport, StartEnd};
+use crate::metrics::{FidelityReport, StartEnd};
+use crate::stats::median;
 
 use super::method::Method;
 
@@ -399,7 +400,7 @@ pub struct FoldScores {
 }
 
 /// How far a reproduction's postures miss the postures it was conditioned on, data units:
-/// each read at its phase between two rows ([`crate::condition::at_phase`]).
+/// each read at its phase between two rows ([`crate::curve::at_phase`]).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ConditionErrors {
     /// The last posture's distance from the goal (`None` without a goal).
@@ -412,7 +413,7 @@ impl ConditionErrors {
     /// The errors of `postures` conditioned on `c` (`None` when `c` has no condition or
     /// `postures` no row).
     pub fn of(c: &crate::condition::Conditions, postures: &[Vec<f64>]) -> Option<Self> {
-        use crate::condition::at_phase;
+        use crate::curve::at_phase;
         use crate::dtw::euclidean;
         if c.is_empty() || postures.is_empty() {
             return None;

@@ -3,6 +3,7 @@
 //! demonstration's end (and middle) beside it.
 
 use crate::config::HsomConfig;
+use crate::table::Table;
 
 use super::executor::Executor;
 use super::fold::Conditioning;
@@ -225,14 +226,17 @@ pub fn sittings_ratios(at_once: &[GestureLoo], sittings: &[GestureLoo]) -> Vec<S
 /// The Markdown table of [`sittings_ratios`].
 fn sittings_table(at_once: &[GestureLoo], sittings: &[GestureLoo]) -> String {
     let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
-    let mut out = String::from(
-        "| method | relative DTW at once | in two sittings | ratio | wave: swings kept |\n|---|---|---|---|---|\n",
-    );
+    let mut table = Table::new([
+        "method",
+        "relative DTW at once",
+        "in two sittings",
+        "ratio",
+        "wave: swings kept",
+    ]);
     for r in sittings_ratios(at_once, sittings) {
         let (k, n) = r.wave_swings;
-        out.push_str(&format!(
-            "| {} | {} | {} | {} | {} |\n",
-            r.method.name(),
+        table.row([
+            r.method.name().to_string(),
             f(r.at_once),
             f(r.in_sittings),
             r.ratio.map_or("-".to_string(), |v| format!("{v:.3}")),
@@ -240,8 +244,8 @@ fn sittings_table(at_once: &[GestureLoo], sittings: &[GestureLoo]) -> String {
                 "-".to_string()
             } else {
                 format!("{k}/{n}")
-            }
-        ));
+            },
+        ]);
     }
-    out
+    table.to_string()
 }

@@ -12,8 +12,7 @@
 
 use serde::Serialize;
 
-use crate::app;
-use crate::config::HsomConfig;
+use crate::config::{load_config_or_default, HsomConfig};
 use crate::demos::{write_csv, Demonstration};
 use crate::dtw::Band;
 use crate::eval::{Executed, Executor, FoldInput, Method};
@@ -22,16 +21,18 @@ use crate::hsom::{GestureError, GestureModel};
 use crate::nearest::NearestNeighbour;
 use crate::plot::{caption, confusion_png, ConfusionPanel};
 use crate::render::{contact_sheet, save_png, Clip};
-use crate::sim::{ArmExecutor, NaoArm, Recording};
+use crate::sim::{NaoArm, Recording};
+use crate::table::Table;
 
 use super::demonstrate::{synthetic_demonstrations, write_demos, DemoSettings};
+use super::executor::ArmExecutor;
 use super::film::{clip_options, film};
 use super::heldout::on_arm;
 use super::job::Job;
 use super::output::{config_name, load_arm};
 use super::report::{files_section, write_report};
 use super::{ExperimentError, Progress};
-use crate::metrics::median;
+use crate::stats::median;
 
 /// Frames of each gesture on the contact sheet (one row per gesture).
 const SHEET_COLUMNS: usize = 4;
@@ -152,22 +153,30 @@ impl AllReport {
             s,
             "## Fidelity per gesture, held out: the shared hierarchy beside the gesture learned alone\n"
         );
-        let _ = writeln!(s, "| gesture | shared joint DTW (rad/step) | alone joint DTW | shared / alone | shared wrist DTW (mm) | alone wrist DTW (mm) | shared duration ratio | folds |\n|---|---|---|---|---|---|---|---|");
         let mm = |v: Option<f64>| v.map_or("n/a".to_string(), |x| format!("{x:.1}"));
+        let mut table = Table::new([
+            "gesture",
+            "shared joint DTW (rad/step)",
+            "alone joint DTW",
+            "shared / alone",
+            "shared wrist DTW (mm)",
+            "alone wrist DTW (mm)",
+            "shared duration ratio",
+            "folds",
+        ]);
         for f in &self.fidelity {
-            let _ = writeln!(
-                s,
-                "| {} | {:.4} | {:.4} | {:.2} | {} | {} | {:.2} | {} |",
-                f.gesture,
-                f.shared_joint_dtw,
-                f.alone_joint_dtw,
-                f.ratio(),
+            table.row([
+                f.gesture.clone(),
+                format!("{:.4}", f.shared_joint_dtw),
+                format!("{:.4}", f.alone_joint_dtw),
+                format!("{:.2}", f.ratio()),
                 mm(f.shared_wrist_dtw_mm),
                 mm(f.alone_wrist_dtw_mm),
-                f.shared_duration_ratio,
-                f.folds
-            );
+                format!("{:.2}", f.shared_duration_ratio),
+                f.folds.to_string(),
+            ]);
         }
+        s += &table.to_string();
         let _ = writeln!(
             s,
             "\nThe issue's gate: shared / alone at most 1.2 on every gesture. Per fold (fold k \
@@ -216,10 +225,11 @@ impl AllReport {
              (`reproduction_<gesture>.csv`; `clip.gif` plays them in turn).\n",
             self.count - 1
         );
-        let _ = writeln!(s, "| gesture | samples | stopped |\n|---|---|---|");
+        let mut table = Table::new(["gesture", "samples", "stopped"]);
         for (g, n, stop) in &self.reproductions {
-            let _ = writeln!(s, "| {g} | {n} | {stop} |");
+            table.row([g.to_string(), n.to_string(), stop.to_string()]);
         }
+        s += &table.to_string();
         s + &files_section(&self.files)
     }
 }
@@ -242,9 +252,15 @@ pub fn all_gestures_job(job: &Job, progress: Progress<'_>) -> Result<Vec<String>
     }
     let out = &job.out;
     std::fs::create_dir_all(out).map_err(ExperimentError::io("creating", out))?;
-    let cfg = app::config(job.config.as_deref())?;
+    let cfg = load_config_or_default(job.config.as_deref())?;
     let arm = load_arm(job.model.as_deref())?;
-    let report = run_all_gestures(&arm, &cfg, &Gesture::all(), job, progress)?;
+    let report = run_all_gestures(
+        &arm,
+        &cfg,
+        &Gesture::all(crate::robot::Robot::LeftArm),
+        job,
+        progress,
+    )?;
     let mut lines: Vec<String> = report
         .fidelity
         .iter()
@@ -558,12 +574,14 @@ pub fn confusion_counts<'a>(
 /// (a classifier that never answers it, such as 1-NN DTW, leaves it out).
 pub fn confusion_markdown(m: &[Vec<usize>], labels: &[String], unknown: bool) -> String {
     let n = labels.len() + usize::from(unknown);
-    let mut s = format!("| gesture | {}", labels.join(" | "));
-    s += if unknown { " | unknown |\n" } else { " |\n" };
-    s += &format!("|---|{}\n", "---|".repeat(n));
+    let header = labels.iter().map(String::as_str);
+    let mut table = Table::new(
+        std::iter::once("gesture")
+            .chain(header)
+            .chain(unknown.then_some("unknown")),
+    );
     for (l, row) in labels.iter().zip(m) {
-        let cells: Vec<String> = row.iter().take(n).map(|c| c.to_string()).collect();
-        s += &format!("| {l} | {} |\n", cells.join(" | "));
+        table.row(std::iter::once(l.clone()).chain(row.iter().take(n).map(|c| c.to_string())));
     }
-    s
+    table.to_string()
 }

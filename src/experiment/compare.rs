@@ -4,7 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::app;
+use crate::config::load_config_or_default;
+use crate::demo_sets::read_demos;
 use crate::demos::{sample_period, validate_set, write_csv, Demonstration};
 use crate::eval::{Fitted, FoldInput, Method, MethodRun};
 use crate::gmr::{load_model, save_model, BicScore, ComponentChoice, GmrModel, MIN_DEMONSTRATIONS};
@@ -19,7 +20,7 @@ use super::output::FIG4_JOINTS;
 use super::output::{config_name, file_size, hsom_on_arm, load_arm, write_hsom_run, Stopwatch};
 use super::report::{DemoInfo, MethodResult, Report};
 use super::{ExperimentError, Progress};
-use crate::export::limits::are_arm_joints;
+use crate::robot::are_arm_joints;
 
 /// The result of a job's step.
 type Result<T> = std::result::Result<T, ExperimentError>;
@@ -226,8 +227,8 @@ pub struct CompareJob {
 pub fn compare(job: &CompareJob, on_progress: Progress<'_>) -> Result<Report> {
     let mut clock = Stopwatch::default();
     let out = &job.out;
-    let cfg = app::config(job.config.as_deref())?;
-    let demos = app::read_demos(std::slice::from_ref(&job.demos), None, job.resample)?;
+    let cfg = load_config_or_default(job.config.as_deref())?;
+    let demos = read_demos(std::slice::from_ref(&job.demos), None, job.resample)?;
     require_arm_joints(&demos)?;
     if demos.len() < MIN_DEMONSTRATIONS {
         return Err(ExperimentError::Invalid(format!(

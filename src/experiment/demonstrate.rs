@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use crate::demos::{write_csv, Demonstration};
 use crate::gesture::{Gesture, HumanTrajectory, Variation};
-use crate::sim::{Controller, ControllerConfig, NaoArm, Recording, TargetTrajectory, JOINT_SPECS};
+use crate::sim::{Controller, ControllerConfig, NaoArm, Recording, TargetTrajectory};
 
 use super::ExperimentError;
 
@@ -39,8 +39,8 @@ impl Default for DemoSettings {
 /// Record `count` demonstrations of `gesture` on the simulated arm. Everything random comes
 /// from `seed`: demonstration `i` uses its own sub-stream, so demonstration 0 is the same
 /// whatever `count` is.
-pub fn record_demonstrations(
-    arm: &NaoArm,
+pub fn record_demonstrations<const N: usize>(
+    arm: &NaoArm<N>,
     gesture: &Gesture,
     count: usize,
     seed: u64,
@@ -52,13 +52,19 @@ pub fn record_demonstrations(
             "demonstration count is 0: need at least 1".into(),
         ));
     }
-    // the joints' ranges in model order, for the demonstrator
-    let limits: Vec<(f64, f64)> = JOINT_SPECS.iter().map(|s| s.range).collect();
+    if gesture.robot != arm.robot() {
+        return Err(ExperimentError::Invalid(format!(
+            "gesture '{}' moves the {} and the model is the {}",
+            gesture.name,
+            gesture.robot.name(),
+            arm.robot().name()
+        )));
+    }
     let mut out = Vec::with_capacity(count);
     for i in 0..count {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         rng.set_stream(i as u64 + 1);
-        let human = HumanTrajectory::sample(gesture, &settings.variation, &limits, &mut rng)
+        let human = HumanTrajectory::sample(gesture, &settings.variation, &mut rng)
             .map_err(ExperimentError::Invalid)?;
         let controller = Controller::new(ControllerConfig {
             record_rate_hz: settings.record_rate_hz,
@@ -69,8 +75,8 @@ pub fn record_demonstrations(
         let samples = human.sampled(1.0 / settings.guide_rate_hz);
         let times: Vec<f64> = samples.iter().map(|(t, _)| *t).collect();
         let targets: Vec<Vec<f64>> = samples.iter().map(|(_, q)| q.to_vec()).collect();
-        let trajectory =
-            TargetTrajectory::new(&times, &targets)?.with_hold(1.0 / settings.record_rate_hz)?;
+        let trajectory = TargetTrajectory::<N>::new_for(arm.robot(), &times, &targets)?
+            .with_hold(1.0 / settings.record_rate_hz)?;
         let mut sim = arm.sim()?;
         sim.set_posture(&targets[0])?;
         out.push(controller.follow(&mut sim, &trajectory)?);
@@ -81,8 +87,8 @@ pub fn record_demonstrations(
 
 /// [`record_demonstrations`] as demonstrations named `"<gesture> demonstration N (seed S)"`
 /// (N from 1), each with the recording's `time` column.
-pub fn synthetic_demonstrations(
-    arm: &NaoArm,
+pub fn synthetic_demonstrations<const N: usize>(
+    arm: &NaoArm<N>,
     gesture: &Gesture,
     count: usize,
     seed: u64,
@@ -154,10 +160,10 @@ pub fn parse_gestures(text: &str) -> Result<Vec<Gesture>, ExperimentError> {
     text.split(',')
         .map(|name| {
             let name = name.trim();
-            Gesture::by_name(name).ok_or_else(|| {
+            Gesture::by_name(crate::robot::Robot::LeftArm, name).ok_or_else(|| {
                 ExperimentError::Invalid(format!(
                     "unknown gesture '{name}' in '{text}': allowed {}",
-                    Gesture::names().join(", ")
+                    Gesture::names(crate::robot::Robot::LeftArm).join(", ")
                 ))
             })
         })

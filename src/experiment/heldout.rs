@@ -12,10 +12,11 @@ use crate::eval::{
     Split, Training,
 };
 use crate::gmr::MIN_DEMONSTRATIONS;
-use crate::sim::{ArmExecutor, NaoArm, Recording, Transition, JOINT_NAMES, SWING_JOINT};
+use crate::sim::{NaoArm, Recording, Transition, JOINT_NAMES, SWING_JOINT};
 
+use super::executor::ArmExecutor;
 use super::ExperimentError;
-use crate::export::limits::are_arm_joints;
+use crate::robot::are_arm_joints;
 
 /// Check that leave-one-out can run on `demos`: at least 2, the arm's joints.
 pub fn check_demos(demos: &[Demonstration]) -> Result<(), ExperimentError> {

@@ -6,7 +6,8 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::app;
+use crate::config::load_config_or_default;
+use crate::demo_sets::read_demos;
 use crate::demos::Demonstration;
 use crate::eval::Training;
 use crate::gesture::Gesture;
@@ -21,13 +22,15 @@ use super::figures::{
 };
 use super::heldout::hierarchy_held_out;
 use super::output::FIG4_JOINTS;
-use super::output::{config_name, hsom_model, hsom_on_arm, load_arm, write_hsom_run, Stopwatch};
+use super::output::{
+    config_name, hsom_model, hsom_on_arm, load_arm, load_robot, write_hsom_run, Stopwatch,
+};
 use super::report::{DemoInfo, Report};
 use super::variants::{reference_variants, run_variant, variants};
 use super::{
     film, leave_one_out, synthetic_demonstrations, DemoSettings, ExperimentError, Progress,
 };
-use crate::export::limits::are_arm_joints;
+use crate::robot::{are_arm_joints, Robot};
 
 /// The result of a job's step.
 type Result<T> = std::result::Result<T, ExperimentError>;
@@ -36,19 +39,20 @@ type Result<T> = std::result::Result<T, ExperimentError>;
 pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
 
 /// Look a gesture up by name, with the list of known names on failure.
-pub fn gesture(name: &str) -> Result<Gesture> {
-    match Gesture::by_name(name) {
+pub fn gesture(robot: Robot, name: &str) -> Result<Gesture> {
+    match Gesture::by_name(robot, name) {
         Some(g) => Ok(g),
         None => Err(ExperimentError::Invalid(format!(
-            "unknown gesture '{name}': allowed {}, or all (every gesture)",
-            Gesture::names().join(", ")
+            "unknown gesture '{name}' of the {}: allowed {}, or all (every gesture)",
+            robot.name(),
+            Gesture::names(robot).join(", ")
         ))),
     }
 }
 
 /// Record synthetic demonstrations in the simulator (stage `demonstrating`).
-pub fn record(
-    arm: &NaoArm,
+pub fn record<const N: usize>(
+    arm: &NaoArm<N>,
     gesture: &Gesture,
     count: usize,
     seed: u64,
@@ -68,29 +72,48 @@ pub fn record(
     Ok(demos)
 }
 
-/// `cosco demos`: record and write demonstrations.
-pub fn demos(
-    gesture_name: &str,
-    count: usize,
-    seed: u64,
+/// What `cosco demos` records: which robot's gesture, how many, from which seed, with how
+/// much encoder noise, on which model file (None: the robot's shipped model).
+#[derive(Debug, Clone)]
+pub struct DemosRequest<'a> {
+    /// The robot.
+    pub robot: Robot,
+    /// A gesture of the robot, or `all`.
+    pub gesture: &'a str,
+    /// Demonstrations per gesture.
+    pub count: usize,
+    /// Seed of every random choice.
+    pub seed: u64,
+    /// Encoder noise, rad.
+    pub noise: f64,
+    /// Model file.
+    pub model: Option<&'a Path>,
+}
+
+/// `cosco demos`: record and write demonstrations into `out` (with `all`, every gesture into
+/// its labelled subdirectory `out/<gesture>/demo_NN.csv`).
+pub fn demos(r: &DemosRequest<'_>, out: &Path, on_progress: Progress<'_>) -> Result<Vec<PathBuf>> {
+    match r.robot {
+        Robot::LeftArm => demos_on::<6>(r, out, on_progress),
+        Robot::UpperBody => demos_on::<14>(r, out, on_progress),
+    }
+}
+
+fn demos_on<const N: usize>(
+    r: &DemosRequest<'_>,
     out: &Path,
-    noise: f64,
-    model: Option<&Path>,
     on_progress: Progress<'_>,
 ) -> Result<Vec<PathBuf>> {
-    let arm = load_arm(model)?;
-    if gesture_name == "all" {
-        // every gesture into its labelled subdirectory: OUT/<gesture>/demo_NN.csv
+    let arm = load_robot::<N>(r.robot, r.model)?;
+    let record = |g: &Gesture| record(&arm, g, r.count, r.seed, r.noise, on_progress);
+    if r.gesture == "all" {
         let mut files = Vec::new();
-        for g in Gesture::all() {
-            let demos = record(&arm, &g, count, seed, noise, on_progress)?;
-            files.extend(write_demos(&out.join(g.name), &demos)?);
+        for g in Gesture::all(r.robot) {
+            files.extend(write_demos(&out.join(g.name), &record(&g)?)?);
         }
         return Ok(files);
     }
-    let g = gesture(gesture_name)?;
-    let demos = record(&arm, &g, count, seed, noise, on_progress)?;
-    write_demos(out, &demos)
+    write_demos(out, &record(&gesture(r.robot, r.gesture)?)?)
 }
 
 /// Everything the main job needs to know.
@@ -141,14 +164,14 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     let mut clock = Stopwatch::default();
     let out = &job.out;
     std::fs::create_dir_all(out.join("demos")).map_err(ExperimentError::io("creating", out))?;
-    let cfg = app::config(job.config.as_deref())?;
+    let cfg = load_config_or_default(job.config.as_deref())?;
     let arm = load_arm(job.model.as_deref())?;
     let mut files = Vec::new();
 
     // 1. Demonstrations.
     let (demos, gesture) = match &job.demos {
         Some(dir) => (
-            app::read_demos(
+            read_demos(
                 std::slice::from_ref(dir),
                 Some(cfg.params().state_length),
                 job.resample,
@@ -156,7 +179,7 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
             None,
         ),
         None => {
-            let g = gesture(&job.gesture)?;
+            let g = gesture(Robot::LeftArm, &job.gesture)?;
             let demos = record(&arm, &g, job.count, job.seed, job.noise, on_progress)?;
             (demos, Some(g.name.to_string()))
         }

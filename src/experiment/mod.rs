@@ -3,12 +3,13 @@
 //! alone on the arm and measure how faithful the reproductions are (the main job, `cosco
 //! compare`, several gestures, the before/after variants, held out), and their reports,
 //! figures and film. Executing and scoring on the arm live in [`crate::sim`], the evaluator
-//! in [`crate::eval`].
+//! in [`crate::eval`]; the arm as the evaluator's executor here ([`executor`]).
 
 pub mod all_gestures;
 pub mod baseline;
 pub mod compare;
 pub mod demonstrate;
+pub mod executor;
 pub mod figures;
 pub mod film;
 pub mod heldout;
@@ -19,6 +20,7 @@ pub mod variants;
 
 pub use crate::sim::Transition;
 pub use demonstrate::{record_demonstrations, synthetic_demonstrations, DemoSettings};
+pub use executor::{execute_and_score, ArmExecutor};
 pub use film::film;
 pub use heldout::{folds, leave_one_out};
 pub use output::load_arm;
@@ -71,9 +73,9 @@ pub enum ExperimentError {
         /// What is wrong with the demonstrations.
         source: crate::demos::DemoError,
     },
-    /// A file given to the job could not be read or used.
+    /// The configuration was refused.
     #[error(transparent)]
-    App(#[from] crate::app::Error),
+    Config(#[from] crate::config::ConfigError),
     /// A demonstration could not be read, written or used.
     #[error(transparent)]
     Demo(#[from] crate::demos::DemoError),

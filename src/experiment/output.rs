@@ -5,11 +5,12 @@
 use std::path::Path;
 use std::time::Instant;
 
-use crate::app::DEFAULT_CONFIG_NAME;
 use crate::config::HsomConfig;
+use crate::config::DEFAULT_CONFIG_NAME;
 use crate::demos::{write_csv, Demonstration};
 use crate::eval::{Fitted, FoldInput, Method, MethodRun};
 use crate::hsom::{Hsom, Reproduction};
+use crate::robot::Robot;
 use crate::sim::{NaoArm, Recording, Transition};
 
 use super::heldout::on_arm;
@@ -26,13 +27,19 @@ pub fn config_name(path: Option<&Path>) -> String {
 
 /// Load the arm model from `path` or the default model.
 pub fn load_arm(path: Option<&Path>) -> Result<NaoArm, ExperimentError> {
-    match path {
-        Some(p) => NaoArm::load(p),
-        None => NaoArm::load_default(),
-    }
-    .map_err(|source| ExperimentError::Arm {
-        path: path.map(Path::to_path_buf),
-        source,
+    load_robot(Robot::LeftArm, path)
+}
+
+/// Load `robot`'s model from `path` (None: its shipped model), `N` its joints.
+pub fn load_robot<const N: usize>(
+    robot: Robot,
+    path: Option<&Path>,
+) -> Result<NaoArm<N>, ExperimentError> {
+    NaoArm::load_robot(robot, path.unwrap_or(Path::new(robot.model_path()))).map_err(|source| {
+        ExperimentError::Arm {
+            path: path.map(Path::to_path_buf),
+            source,
+        }
     })
 }
 

@@ -15,6 +15,7 @@ use crate::eval::SWING_MIN_AMPLITUDE_RAD;
 use crate::eval::{FoldScores, HeldOut, HeldOutSummary, Method, MethodRun};
 use crate::hsom::LevelSummary;
 use crate::sim::{Recording, JOINT_NAMES, SWING_JOINT};
+use crate::table::Table;
 
 /// One demonstration used for training.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -217,11 +218,9 @@ const COMPARISON_ROWS: [ComparisonRow; 15] = [
 /// A markdown table with one column per result: every fidelity metric (mean / worst over the
 /// demonstrations), smoothness, and costs; then each result's notes, one line each.
 pub fn comparison_table(results: &[MethodResult]) -> String {
-    let mut t = String::from("| metric (mean / worst) |");
-    for r in results {
-        let _ = write!(t, " {} |", r.name);
-    }
-    let _ = writeln!(t, "\n|---|{}", "---|".repeat(results.len()));
+    let mut table = Table::new(
+        std::iter::once("metric (mean / worst)").chain(results.iter().map(|r| r.name.as_str())),
+    );
     let demos = results
         .first()
         .map_or(&[][..], |r| &r.fidelity.demo_smoothness);
@@ -230,12 +229,11 @@ pub fn comparison_table(results: &[MethodResult]) -> String {
         demo_mean(demos, |s| Some(s.total_reversals as f64)).unwrap_or(f64::NAN),
     );
     for (name, cell) in COMPARISON_ROWS {
-        let _ = write!(t, "| {name} |");
-        for r in results {
-            let _ = write!(t, " {} |", cell(r, demo_means));
-        }
-        t.push('\n');
+        table.row(
+            std::iter::once(name.to_string()).chain(results.iter().map(|r| cell(r, demo_means))),
+        );
     }
+    let mut t = table.to_string();
     for r in results {
         for n in &r.notes {
             let _ = writeln!(t, "- {}: {n}", r.name);
@@ -259,19 +257,36 @@ fn demo_mean(s: &[Smoothness], f: impl Fn(&Smoothness) -> Option<f64>) -> Option
 
 /// A markdown table with one row per result: the in-sample mean (over the demonstrations)
 /// beside the held-out mean (over the leave-one-out folds) of every fidelity metric, and
-/// the held-out large swings of LElbowRoll. `n/a` where a figure was not computed.
-pub fn heldout_table(results: &[MethodResult]) -> String {
-    let mut t = format!(
-        "| method (in-sample / held-out) | folds | joint DTW (rad/step) | wrist-path DTW \
-         (mm/step) | apex error (rad) | final-posture error (rad) | duration ratio | \
-         normalized jerk (demos') | velocity reversals (demos') | {} swings > {} rad, \
-         held-out (demo) |\n|---|---|---|---|---|---|---|---|---|---|\n",
+/// the held-out large swings of LElbowRoll; then one row per method of `held_out_only`
+/// (`name`, held-out summary), evaluated held out only. `n/a` where a figure was not
+/// computed.
+pub fn heldout_table(
+    results: &[MethodResult],
+    held_out_only: &[(&str, &HeldOutSummary)],
+) -> String {
+    let swings = format!(
+        "{} swings > {} rad, held-out (demo)",
         JOINT_NAMES[SWING_JOINT], SWING_MIN_AMPLITUDE_RAD
     );
+    let mut table = Table::new([
+        "method (in-sample / held-out)",
+        "folds",
+        "joint DTW (rad/step)",
+        "wrist-path DTW (mm/step)",
+        "apex error (rad)",
+        "final-posture error (rad)",
+        "duration ratio",
+        "normalized jerk (demos')",
+        "velocity reversals (demos')",
+        &swings,
+    ]);
     for r in results {
-        t.push_str(&heldout_row(&r.name, Some(&r.fidelity), r.heldout.as_ref()));
+        table.row(heldout_row(&r.name, Some(&r.fidelity), r.heldout.as_ref()));
     }
-    t
+    for (name, h) in held_out_only {
+        table.row(heldout_row(name, None, Some(h)));
+    }
+    table.to_string()
 }
 
 /// Decimals of the in-sample / held-out pairs of [`heldout_row`], in its column order.
@@ -309,20 +324,18 @@ fn heldout_figures(h: &HeldOutSummary) -> [Option<f64>; 9] {
 
 /// One row of [`heldout_table`]: `name`'s in-sample fidelity `f` (`n/a` without one: a method
 /// evaluated held out only) beside its held-out means `h`.
-pub fn heldout_row(name: &str, f: Option<&FidelityReport>, h: Option<&HeldOutSummary>) -> String {
+fn heldout_row(name: &str, f: Option<&FidelityReport>, h: Option<&HeldOutSummary>) -> Vec<String> {
     let (a, b) = (
         f.map_or([None; 9], in_sample_figures),
         h.map_or([None; 9], heldout_figures),
     );
-    let p: Vec<String> = (0..9)
-        .map(|i| {
-            format!(
-                "{} / {}",
-                num(a[i], HELDOUT_DIGITS[i]),
-                num(b[i], HELDOUT_DIGITS[i])
-            )
-        })
-        .collect();
+    let pair = |i: usize| {
+        format!(
+            "{} / {}",
+            num(a[i], HELDOUT_DIGITS[i]),
+            num(b[i], HELDOUT_DIGITS[i])
+        )
+    };
     let folds = h.map_or("n/a".into(), |h| h.folds.to_string());
     let swings = h.map_or("n/a".into(), |h| {
         format!(
@@ -331,10 +344,18 @@ pub fn heldout_row(name: &str, f: Option<&FidelityReport>, h: Option<&HeldOutSum
             num(Some(h.demo_swings), 1)
         )
     });
-    format!(
-        "| {name} | {folds} | {} | {} | {} | {} | {} | {} ({}) | {} ({}) | {swings} |\n",
-        p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8]
-    )
+    vec![
+        name.to_string(),
+        folds,
+        pair(0),
+        pair(1),
+        pair(2),
+        pair(3),
+        pair(4),
+        format!("{} ({})", pair(5), pair(6)),
+        format!("{} ({})", pair(7), pair(8)),
+        swings,
+    ]
 }
 
 /// ProMP's name in the report's tables (held out only: no in-sample column).
@@ -349,45 +370,79 @@ pub const DMP_NAME: &str = "DMP (held out only)";
 /// end"). `n/a` where a figure was not computed.
 pub fn start_end_table(rows: &[(&str, &HeldOutSummary)]) -> String {
     let pct = |v: Option<f64>| v.map_or("n/a".into(), |v| format!("{:.0} %", 100.0 * v));
-    let mut t = String::from(
-        "| method (executed / commanded) | folds | start speed (rad/s) | training demos' \
-         largest start speed (rad/s) | start in range | end within spread | normalized jerk \
-         (held-out demos') |\n|---|---|---|---|---|---|---|\n",
-    );
+    let mut table = Table::new([
+        "method (executed / commanded)",
+        "folds",
+        "start speed (rad/s)",
+        "training demos' largest start speed (rad/s)",
+        "start in range",
+        "end within spread",
+        "normalized jerk (held-out demos')",
+    ]);
     for (name, h) in rows {
-        let _ = writeln!(
-            t,
-            "| {name} | {} | {} / {} | {} | {} / {} | {} / {} | {} / {} ({}) |",
-            h.folds,
-            num(h.start_speed, 3),
-            num(h.commanded_start_speed, 3),
+        table.row([
+            name.to_string(),
+            h.folds.to_string(),
+            format!(
+                "{} / {}",
+                num(h.start_speed, 3),
+                num(h.commanded_start_speed, 3)
+            ),
             num(h.demo_start_speed_max, 3),
-            pct(h.start_in_range),
-            pct(h.commanded_start_in_range),
-            pct(h.end_within_spread),
-            pct(h.commanded_end_within_spread),
-            num(h.normalized_jerk, 0),
-            num(h.commanded_normalized_jerk, 0),
-            num(h.demo_normalized_jerk, 0),
-        );
+            format!(
+                "{} / {}",
+                pct(h.start_in_range),
+                pct(h.commanded_start_in_range)
+            ),
+            format!(
+                "{} / {}",
+                pct(h.end_within_spread),
+                pct(h.commanded_end_within_spread)
+            ),
+            format!(
+                "{} / {} ({})",
+                num(h.normalized_jerk, 0),
+                num(h.commanded_normalized_jerk, 0),
+                num(h.demo_normalized_jerk, 0)
+            ),
+        ]);
     }
-    t
+    table.to_string()
 }
 
 /// A markdown table of every fold: the held-out demonstration and both methods' scores
 /// against it, the nearest-sequence baseline's joint DTW and swings, and ProMP's joint DTW,
 /// final error and swings (`n/a` when one was not run).
 pub fn folds_table(h: &HeldOut) -> String {
-    let mut t = String::from(
-        "| fold | held out | CoSCo-HSOM joint DTW | wrist DTW | apex | final | duration ratio \
-         | swings (demo) | GMM/GMR joint DTW | wrist DTW | apex | final | duration ratio \
-         | swings | nearest-sequence joint DTW | swings | ProMP joint DTW | final | swings \
-         |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
-    );
+    let mut table = Table::new([
+        "fold",
+        "held out",
+        "CoSCo-HSOM joint DTW",
+        "wrist DTW",
+        "apex",
+        "final",
+        "duration ratio",
+        "swings (demo)",
+        "GMM/GMR joint DTW",
+        "wrist DTW",
+        "apex",
+        "final",
+        "duration ratio",
+        "swings",
+        "nearest-sequence joint DTW",
+        "swings",
+        "ProMP joint DTW",
+        "final",
+        "swings",
+    ]);
     let swings = |s: &FoldScores, demo: bool| {
         s.swings.as_ref().map_or("n/a".to_string(), |w| {
             (if demo { w.demo } else { w.reproduction }).to_string()
         })
+    };
+    // a method that did not run: why, then blanks to the end of its columns
+    let not_run = |why: &str, columns: usize| {
+        std::iter::once(format!("not run: {why}")).chain(vec![String::new(); columns - 1])
     };
     for (i, f) in h.folds.iter().enumerate() {
         let Some(hsom) = f.scores(Method::Hierarchy) else {
@@ -395,73 +450,69 @@ pub fn folds_table(h: &HeldOut) -> String {
         };
         let scores = |s: &FoldScores| {
             let r = &s.fidelity;
-            format!(
-                "{:.4} | {} | {:.3} | {:.3} | {:.2}",
-                r.joint_dtw_rad_per_step.mean,
+            [
+                format!("{:.4}", r.joint_dtw_rad_per_step.mean),
                 num(r.wrist_dtw_mm.map(|w| w.mean), 1),
-                r.apex_error_rad.mean,
-                r.final_error_rad.mean,
-                r.duration_ratio.mean
-            )
+                format!("{:.3}", r.apex_error_rad.mean),
+                format!("{:.3}", r.final_error_rad.mean),
+                format!("{:.2}", r.duration_ratio.mean),
+            ]
         };
-        let gmr = match (f.scores(Method::GmmGmr), f.error(Method::GmmGmr)) {
-            (Some(g), _) => format!("{} | {}", scores(g), swings(g, false)),
-            (None, e) => format!("not run: {} | | | | | ", e.unwrap_or("no reason given")),
-        };
-        let sequence = f
-            .scores(Method::NearestSequence)
-            .map_or("n/a | n/a".into(), |s| {
-                format!(
-                    "{:.4} | {}",
-                    s.fidelity.joint_dtw_rad_per_step.mean,
-                    swings(s, false)
-                )
-            });
-        let promp = match (f.scores(Method::ProMP), f.error(Method::ProMP)) {
-            (Some(p), _) => format!(
-                "{:.4} | {:.3} | {}",
-                p.fidelity.joint_dtw_rad_per_step.mean,
-                p.fidelity.final_error_rad.mean,
-                swings(p, false)
-            ),
-            (None, Some(e)) => format!("not run: {e} | | "),
-            (None, None) => "n/a | n/a | n/a".into(),
-        };
-        let _ = writeln!(
-            t,
-            "| {} | {} | {} | {} ({}) | {gmr} | {sequence} | {promp} |",
-            i + 1,
-            f.demonstration,
-            scores(hsom),
-            swings(hsom, false),
-            swings(hsom, true)
-        );
+        let mut row = vec![(i + 1).to_string(), f.demonstration.clone()];
+        row.extend(scores(hsom));
+        row.push(format!("{} ({})", swings(hsom, false), swings(hsom, true)));
+        match (f.scores(Method::GmmGmr), f.error(Method::GmmGmr)) {
+            (Some(g), _) => {
+                row.extend(scores(g));
+                row.push(swings(g, false));
+            }
+            (None, e) => row.extend(not_run(e.unwrap_or("no reason given"), 6)),
+        }
+        match f.scores(Method::NearestSequence) {
+            Some(s) => row.extend([
+                format!("{:.4}", s.fidelity.joint_dtw_rad_per_step.mean),
+                swings(s, false),
+            ]),
+            None => row.extend(["n/a".to_string(), "n/a".to_string()]),
+        }
+        match (f.scores(Method::ProMP), f.error(Method::ProMP)) {
+            (Some(p), _) => row.extend([
+                format!("{:.4}", p.fidelity.joint_dtw_rad_per_step.mean),
+                format!("{:.3}", p.fidelity.final_error_rad.mean),
+                swings(p, false),
+            ]),
+            (None, Some(e)) => row.extend(not_run(e, 3)),
+            (None, None) => row.extend(["n/a", "n/a", "n/a"].map(String::from)),
+        }
+        table.row(row);
     }
-    t
+    table.to_string()
 }
 
 /// A markdown table of a model's levels: nodes used, prediction accuracy, lookup-table
 /// accuracy, both in-sample and held out.
 pub fn levels_table(levels: &[LevelSummary]) -> String {
-    let mut t = String::from(
-        "| level | nodes used / nodes | prediction accuracy | lookup-table accuracy | held out: prediction | held out: lookup table | plans in reproduction |\n\
-         |---|---|---|---|---|---|---|\n",
-    );
+    let mut table = Table::new([
+        "level",
+        "nodes used / nodes",
+        "prediction accuracy",
+        "lookup-table accuracy",
+        "held out: prediction",
+        "held out: lookup table",
+        "plans in reproduction",
+    ]);
     for l in levels {
-        let _ = writeln!(
-            t,
-            "| {} | {} / {} | {:.3} | {:.3} | {:.3} | {:.3} | {} |",
-            l.level,
-            l.nodes_used,
-            l.rows * l.cols,
-            l.prediction_accuracy,
-            l.lookup_accuracy,
-            l.heldout_prediction_accuracy,
-            l.heldout_lookup_accuracy,
-            crate::hsom::plans_word(l.level, l.used_in_reproduction)
-        );
+        table.row([
+            l.level.to_string(),
+            format!("{} / {}", l.nodes_used, l.rows * l.cols),
+            format!("{:.3}", l.prediction_accuracy),
+            format!("{:.3}", l.lookup_accuracy),
+            format!("{:.3}", l.heldout_prediction_accuracy),
+            format!("{:.3}", l.heldout_lookup_accuracy),
+            crate::hsom::plans_word(l.level, l.used_in_reproduction).to_string(),
+        ]);
     }
-    t
+    table.to_string()
 }
 
 impl Report {
@@ -501,13 +552,14 @@ impl Report {
                      is scored against that demonstration only. In-sample: learned from all, \
                      scored against all (the table above). Means; held-out over the folds.\n"
                 );
-                md.push_str(&heldout_table(&self.methods));
-                if let Some(p) = &h.promp {
-                    md.push_str(&heldout_row(PROMP_NAME, None, Some(p)));
-                }
-                if let Some(d) = &h.dmp {
-                    md.push_str(&heldout_row(DMP_NAME, None, Some(d)));
-                }
+                let held_out_only: Vec<(&str, &HeldOutSummary)> = [
+                    h.promp.as_ref().map(|p| (PROMP_NAME, p)),
+                    h.dmp.as_ref().map(|d| (DMP_NAME, d)),
+                ]
+                .into_iter()
+                .flatten()
+                .collect();
+                md.push_str(&heldout_table(&self.methods, &held_out_only));
                 if let Some(s) = &h.sequence {
                     let _ = writeln!(
                         md,
@@ -568,7 +620,7 @@ impl Report {
             );
             if self.variants.iter().any(|v| v.heldout.is_some()) {
                 let _ = writeln!(md, "In-sample / held-out (leave-one-out) means:\n");
-                md.push_str(&heldout_table(&self.variants));
+                md.push_str(&heldout_table(&self.variants, &[]));
                 let _ = writeln!(md, "\nHeld out, start, end and smoothness:\n");
                 let rows: Vec<(&str, &HeldOutSummary)> = self
                     .variants
@@ -580,16 +632,14 @@ impl Report {
             }
             md.push_str(&comparison_table(&self.variants));
         }
-        let _ = writeln!(
-            md,
-            "\n## Wall time per stage\n\n| stage | seconds |\n|---|---|"
-        );
-        let mut total = 0.0;
+        let _ = writeln!(md, "\n## Wall time per stage\n");
+        let mut table = Table::new(["stage", "seconds"]);
         for s in &self.stages {
-            let _ = writeln!(md, "| {} | {:.3} |", s.stage, s.seconds);
-            total += s.seconds;
+            table.row([s.stage.to_string(), format!("{:.3}", s.seconds)]);
         }
-        let _ = writeln!(md, "| **total** | {total:.3} |");
+        let total = self.stages.iter().fold(0.0, |t, s| t + s.seconds);
+        table.row(["**total**".to_string(), format!("{total:.3}")]);
+        md.push_str(&table.to_string());
         md + &files_section(&self.files)
     }
 

@@ -15,6 +15,7 @@ use std::path::Path;
 use serde::Serialize;
 
 use super::trajectory::{ExportError, Trajectory};
+use crate::robot::{joint_ranges, Robot};
 
 /// Default fraction of each joint's maximum velocity a trajectory may reach.
 pub const DEFAULT_VELOCITY_FRACTION: f64 = 0.5;
@@ -44,46 +45,29 @@ pub struct RobotLimits {
 /// The Nao H25 V5 left arm, in NAOqi order (radians; `LHand` is the open fraction 0..1 and
 /// its velocity the fraction per second). Sources: see the module documentation.
 pub fn nao_left_arm() -> RobotLimits {
-    let j = |name: &str, lower, upper, max_velocity| JointLimit {
-        name: name.into(),
-        lower,
-        upper,
-        max_velocity,
-    };
-    RobotLimits {
-        source: "Nao H25 V5 left arm (nao_description naoV50 URDF; docs/EXPORT.md)".into(),
-        joints: vec![
-            j("LShoulderPitch", -2.08567, 2.08567, 8.26797),
-            j("LShoulderRoll", -0.314159, 1.32645, 7.19407),
-            j("LElbowYaw", -2.08567, 2.08567, 8.26797),
-            j("LElbowRoll", -1.54462, -0.0349066, 7.19407),
-            j("LWristYaw", -1.82387, 1.82387, 24.6229),
-            j("LHand", 0.0, 1.0, 8.33),
-        ],
+    RobotLimits::of(Robot::LeftArm)
+}
+
+impl RobotLimits {
+    /// A robot of the description ([`crate::robot`]): its ranges and maximum velocities.
+    pub fn of(robot: Robot) -> RobotLimits {
+        let joints = robot.joints().iter().map(|j| JointLimit {
+            name: j.name.into(),
+            lower: j.range.0,
+            upper: j.range.1,
+            max_velocity: j.max_velocity,
+        });
+        RobotLimits {
+            source: format!(
+                "Nao H25 V5 {} (nao_description naoV50 URDF; docs/EXPORT.md)",
+                robot.name().replace('-', " ")
+            ),
+            joints: joints.collect(),
+        }
     }
 }
 
-/// Whether `columns` are the Nao left arm's joints in NAOqi order (the simulated arm's
-/// columns: then wrist paths exist and the joint ranges apply).
-pub fn are_arm_joints(columns: &[String]) -> bool {
-    let arm = nao_left_arm().joints;
-    columns.len() == arm.len() && columns.iter().zip(&arm).all(|(c, j)| *c == j.name)
-}
-
-/// The Nao left arm's joint ranges, `(lower, upper)` in NAOqi order, when `columns` are its
-/// joints ([`are_arm_joints`]); `None` otherwise.
-pub fn arm_ranges(columns: &[String]) -> Option<Vec<(f64, f64)>> {
-    are_arm_joints(columns).then(|| {
-        let joints = nao_left_arm().joints;
-        joints.iter().map(|j| (j.lower, j.upper)).collect()
-    })
-}
-
-/// How far beyond a joint's range a recorded or reproduced value may lie and still be scored,
-/// rad: encoders read a hair beyond a limit, and the simulated joints' soft limits let a
-/// motion driven into a limit pass it by up to 0.07 rad (measured on the shuffled controls of
-/// tests/gesture_fidelity.rs).
-pub const RANGE_TOLERANCE_RAD: f64 = 0.25;
+pub use crate::robot::{are_arm_joints, arm_ranges, RANGE_TOLERANCE_RAD};
 
 /// A velocity table: a CSV file with a header `joint,max_velocity` and one row per joint.
 pub fn read_velocity_table(path: &Path) -> Result<Vec<(String, f64)>, ExportError> {
@@ -144,7 +128,7 @@ pub fn from_mjcf(mjcf: &Path, velocities: &[(String, f64)]) -> Result<RobotLimit
         reason,
     };
     let xml = std::fs::read_to_string(mjcf).map_err(|e| bad(format!("cannot read it: {e}")))?;
-    let ranges = mjcf_ranges(&xml).map_err(bad)?;
+    let ranges = joint_ranges(&xml).map_err(bad)?;
     let mut joints = Vec::new();
     for (name, v) in velocities {
         let (lower, upper) = ranges
@@ -166,48 +150,6 @@ pub fn from_mjcf(mjcf: &Path, velocities: &[(String, f64)]) -> Result<RobotLimit
         });
     }
     Ok(RobotLimits { source: p, joints })
-}
-
-/// `(name, lower, upper)` of every named `<joint>` with a `range` in an MJCF text.
-fn mjcf_ranges(xml: &str) -> Result<Vec<(String, f64, f64)>, String> {
-    use quick_xml::events::Event;
-    let mut reader = quick_xml::Reader::from_str(xml);
-    let mut out = Vec::new();
-    loop {
-        match reader.read_event() {
-            Ok(Event::Start(e)) | Ok(Event::Empty(e)) if e.name().as_ref() == b"joint" => {
-                let mut name = None;
-                let mut range = None;
-                for a in e.attributes().flatten() {
-                    let v = String::from_utf8_lossy(&a.value).to_string();
-                    match a.key.as_ref() {
-                        b"name" => name = Some(v),
-                        b"range" => range = Some(v),
-                        _ => {}
-                    }
-                }
-                if let (Some(n), Some(r)) = (name, range) {
-                    let v: Vec<f64> = r
-                        .split_whitespace()
-                        .map(|x| x.parse::<f64>())
-                        .collect::<Result<_, _>>()
-                        .map_err(|_| format!("joint `{n}`: range `{r}` is not two numbers"))?;
-                    match v.as_slice() {
-                        [a, b] if a.is_finite() && b.is_finite() && a < b => out.push((n, *a, *b)),
-                        _ => {
-                            return Err(format!(
-                                "joint `{n}`: range `{r}` is not `lower upper` with lower < upper"
-                            ))
-                        }
-                    }
-                }
-            }
-            Ok(Event::Eof) => break,
-            Err(e) => return Err(format!("not well-formed XML: {e}")),
-            _ => {}
-        }
-    }
-    Ok(out)
 }
 
 impl RobotLimits {

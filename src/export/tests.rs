@@ -26,14 +26,6 @@ fn arm_trajectory(duration: f64) -> Trajectory {
 
 fn opts(format: Format) -> ExportRequest {
     ExportRequest {
-        reproduction: None,
-        model: None,
-        initial: None,
-        initial_from: None,
-        gesture: None,
-        goal: None,
-        via: Vec::new(),
-        band: None,
         format,
         out: "unused".into(),
         speed: None,

@@ -7,12 +7,12 @@
 //! present only while the person moves the arm. Idle time before and after varies widely
 //! (the paper's footnote 3), overall speed by about +-20 %, key poses by a few degrees.
 
-use crate::gmr::minimum_jerk_at;
+use crate::curve::minimum_jerk_at;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
-use super::library::{Gesture, Pose, Segment, N_JOINTS};
+use super::library::{Gesture, Pose, Segment};
 
 /// How much one demonstration differs from the next. All angles in degrees for readability.
 #[derive(Debug, Clone, PartialEq)]
@@ -103,14 +103,14 @@ pub struct HumanTrajectory {
 
 #[derive(Debug, Clone)]
 struct Blend {
-    start: [f64; N_JOINTS],
+    start: Vec<f64>,
     duration: f64,
     delta: Pose,
 }
 
 #[derive(Debug, Clone)]
 struct Oscillation {
-    joint: usize,
+    joints: Vec<(usize, f64)>,
     start: f64,
     amplitude: f64,
     period: f64,
@@ -123,21 +123,16 @@ fn smoothstep(s: f64) -> f64 {
 }
 
 impl HumanTrajectory {
-    /// Draw one demonstration of `gesture` with `variation` from `rng`. `limits` are the joints'
-    /// `(lower, upper)` ranges: perturbed key poses are kept 0.02 rad inside them.
+    /// Draw one demonstration of `gesture` with `variation` from `rng`. Perturbed key poses
+    /// are kept 0.02 rad inside the gesture's robot's joint ranges, and every posture within them.
     pub fn sample(
         gesture: &Gesture,
         variation: &Variation,
-        limits: &[(f64, f64)],
         rng: &mut ChaCha8Rng,
     ) -> Result<HumanTrajectory, String> {
         variation.check()?;
-        if limits.len() != N_JOINTS {
-            return Err(format!(
-                "{} joint limits given, the gestures move {N_JOINTS} joints",
-                limits.len()
-            ));
-        }
+        let limits = gesture.robot.ranges();
+        let n = limits.len();
         let uniform = |rng: &mut ChaCha8Rng, (lo, hi): (f64, f64)| {
             if hi > lo {
                 rng.gen_range(lo..hi)
@@ -152,7 +147,7 @@ impl HumanTrajectory {
             Normal::new(0.0, variation.amplitude_deg.to_radians()).map_err(|e| e.to_string())?;
 
         let mut t = idle_before;
-        let mut pose = gesture.initial;
+        let mut pose = gesture.initial.clone();
         let mut moves = Vec::new();
         let mut oscillations = Vec::new();
         for seg in &gesture.segments {
@@ -165,7 +160,7 @@ impl HumanTrajectory {
                     perturb,
                 } => {
                     let d = duration / speed * jitter;
-                    let mut target = *to;
+                    let mut target = to.clone();
                     if *perturb {
                         for (j, v) in target.iter_mut().enumerate() {
                             let (lo, hi) = limits[j];
@@ -173,16 +168,18 @@ impl HumanTrajectory {
                         }
                     }
                     moves.push(Blend {
-                        start: std::array::from_fn(|_| t + uniform(rng, (0.0, variation.stagger))),
+                        start: (0..n)
+                            .map(|_| t + uniform(rng, (0.0, variation.stagger)))
+                            .collect(),
                         duration: d,
-                        delta: std::array::from_fn(|j| target[j] - pose[j]),
+                        delta: target.iter().zip(&pose).map(|(a, b)| a - b).collect(),
                     });
                     pose = target;
                     t += d;
                 }
                 Segment::Hold { duration } => t += duration / speed * jitter,
                 Segment::Oscillate {
-                    joint,
+                    joints,
                     amplitude,
                     period,
                     cycles,
@@ -193,7 +190,7 @@ impl HumanTrajectory {
                             + uniform(rng, (-0.15, 0.15))
                                 * (variation.amplitude_deg > 0.0) as u8 as f64);
                     oscillations.push(Oscillation {
-                        joint: *joint,
+                        joints: joints.clone(),
                         start: t,
                         amplitude: a,
                         period: p,
@@ -204,7 +201,7 @@ impl HumanTrajectory {
             }
         }
         let motion_end = t + variation.stagger;
-        let wobble = (0..N_JOINTS)
+        let wobble = (0..n)
             .map(|_| {
                 std::array::from_fn(|_| {
                     let freq = uniform(rng, (0.2, 0.9));
@@ -215,14 +212,14 @@ impl HumanTrajectory {
             })
             .collect();
         Ok(HumanTrajectory {
-            initial: gesture.initial,
+            initial: gesture.initial.clone(),
             moves,
             oscillations,
             wobble,
             motion_start: idle_before,
             motion_end,
             total: motion_end + idle_after,
-            limits: limits.to_vec(),
+            limits,
         })
     }
 
@@ -238,7 +235,7 @@ impl HumanTrajectory {
 
     /// The posture at time `t` (s), inside the joint limits.
     pub fn at(&self, t: f64) -> Pose {
-        let mut q = self.initial;
+        let mut q = self.initial.clone();
         for m in &self.moves {
             for ((v, d), s) in q.iter_mut().zip(&m.delta).zip(&m.start) {
                 *v += d * minimum_jerk_at((t - s) / m.duration);
@@ -250,7 +247,10 @@ impl HumanTrajectory {
             if (0.0..=span).contains(&local) {
                 let fade = o.period / 4.0;
                 let env = smoothstep(local / fade) * smoothstep((span - local) / fade);
-                q[o.joint] += o.amplitude * env * (std::f64::consts::TAU * local / o.period).sin();
+                let v = o.amplitude * env * (std::f64::consts::TAU * local / o.period).sin();
+                for &(j, w) in &o.joints {
+                    q[j] += w * v;
+                }
             }
         }
         // The wobble lives only while the arm is guided: faded in and out over 0.3 s.

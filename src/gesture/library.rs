@@ -1,14 +1,37 @@
-//! The named gestures: key poses and the timing a person would give them.
+//! The named gestures of each robot: key poses and the timing a person would give them.
+//!
+//! The left arm's four are the paper's experiment. The upper body's use both arms and the
+//! head: a pose there is built from a left-arm pose, a right-arm pose and the head's two
+//! angles ([`upper`]); the right arm's poses are the left's mirrored ([`mirror`]) unless a
+//! gesture says otherwise.
 
-/// Number of joints a gesture moves, in the model's order: LShoulderPitch, LShoulderRoll,
-/// LElbowYaw, LElbowRoll, LWristYaw, LHand.
-pub const N_JOINTS: usize = 6;
+use crate::robot::Robot;
 
-/// A posture of the six joints (radians; LHand as an open fraction in 0..1).
-pub type Pose = [f64; N_JOINTS];
+/// A posture of a robot's joints in NAOqi order (radians; a hand as an open fraction in 0..1).
+pub type Pose = Vec<f64>;
 
-/// NAOqi's StandInit posture: the initial and final posture of every gesture here.
-pub const STAND_INIT: Pose = [1.40, 0.30, -1.39, -1.01, 0.0, 0.25];
+/// A left-arm posture: LShoulderPitch, LShoulderRoll, LElbowYaw, LElbowRoll, LWristYaw, LHand.
+pub type ArmPose = [f64; 6];
+
+/// NAOqi's StandInit posture of `robot` (its model's keyframe): the initial and final
+/// posture of every gesture here.
+pub fn stand_init(robot: Robot) -> Pose {
+    let p = robot.posture("StandInit");
+    p.expect("StandInit is a keyframe of every shipped model")
+        .to_vec()
+}
+
+/// The right arm's posture mirroring a left-arm one (nao-upper-body.md): ShoulderRoll,
+/// ElbowYaw, ElbowRoll and WristYaw change sign.
+pub fn mirror(left: ArmPose) -> ArmPose {
+    let [p, r, y, e, w, h] = left;
+    [p, -r, -y, -e, -w, h]
+}
+
+/// An upper-body posture (HeadYaw, HeadPitch, the left arm, the right arm).
+pub fn upper(head: [f64; 2], left: ArmPose, right: ArmPose) -> Pose {
+    head.iter().chain(&left).chain(&right).copied().collect()
+}
 
 /// One part of a gesture, in nominal (unperturbed) timing.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,11 +51,12 @@ pub enum Segment {
         /// Nominal duration in seconds.
         duration: f64,
     },
-    /// Oscillate one joint around the current pose: `amplitude * sin(2 pi t / period)` for
-    /// `cycles` whole periods, faded in and out over a quarter period each.
+    /// Oscillate joints around the current pose: `weight * amplitude * sin(2 pi t / period)`
+    /// for `cycles` whole periods, faded in and out over a quarter period each; two arms
+    /// oscillating together share one amplitude and phase, mirrored by their weights' signs.
     Oscillate {
-        /// Index of the joint (0..6).
-        joint: usize,
+        /// `(joint index in NAOqi order, weight)` of each joint that oscillates.
+        joints: Vec<(usize, f64)>,
         /// Amplitude in radians.
         amplitude: f64,
         /// Nominal period in seconds.
@@ -45,6 +69,8 @@ pub enum Segment {
 /// A named gesture: where it starts and the segments it goes through.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Gesture {
+    /// The robot whose joints it moves.
+    pub robot: Robot,
     /// The name used on the command line (`reading-watch`, `wave`, ...).
     pub name: &'static str,
     /// One line for people.
@@ -56,24 +82,9 @@ pub struct Gesture {
 }
 
 impl Gesture {
-    /// Every gesture this crate can demonstrate.
-    pub fn all() -> Vec<Gesture> {
-        vec![reading_watch(), wave(), reach_point(), salute()]
-    }
-
-    /// The names of [`Gesture::all`], for messages.
-    pub fn names() -> Vec<&'static str> {
-        Gesture::all().iter().map(|g| g.name).collect()
-    }
-
-    /// Look a gesture up by name.
-    pub fn by_name(name: &str) -> Option<Gesture> {
-        Gesture::all().into_iter().find(|g| g.name == name)
-    }
-
     /// The key pose farthest (Euclidean, joint space) from the initial posture: the apex.
     pub fn apex(&self) -> Pose {
-        let mut best = self.initial;
+        let mut best = &self.initial;
         let mut best_d = 0.0;
         for s in &self.segments {
             if let Segment::Move { to, .. } = s {
@@ -84,11 +95,11 @@ impl Gesture {
                     .sum();
                 if d > best_d {
                     best_d = d;
-                    best = *to;
+                    best = to;
                 }
             }
         }
-        best
+        best.clone()
     }
 }
 
@@ -98,16 +109,17 @@ pub fn reading_watch() -> Gesture {
     Gesture {
         name: "reading-watch",
         description: "raise the forearm across the chest to read a wristwatch, hold, return",
-        initial: STAND_INIT,
+        robot: Robot::LeftArm,
+        initial: stand_init(Robot::LeftArm),
         segments: vec![
             Segment::Move {
-                to: READING_WATCH,
+                to: READING_WATCH.to_vec(),
                 duration: 1.7,
                 perturb: true,
             },
             Segment::Hold { duration: 1.2 },
             Segment::Move {
-                to: STAND_INIT,
+                to: stand_init(Robot::LeftArm),
                 duration: 1.7,
                 perturb: false,
             },
@@ -117,31 +129,32 @@ pub fn reading_watch() -> Gesture {
 
 /// The "reading watch" key pose (shared/docs/nao-left-arm.md): forearm across the chest,
 /// back of the wrist towards the head camera; LHand as in StandInit.
-pub const READING_WATCH: Pose = [-0.22, -0.29, 0.15, -1.05, 0.43, 0.25];
+pub const READING_WATCH: ArmPose = [-0.22, -0.29, 0.15, -1.05, 0.43, 0.25];
 
 /// Raised forearm for waving: upper arm forward-up and out, elbow bent.
-pub const WAVE_UP: Pose = [-0.55, 0.55, -1.35, -0.95, -0.2, 0.8];
+pub const WAVE_UP: ArmPose = [-0.55, 0.55, -1.35, -0.95, -0.2, 0.8];
 
 /// A wave: raise the forearm, wave it three times (elbow roll), lower it.
 pub fn wave() -> Gesture {
     Gesture {
         name: "wave",
         description: "raise the hand, wave three times with the elbow, lower it",
-        initial: STAND_INIT,
+        robot: Robot::LeftArm,
+        initial: stand_init(Robot::LeftArm),
         segments: vec![
             Segment::Move {
-                to: WAVE_UP,
+                to: WAVE_UP.to_vec(),
                 duration: 1.5,
                 perturb: true,
             },
             Segment::Oscillate {
-                joint: 3,
+                joints: vec![(3, 1.0)],
                 amplitude: 0.38,
                 period: 0.9,
                 cycles: 3.0,
             },
             Segment::Move {
-                to: STAND_INIT,
+                to: stand_init(Robot::LeftArm),
                 duration: 1.5,
                 perturb: false,
             },
@@ -150,23 +163,24 @@ pub fn wave() -> Gesture {
 }
 
 /// Arm stretched forward at shoulder height, hand closed: pointing.
-pub const POINT_FORWARD: Pose = [0.05, 0.05, -1.0, -0.1, 0.0, 0.0];
+pub const POINT_FORWARD: ArmPose = [0.05, 0.05, -1.0, -0.1, 0.0, 0.0];
 
 /// Reach forward and point, hold, come back.
 pub fn reach_point() -> Gesture {
     Gesture {
         name: "reach-point",
         description: "stretch the arm forward and point, hold, come back",
-        initial: STAND_INIT,
+        robot: Robot::LeftArm,
+        initial: stand_init(Robot::LeftArm),
         segments: vec![
             Segment::Move {
-                to: POINT_FORWARD,
+                to: POINT_FORWARD.to_vec(),
                 duration: 1.3,
                 perturb: true,
             },
             Segment::Hold { duration: 0.9 },
             Segment::Move {
-                to: STAND_INIT,
+                to: stand_init(Robot::LeftArm),
                 duration: 1.4,
                 perturb: false,
             },
@@ -176,23 +190,24 @@ pub fn reach_point() -> Gesture {
 
 /// Hand at the forehead: elbow high and out, forearm folded across towards the head (found by
 /// a grid search of the simulated kinematics: gripper about 2 cm from (0.06, 0.055, 0.20) m).
-pub const SALUTE: Pose = [-1.0, 0.45, -0.15, -1.48, -0.6, 1.0];
+pub const SALUTE: ArmPose = [-1.0, 0.45, -0.15, -1.48, -0.6, 1.0];
 
 /// A quick salute: hand to the temple, short hold, down again.
 pub fn salute() -> Gesture {
     Gesture {
         name: "salute",
         description: "bring the hand to the temple quickly, hold briefly, lower it",
-        initial: STAND_INIT,
+        robot: Robot::LeftArm,
+        initial: stand_init(Robot::LeftArm),
         segments: vec![
             Segment::Move {
-                to: SALUTE,
+                to: SALUTE.to_vec(),
                 duration: 1.0,
                 perturb: true,
             },
             Segment::Hold { duration: 0.6 },
             Segment::Move {
-                to: STAND_INIT,
+                to: stand_init(Robot::LeftArm),
                 duration: 1.2,
                 perturb: false,
             },

@@ -5,8 +5,10 @@
 //! variability. Recording it from the simulated joint encoders happens in the simulator
 //! (see `crate::sim`), as in kinesthetic teaching.
 
+mod catalog;
 pub mod demonstrator;
 pub mod library;
+pub mod upper_body;
 
 pub use demonstrator::{HumanTrajectory, Variation};
-pub use library::{Gesture, Pose, Segment, N_JOINTS, STAND_INIT};
+pub use library::{mirror, stand_init, upper, ArmPose, Gesture, Pose, Segment};

@@ -5,27 +5,10 @@
 //! demonstrations' own speed in [`crate::eval`]).
 
 use super::{GmrError, GmrModel, Prediction};
+use crate::curve::{minimum_jerk, minimum_jerk_at, MINIMUM_JERK_PEAK};
 
 /// Shortest lead-in, seconds.
 pub const LEAD_IN_MIN_S: f64 = 0.1;
-
-/// The minimum-jerk profile from 0 to 1 at `s` (clamped to [0, 1]): `10s³ − 15s⁴ + 6s⁵`, at
-/// rest and without acceleration at both ends.
-pub fn minimum_jerk_at(s: f64) -> f64 {
-    let s = s.clamp(0.0, 1.0);
-    s * s * s * (10.0 - 15.0 * s + 6.0 * s * s)
-}
-
-/// Minimum-jerk samples from `from` to `to` at `s = k / n`, `k = 0 … n−1` (`to` itself is
-/// not included: it is the next posture of the plan). `n = 0` gives nothing.
-pub fn minimum_jerk(from: &[f64], to: &[f64], n: usize) -> Vec<Vec<f64>> {
-    (0..n)
-        .map(|k| {
-            let h = minimum_jerk_at(k as f64 / n as f64);
-            from.iter().zip(to).map(|(a, b)| a + (b - a) * h).collect()
-        })
-        .collect()
-}
 
 /// Ticks of a minimum-jerk lead-in from `from` to `to` at `rate_hz` whose peak speed is at
 /// most `peak_speed` (units per second) on every variable, lasting at least
@@ -36,7 +19,7 @@ pub fn lead_in_ticks_at(from: &[f64], to: &[f64], rate_hz: f64, peak_speed: f64)
         .zip(to)
         .map(|(a, b)| (a - b).abs())
         .fold(0.0, f64::max);
-    let t = LEAD_IN_MIN_S.max(1.875 * delta / peak_speed);
+    let t = LEAD_IN_MIN_S.max(MINIMUM_JERK_PEAK * delta / peak_speed);
     ((t * rate_hz).ceil() as usize).max(1)
 }
 
@@ -95,11 +78,12 @@ pub fn plan_at(
 }
 
 impl GmrPlan {
-    /// GMR's own central 95 % band about the plan: its mean ± 1.96 conditional standard
-    /// deviations per variable at each of GMR's points; over the lead-in, from 0 at the
-    /// given initial posture growing by the lead-in's minimum-jerk profile to the band at
-    /// GMR's first point.
-    pub fn band(&self) -> crate::condition::ConfidenceBand {
+    /// The half-widths of GMR's own central 95 % band about the plan, per posture and
+    /// variable: 1.96 conditional standard deviations at each of GMR's points; over the
+    /// lead-in, from 0 at the given initial posture growing by the lead-in's minimum-jerk
+    /// profile to the half-width at GMR's first point. The band is the postures minus and
+    /// plus these (`condition::ConfidenceBand::around`).
+    pub fn band_half_widths(&self) -> Vec<Vec<f64>> {
         let sd = |p: &Prediction| -> Vec<f64> {
             (0..p.mean.len())
                 .map(|d| 1.96 * p.covariance[d][d].max(0.0).sqrt())
@@ -110,7 +94,6 @@ impl GmrPlan {
             let h = minimum_jerk_at(k as f64 / self.lead_in.max(1) as f64);
             first.iter().map(|v| v * h).collect::<Vec<f64>>()
         });
-        let half: Vec<Vec<f64>> = lead.chain(self.predictions.iter().map(sd)).collect();
-        crate::condition::ConfidenceBand::around(&self.postures, &half)
+        lead.chain(self.predictions.iter().map(sd)).collect()
     }
 }

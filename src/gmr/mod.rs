@@ -32,7 +32,5 @@ pub use hyperparams::{ComponentChoice, GmrParams, GmrValidParams, IdleTrim, MIN_
 pub use io::{
     load_model, model_from_str, model_to_string, save_model, FORMAT_MAGIC, FORMAT_VERSION,
 };
-pub use lead_in::{
-    lead_in_ticks_at, minimum_jerk, minimum_jerk_at, plan_at, GmrPlan, LEAD_IN_MIN_S,
-};
+pub use lead_in::{lead_in_ticks_at, plan_at, GmrPlan, LEAD_IN_MIN_S};
 pub use preprocess::{active_range, TrainingSet};

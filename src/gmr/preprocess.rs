@@ -28,7 +28,8 @@
 //! the DTW path pairs with `r`. Every aligned demonstration has the reference's length.
 //!
 //! **Resampling.** Each sequence of `L` samples becomes `n` samples by linear
-//! interpolation at the fractional indices `u_k = k (L−1)/(n−1)`. Samples are assumed
+//! interpolation at the fractional indices `u_k = k (L−1)/(n−1)`
+//! ([`crate::curve::resample_linear`]). Samples are assumed
 //! evenly spaced (the recordings are at a fixed rate); a `time` column only sets speeds
 //! and durations.
 
@@ -36,8 +37,10 @@ use std::ops::Range;
 
 use super::errors::GmrError;
 use super::hyperparams::{GmrValidParams, IdleTrim, MIN_DEMONSTRATIONS};
+use crate::curve::resample_linear;
 use crate::demos::{validate_set, Demonstration};
 use crate::dtw::{dtw, dtw_distance, Band, DtwError};
+use crate::stats::upper_median;
 
 /// Smoothed joint-space speeds `s_k` (rad/s), `k = 0..n−1` for `n + 1` samples (see the
 /// module documentation), of evenly or explicitly timed samples: `times` when given (one per
@@ -116,9 +119,9 @@ pub fn noise_displacement<R: AsRef<[f64]>>(rows: &[R]) -> f64 {
             rows.windows(3)
                 .map(|w| (w[2].as_ref()[j] - 2.0 * w[1].as_ref()[j] + w[0].as_ref()[j]).abs()),
         );
-        let mid = d2.len() / 2;
-        let (_, m, _) = d2.select_nth_unstable_by(mid, f64::total_cmp);
-        let sigma = *m / (0.6745 * 6f64.sqrt());
+        // at least one second difference: 3 rows or more
+        let m = upper_median(&mut d2).unwrap_or(0.0);
+        let sigma = m / (0.6745 * 6f64.sqrt());
         a.push(2.0 * sigma * sigma);
     }
     let t = ((rows.len() - 1) as f64 / NOISE_FALSE_ALARM).ln();
@@ -214,28 +217,6 @@ pub fn align_to(
         }
     }
     Ok(sum)
-}
-
-/// Resample a sequence to `n` samples by linear interpolation at fractional indices
-/// `k (L−1)/(n−1)`. An empty sequence or `n == 0` gives an empty result; a single sample
-/// is repeated; `n == 1` gives the first sample.
-pub fn resample_linear<R: AsRef<[f64]>>(seq: &[R], n: usize) -> Vec<Vec<f64>> {
-    if seq.is_empty() || n == 0 {
-        return Vec::new();
-    }
-    let len = seq.len();
-    if len == 1 || n == 1 {
-        return vec![seq[0].as_ref().to_vec(); n];
-    }
-    (0..n)
-        .map(|k| {
-            let u = k as f64 * (len - 1) as f64 / (n - 1) as f64;
-            let i = (u.floor() as usize).min(len - 2);
-            let f = u - i as f64;
-            let (a, b) = (seq[i].as_ref(), seq[i + 1].as_ref());
-            a.iter().zip(b).map(|(x, y)| x + f * (y - x)).collect()
-        })
-        .collect()
 }
 
 fn duration_of(demo: &Demonstration, range: &Range<usize>, period: f64) -> f64 {

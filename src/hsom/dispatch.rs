@@ -88,7 +88,7 @@ impl Hsom {
     }
     /// Reproduce from `initial` through the via-points of `conditions` and to their goal: the
     /// reproduction re-timed and bent onto them ([`condition::meet`]; docs/ALGORITHM.md,
-    /// section 9), each met exactly as [`condition::at_phase`] reads it. With `ranges` (per
+    /// section 9), each met exactly as [`crate::curve::at_phase`] reads it. With `ranges` (per
     /// variable, its lowest and highest value) the conditions are checked against them and
     /// the bend leaves none. The conditions are checked first.
     pub fn reproduce_conditioned(

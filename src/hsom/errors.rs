@@ -229,18 +229,10 @@ pub enum GestureError {
         /// The label.
         label: String,
     },
-    /// Labels whose demonstrations have different columns.
-    #[error("gesture {label:?} has columns {found:?}, but gesture {first_label:?} has {expected:?}: every gesture must record the same variables")]
-    ColumnsDiffer {
-        /// The label that differs.
-        label: String,
-        /// Its columns.
-        found: Vec<String>,
-        /// The first label.
-        first_label: String,
-        /// The first label's columns.
-        expected: Vec<String>,
-    },
+    /// Labelled sets that are not valid as sets: gestures recording different variables
+    /// ([`check_gesture_columns`](crate::demos::check_gesture_columns)).
+    #[error(transparent)]
+    Demo(#[from] crate::demos::DemoError),
     /// Several gestures need the events extension (the paper's procedure trains every level
     /// at once, so its upper levels cannot be split by label).
     #[error("several gestures need algorithm = events (configs/nao-gestures.xml); this configuration uses the paper's algorithm")]

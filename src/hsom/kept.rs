@@ -90,7 +90,7 @@ pub const BAND_ROWS: usize = 200;
 /// `rows` linearly resampled to [`BAND_ROWS`] rows (evenly in phase, read between two rows).
 pub(crate) fn band_path(rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
     (0..BAND_ROWS)
-        .map(|k| crate::condition::at_phase(rows, k as f64 / (BAND_ROWS - 1) as f64))
+        .map(|k| crate::curve::at_phase(rows, k as f64 / (BAND_ROWS - 1) as f64))
         .collect()
 }
 
@@ -191,7 +191,7 @@ pub fn kept_demonstrations(demos: &[Demonstration], seed: u64) -> Vec<Demonstrat
             let path = band_path(&d.rows);
             let n = d.rows.len();
             let rows = (0..n)
-                .map(|k| crate::condition::at_phase(&path, k as f64 / (n.max(2) - 1) as f64))
+                .map(|k| crate::curve::at_phase(&path, k as f64 / (n.max(2) - 1) as f64))
                 .collect();
             Demonstration { rows, ..d.clone() }
         })

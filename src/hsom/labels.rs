@@ -17,7 +17,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 use crate::config::{Algorithm, HsomConfig};
-use crate::demos::Demonstration;
+use crate::demos::{check_gesture_columns, is_plain_label, Demonstration};
 
 use super::algorithm::Presentation;
 use super::errors::{GestureError, HsomError, PersistError};
@@ -33,14 +33,6 @@ pub const GESTURES_FORMAT_VERSION: u32 = FORMAT_VERSION;
 
 /// Most gesture labels a model may hold (a bound on what a file may make us allocate).
 pub const MAX_LABELS: usize = 1024;
-
-/// True for a plain word: `[A-Za-z0-9_-]+`.
-pub fn is_plain_label(label: &str) -> bool {
-    !label.is_empty()
-        && label
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
-}
 
 /// Label `i` of `sets` (given `source_dir`, for messages) a plain word not given before.
 pub(super) fn check_label(
@@ -115,15 +107,7 @@ impl HsomConfig {
                     label: label.clone(),
                 });
             }
-            let (first_label, first) = (&sets[0].0, &sets[0].1[0]);
-            if let Some(d) = demos.iter().find(|d| d.columns != first.columns) {
-                return Err(GestureError::ColumnsDiffer {
-                    label: label.clone(),
-                    found: d.columns.clone(),
-                    first_label: first_label.clone(),
-                    expected: first.columns.clone(),
-                });
-            }
+            check_gesture_columns(sets, i)?;
         }
         let all: Vec<Demonstration> = sets.iter().flat_map(|(_, d)| d.clone()).collect();
         // the shared bottom sees every gesture as often as a gesture learned alone does:

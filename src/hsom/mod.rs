@@ -43,7 +43,7 @@ mod update;
 pub use errors::{GestureError, HsomError, PersistError};
 pub use kept::kept_demonstrations;
 pub use kept::{BAND_ROWS, KEPT_DEMONSTRATIONS, MAX_LEARNED};
-pub use labels::{is_plain_label, GESTURES_FORMAT_VERSION, MAX_LABELS};
+pub use labels::{GESTURES_FORMAT_VERSION, MAX_LABELS};
 pub use memory::{ActivityLevels, ActivityList};
 pub use model::{GestureModel, Hsom, Scoring};
 pub use persist::{FilePart, FORMAT_VERSION};

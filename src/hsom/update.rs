@@ -40,7 +40,7 @@ impl<A: Part> Model<A> {
                 (0..n)
                     .map(|k| {
                         let phase = f64::from(k) / f64::from(n.max(2) - 1);
-                        self.denormalise(&crate::condition::at_phase(path, phase))
+                        self.denormalise(&crate::curve::at_phase(path, phase))
                     })
                     .collect()
             })

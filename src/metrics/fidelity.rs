@@ -249,6 +249,24 @@ pub fn fidelity(
     fidelity_named(demos, &[], reproduction, params)
 }
 
+/// The fidelity of `rows` against the demonstrations, named by their sources, in the data's
+/// own variables: no wrist paths (those need the simulated arm's kinematics,
+/// `sim::evaluate`).
+pub fn fidelity_of_rows(
+    demos: &[crate::demos::Demonstration],
+    rows: &[Vec<f64>],
+    params: &MetricsParams,
+) -> Result<FidelityReport, MetricsError> {
+    let trajs: Vec<Trajectory> = demos.iter().map(Trajectory::from).collect();
+    let names: Vec<String> = demos.iter().map(|d| d.source.clone()).collect();
+    fidelity_named(
+        &trajs,
+        &names,
+        &Trajectory::from_joints(rows.to_vec()),
+        params,
+    )
+}
+
 /// [`fidelity`] with the demonstrations' names (their files) for the error messages; a
 /// demonstration without one is `demonstration {i}`.
 pub fn fidelity_named(

@@ -10,8 +10,8 @@ mod start_end;
 
 pub use errors::MetricsError;
 pub use fidelity::{
-    fidelity, fidelity_named, trimmed_normalized_jerk, DemoScores, FidelityReport, MetricsParams,
-    Stat, Trajectory,
+    fidelity, fidelity_named, fidelity_of_rows, trimmed_normalized_jerk, DemoScores,
+    FidelityReport, MetricsParams, Stat, Trajectory,
 };
 pub use smoothness::{
     apex_dwell, column_swings, key_pose, large_swings, normalized_jerk, smoothness,
@@ -21,18 +21,3 @@ pub use start_end::{
     diagonal, end_spread, end_tolerance, start_speed, StartEnd, StartEndReference,
     END_DIAGONAL_FRACTION, END_SPREAD_FACTOR, START_SPEED_RTOL,
 };
-
-/// The median of the finite values (`None` when there are none).
-pub fn median(values: impl IntoIterator<Item = f64>) -> Option<f64> {
-    let mut v: Vec<f64> = values.into_iter().filter(|x| x.is_finite()).collect();
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    Some(if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        (v[n / 2 - 1] + v[n / 2]) / 2.0
-    })
-}

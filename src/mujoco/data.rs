@@ -11,6 +11,42 @@ const INSTABILITY: [u32; 3] = [
     ffi::mjtWarning__mjWARN_BADQVEL,
 ];
 
+/// One contact MuJoCo found between two geoms in the last step or [`Data::forward`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Contact {
+    /// The two geoms' ids (MuJoCo's order).
+    pub geom: [usize; 2],
+    /// The two geoms' names (`None` for an unnamed geom).
+    pub geom_name: [Option<String>; 2],
+    /// The bodies the two geoms belong to.
+    pub body: [usize; 2],
+    /// The two bodies' names (`None` for an unnamed body; the world body is `world`).
+    pub body_name: [Option<String>; 2],
+    /// Signed distance between the geoms' surfaces in metres (MuJoCo's `dist`): negative when
+    /// they penetrate, at most the pair's margin otherwise.
+    pub dist: f64,
+    /// The contact point in world coordinates (midway between the two surfaces).
+    pub pos: [f64; 3],
+    /// The contact normal in world coordinates, pointing from the first geom to the second.
+    pub normal: [f64; 3],
+    /// Whether the contact takes part in the dynamics: `false` for one that lies within the
+    /// pair's `gap` (MuJoCo's `exclude` = 1: detected, but no force).
+    pub active: bool,
+}
+
+impl Contact {
+    /// Whether one of the two geoms belongs to the body called `name`.
+    pub fn touches(&self, name: &str) -> bool {
+        self.body_name.iter().any(|b| b.as_deref() == Some(name))
+    }
+
+    /// Whether the contact is between the bodies called `a` and `b` (in either order).
+    pub fn between(&self, a: &str, b: &str) -> bool {
+        let [x, y] = [self.body_name[0].as_deref(), self.body_name[1].as_deref()];
+        (x == Some(a) && y == Some(b)) || (x == Some(b) && y == Some(a))
+    }
+}
+
 /// The simulation state (`mjData`) of a [`Model`], freed with `mj_deleteData` on drop.
 ///
 /// ```
@@ -194,6 +230,64 @@ impl<'m> Data<'m> {
         self.vec3(self.raw().xaxis, joint, self.model.njnt(), "joint")
     }
 
+    /// World position of camera `id`. Panics when `id >= ncam()`.
+    pub fn cam_xpos(&self, camera: usize) -> [f64; 3] {
+        self.vec3(self.raw().cam_xpos, camera, self.model.ncam(), "camera")
+    }
+    /// World orientation of camera `id`, row-major 3x3 (columns: the image's right, its up,
+    /// and the direction opposite to the view). Panics when `id >= ncam()`.
+    pub fn cam_xmat(&self, camera: usize) -> [f64; 9] {
+        let n = self.model.ncam();
+        assert!(camera < n, "camera id {camera} out of range 0..{n}");
+        let s = self.slice(self.raw().cam_xmat, 9 * n);
+        let mut out = [0.0; 9];
+        out.copy_from_slice(&s[9 * camera..9 * camera + 9]);
+        out
+    }
+
+    /// Every contact MuJoCo detected in the last step or [`Data::forward`], those within a
+    /// pair's `gap` (no force, [`Contact::active`] false) included. Geoms with a `margin`
+    /// report contacts up to that distance apart, which measures clearances.
+    pub fn detected_contacts(&self) -> Vec<Contact> {
+        let raw = self.raw();
+        let n = usize::try_from(raw.ncon).unwrap_or(0);
+        if n == 0 || raw.contact.is_null() {
+            return Vec::new();
+        }
+        // Safety: mj_collision filled `ncon` entries of the `contact` array (its capacity,
+        // nconmax, bounds ncon); they stay valid while `self` is borrowed.
+        let raw_contacts = unsafe { std::slice::from_raw_parts(raw.contact, n) };
+        let model = self.model;
+        raw_contacts
+            .iter()
+            .filter_map(|c| {
+                let geom = [
+                    usize::try_from(c.geom1).ok()?,
+                    usize::try_from(c.geom2).ok()?,
+                ];
+                let body = geom.map(|g| model.geom_body(g));
+                Some(Contact {
+                    geom,
+                    geom_name: geom.map(|g| model.geom_name(g)),
+                    body,
+                    body_name: body.map(|b| model.body_name(b)),
+                    dist: c.dist,
+                    pos: c.pos,
+                    normal: [c.frame[0], c.frame[1], c.frame[2]],
+                    active: c.exclude == 0,
+                })
+            })
+            .collect()
+    }
+
+    /// The active contacts of the last step or [`Data::forward`]: the ones that take part in
+    /// the dynamics (see [`Data::detected_contacts`] for those within a gap too).
+    pub fn contacts(&self) -> Vec<Contact> {
+        let mut all = self.detected_contacts();
+        all.retain(|c| c.active);
+        all
+    }
+
     /// How many times MuJoCo raised each warning (`mjtWarning` order) on this state.
     pub fn warning_counts(&self) -> [i32; 8] {
         let mut out = [0; 8];
@@ -258,6 +352,17 @@ impl<'m> Data<'m> {
         self.run(ffi::mj_forward)
     }
 
+    /// Reset the state to keyframe `key` of the model (`mj_resetDataKeyframe`: time, `qpos`,
+    /// `qvel`, `act`, `ctrl` and mocap poses from the keyframe) and clear the poison. Call
+    /// [`Data::forward`] for the derived quantities. Panics when `key >= nkey()`.
+    pub fn reset_to_key(&mut self, key: usize) {
+        let n = self.model.nkey();
+        assert!(key < n, "keyframe id {key} out of range 0..{n}");
+        // Safety: valid model and data, exclusive access, a keyframe id checked above.
+        unsafe { ffi::mj_resetDataKeyframe(self.model.as_ptr(), self.ptr.as_ptr(), key as i32) };
+        self.poisoned = None;
+    }
+
     /// Reset the state to the model's defaults (`mj_resetData`) and clear the poison.
     pub fn reset(&mut self) {
         // Safety: valid model and data, exclusive access.
@@ -276,3 +381,6 @@ fn warning_text(kind: u32, info: i32) -> String {
     // Safety: non-null, NUL-terminated (see above).
     unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned()
 }
+
+#[cfg(test)]
+mod tests;

@@ -41,7 +41,7 @@ mod data;
 mod error;
 mod model;
 
-pub use data::Data;
+pub use data::{Contact, Data};
 pub use error::{MjError, Result};
 pub use model::Model;
 

@@ -52,6 +52,8 @@ enum Obj {
     Site,
     Camera,
     Actuator,
+    Geom,
+    Key,
 }
 
 impl Obj {
@@ -62,6 +64,8 @@ impl Obj {
             Obj::Site => ffi::mjtObj__mjOBJ_SITE,
             Obj::Camera => ffi::mjtObj__mjOBJ_CAMERA,
             Obj::Actuator => ffi::mjtObj__mjOBJ_ACTUATOR,
+            Obj::Geom => ffi::mjtObj__mjOBJ_GEOM,
+            Obj::Key => ffi::mjtObj__mjOBJ_KEY,
         };
         code as c_int
     }
@@ -217,6 +221,14 @@ impl Model {
     pub fn nbody(&self) -> usize {
         self.raw().nbody as usize
     }
+    /// Number of geoms, the world's included.
+    pub fn ngeom(&self) -> usize {
+        self.raw().ngeom as usize
+    }
+    /// Number of keyframes.
+    pub fn nkey(&self) -> usize {
+        self.raw().nkey as usize
+    }
     /// Number of cameras defined in the model.
     pub fn ncam(&self) -> usize {
         self.raw().ncam as usize
@@ -271,6 +283,14 @@ impl Model {
     pub fn camera_id(&self, name: &str) -> Option<usize> {
         self.name2id(Obj::Camera, name)
     }
+    /// Id of the geom called `name`.
+    pub fn geom_id(&self, name: &str) -> Option<usize> {
+        self.name2id(Obj::Geom, name)
+    }
+    /// Id of the keyframe called `name`.
+    pub fn key_id(&self, name: &str) -> Option<usize> {
+        self.name2id(Obj::Key, name)
+    }
     /// Name of joint `id` (None when out of range or unnamed).
     pub fn joint_name(&self, id: usize) -> Option<String> {
         self.id2name(Obj::Joint, id, self.njnt())
@@ -290,6 +310,15 @@ impl Model {
     /// Name of camera `id` (None when out of range or unnamed).
     pub fn camera_name(&self, id: usize) -> Option<String> {
         self.id2name(Obj::Camera, id, self.ncam())
+    }
+
+    /// Name of keyframe `id` (None when out of range or unnamed).
+    pub fn key_name(&self, id: usize) -> Option<String> {
+        self.id2name(Obj::Key, id, self.nkey())
+    }
+    /// Name of geom `id` (None when out of range or unnamed).
+    pub fn geom_name(&self, id: usize) -> Option<String> {
+        self.id2name(Obj::Geom, id, self.ngeom())
     }
 
     /// Read element `i` of a model array of `len` elements.
@@ -387,5 +416,98 @@ impl Model {
     pub fn body_mass(&self, id: usize) -> f64 {
         // Safety: body_mass has nbody entries.
         unsafe { Self::at(self.raw().body_mass, id, self.nbody()) }
+    }
+    /// The body geom `id` belongs to. Panics when `id >= ngeom()`.
+    pub fn geom_body(&self, id: usize) -> usize {
+        // Safety: geom_bodyid has ngeom entries.
+        unsafe { Self::at(self.raw().geom_bodyid, id, self.ngeom()) as usize }
+    }
+    /// `n` consecutive numbers of entry `id` of a model array holding `stride` numbers per
+    /// object for `count` objects.
+    ///
+    /// # Safety
+    /// `p` must be the model array the caller names, with `stride * count` numbers.
+    unsafe fn row<const N: usize>(
+        p: *const f64,
+        id: usize,
+        stride: usize,
+        count: usize,
+    ) -> [f64; N] {
+        assert!(id < count, "index {id} out of range 0..{count}");
+        assert!(N <= stride);
+        // Safety: guaranteed by the caller and the bounds checks above.
+        std::array::from_fn(|k| unsafe { *p.add(stride * id + k) })
+    }
+    /// Centre of mass of body `id` in the body's frame (`body_ipos`). Panics when
+    /// `id >= nbody()`.
+    pub fn body_ipos(&self, id: usize) -> [f64; 3] {
+        // Safety: body_ipos has 3 numbers per body.
+        unsafe { Self::row(self.raw().body_ipos, id, 3, self.nbody()) }
+    }
+    /// Orientation of body `id`'s principal inertia axes in the body's frame (`body_iquat`,
+    /// w x y z). Panics when `id >= nbody()`.
+    pub fn body_iquat(&self, id: usize) -> [f64; 4] {
+        // Safety: body_iquat has 4 numbers per body.
+        unsafe { Self::row(self.raw().body_iquat, id, 4, self.nbody()) }
+    }
+    /// Principal moments of inertia of body `id` about its centre of mass (`body_inertia`,
+    /// kg m^2, along the axes of [`Model::body_iquat`]). Panics when `id >= nbody()`.
+    pub fn body_inertia(&self, id: usize) -> [f64; 3] {
+        // Safety: body_inertia has 3 numbers per body.
+        unsafe { Self::row(self.raw().body_inertia, id, 3, self.nbody()) }
+    }
+    /// Armature (reflected rotor inertia) of degree of freedom `dof`. Panics when
+    /// `dof >= nv()`.
+    pub fn dof_armature(&self, dof: usize) -> f64 {
+        // Safety: dof_armature has nv entries.
+        unsafe { Self::at(self.raw().dof_armature, dof, self.nv()) }
+    }
+    /// The first gain parameter of actuator `id` (`gainprm[0]`: kp of a position servo).
+    /// Panics when `id >= nu()`.
+    pub fn actuator_gain(&self, id: usize) -> f64 {
+        // Safety: actuator_gainprm has mjNGAIN numbers per actuator.
+        let [g] = unsafe {
+            Self::row(
+                self.raw().actuator_gainprm,
+                id,
+                ffi::mjNGAIN as usize,
+                self.nu(),
+            )
+        };
+        g
+    }
+    /// The first three bias parameters of actuator `id` (`biasprm[0..3]`: 0, -kp, -kv of a
+    /// position servo). Panics when `id >= nu()`.
+    pub fn actuator_bias(&self, id: usize) -> [f64; 3] {
+        // Safety: actuator_biasprm has mjNBIAS numbers per actuator.
+        unsafe {
+            Self::row(
+                self.raw().actuator_biasprm,
+                id,
+                ffi::mjNBIAS as usize,
+                self.nu(),
+            )
+        }
+    }
+    /// Vertical field of view of camera `id` in degrees. Panics when `id >= ncam()`.
+    pub fn camera_fovy(&self, id: usize) -> f64 {
+        // Safety: cam_fovy has ncam entries.
+        unsafe { Self::at(self.raw().cam_fovy, id, self.ncam()) }
+    }
+    /// Positions of keyframe `id` (`nq` numbers). Panics when `id >= nkey()`.
+    pub fn key_qpos(&self, id: usize) -> Vec<f64> {
+        self.key_array(self.raw().key_qpos, id, self.nq())
+    }
+    /// Controls of keyframe `id` (`nu` numbers). Panics when `id >= nkey()`.
+    pub fn key_ctrl(&self, id: usize) -> Vec<f64> {
+        self.key_array(self.raw().key_ctrl, id, self.nu())
+    }
+    fn key_array(&self, p: *const f64, id: usize, width: usize) -> Vec<f64> {
+        let n = self.nkey();
+        assert!(id < n, "keyframe id {id} out of range 0..{n}");
+        // Safety: key_qpos and key_ctrl hold `width` (nq or nu) numbers per keyframe.
+        (0..width)
+            .map(|k| unsafe { Self::at(p, width * id + k, width * n) })
+            .collect()
     }
 }

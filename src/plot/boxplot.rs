@@ -9,6 +9,7 @@ use plotters::prelude::*;
 use plotters::style::RGBColor;
 
 use super::figure::{draw_error, draw_legend, grid_png, label_at, tick_label, Area, PlotError};
+use crate::stats::quantile;
 
 /// One panel of box plots.
 #[derive(Debug, Clone)]
@@ -23,19 +24,6 @@ pub struct BoxPanel {
     pub series: Vec<(String, RGBColor)>,
     /// `values[category][series]`: the values of one box (non-finite values are left out).
     pub values: Vec<Vec<Vec<f64>>>,
-}
-
-/// The `p`-quantile (0 <= p <= 1) of `sorted` (ascending, finite), interpolating linearly
-/// between order statistics (Hyndman & Fan's type 7, the default of R and numpy); `None` when
-/// empty.
-pub fn quantile(sorted: &[f64], p: f64) -> Option<f64> {
-    let n = sorted.len();
-    if n == 0 {
-        return None;
-    }
-    let h = (n - 1) as f64 * p.clamp(0.0, 1.0);
-    let (lo, hi) = (h.floor() as usize, h.ceil() as usize);
-    Some(sorted[lo] + (h - lo as f64) * (sorted[hi] - sorted[lo]))
 }
 
 /// Five numbers of a box: whisker ends, quartiles, median; and the outliers.

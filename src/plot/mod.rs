@@ -12,7 +12,7 @@ mod confusion;
 mod figure;
 mod legend;
 
-pub use boxplot::{boxplots_png, quantile, BoxPanel};
+pub use boxplot::{boxplots_png, BoxPanel};
 pub use caption::caption;
 pub use confusion::{confusion_png, ConfusionPanel};
 pub use figure::{panels_png, Band, Ellipse, Panel, PlotError, Scatter, Series, Tube};

@@ -3,12 +3,12 @@
 use std::path::{Path, PathBuf};
 
 use super::error::{Result, SimError};
-use super::spec::{check_posture, clamp_posture, Posture, JOINT_NAMES, JOINT_SPECS, NJ};
+use super::spec::{check_posture_of, clamp_posture_of, NJ};
 use crate::mujoco::{Data, Model};
+use crate::robot::Robot;
 
 /// Path of the shipped model, models/nao_left_arm.xml in the crate.
-pub const DEFAULT_MODEL_PATH: &str =
-    concat!(env!("CARGO_MANIFEST_DIR"), "/models/nao_left_arm.xml");
+pub const DEFAULT_MODEL_PATH: &str = crate::robot::Robot::LeftArm.model_path();
 
 /// Name of the site at the LWristYaw joint origin.
 pub const WRIST_SITE: &str = "l_wrist";
@@ -24,7 +24,7 @@ pub const MAX_TIMESTEP_S: f64 = 0.005;
 /// When MuJoCo refused an MJCF document: the arm's first joint that no actuator element of
 /// the document drives, as [`SimError::Missing`] (None when every joint has one, or the
 /// document is not XML we can read: MuJoCo's own message stands then).
-fn missing_actuator(xml: &str) -> Option<SimError> {
+fn missing_actuator(robot: Robot, xml: &str) -> Option<SimError> {
     use quick_xml::events::Event;
     let mut reader = quick_xml::Reader::from_str(xml);
     let mut in_actuator = 0usize;
@@ -52,7 +52,8 @@ fn missing_actuator(xml: &str) -> Option<SimError> {
     if !saw_actuator_block {
         return None;
     }
-    JOINT_NAMES
+    robot
+        .joint_names()
         .iter()
         .find(|j| !driven.iter().any(|d| d == *j))
         .map(|j| SimError::Missing {
@@ -85,7 +86,8 @@ struct JointIndex {
     actuator: usize,
 }
 
-/// The Nao left-arm model, checked against the reference joint table.
+/// A Nao model with `N` actuated joints (the left arm's six by default, the upper body's 14),
+/// checked against its robot's description ([`crate::robot`]).
 ///
 /// ```
 /// let arm = cosco_hsom::sim::NaoArm::load_default()?;
@@ -94,15 +96,16 @@ struct JointIndex {
 /// assert!(sim.gripper_position()[2] < 0.0); // the hand hangs below the shoulder
 /// # Ok::<(), cosco_hsom::sim::SimError>(())
 /// ```
-pub struct NaoArm {
+pub struct NaoArm<const N: usize = NJ> {
+    robot: Robot,
     model: Model,
-    joints: [JointIndex; NJ],
+    joints: [JointIndex; N],
     wrist_site: usize,
     gripper_site: usize,
-    gains: [ServoGains; NJ],
+    gains: [ServoGains; N],
 }
 
-impl std::fmt::Debug for NaoArm {
+impl<const N: usize> std::fmt::Debug for NaoArm<N> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("NaoArm")
             .field("gains", &self.gains)
@@ -111,18 +114,9 @@ impl std::fmt::Debug for NaoArm {
 }
 
 impl NaoArm {
-    /// Load and check an MJCF file. When MuJoCo refuses it, a file that lacks one of the arm's
-    /// actuators is reported as such (MuJoCo's own message is then about the keyframes'
-    /// control vectors).
+    /// Load and check an MJCF file of the left arm ([`NaoArm::load_robot`]).
     pub fn load(path: impl AsRef<Path>) -> Result<NaoArm> {
-        let path = path.as_ref();
-        match Model::from_xml_path(path) {
-            Ok(model) => Self::from_model(model),
-            Err(e) => Err(std::fs::read_to_string(path)
-                .ok()
-                .and_then(|text| missing_actuator(&text))
-                .unwrap_or(SimError::Mujoco(e))),
-        }
+        Self::load_robot(Robot::LeftArm, path)
     }
 
     /// Load the shipped model ([`DEFAULT_MODEL_PATH`]).
@@ -135,19 +129,53 @@ impl NaoArm {
         PathBuf::from(DEFAULT_MODEL_PATH)
     }
 
-    /// Load and check an MJCF document given as a string (a missing actuator reported as in
-    /// [`NaoArm::load`]).
+    /// Load and check a left-arm MJCF document given as a string (a missing actuator reported
+    /// as in [`NaoArm::load_robot`]).
     pub fn from_xml_str(xml: &str) -> Result<NaoArm> {
         match Model::from_xml_str(xml) {
-            Ok(model) => Self::from_model(model),
-            Err(e) => Err(missing_actuator(xml).unwrap_or(SimError::Mujoco(e))),
+            Ok(model) => Self::from_model(Robot::LeftArm, model),
+            Err(e) => Err(missing_actuator(Robot::LeftArm, xml).unwrap_or(SimError::Mujoco(e))),
+        }
+    }
+}
+
+impl<const N: usize> NaoArm<N> {
+    /// Load and check an MJCF file of `robot` (whose joints must number `N`). When MuJoCo
+    /// refuses it, a file that lacks one of the robot's actuators is reported as such
+    /// (MuJoCo's own message is then about the keyframes' control vectors).
+    pub fn load_robot(robot: Robot, path: impl AsRef<Path>) -> Result<NaoArm<N>> {
+        let path = path.as_ref();
+        match Model::from_xml_path(path) {
+            Ok(model) => Self::from_model(robot, model),
+            Err(e) => Err(std::fs::read_to_string(path)
+                .ok()
+                .and_then(|text| missing_actuator(robot, &text))
+                .unwrap_or(SimError::Mujoco(e))),
         }
     }
 
-    /// Check a loaded model: six named joints with the documented ranges, one actuator per joint
-    /// (named after it, driving it, with the joint's range as control range and the documented
-    /// torque limit), the two sites; then identify each servo's gains.
-    pub fn from_model(model: Model) -> Result<NaoArm> {
+    /// Load `robot`'s shipped model.
+    pub fn load_shipped(robot: Robot) -> Result<NaoArm<N>> {
+        Self::load_robot(robot, robot.model_path())
+    }
+
+    /// The robot this model is.
+    pub fn robot(&self) -> Robot {
+        self.robot
+    }
+
+    /// Check a loaded model of `robot`: its named joints with the documented ranges, one
+    /// actuator per joint (named after it, driving it, with the joint's range as control range
+    /// and the documented torque limit), the wrist and gripper sites; then identify each
+    /// servo's gains.
+    pub fn from_model(robot: Robot, model: Model) -> Result<NaoArm<N>> {
+        let specs = robot.joints();
+        if specs.len() != N {
+            return Err(SimError::WrongJointCount {
+                expected: N,
+                got: specs.len(),
+            });
+        }
         let dt = model.timestep();
         if !(dt.is_finite() && (MIN_TIMESTEP_S..=MAX_TIMESTEP_S).contains(&dt)) {
             return Err(SimError::BadOption {
@@ -161,8 +189,8 @@ impl NaoArm {
             qpos: 0,
             dof: 0,
             actuator: 0,
-        }; NJ];
-        for (k, spec) in JOINT_SPECS.iter().enumerate() {
+        }; N];
+        for (k, spec) in specs.iter().enumerate() {
             let missing = |kind| SimError::Missing {
                 kind,
                 name: spec.name.to_string(),
@@ -210,8 +238,9 @@ impl NaoArm {
         };
         let wrist_site = site(WRIST_SITE)?;
         let gripper_site = site(GRIPPER_SITE)?;
-        let gains = identify_gains(&model, &joints)?;
+        let gains = identify_gains(robot, &model, &joints)?;
         Ok(NaoArm {
+            robot,
             model,
             joints,
             wrist_site,
@@ -226,7 +255,7 @@ impl NaoArm {
     }
 
     /// The servo gains identified from the model, in [`JOINT_NAMES`] order.
-    pub fn servo_gains(&self) -> [ServoGains; NJ] {
+    pub fn servo_gains(&self) -> [ServoGains; N] {
         self.gains
     }
 
@@ -236,13 +265,14 @@ impl NaoArm {
     }
 
     /// Start a simulation, at StandInit (teleported, at rest, servos holding it).
-    pub fn sim(&self) -> Result<ArmSim<'_>> {
+    pub fn sim(&self) -> Result<ArmSim<'_, N>> {
         let mut sim = ArmSim {
             arm: self,
             data: Data::new(&self.model)?,
-            targets: [0.0; NJ],
+            targets: [0.0; N],
         };
-        sim.set_posture(&super::spec::NamedPosture::StandInit.angles())?;
+        let stand_init = self.robot.posture("StandInit");
+        sim.set_posture(stand_init.expect("every shipped model has StandInit"))?;
         Ok(sim)
     }
 }
@@ -272,15 +302,19 @@ fn check_range(
 /// Identify kp and kv of each servo by probing: with the arm at rest at mid-range, a small
 /// control offset gives `kp * offset`; with the target at the posture, a small joint velocity
 /// gives `-kv * velocity`. Both probes stay far below the torque limits.
-fn identify_gains(model: &Model, joints: &[JointIndex; NJ]) -> Result<[ServoGains; NJ]> {
+fn identify_gains<const N: usize>(
+    robot: Robot,
+    model: &Model,
+    joints: &[JointIndex; N],
+) -> Result<[ServoGains; N]> {
     const DQ: f64 = 1e-3;
     const DV: f64 = 1e-3;
     let mut data = Data::new(model)?;
-    let mut mid = [0.0; NJ];
-    for (m, s) in mid.iter_mut().zip(JOINT_SPECS.iter()) {
+    let mut mid = [0.0; N];
+    for (m, s) in mid.iter_mut().zip(robot.joints()) {
         *m = 0.5 * (s.range.0 + s.range.1);
     }
-    let mut gains = [ServoGains { kp: 0.0, kv: 0.0 }; NJ];
+    let mut gains = [ServoGains { kp: 0.0, kv: 0.0 }; N];
     for (k, ji) in joints.iter().enumerate() {
         for (i, j) in joints.iter().enumerate() {
             data.qpos_mut()[j.qpos] = mid[i];
@@ -296,7 +330,7 @@ fn identify_gains(model: &Model, joints: &[JointIndex; NJ]) -> Result<[ServoGain
         let kv = -data.actuator_force()[ji.actuator] / DV;
         if !(kp.is_finite() && kp > 0.0 && kv.is_finite() && kv >= 0.0) {
             return Err(SimError::ModelMismatch {
-                name: JOINT_NAMES[k].to_string(),
+                name: robot.joint_names()[k].to_string(),
                 what: "actuator (expected a position servo, force = kp (ctrl - q) - kv qdot)",
                 found: format!("kp = {kp}, kv = {kv}"),
                 expected: "kp > 0, kv >= 0".to_string(),
@@ -311,15 +345,15 @@ fn identify_gains(model: &Model, joints: &[JointIndex; NJ]) -> Result<[ServoGain
 ///
 /// Positions are in the torso frame (the model welds the torso to the world at the origin with
 /// the world's axes), metres.
-pub struct ArmSim<'a> {
-    arm: &'a NaoArm,
+pub struct ArmSim<'a, const N: usize = NJ> {
+    arm: &'a NaoArm<N>,
     data: Data<'a>,
-    targets: Posture,
+    targets: [f64; N],
 }
 
-impl<'a> ArmSim<'a> {
+impl<'a, const N: usize> ArmSim<'a, N> {
     /// The arm this simulation runs.
-    pub fn arm(&self) -> &'a NaoArm {
+    pub fn arm(&self) -> &'a NaoArm<N> {
         self.arm
     }
 
@@ -335,7 +369,7 @@ impl<'a> ArmSim<'a> {
 
     /// Reset the simulation (time 0, MuJoCo's data cleared) and teleport to a posture (checked).
     pub fn reset_to(&mut self, posture: &[f64]) -> Result<()> {
-        let p = check_posture(posture)?;
+        let p = check_posture_of(self.arm.robot, posture)?;
         self.data.reset();
         self.teleport(p)
     }
@@ -343,49 +377,49 @@ impl<'a> ArmSim<'a> {
     /// Teleport to a posture (checked): joint positions set, velocities zeroed, servo targets set
     /// to the posture, kinematics recomputed. Time is not reset.
     pub fn set_posture(&mut self, posture: &[f64]) -> Result<()> {
-        let p = check_posture(posture)?;
+        let p = check_posture_of(self.arm.robot, posture)?;
         self.teleport(p)
     }
 
     /// [`ArmSim::set_posture`], with out-of-range values clamped to the joint limits
     /// (wrong joint count and NaN are still errors).
     pub fn set_posture_clamped(&mut self, posture: &[f64]) -> Result<()> {
-        let p = clamp_posture(posture)?;
+        let p = clamp_posture_of(self.arm.robot, posture)?;
         self.teleport(p)
     }
 
     /// Hold the joints at `posture` from outside (a hand on the arm): positions set,
     /// velocities zeroed; the servo targets are not touched (the servos keep pushing) and
     /// the next physics step moves the arm again.
-    pub(crate) fn pin(&mut self, posture: &Posture) {
+    pub(crate) fn pin(&mut self, posture: &[f64; N]) {
         for (k, j) in self.arm.joints.iter().enumerate() {
             self.data.qpos_mut()[j.qpos] = posture[k];
             self.data.qvel_mut()[j.dof] = 0.0;
         }
     }
 
-    fn teleport(&mut self, p: Posture) -> Result<()> {
+    fn teleport(&mut self, p: [f64; N]) -> Result<()> {
         self.pin(&p);
         self.targets = p;
-        self.write_ctrl(&p, &[0.0; NJ], false);
+        self.write_ctrl(&p, &[0.0; N], false);
         self.data.forward()?;
         Ok(())
     }
 
     /// Joint positions (the encoders), [`JOINT_NAMES`] order.
-    pub fn posture(&self) -> Posture {
+    pub fn posture(&self) -> [f64; N] {
         let q = self.data.qpos();
         std::array::from_fn(|k| q[self.arm.joints[k].qpos])
     }
 
     /// Joint velocities, rad/s.
-    pub fn velocities(&self) -> Posture {
+    pub fn velocities(&self) -> [f64; N] {
         let v = self.data.qvel();
         std::array::from_fn(|k| v[self.arm.joints[k].dof])
     }
 
     /// The current servo targets (last checked targets given).
-    pub fn targets(&self) -> Posture {
+    pub fn targets(&self) -> [f64; N] {
         self.targets
     }
 
@@ -401,15 +435,15 @@ impl<'a> ArmSim<'a> {
 
     /// Set the servo targets (checked); they hold until changed.
     pub fn set_targets(&mut self, targets: &[f64]) -> Result<()> {
-        let p = check_posture(targets)?;
-        self.command(&p, &[0.0; NJ], false);
+        let p = check_posture_of(self.arm.robot, targets)?;
+        self.command(&p, &[0.0; N], false);
         Ok(())
     }
 
     /// [`ArmSim::set_targets`] with out-of-range values clamped to the joint limits.
     pub fn set_targets_clamped(&mut self, targets: &[f64]) -> Result<()> {
-        let p = clamp_posture(targets)?;
-        self.command(&p, &[0.0; NJ], false);
+        let p = clamp_posture_of(self.arm.robot, targets)?;
+        self.command(&p, &[0.0; N], false);
         Ok(())
     }
 
@@ -438,14 +472,14 @@ impl<'a> ArmSim<'a> {
     /// feed-forward `bias / kp` (MuJoCo's gravity and Coriolis forces at the current state), so
     /// that the servo's force is `kp (q - q_now) + kv (qd - qd_now) + bias`. MuJoCo clips the
     /// command to the control range (the joint range) and the force to the torque limit.
-    pub(crate) fn command(&mut self, q: &Posture, qd: &Posture, gravity_compensation: bool) {
+    pub(crate) fn command(&mut self, q: &[f64; N], qd: &[f64; N], gravity_compensation: bool) {
         self.targets = *q;
         self.write_ctrl(q, qd, gravity_compensation);
     }
 
-    fn write_ctrl(&mut self, q: &Posture, qd: &Posture, gravity_compensation: bool) {
-        let mut ctrl = [0.0; NJ];
-        for k in 0..NJ {
+    fn write_ctrl(&mut self, q: &[f64; N], qd: &[f64; N], gravity_compensation: bool) {
+        let mut ctrl = [0.0; N];
+        for k in 0..N {
             let g = self.arm.gains[k];
             let j = self.arm.joints[k];
             let bias = if gravity_compensation {
@@ -456,7 +490,7 @@ impl<'a> ArmSim<'a> {
             ctrl[k] = q[k] + (g.kv * qd[k] + bias) / g.kp;
         }
         let c = self.data.ctrl_mut();
-        for k in 0..NJ {
+        for k in 0..N {
             c[self.arm.joints[k].actuator] = ctrl[k];
         }
     }

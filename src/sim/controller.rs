@@ -8,14 +8,17 @@ use rand_distr::{Distribution, Normal};
 use super::arm::ArmSim;
 use super::error::{Result, SimError};
 use super::interp::Interpolation;
-use super::recording::Recording;
-use super::spec::{check_posture, clamp_posture, Posture, JOINT_SPECS, NJ};
+use super::recording::{Recording, Touches};
+use super::spec::{check_posture, check_posture_of, clamp_posture, Posture, JOINT_SPECS, NJ};
+use crate::robot::Robot;
 
 /// The paper's recording rate, Hz.
 pub const DEFAULT_RECORD_RATE_HZ: f64 = 40.0;
 
 /// The longest motion one controller call simulates, s.
 pub const MAX_DURATION_S: f64 = 3600.0;
+/// A contact seen again within this long of its last sighting is the same contact, s.
+const TOUCH_GAP_S: f64 = 0.05;
 /// The most physics steps one controller call runs (a bound no input can exceed).
 pub const MAX_STEPS_PER_CALL: u64 = 100_000_000;
 
@@ -93,17 +96,30 @@ fn non_negative(name: &'static str, v: f64) -> Result<f64> {
 /// followed piecewise-linearly (with the segment's slope as velocity feed-forward) and held at
 /// the last target until `duration`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct TargetTrajectory {
+pub struct TargetTrajectory<const N: usize = NJ> {
+    robot: Robot,
     times: Vec<f64>,
-    targets: Vec<Posture>,
+    targets: Vec<[f64; N]>,
     duration: f64,
 }
 
 impl TargetTrajectory {
-    /// Targets at given times (checked: same lengths, at least one target, times finite,
-    /// first time >= 0, strictly increasing; every target a valid posture). The motion lasts
-    /// until the last time.
+    /// Targets of the left arm at given times ([`TargetTrajectory::new_for`]).
     pub fn new(times: &[f64], targets: &[Vec<f64>]) -> Result<TargetTrajectory> {
+        Self::new_for(Robot::LeftArm, times, targets)
+    }
+
+    /// One left-arm target per tick of a clock at `rate_hz` ([`TargetTrajectory::at_rate_for`]).
+    pub fn at_rate(rate_hz: f64, targets: &[Vec<f64>]) -> Result<TargetTrajectory> {
+        Self::at_rate_for(Robot::LeftArm, rate_hz, targets)
+    }
+}
+
+impl<const N: usize> TargetTrajectory<N> {
+    /// Targets of `robot` at given times (checked: same lengths, at least one target, times
+    /// finite, first time >= 0, strictly increasing; every target a valid posture). The motion
+    /// lasts until the last time.
+    pub fn new_for(robot: Robot, times: &[f64], targets: &[Vec<f64>]) -> Result<Self> {
         if times.len() != targets.len() {
             return Err(SimError::InvalidTrajectory(format!(
                 "{} times for {} targets",
@@ -124,9 +140,10 @@ impl TargetTrajectory {
         }
         let targets = targets
             .iter()
-            .map(|t| check_posture(t))
+            .map(|t| check_posture_of(robot, t))
             .collect::<Result<Vec<_>>>()?;
         Ok(TargetTrajectory {
+            robot,
             duration: *times.last().unwrap_or(&0.0),
             times: times.to_vec(),
             targets,
@@ -135,16 +152,16 @@ impl TargetTrajectory {
 
     /// One target per tick of a clock at `rate_hz` (target k at time k / rate_hz); the motion
     /// lasts `targets.len() / rate_hz`, so recording at the same rate yields one sample per target.
-    pub fn at_rate(rate_hz: f64, targets: &[Vec<f64>]) -> Result<TargetTrajectory> {
+    pub fn at_rate_for(robot: Robot, rate_hz: f64, targets: &[Vec<f64>]) -> Result<Self> {
         check_rate("rate_hz", rate_hz)?;
         let times: Vec<f64> = (0..targets.len()).map(|k| k as f64 / rate_hz).collect();
-        let mut t = Self::new(&times, targets)?;
+        let mut t = Self::new_for(robot, &times, targets)?;
         t.duration = targets.len() as f64 / rate_hz;
         Ok(t)
     }
 
     /// Hold the last target for `seconds` more (finite, >= 0).
-    pub fn with_hold(mut self, seconds: f64) -> Result<TargetTrajectory> {
+    pub fn with_hold(mut self, seconds: f64) -> Result<Self> {
         self.duration += non_negative("hold", seconds)?;
         Ok(self)
     }
@@ -152,11 +169,12 @@ impl TargetTrajectory {
     /// Peak velocity of the piecewise-linear targets of each joint as a fraction of the joint's
     /// maximum velocity ([`JOINT_NAMES`](super::JOINT_NAMES) order). Values above 1 mean the
     /// servos cannot follow exactly (the controller still runs; the torque limits decide).
-    pub fn peak_velocity_fractions(&self) -> Posture {
-        let mut peak = [0.0f64; NJ];
+    pub fn peak_velocity_fractions(&self) -> [f64; N] {
+        let mut peak = [0.0f64; N];
+        let joints = self.robot.joints();
         for (w, t) in self.targets.windows(2).zip(self.times.windows(2)) {
-            for k in 0..NJ {
-                let v = (w[1][k] - w[0][k]).abs() / (t[1] - t[0]) / JOINT_SPECS[k].max_velocity;
+            for k in 0..N {
+                let v = (w[1][k] - w[0][k]).abs() / (t[1] - t[0]) / joints[k].max_velocity;
                 peak[k] = peak[k].max(v);
             }
         }
@@ -179,13 +197,13 @@ impl TargetTrajectory {
     }
 
     /// Target posture and velocity at time `t` (before the first time: the first target).
-    fn sample(&self, t: f64) -> (Posture, Posture) {
+    fn sample(&self, t: f64) -> ([f64; N], [f64; N]) {
         let n = self.times.len();
         if t <= self.times[0] {
-            return (self.targets[0], [0.0; NJ]);
+            return (self.targets[0], [0.0; N]);
         }
         if t >= self.times[n - 1] {
-            return (self.targets[n - 1], [0.0; NJ]);
+            return (self.targets[n - 1], [0.0; N]);
         }
         let i = self.times.partition_point(|&x| x <= t) - 1;
         let (t0, t1) = (self.times[i], self.times[i + 1]);
@@ -271,7 +289,7 @@ pub struct Grab {
 }
 
 /// No hand on the arm.
-fn no_hand(_: f64, _: &mut ArmSim<'_>) {}
+fn no_hand<const N: usize>(_: f64, _: &mut ArmSim<'_, N>) {}
 
 struct Segment {
     start: Posture,
@@ -371,7 +389,11 @@ impl Controller {
     /// predicted postures) from time 0 to its duration. The speed fraction is not applied: the
     /// servos follow as fast as their torque limits allow. Start from the trajectory's first
     /// posture (e.g. with [`ArmSim::set_posture`] or [`Controller::execute`]) to avoid a jump.
-    pub fn follow(&self, sim: &mut ArmSim<'_>, trajectory: &TargetTrajectory) -> Result<Recording> {
+    pub fn follow<const N: usize>(
+        &self,
+        sim: &mut ArmSim<'_, N>,
+        trajectory: &TargetTrajectory<N>,
+    ) -> Result<Recording> {
         self.run(sim, trajectory.duration, no_hand, |t| trajectory.sample(t))
     }
 
@@ -380,16 +402,16 @@ impl Controller {
     /// (position pinned, velocity zero, at every physics step) while the servo targets go on
     /// along the trajectory; then the hand lets go and the servos pull the arm on. The
     /// encoders read the held posture meanwhile. A grab outside the motion does nothing.
-    pub fn follow_grabbed(
+    pub fn follow_grabbed<const N: usize>(
         &self,
-        sim: &mut ArmSim<'_>,
-        trajectory: &TargetTrajectory,
+        sim: &mut ArmSim<'_, N>,
+        trajectory: &TargetTrajectory<N>,
         grab: Grab,
     ) -> Result<Recording> {
         non_negative("grab start", grab.start_s)?;
         non_negative("grab duration", grab.seconds)?;
-        let mut held: Option<Posture> = None;
-        let hand = |t: f64, sim: &mut ArmSim<'_>| {
+        let mut held: Option<[f64; N]> = None;
+        let hand = |t: f64, sim: &mut ArmSim<'_, N>| {
             if t >= grab.start_s && t < grab.start_s + grab.seconds {
                 let p = *held.get_or_insert_with(|| sim.posture());
                 sim.pin(&p);
@@ -400,12 +422,12 @@ impl Controller {
 
     /// Run the servos along `desired` for `duration`, recording; `hand(t, sim)` acts on the
     /// arm from outside before each physics step at time `t` ([`no_hand`]: nothing).
-    fn run(
+    fn run<const N: usize>(
         &self,
-        sim: &mut ArmSim<'_>,
+        sim: &mut ArmSim<'_, N>,
         duration: f64,
-        mut hand: impl FnMut(f64, &mut ArmSim<'_>),
-        desired: impl Fn(f64) -> (Posture, Posture),
+        mut hand: impl FnMut(f64, &mut ArmSim<'_, N>),
+        desired: impl Fn(f64) -> ([f64; N], [f64; N]),
     ) -> Result<Recording> {
         let dt = sim.arm().timestep();
         let rate = self.config.record_rate_hz;
@@ -435,21 +457,21 @@ impl Controller {
         }
         let n_samples = ((duration * rate) - 1e-9).ceil().max(0.0) as usize;
         let n_steps = ((duration / dt) - 1e-9).ceil().max(0.0) as usize;
-        let mut rec = Recording::new(rate);
+        let mut rec = Recording::new(rate, sim.arm().robot());
         rec.time.reserve(n_samples);
 
         // After mj_step (Euler), MuJoCo's positions-dependent quantities (site positions) belong
         // to the state *before* the integration: the encoders read before a step and the sites
         // read after it form a consistent state. A final forward() completes the last one.
         sim.forward()?;
-        let mut prev: State = (sim.posture(), sim.wrist_position(), sim.gripper_position());
+        let mut prev: State<N> = (sim.posture(), sim.wrist_position(), sim.gripper_position());
         let mut t_prev = 0.0;
-        let mut push = |rec: &mut Recording, k: usize, a: &State, b: &State, alpha: f64| {
+        let mut push = |rec: &mut Recording, k: usize, a: &State<N>, b: &State<N>, alpha: f64| {
             let tk = k as f64 / rate;
             let lerp = |x: f64, y: f64| x + alpha * (y - x);
             rec.time.push(tk);
             rec.qpos.push(
-                (0..NJ)
+                (0..N)
                     .map(|j| {
                         let e = if self.config.encoder_noise_std > 0.0 {
                             noise.sample(&mut rng)
@@ -469,8 +491,8 @@ impl Controller {
         let mut next = 0usize;
         let mut record_until = |rec: &mut Recording,
                                 next: &mut usize,
-                                prev: &State,
-                                now: &State,
+                                prev: &State<N>,
+                                now: &State<N>,
                                 t_prev: f64,
                                 t_now: f64| {
             while *next < n_samples && (*next as f64 / rate) <= t_now + 1e-12 {
@@ -484,6 +506,7 @@ impl Controller {
             }
         };
         record_until(&mut rec, &mut next, &prev, &prev, 0.0, 0.0);
+        let mut touches = Touches::default();
         for n in 0..n_steps {
             let t = n as f64 * dt;
             hand(t, sim);
@@ -491,9 +514,11 @@ impl Controller {
             sim.command(&q, &qd, gc);
             let q_before = sim.posture();
             sim.step()?;
+            // the contacts MuJoCo found for the state at time t
+            touches.see(t, TOUCH_GAP_S, &sim.data().contacts());
             // consistent state at time t (n > 0; at n = 0 it is `prev` again)
             if n > 0 {
-                let now: State = (q_before, sim.wrist_position(), sim.gripper_position());
+                let now: State<N> = (q_before, sim.wrist_position(), sim.gripper_position());
                 record_until(&mut rec, &mut next, &prev, &now, t_prev, t);
                 prev = now;
                 t_prev = t;
@@ -501,13 +526,14 @@ impl Controller {
         }
         sim.forward()?;
         let t_end = n_steps as f64 * dt;
-        let now: State = (sim.posture(), sim.wrist_position(), sim.gripper_position());
+        let now: State<N> = (sim.posture(), sim.wrist_position(), sim.gripper_position());
         record_until(&mut rec, &mut next, &prev, &now, t_prev, t_end);
         // leave the servos at the final target, at rest
         let (q, _) = desired(duration);
-        sim.command(&q, &[0.0; NJ], gc);
+        sim.command(&q, &[0.0; N], gc);
+        rec.contacts = touches.into_vec();
         Ok(rec)
     }
 }
 
-type State = (Posture, [f64; 3], [f64; 3]);
+type State<const N: usize> = ([f64; N], [f64; 3], [f64; 3]);

@@ -50,7 +50,7 @@ pub enum SimError {
         range: (f64, f64),
     },
     /// A posture or target vector does not have one value per joint.
-    #[error("expected {expected} joint values (LShoulderPitch, LShoulderRoll, LElbowYaw, LElbowRoll, LWristYaw, LHand), got {got}")]
+    #[error("expected {expected} joint values ({}), got {got}", joint_list(*expected))]
     WrongJointCount {
         /// Number of joints of the arm.
         expected: usize,
@@ -91,3 +91,10 @@ pub enum SimError {
 
 /// Result of the `sim` room.
 pub type Result<T> = std::result::Result<T, SimError>;
+
+/// The joints of the robot with `count` joints, for messages.
+fn joint_list(count: usize) -> String {
+    let robot = crate::robot::Robot::ALL.into_iter();
+    let names = robot.map(|r| r.joint_names()).find(|n| n.len() == count);
+    names.map_or_else(|| "one per joint".into(), |n| n.join(", "))
+}

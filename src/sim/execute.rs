@@ -114,17 +114,11 @@ pub fn min_jerk_through_key_poses(postures: &[Vec<f64>], tolerance: f64) -> Vec<
     let mut out = Vec::with_capacity(postures.len());
     for w in keys.windows(2) {
         let (i, j) = (w[0], w[1]);
-        for k in i..j {
-            let s = (k - i) as f64 / (j - i) as f64;
-            let m = crate::gmr::minimum_jerk_at(s);
-            out.push(
-                postures[i]
-                    .iter()
-                    .zip(&postures[j])
-                    .map(|(a, b)| a + m * (b - a))
-                    .collect(),
-            );
-        }
+        out.extend(crate::curve::minimum_jerk(
+            &postures[i],
+            &postures[j],
+            j - i,
+        ));
     }
     if let Some(last) = postures.last() {
         out.push(last.clone());
@@ -173,7 +167,7 @@ pub fn clamp_to_ranges(postures: &[Vec<f64>]) -> Result<(Vec<Vec<f64>>, usize), 
         }
         let mut row = Vec::with_capacity(NJ);
         for (spec, &v) in JOINT_SPECS.iter().zip(p) {
-            let c = spec.clamp(v)?;
+            let c = super::spec::clamp_joint(spec, v)?;
             if c != v {
                 clamped += 1;
             }

@@ -2,13 +2,16 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::curve::{minimum_jerk_at, minimum_jerk_velocity, MINIMUM_JERK_PEAK};
+
 /// How a transition between two postures is timed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub enum Interpolation {
     /// Constant velocity: position linear in time (velocity jumps at the ends).
     Linear,
-    /// Minimum-jerk quintic s = 10 u^3 - 15 u^4 + 6 u^5: zero velocity and acceleration at both
-    /// ends, a smooth bell-shaped velocity profile (Flash & Hogan), like human reaching.
+    /// Minimum-jerk quintic s = 10 u^3 - 15 u^4 + 6 u^5 ([`minimum_jerk_at`]): zero velocity and
+    /// acceleration at both ends, a smooth bell-shaped velocity profile (Flash & Hogan), like
+    /// human reaching.
     #[default]
     MinimumJerk,
 }
@@ -19,14 +22,7 @@ impl Interpolation {
         let u = u.clamp(0.0, 1.0);
         match self {
             Interpolation::Linear => (u, 1.0),
-            Interpolation::MinimumJerk => {
-                let u2 = u * u;
-                let u3 = u2 * u;
-                (
-                    u3 * (10.0 - 15.0 * u + 6.0 * u2),
-                    30.0 * u2 * (1.0 - u) * (1.0 - u),
-                )
-            }
+            Interpolation::MinimumJerk => (minimum_jerk_at(u), minimum_jerk_velocity(u)),
         }
     }
 
@@ -35,7 +31,7 @@ impl Interpolation {
     pub fn peak_velocity_factor(self) -> f64 {
         match self {
             Interpolation::Linear => 1.0,
-            Interpolation::MinimumJerk => 1.875,
+            Interpolation::MinimumJerk => MINIMUM_JERK_PEAK,
         }
     }
 }

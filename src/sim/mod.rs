@@ -1,14 +1,14 @@
 //! The Nao H25 V5 left arm in MuJoCo (models/nao_left_arm.xml) and its position controller
 //! with encoder recording (40 Hz by default).
 //!
-//! - [`spec`]: the reference joint table, [`JOINT_NAMES`], named postures, posture checks.
+//! - [`spec`]: the left arm's joint table ([`crate::robot`]'s, as fixed-size postures),
+//!   [`JOINT_NAMES`], named postures, posture checks.
 //! - [`arm`]: [`NaoArm`] (the checked model) and [`ArmSim`] (one simulation of it).
 //! - [`interp`]: transition profiles ([`Interpolation`]).
 //! - [`controller`]: [`Controller`] for key-pose sequences and dense target trajectories.
 //! - [`recording`]: [`Recording`], what the controller records.
 //! - [`execute`]: postures executed on the arm ([`execute_postures`]), their [`Transition`].
-//! - [`score`]: scoring on the arm with wrist paths ([`evaluate`]), the evaluator's
-//!   [`ArmExecutor`].
+//! - [`score`]: scoring on the arm with wrist paths ([`evaluate`]).
 //! - [`error`]: [`SimError`], the room's error type.
 
 pub mod arm;
@@ -27,11 +27,12 @@ pub use controller::{
 pub use error::{Result, SimError};
 pub use execute::{clamp_to_ranges, execute_postures, key_pose_indices, Transition};
 pub use interp::Interpolation;
-pub use recording::Recording;
+pub use recording::{Recording, Touch};
 pub use score::{
-    check_reachable, demo_wrist_paths, evaluate, execute_and_score, trajectory, wrist_path,
-    ArmExecutor, LEAD_IN_PEAK_SPEED, SWING_JOINT,
+    check_reachable, demo_wrist_paths, evaluate, trajectory, wrist_path, LEAD_IN_PEAK_SPEED,
+    SWING_JOINT,
 };
 pub use spec::{
-    check_posture, clamp_posture, JointSpec, NamedPosture, Posture, JOINT_NAMES, JOINT_SPECS, NJ,
+    check_joint, check_posture, clamp_joint, clamp_posture, JointSpec, NamedPosture, Posture,
+    JOINT_NAMES, JOINT_SPECS, NJ,
 };

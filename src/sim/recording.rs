@@ -22,18 +22,93 @@ pub struct Recording {
     pub wrist: Vec<[f64; 3]>,
     /// `l_gripper` site position at each sample, m.
     pub gripper: Vec<[f64; 3]>,
+    /// Every contact between two parts of the robot during the motion (none on a model without
+    /// collision shapes, such as the left arm's).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub contacts: Vec<Touch>,
+}
+
+/// Two parts of the robot in contact over an interval of the motion.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Touch {
+    /// The two bodies (MuJoCo's names: `torso`, `LForeArm`, `r_wrist`, ...).
+    pub parts: [String; 2],
+    /// When the contact began, s from the start of the motion.
+    pub start_s: f64,
+    /// When it was last seen, s.
+    pub end_s: f64,
+    /// The deepest penetration, m (>= 0).
+    pub depth_m: f64,
+}
+
+impl Touch {
+    /// One line for people: "0.52-0.61 s: LForeArm and torso, 1.8 mm deep".
+    pub fn describe(&self) -> String {
+        format!(
+            "{:.2}-{:.2} s: {} and {}, {:.1} mm deep",
+            self.start_s,
+            self.end_s,
+            self.parts[0],
+            self.parts[1],
+            self.depth_m * 1e3
+        )
+    }
+}
+
+/// Gathers the contacts seen at each physics step into [`Touch`] intervals: two parts touch
+/// when their shapes meet or penetrate (a contact within the pair's margin, still apart, is
+/// none); a pair seen again within `gap_s` of its last sighting extends its interval.
+#[derive(Debug, Default)]
+pub(crate) struct Touches {
+    open: Vec<Touch>,
+}
+
+impl Touches {
+    pub(crate) fn see(&mut self, t: f64, gap_s: f64, contacts: &[crate::mujoco::Contact]) {
+        for c in contacts.iter().filter(|c| c.dist <= 0.0) {
+            let name = |i: usize| {
+                c.body_name[i]
+                    .clone()
+                    .unwrap_or_else(|| format!("body {}", c.body[i]))
+            };
+            let mut parts = [name(0), name(1)];
+            parts.sort();
+            let depth = (-c.dist).max(0.0);
+            let open = self
+                .open
+                .iter_mut()
+                .find(|o| o.parts == parts && t - o.end_s <= gap_s);
+            match open {
+                Some(o) => {
+                    o.end_s = t;
+                    o.depth_m = o.depth_m.max(depth);
+                }
+                None => self.open.push(Touch {
+                    parts,
+                    start_s: t,
+                    end_s: t,
+                    depth_m: depth,
+                }),
+            }
+        }
+    }
+
+    pub(crate) fn into_vec(self) -> Vec<Touch> {
+        self.open
+    }
 }
 
 impl Recording {
-    pub(crate) fn new(rate_hz: f64) -> Recording {
+    pub(crate) fn new(rate_hz: f64, robot: crate::robot::Robot) -> Recording {
         Recording {
-            joint_names: super::JOINT_NAMES.iter().map(|s| s.to_string()).collect(),
+            joint_names: robot.joint_names().iter().map(|s| s.to_string()).collect(),
             rate_hz,
             time: Vec::new(),
             qpos: Vec::new(),
             target: Vec::new(),
             wrist: Vec::new(),
             gripper: Vec::new(),
+            contacts: Vec::new(),
         }
     }
 
@@ -68,6 +143,12 @@ impl Recording {
         self.target.extend(later.target);
         self.wrist.extend(later.wrist);
         self.gripper.extend(later.gripper);
+        self.contacts
+            .extend(later.contacts.into_iter().map(|c| Touch {
+                start_s: c.start_s + offset,
+                end_s: c.end_s + offset,
+                ..c
+            }));
         Ok(())
     }
 

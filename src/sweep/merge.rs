@@ -12,7 +12,9 @@ use plotters::style::RGBColor;
 
 use crate::experiment::baseline::GMR_COLOR;
 use crate::fsutil::write_atomic;
-use crate::plot::{boxplots_png, quantile, BoxPanel};
+use crate::plot::{boxplots_png, BoxPanel};
+use crate::stats::quantile;
+use crate::table::Table;
 
 use super::run::RunRecord;
 use super::runner::{read_runs_of, Manifest};
@@ -353,15 +355,6 @@ fn wins(samples: &[Sample], metric: &Metric, row: &Row) -> Option<Wins> {
     any.then_some(w)
 }
 
-/// `| a | b | ... |` and a line break.
-fn md_row(md: &mut String, cells: impl IntoIterator<Item = String>) {
-    md.push('|');
-    for c in cells {
-        let _ = write!(md, " {c} |");
-    }
-    md.push('\n');
-}
-
 fn fmt(v: f64, digits: usize) -> String {
     format!("{v:.digits$}")
 }
@@ -417,15 +410,13 @@ fn tables_md(
         let _ = writeln!(md, "## {}{better}\n", m.label);
         let pairs = has_pairs && m.better != Better::Neither;
         let columns = methods.iter().map(|&me| format!("{} (n)", method_name(me)));
-        let columns: Vec<String> = columns.chain(pairs.then(|| "paired wins".into())).collect();
-        md_row(
-            &mut md,
+        let columns = columns.chain(pairs.then(|| "paired wins".into()));
+        let mut table = Table::new(
             ["axis", "value"]
                 .map(String::from)
                 .into_iter()
-                .chain(columns.clone()),
+                .chain(columns),
         );
-        let _ = writeln!(md, "|---|---|{}", "---|".repeat(columns.len()));
         for row in rows {
             let cells = methods
                 .iter()
@@ -444,15 +435,14 @@ fn tables_md(
                 wins(samples, m, row)
                     .map_or("n/a".into(), |w| format!("{}-{}-{}", w.hsom, w.gmr, w.ties))
             });
-            md_row(
-                &mut md,
+            table.row(
                 [row.0.to_string(), row.1.clone()]
                     .into_iter()
                     .chain(cells)
                     .chain(paired),
             );
         }
-        md.push('\n');
+        let _ = writeln!(md, "{table}");
     }
     md.push_str("## Failed runs\n\n");
     if failed.is_empty() {
@@ -529,7 +519,7 @@ fn timing_md(manifest: &Manifest, runs: &[RunRecord]) -> String {
     let mut md = format!(
         "# Sweep `{}`: times\n\nThese differ between machines, loads and shards; the tables \
          in `{TABLES_MD}` do not.\n\nSum of the {} runs' wall times: {total:.1} s (median per \
-         run {:.2} s).\n\n| shard | runs | sum of wall times (s) |\n|---|---|---|\n",
+         run {:.2} s).\n\n",
         manifest.name,
         runs.len(),
         Stats::of(runs.iter().map(|r| r.wall_s)).map_or(0.0, |s| s.median),
@@ -540,10 +530,17 @@ fn timing_md(manifest: &Manifest, runs: &[RunRecord]) -> String {
         e.0 += 1;
         e.1 += r.wall_s;
     }
+    let mut table = Table::new(["shard", "runs", "sum of wall times (s)"]);
     for (s, (n, t)) in shards {
-        let _ = writeln!(md, "| {s} | {n} | {t:.1} |");
+        table.row([s.to_string(), n.to_string(), format!("{t:.1}")]);
     }
-    md.push_str("\n| method | fits timed | training, median (s) | reproduction, median (ms) |\n|---|---|---|---|\n");
+    let _ = writeln!(md, "{table}");
+    let mut table = Table::new([
+        "method",
+        "fits timed",
+        "training, median (s)",
+        "reproduction, median (ms)",
+    ]);
     for method in [Method::Hierarchy, Method::GmmGmr] {
         let of = |key: &str| {
             Stats::of(runs.iter().flat_map(|r| {
@@ -555,16 +552,15 @@ fn timing_md(manifest: &Manifest, runs: &[RunRecord]) -> String {
             }))
         };
         if let (Some(t), Some(r)) = (of("train_s"), of("reproduce_s")) {
-            let _ = writeln!(
-                md,
-                "| {} | {} | {:.3} | {:.2} |",
-                method_name(method),
-                t.n,
-                t.median,
-                r.median * 1e3
-            );
+            table.row([
+                method_name(method).to_string(),
+                t.n.to_string(),
+                format!("{:.3}", t.median),
+                format!("{:.2}", r.median * 1e3),
+            ]);
         }
     }
+    md.push_str(&table.to_string());
     md
 }
 

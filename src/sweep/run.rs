@@ -14,10 +14,10 @@ use crate::eval::{
     diagonal, fold, FoldInput, FoldScores, HeldOutSummary, Method, Split, Training,
     SWING_MIN_AMPLITUDE_RAD,
 };
-use crate::experiment::{folds, synthetic_demonstrations, DemoSettings};
+use crate::experiment::{folds, synthetic_demonstrations, ArmExecutor, DemoSettings};
 use crate::gesture::Gesture;
 use crate::metrics::column_swings;
-use crate::sim::{ArmExecutor, NaoArm, SWING_JOINT};
+use crate::sim::{NaoArm, SWING_JOINT};
 
 use super::spec::{AxisValues, Evaluation, RunPlan, SweepSpec};
 use super::{read_json, write_json, SweepError};
@@ -145,8 +145,8 @@ fn run_methods(spec: &SweepSpec, plan: &RunPlan) -> Result<Vec<MethodRecord>, St
         None => NaoArm::load_default(),
     }
     .map_err(|e| format!("loading the arm model: {e}"))?;
-    let gesture =
-        Gesture::by_name(&a.gesture).ok_or_else(|| format!("unknown gesture '{}'", a.gesture))?;
+    let gesture = Gesture::by_name(crate::robot::Robot::LeftArm, &a.gesture)
+        .ok_or_else(|| format!("unknown gesture '{}'", a.gesture))?;
     let config = spec.config_of(a).ok_or_else(|| {
         format!(
             "no configuration '{}' at height {}",

@@ -502,11 +502,11 @@ fn check_axes(a: RawAxes) -> Result<Axes, String> {
             "gesture",
             a.gesture,
             "reading-watch".into(),
-            |g| match Gesture::by_name(&g) {
+            |g| match Gesture::by_name(crate::robot::Robot::LeftArm, &g) {
                 Some(_) => Ok(g),
                 None => Err(format!(
                     "unknown gesture '{g}': allowed {}",
-                    Gesture::names().join(", ")
+                    Gesture::names(crate::robot::Robot::LeftArm).join(", ")
                 )),
             },
         )?,

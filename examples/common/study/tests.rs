@@ -138,10 +138,3 @@ fn the_json_holds_the_gates_beside_the_study() {
     assert_eq!(v["gates"][0]["sets"], 0);
     assert!(v["gates"][0]["joint_dtw"].is_null());
 }
-
-#[test]
-fn median_of_odd_even_and_empty() {
-    assert_eq!(median([3.0, 1.0, 2.0]), Some(2.0));
-    assert_eq!(median([4.0, 1.0, 2.0, 3.0]), Some(2.5));
-    assert_eq!(median([f64::NAN]), None);
-}

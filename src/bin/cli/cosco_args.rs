@@ -25,8 +25,14 @@ pub enum Command {
         #[cfg(feature = "ros2")]
         #[command(subcommand)]
         action: Option<super::export::DemosAction>,
-        /// Gesture name (reading-watch, wave, reach-point, salute), or `all`: every gesture,
-        /// each in its own labelled subdirectory of --out (OUT/<gesture>/demo_01.csv, ...).
+        /// The robot: `left-arm` (the paper's experiment) or `upper-body` (the head and both
+        /// arms, 14 joints).
+        #[arg(long, default_value = "left-arm", value_parser = super::parse_robot)]
+        robot: cosco_hsom::robot::Robot,
+        /// Gesture name (left arm: reading-watch, wave, reach-point, salute; upper body:
+        /// wave-right, clap, welcome, shrug, nod, shake-head, reading-watch, salute), or `all`:
+        /// every gesture of the robot, each in its own labelled subdirectory of --out
+        /// (OUT/<gesture>/demo_01.csv, ...).
         #[arg(long, default_value = "reading-watch")]
         gesture: String,
         /// Number of demonstrations.
@@ -42,7 +48,7 @@ pub enum Command {
         /// far below 0.1 rad, about 6 degrees; more would hide the gesture).
         #[arg(long, default_value_t = cosco_hsom::experiment::job::DEFAULT_ENCODER_NOISE, allow_negative_numbers = true, value_parser = super::parse_noise)]
         noise: f64,
-        /// MJCF model of the arm.
+        /// MJCF model of the robot (default: its shipped model under models/).
         #[arg(long)]
         model: Option<PathBuf>,
     },
@@ -54,7 +60,7 @@ pub enum Command {
     },
     /// Export a reproduction for a real robot: NAOqi JSON, ROS 2 MCAP or CSV, time-scaled
     /// and checked against the robot's joint ranges and velocity limits.
-    Export(cosco_hsom::export::ExportRequest),
+    Export(super::export::ExportArgs),
     /// Train a CoSCo-HSOM hierarchy on demonstration CSV files and save it (.bin or .txt).
     Train {
         /// XML configuration (default: the built-in configs/nao-gestures.xml, the recommended events extension).
@@ -82,7 +88,7 @@ pub enum Command {
     },
     /// Reproduce a gesture from an initial posture with a saved model; writes `step` then the
     /// demonstrations' columns.
-    Reproduce(cosco_hsom::app::ReproduceFile),
+    Reproduce(super::reproduce::ReproduceArgs),
     /// Recognise demonstrations with a model of several gestures: per file the label (or
     /// `unknown`), a score per label and the earliest sample from which the decision held.
     Recognize {
@@ -142,7 +148,7 @@ pub enum Command {
         /// (`end`), or on it and its posture at phase 0.5 (`end+mid`), beside the
         /// unconditioned run.
         #[arg(long, value_name = "end|end+mid")]
-        condition: Option<cosco_hsom::eval::Conditioning>,
+        condition: Option<Condition>,
         /// Also run every fold with its goal moved K times the training demonstrations' end
         /// spread away from their mean end (extrapolation), scored against the held-out
         /// demonstration shifted as far; repeatable.
@@ -213,6 +219,26 @@ pub enum Command {
     /// file per run in DIR/runs, finished runs skipped; `merge` makes the tables and plots.
     #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
     Sweep(super::sweep::SweepArgs),
+}
+
+/// `--condition`: what every fold is also conditioned on ([`cosco_hsom::eval::Conditioning`]).
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub enum Condition {
+    /// Also the held-out demonstration's last posture, as the goal.
+    #[value(name = "end")]
+    End,
+    /// Also its last posture and its posture at phase 0.5, as a via-point.
+    #[value(name = "end+mid")]
+    EndMid,
+}
+
+impl From<Condition> for cosco_hsom::eval::Conditioning {
+    fn from(c: Condition) -> Self {
+        match c {
+            Condition::End => cosco_hsom::eval::Conditioning::End,
+            Condition::EndMid => cosco_hsom::eval::Conditioning::EndMid,
+        }
+    }
 }
 
 /// The recognition study's demonstrations (`cosco heldout --recognition`).

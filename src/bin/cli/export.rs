@@ -1,16 +1,114 @@
 //! `cosco export` and `cosco demos import`: the arguments, parsed and handed to
 //! [`cosco_hsom::app`].
 
-#[cfg(feature = "ros2")]
 use std::path::PathBuf;
 
 use anyhow::Result;
-use cosco_hsom::app;
-use cosco_hsom::export::ExportRequest;
+use cosco_hsom::app::{self, ExportFrom, ReproduceRequest};
+use cosco_hsom::condition::{PostureArg, ViaPoint};
+use cosco_hsom::export::{limits, ExportRequest, Format, DEFAULT_STEP_RATE_HZ};
+
+/// Everything `cosco export` is asked: its command line.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ExportArgs {
+    /// A reproduction CSV (`cosco reproduce`'s, GMM/GMR's, any CSV with `time` or `step`
+    /// then one column per joint).
+    #[arg(long, conflicts_with = "model", required_unless_present = "model")]
+    pub reproduction: Option<PathBuf>,
+    /// Or a model saved by `cosco train`, reproduced from --initial or --initial-from.
+    #[arg(long)]
+    pub model: Option<PathBuf>,
+    /// The initial posture, comma-separated (with --model).
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        requires = "model",
+        conflicts_with = "initial_from"
+    )]
+    pub initial: Option<PostureArg>,
+    /// Take the initial posture from the first row of this CSV (with --model).
+    #[arg(long, requires = "model")]
+    pub initial_from: Option<PathBuf>,
+    /// The gesture to reproduce (a model of several gestures).
+    #[arg(long, requires = "model")]
+    pub gesture: Option<String>,
+    /// The last posture, comma-separated (with --model): the reproduction ends exactly there.
+    #[arg(long, allow_hyphen_values = true, requires = "model")]
+    pub goal: Option<PostureArg>,
+    /// A posture to pass at a phase (with --model): `PHASE:V1,V2,...`; repeatable.
+    #[arg(long, allow_hyphen_values = true, requires = "model")]
+    pub via: Vec<ViaPoint>,
+    /// Also write the reproduction's 95 % confidence band to this CSV (with --model), as
+    /// `cosco reproduce --band` does.
+    #[arg(long, requires = "model")]
+    pub band: Option<PathBuf>,
+    /// Output format: naoqi (JSON for ALMotion.angleInterpolation), ros2 (MCAP with a
+    /// trajectory_msgs/msg/JointTrajectory) or csv.
+    #[arg(long)]
+    pub format: Format,
+    /// Output file.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Play the motion this many times faster (0.5: half as fast).
+    #[arg(long, conflicts_with = "duration")]
+    pub speed: Option<f64>,
+    /// Stretch or squeeze the motion to last this many seconds.
+    #[arg(long)]
+    pub duration: Option<f64>,
+    /// Fraction of each joint's documented maximum velocity the motion may reach.
+    #[arg(long, default_value_t = limits::DEFAULT_VELOCITY_FRACTION)]
+    pub velocity_fraction: f64,
+    /// Slow the whole motion down to the velocity limit instead of refusing it (reported).
+    #[arg(long)]
+    pub clamp: bool,
+    /// CSV output rate, Hz (default: the trajectory's own points).
+    #[arg(long)]
+    pub rate: Option<f64>,
+    /// Rate of a `step` column (a reproduction without `time`), Hz.
+    #[arg(long, default_value_t = DEFAULT_STEP_RATE_HZ)]
+    pub step_rate: f64,
+    /// Another robot: the joint ranges from this MJCF file (with --velocity-table).
+    #[arg(long, requires = "velocity_table")]
+    pub mjcf: Option<PathBuf>,
+    /// Another robot: CSV `joint,max_velocity` of the joints to export (with --mjcf).
+    #[arg(long, requires = "mjcf")]
+    pub velocity_table: Option<PathBuf>,
+    /// With --format ros2: also execute the motion on the simulated arm and record its
+    /// joints as sensor_msgs/msg/JointState on /joint_states at 40 Hz.
+    #[cfg_attr(feature = "sim", arg(long))]
+    #[cfg_attr(not(feature = "sim"), arg(skip))]
+    pub executed: bool,
+}
 
 /// `cosco export`: the report's lines.
-pub fn export(a: &ExportRequest) -> Result<Vec<String>> {
-    Ok(app::export(a)?)
+pub fn export(a: ExportArgs) -> Result<Vec<String>> {
+    let from = match (a.reproduction, a.model) {
+        (Some(path), _) => ExportFrom::Reproduction(path),
+        (None, Some(model)) => ExportFrom::Model(ReproduceRequest {
+            model,
+            gesture: a.gesture,
+            initial: a.initial,
+            initial_from: a.initial_from,
+            goal: a.goal,
+            via: a.via,
+            band: a.band,
+        }),
+        (None, None) => anyhow::bail!("--reproduction: give --reproduction FILE or --model FILE"),
+    };
+    let request = ExportRequest {
+        format: a.format,
+        out: a.out,
+        speed: a.speed,
+        duration: a.duration,
+        velocity_fraction: a.velocity_fraction,
+        clamp: a.clamp,
+        rate: a.rate,
+        step_rate: a.step_rate,
+        mjcf: a.mjcf,
+        velocity_table: a.velocity_table,
+        executed: a.executed,
+    };
+    Ok(app::export(&from, &request)?)
 }
 
 /// `cosco demos import`: what `cosco demos` does besides recording.

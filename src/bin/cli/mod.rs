@@ -26,6 +26,7 @@ pub mod sweep;
 
 pub mod cosco_args;
 pub mod export;
+pub mod reproduce;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -104,6 +105,12 @@ pub fn parse_count(s: &str) -> Result<usize, String> {
             "expected a whole number of demonstrations, at least 1; got {s:?}"
         )),
     }
+}
+
+/// `--robot`: a robot of the description, by name.
+#[cfg(feature = "sim")]
+pub fn parse_robot(s: &str) -> Result<cosco_hsom::robot::Robot, String> {
+    cosco_hsom::robot::Robot::from_name(s)
 }
 
 /// `--seed`: a whole number from 0 to 2^64 - 1.

@@ -2,6 +2,8 @@
 
 use std::fmt::Write as _;
 
+use crate::table::Table;
+
 use super::{fraction, Answer, Answers, RecognitionStudy, ACCEPT_GATE, UNKNOWN_GATE};
 
 /// A fraction as a percentage, `-` when there is nothing to count.
@@ -48,15 +50,14 @@ pub fn recognition_json(study: &RecognitionStudy) -> String {
     serde_json::to_string_pretty(&doc).unwrap_or_default()
 }
 
-fn model_row(out: &mut String, name: &str, a: &Answers) {
-    let _ = writeln!(
-        out,
-        "| {name} | {} | {} | {} | {} |",
+fn model_row(table: &mut Table, name: &str, a: &Answers) {
+    table.row([
+        name.to_string(),
         counted(a.accepted(), a.held_out.len()),
         pct(a.right_by_best()),
         counted(a.unknown(), a.untaught.len()),
-        if a.passes() { "pass" } else { "fail" }
-    );
+        if a.passes() { "pass" } else { "fail" }.to_string(),
+    ]);
 }
 
 /// The study as Markdown: the trained model beside the control against the gates, then per
@@ -78,22 +79,32 @@ pub fn recognition_markdown(study: &RecognitionStudy) -> String {
              gesture's demonstrations alone."
         }
     );
-    let _ = writeln!(
-        out,
-        "| model | held-out accepted (gate {:.0} %) | lowest score right | untaught called unknown (gate {:.0} %) | gates |",
-        100.0 * ACCEPT_GATE,
-        100.0 * UNKNOWN_GATE
-    );
-    let _ = writeln!(out, "|---|---|---|---|---|");
-    model_row(&mut out, "trained", m);
+    let mut table = Table::new([
+        "model".to_string(),
+        format!("held-out accepted (gate {:.0} %)", 100.0 * ACCEPT_GATE),
+        "lowest score right".to_string(),
+        format!(
+            "untaught called unknown (gate {:.0} %)",
+            100.0 * UNKNOWN_GATE
+        ),
+        "gates".to_string(),
+    ]);
+    model_row(&mut table, "trained", m);
     if let Some(c) = c {
-        model_row(&mut out, "untrained (control, must fail)", c);
+        model_row(&mut table, "untrained (control, must fail)", c);
     }
-    let _ = writeln!(
-        out,
-        "\n| gesture | taught | demos | accepted | lowest score right | called unknown | another label | control: accepted | control: unknown |"
-    );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(out, "{table}");
+    let mut table = Table::new([
+        "gesture",
+        "taught",
+        "demos",
+        "accepted",
+        "lowest score right",
+        "called unknown",
+        "another label",
+        "control: accepted",
+        "control: unknown",
+    ]);
     // the answers of label `l` among `a`, and the percentage of them that are `right`
     let of = |a: &[Answer], l: &str| -> Vec<Answer> {
         a.iter().filter(|x| x.label == l).cloned().collect()
@@ -101,28 +112,32 @@ pub fn recognition_markdown(study: &RecognitionStudy) -> String {
     let share = |a: &[Answer], l: &str, right| pct(fraction(&of(a, l), right));
     let control = |f: &dyn Fn(&Answers) -> String| c.map_or("-".to_string(), f);
     for l in &study.taught {
-        let _ = writeln!(
-            out,
-            "| {l} | yes | {} | {} | {} | {} | {} | {} | {} |",
-            of(&m.held_out, l).len(),
+        table.row([
+            l.clone(),
+            "yes".into(),
+            of(&m.held_out, l).len().to_string(),
             share(&m.held_out, l, Answer::accepted),
             share(&m.held_out, l, Answer::right_by_best),
             share(&m.held_out, l, Answer::unknown),
             share(&m.held_out, l, Answer::other_label),
             control(&|c| share(&c.held_out, l, Answer::accepted)),
             control(&|c| share(&c.held_out, l, Answer::unknown)),
-        );
+        ]);
     }
     for l in &study.untaught {
-        let _ = writeln!(
-            out,
-            "| {l} | no | {} | - | - | {} | {} | - | {} |",
-            of(&m.untaught, l).len(),
+        table.row([
+            l.clone(),
+            "no".into(),
+            of(&m.untaught, l).len().to_string(),
+            "-".into(),
+            "-".into(),
             share(&m.untaught, l, Answer::unknown),
             share(&m.untaught, l, Answer::other_label),
+            "-".into(),
             control(&|c| share(&c.untaught, l, Answer::unknown)),
-        );
+        ]);
     }
+    out.push_str(&table.to_string());
     if !study.reproduced.is_empty() {
         forgetting_table(&mut out, study);
     }
@@ -144,23 +159,27 @@ fn forgetting_table(out: &mut String, study: &RecognitionStudy) {
          each of the others). The model taught at once accepted {}.\n",
         counted(Some(accepted as f64 / r.len() as f64), r.len())
     );
-    let _ = writeln!(
-        out,
-        "| gesture | folds | at once | right after taught | after the last | last / at once | last / right after | gate |"
-    );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
+    let mut table = Table::new([
+        "gesture",
+        "folds",
+        "at once",
+        "right after taught",
+        "after the last",
+        "last / at once",
+        "last / right after",
+        "gate",
+    ]);
     for f in forgetting(&study.taught, r) {
-        let _ = writeln!(
-            out,
-            "| {} | {} | {:.4} | {:.4} | {:.4} | {:.3} | {:.3} | {} |",
-            f.label,
-            f.folds,
-            f.at_once,
-            f.after_taught,
-            f.after_last,
-            f.against_at_once,
-            f.against_taught,
-            if f.passes { "pass" } else { "fail" }
-        );
+        table.row([
+            f.label.to_string(),
+            f.folds.to_string(),
+            format!("{:.4}", f.at_once),
+            format!("{:.4}", f.after_taught),
+            format!("{:.4}", f.after_last),
+            format!("{:.3}", f.against_at_once),
+            format!("{:.3}", f.against_taught),
+            if f.passes { "pass" } else { "fail" }.to_string(),
+        ]);
     }
+    out.push_str(&table.to_string());
 }

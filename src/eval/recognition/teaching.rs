@@ -160,7 +160,7 @@ pub fn forgetting(taught: &[String], reproduced: &[Reproduced]) -> Vec<Forgettin
         .iter()
         .filter_map(|l| {
             let of: Vec<&Reproduced> = reproduced.iter().filter(|r| r.label == *l).collect();
-            let med = |f: fn(&Reproduced) -> f64| crate::metrics::median(of.iter().map(|r| f(r)));
+            let med = |f: fn(&Reproduced) -> f64| crate::stats::median(of.iter().map(|r| f(r)));
             let (at_once, after_taught, after_last) = (
                 med(|r| r.at_once)?,
                 med(|r| r.after_taught)?,

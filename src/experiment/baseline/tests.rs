@@ -1,21 +1,8 @@
 use super::*;
-use crate::gmr::{lead_in_ticks_at, minimum_jerk, Gmm};
+use crate::curve::minimum_jerk;
+use crate::gmr::{lead_in_ticks_at, Gmm};
 use crate::sim::JOINT_NAMES;
 use nalgebra::{DMatrix, DVector};
-
-#[test]
-fn minimum_jerk_starts_at_from_and_approaches_to_monotonically() {
-    let s = minimum_jerk(&[0.0, 1.0], &[1.0, 1.0], 10);
-    assert_eq!(s.len(), 10);
-    assert_eq!(s[0], vec![0.0, 1.0]);
-    for w in s.windows(2) {
-        assert!(w[1][0] > w[0][0]);
-        assert_eq!(w[1][1], 1.0);
-    }
-    // symmetric about the middle: h(1/2) = 1/2
-    assert!((s[5][0] - 0.5).abs() < 1e-12);
-    assert!(minimum_jerk(&[0.0], &[1.0], 0).is_empty());
-}
 
 #[test]
 fn lead_in_respects_the_peak_speed_and_the_minimum() {

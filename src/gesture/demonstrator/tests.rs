@@ -1,5 +1,6 @@
-use super::super::library::{reading_watch, wave, STAND_INIT};
+use super::super::library::{reading_watch, stand_init, wave};
 use super::*;
+use crate::robot::Robot;
 use rand::SeedableRng;
 
 const LIMITS: [(f64, f64); 6] = [
@@ -23,9 +24,9 @@ fn dist(a: &Pose, b: &Pose) -> f64 {
 fn starts_and_ends_at_the_initial_posture_and_reaches_the_apex() {
     let g = reading_watch();
     let mut rng = ChaCha8Rng::seed_from_u64(7);
-    let h = HumanTrajectory::sample(&g, &Variation::default(), &LIMITS, &mut rng).unwrap();
-    assert!(dist(&h.at(0.0), &STAND_INIT) < 1e-12);
-    assert!(dist(&h.at(h.duration()), &STAND_INIT) < 1e-9);
+    let h = HumanTrajectory::sample(&g, &Variation::default(), &mut rng).unwrap();
+    assert!(dist(&h.at(0.0), &stand_init(Robot::LeftArm)) < 1e-12);
+    assert!(dist(&h.at(h.duration()), &stand_init(Robot::LeftArm)) < 1e-9);
     let closest = h
         .sampled(0.01)
         .iter()
@@ -40,20 +41,20 @@ fn demonstrations_differ_in_length_and_seeds_repeat() {
     let g = wave();
     let v = Variation::default();
     let mut r1 = ChaCha8Rng::seed_from_u64(1);
-    let a = HumanTrajectory::sample(&g, &v, &LIMITS, &mut r1).unwrap();
-    let b = HumanTrajectory::sample(&g, &v, &LIMITS, &mut r1).unwrap();
+    let a = HumanTrajectory::sample(&g, &v, &mut r1).unwrap();
+    let b = HumanTrajectory::sample(&g, &v, &mut r1).unwrap();
     assert!((a.duration() - b.duration()).abs() > 0.05);
     let mut r2 = ChaCha8Rng::seed_from_u64(1);
-    let a2 = HumanTrajectory::sample(&g, &v, &LIMITS, &mut r2).unwrap();
+    let a2 = HumanTrajectory::sample(&g, &v, &mut r2).unwrap();
     assert_eq!(a.sampled(0.05).len(), a2.sampled(0.05).len());
     assert_eq!(a.at(2.0), a2.at(2.0));
 }
 
 #[test]
 fn stays_inside_limits_and_is_still_while_idle() {
-    for g in super::super::library::Gesture::all() {
+    for g in super::super::library::Gesture::all(crate::robot::Robot::LeftArm) {
         let mut rng = ChaCha8Rng::seed_from_u64(3);
-        let h = HumanTrajectory::sample(&g, &Variation::default(), &LIMITS, &mut rng).unwrap();
+        let h = HumanTrajectory::sample(&g, &Variation::default(), &mut rng).unwrap();
         for (_, q) in h.sampled(0.01) {
             for (j, v) in q.iter().enumerate() {
                 assert!(
@@ -79,14 +80,6 @@ fn bad_variation_is_rejected_with_the_field_name() {
         ..Variation::default()
     };
     let mut rng = ChaCha8Rng::seed_from_u64(0);
-    let e = HumanTrajectory::sample(&reading_watch(), &v, &LIMITS, &mut rng).unwrap_err();
+    let e = HumanTrajectory::sample(&reading_watch(), &v, &mut rng).unwrap_err();
     assert!(e.contains("speed"), "{e}");
-    let e = HumanTrajectory::sample(
-        &reading_watch(),
-        &Variation::default(),
-        &LIMITS[..3],
-        &mut rng,
-    )
-    .unwrap_err();
-    assert!(e.contains("limits"), "{e}");
 }

@@ -377,7 +377,7 @@ impl EventsHsom {
                 .then(|| StartKnots::mean(&rows, &vec![1.0; rows.len()])[..s].to_vec())
         };
         let (start, end) = (mean(|d| d.first()), mean(|d| d.last()));
-        let jerk = crate::metrics::median(
+        let jerk = crate::stats::median(
             norm.iter()
                 .filter_map(|d| crate::metrics::normalized_jerk(&state_rows(d, s), 1.0)),
         );

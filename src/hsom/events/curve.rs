@@ -4,6 +4,7 @@
 
 use super::encode::Step;
 use super::traces::HALF_PLACES;
+use crate::curve::{hermite, minimum_jerk_at, pchip_slopes, PchipEnds, MINIMUM_JERK_PEAK};
 use crate::hsom::model::{DemoSmoothness, Model, Part};
 use crate::hsom::reproduction::{Reproduction, StopReason};
 
@@ -235,7 +236,13 @@ impl<A: Part> Model<A> {
             (Some(off), Some(d)) => off
                 .iter()
                 .zip(&d.peak_step)
-                .map(|(o, p)| if *p > 0.0 { 1.875 * o.abs() / p } else { whole })
+                .map(|(o, p)| {
+                    if *p > 0.0 {
+                        MINIMUM_JERK_PEAK * o.abs() / p
+                    } else {
+                        whole
+                    }
+                })
                 .fold(
                     e.and_then(|e| e.start_fade).unwrap_or(1.0) * whole,
                     f64::max,
@@ -251,7 +258,7 @@ impl<A: Part> Model<A> {
                 let mut y = monotone_cubic_from(&timed.t, knots, samples, m0[d]);
                 if let (Some(off), Some(from)) = (&offset, &timed.joined_from) {
                     for (i, v) in y.iter_mut().enumerate() {
-                        *v += off[d] * (1.0 - crate::gmr::minimum_jerk_at(i as f64 / horizon));
+                        *v += off[d] * (1.0 - minimum_jerk_at(i as f64 / horizon));
                     }
                     // exactly the given posture, not the first knot plus its offset
                     y[0] = from[d];
@@ -442,8 +449,8 @@ pub(super) fn no_faster_than(
     (slowed, n)
 }
 
-/// The monotone cubic through the knots (t, v) (Fritsch-Carlson tangents, zero at both
-/// ends) at the samples 0..samples.
+/// The monotone cubic through the knots (t, v) (PCHIP slopes, [`pchip_slopes`], at rest at
+/// both ends) at the samples 0..samples.
 #[cfg(test)]
 pub(super) fn monotone_cubic(t: &[f64], v: &[f64], samples: usize) -> Vec<f64> {
     monotone_cubic_from(t, v, samples, 0.0)
@@ -454,7 +461,7 @@ pub(super) fn monotone_cubic(t: &[f64], v: &[f64], samples: usize) -> Vec<f64> {
 /// otherwise.
 fn monotone_cubic_from(t: &[f64], v: &[f64], samples: usize, m0: f64) -> Vec<f64> {
     let k = t.len();
-    let mut m = monotone_tangents(t, v);
+    let mut m = pchip_slopes(t, v, PchipEnds::AtRest);
     if k >= 2 && t[1] > t[0] {
         let secant = (v[1] - v[0]) / (t[1] - t[0]);
         m[0] = if m0 * secant > 0.0 {
@@ -471,36 +478,17 @@ fn monotone_cubic_from(t: &[f64], v: &[f64], samples: usize, m0: f64) -> Vec<f64
             while seg + 2 < k && ti > t[seg + 1] {
                 seg += 1;
             }
-            on_segment(t, v, &m, seg, ti)
+            hermite(t, v, &m, seg, ti)
         })
         .collect()
 }
 
 /// The cubic through the knots (t, v) with tangents `m` at time `ti`, the segment found by
-/// bisection (before the first knot and after the last: their values).
+/// bisection (at a knot, the segment that ends there; before the first knot and after the
+/// last: their values).
 fn cubic_at(t: &[f64], v: &[f64], m: &[f64], ti: f64) -> f64 {
     let seg = t.partition_point(|&x| x < ti).clamp(1, t.len().max(2) - 1) - 1;
-    on_segment(t, v, m, seg, ti)
-}
-
-/// The cubic on segment `seg` (knots seg and seg + 1) at time `ti`, clamped to the segment:
-/// the cubic Hermite between the two knots with their tangents; a single knot's value.
-fn on_segment(t: &[f64], v: &[f64], m: &[f64], seg: usize, ti: f64) -> f64 {
-    if t.len() == 1 {
-        return v[0];
-    }
-    let (t0, v0, m0) = (t[seg], v[seg], m[seg]);
-    let (v1, m1) = (v[seg + 1], m[seg + 1]);
-    let h = t[seg + 1] - t0;
-    if h <= 0.0 {
-        return v1;
-    }
-    let u = ((ti - t0) / h).clamp(0.0, 1.0);
-    let (u2, u3) = (u * u, u * u * u);
-    (2.0 * u3 - 3.0 * u2 + 1.0) * v0
-        + (u3 - 2.0 * u2 + u) * h * m0
-        + (-2.0 * u3 + 3.0 * u2) * v1
-        + (u3 - u2) * h * m1
+    hermite(t, v, m, seg, ti)
 }
 
 /// The fewest samples each half of a traced event lasts for the event to pass through two
@@ -599,7 +587,7 @@ pub(super) fn turning_points_kept(
         if turning.is_empty() {
             break;
         }
-        let m = monotone_tangents(t, &v);
+        let m = pchip_slopes(t, &v, PchipEnds::AtRest);
         let mut moved = 0.0f64;
         for &(i, a, b) in &turning {
             let mean = (a..b).map(|j| cubic_at(t, &v, &m, j as f64)).sum::<f64>() / (b - a) as f64;
@@ -612,28 +600,6 @@ pub(super) fn turning_points_kept(
         }
     }
     v
-}
-
-/// Fritsch-Carlson tangents of a monotone cubic through (t, v), zero at both ends.
-pub(super) fn monotone_tangents(t: &[f64], v: &[f64]) -> Vec<f64> {
-    let k = t.len();
-    let mut m = vec![0.0; k];
-    if k < 3 {
-        return m;
-    }
-    let delta: Vec<f64> = (0..k - 1)
-        .map(|i| (v[i + 1] - v[i]) / (t[i + 1] - t[i]))
-        .collect();
-    for i in 1..k - 1 {
-        if delta[i - 1] * delta[i] > 0.0 {
-            // weighted harmonic mean (Fritsch-Butland), never more than 3x either secant
-            let (h0, h1) = (t[i] - t[i - 1], t[i + 1] - t[i]);
-            let w1 = 2.0 * h1 + h0;
-            let w2 = h1 + 2.0 * h0;
-            m[i] = (w1 + w2) / (w1 / delta[i - 1] + w2 / delta[i]);
-        }
-    }
-    m
 }
 
 /// The smoothing weights [`as_smooth_as`] tries, least first: the cut-off period of

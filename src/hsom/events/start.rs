@@ -7,6 +7,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::encode::dist2;
 use crate::hsom::model::StartKnots;
+use crate::stats::upper_median;
 
 /// Widths [`StartKnots`] chooses among, in units of the median distance between two
 /// training demonstrations' starts; all alike (infinite) is tried first and kept on a tie.
@@ -123,8 +124,7 @@ impl StartKnots {
             .map(|(a, b)| dist2(&starts[a], &starts[b]).sqrt())
             .filter(|d| *d > 0.0)
             .collect();
-        dist.sort_by(f64::total_cmp);
-        let Some(&median) = dist.get(dist.len() / 2) else {
+        let Some(median) = upper_median(&mut dist) else {
             return f64::INFINITY;
         };
         // gram[e][f]: the placements' inner product, each node weighted by its samples, so
@@ -257,7 +257,7 @@ pub(crate) fn start_fade(norm: &[Vec<Vec<f64>>], s: usize) -> Option<f64> {
                         let keep = if u >= f {
                             0.0
                         } else {
-                            1.0 - crate::gmr::minimum_jerk_at(u / f)
+                            1.0 - crate::curve::minimum_jerk_at(u / f)
                         };
                         x.iter()
                             .zip(&o[0])

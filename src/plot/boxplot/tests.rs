@@ -1,18 +1,6 @@
 use super::*;
 
 #[test]
-fn quantiles_interpolate_between_order_statistics() {
-    let v = [1.0, 2.0, 3.0, 4.0];
-    assert_eq!(quantile(&v, 0.5), Some(2.5));
-    assert_eq!(quantile(&v, 0.25), Some(1.75));
-    assert_eq!(quantile(&v, 0.75), Some(3.25));
-    assert_eq!(quantile(&v, 0.0), Some(1.0));
-    assert_eq!(quantile(&v, 1.0), Some(4.0));
-    assert_eq!(quantile(&[7.0], 0.25), Some(7.0));
-    assert_eq!(quantile(&[], 0.5), None);
-}
-
-#[test]
 fn whiskers_stop_at_one_and_a_half_iqr_and_outliers_are_kept() {
     let b = boxed(&[1.0, 2.0, 3.0, 4.0, 100.0]).unwrap();
     assert_eq!((b.q1, b.median, b.q3), (2.0, 3.0, 4.0));

@@ -173,9 +173,6 @@ fn a_turn_in_the_span_beside_its_turning_knot_is_kept_by_both() {
 fn monotone_cubic_holds_and_does_not_overshoot() {
     let t = [0.0, 10.0, 20.0, 30.0];
     let v = [0.0, 1.0, 1.0, 0.0];
-    let m = monotone_tangents(&t, &v);
-    assert_eq!(m[1], 0.0);
-    assert_eq!(m[2], 0.0);
     for (i, x) in monotone_cubic(&t, &v, 31).into_iter().enumerate() {
         assert!((0.0..=1.0).contains(&x), "{i}: {x}");
         if (10..=20).contains(&i) {

@@ -1,0 +1,75 @@
+//! `cosco reproduce`: its arguments, handed to [`cosco_hsom::app::reproduce_file`] as a
+//! [`ReproduceFile`].
+
+use std::path::PathBuf;
+
+use cosco_hsom::app::{ReproduceFile, ReproduceRequest};
+use cosco_hsom::condition::{PostureArg, ViaPoint};
+
+/// What `cosco reproduce` is asked, as given on its command line.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ReproduceArgs {
+    /// A model saved by `cosco train` (.bin or .txt).
+    #[arg(long)]
+    pub model: PathBuf,
+    /// The initial posture, comma-separated, one value per state variable.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        conflicts_with_all = ["initial_from", "prefix_from"],
+        required_unless_present_any = ["initial_from", "prefix_from"]
+    )]
+    pub initial: Option<PostureArg>,
+    /// Take the initial posture from the first row of this demonstration CSV.
+    #[arg(long, conflicts_with = "prefix_from")]
+    pub initial_from: Option<PathBuf>,
+    /// The gesture to reproduce (required with a model of several gestures).
+    #[arg(long, conflicts_with = "prefix_from")]
+    pub gesture: Option<String>,
+    /// Continue the gesture begun in this demonstration CSV's first --prefix samples; the
+    /// hierarchy decides which gesture it is.
+    #[arg(long, requires = "prefix")]
+    pub prefix_from: Option<PathBuf>,
+    /// Samples of --prefix-from to continue from.
+    #[arg(long, requires = "prefix_from")]
+    pub prefix: Option<usize>,
+    /// Resume the reproduction from the initial posture after part of it was executed:
+    /// this CSV (the model's columns) is what the encoders read meanwhile, possibly
+    /// disturbed; writes the rest, from the reading's last posture (`algorithm = events`).
+    #[arg(long, conflicts_with = "prefix_from")]
+    pub resume_from: Option<PathBuf>,
+    /// The last posture, comma-separated: the reproduction ends exactly there.
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["prefix_from", "resume_from"])]
+    pub goal: Option<PostureArg>,
+    /// A posture to pass at a phase of the reproduction (0 the start, 1 the end):
+    /// `PHASE:V1,V2,...`; repeatable.
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["prefix_from", "resume_from"])]
+    pub via: Vec<ViaPoint>,
+    /// Also write the central 95 % confidence band about the reproduction to this CSV: one
+    /// row per reproduction row, `step` then `<variable>_lo` and `<variable>_hi`.
+    #[arg(long, conflicts_with_all = ["prefix_from", "resume_from"])]
+    pub band: Option<PathBuf>,
+    /// Output CSV.
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+impl From<ReproduceArgs> for ReproduceFile {
+    fn from(a: ReproduceArgs) -> Self {
+        ReproduceFile {
+            request: ReproduceRequest {
+                model: a.model,
+                gesture: a.gesture,
+                initial: a.initial,
+                initial_from: a.initial_from,
+                goal: a.goal,
+                via: a.via,
+                band: a.band,
+            },
+            prefix_from: a.prefix_from,
+            prefix: a.prefix,
+            resume_from: a.resume_from,
+            out: a.out,
+        }
+    }
+}
