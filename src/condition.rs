@@ -102,60 +102,54 @@ pub enum ConditionError {
         /// The condition's posture.
         wanted: Vec<f64>,
     },
-    /// Text that is not a posture (`--goal`) or `PHASE:POSTURE` (`--via`).
-    #[error("{option} '{text}': {why}")]
-    Parse {
-        /// The option.
-        option: &'static str,
-        /// The text given.
-        text: String,
-        /// What is wrong and what is allowed.
-        why: String,
-    },
 }
 
-/// `"v1,v2,..."` as numbers (`option` names the option in the error).
-pub fn parse_posture(option: &'static str, text: &str) -> Result<Vec<f64>, ConditionError> {
-    text.split(',')
-        .enumerate()
-        .map(|(i, v)| match v.trim().parse::<f64>() {
-            Ok(x) if x.is_finite() => Ok(x),
-            _ => Err(ConditionError::Parse {
-                option,
-                text: text.into(),
-                why: format!("value {} is '{}': need a finite number", i + 1, v.trim()),
-            }),
+/// A posture as a command line gives it (`--initial`, `--goal`): `V1,V2,...`, each value a
+/// finite number. Its [`FromStr`](std::str::FromStr) is the one reading of posture text; clap
+/// names the flag and the text beside what it says is wrong.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PostureArg(pub Vec<f64>);
+
+impl std::str::FromStr for PostureArg {
+    type Err = String;
+
+    /// The values, or which one is not a finite number.
+    fn from_str(text: &str) -> Result<Self, String> {
+        text.split(',')
+            .enumerate()
+            .map(|(i, v)| match v.trim().parse::<f64>() {
+                Ok(x) if x.is_finite() => Ok(x),
+                _ => Err(format!(
+                    "value {} is '{}': need a finite number",
+                    i + 1,
+                    v.trim()
+                )),
+            })
+            .collect::<Result<_, _>>()
+            .map(PostureArg)
+    }
+}
+
+impl std::str::FromStr for ViaPoint {
+    type Err = String;
+
+    /// `PHASE:V1,V2,...` (`--via`): the phase, then the posture as [`PostureArg`] reads it;
+    /// or what is wrong and what is allowed.
+    fn from_str(text: &str) -> Result<Self, String> {
+        let (phase, posture) = text
+            .split_once(':')
+            .ok_or("need PHASE:V1,V2,... (the phase 0 to 1, then the posture)")?;
+        let phase = phase
+            .trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|p| p.is_finite())
+            .ok_or("the phase before ':' must be a number from 0 to 1")?;
+        Ok(ViaPoint {
+            phase,
+            posture: posture.parse::<PostureArg>()?.0,
         })
-        .collect()
-}
-
-/// `"P:v1,v2,..."` (`--via`) as a via-point.
-pub fn parse_via(text: &str) -> Result<ViaPoint, ConditionError> {
-    let bad = |why: &str| ConditionError::Parse {
-        option: "--via",
-        text: text.into(),
-        why: why.into(),
-    };
-    let (phase, posture) = text
-        .split_once(':')
-        .ok_or_else(|| bad("need PHASE:V1,V2,... (the phase 0 to 1, then the posture)"))?;
-    let phase = phase
-        .trim()
-        .parse::<f64>()
-        .ok()
-        .filter(|p| p.is_finite())
-        .ok_or_else(|| bad("the phase before ':' must be a number from 0 to 1"))?;
-    Ok(ViaPoint {
-        phase,
-        posture: parse_posture("--via", posture).map_err(|e| match e {
-            ConditionError::Parse { option, why, .. } => ConditionError::Parse {
-                option,
-                text: text.into(),
-                why,
-            },
-            e => e,
-        })?,
-    })
+    }
 }
 
 impl Conditions {

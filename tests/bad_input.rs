@@ -434,3 +434,121 @@ fn simulate_refuses_far_out_demonstrations_and_warns_on_clamping() {
         .failure()
         .stderr(predicates::str::contains("--strict"));
 }
+
+/// Every `memory` object of a model's JSON (one gesture's, or each gesture's) with `field` set
+/// to `value`.
+fn set_memory(m: &mut serde_json::Value, field: &str, value: u64) {
+    match m {
+        serde_json::Value::Object(o) => {
+            for (k, v) in o.iter_mut() {
+                match (k.as_str(), v.get(field).is_some()) {
+                    ("memory", true) => v[field] = value.into(),
+                    _ => set_memory(v, field, value),
+                }
+            }
+        }
+        serde_json::Value::Array(a) => a.iter_mut().for_each(|v| set_memory(v, field, value)),
+        _ => {}
+    }
+}
+
+/// The model of [`resealed`] with `memory.<field>` set to `value`, and beside it two
+/// demonstrations of its columns to teach it more (`more/`).
+fn counted(field: &str, value: u64) -> (tempfile::TempDir, std::path::PathBuf) {
+    let (dir, p) = resealed(|m| set_memory(m, field, value));
+    let columns = config(1, "global")
+        .fit_series(&[line(40, 1.0), line(50, 1.0)])
+        .unwrap()
+        .columns()
+        .join(",");
+    let more = dir.path().join("more");
+    std::fs::create_dir_all(&more).unwrap();
+    for (k, n) in [42, 47].into_iter().enumerate() {
+        let rows: Vec<String> = (line(n, 1.0).iter())
+            .map(|r| format!("{},{}", r[0], r[1]))
+            .collect();
+        let text = format!("{columns}\n{}\n", rows.join("\n"));
+        std::fs::write(more.join(format!("d{k}.csv")), text).unwrap();
+    }
+    (dir, p)
+}
+
+/// `cosco inspect MODEL` (`teach` false) or `cosco train --from MODEL --demos more/ --out
+/// taught.txt` beside it (`teach` true).
+fn cosco_on(model: &std::path::Path, teach: bool) -> assert_cmd::assert::Assert {
+    let mut c = assert_cmd::Command::cargo_bin("cosco").unwrap();
+    match teach {
+        false => c.arg("inspect").arg(model),
+        true => (c.args(["train", "--from"]).arg(model))
+            .arg("--demos")
+            .arg(model.with_file_name("more"))
+            .arg("--out")
+            .arg(model.with_file_name("taught.txt")),
+    };
+    c.assert()
+}
+
+/// `run` failed with every one of `says` (the model's file, the field, what is allowed), no
+/// panic, the output neither blamed nor written.
+fn refused(run: assert_cmd::assert::Assert, model: &std::path::Path, says: &[&str]) {
+    let stderr = String::from_utf8_lossy(&run.failure().get_output().stderr).to_string();
+    for s in says {
+        assert!(stderr.contains(s), "{s:?} not in: {stderr}");
+    }
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("taught.txt"),
+        "{stderr}"
+    );
+    assert!(!model.with_file_name("taught.txt").exists());
+}
+
+#[test]
+fn a_model_counting_more_sittings_than_demonstrations_is_refused_naming_the_file() {
+    // learned from 2 demonstrations: at most 2 sittings, the training and 1 update
+    for updates in [2, 3, u64::from(u32::MAX)] {
+        let (_dir, p) = counted("updates", updates);
+        let says = [
+            "m.txt",
+            &format!("updates (sittings after the first) is {updates} with learned 2"),
+            "at most learned - 1 = 1",
+        ];
+        refused(cosco_on(&p, false), &p, &says);
+        refused(cosco_on(&p, true), &p, &says);
+    }
+    // negative control: the most sittings 2 demonstrations make load, and are said
+    let (_dir, p) = counted("updates", 1);
+    cosco_on(&p, false)
+        .success()
+        .stdout(predicates::str::contains(
+            "learned from 2 demonstrations in 2 sittings",
+        ));
+}
+
+#[test]
+fn an_absurd_count_of_demonstrations_learned_is_refused_naming_the_input_model() {
+    use cosco_hsom::hsom::MAX_LEARNED;
+    for learned in [u64::from(u32::MAX), MAX_LEARNED + 1, u64::MAX] {
+        let (_dir, p) = counted("learned", learned);
+        let says = [
+            "m.txt",
+            &format!("learned (demonstrations learned from) is {learned}: 1 to 1000000000"),
+        ];
+        refused(cosco_on(&p, false), &p, &says);
+        refused(cosco_on(&p, true), &p, &says);
+    }
+    // the bound loads; an update that would count past it is refused naming the model taught
+    let (_dir, p) = counted("learned", MAX_LEARNED);
+    cosco_on(&p, false)
+        .success()
+        .stdout(predicates::str::contains(
+            "learned from 1000000000 demonstrations",
+        ));
+    let says = "m.txt: the model learned from 1000000000 demonstrations (learned); 2 more would \
+                pass 1000000000, the most a model counts";
+    refused(cosco_on(&p, true), &p, &[says]);
+    // negative control: an update that reaches the bound is taught
+    let (_dir, p) = counted("learned", MAX_LEARNED - 2);
+    cosco_on(&p, true).success();
+    let taught = Hsom::load(&p.with_file_name("taught.txt")).unwrap();
+    assert_eq!(taught.learned(), (MAX_LEARNED, 4, 1));
+}

@@ -551,18 +551,132 @@ fn reproduce_meets_a_goal_and_a_via_point_exactly_and_refuses_bad_ones() {
             "the goal has 1 values; the model has 2 variables (x, y)",
         ),
         (vec!["--via", "1.5:0,0"], "phase is 1.5; allowed 0 to 1"),
-        (vec!["--via", "0.5"], "--via '0.5': need PHASE:V1,V2,..."),
+        (
+            vec!["--via", "0.5"],
+            "'0.5' for '--via <VIA>': need PHASE:V1,V2,...",
+        ),
         (
             vec!["--via", "0.5:0,0", "--via", "0.5:1,1"],
             "are both at phase 0.5 with different postures",
         ),
-        (vec!["--goal", "0,nan"], "--goal '0,nan': value 2 is 'nan'"),
+        (
+            vec!["--goal", "0,nan"],
+            "'0,nan' for '--goal <GOAL>': value 2 is 'nan'",
+        ),
     ] {
         reproduce(&args, &none)
             .failure()
             .stderr(predicate::str::contains(says));
         assert!(!none.exists(), "{args:?} wrote a file");
     }
+}
+
+/// Every flag that takes a posture (`--initial`, `--goal`, `--via` of `reproduce` and
+/// `export`) takes one whose first value is negative as written, `--goal -0.2,...` as
+/// `--goal=-0.2,...`; a value that is not a number is named with its flag.
+#[test]
+fn postures_with_a_negative_first_value_are_taken_as_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    write_strokes(&d.join("demos"));
+    let model = d.join("m.bin");
+    cosco()
+        .args(["train", "--state-length-from-data", "--demos"])
+        .arg(d.join("demos"))
+        .arg("--out")
+        .arg(&model)
+        .assert()
+        .success();
+    let reproduce = |args: &[&str], out: &std::path::Path| {
+        cosco()
+            .arg("reproduce")
+            .arg("--model")
+            .arg(&model)
+            .args(args)
+            .arg("--out")
+            .arg(out)
+            .assert()
+    };
+    let (spaced, joined) = (d.join("spaced.csv"), d.join("joined.csv"));
+    reproduce(
+        &[
+            "--initial",
+            "-0.01,0",
+            "--goal",
+            "-0.2,2.1",
+            "--via",
+            "0.43:-0.4,1.2",
+        ],
+        &spaced,
+    )
+    .success();
+    reproduce(
+        &[
+            "--initial=-0.01,0",
+            "--goal=-0.2,2.1",
+            "--via=0.43:-0.4,1.2",
+        ],
+        &joined,
+    )
+    .success();
+    let (a, b) = (
+        std::fs::read(&spaced).unwrap(),
+        std::fs::read(&joined).unwrap(),
+    );
+    assert_eq!(a, b);
+    let r = postures(&spaced);
+    assert_eq!(r[0], vec![-0.01, 0.0]);
+    assert_eq!(r.last().unwrap(), &vec![-0.2, 2.1]);
+    // negative control: another goal is another reproduction
+    let other = d.join("other.csv");
+    reproduce(&["--initial", "-0.01,0", "--goal", "-0.3,2.1"], &other).success();
+    assert_ne!(std::fs::read(&other).unwrap(), a);
+    // a value that is not a number: the flag, the text and the value named, nothing written
+    let none = d.join("none.csv");
+    for (args, flag, says) in [
+        (vec!["--initial", "-0.01,x"], "--initial", "'-0.01,x'"),
+        (
+            vec!["--initial", "0,0", "--goal", "-0.2,x"],
+            "--goal",
+            "'-0.2,x'",
+        ),
+        (
+            vec!["--initial", "0,0", "--via", "-x:0,0"],
+            "--via",
+            "'-x:0,0'",
+        ),
+    ] {
+        reproduce(&args, &none).failure().stderr(
+            predicate::str::contains(flag)
+                .and(predicate::str::contains(says))
+                .and(predicate::str::contains("unexpected argument").not()),
+        );
+        assert!(!none.exists(), "{args:?} wrote a file");
+    }
+    reproduce(&["--initial", "0,0", "--goal", "-0.2,x"], &none)
+        .stderr(predicate::str::contains("value 2 is 'x'"));
+    // `cosco export` reads its postures the same way
+    cosco()
+        .args(["export", "--model"])
+        .arg(&model)
+        .args([
+            "--initial",
+            "-0.01,0",
+            "--goal",
+            "-0.2,x",
+            "--format",
+            "csv",
+        ])
+        .arg("--out")
+        .arg(&none)
+        .assert()
+        .failure()
+        .stderr(
+            predicate::str::contains("--goal")
+                .and(predicate::str::contains("'-0.2,x'"))
+                .and(predicate::str::contains("unexpected argument").not()),
+        );
+    assert!(!none.exists());
 }
 
 #[test]

@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use super::files::{self, read_reproduction};
-use super::reproduce::{parse_conditions, ReproduceRequest};
+use super::reproduce::{conditions, ReproduceRequest};
 use super::Result;
 use crate::demos::Demonstration;
 use crate::export::{export_request, ExportRequest, Trajectory};
@@ -32,7 +32,7 @@ pub fn export(from: &ExportFrom, r: &ExportRequest) -> Result<Vec<String>> {
             if let Some(b) = &q.band {
                 crate::fsutil::check_output(b)?;
             }
-            let conditions = parse_conditions(q.goal.as_deref(), &q.via)?;
+            let conditions = conditions(q.goal.as_ref(), &q.via);
             let done = q.run(&conditions, None)?;
             let d = Demonstration {
                 rows: done.rep.postures,

@@ -53,8 +53,8 @@ pub use files::{
 };
 pub use recognize::{recognize_files, recognize_paths, RecognisedFile};
 pub use reproduce::{
-    continue_file, parse_conditions, parse_posture, reproduce, reproduce_conditioned,
-    reproduce_file, reproduce_gesture, resume, ReproduceFile, ReproduceRequest,
+    conditions, continue_file, reproduce, reproduce_conditioned, reproduce_file, reproduce_gesture,
+    resume, ReproduceFile, ReproduceRequest,
 };
 pub use train::{train, train_files, train_gestures, update, update_files};
 

@@ -5,35 +5,18 @@ use std::path::{Path, PathBuf};
 
 use super::files::{self, read_for_columns};
 use super::{Error, Result};
-use crate::condition::{self, Conditions};
+use crate::condition::{Conditions, PostureArg, ViaPoint};
 use crate::hsom::{GestureModel, Hsom, HsomError, Reproduction};
 
-/// Parse `"v1,v2,..."` (`--initial`) into numbers, naming the bad entry.
-pub fn parse_posture(text: &str) -> Result<Vec<f64>> {
-    text.split(',')
-        .enumerate()
-        .map(|(i, v)| {
-            let v = v.trim();
-            match v.parse::<f64>() {
-                Ok(x) if x.is_finite() => Ok(x),
-                _ => Err(Error::value(
-                    "--initial:",
-                    format!("value {} is '{v}': need a finite number", i + 1),
-                )),
-            }
-        })
-        .collect()
-}
-
-/// The initial posture of `--initial TEXT` or `--initial-from CSV` (its first row, whose
+/// The initial posture of `--initial V1,V2,...` or `--initial-from CSV` (its first row, whose
 /// columns must be the model's): exactly one of them.
 fn initial_posture(
     model: &Hsom,
-    initial: Option<&str>,
+    initial: Option<&PostureArg>,
     initial_from: Option<&Path>,
 ) -> Result<Vec<f64>> {
     match (initial, initial_from) {
-        (Some(text), None) => parse_posture(text),
+        (Some(posture), None) => Ok(posture.0.clone()),
         (None, Some(p)) => Ok(read_for_columns(p, model.columns())?.rows.swap_remove(0)),
         _ => Err(Error::value(
             "--initial:",
@@ -103,17 +86,12 @@ pub fn reproduce_conditioned(
         .map_err(|e| naming_model(e, model, model_name))
 }
 
-/// The conditions of `--goal TEXT` and `--via P:TEXT` (each of them).
-pub fn parse_conditions(goal: Option<&str>, via: &[String]) -> Result<Conditions> {
-    Ok(Conditions {
-        goal: goal
-            .map(|g| condition::parse_posture("--goal", g))
-            .transpose()?,
-        via: via
-            .iter()
-            .map(|v| condition::parse_via(v))
-            .collect::<std::result::Result<_, _>>()?,
-    })
+/// The conditions of `--goal V1,V2,...` and `--via PHASE:V1,V2,...` (each of them).
+pub fn conditions(goal: Option<&PostureArg>, via: &[ViaPoint]) -> Conditions {
+    Conditions {
+        goal: goal.map(|g| g.0.clone()),
+        via: via.to_vec(),
+    }
 }
 
 /// Reproduce from `initial` (`model_name` names the model in messages: its file, or
@@ -159,14 +137,14 @@ pub struct ReproduceRequest {
     pub model: PathBuf,
     /// The gesture to reproduce (required with a model of several gestures).
     pub gesture: Option<String>,
-    /// The initial posture, comma-separated, one value per state variable.
-    pub initial: Option<String>,
+    /// The initial posture, one value per state variable.
+    pub initial: Option<PostureArg>,
     /// Or the first row of this CSV (the model's columns).
     pub initial_from: Option<PathBuf>,
     /// The last posture, comma-separated: the reproduction ends exactly there.
-    pub goal: Option<String>,
-    /// Postures to pass at a phase of the reproduction, `PHASE:V1,V2,...` each.
-    pub via: Vec<String>,
+    pub goal: Option<PostureArg>,
+    /// Postures to pass at a phase of the reproduction.
+    pub via: Vec<ViaPoint>,
     /// Where to write the central 95 % confidence band about the reproduction, when asked.
     pub band: Option<PathBuf>,
 }
@@ -212,11 +190,7 @@ impl ReproduceRequest {
         let m = files::load_gesture_model(&self.model)?;
         let name = self.model.display().to_string();
         let branch = m.branch(self.gesture.as_deref())?;
-        let initial = initial_posture(
-            branch,
-            self.initial.as_deref(),
-            self.initial_from.as_deref(),
-        )?;
+        let initial = initial_posture(branch, self.initial.as_ref(), self.initial_from.as_deref())?;
         let rep = match resume_from {
             Some(path) => {
                 let reading = read_for_columns(path, branch.columns())?.rows;
@@ -268,7 +242,7 @@ fn band_csv(
 /// asked); returns the line to print.
 pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
     let q = &r.request;
-    let conditions = parse_conditions(q.goal.as_deref(), &q.via)?;
+    let conditions = conditions(q.goal.as_ref(), &q.via);
     if !conditions.is_empty() && (r.prefix_from.is_some() || r.resume_from.is_some()) {
         return Err(Error::value(
             "--goal and --via",

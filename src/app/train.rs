@@ -27,7 +27,7 @@ use super::Result;
 use crate::config::HsomConfig;
 use crate::demo_sets::{read_demo_sets, DemoSets};
 use crate::demos::{self, Demonstration};
-use crate::hsom::{GestureError, GestureModel, Hsom};
+use crate::hsom::{GestureError, GestureModel, Hsom, HsomError};
 
 /// Check the demonstrations as a set against the configuration (at least one; see
 /// [`demos::validate_set`]), then train, calling `progress(done, total)` now and then when
@@ -115,9 +115,16 @@ pub fn update_files(
     // the sets are checked as they are read, against the model's stateLength
     let state = cfg.params().state_length;
     let updated = match read_demo_sets(demo_paths, Some(state), resample)? {
-        DemoSets::Plain(d) => model.update(None, &d, progress)?,
-        DemoSets::Labelled(s) => model.update_labelled(&s, progress)?,
-    };
+        DemoSets::Plain(d) => model.update(None, &d, progress),
+        DemoSets::Labelled(s) => model.update_labelled(&s, progress),
+    }
+    // a count the model file holds is named with the file
+    .map_err(|e| match e {
+        GestureError::Hsom(e @ HsomError::TooManyLearned { .. }) => {
+            super::Error::file(from, e.to_string())
+        }
+        e => e.into(),
+    })?;
     files::save_gesture_model(&updated, out)?;
     Ok(updated)
 }

@@ -123,17 +123,28 @@ fn conditions_are_checked_and_named() {
 #[test]
 fn via_points_and_goals_parse_or_say_what_is_wrong() {
     assert_eq!(
-        parse_via("0.5:1,2.5").unwrap(),
+        "0.5:1,2.5".parse::<ViaPoint>().unwrap(),
         ViaPoint {
             phase: 0.5,
             posture: vec![1.0, 2.5]
         }
     );
-    for bad in ["0.5", "x:1,2", "0.5:1,y"] {
-        let e = parse_via(bad).unwrap_err().to_string();
-        assert!(e.starts_with(&format!("--via '{bad}'")), "{e}");
+    assert_eq!(
+        "-0.2, 0.3".parse::<PostureArg>().unwrap(),
+        PostureArg(vec![-0.2, 0.3])
+    );
+    for (bad, says) in [
+        ("0.5", "need PHASE:V1,V2,..."),
+        ("x:1,2", "the phase before ':'"),
+        ("0.5:1,y", "value 2 is 'y'"),
+    ] {
+        let e = bad.parse::<ViaPoint>().unwrap_err();
+        assert!(e.contains(says), "{e}");
     }
-    assert!(parse_posture("--goal", "1,inf").is_err());
+    for (bad, says) in [("1,inf", "value 2 is 'inf'"), ("", "value 1 is ''")] {
+        let e = bad.parse::<PostureArg>().unwrap_err();
+        assert!(e.contains(says), "{e}");
+    }
 }
 
 #[test]

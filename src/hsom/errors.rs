@@ -36,6 +36,19 @@ pub enum HsomError {
         /// The model's.
         expected: f64,
     },
+    /// An update that would count more demonstrations learned from than a model may
+    /// ([`MAX_LEARNED`](crate::hsom::MAX_LEARNED)).
+    #[error("{of} learned from {learned} demonstrations (learned); {new} more would pass {most}, the most a model counts")]
+    TooManyLearned {
+        /// `the model` or `gesture "LABEL"`.
+        of: String,
+        /// Demonstrations learned from.
+        learned: u64,
+        /// Demonstrations the update brings.
+        new: usize,
+        /// The most a model counts.
+        most: u64,
+    },
     /// The operation needs another algorithm than the model's.
     #[error("{what} needs a model trained with algorithm = events (this one: {algorithm})")]
     NeedsEvents {

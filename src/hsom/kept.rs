@@ -11,6 +11,8 @@ use rand_chacha::ChaCha8Rng;
 use crate::demos::Demonstration;
 use crate::som::SelfOrganizingMap;
 
+use super::errors::HsomError;
+
 use serde::{Deserialize, Serialize};
 
 /// What a model learned from, beside its kept paths ([`Model::paths`](super::model::Model)).
@@ -29,11 +31,57 @@ pub struct Memory {
     pub(crate) period: Option<f64>,
 }
 
+impl Memory {
+    /// The counts read from a model file against what training and updates make of them:
+    /// 1 to [`MAX_LEARNED`] demonstrations learned from, and fewer updates than that (the
+    /// training or update that taught the gesture, and every update counted, each brought at
+    /// least one). What is wrong, naming the field and what is allowed.
+    pub(crate) fn check_counts(&self) -> Result<(), String> {
+        let (learned, updates) = (self.learned, self.updates);
+        if !(1..=MAX_LEARNED).contains(&learned) {
+            return Err(format!(
+                "learned (demonstrations learned from) is {learned}: 1 to {MAX_LEARNED}"
+            ));
+        }
+        if u64::from(updates) >= learned {
+            return Err(format!(
+                "updates (sittings after the first) is {updates} with learned {learned}: at most \
+                 learned - 1 = {}, as every sitting brings at least one demonstration",
+                learned - 1
+            ));
+        }
+        Ok(())
+    }
+
+    /// The count of demonstrations learned from once `new` more are: an error when it would
+    /// pass [`MAX_LEARNED`] (`of` names the model or gesture).
+    pub(crate) fn room(&self, new: usize, of: &str) -> Result<u64, HsomError> {
+        (u64::try_from(new).ok())
+            .and_then(|n| self.learned.checked_add(n))
+            .filter(|&n| n <= MAX_LEARNED)
+            .ok_or_else(|| HsomError::TooManyLearned {
+                of: of.to_string(),
+                learned: self.learned,
+                new,
+                most: MAX_LEARNED,
+            })
+    }
+}
+
 /// Most demonstrations a model keeps per gesture ([`Model::paths`](super::model::Model)): its size is bounded by
 /// the configuration, whatever the number of demonstrations learned from; an update learns
 /// from at most this many earlier demonstrations beside the new ones, so that its cost does
 /// not grow with them (docs/ALGORITHM.md, section 10; docs/BENCHMARKS.md).
 pub const KEPT_DEMONSTRATIONS: usize = 6;
+
+/// Most demonstrations a model counts as learned from, over its training and every update
+/// (per gesture): a billion, a demonstration a second for over thirty years, far beyond any
+/// teaching, and below `u32::MAX`, so that the count of updates (a `u32`, fewer than the
+/// demonstrations, since every sitting brings at least one) always has room for one more.
+/// Counts of every gesture a model may hold ([`MAX_LABELS`](super::MAX_LABELS)) add up
+/// exactly in `u64` and `f64` (an update's share of the schedule). A model file counting
+/// more is refused at load, an update that would count more is refused before training.
+pub const MAX_LEARNED: u64 = 1_000_000_000;
 
 /// The rows of each training path a model keeps ([`Model::paths`](super::model::Model)): however long the
 /// demonstrations, the model's size does not depend on it.

@@ -42,7 +42,7 @@ mod update;
 
 pub use errors::{GestureError, HsomError, PersistError};
 pub use kept::kept_demonstrations;
-pub use kept::{BAND_ROWS, KEPT_DEMONSTRATIONS};
+pub use kept::{BAND_ROWS, KEPT_DEMONSTRATIONS, MAX_LEARNED};
 pub use labels::{GESTURES_FORMAT_VERSION, MAX_LABELS};
 pub use memory::{ActivityLevels, ActivityList};
 pub use model::{GestureModel, Hsom, Scoring};

@@ -676,6 +676,7 @@ impl<A: Part> Model<A> {
                 self.memory.learned
             ));
         }
+        self.memory.check_counts()?;
         if let Some(p) = self.memory.period.filter(|p| !(p.is_finite() && *p > 0.0)) {
             return Err(format!("a sample period of {p} s: positive and finite"));
         }

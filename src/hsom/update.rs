@@ -174,6 +174,14 @@ impl Hsom {
         }
     }
 
+    /// What this model learned from ([`Memory`]).
+    fn memory(&self) -> &Memory {
+        match self {
+            Hsom::Paper(m) => &m.memory,
+            Hsom::Events(m) => &m.memory,
+        }
+    }
+
     /// Demonstrations learned from, kept, and updates ([`Memory`]).
     pub fn learned(&self) -> (u64, usize, u32) {
         let (paths, memory) = match self {
@@ -203,6 +211,7 @@ impl<A: Part> Model<A> {
             return Ok(A::wrap(self.clone()));
         }
         self.accepts(demos)?;
+        self.memory.room(demos.len(), "the model")?;
         let kept = self.kept_rows();
         let names = kept_names("the model", kept.len());
         let all = series(demos, &kept, &names, true);
@@ -276,9 +285,12 @@ impl GestureModel {
         let Some(first) = self.branches[0].as_events() else {
             return Err(GestureError::NeedsEvents);
         };
-        for (i, (_, demos)) in sets.iter().enumerate() {
+        for (i, (label, demos)) in sets.iter().enumerate() {
             check_label(sets, i, "the update")?;
             first.accepts(demos)?;
+            if let Some(g) = self.labels.iter().position(|l| l == label) {
+                (self.branches[g].memory()).room(demos.len(), &format!("gesture {label:?}"))?;
+            }
         }
         // every label after the update: the model's, then the new ones in the order given
         let mut labels = self.labels.clone();

@@ -8,7 +8,7 @@ use std::path::Path;
 use plotters::prelude::*;
 use plotters::style::RGBColor;
 
-use super::figure::{draw_error, draw_legend, grid_png, label_at, Area, PlotError};
+use super::figure::{draw_error, draw_legend, grid_png, label_at, tick_label, Area, PlotError};
 use crate::stats::quantile;
 
 /// One panel of box plots.
@@ -109,6 +109,7 @@ fn draw_boxes(path: &Path, panel: &BoxPanel, area: &Area<'_>) -> Result<(), Plot
         .disable_x_mesh()
         .x_labels(n_cat * 2 + 1)
         .x_label_formatter(&|x| label_at(*x, &categories))
+        .y_label_formatter(&|y| tick_label(*y))
         .y_desc(panel.y_label.as_str())
         .max_light_lines(1)
         .label_style(("sans-serif", 13))

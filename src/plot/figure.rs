@@ -372,6 +372,22 @@ pub(crate) fn label_at(v: f64, labels: &[String]) -> String {
     }
 }
 
+/// The text of a numeric axis tick: plotters' own rendering of an `f64` coordinate (at least
+/// one decimal, at most five, no scientific notation), except that a value that rounds to zero
+/// prints as `0.0`, never `-0.0`. Every numeric axis of every figure formats its ticks here.
+pub(crate) fn tick_label(v: f64) -> String {
+    let text = plotters::data::float::FloatPrettyPrinter {
+        allow_scientific: false,
+        min_decimal: 1,
+        max_decimal: 5,
+    }
+    .print(v);
+    match text.strip_prefix('-') {
+        Some(magnitude) if magnitude.chars().all(|c| c == '0' || c == '.') => magnitude.to_string(),
+        _ => text,
+    }
+}
+
 fn draw_panel(path: &Path, panel: &Panel, area: &Area<'_>) -> Result<(), PlotError> {
     let draw_err = draw_error(path, &panel.title);
     let ((mut x0, mut x1), (mut y0, mut y1)) = panel.bounds().ok_or_else(|| PlotError::Empty {
@@ -399,6 +415,8 @@ fn draw_panel(path: &Path, panel: &Panel, area: &Area<'_>) -> Result<(), PlotErr
         .configure_mesh()
         .x_desc(panel.x_label.as_str())
         .y_desc(panel.y_label.as_str())
+        .x_label_formatter(&|x| tick_label(*x))
+        .y_label_formatter(&|y| tick_label(*y))
         .label_style(("sans-serif", 13))
         .axis_desc_style(("sans-serif", 14))
         .light_line_style(RGBColor(235, 235, 235))

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use cosco_hsom::app::{self, ExportFrom, ReproduceRequest};
+use cosco_hsom::condition::{PostureArg, ViaPoint};
 use cosco_hsom::export::{limits, ExportRequest, Format, DEFAULT_STEP_RATE_HZ};
 
 /// Everything `cosco export` is asked: its command line.
@@ -18,8 +19,13 @@ pub struct ExportArgs {
     #[arg(long)]
     pub model: Option<PathBuf>,
     /// The initial posture, comma-separated (with --model).
-    #[arg(long, requires = "model", conflicts_with = "initial_from")]
-    pub initial: Option<String>,
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        requires = "model",
+        conflicts_with = "initial_from"
+    )]
+    pub initial: Option<PostureArg>,
     /// Take the initial posture from the first row of this CSV (with --model).
     #[arg(long, requires = "model")]
     pub initial_from: Option<PathBuf>,
@@ -27,11 +33,11 @@ pub struct ExportArgs {
     #[arg(long, requires = "model")]
     pub gesture: Option<String>,
     /// The last posture, comma-separated (with --model): the reproduction ends exactly there.
-    #[arg(long, requires = "model")]
-    pub goal: Option<String>,
+    #[arg(long, allow_hyphen_values = true, requires = "model")]
+    pub goal: Option<PostureArg>,
     /// A posture to pass at a phase (with --model): `PHASE:V1,V2,...`; repeatable.
-    #[arg(long, requires = "model")]
-    pub via: Vec<String>,
+    #[arg(long, allow_hyphen_values = true, requires = "model")]
+    pub via: Vec<ViaPoint>,
     /// Also write the reproduction's 95 % confidence band to this CSV (with --model), as
     /// `cosco reproduce --band` does.
     #[arg(long, requires = "model")]

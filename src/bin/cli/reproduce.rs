@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 
 use cosco_hsom::app::{ReproduceFile, ReproduceRequest};
+use cosco_hsom::condition::{PostureArg, ViaPoint};
 
 /// What `cosco reproduce` is asked, as given on its command line.
 #[derive(Debug, Clone, clap::Args)]
@@ -14,10 +15,11 @@ pub struct ReproduceArgs {
     /// The initial posture, comma-separated, one value per state variable.
     #[arg(
         long,
+        allow_hyphen_values = true,
         conflicts_with_all = ["initial_from", "prefix_from"],
         required_unless_present_any = ["initial_from", "prefix_from"]
     )]
-    pub initial: Option<String>,
+    pub initial: Option<PostureArg>,
     /// Take the initial posture from the first row of this demonstration CSV.
     #[arg(long, conflicts_with = "prefix_from")]
     pub initial_from: Option<PathBuf>,
@@ -37,12 +39,12 @@ pub struct ReproduceArgs {
     #[arg(long, conflicts_with = "prefix_from")]
     pub resume_from: Option<PathBuf>,
     /// The last posture, comma-separated: the reproduction ends exactly there.
-    #[arg(long, conflicts_with_all = ["prefix_from", "resume_from"])]
-    pub goal: Option<String>,
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["prefix_from", "resume_from"])]
+    pub goal: Option<PostureArg>,
     /// A posture to pass at a phase of the reproduction (0 the start, 1 the end):
     /// `PHASE:V1,V2,...`; repeatable.
-    #[arg(long, conflicts_with_all = ["prefix_from", "resume_from"])]
-    pub via: Vec<String>,
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["prefix_from", "resume_from"])]
+    pub via: Vec<ViaPoint>,
     /// Also write the central 95 % confidence band about the reproduction to this CSV: one
     /// row per reproduction row, `step` then `<variable>_lo` and `<variable>_hi`.
     #[arg(long, conflicts_with_all = ["prefix_from", "resume_from"])]

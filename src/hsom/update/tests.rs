@@ -159,6 +159,52 @@ fn an_update_refuses_other_columns_and_rates_naming_the_file() {
 }
 
 #[test]
+fn an_update_that_would_count_past_the_bound_is_refused_before_training() {
+    use crate::hsom::MAX_LEARNED;
+    let counted = |m: &mut Hsom, learned: u64| match m {
+        Hsom::Paper(m) => m.memory.learned = learned,
+        Hsom::Events(m) => m.memory.learned = learned,
+    };
+    let mut m = config(false).fit(&demos(0..3, false)).unwrap();
+    counted(&mut m, MAX_LEARNED - 1);
+    let e = m.update(&demos(3..5, false)).unwrap_err();
+    assert!(
+        matches!(e, HsomError::TooManyLearned { learned, new: 2, .. } if learned == MAX_LEARNED - 1),
+        "{e}"
+    );
+    assert!(
+        e.to_string()
+            .starts_with("the model learned from 999999999"),
+        "{e}"
+    );
+    // negative control: up to the bound it is taught, and counted
+    let u = m.update(&demos(3..4, false)).unwrap();
+    assert_eq!(u.learned().0, MAX_LEARNED);
+    // a gesture of several: named by its label; another gesture's count is its own
+    let g = config(false)
+        .fit_gestures(
+            &[
+                ("a".into(), demos(0..3, false)),
+                ("b".into(), demos(0..3, true)),
+            ],
+            None,
+        )
+        .unwrap();
+    let mut branches = g.branches.clone();
+    counted(&mut branches[0], MAX_LEARNED);
+    let full = GestureModel { branches, ..g };
+    let e = full
+        .update(Some("a"), &demos(3..4, false), None)
+        .unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("gesture \"a\" learned from 1000000000"),
+        "{e}"
+    );
+    assert!(full.update(Some("b"), &demos(3..4, true), None).is_ok());
+}
+
+#[test]
 fn a_gesture_in_two_sittings_reproduces_as_well_as_taught_at_once() {
     let cfg = config(false);
     let all = demos(0..6, false);

@@ -53,3 +53,27 @@ fn ellipse_outline_matches_axis_aligned_radii() {
     assert!((pts[0].0 - 5.0).abs() < 1e-9 && (pts[0].1 - 2.0).abs() < 1e-9);
     assert!((pts[1].0 - 1.0).abs() < 1e-9 && (pts[1].1 - 4.0).abs() < 1e-9);
 }
+
+#[test]
+fn tick_label_prints_a_tick_that_rounds_to_zero_without_a_sign() {
+    use plotters::coord::ranged1d::ValueFormatter;
+    let plotters = |v: f64| <RangedCoordf64 as ValueFormatter<f64>>::format(&v);
+    // the key points of a range that crosses zero can land a rounding error below it, which
+    // plotters alone prints with a sign
+    assert_eq!(plotters(-1e-17), "-0.0");
+    for v in [-1e-17, -0.0, -0.000001, 0.0, 1e-17] {
+        assert_eq!(tick_label(v), "0.0", "{v}");
+    }
+    // everything else as plotters prints an f64 coordinate
+    for (v, text) in [
+        (-0.2, "-0.2"),
+        (-0.0001, "-0.0001"),
+        (-1.25, "-1.25"),
+        (1.4, "1.4"),
+        (3.0, "3.0"),
+        (-10.0, "-10.0"),
+    ] {
+        assert_eq!(tick_label(v), text);
+        assert_eq!(tick_label(v), plotters(v));
+    }
+}
