@@ -1,5 +1,6 @@
 //! `simulate`: the main job. Demonstrations -> CoSCo-HSOM training -> reproduction from the
-//! initial posture on the simulated Nao arm -> metrics, report, plots and a clip.
+//! initial posture on the simulated Nao arm (or upper body) -> metrics, report, plots and a
+//! clip.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -7,6 +8,7 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::Parser;
 use cosco_hsom::experiment::job;
+use cosco_hsom::robot::Robot;
 
 #[macro_use]
 mod cli;
@@ -16,12 +18,18 @@ mod cli;
 #[derive(Parser, Debug)]
 #[command(name = "simulate", version)]
 struct Args {
-    /// Gesture of the synthetic demonstrations (reading-watch, wave, reach-point, salute), or
-    /// `all`: one hierarchy learns every gesture (`--count` demonstrations each, one held out in
-    /// turn), reproduces each on cue, and recognises the held-out ones.
-    #[arg(long, default_value = "reading-watch")]
-    gesture: String,
-    /// CoSCo-HSOM configuration (XML); default: the shipped configs/nao-gestures.xml (the recommended events extension; configs/table1.xml is the paper taken literally).
+    /// The robot: `left-arm` (the paper's experiment) or `upper-body` (the head and both arms,
+    /// 14 joints, with collision shapes: in-sample only, contacts in the report).
+    #[arg(long, default_value = "left-arm", value_parser = cli::parse_robot)]
+    robot: Robot,
+    /// Gesture of the synthetic demonstrations. Left arm: reading-watch (default), wave,
+    /// reach-point, salute, or `all`: one hierarchy learns every gesture (`--count`
+    /// demonstrations each, one held out in turn), reproduces each on cue, and recognises the
+    /// held-out ones. Upper body: wave-right (default), clap, welcome, shrug, nod, shake-head,
+    /// reading-watch, salute.
+    #[arg(long)]
+    gesture: Option<String>,
+    /// CoSCo-HSOM configuration (XML); default: the shipped configs/nao-gestures.xml (the recommended events extension; configs/table1.xml is the paper taken literally), on the upper body configs/nao-upper-body.xml.
     #[arg(long)]
     config: Option<PathBuf>,
     /// Learn from recorded demonstration CSV files in this directory instead of synthetic ones.
@@ -58,7 +66,8 @@ struct Args {
     /// Skip the held-out (leave-one-out) evaluation of both methods.
     #[arg(long)]
     no_heldout: bool,
-    /// MJCF model of the arm (default: models/nao_left_arm.xml of this crate).
+    /// MJCF model of the robot (default: models/nao_left_arm.xml of this crate, on the upper
+    /// body models/nao_upper_body.xml).
     #[arg(long)]
     model: Option<PathBuf>,
     /// Turn warnings into errors (posture values clamped into the joint ranges before
@@ -70,7 +79,10 @@ struct Args {
 fn run(a: Args) -> Result<()> {
     let strict = a.strict;
     let job = job::Job {
-        gesture: a.gesture,
+        robot: a.robot,
+        gesture: a
+            .gesture
+            .unwrap_or_else(|| job::default_gesture(a.robot).to_string()),
         config: a.config,
         demos: a.demos,
         resample: a.resample,

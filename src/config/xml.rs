@@ -208,6 +208,13 @@ pub const NAO_GESTURES_XML: &str = include_str!("../../configs/nao-gestures.xml"
 /// Name of the built-in default configuration in reports and messages.
 pub const DEFAULT_CONFIG_NAME: &str = "configs/nao-gestures.xml (built in)";
 
+/// The simulated upper body's configuration (configs/nao-upper-body.xml: the recommended one
+/// for 14 joints), built in; the default of `simulate` on the upper body.
+pub const NAO_UPPER_BODY_XML: &str = include_str!("../../configs/nao-upper-body.xml");
+
+/// Name of the built-in upper-body configuration in reports and messages.
+pub const UPPER_BODY_CONFIG_NAME: &str = "configs/nao-upper-body.xml (built in)";
+
 /// Load a configuration file ([`load_config`]), or without one the built-in recommended
 /// configuration ([`NAO_GESTURES_XML`]).
 pub fn load_config_or_default(path: Option<&Path>) -> Result<HsomConfig, ConfigError> {

@@ -250,6 +250,13 @@ pub fn all_gestures_job(job: &Job, progress: Progress<'_>) -> Result<Vec<String>
             "--gesture all records synthetic demonstrations of every gesture; to learn several gestures from recorded files use `cosco train --demos DIR` with one subdirectory per gesture (DIR/<gesture>/*.csv)"
         .into()));
     }
+    if job.robot != crate::robot::Robot::LeftArm {
+        return Err(ExperimentError::Invalid(format!(
+            "--gesture all runs on the left arm; on the {} give one gesture: {}",
+            job.robot.name(),
+            Gesture::names(job.robot).join(", ")
+        )));
+    }
     let out = &job.out;
     std::fs::create_dir_all(out).map_err(ExperimentError::io("creating", out))?;
     let cfg = load_config_or_default(job.config.as_deref())?;

@@ -14,13 +14,14 @@ use crate::plot::BLACK;
 use crate::sim::{demo_wrist_paths, NaoArm, Recording, Transition, JOINT_NAMES};
 
 use super::baseline::{fig3_png, fig5_png, GMR_COLOR, GMR_NAME, GMR_NEEDS};
+use super::figures::right_wrist_png;
 use super::figures::{demo_curves, demo_paths, joint_panels_png, reproduction, wrist_png};
 use super::heldout::on_arm;
-use super::output::FIG4_JOINTS;
+use super::output::panel_joints;
 use super::output::{config_name, file_size, hsom_on_arm, load_arm, write_hsom_run, Stopwatch};
 use super::report::{DemoInfo, MethodResult, Report};
 use super::{ExperimentError, Progress};
-use crate::robot::are_arm_joints;
+use crate::robot::{are_arm_joints, Robot};
 
 /// The result of a job's step.
 type Result<T> = std::result::Result<T, ExperimentError>;
@@ -62,8 +63,8 @@ pub fn require_arm_joints(demos: &[Demonstration]) -> Result<()> {
 /// baseline's column of the comparison table; the files written are appended to `files`.
 /// `demo_wrists` are the demonstrations' wrist paths (`demo_wrist_paths`), computed once by
 /// the caller.
-pub fn baseline_section(
-    arm: &NaoArm,
+pub fn baseline_section<const N: usize>(
+    arm: &NaoArm<N>,
     demos: &[Demonstration],
     demo_wrists: &[Vec<[f64; 3]>],
     hsom: &Recording,
@@ -105,18 +106,22 @@ pub fn baseline_section(
     )?;
     files.push("gmr_reproduction.csv".into());
 
-    fig3_png(
-        &out.join("fig3_gmr_training_data.png"),
-        training,
-        &FIG4_JOINTS,
-    )?;
+    let robot = arm.robot();
+    let panels = panel_joints(robot);
+    fig3_png(&out.join("fig3_gmr_training_data.png"), training, &panels)?;
     files.push("fig3_gmr_training_data.png".into());
+    // Fig. 5 is drawn for LShoulderPitch (the left arm's first joint) on every robot
+    let names = robot.joint_names();
+    let fig5_joint = names
+        .iter()
+        .position(|n| *n == "LShoulderPitch")
+        .unwrap_or(0);
     fig5_png(
         &out.join("fig5_gmr_lshoulderpitch.png"),
         model,
         training,
-        0,
-        JOINT_NAMES[0],
+        fig5_joint,
+        names[fig5_joint],
         dt,
     )?;
     files.push("fig5_gmr_lshoulderpitch.png".into());
@@ -128,7 +133,7 @@ pub fn baseline_section(
     joint_panels_png(
         &out.join("joints_compare.png"),
         "Demonstrations (colour), CoSCo-HSOM (black), GMM/GMR (magenta: learned without the idle start)",
-        &FIG4_JOINTS,
+        &panels,
         &curves,
         None,
         "rad",
@@ -143,6 +148,20 @@ pub fn baseline_section(
         &paths,
     )?;
     files.push("wrist_compare.png".into());
+    if robot == Robot::UpperBody {
+        let traces = [("CoSCo-HSOM reproduction", BLACK, hsom)];
+        let traces = traces
+            .into_iter()
+            .chain([("GMM/GMR reproduction", GMR_COLOR, executed)]);
+        right_wrist_png(
+            arm,
+            demos,
+            traces,
+            &out.join("wrist_right_compare.png"),
+            "Wrist path (r_wrist), torso frame: both methods",
+        )?;
+        files.push("wrist_right_compare.png".into());
+    }
 
     let fit = (&**model, &**training, bic.as_slice(), plan);
     Ok(gmr_result(&run, fit, file_size(&model_path)))
@@ -283,11 +302,22 @@ pub fn compare(job: &CompareJob, on_progress: Progress<'_>) -> Result<Report> {
         levels: Vec::new(),
         stages: clock.stages,
         files,
+        not_run: Vec::new(),
     };
     report
         .write(out)
         .map_err(ExperimentError::io("writing the report into", out))?;
     Ok(report)
+}
+
+/// The wrist-path DTW means of a summary line: `4.5`, `n/a`, or on two arms (the upper
+/// body) `4.5 (left), 4.7 (right)`.
+fn wrist_dtw(f: &crate::metrics::FidelityReport) -> String {
+    let mm = |s: Option<crate::metrics::Stat>| s.map_or("n/a".into(), |s| format!("{:.1}", s.mean));
+    match f.right_wrist_dtw_mm {
+        None => mm(f.wrist_dtw_mm),
+        Some(r) => format!("{} (left), {} (right)", mm(f.wrist_dtw_mm), mm(Some(r))),
+    }
 }
 
 /// One terminal line per method.
@@ -299,7 +329,7 @@ pub fn summary_lines(r: &Report) -> Vec<String> {
                 "{}: joint DTW {:.4} rad/step, wrist DTW {} mm, apex error {:.3} rad, final error {:.3} rad, duration ratio {:.2}, reversals {}",
                 m.name,
                 m.fidelity.joint_dtw_rad_per_step.mean,
-                m.fidelity.wrist_dtw_mm.map_or("n/a".into(), |s| format!("{:.1}", s.mean)),
+                wrist_dtw(&m.fidelity),
                 m.fidelity.apex_error_rad.mean,
                 m.fidelity.final_error_rad.mean,
                 m.fidelity.duration_ratio.mean,

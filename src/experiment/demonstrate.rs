@@ -96,8 +96,13 @@ pub fn synthetic_demonstrations<const N: usize>(
     on_done: impl FnMut(usize),
 ) -> Result<Vec<Demonstration>, ExperimentError> {
     let recs = record_demonstrations(arm, gesture, count, seed, settings, on_done)?;
-    Ok(recs
-        .iter()
+    Ok(as_demonstrations(gesture, seed, &recs))
+}
+
+/// Recordings of [`record_demonstrations`] as demonstrations named `"<gesture> demonstration
+/// N (seed S)"` (N from 1), each with the recording's `time` column.
+pub fn as_demonstrations(gesture: &Gesture, seed: u64, recs: &[Recording]) -> Vec<Demonstration> {
+    recs.iter()
         .enumerate()
         .map(|(i, r)| {
             r.to_demonstration(format!(
@@ -106,7 +111,7 @@ pub fn synthetic_demonstrations<const N: usize>(
                 i + 1
             ))
         })
-        .collect())
+        .collect()
 }
 
 /// Write demonstrations as `demo_01.csv`, ... in `dir` (created if missing).

@@ -7,17 +7,21 @@
 use crate::demos::{sample_period, Demonstration};
 use crate::eval::{Executed, Executor, Method};
 use crate::metrics::MetricsParams;
-use crate::robot::are_arm_joints;
+use crate::robot::Robot;
 use crate::sim::{
-    clamp_to_ranges, evaluate, execute_postures, NaoArm, Recording, SimError, Transition,
-    JOINT_NAMES, LEAD_IN_PEAK_SPEED, SWING_JOINT,
+    clamp_to_ranges_of, evaluate, execute_postures, NaoArm, Recording, SimError, Transition,
+    LEAD_IN_PEAK_SPEED, NJ,
 };
+
+/// The joint whose large swings are counted, by name (the wave's joint; the left arm's
+/// [`SWING_JOINT`](crate::sim::SWING_JOINT)).
+const SWING_JOINT_NAME: &str = "LElbowRoll";
 
 /// Clamp `postures` into the joint ranges, shape them with `transition`, execute them on
 /// `arm` at the rate of `metrics.sample_period` and score the executed trajectory against
 /// `test`: what [`ArmExecutor`] does, for callers that produce postures themselves.
-pub fn execute_and_score(
-    arm: &NaoArm,
+pub fn execute_and_score<const N: usize>(
+    arm: &NaoArm<N>,
     postures: &[Vec<f64>],
     transition: Transition,
     test: &[Demonstration],
@@ -29,7 +33,7 @@ pub fn execute_and_score(
             metrics.sample_period
         )));
     }
-    let (postures, clamped_values) = clamp_to_ranges(postures)?;
+    let (postures, clamped_values) = clamp_to_ranges_of(arm.robot(), postures)?;
     let commanded = transition.shape(&postures);
     let trace = execute_postures(arm, &commanded, 1.0 / metrics.sample_period)?;
     let fidelity = evaluate(Some(arm), test, &trace.qpos, metrics)?;
@@ -41,17 +45,17 @@ pub fn execute_and_score(
     })
 }
 
-/// The simulated arm as the evaluator's executor, with the transition of the hierarchy's
-/// postures.
+/// The simulated arm (or upper body, `N` its joints) as the evaluator's executor, with the
+/// transition of the hierarchy's postures.
 #[derive(Clone, Copy)]
-pub struct ArmExecutor<'a> {
+pub struct ArmExecutor<'a, const N: usize = NJ> {
     /// The arm.
-    pub arm: &'a NaoArm,
+    pub arm: &'a NaoArm<N>,
     /// How the hierarchy's and the nearest sequence's postures become servo targets.
     pub transition: Transition,
 }
 
-impl Executor for ArmExecutor<'_> {
+impl<const N: usize> Executor for ArmExecutor<'_, N> {
     type Trace = Recording;
 
     /// Refuses targets whose columns are not the arm's joints.
@@ -61,11 +65,16 @@ impl Executor for ArmExecutor<'_> {
         postures: &[Vec<f64>],
         targets: &[Demonstration],
     ) -> Result<Executed<Recording>, String> {
-        if let Some(d) = targets.iter().find(|d| !are_arm_joints(&d.columns)) {
+        let robot = self.arm.robot();
+        if let Some(d) = targets
+            .iter()
+            .find(|d| Robot::of_columns(&d.columns) != Some(robot))
+        {
             return Err(format!(
                 "the demonstrations' columns are {:?}; executing on the simulated arm needs \
                  exactly {:?}",
-                d.columns, JOINT_NAMES
+                d.columns,
+                robot.joint_names()
             ));
         }
         let metrics = MetricsParams {
@@ -90,9 +99,11 @@ impl Executor for ArmExecutor<'_> {
         LEAD_IN_PEAK_SPEED
     }
 
-    /// [`SWING_JOINT`].
+    /// `LElbowRoll` ([`SWING_JOINT`](crate::sim::SWING_JOINT) on the left arm).
     fn swing_joint(&self) -> Option<(usize, &'static str)> {
-        Some((SWING_JOINT, JOINT_NAMES[SWING_JOINT]))
+        let names = self.arm.robot().joint_names();
+        let j = names.iter().position(|n| *n == SWING_JOINT_NAME)?;
+        Some((j, SWING_JOINT_NAME))
     }
 }
 

@@ -1,4 +1,5 @@
-//! The main job's pictures: the paper's Fig. 4 (`joints.png`) and the wrist path (`wrist.png`).
+//! The main job's pictures: the paper's Fig. 4 (`joints.png`) and the wrist path (`wrist.png`;
+//! on the upper body the right wrist's beside it).
 
 use std::path::Path;
 
@@ -7,7 +8,9 @@ use plotters::style::RGBColor;
 use crate::condition::ConfidenceBand;
 use crate::demos::Demonstration;
 use crate::plot::{demo_color, panels_png, Band, Panel, PlotError, Series};
-use crate::sim::Recording;
+use crate::sim::{site_path, NaoArm, Recording, RIGHT_WRIST_SITE};
+
+use super::ExperimentError;
 
 /// Something to draw as a line: a legend label, a colour, a line width and its data (a
 /// [`Curve`]'s sample times and rows, a [`Path3`]'s positions).
@@ -154,4 +157,30 @@ pub fn wrist_png(path: &Path, title: &str, paths: &[Path3<'_>]) -> Result<(), Pl
         0,
     );
     panels_png(path, title, &[front, side], 2, (620, 520))
+}
+
+/// The right wrist's (`r_wrist`) paths, from `arm`'s kinematics at the encoder rows, of the
+/// demonstrations (each in its palette colour) and of each `(label, colour, recording)`
+/// reproduction (drawn thicker), as [`wrist_png`] draws them into `path`.
+pub fn right_wrist_png<'a, const N: usize>(
+    arm: &NaoArm<N>,
+    demos: &[Demonstration],
+    reproductions: impl IntoIterator<Item = (&'a str, RGBColor, &'a Recording)>,
+    path: &Path,
+    title: &str,
+) -> Result<(), ExperimentError> {
+    let demo_wrists = demos
+        .iter()
+        .map(|d| site_path(arm, RIGHT_WRIST_SITE, &d.rows))
+        .collect::<Result<Vec<_>, _>>()?;
+    let reps = reproductions
+        .into_iter()
+        .map(|(label, color, rec)| Ok((label, color, site_path(arm, RIGHT_WRIST_SITE, &rec.qpos)?)))
+        .collect::<Result<Vec<_>, ExperimentError>>()?;
+    let mut paths = demo_paths(&demo_wrists);
+    paths.extend(
+        reps.iter()
+            .map(|(label, color, w)| Path3::reproduction(*label, *color, &w[..])),
+    );
+    Ok(wrist_png(path, title, &paths)?)
 }

@@ -1,5 +1,5 @@
-//! Filming a recorded trajectory: each frame puts the simulated arm in a recorded posture and
-//! renders it off-screen from the model's camera.
+//! Filming a recorded trajectory: each frame puts the simulated arm (or upper body) in a
+//! recorded posture and renders it off-screen from the model's camera.
 
 use crate::render::{Clip, RenderOptions, Renderer};
 use crate::sim::{NaoArm, Recording};
@@ -28,8 +28,8 @@ pub const STILL_RAD: f64 = 1e-3;
 /// Render every `stride`-th sample of `recording` (the arm placed at the recorded encoder
 /// values) into a [`Clip`] whose GIF plays in real time. A sample whose posture is within
 /// [`STILL_RAD`] of the last rendered one repeats its frame (see [`frame_sources`]).
-pub fn film(
-    arm: &NaoArm,
+pub fn film<const N: usize>(
+    arm: &NaoArm<N>,
     recording: &Recording,
     options: &RenderOptions,
     stride: usize,

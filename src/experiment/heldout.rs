@@ -12,14 +12,19 @@ use crate::eval::{
     Split, Training,
 };
 use crate::gmr::MIN_DEMONSTRATIONS;
-use crate::sim::{NaoArm, Recording, Transition, JOINT_NAMES, SWING_JOINT};
+use crate::sim::{NaoArm, Recording, Transition, SWING_JOINT};
 
 use super::executor::ArmExecutor;
 use super::ExperimentError;
-use crate::robot::are_arm_joints;
+use crate::robot::Robot;
 
 /// Check that leave-one-out can run on `demos`: at least 2, the arm's joints.
 pub fn check_demos(demos: &[Demonstration]) -> Result<(), ExperimentError> {
+    check_demos_of(Robot::LeftArm, demos)
+}
+
+/// [`check_demos`] for `robot`'s joints.
+fn check_demos_of(robot: Robot, demos: &[Demonstration]) -> Result<(), ExperimentError> {
     if demos.len() < 2 {
         return Err(ExperimentError::Invalid(format!(
             "leave-one-out needs at least 2 demonstrations (one to hold out, one to learn \
@@ -28,10 +33,12 @@ pub fn check_demos(demos: &[Demonstration]) -> Result<(), ExperimentError> {
         )));
     }
     for d in demos {
-        if !are_arm_joints(&d.columns) {
+        if Robot::of_columns(&d.columns) != Some(robot) {
             return Err(ExperimentError::Invalid(format!(
                 "{}: columns {:?}; executing on the simulated arm needs exactly {:?}",
-                d.source, d.columns, JOINT_NAMES
+                d.source,
+                d.columns,
+                robot.joint_names()
             )));
         }
     }
@@ -43,15 +50,15 @@ pub fn check_demos(demos: &[Demonstration]) -> Result<(), ExperimentError> {
 /// starts from its first posture and is scored against it alone. A baseline that learns from
 /// demonstrations alone (GMM/GMR, ProMP) and cannot run on a fold (fewer than
 /// [`MIN_DEMONSTRATIONS`] to learn from, a failed fit) holds the reason, `fold N: method: why`.
-pub fn folds(
-    arm: &NaoArm,
+pub fn folds<const N: usize>(
+    arm: &NaoArm<N>,
     demos: &[Demonstration],
     methods: &[Method],
     config: Option<&HsomConfig>,
     training: Training,
     transition: Transition,
 ) -> Result<Vec<Fold>, ExperimentError> {
-    check_demos(demos)?;
+    check_demos_of(arm.robot(), demos)?;
     let executor = ArmExecutor { arm, transition };
     let base = FoldInput {
         config,
@@ -95,8 +102,8 @@ pub fn folds(
 /// demonstration that starts nearest), GMM/GMR and ProMP ([`folds`]). Needs at least 2
 /// demonstrations of the arm's joints; GMM/GMR and ProMP need 2 to learn from, so with 2
 /// demonstrations their folds hold the reason instead.
-pub fn leave_one_out(
-    arm: &NaoArm,
+pub fn leave_one_out<const N: usize>(
+    arm: &NaoArm<N>,
     config: &HsomConfig,
     demos: &[Demonstration],
     transition: Transition,
@@ -147,8 +154,8 @@ pub fn demo_trace(demo: &Demonstration) -> Vec<(f64, f64)> {
 }
 
 /// CoSCo-HSOM alone on every fold ([`folds`]): the means over them.
-pub fn hierarchy_held_out(
-    arm: &NaoArm,
+pub fn hierarchy_held_out<const N: usize>(
+    arm: &NaoArm<N>,
     config: &HsomConfig,
     demos: &[Demonstration],
     training: Training,
@@ -168,8 +175,8 @@ pub fn hierarchy_held_out(
 /// `method` as `input` says (configuration, training progress, GMM/GMR's components) on its
 /// split, executed on the arm with `transition`: in the reports, learned from all
 /// demonstrations and scored against all ([`Split::InSampleAll`]).
-pub fn on_arm(
-    arm: &NaoArm,
+pub fn on_arm<const N: usize>(
+    arm: &NaoArm<N>,
     transition: Transition,
     method: Method,
     input: &FoldInput<'_>,

@@ -6,31 +6,30 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::config::load_config_or_default;
+use crate::config::{
+    load_config_or_default, parse_config, HsomConfig, NAO_UPPER_BODY_XML, UPPER_BODY_CONFIG_NAME,
+};
 use crate::demo_sets::read_demos;
 use crate::demos::Demonstration;
 use crate::eval::Training;
 use crate::gesture::Gesture;
 use crate::plot::BLACK;
-use crate::sim::{check_reachable, demo_wrist_paths, NaoArm, Transition, JOINT_NAMES};
+use crate::sim::{check_reachable_of, demo_wrist_paths, NaoArm, Recording, Touch, Transition};
 
 use super::baseline::GMR_NAME;
 use super::compare;
-use super::demonstrate::write_demos;
+use super::demonstrate::{as_demonstrations, record_demonstrations, write_demos};
 use super::figures::{
-    demo_curves, demo_paths, joint_panels_png, reproduction, wrist_png, BandTrace,
+    demo_curves, demo_paths, joint_panels_png, reproduction, right_wrist_png, wrist_png, BandTrace,
 };
 use super::heldout::hierarchy_held_out;
-use super::output::FIG4_JOINTS;
 use super::output::{
-    config_name, hsom_model, hsom_on_arm, load_arm, load_robot, write_hsom_run, Stopwatch,
+    config_name, hsom_model, hsom_on_arm, load_robot, panel_joints, write_hsom_run, Stopwatch,
 };
 use super::report::{DemoInfo, Report};
 use super::variants::{reference_variants, run_variant, variants};
-use super::{
-    film, leave_one_out, synthetic_demonstrations, DemoSettings, ExperimentError, Progress,
-};
-use crate::robot::{are_arm_joints, Robot};
+use super::{film, leave_one_out, DemoSettings, ExperimentError, Progress};
+use crate::robot::Robot;
 
 /// The result of a job's step.
 type Result<T> = std::result::Result<T, ExperimentError>;
@@ -59,17 +58,51 @@ pub fn record<const N: usize>(
     noise: f64,
     on_progress: Progress<'_>,
 ) -> Result<Vec<Demonstration>> {
+    let recs = record_traced(arm, gesture, count, seed, noise, on_progress)?;
+    Ok(as_demonstrations(gesture, seed, &recs))
+}
+
+/// [`record`], the simulator's recordings (contacts included) rather than demonstrations.
+fn record_traced<const N: usize>(
+    arm: &NaoArm<N>,
+    gesture: &Gesture,
+    count: usize,
+    seed: u64,
+    noise: f64,
+    on_progress: Progress<'_>,
+) -> Result<Vec<Recording>> {
     let settings = DemoSettings {
         encoder_noise: noise,
         ..DemoSettings::default()
     };
     let done = std::cell::Cell::new(0);
     on_progress("demonstrating", 0, count);
-    let demos = synthetic_demonstrations(arm, gesture, count, seed, &settings, |_| {
+    record_demonstrations(arm, gesture, count, seed, &settings, |_| {
         done.set(done.get() + 1);
         on_progress("demonstrating", done.get(), count);
-    })?;
-    Ok(demos)
+    })
+}
+
+/// The gesture `simulate` demonstrates on `robot` without `--gesture`: the left arm's
+/// `reading-watch`, the upper body's `wave-right`.
+pub fn default_gesture(robot: Robot) -> &'static str {
+    match robot {
+        Robot::LeftArm => "reading-watch",
+        Robot::UpperBody => "wave-right",
+    }
+}
+
+/// The configuration of the main job on `robot` from `path`, or without one the robot's
+/// built-in configuration (the left arm's configs/nao-gestures.xml, the upper body's
+/// configs/nao-upper-body.xml), and its name in the report.
+fn job_config(robot: Robot, path: Option<&Path>) -> Result<(HsomConfig, String)> {
+    match (robot, path) {
+        (Robot::UpperBody, None) => Ok((
+            parse_config(NAO_UPPER_BODY_XML, UPPER_BODY_CONFIG_NAME)?,
+            UPPER_BODY_CONFIG_NAME.to_string(),
+        )),
+        _ => Ok((load_config_or_default(path)?, config_name(path))),
+    }
 }
 
 /// What `cosco demos` records: which robot's gesture, how many, from which seed, with how
@@ -119,9 +152,11 @@ fn demos_on<const N: usize>(
 /// Everything the main job needs to know.
 #[derive(Debug, Clone)]
 pub struct Job {
-    /// Gesture of the synthetic demonstrations.
+    /// The robot: the left arm (the paper's experiment) or the upper body.
+    pub robot: Robot,
+    /// Gesture of the synthetic demonstrations (one of the robot's).
     pub gesture: String,
-    /// Configuration file (None: built-in Table I).
+    /// Configuration file (None: the robot's built-in configuration).
     pub config: Option<PathBuf>,
     /// Directory of recorded demonstrations (None: synthetic).
     pub demos: Option<PathBuf>,
@@ -158,18 +193,44 @@ pub struct JobSummary {
 }
 
 /// The main job: demonstrations -> training -> reproduction in the simulator -> report,
-/// plots and clip, all written into `job.out`.
+/// plots and clip, all written into `job.out`, on the job's robot. On the upper body the
+/// before/after variants and the held-out section are not run (the report says so), both
+/// wrists' paths are drawn and scored, and the report lists the contacts between its parts.
 pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
+    match job.robot {
+        Robot::LeftArm => main_job_on::<6>(job, on_progress),
+        Robot::UpperBody => main_job_on::<14>(job, on_progress),
+    }
+}
+
+/// What the main job leaves out on `robot`, one line each (nothing on the left arm).
+fn not_run(robot: Robot) -> Vec<String> {
+    match robot {
+        Robot::LeftArm => Vec::new(),
+        Robot::UpperBody => vec![
+            "held-out (leave-one-out) evaluation, with the nearest sequence, ProMP and the DMP: \
+             the upper body's job is in-sample only"
+                .into(),
+            "the before/after variants: their reference is the paper's Table I \
+             (configs/table1.xml), whose stateLength is the left arm's 6"
+                .into(),
+        ],
+    }
+}
+
+fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
+    let robot = job.robot;
+    let in_sample_only = robot != Robot::LeftArm;
     let mut warnings = Vec::new();
     let mut clock = Stopwatch::default();
     let out = &job.out;
     std::fs::create_dir_all(out.join("demos")).map_err(ExperimentError::io("creating", out))?;
-    let cfg = load_config_or_default(job.config.as_deref())?;
-    let arm = load_arm(job.model.as_deref())?;
+    let (cfg, cfg_name) = job_config(robot, job.config.as_deref())?;
+    let arm = load_robot::<N>(robot, job.model.as_deref())?;
     let mut files = Vec::new();
 
-    // 1. Demonstrations.
-    let (demos, gesture) = match &job.demos {
+    // 1. Demonstrations (with their contacts, on a model with collision shapes).
+    let (demos, gesture, contacts): (_, _, Option<Vec<Vec<Touch>>>) = match &job.demos {
         Some(dir) => (
             read_demos(
                 std::slice::from_ref(dir),
@@ -177,29 +238,38 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
                 job.resample,
             )?,
             None,
+            None,
         ),
         None => {
-            let g = gesture(Robot::LeftArm, &job.gesture)?;
-            let demos = record(&arm, &g, job.count, job.seed, job.noise, on_progress)?;
-            (demos, Some(g.name.to_string()))
+            let g = gesture(robot, &job.gesture)?;
+            let recs = record_traced(&arm, &g, job.count, job.seed, job.noise, on_progress)?;
+            let contacts = robot
+                .has_collision_shapes()
+                .then(|| recs.iter().map(|r| r.contacts.clone()).collect());
+            let demos = as_demonstrations(&g, job.seed, &recs);
+            (demos, Some(g.name.to_string()), contacts)
         }
     };
-    if !are_arm_joints(&demos[0].columns) {
+    if Robot::of_columns(&demos[0].columns) != Some(robot) {
         return Err(ExperimentError::Invalid(format!(
             "the demonstrations' columns are {:?}; the simulated arm needs exactly {:?} (use `cosco train` / `cosco reproduce` for other data)",
             demos[0].columns,
-            JOINT_NAMES
+            robot.joint_names()
         )));
     }
     // recorded demonstrations far outside the joint ranges are no gesture the arm can make
     for d in &demos {
-        check_reachable(&d.rows, &d.source)?;
+        check_reachable_of(robot, &d.rows, &d.source)?;
     }
     let demo_files = write_demos(&out.join("demos"), &demos)?;
     let demo_info: Vec<DemoInfo> = demos
         .iter()
         .zip(&demo_files)
-        .map(|(d, f)| DemoInfo::new(f.strip_prefix(out).unwrap_or(f).display().to_string(), d))
+        .enumerate()
+        .map(|(i, (d, f))| DemoInfo {
+            contacts: contacts.as_ref().map(|c| c[i].clone()),
+            ..DemoInfo::new(f.strip_prefix(out).unwrap_or(f).display().to_string(), d)
+        })
         .collect();
     files.extend(demo_info.iter().map(|d| d.file.clone()));
     clock.lap("demonstrations (simulate + record)");
@@ -226,7 +296,7 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     joint_panels_png(
         &out.join("joints.png"),
         "Training demonstrations (colour) and the reproduced gesture (black) with its 95 % band",
-        &FIG4_JOINTS,
+        &panel_joints(robot),
         &curves,
         band.as_ref(),
         "rad",
@@ -241,6 +311,16 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
         &paths,
     )?;
     files.push("wrist.png".into());
+    if robot == Robot::UpperBody {
+        right_wrist_png(
+            &arm,
+            &demos,
+            [("CoSCo-HSOM reproduction", BLACK, executed)],
+            &out.join("wrist_right.png"),
+            "Wrist path (r_wrist), torso frame",
+        )?;
+        files.push("wrist_right.png".into());
+    }
     clock.lap("plots");
 
     // 5b. The paper's baseline (GMM/GMR) on the same demonstrations, executed and scored the
@@ -266,7 +346,10 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     clock.lap("GMM/GMR baseline (fit + execute + metrics + plots)");
 
     // 5c. Held-out: each demonstration in turn left out, both methods (experiment::heldout).
-    let (heldout, heldout_note) = if !job.heldout {
+    let (heldout, heldout_note) = if in_sample_only {
+        let note = format!("the {} job is in-sample only", robot.name());
+        (None, Some(note))
+    } else if !job.heldout {
         (None, Some("--no-heldout was given".to_string()))
     } else if demos.len() < 2 {
         let note = format!(
@@ -289,7 +372,7 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
 
     // 5d. Before / after: the beyond-the-paper options switched off (docs/ALGORITHM.md).
     let mut variant_results = Vec::new();
-    if job.variants {
+    if job.variants && !in_sample_only {
         let mut vs = reference_variants(&cfg, job.transition)?;
         vs.extend(variants(&cfg, job.transition)?);
         on_progress("variants", 0, vs.len());
@@ -333,7 +416,11 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
     files.extend(["report.md".into(), "report.json".into()]);
     let report = Report {
         title: format!(
-            "CoSCo-HSOM on the simulated Nao left arm{}",
+            "CoSCo-HSOM on the simulated Nao {}{}",
+            match robot {
+                Robot::LeftArm => "left arm",
+                Robot::UpperBody => "upper body",
+            },
             gesture
                 .as_deref()
                 .map(|g| format!(": {g}"))
@@ -341,7 +428,7 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
         ),
         gesture,
         seed: job.seed,
-        config: config_name(job.config.as_deref()),
+        config: cfg_name,
         demos: demo_info,
         methods,
         variants: variant_results,
@@ -350,6 +437,7 @@ pub fn main_job(job: &Job, on_progress: Progress<'_>) -> Result<JobSummary> {
         levels: hsom_model(&run)?.0.summary().levels,
         stages: clock.stages,
         files,
+        not_run: not_run(robot),
     };
     report
         .write(out)

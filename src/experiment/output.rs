@@ -94,6 +94,15 @@ pub const FIG4_JOINTS: [(usize, &str); 4] = [
     (3, "LElbowRoll"),
 ];
 
+/// The joints the main job's joint figures show, `(column, name)`: the paper's Fig. 4 on the
+/// left arm ([`FIG4_JOINTS`]), every joint on the upper body.
+pub fn panel_joints(robot: Robot) -> Vec<(usize, &'static str)> {
+    match robot {
+        Robot::LeftArm => FIG4_JOINTS.to_vec(),
+        Robot::UpperBody => robot.joint_names().iter().copied().enumerate().collect(),
+    }
+}
+
 /// The model and the reproduction of a run of [`Method::Hierarchy`](crate::eval::Method)
 /// (an error for a run of another method).
 pub fn hsom_model(run: &MethodRun<Recording>) -> Result<(&Hsom, &Reproduction), ExperimentError> {
@@ -111,8 +120,8 @@ pub fn hsom_model(run: &MethodRun<Recording>) -> Result<(&Hsom, &Reproduction), 
 /// Train CoSCo-HSOM with `cfg` on `demos` (stage `training` to `on_progress`), reproduce from
 /// the first one's initial posture, execute on the arm with `transition` and score against
 /// all of them (the main job's in-sample run).
-pub fn hsom_on_arm(
-    arm: &NaoArm,
+pub fn hsom_on_arm<const N: usize>(
+    arm: &NaoArm<N>,
     cfg: &HsomConfig,
     demos: &[Demonstration],
     transition: Transition,

@@ -14,7 +14,8 @@ use crate::demos::{sample_period, Demonstration};
 use crate::eval::SWING_MIN_AMPLITUDE_RAD;
 use crate::eval::{FoldScores, HeldOut, HeldOutSummary, Method, MethodRun};
 use crate::hsom::LevelSummary;
-use crate::sim::{Recording, JOINT_NAMES, SWING_JOINT};
+use crate::robot::Robot;
+use crate::sim::{Recording, Touch, JOINT_NAMES, SWING_JOINT};
 use crate::table::Table;
 
 /// One demonstration used for training.
@@ -26,6 +27,10 @@ pub struct DemoInfo {
     pub samples: usize,
     /// Duration, seconds.
     pub duration_s: f64,
+    /// Contacts between the robot's parts while it was recorded, on a model with collision
+    /// shapes ([`Robot::has_collision_shapes`]); none otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contacts: Option<Vec<Touch>>,
 }
 
 impl DemoInfo {
@@ -37,6 +42,7 @@ impl DemoInfo {
             file,
             samples,
             duration_s,
+            contacts: None,
         }
     }
 }
@@ -64,6 +70,10 @@ pub struct MethodResult {
     pub notes: Vec<String>,
     /// Held-out (leave-one-out) means, when evaluated.
     pub heldout: Option<HeldOutSummary>,
+    /// Contacts between the robot's parts during the executed reproduction, on a model with
+    /// collision shapes ([`Robot::has_collision_shapes`]); none otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contacts: Option<Vec<Touch>>,
 }
 
 impl MethodResult {
@@ -88,8 +98,24 @@ impl MethodResult {
             clamped_values: run.executed.clamped_values,
             notes,
             heldout: None,
+            contacts: executed_contacts(&run.executed.trace),
         }
     }
+}
+
+/// The contacts of an executed motion, when its robot's model has collision shapes.
+fn executed_contacts(trace: &Recording) -> Option<Vec<Touch>> {
+    let robot = Robot::of_columns(&trace.joint_names)?;
+    robot.has_collision_shapes().then(|| trace.contacts.clone())
+}
+
+/// Contacts for people: `none`, or each one described ([`Touch::describe`]), `; ` between.
+pub fn contacts_text(contacts: &[Touch]) -> String {
+    if contacts.is_empty() {
+        return "none".into();
+    }
+    let all: Vec<String> = contacts.iter().map(Touch::describe).collect();
+    all.join("; ")
 }
 
 /// A level of the main model in `report.json`: how many nodes it has (rows x cols) and uses,
@@ -147,6 +173,9 @@ pub struct Report {
     pub stages: Vec<Stage>,
     /// Files written, relative to the output directory.
     pub files: Vec<String>,
+    /// What this job leaves out of the main job on this robot, and why, one line each.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub not_run: Vec<String>,
 }
 
 fn stat(s: &Stat, digits: usize) -> String {
@@ -162,13 +191,14 @@ fn opt_stat(s: &Option<Stat>, digits: usize) -> String {
 /// demonstrations' mean normalized jerk and velocity reversals.
 type ComparisonRow = (&'static str, fn(&MethodResult, (f64, f64)) -> String);
 
+/// The wrist-path row of [`COMPARISON_ROWS`].
+const WRIST_ROW: &str = "wrist-path DTW (mm/step)";
+
 const COMPARISON_ROWS: [ComparisonRow; 15] = [
     ("joint DTW (rad/step)", |r, _| {
         stat(&r.fidelity.joint_dtw_rad_per_step, 4)
     }),
-    ("wrist-path DTW (mm/step)", |r, _| {
-        opt_stat(&r.fidelity.wrist_dtw_mm, 1)
-    }),
+    (WRIST_ROW, |r, _| opt_stat(&r.fidelity.wrist_dtw_mm, 1)),
     ("apex error (rad)", |r, _| {
         stat(&r.fidelity.apex_error_rad, 3)
     }),
@@ -228,10 +258,31 @@ pub fn comparison_table(results: &[MethodResult]) -> String {
         demo_mean(demos, |s| s.normalized_jerk).unwrap_or(f64::NAN),
         demo_mean(demos, |s| Some(s.total_reversals as f64)).unwrap_or(f64::NAN),
     );
+    // two arms (the upper body): the wrist row is the left wrist's, the right's beside it
+    let two_wrists = results
+        .iter()
+        .any(|r| r.fidelity.right_wrist_dtw_mm.is_some());
+    let mut row = |name: &str, cell: &dyn Fn(&MethodResult) -> String| {
+        table.row(std::iter::once(name.to_string()).chain(results.iter().map(cell)));
+    };
     for (name, cell) in COMPARISON_ROWS {
-        table.row(
-            std::iter::once(name.to_string()).chain(results.iter().map(|r| cell(r, demo_means))),
-        );
+        if two_wrists && name == WRIST_ROW {
+            row("left wrist-path DTW, l_wrist (mm/step)", &|r| {
+                opt_stat(&r.fidelity.wrist_dtw_mm, 1)
+            });
+            row("right wrist-path DTW, r_wrist (mm/step)", &|r| {
+                opt_stat(&r.fidelity.right_wrist_dtw_mm, 1)
+            });
+            continue;
+        }
+        row(name, &|r| cell(r, demo_means));
+    }
+    if results.iter().any(|r| r.contacts.is_some()) {
+        row("contacts between parts (time, parts, deepest)", &|r| {
+            r.contacts
+                .as_deref()
+                .map_or_else(|| "n/a".into(), contacts_text)
+        });
     }
     let mut t = table.to_string();
     for r in results {
@@ -527,9 +578,12 @@ impl Report {
         let _ = writeln!(md, "- configuration: `{}`", self.config);
         let _ = writeln!(md, "- demonstrations:");
         for d in &self.demos {
+            let contacts = d.contacts.as_deref().map_or(String::new(), |c| {
+                format!("; contacts between parts: {}", contacts_text(c))
+            });
             let _ = writeln!(
                 md,
-                "  - `{}`: {} samples, {:.2} s",
+                "  - `{}`: {} samples, {:.2} s{contacts}",
                 d.file, d.samples, d.duration_s
             );
         }
@@ -541,6 +595,12 @@ impl Report {
         );
         let _ = writeln!(md, "## Methods side by side\n");
         md.push_str(&comparison_table(&self.methods));
+        if !self.not_run.is_empty() {
+            let _ = writeln!(md, "\n## Not run on this robot\n");
+            for n in &self.not_run {
+                let _ = writeln!(md, "- {n}");
+            }
+        }
         match &self.heldout {
             None if self.heldout_note.is_none() => {}
             Some(h) => {

@@ -110,8 +110,8 @@ pub fn reference_variants(
 /// Run one variant on `demos`: learned from all and scored against all (the in-sample
 /// column) and, with `heldout` and at least 2 demonstrations, leave-one-out (the held-out
 /// means).
-pub fn run_variant(
-    arm: &NaoArm,
+pub fn run_variant<const N: usize>(
+    arm: &NaoArm<N>,
     variant: &Variant,
     demos: &[Demonstration],
     heldout: bool,

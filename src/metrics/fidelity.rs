@@ -161,6 +161,10 @@ pub struct FidelityReport {
     pub joint_dtw_rad_per_step: Stat,
     /// Wrist-path DTW, mm per step, when every trajectory has wrist positions.
     pub wrist_dtw_mm: Option<Stat>,
+    /// The right wrist's path DTW, mm per step, on a robot with two arms (the simulator's
+    /// upper body, whose `wrist_dtw_mm` is then the left wrist's); none otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub right_wrist_dtw_mm: Option<Stat>,
     /// Apex (key-pose) error, rad.
     pub apex_error_rad: Stat,
     /// Final-posture error, rad.
@@ -357,6 +361,7 @@ pub fn fidelity_named(
     Ok(FidelityReport {
         joint_dtw_rad_per_step: Stat::max_of(&collect(&|s| s.joint_dtw_rad_per_step)),
         wrist_dtw_mm: wrist,
+        right_wrist_dtw_mm: None,
         apex_error_rad: Stat::max_of(&collect(&|s| s.apex_error_rad)),
         final_error_rad: Stat::max_of(&collect(&|s| s.final_error_rad)),
         duration_ratio: Stat::ratio_of(&collect(&|s| s.duration_ratio)),

@@ -167,6 +167,12 @@ impl Robot {
             .map(|(_, p)| p.as_slice())
     }
 
+    /// Whether its shipped model has collision shapes, so that contacts between its parts are
+    /// simulated and reported: the upper body's has them; the left arm's is collision-free.
+    pub fn has_collision_shapes(self) -> bool {
+        matches!(self, Robot::UpperBody)
+    }
+
     /// The shipped MJCF model's path.
     pub const fn model_path(self) -> &'static str {
         match self {

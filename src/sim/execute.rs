@@ -1,9 +1,8 @@
 //! Executing a learned gesture on the simulated arm: the predicted postures go to the position
 //! controller, from the initial posture, and the executed trajectory is recorded at 40 Hz.
 
-use super::{
-    Controller, ControllerConfig, NaoArm, Recording, SimError, TargetTrajectory, JOINT_SPECS, NJ,
-};
+use super::{Controller, ControllerConfig, NaoArm, Recording, SimError, TargetTrajectory};
+use crate::robot::Robot;
 
 /// How predicted postures become servo targets.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -129,17 +128,17 @@ pub fn min_jerk_through_key_poses(postures: &[Vec<f64>], tolerance: f64) -> Vec<
 /// Execute `postures` (one per tick of `rate_hz`, the first being the initial posture) on the
 /// simulated arm, starting at the first posture, and record the encoders at `rate_hz`.
 /// Postures outside the joint ranges are an error naming the joint (no silent clamping).
-pub fn execute_postures(
-    arm: &NaoArm,
+pub fn execute_postures<const N: usize>(
+    arm: &NaoArm<N>,
     postures: &[Vec<f64>],
     rate_hz: f64,
 ) -> Result<Recording, SimError> {
     let Some(first) = postures.first() else {
         return Err(SimError::Invalid("no postures to execute".into()));
     };
-    if first.len() != NJ {
+    if first.len() != N {
         return Err(SimError::Invalid(format!(
-            "postures have {} values, the arm has {NJ} joints",
+            "postures have {} values, the arm has {N} joints",
             first.len()
         )));
     }
@@ -147,7 +146,7 @@ pub fn execute_postures(
         record_rate_hz: rate_hz,
         ..ControllerConfig::default()
     })?;
-    let trajectory = TargetTrajectory::at_rate(rate_hz, postures)?;
+    let trajectory = TargetTrajectory::<N>::at_rate_for(arm.robot(), rate_hz, postures)?;
     let mut sim = arm.sim()?;
     sim.set_posture(first)?;
     controller.follow(&mut sim, &trajectory)
@@ -156,17 +155,27 @@ pub fn execute_postures(
 /// Clamp learned postures into the joint ranges before execution, counting the values that
 /// were outside (the report shows the count: nothing is fixed silently). NaN is an error.
 pub fn clamp_to_ranges(postures: &[Vec<f64>]) -> Result<(Vec<Vec<f64>>, usize), SimError> {
+    clamp_to_ranges_of(Robot::LeftArm, postures)
+}
+
+/// [`clamp_to_ranges`] into `robot`'s joint ranges.
+pub fn clamp_to_ranges_of(
+    robot: Robot,
+    postures: &[Vec<f64>],
+) -> Result<(Vec<Vec<f64>>, usize), SimError> {
+    let joints = robot.joints();
     let mut clamped = 0;
     let mut out = Vec::with_capacity(postures.len());
     for (i, p) in postures.iter().enumerate() {
-        if p.len() != NJ {
+        if p.len() != joints.len() {
             return Err(SimError::Invalid(format!(
-                "posture {i} has {} values, the arm has {NJ} joints",
-                p.len()
+                "posture {i} has {} values, the arm has {} joints",
+                p.len(),
+                joints.len()
             )));
         }
-        let mut row = Vec::with_capacity(NJ);
-        for (spec, &v) in JOINT_SPECS.iter().zip(p) {
+        let mut row = Vec::with_capacity(joints.len());
+        for (spec, &v) in joints.iter().zip(p) {
             let c = super::spec::clamp_joint(spec, v)?;
             if c != v {
                 clamped += 1;

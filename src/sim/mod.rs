@@ -25,12 +25,14 @@ pub use controller::{
     Controller, ControllerConfig, Grab, KeyPose, TargetTrajectory, DEFAULT_RECORD_RATE_HZ,
 };
 pub use error::{Result, SimError};
-pub use execute::{clamp_to_ranges, execute_postures, key_pose_indices, Transition};
+pub use execute::{
+    clamp_to_ranges, clamp_to_ranges_of, execute_postures, key_pose_indices, Transition,
+};
 pub use interp::Interpolation;
 pub use recording::{Recording, Touch};
 pub use score::{
-    check_reachable, demo_wrist_paths, evaluate, trajectory, wrist_path, LEAD_IN_PEAK_SPEED,
-    SWING_JOINT,
+    check_reachable, check_reachable_of, demo_wrist_paths, evaluate, site_path, trajectory,
+    wrist_path, LEAD_IN_PEAK_SPEED, RIGHT_WRIST_SITE, SWING_JOINT,
 };
 pub use spec::{
     check_joint, check_posture, clamp_joint, clamp_posture, JointSpec, NamedPosture, Posture,

@@ -1,4 +1,5 @@
 use super::*;
+use crate::sim::JOINT_SPECS;
 
 #[test]
 fn min_jerk_keeps_length_endpoints_and_extremes_and_removes_jitter() {
