@@ -103,7 +103,7 @@ fn the_main_job_runs_on_the_upper_body_with_14_joints_contacts_and_what_it_leave
 }
 
 #[test]
-fn the_left_arm_report_has_no_contacts_row_and_the_upper_body_refuses_what_it_cannot_do() {
+fn the_upper_body_refuses_what_it_cannot_do_naming_what_is_allowed() {
     // --gesture all is the left arm's; a left-arm gesture is no upper-body gesture
     let tmp = tempfile::tempdir().unwrap();
     let run = |args: &[&str]| {
