@@ -167,6 +167,13 @@ impl Robot {
             .map(|(_, p)| p.as_slice())
     }
 
+    /// Whether its model has collision shapes, so that the simulator reports two parts in
+    /// contact: the upper body's links, torso and head do; the left arm's model is
+    /// collision-free (its torso and head are silhouettes).
+    pub const fn has_collisions(self) -> bool {
+        matches!(self, Robot::UpperBody)
+    }
+
     /// The shipped MJCF model's path.
     pub const fn model_path(self) -> &'static str {
         match self {
