@@ -34,6 +34,25 @@ pub struct Evaluation {
     /// The unit of the distances: `rad` for the arm's joints, the data's own units otherwise.
     #[serde(skip)]
     pub unit: &'static str,
+    /// Every contact between two parts of the robot while the reproduction is executed on
+    /// the simulated upper body (when its columns are the upper body's joints; the left arm's
+    /// model is collision-free, so none there).
+    #[cfg(feature = "sim")]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contacts: Option<Vec<crate::sim::Touch>>,
+}
+
+/// The contacts of `rep` executed on the simulated upper body, when its columns are the
+/// upper body's joints (`rate_hz`: its rows' rate when it has no `time`).
+#[cfg(feature = "sim")]
+fn contacts(rep: &Demonstration, rate_hz: f64) -> Result<Option<Vec<crate::sim::Touch>>> {
+    use crate::robot::Robot;
+    if Robot::of_columns(&rep.columns) != Some(Robot::UpperBody) {
+        return Ok(None);
+    }
+    let t = crate::export::Trajectory::from_demonstration(rep, rate_hz)?;
+    let done = crate::export::executed::execute(Robot::UpperBody, &t, rate_hz)?;
+    Ok(Some(done.contacts))
 }
 
 /// `cosco evaluate`: the fidelity metrics of a reproduction CSV against demonstrations, and
@@ -85,6 +104,8 @@ pub fn evaluate_files(
         fidelity,
         start_end,
         unit,
+        #[cfg(feature = "sim")]
+        contacts: contacts(&rep, 1.0 / params.sample_period)?,
     };
     if let Some(p) = json {
         files::write_json(p, &e)?;
@@ -140,7 +161,7 @@ impl Evaluation {
                 )
             ),
         );
-        out + &line(
+        out += &line(
             format!("final error ({unit}):"),
             format!(
                 "{:.4}; demonstrations' end spread {:.4}, tolerance {:.4}: {}",
@@ -149,7 +170,19 @@ impl Evaluation {
                 s.end_tolerance,
                 verdict(s.end_within_spread, "within", "OUTSIDE the spread")
             ),
-        )
+        );
+        #[cfg(feature = "sim")]
+        if let Some(c) = &self.contacts {
+            let seen: Vec<String> = c.iter().map(|t| t.describe()).collect();
+            out += &line(
+                "contacts (simulated upper body):".into(),
+                match seen.is_empty() {
+                    true => "none".into(),
+                    false => format!("{}: {}", seen.len(), seen.join("; ")),
+                },
+            );
+        }
+        out
     }
 }
 

@@ -6,6 +6,7 @@
 use std::path::PathBuf;
 
 use super::{encode, limits, prepare, ExportError, Format, Trajectory};
+use crate::robot::Robot;
 
 /// Rate of a reproduction's `step` column when the file has no `time` column: the arm's
 /// encoders' (the demonstrations' clock), Hz.
@@ -33,6 +34,12 @@ pub struct ExportRequest {
     /// Rate of a `step` column (a reproduction without `time`), Hz
     /// ([`DEFAULT_STEP_RATE_HZ`] by default).
     pub step_rate: f64,
+    /// The robot the motion is for: its joints' limits, and on the upper body (whose model has
+    /// collision shapes) the contact check: the motion is executed on the simulated robot
+    /// first, the joints not exported holding `StandInit` (feature `sim`).
+    pub robot: Robot,
+    /// Export a motion that brings two parts of the robot into contact anyway (reported).
+    pub allow_contact: bool,
     /// Another robot: the joint ranges from this MJCF file (with `velocity_table`).
     pub mjcf: Option<PathBuf>,
     /// Another robot: CSV `joint,max_velocity` of the joints to export (with `mjcf`).
@@ -43,45 +50,84 @@ pub struct ExportRequest {
 }
 
 /// `cosco export` once the output's place is checked and the trajectory `t` built
-/// (`app::export`): check it against the robot's limits (the Nao left arm's, or `mjcf` with
-/// `velocity_table`), scale its timing ([`prepare`]), execute it on the simulated arm when
-/// asked (with the feature `sim`; without it nothing is executed; the recording goes into the
-/// MCAP file), and write it atomically. Returns the report's lines.
+/// (`app::export`): check it against the robot's limits (`r.robot`'s, or `mjcf` with
+/// `velocity_table`), scale its timing ([`prepare`]); execute it on the simulated robot when
+/// asked or when the robot's model has collision shapes (with the feature `sim`; without it
+/// nothing is executed), refusing a motion that brings two parts into contact unless
+/// `r.allow_contact`; write it atomically (with `executed`, the recording goes into the MCAP
+/// file). Returns the report's lines.
 pub fn export_request(r: &ExportRequest, t: &Trajectory) -> Result<Vec<String>, ExportError> {
-    let robot = match (&r.mjcf, &r.velocity_table) {
+    let limits = match (&r.mjcf, &r.velocity_table) {
         (Some(m), Some(v)) => limits::from_mjcf(m, &limits::read_velocity_table(v)?)?,
-        _ => limits::nao_left_arm(),
+        _ => limits::RobotLimits::of(r.robot),
     };
     if r.executed && r.format != Format::Ros2 {
         return Err(ExportError::Usage(
             "--executed goes with --format ros2".into(),
         ));
     }
+    let (t, report) = prepare(t, &limits, r)?;
+    let mut lines = report.lines();
+    let checks_contacts = r.robot.has_collision_shapes();
     #[cfg(feature = "sim")]
-    let arm = match r.executed {
-        true => {
-            Some(crate::sim::NaoArm::load_default().map_err(|e| ExportError::Arm(Box::new(e)))?)
-        }
-        false => None,
-    };
-    let (t, report) = prepare(t, &robot, r)?;
-    #[cfg(feature = "sim")]
-    let executed = match &arm {
-        Some(arm) => Some(super::executed::execute_on_arm(
-            arm,
+    let executed = match r.executed || checks_contacts {
+        true => Some(super::executed::execute(
+            r.robot,
             &t,
             crate::sim::DEFAULT_RECORD_RATE_HZ,
         )?),
-        None => None,
+        false => None,
     };
+    #[cfg(feature = "sim")]
+    if checks_contacts {
+        let contacts = &executed.as_ref().map_or(&[][..], |e| &e.contacts[..]);
+        lines.extend(contact_lines(r, contacts)?);
+    }
+    #[cfg(feature = "sim")]
+    let executed = executed.filter(|_| r.executed).map(|e| e.encoders);
     #[cfg(not(feature = "sim"))]
     let executed = None;
+    #[cfg(not(feature = "sim"))]
+    if checks_contacts {
+        lines.push(format!(
+            "contacts: not checked (this build has no simulator to execute the motion on the {})",
+            r.robot.name()
+        ));
+    }
     let bytes = encode(&t, r.format, executed.as_ref())?;
     crate::fsutil::write_atomic(&r.out, &bytes).map_err(|source| ExportError::Write {
         path: r.out.display().to_string(),
         source,
     })?;
-    let mut lines = report.lines();
     lines.push(format!("written {}", r.out.display()));
     Ok(lines)
+}
+
+/// The report's lines on the contacts of the motion executed on the simulated robot, or the
+/// refusal of the first one (unless `r.allow_contact`).
+#[cfg(feature = "sim")]
+fn contact_lines(
+    r: &ExportRequest,
+    contacts: &[crate::sim::Touch],
+) -> Result<Vec<String>, ExportError> {
+    let robot = r.robot.name().replace('-', " ");
+    match contacts.first() {
+        None => Ok(vec![format!(
+            "contacts: none (the motion executed on the simulated {robot})"
+        )]),
+        Some(c) if !r.allow_contact => Err(ExportError::Contact {
+            time_s: c.start_s,
+            parts: c.parts.clone(),
+            depth_m: c.depth_m,
+            robot,
+        }),
+        Some(_) => {
+            let mut v = vec![format!(
+                "--allow-contact: exported although the motion brings two parts of the simulated {robot} into contact ({} contact(s)):",
+                contacts.len()
+            )];
+            v.extend(contacts.iter().map(|c| format!("  {}", c.describe())));
+            Ok(v)
+        }
+    }
 }

@@ -37,6 +37,8 @@ fn opts(format: Format) -> ExportRequest {
         mjcf: None,
         velocity_table: None,
         executed: false,
+        robot: crate::robot::Robot::LeftArm,
+        allow_contact: false,
     }
 }
 
@@ -193,9 +195,12 @@ fn nao_limits_agree_with_the_arm_model_and_its_joint_table() {
 #[cfg(feature = "sim")]
 #[test]
 fn the_simulated_arm_executes_the_export_and_records_its_joints() {
-    let arm = crate::sim::NaoArm::load_default().unwrap();
+    use crate::robot::Robot;
     let t = arm_trajectory(2.0);
-    let rec = executed::execute_on_arm(&arm, &t, 40.0).unwrap();
+    let done = executed::execute(Robot::LeftArm, &t, 40.0).unwrap();
+    // the left arm's model is collision-free
+    assert!(done.contacts.is_empty());
+    let rec = done.encoders;
     assert_eq!(rec.names, t.names);
     // one sample per tick of the 40 Hz clock over the 2 s motion
     assert_eq!(rec.times.len(), 80);
@@ -205,7 +210,7 @@ fn the_simulated_arm_executes_the_export_and_records_its_joints() {
     // another robot's joints are refused by name
     let mut other = t.clone();
     other.names[0] = "RShoulderPitch".into();
-    let e = executed::execute_on_arm(&arm, &other, 40.0)
+    let e = executed::execute(Robot::LeftArm, &other, 40.0)
         .unwrap_err()
         .to_string();
     assert!(e.contains("RShoulderPitch"), "{e}");

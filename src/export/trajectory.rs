@@ -75,6 +75,18 @@ pub enum ExportError {
         /// What is allowed.
         allowed: &'static str,
     },
+    /// A motion that brings two parts of the robot into contact (seen on the simulated robot).
+    #[error("the motion brings {} and {} into contact at t = {time_s:.2} s ({:.1} mm deep on the simulated {robot}); the robot's motors do not stop for it: change the reproduction (a goal, via-points), or export it anyway with --allow-contact", parts[0], parts[1], depth_m * 1000.0)]
+    Contact {
+        /// When the contact begins, s from the start of the exported motion.
+        time_s: f64,
+        /// The two parts (the model's body names).
+        parts: [String; 2],
+        /// The deepest penetration, m.
+        depth_m: f64,
+        /// The robot it was executed on.
+        robot: String,
+    },
     /// Reading a CSV.
     #[error(transparent)]
     Demo(#[from] DemoError),

@@ -168,8 +168,9 @@ impl Robot {
     }
 
     /// Whether its shipped model has collision shapes, so that contacts between its parts are
-    /// simulated and reported: the upper body's has them; the left arm's is collision-free.
-    pub fn has_collision_shapes(self) -> bool {
+    /// simulated and reported: the upper body's links, torso and head have them; the left
+    /// arm's model is collision-free (its torso and head are silhouettes).
+    pub const fn has_collision_shapes(self) -> bool {
         matches!(self, Robot::UpperBody)
     }
 

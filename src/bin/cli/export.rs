@@ -7,6 +7,7 @@ use anyhow::Result;
 use cosco_hsom::app::{self, ExportFrom, ReproduceRequest};
 use cosco_hsom::condition::{PostureArg, ViaPoint};
 use cosco_hsom::export::{limits, ExportRequest, Format, DEFAULT_STEP_RATE_HZ};
+use cosco_hsom::robot::Robot;
 
 /// Everything `cosco export` is asked: its command line.
 #[derive(Debug, Clone, clap::Args)]
@@ -67,6 +68,15 @@ pub struct ExportArgs {
     /// Rate of a `step` column (a reproduction without `time`), Hz.
     #[arg(long, default_value_t = DEFAULT_STEP_RATE_HZ)]
     pub step_rate: f64,
+    /// The robot the motion is for: left-arm or upper-body. Its joints' ranges and velocity
+    /// limits apply; on the upper body the motion is first executed on the simulated robot
+    /// (joints not exported hold StandInit) and refused if two parts come into contact.
+    #[arg(long, default_value = "left-arm", value_parser = super::parse_robot)]
+    pub robot: Robot,
+    /// Export a motion that brings two parts of the robot into contact anyway (said in the
+    /// report, with every contact).
+    #[arg(long)]
+    pub allow_contact: bool,
     /// Another robot: the joint ranges from this MJCF file (with --velocity-table).
     #[arg(long, requires = "velocity_table")]
     pub mjcf: Option<PathBuf>,
@@ -107,6 +117,8 @@ pub fn export(a: ExportArgs) -> Result<Vec<String>> {
         mjcf: a.mjcf,
         velocity_table: a.velocity_table,
         executed: a.executed,
+        robot: a.robot,
+        allow_contact: a.allow_contact,
     };
     Ok(app::export(&from, &request)?)
 }
@@ -128,9 +140,13 @@ pub enum DemosAction {
         /// Output directory (created if missing).
         #[arg(long)]
         out: PathBuf,
-        /// Joints to keep, comma-separated, in this column order (default: the arm's six).
-        #[arg(long, value_delimiter = ',')]
+        /// Joints to keep, comma-separated, in this column order (default: the --robot's).
+        #[arg(long, value_delimiter = ',', conflicts_with = "robot")]
         joints: Vec<String>,
+        /// Keep this robot's joints, in NAOqi order: left-arm (6) or upper-body (14 of the
+        /// whole Nao's JointState: the head and both arms).
+        #[arg(long, default_value = "left-arm", value_parser = super::parse_robot)]
+        robot: Robot,
         /// Split at pauses of at least this many seconds (every joint below 0.05 rad/s).
         #[arg(long)]
         split_idle: Option<f64>,
@@ -146,7 +162,14 @@ pub fn demos_action(a: &DemosAction) -> Result<Vec<String>> {
             topic,
             out,
             joints,
+            robot,
             split_idle,
-        } => Ok(app::import(bag, topic, joints, *split_idle, out)?),
+        } => {
+            let joints = match joints.is_empty() {
+                true => robot.joint_names().iter().map(|j| j.to_string()).collect(),
+                false => joints.clone(),
+            };
+            Ok(app::import(bag, topic, &joints, *split_idle, out)?)
+        }
     }
 }

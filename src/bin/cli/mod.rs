@@ -108,7 +108,6 @@ pub fn parse_count(s: &str) -> Result<usize, String> {
 }
 
 /// `--robot`: a robot of the description, by name.
-#[cfg(feature = "sim")]
 pub fn parse_robot(s: &str) -> Result<cosco_hsom::robot::Robot, String> {
     cosco_hsom::robot::Robot::from_name(s)
 }
