@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::gestures;
+use common::{gestures, gestures_of};
 use cosco_hsom::config::{HsomParams, MemoryMode};
 use cosco_hsom::hsom::{ActivityLevels, ActivityList};
 use cosco_hsom::som::{Neighbourhood, SelfOrganizingMap, Topology};
@@ -153,8 +153,27 @@ fn update(c: &mut Criterion) {
     g.finish();
 }
 
+/// Training a gesture of the upper body's 14 variables against one of the left arm's 6, on
+/// the same number of demonstrations and samples (the recommended configuration at each
+/// width): the cost of the whole upper body.
+fn width(c: &mut Criterion) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/nao-gestures.xml");
+    let base = cosco_hsom::config::load_config(&path).unwrap();
+    let mut g = c.benchmark_group("width");
+    g.sample_size(10);
+    for w in [6usize, 14] {
+        let demos = gestures_of(3, 300, w);
+        let cfg = base.for_width(w).unwrap();
+        g.bench_function(format!("fit_3x300_{w}_variables"), |b| {
+            b.iter(|| black_box(cfg.fit(&demos).unwrap()))
+        });
+    }
+    g.finish();
+}
+
 criterion_group!(
     benches,
+    width,
     step_vs_bmu,
     table1,
     events,
