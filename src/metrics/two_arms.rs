@@ -20,8 +20,13 @@ pub const UPPER_BODY_MIRROR: [(usize, usize, f64); 6] = [
 ];
 
 /// Both arms move in a trajectory when each arm's largest joint excursion from its first
-/// sample is at least this fraction of the other arm's ([`both_arms_move`]).
+/// sample is at least this fraction of the other arm's ([`both_arms_move`]) ...
 pub const BOTH_ARMS_RATIO: f64 = 0.5;
+
+/// ... and at least this many radians: the still arms of a one-arm or head gesture wobble and
+/// drift by up to 0.18 rad in the recorded demonstrations, a moving arm's joints by 1.2 rad
+/// or more.
+pub const BOTH_ARMS_MIN_RAD: f64 = 0.5;
 
 /// A lag lies within the demonstrations' spread when it is within this many samples of their
 /// range ([`LagSpread::contains`]): the lag is measured in whole samples.
@@ -47,15 +52,18 @@ fn usable(rows: &[Vec<f64>]) -> bool {
 }
 
 /// Whether both arms move in `rows`: each arm's largest joint excursion from the first sample
-/// is positive and at least [`BOTH_ARMS_RATIO`] times the other arm's. False for rows that are
-/// not upper-body postures or hold a non-finite value.
+/// is at least [`BOTH_ARMS_MIN_RAD`] and [`BOTH_ARMS_RATIO`] times the other arm's. False for
+/// rows that are not upper-body postures or hold a non-finite value.
 pub fn both_arms_move(rows: &[Vec<f64>]) -> bool {
     if !usable(rows) {
         return false;
     }
     let left = excursion(rows, UPPER_BODY_MIRROR.iter().map(|p| p.0));
     let right = excursion(rows, UPPER_BODY_MIRROR.iter().map(|p| p.1));
-    left > 0.0 && right > 0.0 && left >= BOTH_ARMS_RATIO * right && right >= BOTH_ARMS_RATIO * left
+    left >= BOTH_ARMS_MIN_RAD
+        && right >= BOTH_ARMS_MIN_RAD
+        && left >= BOTH_ARMS_RATIO * right
+        && right >= BOTH_ARMS_RATIO * left
 }
 
 /// The lag of the right arm behind the left in `rows`, whole samples (positive: the right arm
@@ -63,9 +71,9 @@ pub fn both_arms_move(rows: &[Vec<f64>]) -> bool {
 /// mirrored joint pairs ([`UPPER_BODY_MIRROR`]) taken as excursions from the first sample,
 /// `C(s) = Σ_pairs Σ_k (l(k) − l(0)) σ (r(k + s) − r(0)) / n` over the samples where both are
 /// defined (from the first sample, so that the still stretches before and after the motion
-/// count for nothing and the true delay of a copy is the maximum); of equal maxima the smallest `|s|`, then the negative. `None` with fewer than 2
-/// samples, rows that are not upper-body postures, a non-finite value, or arms that do not move
-/// (`C` is 0 at every shift).
+/// count for nothing and the true delay of a copy is the maximum); of equal maxima the smallest
+/// `|s|`, then the negative. `None` with fewer than 2 samples, rows that are not upper-body
+/// postures, a non-finite value, or arms that do not move (`C` is 0 at every shift).
 pub fn arm_lag(rows: &[Vec<f64>]) -> Option<i64> {
     let n = rows.len();
     if n < 2 || !usable(rows) {
@@ -96,7 +104,7 @@ pub fn arm_lag(rows: &[Vec<f64>]) -> Option<i64> {
     // in order of |s|, the negative first: a later shift replaces the best only when larger
     for s in (0..=max_shift).flat_map(|m| if m == 0 { vec![0] } else { vec![-m, m] }) {
         let c = covariance(s);
-        if best.is_none_or(|(b, _)| c > b) {
+        if best.map_or(true, |(b, _)| c > b) {
             best = Some((c, s));
         }
     }

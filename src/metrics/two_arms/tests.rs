@@ -75,6 +75,15 @@ fn one_arm_still_is_not_a_two_arm_gesture_and_a_still_trajectory_has_no_lag() {
     assert!(both_arms_move(&gesture(100, 0, true)));
     assert!(both_arms_move(&gesture(100, 5, true)));
     assert!(!both_arms_move(&gesture(100, 0, false)));
+    // arms that only wobble (a tenth of the motion, both alike) do not count
+    let wobble: Vec<Vec<f64>> = (gesture(100, 0, true).iter())
+        .map(|r| {
+            (r.iter().enumerate())
+                .map(|(j, v)| if j < 2 { *v } else { 0.1 * v })
+                .collect()
+        })
+        .collect();
+    assert!(!both_arms_move(&wobble));
     let still = vec![gesture(100, 0, true)[0].clone(); 50];
     assert!(!both_arms_move(&still));
     assert_eq!(arm_lag(&still), None);
