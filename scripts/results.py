@@ -433,6 +433,188 @@ def resampled_table(out):
     return "\n".join(lines)
 
 
+UB_METHODS = ["hierarchy", "nearest_sequence", "height1", "gmm_gmr", "promp", "dmp", "replay"]
+UB_TUNING = [
+    ("`configs/nao-upper-body.xml` (nao-gestures at 14 variables)", "nao-upper-body"),
+    ("bottom map 24x24 (radius 12)", "upper-body-bottom-24"),
+    ("`changeRatio` 0.4", "upper-body-change-ratio-0.4"),
+]
+
+
+def ub_set_means(doc, method):
+    """Per (gesture, seed) set of a `cosco heldout --json` document: the mean relative DTW of
+    `method` over its held-out folds, keyed by (gesture, seed)."""
+    means = {}
+    for g in doc["gestures"]:
+        v = [r["score"]["relative_dtw"] for f in g["held_out"] for r in f["runs"] if r["method"] == method and r.get("score")]
+        gesture, seed = g["gesture"].rsplit("-", 1)
+        means[(gesture, seed)] = sum(v) / len(v) if v else None
+    return means
+
+
+def ub_tuning_table(out):
+    """CONFIG.md's upper-body table: the candidates on the tuning seeds, the hierarchy held out."""
+    lines = [
+        "| configuration | relative DTW held out, median over the 32 sets | worst set | sets closer than the recommended |",
+        "|---|---|---|---|",
+    ]
+    base = ub_set_means(json.loads(read(os.path.join(out, f"ub_tune_{UB_TUNING[0][1]}.json"))), "hierarchy")
+    for label, name in UB_TUNING:
+        means = ub_set_means(json.loads(read(os.path.join(out, f"ub_tune_{name}.json"))), "hierarchy")
+        closer = sum(means[k] < base[k] for k in means if means[k] is not None and base.get(k) is not None)
+        vals = [v for v in means.values() if v is not None]
+        lines.append(f"| {label} | {median(vals):.4f} | {max(vals):.4f} | {'-' if name == UB_TUNING[0][1] else f'{closer} of {len(vals)}'} |")
+    cmds = [read(os.path.join(out, f"ub_tune_{n}.cmd")).strip().replace(out.rstrip("/") + "/", "OUT/") for _, n in UB_TUNING]
+    return (
+        "\n".join(lines)
+        + "\n\nMade by `scripts/upper_body_results.sh` (seeds 31-34, 4 demonstrations of each of the 8 gestures, "
+        + "as sets OUT/ub-tune/<gesture>-<seed>) from:\n\n```sh long\n"
+        + "\n".join(cmds)
+        + "\n```"
+    )
+
+
+def ub_recognition(out):
+    """Recognition on the report seeds: held-out accuracy with the 8 taught at once, and the
+    untaught gesture called unknown with the other 7 taught; (lines, accuracy, unknown)."""
+    acc = [0, 0]
+    unk = [0, 0]
+    seeds, without = [], []
+    for name in sorted(os.listdir(out)):
+        m = re.fullmatch(r"ub_recognition_(\d+)\.json", name)
+        if m:
+            doc = json.loads(read(os.path.join(out, name)))
+            held = doc["study"]["model"]["held_out"]
+            acc[0] += sum(a["answer"] == a["label"] for a in held)
+            acc[1] += len(held)
+            seeds.append(m.group(1))
+        m = re.fullmatch(r"ub_recognition_(\d+)_without_(.+)\.json", name)
+        if m:
+            doc = json.loads(read(os.path.join(out, name)))
+            u = doc["study"]["model"]["untaught"]
+            unk[0] += sum(a["answer"] is None for a in u)
+            unk[1] += len(u)
+            without.append(f"{m.group(2)} ({m.group(1)})")
+    return seeds, without, acc, unk
+
+
+def pct(k, n):
+    return f"{100 * k / n:.1f} % ({k} of {n})" if n else "not measured"
+
+
+def upper_body_parts(out):
+    """The section "Upper body" of RESULTS.md."""
+    doc = json.loads(read(os.path.join(out, "ub_heldout.json")))
+    means = {m: ub_set_means(doc, m) for m in UB_METHODS}
+    gestures = []
+    for g, _ in means["hierarchy"]:
+        if g not in gestures:
+            gestures.append(g)
+    names = {**NAMES, "replay": "replay"}
+    lines = [
+        "| gesture | " + " | ".join(names[m] for m in UB_METHODS) + " | hierarchy closer than GMM/GMR / ProMP / DMP / nearest sequence |",
+        "|---|" + "---|" * (len(UB_METHODS) + 1),
+    ]
+    for g in gestures + ["all"]:
+        keys = [k for k in means["hierarchy"] if g == "all" or k[0] == g]
+        cells = []
+        for m in UB_METHODS:
+            v = [means[m][k] for k in keys if means[m].get(k) is not None]
+            cells.append(f"{median(v):.4f}" if v else "-")
+        closer = []
+        for m in ("gmm_gmr", "promp", "dmp", "nearest_sequence"):
+            pairs = [(means["hierarchy"][k], means[m][k]) for k in keys if means["hierarchy"][k] is not None and means[m].get(k) is not None]
+            closer.append(f"{sum(h < o for h, o in pairs)}")
+        lines.append(f"| {'**all**' if g == 'all' else g} | " + " | ".join(cells) + f" | {' / '.join(closer)} of {len(keys)} |")
+    lag_lines = ["| gesture | " + " | ".join(names[m] for m in UB_METHODS) + " |", "|---|" + "---|" * len(UB_METHODS)]
+    lag = {}
+    for g in doc.get("two_arms", []):
+        name = g["gesture"].rsplit("-", 1)[0]
+        for m in g["methods"]:
+            k, n = lag.setdefault(name, {}).setdefault(m["method"], [0, 0])
+            lag[name][m["method"]] = [k + m["within"], n + m["folds"]]
+    total = [0, 0]
+    for name, per in lag.items():
+        lag_lines.append(f"| {name} | " + " | ".join(f"{per[m][0]} of {per[m][1]}" if m in per else "-" for m in UB_METHODS) + " |")
+        total[0] += per["hierarchy"][0]
+        total[1] += per["hierarchy"][1]
+    contacts = doc.get("contacts") or {"executed": 0, "with_contact": 0, "folds": []}
+    seeds, without, acc, unk = ub_recognition(out)
+    h_all = median([v for v in means["hierarchy"].values() if v is not None])
+    closest = {m: median([v for v in means[m].values() if v is not None]) for m in UB_METHODS}
+    closer = [f"{names[m]} {closest[m]:.4f}" for m in ("nearest_sequence", "gmm_gmr", "promp", "dmp") if closest[m] < h_all / 1.02]
+    level = [f"{names[m]} {closest[m]:.4f}" for m in ("nearest_sequence", "gmm_gmr", "promp", "dmp") if h_all / 1.02 <= closest[m] <= h_all * 1.02]
+    lag_lowest = min((per["hierarchy"][0] / per["hierarchy"][1], name) for name, per in lag.items()) if lag else (None, None)
+    judged = [
+        "- the configuration: `configs/nao-upper-body.xml`, chosen on seeds 31-34 (docs/CONFIG.md, \"The upper body\"): met",
+        f"- held out on seeds 41-45, the hierarchy's relative DTW per gesture beside the other methods (the table): median {h_all:.4f}; "
+        + f"closer (by more than 2 %): {', '.join(closer) or 'none'}; level (within 2 %): {', '.join(level) or 'none'}",
+        f"- the two arms' lag within the demonstrations' spread on at least 90 % of the hierarchy's folds, per two-arm gesture: "
+        + ", ".join(f"{name} {per['hierarchy'][0]} of {per['hierarchy'][1]}" for name, per in lag.items())
+        + (": met" if lag and lag_lowest[0] >= 0.9 else ": not met"),
+        f"- contacts of the executed hierarchy reproductions: {contacts['with_contact']} of {contacts['executed']} folds"
+        + (": met" if contacts["executed"] and contacts["with_contact"] == 0 else ": not met"),
+        f"- recognition, the 8 gestures taught at once, held out (seeds {', '.join(seeds) or '-'}): {pct(*acc)}"
+        + (" (gate 98 %: met)" if acc[1] and acc[0] / acc[1] >= 0.98 else " (gate 98 %: not met)")
+        + f"; untaught called unknown (the other 7 taught; left out: {', '.join(without) or '-'}): {pct(*unk)}"
+        + (" (gate 90 %: met)" if unk[1] and unk[0] / unk[1] >= 0.9 else " (gate 90 %: not met)" if unk[1] else ""),
+    ]
+    rec_cmds = []
+    for name in sorted(os.listdir(out)):
+        if re.fullmatch(r"ub_recognition_\d+(_without_.+)?\.cmd", name):
+            rec_cmds.append(read(os.path.join(out, name)).strip().replace(out.rstrip("/") + "/", "OUT/"))
+    rec_parts = []
+    for name in sorted(os.listdir(out)):
+        if re.fullmatch(r"ub_recognition_\d+(_without_.+)?\.md", name):
+            rec_parts += [f"`{name[:-3]}`:", "", demoted(read(os.path.join(out, name)), 3), ""]
+    return [
+        "## Upper body",
+        "",
+        "The head and both arms (14 joints, `cosco demos --robot upper-body`): the 8 gestures of seeds",
+        "41-45, 4 demonstrations each, each (gesture, seed) a set, with `configs/nao-upper-body.xml`",
+        "(chosen on seeds 31-34: docs/CONFIG.md, \"The upper body\"). Held out on the recorded joint",
+        "curves (no simulator between); the two arms' lag on the gestures where both arms move",
+        "(docs/METRICS.md, \"The two arms' lag\"); every fold's hierarchy reproduction then executed on",
+        "the simulated upper body for contacts. Made by `scripts/upper_body_results.sh`:",
+        "",
+        command(out, "ub_heldout"),
+        "",
+        "Relative DTW held out, per gesture the median over the 5 seeds of each set's mean over its folds,",
+        "and the sets where the hierarchy is closer than each other method:",
+        "",
+        "\n".join(lines),
+        "",
+        "The two arms' lag: the held-out folds whose reproduction's lag lies within the training",
+        "demonstrations' spread, pooled over the seeds:",
+        "",
+        "\n".join(lag_lines),
+        "",
+        f"Contacts: {contacts['with_contact']} of {contacts['executed']} executed hierarchy reproductions touched"
+        " (two parts of the robot in contact).",
+        "",
+        "Recognition, the 8 gestures taught at once (held-out accuracy), and each gesture left untaught",
+        "with the other 7 taught (called unknown):",
+        "",
+        "```sh long\n" + "\n".join(rec_cmds) + "\n```" if rec_cmds else "(not run)",
+        "",
+        f"| | held out, taught at once | untaught called unknown |",
+        "|---|---|---|",
+        f"| the 8 upper-body gestures | {pct(*acc)} | {pct(*unk)} |",
+        "",
+        "The lines of issue 51 judged on these runs:",
+        "",
+        "\n".join(judged),
+        "",
+        "#### Every set",
+        "",
+        demoted(read(os.path.join(out, "ub_heldout.md")), 3),
+        "",
+        "#### Recognition",
+        "",
+        *rec_parts,
+    ]
+
+
 def replace_between(path, name, text):
     doc = read(path)
     begin, end = f"<!-- {name} begin -->", f"<!-- {name} end -->"
@@ -445,9 +627,21 @@ def replace_between(path, name, text):
     os.replace(path + ".tmp", path)
 
 
+def upper_body(out):
+    """Rewrite the upper body's parts of RESULTS.md and CONFIG.md (scripts/upper_body_results.sh)."""
+    replace_between(os.path.join("docs", "RESULTS.md"), "results:upper-body", "\n".join(upper_body_parts(out)))
+    replace_between(os.path.join("docs", "CONFIG.md"), "results:upper-body-tuning", ub_tuning_table(out))
+    print(f"wrote docs/RESULTS.md's upper body and docs/CONFIG.md's upper-body table from {out}")
+
+
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--upper-body":
+        return upper_body(sys.argv[2])
     if len(sys.argv) != 2:
-        sys.exit("usage: scripts/results.py OUT_DIR (the directory scripts/results.sh wrote)")
+        sys.exit(
+            "usage: scripts/results.py OUT_DIR (the directory scripts/results.sh wrote), or "
+            "scripts/results.py --upper-body OUT_DIR (scripts/upper_body_results.sh's parts alone)"
+        )
     out = sys.argv[1]
     commit_file = os.path.join(out, "commit")
     commit = read(commit_file).strip() if os.path.exists(commit_file) else "unknown"
@@ -611,6 +805,10 @@ def main():
         "",
         resampled_table(out),
         "",
+        "<!-- results:upper-body begin -->",
+        *upper_body_parts(out),
+        "<!-- results:upper-body end -->",
+        "",
         "## Cost",
         "",
         f"The main job (`simulate`, the command of \"Before and after\"): model file {model_bytes:,} bytes.",
@@ -626,6 +824,7 @@ def main():
     replace_between("README.md", "results:headline", table)
     replace_between(os.path.join("docs", "CONFIG.md"), "results:settings", settings_table(out))
     replace_between(os.path.join("docs", "EXPORT.md"), "results:resampled", resampled_table(out))
+    replace_between(os.path.join("docs", "CONFIG.md"), "results:upper-body-tuning", ub_tuning_table(out))
     print(f"wrote {path}, README.md's headline, docs/CONFIG.md's and docs/EXPORT.md's tables from {out}")
 
 

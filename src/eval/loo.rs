@@ -191,6 +191,10 @@ pub enum LooError {
         /// The cause.
         source: std::io::Error,
     },
+    /// A section computed from the folds besides the tables could not be (the simulator's
+    /// execution of the reproductions).
+    #[error("{0}")]
+    Extra(String),
     /// The figure could not be drawn or written.
     #[cfg(feature = "plot")]
     #[error(transparent)]

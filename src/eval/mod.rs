@@ -16,6 +16,9 @@
 //! demonstration's, all after the idle trimming of `docs/METRICS.md`; and the start speed and
 //! final error against the training demonstrations' start speeds and end spread.
 //!
+//! On the upper body's joints, the lag between the two arms of every reproduction against the
+//! demonstrations' ([`two_arms`]).
+//!
 //! Recognition of several gestures, held out likewise: [`recognition`] (`cosco recognition`).
 
 mod executor;
@@ -29,10 +32,11 @@ pub mod recognition;
 mod report;
 mod results;
 mod study;
+mod two_arms;
 
 pub use executor::{Executed, Executor, Kinematic};
 pub use far::far_target;
-pub use files::{heldout, HeldoutJob};
+pub use files::{heldout, heldout_with, Extra, HeldoutJob, Section};
 pub use fold::{
     all_but, diagonal, fold, fold_scores, run_fold, scored, sitting, Conditioning, Fitted,
     FoldInput, FoldRuns, MethodRun, Split, Training, GMR_UNCONDITIONED, SWING_MIN_AMPLITUDE_RAD,
@@ -48,3 +52,4 @@ pub use results::{
     GestureLoo, HeldOut, HeldOutSummary, MethodSummary, Run, Score, Swings, MIN_DEMO_JERK,
 };
 pub use study::{sittings_ratios, study, SittingsRatio, Study};
+pub use two_arms::{two_arms, GestureLags, MethodLags};

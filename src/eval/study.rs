@@ -95,10 +95,14 @@ pub fn study<E: Executor>(
 
 impl Study {
     /// The JSON document of `cosco heldout --json`: the configuration's name, the summary and
-    /// every gesture's folds; with conditioning, the same under `conditioned` with its
+    /// every gesture's folds (on the upper body, the two arms' lags under `two_arms`); with conditioning, the same under `conditioned` with its
     /// `condition` (`end` or `end+mid`).
     pub fn json(&self, config: &HsomConfig) -> String {
         let mut doc = json_value(config, &self.unconditioned);
+        let lags = super::two_arms(&self.unconditioned);
+        if let (false, Some(map)) = (lags.is_empty(), doc.as_object_mut()) {
+            map.insert("two_arms".into(), serde_json::json!(lags));
+        }
         if let (Some((c, study)), Some(map)) = (&self.conditioned, doc.as_object_mut()) {
             map.insert(
                 "conditioned".into(),
@@ -131,9 +135,13 @@ impl Study {
         serde_json::to_string_pretty(&doc).unwrap_or_default()
     }
 
-    /// The Markdown tables: unconditioned, then conditioned.
+    /// The Markdown tables: unconditioned (on the upper body with the two arms' lags), then
+    /// conditioned.
     pub fn markdown(&self) -> String {
         let mut out = markdown(&self.unconditioned);
+        out.push_str(&super::two_arms::markdown(&super::two_arms(
+            &self.unconditioned,
+        )));
         if let Some((c, study)) = &self.conditioned {
             let what = match c {
                 Conditioning::EndMid => {

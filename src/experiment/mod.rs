@@ -16,6 +16,7 @@ pub mod heldout;
 pub mod job;
 pub mod output;
 pub mod report;
+pub mod upper_body;
 pub mod variants;
 
 pub use crate::sim::Transition;

@@ -7,6 +7,7 @@ mod errors;
 mod fidelity;
 mod smoothness;
 mod start_end;
+pub mod two_arms;
 
 pub use errors::MetricsError;
 pub use fidelity::{
