@@ -15,24 +15,36 @@ fn cosco() -> Command {
     Command::cargo_bin("cosco").unwrap()
 }
 
-/// The Nao's StandInit left arm, in NAOqi order.
-const REST: [f64; 6] = [1.4, 0.3, -1.39, -1.01, 0.0, 0.25];
+use cosco_hsom::curve::minimum_jerk_at;
+use cosco_hsom::robot::Robot;
 
-/// A left-arm reproduction CSV (`time`, then the six joints) from StandInit to `apex` at 1 s
-/// and back at 2 s, at 40 Hz, each leg a minimum-jerk curve.
-fn write_reproduction(path: &Path, apex: [f64; 6]) {
-    let joints = "LShoulderPitch,LShoulderRoll,LElbowYaw,LElbowRoll,LWristYaw,LHand";
-    let mut csv = format!("time,{joints}\n");
+/// The left arm from StandInit to `apex` at 1 s and back at 2 s, at 40 Hz, each leg a
+/// minimum-jerk curve; the other joints of `robot` hold StandInit. Written as a CSV of `time`
+/// then the robot's joints.
+fn write_motion(path: &Path, robot: Robot, apex: [f64; 6]) {
+    let rest = robot.posture("StandInit").unwrap();
+    let arm = robot
+        .joint_names()
+        .iter()
+        .position(|j| *j == "LShoulderPitch")
+        .unwrap();
+    let mut csv = format!("time,{}\n", robot.joint_names().join(","));
     for k in 0..=80 {
         let t = k as f64 / 40.0;
-        let s = if t <= 1.0 { t } else { 2.0 - t };
-        let w = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
-        let row: Vec<String> = (REST.iter().zip(apex))
-            .map(|(a, b)| format!("{}", a + w * (b - a)))
-            .collect();
+        let w = minimum_jerk_at(if t <= 1.0 { t } else { 2.0 - t });
+        let mut p = rest.to_vec();
+        for (j, b) in apex.iter().enumerate() {
+            p[arm + j] = rest[arm + j] + w * (b - rest[arm + j]);
+        }
+        let row: Vec<String> = p.iter().map(|v| v.to_string()).collect();
         csv += &format!("{t},{}\n", row.join(","));
     }
     std::fs::write(path, csv).unwrap();
+}
+
+/// A left-arm reproduction CSV ([`write_motion`] of the left arm's six joints).
+fn write_reproduction(path: &Path, apex: [f64; 6]) {
+    write_motion(path, Robot::LeftArm, apex);
 }
 
 /// The hand pressed into the chest: the arm forward, rolled in across the torso, the elbow
@@ -122,10 +134,8 @@ fn every_upper_body_joint_goes_in_one_angle_interpolation_call() {
     let dir = tempfile::tempdir().unwrap();
     let rep = dir.path().join("both.csv");
     let out = dir.path().join("both.json");
-    let names = cosco_hsom::robot::Robot::UpperBody.joint_names();
-    let rest = cosco_hsom::robot::Robot::UpperBody
-        .posture("StandInit")
-        .unwrap();
+    let names = Robot::UpperBody.joint_names();
+    let rest = Robot::UpperBody.posture("StandInit").unwrap();
     let mut csv = format!("time,{}\n", names.join(","));
     for k in 0..=40 {
         let t = k as f64 / 40.0;
@@ -146,23 +156,9 @@ fn every_upper_body_joint_goes_in_one_angle_interpolation_call() {
     assert_eq!(json["angleLists"].as_array().unwrap().len(), 14);
 }
 
-/// An upper-body CSV (`time`, then the 14 joints): StandInit, the left arm to `apex` and back.
+/// An upper-body CSV ([`write_motion`] of the 14 joints).
 fn write_upper_body(path: &Path, apex: [f64; 6]) {
-    let robot = cosco_hsom::robot::Robot::UpperBody;
-    let rest = robot.posture("StandInit").unwrap();
-    let mut csv = format!("time,{}\n", robot.joint_names().join(","));
-    for k in 0..=80 {
-        let t = k as f64 / 40.0;
-        let s = if t <= 1.0 { t } else { 2.0 - t };
-        let w = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
-        let mut p = rest.to_vec();
-        for (j, b) in apex.iter().enumerate() {
-            p[2 + j] = REST[j] + w * (b - REST[j]);
-        }
-        let row: Vec<String> = p.iter().map(|v| v.to_string()).collect();
-        csv += &format!("{t},{}\n", row.join(","));
-    }
-    std::fs::write(path, csv).unwrap();
+    write_motion(path, Robot::UpperBody, apex);
 }
 
 #[test]
