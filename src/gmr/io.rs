@@ -1,4 +1,6 @@
-//! Save and load a [`GmrModel`] as versioned plain text.
+//! Save and load a [`GmrModel`] as versioned plain text (written here rather than through
+//! serde: the file's lines are a model format that users and the main job's outputs read, and
+//! it stays as it is).
 //!
 //! ```text
 //! cosco-hsom gmr model

@@ -1,5 +1,6 @@
 //! A 3x5 pixel font for labels on contact sheets (digits, a few letters and signs), so that
-//! no font file or text-rendering crate is needed.
+//! no font file or text-rendering crate is needed (ab_glyph, in the tree through plotters,
+//! would redraw every contact sheet the main job writes, which stays as it is).
 
 use image::{Rgb, RgbImage};
 
