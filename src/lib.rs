@@ -41,6 +41,8 @@
 //! - [`export`]: a reproduction to a robot: time scaling, the robot's limits, NAOqi JSON,
 //!   ROS 2 MCAP ([`ros2`], feature `ros2`, on by default, which also imports bags) and CSV.
 //! - [`resample`]: demonstrations at different sampling rates brought to one.
+//! - `trajectory`: a joint trajectory and the export's errors, below both [`export`] and
+//!   [`ros2`], which write it.
 //!
 //! Feature `sim` (on by default) holds everything that needs MuJoCo or OSMesa: [`mujoco`],
 //! [`render`], [`sim`], [`experiment`] and [`sweep`], and turns on `plot` ([`plot`]: PNG
@@ -87,3 +89,4 @@ pub mod stats;
 #[cfg(feature = "sim")]
 pub mod sweep;
 pub mod table;
+pub(crate) mod trajectory;

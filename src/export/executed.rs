@@ -3,9 +3,9 @@
 //! and every contact between two of its parts (`cosco export --robot upper-body` refuses a
 //! motion with one).
 
-use super::trajectory::{ExportError, Trajectory};
 use crate::robot::Robot;
 use crate::sim::{Controller, ControllerConfig, NaoArm, TargetTrajectory, Touch};
+use crate::trajectory::{ExportError, Trajectory};
 
 /// A trajectory executed on a simulated robot.
 #[derive(Debug, Clone)]

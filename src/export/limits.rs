@@ -14,8 +14,8 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use super::trajectory::{ExportError, Trajectory};
 use crate::robot::{joint_ranges, Robot};
+use crate::trajectory::{ExportError, Trajectory};
 
 /// Default fraction of each joint's maximum velocity a trajectory may reach.
 pub const DEFAULT_VELOCITY_FRACTION: f64 = 0.5;

@@ -20,10 +20,9 @@ pub mod executed;
 pub mod limits;
 pub mod naoqi;
 mod request;
-pub(crate) mod trajectory;
 
+pub use crate::trajectory::{ExportError, Trajectory};
 pub use request::{export_request, ExportRequest, DEFAULT_STEP_RATE_HZ};
-pub use trajectory::{ExportError, Trajectory};
 
 use serde::Serialize;
 

@@ -7,7 +7,7 @@
 
 use serde::Serialize;
 
-use super::trajectory::Trajectory;
+use crate::trajectory::Trajectory;
 
 /// The JSON document.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use super::{read_joint_states, StampedJoints};
 use crate::demos::Demonstration;
-use crate::export::trajectory::ExportError;
+use crate::trajectory::ExportError;
 
 /// Below this speed (rad/s, every joint) a sample is idle for `--split-idle`.
 pub const IDLE_SPEED: f64 = 0.05;
@@ -39,10 +39,10 @@ pub fn import_bag(
     }
     let joints: Vec<String> = if joints.is_empty() {
         // the arm's six joints
-        crate::export::limits::nao_left_arm()
-            .joints
-            .into_iter()
-            .map(|j| j.name)
+        crate::robot::Robot::LeftArm
+            .joint_names()
+            .iter()
+            .map(|j| j.to_string())
             .collect()
     } else {
         joints.to_vec()

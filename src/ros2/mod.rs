@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use std::io::Cursor;
 use std::path::Path;
 
-use crate::export::trajectory::{ExportError, Trajectory};
+use crate::trajectory::{ExportError, Trajectory};
 use msgs::{Duration, Header, JointState, JointTrajectory, JointTrajectoryPoint, Time};
 
 /// Topic of the exported trajectory.

@@ -129,9 +129,9 @@ const CDR_LE: [u8; 4] = [0, 1, 0, 0];
 const CDR_BE: [u8; 4] = [0, 0, 0, 0];
 
 /// A message serialised as ROS 2 does: the encapsulation header, then little-endian CDR.
-pub fn encode<T: Serialize>(msg: &T) -> Result<Vec<u8>, crate::export::trajectory::ExportError> {
+pub fn encode<T: Serialize>(msg: &T) -> Result<Vec<u8>, crate::trajectory::ExportError> {
     let body = cdr_encoding::to_vec::<T, LittleEndian>(msg).map_err(|e| {
-        crate::export::trajectory::ExportError::Bag {
+        crate::trajectory::ExportError::Bag {
             path: "MCAP output".into(),
             reason: format!("CDR encoding: {e}"),
         }

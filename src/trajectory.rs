@@ -1,5 +1,5 @@
-//! What the export writes and reads, and what can go wrong: a module of its own that
-//! `export` and `ros2` both import.
+//! What the export writes and reads, and what can go wrong: a room below the two that write
+//! it, `export` and `ros2` (re-exported as `export::Trajectory` and `export::ExportError`).
 
 use serde::Serialize;
 
