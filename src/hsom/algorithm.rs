@@ -15,7 +15,7 @@ use super::inputs::{
     bmu_known, check_series, demo_series, input_dim, level_buffers, node_means, spread, Series,
 };
 use super::kept::{kept, Warm};
-use super::memory::{Memory, Stm};
+use super::memory::{Activity, Stm};
 use super::model::{EventsHsom, EventsModel, Hsom, Model, PaperModel, Part, MAX_NORMALISED};
 
 fn demo_columns(demos: &[Demonstration]) -> Vec<String> {
@@ -365,7 +365,7 @@ impl HsomConfig {
             lookup: vec![0.0; p.height],
             part: (),
             paths,
-            memory,
+            kept: memory,
         };
         if events {
             let (mut m, ()) = model.with_part(EventsModel::untrained(p));
@@ -598,7 +598,7 @@ impl<A: Part> Model<A> {
         if level == 0 || level >= self.maps.len() {
             return None;
         }
-        let Memory::Lists(lists) = &stm.mem else {
+        let Activity::Lists(lists) = &stm.mem else {
             return None;
         };
         let list = &lists[level - 1];

@@ -1,7 +1,7 @@
 //! What a model keeps of the demonstrations it learned from (docs/ALGORITHM.md, section 10):
 //! at most [`KEPT_DEMONSTRATIONS`] per gesture, a uniform sample of them all drawn by
 //! reservoir sampling from the configuration's seed, each normalised and resampled to
-//! [`BAND_ROWS`](super::BAND_ROWS) rows with its own length ([`Memory`]); and where an update's training starts
+//! [`BAND_ROWS`](super::BAND_ROWS) rows with its own length ([`Kept`]); and where an update's training starts
 //! ([`Warm`]). The confidence band is measured from them, and an update rehearses them
 //! (`update.rs`).
 
@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 
 /// What a model learned from, beside its kept paths ([`Model::paths`](super::model::Model)).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Memory {
+pub struct Kept {
     /// Demonstrations learned from, over the first training and every update.
     pub(crate) learned: u64,
     /// Updates that brought this gesture demonstrations after the training or update that
@@ -31,7 +31,7 @@ pub struct Memory {
     pub(crate) period: Option<f64>,
 }
 
-impl Memory {
+impl Kept {
     /// The counts read from a model file against what training and updates make of them:
     /// 1 to [`MAX_LEARNED`] demonstrations learned from, and fewer updates than that (the
     /// training or update that taught the gesture, and every update counted, each brought at
@@ -115,9 +115,9 @@ pub(crate) fn kept(
     norm: &[Vec<Vec<f64>>],
     lens: impl Iterator<Item = usize>,
     seed: u64,
-) -> (Vec<Vec<Vec<f64>>>, Memory) {
+) -> (Vec<Vec<Vec<f64>>>, Kept) {
     let mut paths = Vec::new();
-    let mut memory = Memory {
+    let mut record = Kept {
         learned: 0,
         updates: 0,
         lengths: Vec::new(),
@@ -125,27 +125,27 @@ pub(crate) fn kept(
     };
     keep(
         &mut paths,
-        &mut memory,
+        &mut record,
         norm.iter().zip(lens).map(|(rows, n)| (band_path(rows), n)),
         seed,
     );
-    (paths, memory)
+    (paths, record)
 }
 
 /// Reservoir sampling (Vitter's algorithm R) of the kept paths: see [`reservoir`].
 pub(crate) fn keep(
     paths: &mut Vec<Vec<Vec<f64>>>,
-    memory: &mut Memory,
+    record: &mut Kept,
     new: impl Iterator<Item = (Vec<Vec<f64>>, usize)>,
     seed: u64,
 ) {
     let mut slots: Vec<(Vec<Vec<f64>>, u32)> = std::mem::take(paths)
         .into_iter()
-        .zip(memory.lengths.drain(..))
+        .zip(record.lengths.drain(..))
         .collect();
     let new = new.map(|(path, n)| (path, u32::try_from(n).unwrap_or(u32::MAX)));
-    reservoir(&mut slots, &mut memory.learned, new, seed);
-    (*paths, memory.lengths) = slots.into_iter().unzip();
+    reservoir(&mut slots, &mut record.learned, new, seed);
+    (*paths, record.lengths) = slots.into_iter().unzip();
 }
 
 /// Reservoir sampling (Vitter's algorithm R): each new item is kept while fewer than

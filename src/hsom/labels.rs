@@ -151,7 +151,7 @@ impl HsomConfig {
         let branches: Vec<EventsHsom> = norm
             .iter()
             .enumerate()
-            .map(|(g, n)| shared.branch(n, learn, branch_seed(seed, g, None)))
+            .map(|(g, n)| shared.build_branch(n, learn, branch_seed(seed, g, None)))
             .collect();
         let calibration = super::recognize::calibrate(&shared, &branches, &norm, learn, seed);
         Ok(GestureModel {
@@ -171,7 +171,12 @@ impl EventsHsom {
     /// recomputed and the upper levels trained on `norm` (normalised demonstrations of one
     /// gesture) by the events extension's own training; trained (`learn`), it places the
     /// shared nodes' events where its gesture has them ([`EventsHsom::fit_postures`]).
-    pub(crate) fn branch(&self, norm: &[Vec<Vec<f64>>], learn: bool, seed: u64) -> EventsHsom {
+    pub(crate) fn build_branch(
+        &self,
+        norm: &[Vec<Vec<f64>>],
+        learn: bool,
+        seed: u64,
+    ) -> EventsHsom {
         let mut b = self.clone();
         let h = b.maps.len();
         // what the replay and the levels' training add to or may leave; every other
@@ -182,9 +187,9 @@ impl EventsHsom {
         b.part.threshold = vec![0.0; h];
         let lens: Vec<f64> = norm.iter().map(|d| d.len() as f64).collect();
         b.demo_len = spread(&lens);
-        let period = b.memory.period;
-        (b.paths, b.memory) = super::kept::kept(norm, norm.iter().map(Vec::len), seed);
-        b.memory.period = period;
+        let period = b.kept.period;
+        (b.paths, b.kept) = super::kept::kept(norm, norm.iter().map(Vec::len), seed);
+        b.kept.period = period;
         b.replay(norm);
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         b.fit_events(norm, learn, &mut rng);

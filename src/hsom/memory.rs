@@ -135,14 +135,14 @@ impl ActivityLevels {
 
 /// The short-term memory of every level, in either mode.
 #[derive(Debug, Clone)]
-pub(crate) enum Memory {
+pub(crate) enum Activity {
     Lists(Vec<ActivityList>),
     Levels(Vec<ActivityLevels>),
 }
 
 #[derive(Debug, Clone)]
 pub(crate) struct Stm {
-    pub(crate) mem: Memory,
+    pub(crate) mem: Activity,
     /// Pushes since the last clear, per level.
     pub(crate) pushes: Vec<usize>,
     pub(crate) memory: usize,
@@ -153,9 +153,9 @@ impl Stm {
         let p = config.params();
         let mem = match p.memory_mode() {
             MemoryMode::Lists => {
-                Memory::Lists((0..p.height).map(|_| ActivityList::new(p.memory)).collect())
+                Activity::Lists((0..p.height).map(|_| ActivityList::new(p.memory)).collect())
             }
-            MemoryMode::Levels => Memory::Levels(
+            MemoryMode::Levels => Activity::Levels(
                 p.levels
                     .iter()
                     .map(|l| ActivityLevels::new(l.rows * l.cols, p.memory))
@@ -170,8 +170,8 @@ impl Stm {
     }
     pub(crate) fn clear(&mut self) {
         match &mut self.mem {
-            Memory::Lists(v) => v.iter_mut().for_each(|l| l.clear()),
-            Memory::Levels(v) => v.iter_mut().for_each(|l| l.clear()),
+            Activity::Lists(v) => v.iter_mut().for_each(|l| l.clear()),
+            Activity::Levels(v) => v.iter_mut().for_each(|l| l.clear()),
         }
         self.pushes.iter_mut().for_each(|c| *c = 0);
     }
@@ -183,8 +183,8 @@ impl Stm {
     #[inline]
     pub(crate) fn push(&mut self, level: usize, node: usize, map: &SelfOrganizingMap) {
         match &mut self.mem {
-            Memory::Lists(v) => v[level].push(map.id(node)),
-            Memory::Levels(v) => v[level].push(node),
+            Activity::Lists(v) => v[level].push(map.id(node)),
+            Activity::Levels(v) => v[level].push(node),
         }
         self.pushes[level] += 1;
     }
@@ -197,8 +197,8 @@ impl Stm {
             return false;
         }
         match &self.mem {
-            Memory::Lists(v) => v[level].encode(self.memory, 0, out, mask),
-            Memory::Levels(v) => {
+            Activity::Lists(v) => v[level].encode(self.memory, 0, out, mask),
+            Activity::Levels(v) => {
                 out.copy_from_slice(v[level].levels());
                 mask.iter_mut().for_each(|m| *m = true);
             }

@@ -16,7 +16,7 @@ use crate::som::SelfOrganizingMap;
 use super::errors::HsomError;
 use super::followers::FOLLOWERS;
 use super::inputs::input_dim;
-use super::kept::{Memory, BAND_ROWS, KEPT_DEMONSTRATIONS};
+use super::kept::{Kept, BAND_ROWS, KEPT_DEMONSTRATIONS};
 use super::reproduction::Reproduction;
 
 /// A trained CoSCo-HSOM: a model of the paper's algorithm or of the events extension, each
@@ -78,13 +78,14 @@ pub struct Model<A> {
     pub(crate) part: A,
     /// The kept demonstrations as the bottom level sees them (normalised), each resampled
     /// to [`BAND_ROWS`] rows: at most [`KEPT_DEMONSTRATIONS`], a uniform sample of every
-    /// demonstration learned from ([`Memory`]). How far they lie from a reproduction is its
+    /// demonstration learned from ([`Kept`]). How far they lie from a reproduction is its
     /// confidence band ([`crate::condition::spread_band`]); an update learns from them again
     /// beside the new demonstrations (docs/ALGORITHM.md, section 10).
     pub(crate) paths: Vec<Vec<Vec<f64>>>,
     /// What the model learned from: how many demonstrations, in how many updates, and each
-    /// kept path's length.
-    pub(crate) memory: Memory,
+    /// kept path's length (`memory` in a model file).
+    #[serde(rename = "memory")]
+    pub(crate) kept: Kept,
     /// The maps, bottom first (last in a model file).
     pub(crate) maps: Vec<SelfOrganizingMap>,
 }
@@ -163,7 +164,7 @@ impl<A> Model<A> {
             lookup: self.lookup,
             part,
             paths: self.paths,
-            memory: self.memory,
+            kept: self.kept,
             maps: self.maps,
         };
         (m, self.part)
@@ -666,22 +667,22 @@ impl<A: Part> Model<A> {
         sized("dwell", self.dwell.len(), nodes[0])?;
         let kept = self.paths.len();
         if kept > KEPT_DEMONSTRATIONS
-            || self.memory.lengths.len() != kept
-            || self.memory.learned < kept as u64
+            || self.kept.lengths.len() != kept
+            || self.kept.learned < kept as u64
         {
             return Err(format!(
                 "{kept} kept demonstrations with {} lengths, of {} learned from: at most \
                  {KEPT_DEMONSTRATIONS}, one length each, no more than were learned from",
-                self.memory.lengths.len(),
-                self.memory.learned
+                self.kept.lengths.len(),
+                self.kept.learned
             ));
         }
-        self.memory.check_counts()?;
-        if let Some(p) = self.memory.period.filter(|p| !(p.is_finite() && *p > 0.0)) {
+        self.kept.check_counts()?;
+        if let Some(p) = self.kept.period.filter(|p| !(p.is_finite() && *p > 0.0)) {
             return Err(format!("a sample period of {p} s: positive and finite"));
         }
         if let Some(n) =
-            (self.memory.lengths.iter()).find(|&&n| n < 2 || f64::from(n) > MAX_DEMO_SAMPLES)
+            (self.kept.lengths.iter()).find(|&&n| n < 2 || f64::from(n) > MAX_DEMO_SAMPLES)
         {
             return Err(format!(
                 "a kept demonstration of {n} samples: 2 to {MAX_DEMO_SAMPLES:e}"

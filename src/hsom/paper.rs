@@ -11,7 +11,7 @@ use crate::config::{
 
 use super::errors::HsomError;
 use super::inputs::{bmu_known, level_buffers};
-use super::memory::{Memory, Stm};
+use super::memory::{Activity, Stm};
 use super::model::{Model, PaperHsom, Part};
 use super::reproduction::{Reproduction, StopReason};
 
@@ -81,14 +81,14 @@ impl Gen<'_> {
     fn children(&self, level: usize, node: usize) -> Vec<usize> {
         let w = self.m.maps[level].weights(node);
         match self.stm.mem {
-            Memory::Lists(_) => {
+            Activity::Lists(_) => {
                 let slots = w.len() / 2;
                 (0..slots)
                     .rev()
                     .map(|k| self.decode(level - 1, w[2 * k], w[2 * k + 1]))
                     .collect()
             }
-            Memory::Levels(_) => {
+            Activity::Levels(_) => {
                 let memory = self.stm.memory;
                 let thr = 0.5 / memory as f64;
                 let mut idx: Vec<usize> = (0..w.len()).filter(|&j| w[j] > thr).collect();
@@ -146,7 +146,7 @@ impl Gen<'_> {
         }
         let map = &self.m.maps[level];
         match &self.stm.mem {
-            Memory::Lists(lists) => {
+            Activity::Lists(lists) => {
                 let k = lists[below].len().min(memory - 1);
                 if k == 0 {
                     return None;
@@ -163,7 +163,7 @@ impl Gen<'_> {
                         .collect(),
                 )
             }
-            Memory::Levels(levels) => {
+            Activity::Levels(levels) => {
                 let a = levels[below].levels();
                 let dec = levels[below].decrement();
                 let x = &mut self.bufs[level];

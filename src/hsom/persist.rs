@@ -400,7 +400,7 @@ impl<A: Part> Model<A> {
         }
         fields.push((
             "kept demonstrations (the band, updates)",
-            binary_len(&self.paths) + binary_len(&self.memory),
+            binary_len(&self.paths) + binary_len(&self.kept),
         ));
         fields.push(("weights", binary_len(&self.maps)));
         let mut parts = vec![FilePart {

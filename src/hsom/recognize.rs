@@ -286,7 +286,7 @@ pub(crate) fn calibrate(
                             .filter(|&(j, _)| j != i)
                             .map(|(_, d)| d.clone())
                             .collect();
-                        shared.branch(&rest, learn, branch_seed(seed, g, Some(i)))
+                        shared.build_branch(&rest, learn, branch_seed(seed, g, Some(i)))
                     })
                     .collect()
             } else {

@@ -4,7 +4,7 @@
 //!
 //! A model keeps at most [`KEPT_DEMONSTRATIONS`](super::KEPT_DEMONSTRATIONS) of the demonstrations of each gesture it
 //! learned from, a uniform sample of them all (reservoir sampling, seeded), normalised and
-//! resampled to [`BAND_ROWS`](super::BAND_ROWS) rows with each one's length ([`Memory`]). An update:
+//! resampled to [`BAND_ROWS`](super::BAND_ROWS) rows with each one's length ([`Kept`]). An update:
 //! 1. trains the bottom map on the new demonstrations and the kept ones (rehearsal), as
 //!    training at once presents them (one gesture: in order, the new ones first; several:
 //!    drawn at random from every gesture's). More of known gestures: it goes on from its
@@ -25,7 +25,7 @@ use crate::demos::{median_interval, same_rate, Demonstration};
 use super::algorithm::Presentation;
 use super::errors::{GestureError, HsomError};
 use super::inputs::Series;
-use super::kept::{band_path, Memory};
+use super::kept::{band_path, Kept};
 use super::kept::{keep, kept, mixed, Warm};
 use super::labels::check_label;
 use super::model::{EventsHsom, GestureModel, Hsom, Model, Part};
@@ -35,7 +35,7 @@ impl<A: Part> Model<A> {
     /// The kept demonstrations in the data's units, each at its own length (read between two
     /// rows of its path).
     pub(crate) fn kept_rows(&self) -> Vec<Vec<Vec<f64>>> {
-        (self.paths.iter().zip(&self.memory.lengths))
+        (self.paths.iter().zip(&self.kept.lengths))
             .map(|(path, &n)| {
                 (0..n)
                     .map(|k| {
@@ -59,7 +59,7 @@ impl<A: Part> Model<A> {
                 });
             }
             // a rate not recorded on either side cannot be compared
-            let same = match (self.memory.period, median_interval(d)) {
+            let same = match (self.kept.period, median_interval(d)) {
                 (Some(a), Some(b)) => same_rate(a, b),
                 _ => true,
             };
@@ -67,7 +67,7 @@ impl<A: Part> Model<A> {
                 return Err(HsomError::UpdatePeriod {
                     demo: d.source.clone(),
                     found: median_interval(d).unwrap_or(f64::NAN),
-                    expected: self.memory.period.unwrap_or(f64::NAN),
+                    expected: self.kept.period.unwrap_or(f64::NAN),
                 });
             }
         }
@@ -83,14 +83,11 @@ impl<A: Part> Model<A> {
             scale: &self.scale,
             trained: &self.trained,
             from,
-            seed: mixed(
-                self.config.params().seed,
-                u64::from(self.memory.updates) + 1,
-            ),
+            seed: mixed(self.config.params().seed, u64::from(self.kept.updates) + 1),
         }
     }
 
-    /// This model's kept paths in `to`'s normalisation, and its memory, with `new`
+    /// This model's kept paths in `to`'s normalisation, and its record ([`Kept`]), with `new`
     /// (normalised as `to` normalises) kept as [`keep`] keeps them and `updates` more updates
     /// counted.
     fn remembered<B: Part>(
@@ -98,7 +95,7 @@ impl<A: Part> Model<A> {
         to: &Model<B>,
         new: &[Vec<Vec<f64>>],
         updates: u32,
-    ) -> (Vec<Vec<Vec<f64>>>, Memory) {
+    ) -> (Vec<Vec<Vec<f64>>>, Kept) {
         let mut paths: Vec<Vec<Vec<f64>>> = (self.paths.iter())
             .map(|p| {
                 p.iter()
@@ -106,15 +103,15 @@ impl<A: Part> Model<A> {
                     .collect()
             })
             .collect();
-        let mut memory = self.memory.clone();
+        let mut kept = self.kept.clone();
         keep(
             &mut paths,
-            &mut memory,
+            &mut kept,
             new.iter().map(|rows| (band_path(rows), rows.len())),
             self.config.params().seed,
         );
-        memory.updates += updates;
-        (paths, memory)
+        kept.updates += updates;
+        (paths, kept)
     }
 }
 
@@ -166,36 +163,36 @@ impl Hsom {
         }
     }
 
-    /// The kept paths and memory this model's update leaves (see [`Model::remembered`]).
-    fn remember(&mut self, paths: Vec<Vec<Vec<f64>>>, memory: Memory) {
+    /// The kept paths and record this model's update leaves (see [`Model::remembered`]).
+    fn remember(&mut self, paths: Vec<Vec<Vec<f64>>>, kept: Kept) {
         match self {
-            Hsom::Paper(m) => (m.paths, m.memory) = (paths, memory),
-            Hsom::Events(m) => (m.paths, m.memory) = (paths, memory),
+            Hsom::Paper(m) => (m.paths, m.kept) = (paths, kept),
+            Hsom::Events(m) => (m.paths, m.kept) = (paths, kept),
         }
     }
 
-    /// What this model learned from ([`Memory`]).
-    fn memory(&self) -> &Memory {
+    /// What this model learned from ([`Kept`]).
+    fn kept(&self) -> &Kept {
         match self {
-            Hsom::Paper(m) => &m.memory,
-            Hsom::Events(m) => &m.memory,
+            Hsom::Paper(m) => &m.kept,
+            Hsom::Events(m) => &m.kept,
         }
     }
 
-    /// Demonstrations learned from, kept, and updates ([`Memory`]).
+    /// Demonstrations learned from, kept, and updates ([`Kept`]).
     pub fn learned(&self) -> (u64, usize, u32) {
-        let (paths, memory) = match self {
-            Hsom::Paper(m) => (&m.paths, &m.memory),
-            Hsom::Events(m) => (&m.paths, &m.memory),
+        let (paths, kept) = match self {
+            Hsom::Paper(m) => (&m.paths, &m.kept),
+            Hsom::Events(m) => (&m.paths, &m.kept),
         };
-        (memory.learned, paths.len(), memory.updates)
+        (kept.learned, paths.len(), kept.updates)
     }
 
     /// The sample period of the demonstrations learned from, seconds (`None`: no times).
     pub(crate) fn set_period(&mut self, period: Option<f64>) {
         match self {
-            Hsom::Paper(m) => m.memory.period = period,
-            Hsom::Events(m) => m.memory.period = period,
+            Hsom::Paper(m) => m.kept.period = period,
+            Hsom::Events(m) => m.kept.period = period,
         }
     }
 }
@@ -211,11 +208,11 @@ impl<A: Part> Model<A> {
             return Ok(A::wrap(self.clone()));
         }
         self.accepts(demos)?;
-        self.memory.room(demos.len(), "the model")?;
+        self.kept.room(demos.len(), "the model")?;
         let kept = self.kept_rows();
         let names = kept_names("the model", kept.len());
         let all = series(demos, &kept, &names, true);
-        let learned = self.memory.learned as f64;
+        let learned = self.kept.learned as f64;
         let from = learned / (learned + demos.len() as f64);
         // the events extension fits its upper levels anew; the paper's levels go on learning
         let levels = match A::ALGORITHM {
@@ -235,11 +232,11 @@ impl<A: Part> Model<A> {
             m.learn_postures(all.iter().map(|s| s.rows));
         }
         let new: Vec<Vec<Vec<f64>>> = demos.iter().map(|d| self.normalise_rows(&d.rows)).collect();
-        let (paths, memory) = match &model {
+        let (paths, record) = match &model {
             Hsom::Paper(m) => self.remembered(m, &new, 1),
             Hsom::Events(m) => self.remembered(m, &new, 1),
         };
-        model.remember(paths, memory);
+        model.remember(paths, record);
         Ok(model)
     }
 }
@@ -289,7 +286,7 @@ impl GestureModel {
             check_label(sets, i, "the update")?;
             first.accepts(demos)?;
             if let Some(g) = self.labels.iter().position(|l| l == label) {
-                (self.branches[g].memory()).room(demos.len(), &format!("gesture {label:?}"))?;
+                (self.branches[g].kept()).room(demos.len(), &format!("gesture {label:?}"))?;
             }
         }
         // every label after the update: the model's, then the new ones in the order given
@@ -357,20 +354,20 @@ impl GestureModel {
             .collect();
         let seed = first.config.params().seed;
         let mut branches: Vec<EventsHsom> = (norm.iter().enumerate())
-            .map(|(g, n)| shared.branch(n, true, branch_seed(seed, g, None)))
+            .map(|(g, n)| shared.build_branch(n, true, branch_seed(seed, g, None)))
             .collect();
         let calibration = calibrate(&shared, &branches, &norm, true, seed);
         for (g, (l, b)) in labels.iter().zip(&mut branches).enumerate() {
             let fresh = &norm[g][earlier[g].len()..];
-            let (paths, memory) = match branch(l) {
+            let (paths, record) = match branch(l) {
                 Some(old) => old.remembered(&shared, fresh, u32::from(!fresh.is_empty())),
                 None => {
-                    let (paths, mut memory) = kept(fresh, fresh.iter().map(Vec::len), seed);
-                    memory.period = first.memory.period;
-                    (paths, memory)
+                    let (paths, mut record) = kept(fresh, fresh.iter().map(Vec::len), seed);
+                    record.period = first.kept.period;
+                    (paths, record)
                 }
             };
-            (b.paths, b.memory) = (paths, memory);
+            (b.paths, b.kept) = (paths, record);
         }
         Ok(GestureModel {
             labels,

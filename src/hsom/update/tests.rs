@@ -162,8 +162,8 @@ fn an_update_refuses_other_columns_and_rates_naming_the_file() {
 fn an_update_that_would_count_past_the_bound_is_refused_before_training() {
     use crate::hsom::MAX_LEARNED;
     let counted = |m: &mut Hsom, learned: u64| match m {
-        Hsom::Paper(m) => m.memory.learned = learned,
-        Hsom::Events(m) => m.memory.learned = learned,
+        Hsom::Paper(m) => m.kept.learned = learned,
+        Hsom::Events(m) => m.kept.learned = learned,
     };
     let mut m = config(false).fit(&demos(0..3, false)).unwrap();
     counted(&mut m, MAX_LEARNED - 1);
