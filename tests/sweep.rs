@@ -2,7 +2,8 @@
 //! seeds, two demonstrations): shards cover the grid exactly once and merge to the unsharded
 //! tables; a restarted sweep skips what is recorded, also after being killed; merge computes
 //! the statistics of the run files and lists failed runs; bad specs and output directories
-//! are refused before any run.
+//! are refused before any run; a run on the upper body is the same pipeline at 14 joints, and
+//! its gestures are checked against the upper body's.
 #![cfg(feature = "sim")] // needs the simulated arm (MuJoCo, OSMesa)
 
 use std::collections::BTreeMap;
@@ -12,6 +13,8 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use assert_cmd::cargo::CommandCargoExt;
+use cosco_hsom::gesture::Gesture;
+use cosco_hsom::robot::Robot;
 use cosco_hsom::sweep::merge::{TABLES_CSV, TABLES_MD, WINS_CSV};
 use cosco_hsom::sweep::runner::{run_files, RUNS_DIR};
 use cosco_hsom::sweep::{
@@ -406,4 +409,116 @@ fn cli_a_killed_sweep_resumes_without_redoing_finished_runs_or_corrupt_files() {
         stdout.contains("merged 8 of 8 runs (0 failed, 0 missing)"),
         "{stdout}"
     );
+}
+
+/// A spec file in `dir` with exactly `axes` (no configuration added: each robot's own).
+fn bare_spec_file(dir: &Path, axes: &str) -> PathBuf {
+    let p = dir.join("ub.toml");
+    std::fs::write(&p, format!("[sweep]\nname = \"ub\"\n[axes]\n{axes}")).unwrap();
+    p
+}
+
+#[test]
+fn an_upper_body_run_records_its_robot_and_fourteen_joints() {
+    let dir = tempfile::tempdir().unwrap();
+    // the smallest run: one demonstration of a short gesture, in-sample, CoSCo-HSOM alone,
+    // with the upper body's own configuration (no `config` axis)
+    let axes = "robot = [\"upper-body\"]\ngesture = [\"nod\"]\nseed = [41]\ncount = [1]\n\
+                method = [\"cosco-hsom\"]\n";
+    let spec = SweepSpec::load(&bare_spec_file(dir.path(), axes)).unwrap();
+    let out = dir.path().join("out");
+    assert_eq!(sweep(&spec, &out, Shard::ALL).unwrap(), (1, 0));
+    let files = run_files(&out).unwrap();
+    assert_eq!(files.len(), 1);
+    let name = files[0].file_name().unwrap().to_string_lossy().into_owned();
+    assert!(
+        name.starts_with("0000-upper-body-nod-s41-nao-upper-body-"),
+        "{name}"
+    );
+    let text = read(files[0].clone());
+    assert!(text.contains("\"robot\": \"upper-body\""), "{text}");
+    let r = RunRecord::read(&files[0]).unwrap();
+    assert_eq!(r.axes.robot, Robot::UpperBody);
+    assert!(r.axes.config.ends_with("configs/nao-upper-body.xml"));
+    assert!(!r.failed(), "{:?} {:?}", r.error, r.methods);
+    let m = &r.methods[0];
+    for key in [
+        "joint_dtw_rad_per_step",
+        "wrist_dtw_mm_per_step",
+        "demo_swings",
+    ] {
+        assert!(m.metrics[key].is_finite(), "{key}: {:?}", m.metrics);
+    }
+    // the fidelity report of the 14 joints: reversals per joint, both wrists
+    let detail = &m.detail;
+    let per_joint = |v: &serde_json::Value| v["reversals"].as_array().map(Vec::len);
+    assert_eq!(per_joint(&detail["reproduction_smoothness"]), Some(14));
+    assert_eq!(per_joint(&detail["demo_smoothness"][0]), Some(14));
+    assert!(detail["right_wrist_dtw_mm"]["mean"].is_f64(), "{detail}");
+    // and the left arm's runs have 6 (the same code at another width)
+    let la = spec_file(
+        dir.path(),
+        "la.toml",
+        &axes
+            .replace("robot = [\"upper-body\"]\n", "")
+            .replace("nod", "salute"),
+    );
+    let la = SweepSpec::load(&la).unwrap();
+    let la_out = dir.path().join("la");
+    sweep(&la, &la_out, Shard::ALL).unwrap();
+    let la_run = RunRecord::read(&run_files(&la_out).unwrap()[0]).unwrap();
+    assert_eq!(la_run.axes.robot, Robot::LeftArm);
+    assert!(!read(run_files(&la_out).unwrap()[0].clone()).contains("\"robot\""));
+    assert_eq!(
+        per_joint(&la_run.methods[0].detail["reproduction_smoothness"]),
+        Some(6)
+    );
+    // merged: the robot is named among what every run shares
+    merge(&out).unwrap();
+    let md = read(out.join(TABLES_MD));
+    assert!(
+        md.contains("Same in every run: robot = upper-body, "),
+        "{md}"
+    );
+}
+
+#[test]
+fn a_left_arm_gesture_on_the_upper_body_is_refused_naming_the_axis_and_the_gestures() {
+    let dir = tempfile::tempdir().unwrap();
+    for g in ["wave", "reach-point"] {
+        let axes = format!("robot = [\"upper-body\"]\ngesture = [\"clap\", \"{g}\"]\n");
+        let file = bare_spec_file(dir.path(), &axes);
+        let e = SweepSpec::load(&file).unwrap_err().to_string();
+        assert!(e.contains("ub.toml"), "{e}");
+        assert!(
+            e.contains("axis `gesture`") && e.contains(&format!("'{g}'")),
+            "{e}"
+        );
+        assert!(e.contains("upper-body"), "{e}");
+        for allowed in Gesture::names(Robot::UpperBody) {
+            assert!(e.contains(allowed), "'{allowed}' not in: {e}");
+        }
+    }
+    // the same gesture on the left arm is fine
+    let file = bare_spec_file(dir.path(), "gesture = [\"wave\"]\n");
+    assert!(SweepSpec::load(&file).is_ok());
+}
+
+#[test]
+fn an_unknown_robot_is_refused_before_any_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let spec = bare_spec_file(dir.path(), "robot = [\"right-leg\"]\n");
+    let o = cosco_sweep(&spec, &out).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{err}");
+    for needle in [
+        "ub.toml",
+        "axis `robot`",
+        "`right-leg`",
+        "left-arm, upper-body",
+    ] {
+        assert!(err.contains(needle), "'{needle}' not in: {err}");
+    }
+    assert!(!out.exists(), "output written before the error");
 }

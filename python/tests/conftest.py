@@ -51,7 +51,7 @@ def assert_threaded_fits_match_serial(fit, tmp_path, threads=4):
         assert (tmp_path / f"t{i}.bin").read_bytes() == (tmp_path / "serial.bin").read_bytes()
 
 
-@pytest.fixture
+@pytest.fixture(scope="session")
 def cosco_bin():
     """The `cosco` binary (COSCO_BIN, set by `make test-python`, or on PATH)."""
     b = os.environ.get("COSCO_BIN") or shutil.which("cosco")

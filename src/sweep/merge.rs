@@ -21,6 +21,7 @@ use super::runner::{read_runs_of, Manifest};
 use super::spec::{method_name, AxisValues};
 use super::SweepError;
 use crate::eval::Method;
+use crate::robot::Robot;
 
 /// Which way a metric is better.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -262,7 +263,8 @@ fn methods_of(samples: &[Sample]) -> Vec<Method> {
 type Row = (&'static str, String);
 
 /// The axes of the tables' rows, in order (`method` is the columns).
-const ROW_AXES: [&str; 7] = [
+const ROW_AXES: [&str; 8] = [
+    "robot",
     "gesture",
     "seed",
     "config",
@@ -386,10 +388,13 @@ fn tables_md(
         },
         manifest.spec_hash
     );
+    // the left arm, the default robot, goes without saying
     let fixed: Vec<String> = ROW_AXES
         .iter()
         .filter(|a| !rows.iter().any(|r| r.0 == **a))
-        .filter_map(|a| runs.first().map(|r| format!("{a} = {}", r.axes.value(a))))
+        .filter_map(|a| runs.first().map(|r| (a, r.axes.value(a))))
+        .filter(|(a, v)| !(**a == "robot" && v == Robot::LeftArm.name()))
+        .map(|(a, v)| format!("{a} = {v}"))
         .collect();
     if !fixed.is_empty() {
         let _ = writeln!(md, "Same in every run: {}.\n", fixed.join(", "));
@@ -566,7 +571,8 @@ fn timing_md(manifest: &Manifest, runs: &[RunRecord]) -> String {
 
 /// One PNG for `metric`: a panel per combination of the axes other than gesture, seed and
 /// method; in each, a box per gesture and method over the seeds. `false` when no run has the
-/// metric.
+/// metric. A panel's title names the axes that vary between panels, or else the evaluation,
+/// the configuration and a robot other than the left arm.
 fn box_plot(
     path: &Path,
     name: &str,
@@ -574,7 +580,7 @@ fn box_plot(
     samples: &[Sample],
     methods: &[Method],
 ) -> Result<bool, SweepError> {
-    const PANEL_AXES: [&str; 5] = ["config", "noise", "count", "height", "evaluation"];
+    const PANEL_AXES: [&str; 6] = ["robot", "config", "noise", "count", "height", "evaluation"];
     let with: Vec<&Sample> = samples
         .iter()
         .filter(|s| s.metrics.contains_key(metric.key))
@@ -609,7 +615,10 @@ fn box_plot(
                 PANEL_AXES
                     .iter()
                     .zip(c)
-                    .filter(|(a, _)| ["evaluation", "config"].contains(a))
+                    .filter(|(a, v)| {
+                        ["evaluation", "config"].contains(a)
+                            || (**a == "robot" && v.as_str() != Robot::LeftArm.name())
+                    })
                     .map(|(a, v)| format!("{a} {v}"))
                     .collect::<Vec<_>>()
                     .join(", ")

@@ -1,15 +1,17 @@
-//! Sweeps (`cosco sweep`, docs/SWEEPS.md): every combination of gestures, seeds,
+//! Sweeps (`cosco sweep`, docs/SWEEPS.md): every combination of robots, gestures, seeds,
 //! configurations, noise levels, numbers of demonstrations, height overrides, evaluations and
 //! methods from one TOML spec, run on a thread pool or split into shards for a cluster's job
 //! arrays, one JSON file per run, merged into tables and box plots.
 //!
 //! - [`spec`]: the spec file, checked up front; the grid in a fixed order.
+//! - [`robots`]: the `robot` axis: the robots' names, default gestures, catalogues, models.
 //! - [`shard`]: `--shard I/N` and SLURM's job-array variables.
 //! - [`run`]: one run (the `simulate --no-render` pipeline) and its file.
 //! - [`runner`]: the sweep: output-directory checks, resume, the thread pool.
 //! - [`merge`](mod@merge): tables (Markdown, CSV), paired wins, box plots, failed runs.
 
 pub mod merge;
+pub mod robots;
 pub mod run;
 pub mod runner;
 pub mod shard;

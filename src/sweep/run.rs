@@ -1,7 +1,7 @@
 //! One run of a sweep: the `simulate --no-render` pipeline for one point of the grid
 //! (synthetic demonstrations, then the evaluator once: in-sample or leave-one-out,
-//! CoSCo-HSOM, GMM/GMR or both, executed on the simulated arm), its metrics, and the record it
-//! leaves in `DIR/runs/<run-id>.json`.
+//! CoSCo-HSOM, GMM/GMR or both, executed on the simulated arm or upper body), its metrics, and
+//! the record it leaves in `DIR/runs/<run-id>.json`.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -11,13 +11,14 @@ use serde::{Deserialize, Serialize};
 
 use crate::demos::Demonstration;
 use crate::eval::{
-    diagonal, fold, FoldInput, FoldScores, HeldOutSummary, Method, Split, Training,
+    diagonal, fold, Executor, FoldInput, FoldScores, HeldOutSummary, Method, Split, Training,
     SWING_MIN_AMPLITUDE_RAD,
 };
 use crate::experiment::{folds, synthetic_demonstrations, ArmExecutor, DemoSettings};
 use crate::gesture::Gesture;
 use crate::metrics::column_swings;
-use crate::sim::{NaoArm, SWING_JOINT};
+use crate::robot::Robot;
+use crate::sim::NaoArm;
 
 use super::spec::{AxisValues, Evaluation, RunPlan, SweepSpec};
 use super::{read_json, write_json, SweepError};
@@ -137,16 +138,27 @@ pub fn execute_run(spec: &SweepSpec, plan: &RunPlan, spec_hash: &str, shard: &st
     }
 }
 
+/// The run on its robot, `N` its joints (the robot is chosen here, once).
 fn run_methods(spec: &SweepSpec, plan: &RunPlan) -> Result<Vec<MethodRecord>, String> {
+    match plan.axes.robot {
+        Robot::LeftArm => run_methods_on::<6>(spec, plan),
+        Robot::UpperBody => run_methods_on::<14>(spec, plan),
+    }
+}
+
+fn run_methods_on<const N: usize>(
+    spec: &SweepSpec,
+    plan: &RunPlan,
+) -> Result<Vec<MethodRecord>, String> {
     let a = &plan.axes;
     // one simulator per run: nothing MuJoCo is shared between the pool's threads
     let arm = match &spec.model {
-        Some(p) => NaoArm::load(p),
-        None => NaoArm::load_default(),
+        Some(p) => NaoArm::<N>::load_robot(a.robot, p),
+        None => NaoArm::<N>::load_shipped(a.robot),
     }
     .map_err(|e| format!("loading the arm model: {e}"))?;
-    let gesture = Gesture::by_name(crate::robot::Robot::LeftArm, &a.gesture)
-        .ok_or_else(|| format!("unknown gesture '{}'", a.gesture))?;
+    let gesture = Gesture::by_name(a.robot, &a.gesture)
+        .ok_or_else(|| format!("unknown gesture '{}' of the {}", a.gesture, a.robot.name()))?;
     let config = spec.config_of(a).ok_or_else(|| {
         format!(
             "no configuration '{}' at height {}",
@@ -161,13 +173,18 @@ fn run_methods(spec: &SweepSpec, plan: &RunPlan) -> Result<Vec<MethodRecord>, St
     let demos = synthetic_demonstrations(&arm, &gesture, a.count, a.seed, &settings, |_| {})
         .map_err(|e| format!("recording the demonstrations: {e}"))?;
     let methods = a.method.singles();
+    let executor = ArmExecutor {
+        arm: &arm,
+        transition: spec.transition,
+    };
+    // LElbowRoll on either robot
+    let swing_joint = executor
+        .swing_joint()
+        .map(|(j, _)| j)
+        .ok_or("the robot has no swing joint")?;
     // the evaluator, once: the in-sample split, or every held-out fold
     let folds = match a.evaluation {
         Evaluation::InSample => {
-            let executor = ArmExecutor {
-                arm: &arm,
-                transition: spec.transition,
-            };
             let base = FoldInput {
                 config: Some(config),
                 ..FoldInput::new(&[], &[])
@@ -204,12 +221,12 @@ fn run_methods(spec: &SweepSpec, plan: &RunPlan) -> Result<Vec<MethodRecord>, St
             let r = if method == Method::GmmGmr && in_sample.is_none() {
                 match ran.is_empty() {
                     true => Err(format!("GMM/GMR ran on no fold: {}", failed.join("; "))),
-                    false => scored(method, &ran, failed, None),
+                    false => scored(method, &ran, failed, None, swing_joint),
                 }
             } else if !failed.is_empty() {
                 Err(failed.join("; "))
             } else {
-                scored(method, &ran, failed, in_sample)
+                scored(method, &ran, failed, in_sample, swing_joint)
             };
             r.unwrap_or_else(|e| MethodRecord {
                 method,
@@ -243,19 +260,20 @@ fn mean(v: impl Iterator<Item = f64>) -> Option<f64> {
 }
 
 /// The record of `method` in a run: means over `folds` (those that ran; the in-sample split is
-/// one fold scored against every demonstration of `in_sample`); `failed` lists the folds that
-/// did not.
+/// one fold scored against every demonstration of `in_sample`, whose swings are counted on
+/// column `swing_joint`); `failed` lists the folds that did not.
 fn scored(
     method: Method,
     folds: &[&FoldScores],
     failed: Vec<String>,
     in_sample: Option<&[Demonstration]>,
+    swing_joint: usize,
 ) -> Result<MethodRecord, String> {
     let s = HeldOutSummary::of(folds).ok_or_else(|| "no folds".to_string())?;
     let demo_swings = match in_sample {
         Some(demos) => {
             let swings = |d: &Demonstration| {
-                column_swings(&d.rows, SWING_JOINT, SWING_MIN_AMPLITUDE_RAD).map(|s| s as f64)
+                column_swings(&d.rows, swing_joint, SWING_MIN_AMPLITUDE_RAD).map(|s| s as f64)
             };
             let all = demos.iter().map(swings).collect::<Result<Vec<_>, _>>();
             mean(all.map_err(|e| e.to_string())?.into_iter())

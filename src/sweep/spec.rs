@@ -1,7 +1,7 @@
 //! The sweep's spec file (TOML, `docs/SWEEPS.md`): axes of values, read and checked once,
 //! up front, into a [`SweepSpec`] whose grid ([`SweepSpec::runs`]) is in a fixed order.
-//! Every configuration file is read, hashed and checked with every height override before
-//! any run starts.
+//! Every configuration file is read, hashed and checked with every height override (and
+//! against the joints of every robot) before any run starts.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -15,17 +15,19 @@ use crate::config::{load_config, HsomConfig};
 use crate::eval::Method;
 use crate::experiment::demonstrate::parse_seeds;
 use crate::experiment::Transition;
-use crate::gesture::Gesture;
-use crate::sim::NaoArm;
+use crate::robot::Robot;
 
+use super::robots::{self, check_gesture, load_model, robot_names, shared_default_gesture};
 use super::SweepError;
 
 /// The axes in grid order: the first varies slowest, `seed` fastest. The replicates (seeds)
 /// of one setting are neighbours, so `index % N` deals every setting, cheap or costly,
-/// evenly over N shards.
-pub const AXES: [&str; 8] = [
+/// evenly over N shards. A robot is paired only with the configurations of its width
+/// (`stateLength` = its joints), so with several robots the grid is not the whole product.
+pub const AXES: [&str; 9] = [
     "method",
     "evaluation",
+    "robot",
     "config",
     "height",
     "count",
@@ -157,6 +159,14 @@ impl Height {
 /// One point of the grid: a value of every axis.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AxisValues {
+    /// The robot: demonstrations, training and execution on its simulation (absent from run
+    /// files for the left arm).
+    #[serde(
+        with = "robots",
+        default = "robots::left_arm",
+        skip_serializing_if = "robots::is_left_arm"
+    )]
+    pub robot: Robot,
     /// Gesture of the synthetic demonstrations.
     pub gesture: String,
     /// Seed of the demonstrations.
@@ -179,6 +189,7 @@ impl AxisValues {
     /// The value of axis `axis` (one of [`AXES`]) as text, as tables show it.
     pub fn value(&self, axis: &str) -> String {
         match axis {
+            "robot" => self.robot.name().into(),
             "gesture" => self.gesture.clone(),
             "seed" => self.seed.to_string(),
             "config" => self.config.clone(),
@@ -216,6 +227,20 @@ pub struct ConfigEntry {
     pub at_heights: Vec<HsomConfig>,
 }
 
+impl ConfigEntry {
+    /// Its `stateLength` (the same at every height).
+    pub fn state_length(&self) -> usize {
+        self.at_heights
+            .first()
+            .map_or(0, |c| c.params().state_length)
+    }
+
+    /// Whether it is a configuration for `robot`: `stateLength` its number of joints.
+    pub fn fits(&self, robot: Robot) -> bool {
+        self.state_length() == robot.joint_names().len()
+    }
+}
+
 /// The settings that are not axes.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Settings {
@@ -223,13 +248,20 @@ pub struct Settings {
     pub name: String,
     /// How CoSCo-HSOM's postures become servo targets.
     pub transition: String,
-    /// The arm's MJCF model as written (default: the crate's `models/nao_left_arm.xml`).
+    /// The robot's MJCF model as written (default: the robot's shipped model,
+    /// `models/nao_left_arm.xml` or `models/nao_upper_body.xml`).
     pub model: Option<String>,
 }
 
 /// The axes' values, checked.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Axes {
+    /// Robots (absent from the identity when the left arm alone).
+    #[serde(
+        serialize_with = "robots::serialize_all",
+        skip_serializing_if = "robots::left_arm_only"
+    )]
+    pub robot: Vec<Robot>,
     /// Gesture names.
     pub gesture: Vec<String>,
     /// Seeds of the demonstrations.
@@ -261,7 +293,7 @@ pub struct SweepSpec {
     pub configs: Vec<ConfigEntry>,
     /// The transition, parsed.
     pub transition: Transition,
-    /// The arm model, resolved (None: the crate's model).
+    /// The robot's model, resolved (None: the robot's shipped model).
     pub model: Option<PathBuf>,
 }
 
@@ -313,6 +345,7 @@ enum RawHeight {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawAxes {
+    robot: Option<Vec<String>>,
     gesture: Option<Vec<String>>,
     seed: Option<RawSeeds>,
     config: Option<Vec<String>>,
@@ -326,6 +359,19 @@ struct RawAxes {
 /// The configuration when the spec has no `config` axis: `simulate`'s default, the shipped
 /// `configs/nao-gestures.xml` (absolute, so wherever the spec file is).
 pub const DEFAULT_CONFIG: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/configs/nao-gestures.xml");
+
+/// The upper body's configuration when the spec has no `config` axis: `simulate --robot
+/// upper-body`'s, the shipped `configs/nao-upper-body.xml`.
+pub const UPPER_BODY_CONFIG: &str =
+    concat!(env!("CARGO_MANIFEST_DIR"), "/configs/nao-upper-body.xml");
+
+/// The configuration of `robot` when the spec has no `config` axis.
+pub fn default_config(robot: Robot) -> &'static str {
+    match robot {
+        Robot::LeftArm => DEFAULT_CONFIG,
+        Robot::UpperBody => UPPER_BODY_CONFIG,
+    }
+}
 
 /// Hex of SHA-256.
 pub fn sha256_hex(bytes: &[u8]) -> String {
@@ -364,10 +410,17 @@ impl SweepSpec {
             .map_err(|e| bad(format!("[sweep] transition: {e}")))?;
         let model = s.model.as_ref().map(|m| dir.join(m));
         if let Some(m) = &model {
-            NaoArm::load(m).map_err(|e| {
+            let written = s.model.as_deref().unwrap_or_default();
+            let [robot] = axes.robot[..] else {
+                return Err(bad(format!(
+                    "[sweep] model '{written}': a model is one robot's, the `robot` axis has \
+                     {}; leave the model out (each robot's shipped model) or sweep one robot",
+                    robot_names(&axes.robot)
+                )));
+            };
+            load_model(robot, m).map_err(|e| {
                 bad(format!(
-                    "[sweep] model '{}': cannot load {}: {e}",
-                    s.model.as_deref().unwrap_or_default(),
+                    "[sweep] model '{written}': cannot load {}: {e}",
                     m.display()
                 ))
             })?;
@@ -383,6 +436,7 @@ impl SweepSpec {
             .map(|written| load_entry(written, dir, &axes.height))
             .collect::<Result<Vec<_>, String>>()
             .map_err(bad)?;
+        check_widths(&axes.robot, &configs).map_err(bad)?;
         Ok(SweepSpec {
             source: path.to_path_buf(),
             settings: Settings {
@@ -397,13 +451,26 @@ impl SweepSpec {
         })
     }
 
-    /// Every run of the grid, in order: nested loops over [`AXES`], the first outermost.
+    /// Every run of the grid, in order: nested loops over [`AXES`], the first outermost (a
+    /// robot with the configurations of its width only).
     pub fn runs(&self) -> Vec<RunPlan> {
         let a = &self.axes;
+        let robot_configs: Vec<(Robot, usize)> = a
+            .robot
+            .iter()
+            .flat_map(|&r| {
+                let fit = self
+                    .configs
+                    .iter()
+                    .enumerate()
+                    .filter(move |(_, c)| c.fits(r));
+                fit.map(move |(ci, _)| (r, ci))
+            })
+            .collect();
         let total: usize = [
             a.method.len(),
             a.evaluation.len(),
-            a.config.len(),
+            robot_configs.len(),
             a.height.len(),
             a.count.len(),
             a.noise.len(),
@@ -416,7 +483,8 @@ impl SweepSpec {
         let mut out = Vec::with_capacity(total);
         for &method in &a.method {
             for &evaluation in &a.evaluation {
-                for (ci, config) in a.config.iter().enumerate() {
+                for &(robot, ci) in &robot_configs {
+                    let config = &self.configs[ci].written;
                     for &height in &a.height {
                         for &count in &a.count {
                             for &noise in &a.noise {
@@ -424,6 +492,7 @@ impl SweepSpec {
                                     for &seed in &a.seed {
                                         let index = out.len();
                                         let axes = AxisValues {
+                                            robot,
                                             gesture: gesture.clone(),
                                             seed,
                                             config: config.clone(),
@@ -497,21 +566,31 @@ fn check_axes(a: RawAxes) -> Result<Axes, String> {
         Some(RawSeeds::List(v)) => Some(v),
         Some(RawSeeds::Text(t)) => Some(parse_seeds(&t).map_err(|e| format!("axis `seed`: {e}"))?),
     };
+    let robot = axis("robot", a.robot, "left-arm".into(), |r| {
+        Robot::from_name(&r)
+    })?;
+    // without a `config` axis, each robot's own configuration
+    let mut default_configs: Vec<String> = Vec::new();
+    for r in &robot {
+        let c = default_config(*r).to_string();
+        if !default_configs.contains(&c) {
+            default_configs.push(c);
+        }
+    }
     let axes = Axes {
         gesture: axis(
             "gesture",
             a.gesture,
-            "reading-watch".into(),
-            |g| match Gesture::by_name(crate::robot::Robot::LeftArm, &g) {
-                Some(_) => Ok(g),
-                None => Err(format!(
-                    "unknown gesture '{g}': allowed {}",
-                    Gesture::names(crate::robot::Robot::LeftArm).join(", ")
-                )),
-            },
+            shared_default_gesture(&robot).into(),
+            |g| check_gesture(&robot, g),
         )?,
         seed: axis("seed", seed, 1, Ok)?,
-        config: axis("config", a.config, DEFAULT_CONFIG.into(), Ok)?,
+        config: axis(
+            "config",
+            a.config.or(Some(default_configs)),
+            String::new(),
+            Ok,
+        )?,
         noise: axis("noise", a.noise, 0.001, |n| {
             match n.is_finite() && n >= 0.0 {
                 true => Ok(n),
@@ -542,6 +621,7 @@ fn check_axes(a: RawAxes) -> Result<Axes, String> {
         method: axis("method", a.method, "both".into(), |w| {
             word(w, "cosco-hsom, gmr, both, promp, dmp")
         })?,
+        robot,
     };
     if axes.method.contains(&MethodAxis::Both) && axes.method.len() > 1 {
         return Err(
@@ -559,6 +639,43 @@ fn check_axes(a: RawAxes) -> Result<Axes, String> {
         }
     }
     Ok(axes)
+}
+
+/// Every robot has a configuration of its width (`stateLength` its number of joints) and
+/// every configuration is some robot's.
+fn check_widths(robots: &[Robot], configs: &[ConfigEntry]) -> Result<(), String> {
+    let widths = || {
+        robots
+            .iter()
+            .map(|r| format!("{} {}", r.name(), r.joint_names().len()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    if let Some(c) = configs.iter().find(|c| !robots.iter().any(|&r| c.fits(r))) {
+        return Err(format!(
+            "axes `config` and `robot`: '{}' has stateLength {}, no robot of the `robot` \
+             axis has that many joints ({}); give a configuration of one robot's width",
+            c.written,
+            c.state_length(),
+            widths()
+        ));
+    }
+    if let Some(r) = robots.iter().find(|&&r| !configs.iter().any(|c| c.fits(r))) {
+        let n = r.joint_names().len();
+        return Err(format!(
+            "axes `robot` and `config`: no configuration for the {}'s {n} joints (stateLength \
+             {n}) on the `config` axis ({}); add one (the shipped {}), or leave the `config` \
+             axis out for each robot's own",
+            r.name(),
+            configs
+                .iter()
+                .map(|c| format!("'{}' stateLength {}", c.written, c.state_length()))
+                .collect::<Vec<_>>()
+                .join(", "),
+            default_config(*r)
+        ));
+    }
+    Ok(())
 }
 
 /// The values of axis `name` (`default` when the spec leaves the axis out), each through
@@ -625,7 +742,8 @@ fn load_entry(written: &str, dir: &Path, heights: &[Height]) -> Result<ConfigEnt
 }
 
 /// `0007-wave-s11-nao-gestures-n0.001-c4-hconfig-leave-one-out-both`: the index (unique),
-/// then every value, readable in a directory listing.
+/// then every value, readable in a directory listing; the robot after the index unless it is
+/// the left arm (`0003-upper-body-clap-s41-nao-upper-body-...`).
 fn run_id(index: usize, width: usize, a: &AxisValues, config: &ConfigEntry) -> String {
     let stem = config
         .path
@@ -643,8 +761,12 @@ fn run_id(index: usize, width: usize, a: &AxisValues, config: &ConfigEntry) -> S
             })
             .collect()
     };
+    let robot = match a.robot {
+        Robot::LeftArm => String::new(),
+        r => format!("{}-", r.name()),
+    };
     format!(
-        "{index:0width$}-{}-s{}-{}-n{}-c{}-h{}-{}-{}",
+        "{index:0width$}-{robot}{}-s{}-{}-n{}-c{}-h{}-{}-{}",
         clean(&a.gesture),
         a.seed,
         clean(&stem),
