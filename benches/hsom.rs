@@ -154,16 +154,16 @@ fn update(c: &mut Criterion) {
 }
 
 /// Training a gesture of the upper body's 14 variables against one of the left arm's 6, on
-/// the same number of demonstrations and samples (the recommended configuration at each
-/// width): the cost of the whole upper body.
+/// the same number of demonstrations and samples, each with its recommended configuration
+/// (configs/nao-gestures.xml, configs/nao-upper-body.xml): the cost of the whole upper body.
 fn width(c: &mut Criterion) {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/nao-gestures.xml");
-    let base = cosco_hsom::config::load_config(&path).unwrap();
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut g = c.benchmark_group("width");
     g.sample_size(10);
-    for w in [6usize, 14] {
+    for (w, config) in [(6usize, "nao-gestures.xml"), (14, "nao-upper-body.xml")] {
         let demos = gestures_of(3, 300, w);
-        let cfg = base.for_width(w).unwrap();
+        let cfg = cosco_hsom::config::load_config(&root.join("configs").join(config)).unwrap();
+        assert_eq!(cfg.params().state_length, w, "{config}");
         g.bench_function(format!("fit_3x300_{w}_variables"), |b| {
             b.iter(|| black_box(cfg.fit(&demos).unwrap()))
         });
