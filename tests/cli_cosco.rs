@@ -387,6 +387,30 @@ fn reproduce_refuses_an_initial_posture_far_outside_the_joint_ranges() {
             .and(predicate::str::contains("range")),
     );
     run("1.4,0.3,-1.39,-1.01,0,0.25").success();
+    // --robot: the model must be of that robot
+    let on = |robot: &str| {
+        let mut c = cosco();
+        c.args(["reproduce", "--model"])
+            .arg(d.join("m.bin"))
+            .args([
+                "--initial",
+                "1.4,0.3,-1.39,-1.01,0,0.25",
+                "--robot",
+                robot,
+                "--out",
+            ])
+            .arg(d.join("r.csv"));
+        c.assert()
+    };
+    on("left-arm").success();
+    on("upper-body").failure().stderr(
+        predicate::str::contains("--robot upper-body")
+            .and(predicate::str::contains("m.bin learned 6 variables"))
+            .and(predicate::str::contains("HeadYaw")),
+    );
+    on("biped")
+        .failure()
+        .stderr(predicate::str::contains("left-arm, upper-body"));
 }
 
 /// A demonstration that never moves is named by its file in `evaluate`'s error (it was

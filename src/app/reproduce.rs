@@ -65,6 +65,24 @@ fn naming_model(e: HsomError, model: &Hsom, model_name: &str) -> Error {
     }
 }
 
+/// A model (`model_name`) whose variables `columns` are `robot`'s joints, in NAOqi order.
+fn check_robot(robot: crate::robot::Robot, columns: &[String], model_name: &str) -> Result<()> {
+    if crate::robot::Robot::of_columns(columns) == Some(robot) {
+        return Ok(());
+    }
+    Err(Error::value(
+        format!("--robot {}:", robot.name()),
+        format!(
+            "the model {model_name} learned {} variables ({}), not the {}'s {} joints ({})",
+            columns.len(),
+            columns.join(", "),
+            robot.name(),
+            robot.joint_names().len(),
+            robot.joint_names().join(", ")
+        ),
+    ))
+}
+
 /// The ranges of the arm's joints when `columns` are theirs (in the simulator's builds).
 fn arm_ranges(columns: &[String]) -> Option<Vec<(f64, f64)>> {
     crate::robot::arm_ranges(columns).filter(|_| cfg!(feature = "sim"))
@@ -147,6 +165,10 @@ pub struct ReproduceRequest {
     pub via: Vec<ViaPoint>,
     /// Where to write the central 95 % confidence band about the reproduction, when asked.
     pub band: Option<PathBuf>,
+    /// The robot the model must be of (`--robot`): its variables that robot's joints, whose
+    /// ranges the postures are checked against. `None`: any variables (the ranges of the
+    /// robot whose joints they are, if any).
+    pub robot: Option<crate::robot::Robot>,
 }
 
 /// What `cosco reproduce` is asked: a [`ReproduceRequest`], or the continuation of a prefix,
@@ -189,6 +211,9 @@ impl ReproduceRequest {
     ) -> Result<Reproduced> {
         let m = files::load_gesture_model(&self.model)?;
         let name = self.model.display().to_string();
+        if let Some(robot) = self.robot {
+            check_robot(robot, m.columns(), &name)?;
+        }
         let branch = m.branch(self.gesture.as_deref())?;
         let initial = initial_posture(branch, self.initial.as_ref(), self.initial_from.as_deref())?;
         let rep = match resume_from {

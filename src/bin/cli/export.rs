@@ -102,6 +102,7 @@ pub fn export(a: ExportArgs) -> Result<Vec<String>> {
             goal: a.goal,
             via: a.via,
             band: a.band,
+            robot: None,
         }),
         (None, None) => anyhow::bail!("--reproduction: give --reproduction FILE or --model FILE"),
     };

@@ -49,6 +49,11 @@ pub struct ReproduceArgs {
     /// row per reproduction row, `step` then `<variable>_lo` and `<variable>_hi`.
     #[arg(long, conflicts_with_all = ["prefix_from", "resume_from"])]
     pub band: Option<PathBuf>,
+    /// The robot the model must be of: `left-arm` (6 joints) or `upper-body` (14: the head
+    /// and both arms); its joint ranges bound the initial posture, the goal and via-points.
+    /// Default: whichever robot's joints the model's variables are (none for other data).
+    #[arg(long, value_parser = super::parse_robot)]
+    pub robot: Option<cosco_hsom::robot::Robot>,
     /// Output CSV.
     #[arg(long)]
     pub out: PathBuf,
@@ -65,6 +70,7 @@ impl From<ReproduceArgs> for ReproduceFile {
                 goal: a.goal,
                 via: a.via,
                 band: a.band,
+                robot: a.robot,
             },
             prefix_from: a.prefix_from,
             prefix: a.prefix,
