@@ -2,7 +2,9 @@
 //! motion on the simulated upper body first: a reproduction that brings the left hand into
 //! the chest is refused, naming the time and the two parts; the same path with the hand kept
 //! out exports (the negative control); `--allow-contact` exports the first anyway and says
-//! so. `cosco evaluate` of an upper-body reproduction reports its contacts.
+//! so. `cosco evaluate` of an upper-body reproduction reports its contacts. `cosco reproduce`
+//! keeps an initial posture within the robot's joint ranges, and `--robot` refuses a model of
+//! another robot.
 
 #![cfg(feature = "sim")]
 
@@ -192,4 +194,62 @@ fn evaluate_reports_the_contacts_of_an_upper_body_reproduction() {
             .any(|l| l.starts_with("contacts (simulated upper body):") && l.ends_with("none")),
         "{text}"
     );
+}
+
+/// `reproduce --initial` with an arm posture far outside a joint's range is refused, naming
+/// the joint and its range.
+#[test]
+fn reproduce_refuses_an_initial_posture_far_outside_the_joint_ranges() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    cosco()
+        .args(["demos", "--count", "2", "--out"])
+        .arg(d.join("demos"))
+        .assert()
+        .success();
+    cosco()
+        .args(["train", "--demos"])
+        .arg(d.join("demos"))
+        .arg("--out")
+        .arg(d.join("m.bin"))
+        .assert()
+        .success();
+    let run = |initial: &str| {
+        let mut c = cosco();
+        c.args(["reproduce", "--model"])
+            .arg(d.join("m.bin"))
+            .args(["--initial", initial, "--out"])
+            .arg(d.join("r.csv"));
+        c.assert()
+    };
+    run("1.4,0.3,-1.39,8.0,0,0.25").failure().stderr(
+        predicate::str::contains("LElbowRoll")
+            .and(predicate::str::contains("8"))
+            .and(predicate::str::contains("range")),
+    );
+    run("1.4,0.3,-1.39,-1.01,0,0.25").success();
+    // --robot: the model must be of that robot
+    let on = |robot: &str| {
+        let mut c = cosco();
+        c.args(["reproduce", "--model"])
+            .arg(d.join("m.bin"))
+            .args([
+                "--initial",
+                "1.4,0.3,-1.39,-1.01,0,0.25",
+                "--robot",
+                robot,
+                "--out",
+            ])
+            .arg(d.join("r.csv"));
+        c.assert()
+    };
+    on("left-arm").success();
+    on("upper-body").failure().stderr(
+        predicate::str::contains("--robot upper-body")
+            .and(predicate::str::contains("m.bin learned 6 variables"))
+            .and(predicate::str::contains("HeadYaw")),
+    );
+    on("biped")
+        .failure()
+        .stderr(predicate::str::contains("left-arm, upper-body"));
 }
