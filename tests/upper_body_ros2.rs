@@ -59,6 +59,19 @@ fn csv_rows(path: &std::path::Path) -> (Vec<String>, Vec<Vec<f64>>) {
     (header, rows)
 }
 
+/// `cosco demos import --bag BAG --out OUT` with `extra` flags, which must succeed.
+fn import(bag: &std::path::Path, out: &std::path::Path, extra: &[&str]) {
+    cosco()
+        .args(["demos", "import"])
+        .args(extra)
+        .arg("--bag")
+        .arg(bag)
+        .arg("--out")
+        .arg(out)
+        .assert()
+        .success();
+}
+
 #[test]
 fn a_whole_nao_joint_state_bag_imports_to_the_upper_bodys_14_columns() {
     let dir = tempfile::tempdir().unwrap();
@@ -75,13 +88,7 @@ fn a_whole_nao_joint_state_bag_imports_to_the_upper_bodys_14_columns() {
     )
     .unwrap();
     let out = dir.path().join("imported");
-    cosco()
-        .args(["demos", "import", "--robot", "upper-body", "--bag"])
-        .arg(&bag)
-        .arg("--out")
-        .arg(&out)
-        .assert()
-        .success();
+    import(&bag, &out, &["--robot", "upper-body"]);
     let (header, rows) = csv_rows(&out.join("nao.csv"));
     let upper = Robot::UpperBody.joint_names();
     assert_eq!(header[0], "time");
@@ -93,13 +100,7 @@ fn a_whole_nao_joint_state_bag_imports_to_the_upper_bodys_14_columns() {
     }
     // the default stays the left arm's six
     let six = dir.path().join("six");
-    cosco()
-        .args(["demos", "import", "--bag"])
-        .arg(&bag)
-        .arg("--out")
-        .arg(&six)
-        .assert()
-        .success();
+    import(&bag, &six, &[]);
     let (header, _) = csv_rows(&six.join("nao.csv"));
     assert_eq!(&header[1..], Robot::LeftArm.joint_names());
 }
@@ -136,13 +137,7 @@ fn an_upper_body_reproduction_exports_and_its_execution_imports_as_14_columns() 
         .assert()
         .success();
     let out = dir.path().join("back");
-    cosco()
-        .args(["demos", "import", "--robot", "upper-body", "--bag"])
-        .arg(&bag)
-        .arg("--out")
-        .arg(&out)
-        .assert()
-        .success();
+    import(&bag, &out, &["--robot", "upper-body"]);
     let (header, rows) = csv_rows(&out.join("nod.csv"));
     assert_eq!(&header[1..], robot.joint_names());
     // the executed nod: HeadPitch rises to about 0.2 rad and the arms hold StandInit
