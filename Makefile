@@ -27,14 +27,14 @@ demo: deps
 	$(CARGO) run --release --bin simulate -- --out out
 
 ## test: the whole test suite, headless: with the simulator (default); without it (the
-## algorithm alone, as the Python package builds it: every target compiled, the unit tests,
-## the binaries' and the command line's tests run, the rest being the same code as above);
-## then the Python package's tests and the docs' commands
+## algorithm alone, as the Python package builds it: the binaries' and the command line's
+## tests, and the doctests; the library's unit tests are the same code as above, and
+## `make clippy` compiles every target in both feature sets); then the Python package's tests
+## and the docs' commands
 test: deps structure
 	$(CARGO) test --all-targets
 	$(CARGO) test --doc
-	$(CARGO) check --no-default-features --all-targets
-	$(CARGO) test --no-default-features --lib --bins --test cli_cosco --test bad_input
+	$(CARGO) test --no-default-features --bins --test cli_cosco --test bad_input
 	$(CARGO) test --no-default-features --doc
 	$(MAKE) test-python
 	$(MAKE) doc-commands
@@ -92,8 +92,10 @@ bindings:
 fmt:
 	$(CARGO) fmt --all
 
+## clippy: every target, with the simulator and without it
 clippy:
 	$(CARGO) clippy --all-targets -- -D warnings
+	$(CARGO) clippy --no-default-features --all-targets -- -D warnings
 
 clean:
 	$(CARGO) clean
