@@ -10,6 +10,8 @@ use super::executor::Executor;
 use super::fold::{diagonal, fold, Conditioning, FoldInput, Split, Training};
 use super::method::Method;
 use super::results::GestureLoo;
+use super::results::{Fold, Run};
+use crate::gmr::MIN_DEMONSTRATIONS;
 
 /// Gestures by name, each with its demonstrations.
 pub type Gestures = Vec<(String, Vec<Demonstration>)>;
@@ -292,58 +294,36 @@ pub fn leave_one_out<E: Executor>(
         true => Some(config.at_height(1)?),
         false => None,
     };
-    // jobs: (gesture, demonstration, held out?)
-    let mut jobs = Vec::new();
-    for (g, (_, demos)) in gestures.iter().enumerate() {
-        for i in 0..demos.len() {
-            jobs.push((g, i, true));
-            if settings.in_sample {
-                jobs.push((g, i, false));
-            }
-        }
-    }
     let diagonals: Vec<f64> = gestures.iter().map(|(_, d)| diagonal(d)).collect();
     let pool = super::Pool::new(settings.threads).map_err(LooError::Pool)?;
-    let (held_out, in_sample) = (settings.methods(true), settings.methods(false));
-    let done = pool.map(
-        &jobs,
-        |&(g, i, held)| {
-            let base = FoldInput {
-                config: Some(config),
-                height_1: height_1.as_ref(),
-                conditioning: settings.conditioning,
-                far: settings.far,
-                training: match settings.sittings {
-                    true => Training::Sittings,
-                    false => Training::Trained,
-                },
-                ..FoldInput::new(&[], &[])
-            };
-            let (methods, split) = match held {
-                true => (&held_out, Split::HeldOut(i)),
-                false => (&in_sample, Split::InSample(i)),
-            };
-            fold(
-                methods,
-                &base,
-                &gestures[g].1,
-                split,
-                diagonals[g],
-                executor,
-            )
+    let base = FoldInput {
+        config: Some(config),
+        height_1: height_1.as_ref(),
+        conditioning: settings.conditioning,
+        far: settings.far,
+        training: match settings.sittings {
+            true => Training::Sittings,
+            false => Training::Trained,
         },
+        ..FoldInput::new(&[], &[])
+    };
+    let sets: Vec<(&[Demonstration], f64)> = (gestures.iter().map(|(_, d)| &d[..]))
+        .zip(diagonals.iter().copied())
+        .collect();
+    let in_sample = settings.methods(false);
+    let mut folds = loo_folds(
+        &sets,
+        &settings.methods(true),
+        settings.in_sample.then_some(&in_sample[..]),
+        &base,
+        executor,
+        &pool,
         progress,
-    );
-    let mut folds = done.into_iter();
+    )
+    .into_iter();
     let mut out = Vec::new();
     for (g, (name, demos)) in gestures.into_iter().enumerate() {
-        let (mut held_out, mut in_sample) = (Vec::new(), Vec::new());
-        for _ in 0..demos.len() {
-            held_out.extend(folds.next());
-            if settings.in_sample {
-                in_sample.extend(folds.next());
-            }
-        }
+        let (held_out, in_sample) = folds.next().unwrap_or_default();
         out.push(GestureLoo {
             gesture: name,
             demonstrations: demos,
@@ -353,4 +333,115 @@ pub fn leave_one_out<E: Executor>(
         });
     }
     Ok(out)
+}
+
+/// The one leave-one-out loop: on each set of `sets` (one gesture's demonstrations and their
+/// diagonal), every demonstration held out in turn, `held_out`'s methods learning from the
+/// others as `base` says (its training progress aside), reproducing from its first posture and scored against it alone
+/// ([`fold`]); with `in_sample`, those methods also learn from all and are scored against
+/// it. The folds of every set share `pool` (`progress(done, total)` after each fold and
+/// each in-sample fold); the result does not depend on its threads. A baseline that learns
+/// from demonstrations alone (GMM/GMR, ProMP) and has fewer than [`MIN_DEMONSTRATIONS`] to
+/// learn from on a fold holds the reason. Per set, its held-out folds and its in-sample
+/// folds, in demonstration order.
+pub fn loo_folds<E: Executor>(
+    sets: &[(&[Demonstration], f64)],
+    held_out: &[Method],
+    in_sample: Option<&[Method]>,
+    base: &FoldInput<'_>,
+    executor: &E,
+    pool: &super::Pool,
+    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+) -> Vec<(Vec<Fold>, Vec<Fold>)> {
+    // jobs: (set, demonstration, held out?)
+    let mut jobs = Vec::new();
+    for (s, (demos, _)) in sets.iter().enumerate() {
+        for i in 0..demos.len() {
+            jobs.push((s, i, true));
+            if in_sample.is_some() {
+                jobs.push((s, i, false));
+            }
+        }
+    }
+    // `base` without its training progress (not shared between threads)
+    let FoldInput {
+        config,
+        height_1,
+        training,
+        conditioning,
+        far,
+        gmr_components,
+        ..
+    } = *base;
+    let done = pool.map(
+        &jobs,
+        |&(s, i, held)| {
+            let (demos, diag) = sets[s];
+            let base = &FoldInput {
+                config,
+                height_1,
+                training,
+                conditioning,
+                far,
+                gmr_components,
+                ..FoldInput::new(&[], &[])
+            };
+            match (held, in_sample) {
+                (false, Some(methods)) => {
+                    limited_fold(methods, base, demos, Split::InSample(i), diag, executor)
+                }
+                _ => limited_fold(held_out, base, demos, Split::HeldOut(i), diag, executor),
+            }
+        },
+        progress,
+    );
+    let mut folds = done.into_iter();
+    sets.iter()
+        .map(|(demos, _)| {
+            let (mut held, mut ins) = (Vec::new(), Vec::new());
+            for _ in 0..demos.len() {
+                held.extend(folds.next());
+                if in_sample.is_some() {
+                    ins.extend(folds.next());
+                }
+            }
+            (held, ins)
+        })
+        .collect()
+}
+
+/// [`fold`], with a baseline that learns from demonstrations alone (GMM/GMR, ProMP) refused
+/// when the split leaves it fewer than [`MIN_DEMONSTRATIONS`] to learn from (the reason
+/// names the fold and the method).
+fn limited_fold<E: Executor>(
+    methods: &[Method],
+    base: &FoldInput<'_>,
+    demos: &[Demonstration],
+    split: Split,
+    diag: f64,
+    executor: &E,
+) -> Fold {
+    let baseline = |m: &Method| matches!(m, Method::GmmGmr | Method::ProMP);
+    let (learn_from, n) = match split {
+        Split::HeldOut(i) => (demos.len() - 1, i + 1),
+        Split::InSample(i) => (demos.len(), i + 1),
+        Split::InSampleAll => (demos.len(), 1),
+    };
+    let (run, skip): (Vec<Method>, Vec<Method>) = methods
+        .iter()
+        .partition(|m| !baseline(m) || learn_from >= MIN_DEMONSTRATIONS);
+    let mut f = fold(&run, base, demos, split, diag, executor);
+    f.runs.extend(skip.iter().map(|&method| Run {
+        method,
+        score: None,
+        error: Some(format!(
+            "fold {n}: {} needs at least {MIN_DEMONSTRATIONS} demonstrations to learn from, \
+             this fold has {learn_from}",
+            method.name(),
+        )),
+        postures: Vec::new(),
+        band: None,
+        scores: None,
+    }));
+    f
 }

@@ -41,7 +41,9 @@ pub use fold::{
     all_but, diagonal, fold, fold_scores, run_fold, scored, sitting, Conditioning, Fitted,
     FoldInput, FoldRuns, MethodRun, Split, Training, GMR_UNCONDITIONED, SWING_MIN_AMPLITUDE_RAD,
 };
-pub use loo::{leave_one_out, read_gestures_at, Gestures, LooError, LooSettings, MIN_TAUGHT_DEMOS};
+pub use loo::{
+    leave_one_out, loo_folds, read_gestures_at, Gestures, LooError, LooSettings, MIN_TAUGHT_DEMOS,
+};
 pub use method::{peak_speed, Method, GMR_COMPONENTS};
 pub use pool::Pool;
 #[cfg(feature = "plot")]

@@ -8,10 +8,9 @@
 use crate::config::HsomConfig;
 use crate::demos::{sample_period, Demonstration};
 use crate::eval::{
-    diagonal, fold, run_fold, Fold, FoldInput, HeldOut, HeldOutSummary, Method, MethodRun, Run,
-    Split, Training,
+    diagonal, loo_folds, run_fold, Fold, FoldInput, HeldOut, HeldOutSummary, Method, MethodRun,
+    Pool, Training,
 };
-use crate::gmr::MIN_DEMONSTRATIONS;
 use crate::sim::{NaoArm, Recording, Transition, SWING_JOINT};
 
 use super::executor::ArmExecutor;
@@ -45,11 +44,10 @@ fn check_demos_of(robot: Robot, demos: &[Demonstration]) -> Result<(), Experimen
     Ok(())
 }
 
-/// `methods` on every fold of `demos` on the arm: fold `i` learns from every demonstration but
-/// `demos[i]` (the hierarchy with `config` and `training`, executed with `transition`),
-/// starts from its first posture and is scored against it alone. A baseline that learns from
-/// demonstrations alone (GMM/GMR, ProMP) and cannot run on a fold (fewer than
-/// [`MIN_DEMONSTRATIONS`] to learn from, a failed fit) holds the reason, `fold N: method: why`.
+/// `methods` on every fold of `demos` on the arm ([`loo_folds`], one thread): fold `i` learns
+/// from every demonstration but `demos[i]` (the hierarchy with `config` and `training`,
+/// executed with `transition`), starts from its first posture and is scored against it alone.
+/// A baseline that cannot run on a fold holds the reason, `fold N: method: why`.
 pub fn folds<const N: usize>(
     arm: &NaoArm<N>,
     demos: &[Demonstration],
@@ -65,36 +63,25 @@ pub fn folds<const N: usize>(
         training,
         ..FoldInput::new(&[], &[])
     };
+    let pool = Pool::new(1).map_err(ExperimentError::Invalid)?;
+    let sets = [(demos, diagonal(demos))];
+    let mut folds = loo_folds(&sets, methods, None, &base, &executor, &pool, None)
+        .pop()
+        .map(|(held_out, _)| held_out)
+        .unwrap_or_default();
+    // a baseline's failed fit named with its fold, as a skipped baseline's reason is
     let baseline = |m: &Method| matches!(m, Method::GmmGmr | Method::ProMP);
-    let learn_from = demos.len() - 1;
-    let (run, skip): (Vec<Method>, Vec<Method>) = methods
-        .iter()
-        .partition(|m| !baseline(m) || learn_from >= MIN_DEMONSTRATIONS);
-    let diag = diagonal(demos);
-    Ok((0..demos.len())
-        .map(|i| {
-            let mut f = fold(&run, &base, demos, Split::HeldOut(i), diag, &executor);
-            for r in f.runs.iter_mut().filter(|r| baseline(&r.method)) {
-                if let Some(e) = &mut r.error {
-                    *e = format!("fold {}: {}: {e}", i + 1, r.method.name());
+    for (i, f) in folds.iter_mut().enumerate() {
+        for r in f.runs.iter_mut().filter(|r| baseline(&r.method)) {
+            match &mut r.error {
+                Some(e) if !e.starts_with("fold ") => {
+                    *e = format!("fold {}: {}: {e}", i + 1, r.method.name())
                 }
+                _ => {}
             }
-            f.runs.extend(skip.iter().map(|&method| Run {
-                method,
-                score: None,
-                error: Some(format!(
-                    "fold {}: {} needs at least {MIN_DEMONSTRATIONS} demonstrations to \
-                     learn from, this fold has {learn_from}",
-                    i + 1,
-                    method.name(),
-                )),
-                postures: Vec::new(),
-                band: None,
-                scores: None,
-            }));
-            f
-        })
-        .collect())
+        }
+    }
+    Ok(folds)
 }
 
 /// Leave-one-out for CoSCo-HSOM (trained with `config`, executed with `transition`), the
