@@ -213,9 +213,9 @@ fn the_stepper_re_conditions_on_the_posture_read_at_its_phase() {
     use crate::stepper::Stepper;
     let mut s = PrompStepper::new(&p, &start, &Conditions::default(), None).unwrap();
     let mut arm = start.clone();
-    for t in 1..rows.len() / 2 {
+    for row in &rows[1..rows.len() / 2] {
         arm = s.step(&arm).unwrap();
-        assert_eq!(arm, rows[t]);
+        assert_eq!(&arm, row);
     }
     let pushed: Vec<f64> = arm.iter().map(|v| v + 0.2).collect();
     let next = s.step(&pushed).unwrap();
