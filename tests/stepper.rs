@@ -267,7 +267,10 @@ fn a_goal_moved_half_way_is_reached_exactly_without_a_jump() {
         let at = ((plan.len() - 1) as f64 * 0.5).round() as usize;
         let jump = r.largest_step_from(at) / step_scale(&plan);
         let error = euclidean(r.path.last().unwrap(), &goal) / diag();
-        eprintln!("{algorithm:?} goal moved: error {error:e} of the diagonal, largest step {jump:.3} of the demonstration's");
+        eprintln!(
+            "{algorithm:?} goal moved: error {error:e} of the diagonal, \
+             largest step {jump:.3} of the demonstration's"
+        );
         assert!(r.finished);
         assert!(error <= 1e-6, "{error}");
         assert!(jump <= 2.0, "{jump}");

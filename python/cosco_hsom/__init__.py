@@ -15,7 +15,7 @@ The algorithm of the Rust crate ``cosco-hsom``, built without its simulator:
 - :class:`Stepper`: a reproduction in the loop, ``model.stepper(initial, goal=None, via=None)``
   (``GestureModel.stepper(label, initial, ...)``): ``s.step(observed)`` is the next posture
   to command, ``s.done`` True once the reproduction has ended, ``s.goal = posture`` moves the
-  goal from now on.
+  goal from this tick on.
 - :mod:`cosco_hsom.gmr`: the paper's GMM/GMR baseline.
 - :func:`heldout`: leave-one-out on demonstrations (``cosco heldout``): the hierarchy beside
   its nearest-sequence baseline, height 1, GMM/GMR, ProMP and a replay, on the same folds.

@@ -172,16 +172,16 @@ class Stepper:
     """The hierarchy in the loop (Hsom.stepper, GestureModel.stepper)."""
 
     def step(self, observed: npt.ArrayLike) -> np.ndarray:
-        """The next posture to command, given the posture the encoders read now (the first
-        call reads the initial posture). It follows its plan while the arm is where it was
-        sent, and re-plans from what the encoders have read when it is not."""
+        """The next posture to command, given the posture the encoders read at this tick (the
+        first call reads the initial posture). It follows its plan while the arm is where it
+        was sent, and re-plans from what the encoders have read when it is not."""
     @property
     def done(self) -> bool:
         """True once the reproduction has ended (its last posture has been commanded)."""
     @property
     def goal(self) -> Optional[np.ndarray]:
         """The goal, or None for the reproduction's own end; setting it moves the goal from
-        now on (reached exactly, without a jump)."""
+        this tick on (reached exactly, without a jump)."""
     @goal.setter
     def goal(self, goal: npt.ArrayLike) -> None: ...
     @property

@@ -118,7 +118,7 @@ impl GestureModel {
 
     /// Gesture `label` in the loop from an initial posture, through `goal` and `via` as
     /// `Hsom.reproduce` takes them: a `Stepper`, whose `step(observed)` gives the next posture
-    /// to command from the posture the encoders read now. `label` is None only for a
+    /// to command from the posture the encoders read at this tick. `label` is None only for a
     /// single-gesture model.
     #[pyo3(signature = (label, initial, goal = None, via = None))]
     fn stepper(

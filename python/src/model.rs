@@ -271,7 +271,7 @@ impl Hsom {
 
     /// The hierarchy in the loop from an initial posture, through `goal` and `via` as
     /// `reproduce` takes them: a `Stepper`, whose `step(observed)` gives the next posture to
-    /// command from the posture the encoders read now (docs/ALGORITHM.md, section 11).
+    /// command from the posture the encoders read at this tick (docs/ALGORITHM.md, section 11).
     #[pyo3(signature = (initial, goal = None, via = None))]
     fn stepper(
         &self,

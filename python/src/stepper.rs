@@ -13,8 +13,8 @@ use cosco_hsom::stepper::Stepper as _;
 use crate::{app_err, posture_of, py_err};
 
 /// The hierarchy in the loop: `step(observed)` gives the next posture to command from the
-/// posture the encoders read now; `done` is True once the reproduction has ended; `goal =
-/// posture` moves the goal from now on (docs/ALGORITHM.md, section 11).
+/// posture the encoders read at this tick; `done` is True once the reproduction has ended; `goal =
+/// posture` moves the goal from this tick on (docs/ALGORITHM.md, section 11).
 #[pyclass(module = "cosco_hsom", name = "Stepper")]
 pub(crate) struct Stepper {
     inner: HsomStepper<Arc<Hsom>>,
@@ -65,7 +65,7 @@ impl Stepper {
 
 #[pymethods]
 impl Stepper {
-    /// The next posture to command (a 1-D array), given the posture the encoders read now
+    /// The next posture to command (a 1-D array), given the posture the encoders read at this tick
     /// (one value per variable; the first call reads the initial posture). While the arm is
     /// where it was last sent the stepper follows its plan; when it is not, it re-plans from
     /// what the encoders have read.
@@ -86,7 +86,7 @@ impl Stepper {
     }
 
     /// The goal (a 1-D array), or None for the reproduction's own end. Setting it moves the
-    /// goal from now on: the rest of the reproduction is bent from the posture last
+    /// goal from this tick on: the rest of the reproduction is bent from the posture last
     /// commanded onto it (no jump), and it is reached exactly.
     #[getter]
     fn goal<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {

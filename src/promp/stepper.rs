@@ -13,7 +13,7 @@ const PROMP: &str = "ProMP";
 /// follows the mean conditioned on the initial posture, the via-points and the goal while the
 /// arm reads where it was sent; when it does not, the weight distribution is conditioned
 /// again on the posture read at the current phase, the via-points still ahead and the goal
-/// (the earlier ones are past), and its mean from now on is followed. A moved goal conditions
+/// (the earlier ones are past), and its mean from there on is followed. A moved goal conditions
 /// it again on the posture last commanded at the current phase.
 #[derive(Debug, Clone)]
 pub struct PrompStepper {

@@ -14,7 +14,7 @@ use super::{check_posture, StepperError};
 pub const DEFAULT_TOLERANCE: f64 = 2e-3;
 
 /// A plan followed tick by tick ([`Course::observe`], then [`Course::advance`]): the rows of
-/// the plan now followed and the one last commanded, the reading (every posture observed,
+/// the plan being followed and the row last commanded, the reading (every posture observed,
 /// from the initial one), the goal and via-points, and how the plan's rest is made again.
 ///
 /// Phase: the plan first made spans phases 0 to 1; a rest that replaces it at phase `p`
@@ -26,7 +26,7 @@ pub struct Course {
     /// The plan first made, from the initial posture: what a reading is aligned with to
     /// re-join it ([`Course::realigned`]).
     reference: Vec<Vec<f64>>,
-    /// The plan now followed; `rows[at]` was commanded last.
+    /// The plan being followed; `rows[at]` was commanded last.
     rows: Vec<Vec<f64>>,
     at: usize,
     /// The phase at `rows[0]`.
@@ -123,7 +123,7 @@ impl Course {
     pub fn reading(&self) -> &[Vec<f64>] {
         &self.reading
     }
-    /// The goal and via-points now.
+    /// The current goal and via-points.
     pub fn conditions(&self) -> &Conditions {
         &self.conditions
     }
@@ -158,7 +158,7 @@ impl Course {
         Ok(on)
     }
 
-    /// The next posture of the plan (its last again once it has ended), now commanded.
+    /// The next posture of the plan (its last again once it has ended), to be commanded.
     pub fn advance(&mut self) -> Vec<f64> {
         self.at = (self.at + 1).min(self.rows.len() - 1);
         self.rows[self.at].clone()
@@ -213,7 +213,7 @@ impl Course {
     }
 
     /// The goal and the via-points still ahead of the current phase, as phases of a rest of
-    /// `n` rows that starts now (a via-point less than a tick ahead is passed).
+    /// `n` rows that starts at the current tick (a via-point less than a tick ahead is passed).
     pub fn points_ahead(&self, n: usize) -> Vec<(f64, Vec<f64>)> {
         let p = self.phase();
         let ticks = n.saturating_sub(1) as f64;
@@ -231,8 +231,8 @@ impl Course {
         points
     }
 
-    /// `rest` (from now) met onto the goal and the via-points ahead ([`meet`], the ranges
-    /// given): first lengthened by a minimum-jerk approach to the goal when it is too short to
+    /// `rest` (from the current tick) met onto the goal and the via-points ahead ([`meet`],
+    /// the ranges given): first lengthened by a minimum-jerk approach to the goal when it is too short to
     /// reach it with steps no larger than the plan's.
     fn bent(&self, mut rest: Vec<Vec<f64>>) -> Result<Vec<Vec<f64>>, StepperError> {
         if let (Some(goal), Some(last)) = (&self.conditions.goal, rest.last().cloned()) {
@@ -255,7 +255,7 @@ impl Course {
 
     /// One tick of a closed-loop stepper over this course: `observed` read; when the arm is
     /// not where it was sent, the rest `replan` makes from the course (its first row the
-    /// posture read) is followed from now ([`Course::rejoin`], met onto the goal and the
+    /// posture read) is followed from this tick ([`Course::rejoin`], met onto the goal and the
     /// via-points ahead when `bend`); the next posture to command.
     pub fn step_with(
         &mut self,
@@ -274,7 +274,7 @@ impl Course {
         Ok(self.advance())
     }
 
-    /// Follow `rest` from now (its first row the posture last read): met onto the goal and
+    /// Follow `rest` from this tick (its first row the posture last read): met onto the goal and
     /// the via-points ahead when `bend`, else as it is (a method that conditions its own).
     /// Counts as a re-plan.
     pub fn rejoin(&mut self, rest: Vec<Vec<f64>>, bend: bool) -> Result<(), StepperError> {
@@ -284,7 +284,7 @@ impl Course {
         Ok(())
     }
 
-    /// Follow `rest` (at least one row, its first commanded already) from now.
+    /// Follow `rest` (at least one row, its first commanded already) from this tick.
     pub fn restart(&mut self, rest: Vec<Vec<f64>>) {
         if rest.is_empty() {
             return;
@@ -305,7 +305,7 @@ impl Course {
         Ok(conditions)
     }
 
-    /// Follow `rest` (at least one row, its first the posture last commanded) from now, with
+    /// Follow `rest` (at least one row, its first the posture last commanded) from this tick, with
     /// `conditions` (checked by [`Course::with_goal`]) for the goal and via-points: a method
     /// that conditions its own plan moves its goal so.
     pub fn restart_with(&mut self, rest: Vec<Vec<f64>>, conditions: Conditions) {

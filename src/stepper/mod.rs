@@ -1,5 +1,5 @@
 //! Steppers: a reproduction in the loop (docs/ALGORITHM.md, section 11). Given the posture
-//! the encoders read now, a [`Stepper`] gives the next posture to command; it says when the
+//! the encoders read at a tick, a [`Stepper`] gives the next posture to command; it says when the
 //! reproduction has ended, and its goal can be moved while it runs.
 //!
 //! This room holds the trait and its error, the plan a stepper follows tick by tick
@@ -39,12 +39,12 @@ use crate::condition::ConditionError;
 pub trait Stepper {
     /// Values per posture.
     fn width(&self) -> usize;
-    /// The next posture to command, given the posture the encoders read now (`observed`,
+    /// The next posture to command, given the posture the encoders read at this tick (`observed`,
     /// one finite value per variable).
     fn step(&mut self, observed: &[f64]) -> Result<Vec<f64>, StepperError>;
     /// Whether the reproduction has ended: its last posture has been commanded.
     fn done(&self) -> bool;
-    /// Move the goal (the last posture) from now on: the rest of the reproduction is made
+    /// Move the goal (the last posture) from this tick on: the rest of the reproduction is made
     /// again from the posture last commanded, so the command does not jump.
     fn set_goal(&mut self, goal: &[f64]) -> Result<(), StepperError>;
     /// How far along the reproduction is, 0 (the start) to 1 (the end), as the stepper
