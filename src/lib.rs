@@ -21,6 +21,8 @@
 //! - [`gmr`]: the baseline, GMM/GMR.
 //! - [`promp`]: a second baseline, ProMP conditioned on the initial posture.
 //! - [`dmp`]: a third baseline, the dynamic movement primitive, conditioned on start and goal.
+//! - [`stepper`]: a reproduction in the loop: given the posture the encoders read, the next
+//!   posture to command; one trait for every method, and a kinematic loop with disturbances.
 //! - [`gesture`]: synthetic human-like demonstrations.
 //! - [`metrics`]: fidelity metrics.
 //! - [`plot`]: PNG plots.
@@ -86,6 +88,7 @@ pub mod ros2;
 pub mod sim;
 pub mod som;
 pub mod stats;
+pub mod stepper;
 #[cfg(feature = "sim")]
 pub mod sweep;
 pub mod table;

@@ -12,6 +12,10 @@ The algorithm of the Rust crate ``cosco-hsom``, built without its simulator:
   scores, the sample the decision held from), ``.scores(sequence)``,
   ``.continue_prefix(prefix)``, ``.save(path)`` / ``GestureModel.load(path)`` (the
   files of ``cosco train`` on labelled directories).
+- :class:`Stepper`: a reproduction in the loop, ``model.stepper(initial, goal=None, via=None)``
+  (``GestureModel.stepper(label, initial, ...)``): ``s.step(observed)`` is the next posture
+  to command, ``s.done`` True once the reproduction has ended, ``s.goal = posture`` moves the
+  goal from this tick on.
 - :mod:`cosco_hsom.gmr`: the paper's GMM/GMR baseline.
 - :func:`heldout`: leave-one-out on demonstrations (``cosco heldout``): the hierarchy beside
   its nearest-sequence baseline, height 1, GMM/GMR, ProMP and a replay, on the same folds.
@@ -26,7 +30,17 @@ also a ``FileNotFoundError`` / ``PermissionError`` / ``OSError`` (:class:`Missin
 """
 
 from ._errors import FileAccessError, FileError, MissingFileError
-from ._native import Config, Dmp, GestureModel, Hsom, Recognition, dtw, heldout, read_demos
+from ._native import (
+    Config,
+    Dmp,
+    GestureModel,
+    Hsom,
+    Recognition,
+    Stepper,
+    dtw,
+    heldout,
+    read_demos,
+)
 from . import gmr
 
 __all__ = [
@@ -35,6 +49,7 @@ __all__ = [
     "Dmp",
     "GestureModel",
     "Recognition",
+    "Stepper",
     "dtw",
     "heldout",
     "read_demos",

@@ -103,6 +103,14 @@ class Hsom:
     def follow_nearest_from(self, demos: Sequence[npt.ArrayLike], prefix: npt.ArrayLike) -> np.ndarray:
         """The nearest-sequence continuation: the demonstration along which the prefix runs
         closest, continued after the prefix's end; from the prefix's last posture."""
+    def stepper(
+        self,
+        initial: npt.ArrayLike,
+        goal: Optional[npt.ArrayLike] = None,
+        via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None,
+    ) -> "Stepper":
+        """The hierarchy in the loop from `initial`, through `goal` and `via` as `reproduce`
+        takes them: `step(observed)` gives the next posture to command."""
     @property
     def columns(self) -> List[str]: ...
     @property
@@ -142,6 +150,15 @@ class GestureModel:
         """The label (None when unknown), every score, and the sample the decision held from."""
     def continue_prefix(self, prefix: _Array2) -> Tuple[str, np.ndarray]:
         """The gesture the hierarchy recognises in the prefix, and the prefix continued by it."""
+    def stepper(
+        self,
+        label: Optional[str],
+        initial: npt.ArrayLike,
+        goal: Optional[npt.ArrayLike] = None,
+        via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None,
+    ) -> "Stepper":
+        """Gesture `label` in the loop from `initial` (None only for a single-gesture model),
+        through `goal` and `via` as `Hsom.reproduce` takes them."""
     @property
     def labels(self) -> List[str]:
         """The gesture labels, in the model's order (empty for a single-gesture model)."""
@@ -150,6 +167,29 @@ class GestureModel:
     @property
     def config(self) -> Config:
         """As trained: with several labels, trainingSteps times the number of labels."""
+
+class Stepper:
+    """The hierarchy in the loop (Hsom.stepper, GestureModel.stepper)."""
+
+    def step(self, observed: npt.ArrayLike) -> np.ndarray:
+        """The next posture to command, given the posture the encoders read at this tick (the
+        first call reads the initial posture). It follows its plan while the arm is where it
+        was sent, and re-plans from what the encoders have read when it is not."""
+    @property
+    def done(self) -> bool:
+        """True once the reproduction has ended (its last posture has been commanded)."""
+    @property
+    def goal(self) -> Optional[np.ndarray]:
+        """The goal, or None for the reproduction's own end; setting it moves the goal from
+        this tick on (reached exactly, without a jump)."""
+    @goal.setter
+    def goal(self, goal: npt.ArrayLike) -> None: ...
+    @property
+    def phase(self) -> float:
+        """How far along the reproduction is, 0 to 1."""
+    @property
+    def replans(self) -> int:
+        """How many times it re-planned because the arm was not where it was sent."""
 
 class Recognition:
     """What GestureModel.recognize answers for one sequence."""

@@ -116,6 +116,24 @@ impl GestureModel {
         Ok(array2(py, &rep.postures, self.inner.columns().len()))
     }
 
+    /// Gesture `label` in the loop from an initial posture, through `goal` and `via` as
+    /// `Hsom.reproduce` takes them: a `Stepper`, whose `step(observed)` gives the next posture
+    /// to command from the posture the encoders read at this tick. `label` is None only for a
+    /// single-gesture model.
+    #[pyo3(signature = (label, initial, goal = None, via = None))]
+    fn stepper(
+        &self,
+        py: Python<'_>,
+        label: Option<&str>,
+        initial: &Bound<'_, PyAny>,
+        goal: Option<&Bound<'_, PyAny>>,
+        via: Option<Vec<(f64, Bound<'_, PyAny>)>>,
+    ) -> PyResult<crate::stepper::Stepper> {
+        let branch = self.inner.branch(label).map_err(|e| py_err(&e))?;
+        let model = std::sync::Arc::new(branch.clone());
+        crate::stepper::Stepper::new(py, model, &self.name, initial, goal, via)
+    }
+
     /// Per label (in the model's order), the score of a whole sequence (2-D, samples x
     /// variables, in the data's units): lower is closer; the recognised label is the lowest
     /// when it is at most that label's threshold (`Recognition.thresholds`).

@@ -7,6 +7,7 @@
 mod eval;
 mod gestures;
 mod model;
+mod stepper;
 
 use std::error::Error;
 use std::io::ErrorKind;
@@ -226,6 +227,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<model::Hsom>()?;
     m.add_class::<gestures::GestureModel>()?;
     m.add_class::<gestures::Recognition>()?;
+    m.add_class::<stepper::Stepper>()?;
     m.add_class::<eval::GmrModel>()?;
     m.add_class::<eval::Dmp>()?;
     m.add_function(wrap_pyfunction!(eval::dtw, m)?)?;

@@ -240,18 +240,8 @@ impl Hsom {
         via: Option<Vec<(f64, Bound<'py, PyAny>)>>,
         band: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        use cosco_hsom::condition::{Conditions, ViaPoint};
         let initial = posture_of(initial, "initial")?;
-        let mut conditions = Conditions {
-            goal: goal.map(|g| posture_of(g, "goal")).transpose()?,
-            via: Vec::new(),
-        };
-        for (k, (phase, posture)) in via.unwrap_or_default().iter().enumerate() {
-            conditions.via.push(ViaPoint {
-                phase: *phase,
-                posture: posture_of(posture, &format!("via[{k}]"))?,
-            });
-        }
+        let conditions = crate::stepper::conditions_of(goal, via)?;
         let (name, width) = (&self.name, self.inner.columns().len());
         let (rep, lohi) = py
             .allow_threads(|| {
@@ -277,6 +267,21 @@ impl Hsom {
                 .into_any(),
             None => postures.into_any(),
         })
+    }
+
+    /// The hierarchy in the loop from an initial posture, through `goal` and `via` as
+    /// `reproduce` takes them: a `Stepper`, whose `step(observed)` gives the next posture to
+    /// command from the posture the encoders read at this tick (docs/ALGORITHM.md, section 11).
+    #[pyo3(signature = (initial, goal = None, via = None))]
+    fn stepper(
+        &self,
+        py: Python<'_>,
+        initial: &Bound<'_, PyAny>,
+        goal: Option<&Bound<'_, PyAny>>,
+        via: Option<Vec<(f64, Bound<'_, PyAny>)>>,
+    ) -> PyResult<crate::stepper::Stepper> {
+        let model = std::sync::Arc::new(self.inner.clone());
+        crate::stepper::Stepper::new(py, model, &self.name, initial, goal, via)
     }
 
     /// The nearest-sequence baseline (docs/ALGORITHM.md, section 3.6): of

@@ -8,7 +8,7 @@
 //!   demonstration files ([`crate::demo_sets`]), model files, reproduction files.
 //! - [`train`]: train one gesture or several, from values or from files.
 //! - [`reproduce`]: reproduce from an initial posture, resume after a reading, continue a
-//!   prefix; the reproduction CSV.
+//!   prefix, step in the loop; the reproduction CSV.
 //! - [`recognize`]: recognise demonstration files with a model of several gestures.
 //! - [`evaluate`]: a reproduction's fidelity against demonstrations; `cosco inspect`'s lines.
 //! - [`export`]: a reproduction to a robot's formats, and demonstrations from a ROS 2 bag.
@@ -54,7 +54,7 @@ pub use files::{
 pub use recognize::{recognize_files, recognize_paths, RecognisedFile};
 pub use reproduce::{
     conditions, continue_file, reproduce, reproduce_conditioned, reproduce_file, reproduce_gesture,
-    resume, ReproduceFile, ReproduceRequest,
+    resume, stepper, ReproduceFile, ReproduceRequest,
 };
 pub use train::{train, train_files, train_gestures, update, update_files};
 
@@ -77,6 +77,9 @@ pub enum Error {
     /// A goal or via-point was refused.
     #[error(transparent)]
     Condition(#[from] crate::condition::ConditionError),
+    /// A stepper refused a posture or a goal, or could not re-plan.
+    #[error(transparent)]
+    Stepper(#[from] crate::stepper::StepperError),
     /// A model of several gestures refused a label, a set or a sequence.
     #[error(transparent)]
     Gesture(#[from] crate::hsom::GestureError),

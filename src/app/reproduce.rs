@@ -1,12 +1,13 @@
 //! Reproduction: from an initial posture, resumed after an encoder reading, or continuing
 //! the gesture a prefix begins; and the reproduction CSV `cosco reproduce` writes.
 
+use std::borrow::Borrow;
 use std::path::{Path, PathBuf};
 
 use super::files::{self, read_for_columns};
 use super::{Error, Result};
 use crate::condition::{Conditions, PostureArg, ViaPoint};
-use crate::hsom::{GestureModel, Hsom, HsomError, Reproduction};
+use crate::hsom::{GestureModel, Hsom, HsomError, HsomStepper, Reproduction};
 
 /// The initial posture of `--initial V1,V2,...` or `--initial-from CSV` (its first row, whose
 /// columns must be the model's): exactly one of them.
@@ -102,6 +103,38 @@ pub fn reproduce_conditioned(
     model
         .reproduce_conditioned(initial, conditions, ranges.as_deref())
         .map_err(|e| naming_model(e, model, model_name))
+}
+
+/// The hierarchy in the loop ([`HsomStepper`]) from `initial` through `conditions` (a goal,
+/// via-points), checked as [`reproduce_conditioned`] checks them: the initial posture's
+/// width (naming `model_name`), and the arm's joint ranges when the model's variables are
+/// the arm's (they also bound a goal set later). `M` is the model or anything that borrows
+/// it.
+pub fn stepper<M: Borrow<Hsom>>(
+    model: M,
+    model_name: &str,
+    initial: &[f64],
+    conditions: &Conditions,
+) -> Result<HsomStepper<M>> {
+    let m = model.borrow();
+    check_arm_range(m.columns(), initial)?;
+    if initial.len() != m.columns().len() {
+        let e = HsomError::DimensionMismatch {
+            demo: "initial posture".into(),
+            row: 0,
+            expected: m.columns().len(),
+            found: initial.len(),
+        };
+        return Err(naming_model(e, m, model_name));
+    }
+    let ranges = arm_ranges(m.columns());
+    conditions.check(m.columns(), ranges.as_deref(), initial)?;
+    Ok(HsomStepper::new(
+        model,
+        initial,
+        conditions,
+        ranges.as_deref(),
+    )?)
 }
 
 /// The conditions of `--goal V1,V2,...` and `--via PHASE:V1,V2,...` (each of them).

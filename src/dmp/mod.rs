@@ -24,8 +24,11 @@ use nalgebra::DMatrix;
 
 use crate::demos::Demonstration;
 
+mod stepper;
 #[cfg(test)]
 mod tests;
+
+pub use stepper::{DmpLoop, DmpStepper};
 
 /// What can go wrong configuring, fitting or reproducing a DMP.
 #[derive(Debug, thiserror::Error)]
@@ -161,6 +164,16 @@ impl DmpSettings {
                 .map(|j| demos.iter().map(|d| pick(d)[j]).sum::<f64>() / demos.len() as f64)
                 .collect()
         };
+        let extent = (0..width)
+            .map(|j| {
+                let values = demos.iter().flat_map(|d| d.rows.iter().map(move |r| r[j]));
+                let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                    (l.min(v), h.max(v))
+                });
+                (hi - lo).powi(2)
+            })
+            .sum::<f64>()
+            .sqrt();
         Ok(Dmp {
             settings: s,
             centers,
@@ -168,6 +181,7 @@ impl DmpSettings {
             weights,
             samples: (rows as f64 / demos.len() as f64).round() as usize,
             goal: mean_row(|d| &d.rows[d.rows.len() - 1]),
+            extent,
         })
     }
 }
@@ -263,6 +277,8 @@ pub struct Dmp {
     weights: DMatrix<f64>,
     samples: usize,
     goal: Vec<f64>,
+    /// The diagonal of the demonstrations' bounding box: the scale of a tracking error.
+    extent: f64,
 }
 
 impl Dmp {
@@ -302,21 +318,45 @@ impl Dmp {
         goal: Option<&[f64]>,
     ) -> Result<Vec<Vec<f64>>, DmpError> {
         let w = self.width();
-        let check = |what, p: &[f64]| {
-            if p.len() == w && p.iter().all(|v| v.is_finite()) {
-                Ok(())
-            } else {
-                Err(DmpError::BadPosture {
-                    what,
-                    found: p.to_vec(),
-                    expected: w,
-                })
-            }
-        };
-        check("start", start)?;
+        self.check_posture("start", start)?;
         let goal = goal.unwrap_or(&self.goal);
-        check("goal", goal)?;
-        let t_end = (self.samples.max(2) - 1) as f64;
+        self.check_posture("goal", goal)?;
+        let mut y = start.to_vec();
+        let mut v = vec![0.0; w];
+        let mut out = Vec::with_capacity(self.samples);
+        out.push(y.clone());
+        for t in 1..self.samples {
+            let t0 = (t - 1) as f64;
+            self.integrate(&mut y, &mut v, goal, [t0, t0 + 0.5, t0 + 1.0]);
+            out.push(y.clone());
+        }
+        Ok(out)
+    }
+
+    /// `p` as the DMP's `what` (start or goal): one finite value per variable.
+    fn check_posture(&self, what: &'static str, p: &[f64]) -> Result<(), DmpError> {
+        if p.len() == self.width() && p.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err(DmpError::BadPosture {
+                what,
+                found: p.to_vec(),
+                expected: self.width(),
+            })
+        }
+    }
+
+    /// The duration `T` of a reproduction, samples.
+    fn t_end(&self) -> f64 {
+        (self.samples.max(2) - 1) as f64
+    }
+
+    /// One Runge-Kutta step of one sample of the transformation system from position `y`
+    /// and velocity `v` (per sample) towards `goal`, its forcing term at the times `at`
+    /// (samples: the step's start, middle and end).
+    fn integrate(&self, y: &mut [f64], v: &mut [f64], goal: &[f64], at: [f64; 3]) {
+        let w = self.width();
+        let t_end = self.t_end();
         let (a, b) = (self.settings.alpha, self.settings.alpha / 4.0);
         // acceleration per sample² of position y, velocity v at the fraction z
         let acc = |y: &[f64], v: &[f64], f: &[f64]| -> Vec<f64> {
@@ -327,30 +367,21 @@ impl Dmp {
         let axpy = |x: &[f64], k: f64, d: &[f64]| -> Vec<f64> {
             x.iter().zip(d).map(|(x, d)| x + k * d).collect()
         };
-        let mut y = start.to_vec();
-        let mut v = vec![0.0; w];
-        let mut out = Vec::with_capacity(self.samples);
-        out.push(y.clone());
-        for t in 1..self.samples {
-            let t0 = (t - 1) as f64;
-            let (f0, fh, f1) = (
-                self.forcing(t0 / t_end),
-                self.forcing((t0 + 0.5) / t_end),
-                self.forcing((t0 + 1.0) / t_end),
-            );
-            let k0 = acc(&y, &v, &f0);
-            let c1 = axpy(&v, 0.5, &k0);
-            let k1 = acc(&axpy(&y, 0.5, &v), &c1, &fh);
-            let c2 = axpy(&v, 0.5, &k1);
-            let k2 = acc(&axpy(&y, 0.5, &c1), &c2, &fh);
-            let c3 = axpy(&v, 1.0, &k2);
-            let k3 = acc(&axpy(&y, 1.0, &c2), &c3, &f1);
-            for j in 0..w {
-                y[j] += v[j] + (k0[j] + k1[j] + k2[j]) / 6.0;
-                v[j] += (k0[j] + 2.0 * k1[j] + 2.0 * k2[j] + k3[j]) / 6.0;
-            }
-            out.push(y.clone());
+        let (f0, fh, f1) = (
+            self.forcing(at[0] / t_end),
+            self.forcing(at[1] / t_end),
+            self.forcing(at[2] / t_end),
+        );
+        let k0 = acc(y, v, &f0);
+        let c1 = axpy(v, 0.5, &k0);
+        let k1 = acc(&axpy(y, 0.5, v), &c1, &fh);
+        let c2 = axpy(v, 0.5, &k1);
+        let k2 = acc(&axpy(y, 0.5, &c1), &c2, &fh);
+        let c3 = axpy(v, 1.0, &k2);
+        let k3 = acc(&axpy(y, 1.0, &c2), &c3, &f1);
+        for j in 0..w {
+            y[j] += v[j] + (k0[j] + k1[j] + k2[j]) / 6.0;
+            v[j] += (k0[j] + 2.0 * k1[j] + 2.0 * k2[j] + k3[j]) / 6.0;
         }
-        Ok(out)
     }
 }

@@ -106,3 +106,36 @@ fn bad_settings_demonstrations_and_postures_are_named() {
         .unwrap_err();
     assert!(e.to_string().contains("goal"), "{e}");
 }
+
+#[test]
+fn the_stepper_is_the_reproduction_undisturbed_and_slows_its_phase_when_held() {
+    use crate::condition::Conditions;
+    use crate::stepper::Stepper;
+    let demos: Vec<Demonstration> = [(1.0, 0.0, 100), (1.1, 0.05, 110)]
+        .iter()
+        .map(|&(a, o, n)| swing(a, o, n))
+        .collect();
+    let dmp = DmpSettings::default().fit(&demos).unwrap();
+    let start = demos[0].rows[0].clone();
+    let rows = dmp.reproduce(&start, None).unwrap();
+    let mut s = DmpStepper::new(&dmp, &start, &Conditions::default(), None).unwrap();
+    let mut arm = start.clone();
+    for row in &rows[1..] {
+        arm = s.step(&arm).unwrap();
+        assert_eq!(&arm, row);
+    }
+    assert!(s.done());
+    // held at the start: the phase advances far slower than the clock
+    let mut s = DmpStepper::new(&dmp, &start, &Conditions::default(), None).unwrap();
+    for _ in 0..30 {
+        s.step(&start).unwrap();
+    }
+    let clock = 30.0 / (rows.len() - 1) as f64;
+    assert!(s.phase() < 0.5 * clock, "{} {clock}", s.phase());
+    let bad = DmpLoop {
+        coupling: 2.0,
+        phase_stop: 1.0,
+    };
+    let e = s.with_loop(bad).unwrap_err().to_string();
+    assert!(e.contains("coupling is 2; allowed 0 to 1"), "{e}");
+}

@@ -25,6 +25,7 @@ mod hyperparams;
 mod io;
 mod lead_in;
 pub mod preprocess;
+mod stepper;
 
 pub use algorithm::{BicScore, Gmm, GmrModel, Prediction};
 pub use errors::GmrError;
@@ -34,3 +35,4 @@ pub use io::{
 };
 pub use lead_in::{lead_in_ticks_at, plan_at, GmrPlan, LEAD_IN_MIN_S};
 pub use preprocess::{active_range, TrainingSet};
+pub use stepper::{stepper, UNCONDITIONED};

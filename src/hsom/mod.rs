@@ -9,7 +9,8 @@
 //! reproduction and the one entry of both algorithms' (the events extension's in `events/`:
 //! its plans in `events/plan.rs`, the executed curve in `events/curve.rs`); `summary.rs` is
 //! what `cosco inspect` shows; `labels.rs` and `recognize.rs` are several gestures and their
-//! recognition; `persist.rs` writes and reads model files of either kind.
+//! recognition; `persist.rs` writes and reads model files of either kind; `stepper.rs` is
+//! the hierarchy and the nearest sequence in the loop ([`crate::stepper`]).
 //!
 //! ```no_run
 //! use cosco_hsom::config::load_config;
@@ -37,6 +38,7 @@ mod persist;
 mod recognize;
 mod record;
 mod reproduction;
+mod stepper;
 mod summary;
 mod update;
 
@@ -49,4 +51,5 @@ pub use model::{GestureModel, Hsom, Scoring};
 pub use persist::{FilePart, FORMAT_VERSION};
 pub use recognize::{Recognition, PREFIX_BLEND};
 pub use reproduction::{Reproduction, StopReason};
+pub use stepper::{HsomStepper, NearestStepper};
 pub use summary::{plans_word, LevelSummary, ModelSummary};

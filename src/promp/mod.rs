@@ -22,8 +22,11 @@ use nalgebra::{DMatrix, DVector};
 
 use crate::demos::Demonstration;
 
+mod stepper;
 #[cfg(test)]
 mod tests;
+
+pub use stepper::PrompStepper;
 
 /// What can go wrong configuring, fitting or reproducing a ProMP.
 #[derive(Debug, thiserror::Error)]
@@ -363,7 +366,43 @@ impl Promp {
         let all: Vec<(f64, &[f64])> = std::iter::once((0.0, initial))
             .chain(points.iter().map(|(p, v)| (*p, v.as_slice())))
             .collect();
-        for (_, p) in &all {
+        let (mean, sigma_ht, chol) = self.condition(&all)?;
+        let (n, w) = (self.settings.basis, self.width);
+        let cov = &self.cov - &sigma_ht * chol.solve(&sigma_ht.transpose());
+        let rows = self.trajectory(&mean);
+        let phi = basis_matrix(self.samples, n);
+        let half: Vec<Vec<f64>> = (0..self.samples)
+            .map(|t| {
+                (0..w)
+                    .map(|d| {
+                        let p = phi.row(t).transpose();
+                        let block = cov.view((d * n, d * n), (n, n));
+                        1.96 * (p.dot(&(block * &p))).max(0.0).sqrt()
+                    })
+                    .collect()
+            })
+            .collect();
+        let band = crate::condition::ConfidenceBand::around(&rows, &half);
+        Ok((rows, band))
+    }
+
+    /// The weight distribution conditioned on each `(phase, posture)` of `all` at once
+    /// (Gaussian conditioning, each observed with [`PrompSettings::observation_noise`]): the
+    /// conditioned mean, `Σ Hᵀ` and the Cholesky factor of `H Σ Hᵀ + noise` (from which the
+    /// conditioned covariance is `Σ - Σ Hᵀ (H Σ Hᵀ + noise)⁻¹ H Σ`).
+    #[allow(clippy::type_complexity)]
+    fn condition(
+        &self,
+        all: &[(f64, &[f64])],
+    ) -> Result<
+        (
+            DVector<f64>,
+            DMatrix<f64>,
+            nalgebra::Cholesky<f64, nalgebra::Dyn>,
+        ),
+        PrompError,
+    > {
+        for (_, p) in all {
             if p.len() != self.width || p.iter().any(|v| !v.is_finite()) {
                 return Err(PrompError::BadInitial {
                     found: p.to_vec(),
@@ -393,21 +432,27 @@ impl Promp {
             what: "covariance of the conditioned postures",
         })?;
         let mean = &self.mean + &sigma_ht * chol.solve(&(observed - &h * &self.mean));
-        let cov = &self.cov - &sigma_ht * chol.solve(&sigma_ht.transpose());
-        let rows = self.trajectory(&mean);
-        let phi = basis_matrix(self.samples, n);
-        let half: Vec<Vec<f64>> = (0..self.samples)
+        Ok((mean, sigma_ht, chol))
+    }
+
+    /// The mean of the distribution conditioned on each `(phase, posture)` of `points` at
+    /// once, at the samples `from` to the last of the mean duration (phase `t / (samples -
+    /// 1)`).
+    pub(crate) fn conditioned_from(
+        &self,
+        points: &[(f64, &[f64])],
+        from: usize,
+    ) -> Result<Vec<Vec<f64>>, PrompError> {
+        let (mean, _, _) = self.condition(points)?;
+        let n = self.settings.basis;
+        let last = (self.samples - 1).max(1) as f64;
+        Ok((from.min(self.samples - 1)..self.samples)
             .map(|t| {
-                (0..w)
-                    .map(|d| {
-                        let p = phi.row(t).transpose();
-                        let block = cov.view((d * n, d * n), (n, n));
-                        1.96 * (p.dot(&(block * &p))).max(0.0).sqrt()
-                    })
+                let phi = basis_row(t as f64 / last, n);
+                (0..self.width)
+                    .map(|d| (0..n).map(|i| phi[i] * mean[d * n + i]).sum())
                     .collect()
             })
-            .collect();
-        let band = crate::condition::ConfidenceBand::around(&rows, &half);
-        Ok((rows, band))
+            .collect())
     }
 }

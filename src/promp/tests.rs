@@ -198,3 +198,34 @@ fn bad_demonstrations_give_named_errors() {
         ));
     }
 }
+
+#[test]
+fn the_stepper_re_conditions_on_the_posture_read_at_its_phase() {
+    let demos = family();
+    let p = PrompSettings::default().fit(&demos).unwrap();
+    let start = demos[0].rows[0].clone();
+    // conditioned from the start, the mean from sample 0 is `conditioned`'s
+    let (rows, _) = p.conditioned(&start, &[]).unwrap();
+    let from = p.conditioned_from(&[(0.0, &start)], 0).unwrap();
+    assert!(max_error(&rows, &from) < 1e-9);
+    // the stepper: undisturbed its plan; a reading off the plan at mid-way re-conditions it
+    use crate::condition::Conditions;
+    use crate::stepper::Stepper;
+    let mut s = PrompStepper::new(&p, &start, &Conditions::default(), None).unwrap();
+    let mut arm = start.clone();
+    for row in &rows[1..rows.len() / 2] {
+        arm = s.step(&arm).unwrap();
+        assert_eq!(&arm, row);
+    }
+    let pushed: Vec<f64> = arm.iter().map(|v| v + 0.2).collect();
+    let next = s.step(&pushed).unwrap();
+    assert_eq!(s.replans(), 1);
+    // the next command is a step from the posture read, not from the plan
+    let step = |a: &[f64], b: &[f64]| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max)
+    };
+    assert!(step(&next, &pushed) < 0.1, "{next:?} {pushed:?}");
+}

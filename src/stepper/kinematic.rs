@@ -1,0 +1,187 @@
+//! A kinematic loop: any [`Stepper`] run on an arm that goes exactly where it is commanded,
+//! except while a [`Disturbance`] has it (held, or moved and held). It is what held-out
+//! studies of the loop call: the executed path, which ticks were disturbed, whether the
+//! reproduction finished.
+//!
+//! ```
+//! use cosco_hsom::stepper::kinematic::{run, Disturbance};
+//! use cosco_hsom::stepper::ByClock;
+//! let plan: Vec<Vec<f64>> = (0..11).map(|i| vec![i as f64 / 10.0]).collect();
+//! let mut s = ByClock::new(vec!["q".into()], plan.clone(), "the replay");
+//! let held = Disturbance::Hold { at: 0.4, share: 0.3 };
+//! let r = run(&mut s, &plan[0], &held, 10, 100).unwrap();
+//! assert!(r.finished);
+//! assert_eq!(r.path[5], r.path[4]); // held from tick 4 to tick 6
+//! assert_eq!(r.release, Some(7));
+//! // by its clock the replay jumps on release to where its clock has got to
+//! assert!((r.largest_step_from(7) - 0.4).abs() < 1e-12);
+//! ```
+
+use crate::dtw::euclidean;
+
+use super::{Stepper, StepperError};
+
+/// What happens to the arm, at a phase of the reproduction's duration (the `duration` given
+/// to [`run`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Disturbance {
+    /// The arm goes wherever it is commanded.
+    None,
+    /// From phase `at`, for `share` of the duration, the arm stays where it is whatever is
+    /// commanded.
+    Hold {
+        /// When, 0 to 1.
+        at: f64,
+        /// For how long, a share of the duration (>= 0).
+        share: f64,
+    },
+    /// At phase `at` the arm is displaced by `by` (one value per variable) and held there for
+    /// `share` of the duration (at least the tick it is moved).
+    Move {
+        /// When, 0 to 1.
+        at: f64,
+        /// The displacement.
+        by: Vec<f64>,
+        /// For how long it is held there, a share of the duration (>= 0).
+        share: f64,
+    },
+    /// At phase `at` the stepper's goal is moved to `goal` ([`Stepper::set_goal`]); the arm
+    /// goes wherever it is commanded.
+    Goal {
+        /// When, 0 to 1.
+        at: f64,
+        /// The new goal.
+        goal: Vec<f64>,
+    },
+}
+
+/// A stepper's run in the kinematic loop.
+#[derive(Debug, Clone, PartialEq)]
+pub struct KinematicRun {
+    /// The arm's posture at each tick, the first the initial posture.
+    pub path: Vec<Vec<f64>>,
+    /// What the stepper commanded at each tick (`commanded[k]` given `path[k]`).
+    pub commanded: Vec<Vec<f64>>,
+    /// Per row of `path`: whether the disturbance had the arm (held or moved) at that tick.
+    pub held: Vec<bool>,
+    /// The first row of `path` after a hold or a move (`None` without one).
+    pub release: Option<usize>,
+    /// Whether the stepper said it was done before the tick limit.
+    pub finished: bool,
+}
+
+impl KinematicRun {
+    /// The largest step of the path (Euclidean) into row `from` or any row after it: with
+    /// `from` the release, the step the arm makes when let go and every one after.
+    pub fn largest_step_from(&self, from: usize) -> f64 {
+        (from.max(1)..self.path.len())
+            .map(|k| euclidean(&self.path[k], &self.path[k - 1]))
+            .fold(0.0, f64::max)
+    }
+}
+
+/// A phase 0 to 1.
+fn check_phase(at: f64) -> Result<(), StepperError> {
+    if (0.0..=1.0).contains(&at) {
+        return Ok(());
+    }
+    Err(StepperError::Invalid {
+        what: "the disturbance's phase",
+        value: at.to_string(),
+        allowed: "0 to 1",
+    })
+}
+
+/// A share of the duration, finite and >= 0.
+fn check_share(share: f64) -> Result<(), StepperError> {
+    if share.is_finite() && share >= 0.0 {
+        return Ok(());
+    }
+    Err(StepperError::Invalid {
+        what: "the disturbance's share of the duration",
+        value: share.to_string(),
+        allowed: "a finite number >= 0",
+    })
+}
+
+/// `stepper` (made from `initial`) run until it is done: each tick it is given the arm's
+/// posture and the arm goes where it commands, except at the ticks `disturbance` holds or
+/// moves it. `duration` (ticks, at least 1) is what the disturbance's phases are shares of
+/// (normally the undisturbed reproduction's or the demonstration's); the tick `k` is at phase
+/// `k / duration`, and a disturbance from phase `at` for `share` has the arm at the ticks
+/// `round(at duration)` to `round(at duration) + round(share duration) - 1`. The run ends
+/// when the stepper is done and the arm is free, or after `limit` ticks (`finished` false).
+pub fn run(
+    stepper: &mut dyn Stepper,
+    initial: &[f64],
+    disturbance: &Disturbance,
+    duration: usize,
+    limit: usize,
+) -> Result<KinematicRun, StepperError> {
+    if duration == 0 {
+        return Err(StepperError::Invalid {
+            what: "the duration",
+            value: "0".into(),
+            allowed: "at least 1 tick",
+        });
+    }
+    let tick = |phase: f64| (phase * duration as f64).round() as usize;
+    // the ticks the arm is held: [from, to)
+    let (from, to, by) = match disturbance {
+        Disturbance::None | Disturbance::Goal { .. } => (usize::MAX, usize::MAX, None),
+        Disturbance::Hold { at, share } => {
+            check_phase(*at)?;
+            check_share(*share)?;
+            (tick(*at).max(1), tick(*at).max(1) + tick(*share), None)
+        }
+        Disturbance::Move { at, by, share } => {
+            check_phase(*at)?;
+            check_share(*share)?;
+            if by.len() != initial.len() || by.iter().any(|v| !v.is_finite()) {
+                return Err(StepperError::Invalid {
+                    what: "the displacement",
+                    value: format!("{by:?}"),
+                    allowed: "one finite value per variable",
+                });
+            }
+            let from = tick(*at).max(1);
+            (from, from + tick(*share).max(1), Some(by))
+        }
+    };
+    let goal = match disturbance {
+        Disturbance::Goal { at, goal } => {
+            check_phase(*at)?;
+            Some((tick(*at), goal))
+        }
+        _ => None,
+    };
+    let mut out = KinematicRun {
+        path: vec![initial.to_vec()],
+        commanded: Vec::new(),
+        held: vec![false],
+        release: (to > from && to != usize::MAX).then_some(to),
+        finished: false,
+    };
+    let mut arm = initial.to_vec();
+    for k in 0..limit {
+        if let Some((_, g)) = goal.filter(|(at, _)| *at == k) {
+            stepper.set_goal(g)?;
+        }
+        let command = stepper.step(&arm)?;
+        let next = k + 1;
+        let held = (from..to).contains(&next);
+        arm = match (held, by) {
+            (true, Some(by)) if next == from => arm.iter().zip(by).map(|(a, b)| a + b).collect(),
+            (true, _) => arm,
+            (false, _) => command.clone(),
+        };
+        out.commanded.push(command);
+        out.path.push(arm.clone());
+        out.held.push(held);
+        if stepper.done() && !held {
+            out.finished = true;
+            break;
+        }
+    }
+    Ok(out)
+}
