@@ -126,6 +126,8 @@ fn run(cli: Cli) -> Result<()> {
             far,
             sittings,
             no_in_sample,
+            disturb,
+            goal_moves,
             #[cfg(feature = "plot")]
             png,
             ..
@@ -155,6 +157,7 @@ fn run(cli: Cli) -> Result<()> {
                 json,
                 png,
                 far,
+                disturb: disturb.into_iter().chain(goal_moves).collect(),
             };
             let (pb, on_fold) = cli::counter("folds");
             // on the upper body's joints, the hierarchy's reproductions executed for contacts

@@ -24,6 +24,8 @@ pub struct HeldoutJob {
     pub settings: LooSettings,
     /// Far goals to run the folds with besides (`K` each, [`super::far_target`]).
     pub far: Vec<f64>,
+    /// Disturbances to run every fold in the loop with besides ([`super::in_loop`]).
+    pub disturb: Vec<super::LoopDisturbance>,
     /// Where to write every fold's scores as JSON.
     pub json: Option<PathBuf>,
     /// Where to draw one fold per gesture.
@@ -86,18 +88,35 @@ pub fn heldout_with(
             .map_or_else(|| "no fold ran".to_string(), |(_, why, _)| why);
         return Err(LooError::NoReproduction(why));
     }
-    let section = match extra {
-        Some(f) => f(plain).map_err(LooError::Extra)?,
-        None => None,
+    let mut sections: Vec<Section> = match extra {
+        Some(f) => f(plain).map_err(LooError::Extra)?.into_iter().collect(),
+        None => Vec::new(),
     };
+    if !job.disturb.is_empty() {
+        let pool = super::Pool::new(job.settings.threads).map_err(LooError::Pool)?;
+        let methods = job.settings.methods(true);
+        let (mut markdown, mut json) = (String::new(), Vec::new());
+        let all = super::in_loop(&cfg, plain, &methods, &job.disturb, &pool);
+        for (d, runs) in job.disturb.iter().zip(all) {
+            markdown.push_str(&super::loop_markdown(d, &runs));
+            json.push(serde_json::json!({ "disturbance": d, "gestures": runs }));
+        }
+        sections.push(Section {
+            key: "in_loop",
+            markdown,
+            json: serde_json::Value::Array(json),
+        });
+    }
     if let Some(p) = &job.json {
-        let text = match &section {
-            None => all.json(&cfg),
-            Some(s) => {
+        let text = match sections.is_empty() {
+            true => all.json(&cfg),
+            false => {
                 let mut doc: serde_json::Value =
                     serde_json::from_str(&all.json(&cfg)).unwrap_or_default();
                 if let Some(map) = doc.as_object_mut() {
-                    map.insert(s.key.into(), s.json.clone());
+                    for s in &sections {
+                        map.insert(s.key.into(), s.json.clone());
+                    }
                 }
                 serde_json::to_string_pretty(&doc).unwrap_or_default()
             }
@@ -109,7 +128,7 @@ pub fn heldout_with(
         super::png(p, plain, 0)?;
     }
     let mut out = all.markdown();
-    if let Some(s) = section {
+    for s in sections {
         out.push_str(&s.markdown);
     }
     Ok(out)

@@ -25,6 +25,7 @@ mod executor;
 mod far;
 mod files;
 mod fold;
+mod in_loop;
 mod loo;
 mod method;
 mod pool;
@@ -41,6 +42,7 @@ pub use fold::{
     all_but, diagonal, fold, fold_scores, run_fold, scored, sitting, Conditioning, Fitted,
     FoldInput, FoldRuns, MethodRun, Split, Training, GMR_UNCONDITIONED, SWING_MIN_AMPLITUDE_RAD,
 };
+pub use in_loop::{in_loop, loop_markdown, GestureLoop, LoopDisturbance, LoopRun, LOOP_METHODS};
 pub use loo::{
     leave_one_out, loo_folds, read_gestures_at, Gestures, LooError, LooSettings, MIN_TAUGHT_DEMOS,
 };
