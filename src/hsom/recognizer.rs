@@ -14,7 +14,8 @@
 
 use std::borrow::Borrow;
 
-use crate::dtw::{dtw_with_prefixes, euclidean};
+use crate::dtw::dtw_with_prefixes;
+use crate::dtw::pruned::Reference;
 
 use super::errors::{GestureError, HsomError};
 use super::model::{EventsHsom, GestureModel, Scoring};
@@ -42,11 +43,13 @@ pub struct StreamCalibration {
 
 /// One label's open-ended DTW against its reproduction, a row per sample pushed.
 struct Track {
-    /// The reproduction from the first posture, normalised (`None`: it could not be made).
-    rep: Option<Vec<Vec<f64>>>,
-    /// The last row of accumulated costs, and the row being filled.
+    /// The reproduction from the first posture, normalised, stored for a row's distances
+    /// (`None`: it could not be made).
+    rep: Option<Reference>,
+    /// The last row of accumulated costs, the row being filled, and its distances.
     prev: Vec<f64>,
     cur: Vec<f64>,
+    dist: Vec<f64>,
     /// The prefix's cost per sample (infinite without a reproduction).
     score: f64,
     /// The prefix score passed the label's ceiling.
@@ -57,9 +60,10 @@ impl Track {
     fn new(rep: Option<Vec<Vec<f64>>>) -> Self {
         let m = rep.as_ref().map_or(0, Vec::len);
         Track {
-            rep,
+            rep: rep.map(|r| Reference::new(&r)),
             prev: vec![f64::INFINITY; m],
             cur: vec![f64::INFINITY; m],
+            dist: vec![0.0; m],
             score: f64::INFINITY,
             out: false,
         }
@@ -69,8 +73,9 @@ impl Track {
     /// [`dtw_with_prefixes`], so each prefix's score is the one it gives.
     fn step(&mut self, x: &[f64], i: usize) {
         let Some(rep) = &self.rep else { return };
-        for (j, r) in rep.iter().enumerate() {
-            let c = euclidean(x, r);
+        let m = rep.len();
+        rep.distances(x, 0, m, &mut self.dist);
+        for (j, &c) in self.dist.iter().enumerate() {
             if i == 0 && j == 0 {
                 self.cur[0] = c;
                 continue;
@@ -143,6 +148,20 @@ impl GestureModel {
     /// not that gesture.
     pub fn thresholds(&self) -> Vec<f64> {
         self.calibration.iter().map(|c| c.threshold).collect()
+    }
+
+    /// Per label (in the model's order), the share of the DTW's cells that recognition of
+    /// `rows` skips (its exact pruning, [`crate::dtw::prefix_pruning_rate`]; docs/BENCHMARKS.md);
+    /// `None` for a label whose gesture cannot be reproduced from the first posture.
+    pub fn pruning_rates(&self, rows: &[Vec<f64>]) -> Result<Vec<Option<f64>>, GestureError> {
+        let branches = self.labelled()?;
+        let norm = branches[0].normalise_rows(rows);
+        Ok(branches
+            .iter()
+            .map(|b| {
+                reproduction_from(b, &norm).and_then(|r| crate::dtw::prefix_pruning_rate(&norm, &r))
+            })
+            .collect())
     }
 
     /// A recogniser in the loop on this model ([`Recognizer`]), calibrated on the
