@@ -95,7 +95,7 @@ fn run(a: Args) -> Result<()> {
             .collect();
         rule.extend(streams(&model, &tests, Policy::Rule)?);
         first.extend(streams(&model, &tests, Policy::FirstSample)?);
-        for u in 0..sets.len() {
+        for (u, (_, _, left_out)) in sets.iter().enumerate() {
             let others: Vec<(String, Vec<Demonstration>)> = taught
                 .iter()
                 .enumerate()
@@ -104,7 +104,7 @@ fn run(a: Args) -> Result<()> {
                 .collect();
             let model = config.fit_gestures(&others, None)?;
             let tests: Vec<(Option<String>, &Demonstration)> =
-                sets[u].2.iter().map(|d| (None, d)).collect();
+                left_out.iter().map(|d| (None, d)).collect();
             rule.extend(streams(&model, &tests, Policy::Rule)?);
             first.extend(streams(&model, &tests, Policy::FirstSample)?);
         }
