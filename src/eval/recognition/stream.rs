@@ -33,6 +33,8 @@ pub enum Policy {
 pub struct Streamed {
     /// The gesture's label; `None` for an untaught gesture.
     pub expected: Option<String>,
+    /// Whether it committed (in JSON, `committed` is null both for unknown and for nothing).
+    pub decided: bool,
     /// What was committed (`Some(None)`: unknown), `None` when nothing was.
     pub committed: Option<Option<String>>,
     /// The samples pushed when it committed.
@@ -90,6 +92,7 @@ pub fn stream(
     let whole = model.recognize(rows)?;
     Ok(Streamed {
         expected: expected.map(str::to_string),
+        decided: committed.is_some(),
         committed,
         at,
         samples: rows.len(),
