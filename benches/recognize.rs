@@ -1,6 +1,8 @@
 //! Recognising one gesture (issue 9): a hierarchy of four gestures (the built-in
 //! configs/nao-gestures.xml, 300-sample 6-D demonstrations generated here) against 1-NN DTW
-//! over the same 12 training sequences.
+//! over the same 12 training sequences; and recognition in the loop (issue 52): the first
+//! push (each label's reproduction from the first posture), then every other push (a DTW
+//! row per label). Prints the share of DTW cells the whole recognition skips, per label.
 //!
 //! cargo bench --bench recognize -- --warm-up-time 1 --measurement-time 3
 
@@ -9,7 +11,7 @@ mod common;
 use common::gestures;
 use cosco_hsom::dtw::Band;
 use cosco_hsom::nearest::NearestNeighbour;
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use criterion::{black_box, criterion_group, criterion_main, BatchSize, Criterion};
 
 fn recognize(c: &mut Criterion) {
     let cfg = cosco_hsom::app::config(None).unwrap();
@@ -40,6 +42,10 @@ fn recognize(c: &mut Criterion) {
         Band::None,
     );
     let query = sets[2].1[0].rows.clone();
+    println!(
+        "DTW cells skipped per label: {:?}",
+        model.pruning_rates(&query).unwrap()
+    );
     let mut g = c.benchmark_group("recognize_one_gesture_300_samples");
     g.bench_function("hsom_scores", |b| {
         b.iter(|| model.scores(black_box(&query)).unwrap())
@@ -49,6 +55,38 @@ fn recognize(c: &mut Criterion) {
     });
     g.bench_function("nn_dtw", |b| {
         b.iter(|| nn.classify(black_box(&query)).unwrap())
+    });
+    g.bench_function("reproduce_one_label", |b| {
+        b.iter(|| model.reproduce(Some("g2"), black_box(&query[0])).unwrap())
+    });
+    g.finish();
+    let cal = model.stream_calibration().unwrap();
+    let mut g = c.benchmark_group("recognizer_4_labels");
+    g.bench_function("first_push", |b| {
+        b.iter_batched(
+            || cosco_hsom::hsom::Recognizer::new(&model, cal).unwrap(),
+            |mut r| {
+                r.push(black_box(&query[0])).unwrap();
+                r
+            },
+            BatchSize::SmallInput,
+        )
+    });
+    g.bench_function("299_more_pushes", |b| {
+        b.iter_batched(
+            || {
+                let mut r = cosco_hsom::hsom::Recognizer::new(&model, cal).unwrap();
+                r.push(&query[0]).unwrap();
+                r
+            },
+            |mut r| {
+                for x in &query[1..] {
+                    r.push(black_box(x)).unwrap();
+                }
+                r
+            },
+            BatchSize::SmallInput,
+        )
     });
     g.finish();
 }

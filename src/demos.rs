@@ -294,7 +294,12 @@ pub enum DemoError {
     },
 }
 
-fn parse_cell(path: &str, line: u64, column: &str, text: &str) -> Result<f64, DemoError> {
+pub(crate) fn parse_cell(
+    path: &str,
+    line: u64,
+    column: &str,
+    text: &str,
+) -> Result<f64, DemoError> {
     let v: f64 = text.parse().map_err(|_| DemoError::NotNumeric {
         path: path.to_string(),
         line,
@@ -312,7 +317,7 @@ fn parse_cell(path: &str, line: u64, column: &str, text: &str) -> Result<f64, De
     Ok(v)
 }
 
-fn check_names(path: &str, names: &[String]) -> Result<(), DemoError> {
+pub(crate) fn check_names(path: &str, names: &[String]) -> Result<(), DemoError> {
     let mut seen: HashMap<&str, usize> = HashMap::new();
     for (i, name) in names.iter().enumerate() {
         let pos = i + 1;

@@ -327,12 +327,34 @@ pub(crate) fn dtw_with_prefixes(
     b: &[Vec<f64>],
 ) -> Result<(DtwCost, Vec<f64>), DtwError> {
     check(a, b)?;
+    let p = pruned::prefixes(a, &pruned::Reference::new(b));
+    Ok((p.whole, p.prefix))
+}
+
+/// [`dtw_with_prefixes`] computed over every cell (what the pruned computation must equal),
+/// and the share of the cells the pruned one skips.
+#[cfg(test)]
+pub(crate) fn dtw_with_prefixes_full(
+    a: &[Vec<f64>],
+    b: &[Vec<f64>],
+) -> Result<(DtwCost, Vec<f64>), DtwError> {
+    check(a, b)?;
     let mut prefixes = Vec::with_capacity(a.len());
     let whole = by_rows(a, b, None, |i, costs| {
         let open = costs.iter().map(|c| c.0).fold(f64::INFINITY, f64::min);
         prefixes.push(open / (i + 1) as f64);
     });
     Ok((whole, prefixes))
+}
+
+/// The share of the cells of the DTW of `a` against `b` that [`dtw_with_prefixes`] skips
+/// (docs/BENCHMARKS.md); `None` when the sequences are refused.
+pub fn prefix_pruning_rate<R: AsRef<[f64]>>(a: &[R], b: &[R]) -> Option<f64> {
+    let rows = |s: &[R]| -> Vec<Vec<f64>> { s.iter().map(|r| r.as_ref().to_vec()).collect() };
+    let (a, b) = (rows(a), rows(b));
+    check(&a, &b).ok()?;
+    let p = pruned::prefixes(&a, &pruned::Reference::new(&b));
+    Some(1.0 - p.computed as f64 / (a.len() * b.len()) as f64)
 }
 
 /// Where along `b` the sequence `a` ends (the column of the cheapest warping path that starts
@@ -365,5 +387,6 @@ pub(crate) fn open_end_cost(a: &[Vec<f64>], b: &[Vec<f64>]) -> (usize, f64) {
     (end, prev[end] / a.len().max(1) as f64)
 }
 
+pub(crate) mod pruned;
 #[cfg(test)]
 mod tests;

@@ -10,7 +10,10 @@ The algorithm of the Rust crate ``cosco-hsom``, built without its simulator:
   ``GestureModel.fit(config, {"wave": [...], "salute": [...]})``, ``.reproduce(label, initial)``,
   ``.recognize(sequence)`` (a :class:`Recognition`: the label or None for unknown, per-label
   scores, the sample the decision held from), ``.scores(sequence)``,
-  ``.continue_prefix(prefix)``, ``.save(path)`` / ``GestureModel.load(path)`` (the
+  ``.continue_prefix(prefix)``, ``.recognizer()`` (a :class:`Recognizer`, recognition in the
+  loop: ``r.push(sample)`` returns the label committed to or None, ``r.decided`` True from the
+  sample it committed on, ``r.finish()`` the :class:`Recognition` of every sample pushed),
+  ``.save(path)`` / ``GestureModel.load(path)`` (the
   files of ``cosco train`` on labelled directories).
 - :class:`Stepper`: a reproduction in the loop, ``model.stepper(initial, goal=None, via=None)``
   (``GestureModel.stepper(label, initial, ...)``): ``s.step(observed)`` is the next posture
@@ -36,6 +39,7 @@ from ._native import (
     GestureModel,
     Hsom,
     Recognition,
+    Recognizer,
     Stepper,
     dtw,
     heldout,
@@ -49,6 +53,7 @@ __all__ = [
     "Dmp",
     "GestureModel",
     "Recognition",
+    "Recognizer",
     "Stepper",
     "dtw",
     "heldout",

@@ -150,6 +150,9 @@ class GestureModel:
         """The label (None when unknown), every score, and the sample the decision held from."""
     def continue_prefix(self, prefix: _Array2) -> Tuple[str, np.ndarray]:
         """The gesture the hierarchy recognises in the prefix, and the prefix continued by it."""
+    def recognizer(self) -> "Recognizer":
+        """Recognition in the loop: push samples one at a time; it commits to a label or to
+        unknown as early as its rule allows and never changes that answer."""
     def stepper(
         self,
         label: Optional[str],
@@ -190,6 +193,24 @@ class Stepper:
     @property
     def replans(self) -> int:
         """How many times it re-planned because the arm was not where it was sent."""
+
+class Recognizer:
+    """Recognition in the loop (GestureModel.recognizer()): samples pushed one at a time."""
+
+    def push(self, sample: npt.ArrayLike) -> Optional[str]:
+        """Push the next sample (one value per variable): the label committed to, or None
+        (before any commitment, and after one to unknown: see `decided`)."""
+    @property
+    def decided(self) -> bool:
+        """True from the sample it committed on (a committed None is unknown)."""
+    @property
+    def committed_at(self) -> Optional[int]:
+        """The samples pushed when it committed (None before)."""
+    @property
+    def samples(self) -> int:
+        """The samples pushed so far."""
+    def finish(self) -> "Recognition":
+        """What GestureModel.recognize gives on every sample pushed (at least 2)."""
 
 class Recognition:
     """What GestureModel.recognize answers for one sequence."""

@@ -1,12 +1,14 @@
 //! `GestureModel` and `Recognition`: several gestures in one hierarchy, and its answers.
 
 use std::path::PathBuf;
+use std::sync::{Arc, OnceLock};
 
 use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use cosco_hsom::app;
+use cosco_hsom::hsom::StreamCalibration;
 
 use crate::model::Config;
 use crate::{app_err, array2, label_dict, labelled_sets, posture_of, py_err, rows_of};
@@ -15,9 +17,21 @@ use crate::{app_err, array2, label_dict, labelled_sets, posture_of, py_err, rows
 /// label): reproduction on cue, recognition with `unknown`, continuation of a prefix.
 #[pyclass(module = "cosco_hsom", name = "GestureModel", frozen)]
 pub(crate) struct GestureModel {
-    inner: cosco_hsom::hsom::GestureModel,
+    inner: Arc<cosco_hsom::hsom::GestureModel>,
     /// The model in messages: its file, or `in memory`.
     name: String,
+    /// What its recognisers in the loop are calibrated with, measured once.
+    stream: OnceLock<StreamCalibration>,
+}
+
+impl GestureModel {
+    fn new(inner: cosco_hsom::hsom::GestureModel, name: impl Into<String>) -> Self {
+        GestureModel {
+            inner: Arc::new(inner),
+            name: name.into(),
+            stream: OnceLock::new(),
+        }
+    }
 }
 
 #[pymethods]
@@ -39,20 +53,17 @@ impl GestureModel {
         let model = py
             .allow_threads(move || app::train_gestures(&cfg, &sets, None))
             .map_err(app_err)?;
-        Ok(GestureModel {
-            inner: model,
-            name: "in memory".into(),
-        })
+        Ok(GestureModel::new(model, "in memory"))
     }
 
     /// Load a model saved by `GestureModel.save` or `cosco train` (with labels;
     /// a single-gesture file loads too, without labels).
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
-        Ok(GestureModel {
-            inner: app::load_gesture_model(&path).map_err(app_err)?,
-            name: path.display().to_string(),
-        })
+        Ok(GestureModel::new(
+            app::load_gesture_model(&path).map_err(app_err)?,
+            path.display().to_string(),
+        ))
     }
 
     /// The model taught `demos` (2-D arrays of the model's columns) as gesture `label`, from
@@ -70,10 +81,7 @@ impl GestureModel {
         let updated = py
             .allow_threads(|| app::update(&self.inner, label.as_deref(), &demos, None))
             .map_err(app_err)?;
-        Ok(GestureModel {
-            inner: updated,
-            name: "in memory".into(),
-        })
+        Ok(GestureModel::new(updated, "in memory"))
     }
 
     /// What each gesture was learned from: `{label: {"demonstrations": n, "kept": k,
@@ -159,6 +167,25 @@ impl GestureModel {
         Ok(Recognition { inner: r })
     }
 
+    /// A recogniser in the loop: `push(sample)` one sample at a time returns the label it
+    /// committed to (None before, and for a commitment to unknown), `decided` says whether it
+    /// has committed, `finish()` is `recognize` on every sample pushed. A commitment never
+    /// changes.
+    fn recognizer(&self, py: Python<'_>) -> PyResult<Recognizer> {
+        let calibration = match self.stream.get() {
+            Some(c) => *c,
+            None => {
+                let c = py
+                    .allow_threads(|| self.inner.stream_calibration())
+                    .map_err(|e| py_err(&e))?;
+                *self.stream.get_or_init(|| c)
+            }
+        };
+        let inner = cosco_hsom::hsom::Recognizer::new(Arc::clone(&self.inner), calibration)
+            .map_err(|e| py_err(&e))?;
+        Ok(Recognizer { inner })
+    }
+
     /// Continue a gesture from its first samples (2-D, at least 2 rows): the hierarchy
     /// decides which gesture it is and continues it. Returns the label and the postures (the
     /// prefix first).
@@ -203,6 +230,67 @@ impl GestureModel {
             self.inner.labels(),
             self.inner.columns()
         )
+    }
+}
+
+/// Recognition in the loop (`GestureModel.recognizer()`): samples pushed one at a time.
+#[pyclass(module = "cosco_hsom", name = "Recognizer")]
+pub(crate) struct Recognizer {
+    inner: cosco_hsom::hsom::Recognizer<Arc<cosco_hsom::hsom::GestureModel>>,
+}
+
+#[pymethods]
+impl Recognizer {
+    /// Push the next sample (1-D, one value per variable, in the data's units): the label
+    /// committed to, or None (before any commitment, and after one to unknown: see
+    /// `decided`). A sample of the wrong width or with a value that is not finite is refused
+    /// (ValueError) and leaves the recogniser as it was.
+    fn push(&mut self, sample: &Bound<'_, PyAny>) -> PyResult<Option<String>> {
+        let x = posture_of(sample, "sample")?;
+        let c = self.inner.push(&x).map_err(|e| py_err(&e))?;
+        Ok(c.and_then(|c| c.label))
+    }
+
+    /// True from the sample the recogniser committed on (a committed None is unknown).
+    #[getter]
+    fn decided(&self) -> bool {
+        self.inner.decided()
+    }
+
+    /// The samples pushed when it committed (None before).
+    #[getter]
+    fn committed_at(&self) -> Option<usize> {
+        self.inner.commit().map(|c| c.samples)
+    }
+
+    /// The samples pushed so far.
+    #[getter]
+    fn samples(&self) -> usize {
+        self.inner.samples()
+    }
+
+    /// The whole sequence's answer: what `GestureModel.recognize` gives on every sample
+    /// pushed (at least 2).
+    fn finish(&self, py: Python<'_>) -> PyResult<Recognition> {
+        let r = py
+            .allow_threads(|| self.inner.finish())
+            .map_err(|e| py_err(&e))?;
+        Ok(Recognition { inner: r })
+    }
+
+    fn __repr__(&self) -> String {
+        match self.inner.commit() {
+            None => format!(
+                "Recognizer(samples={}, decided=False)",
+                self.inner.samples()
+            ),
+            Some(c) => format!(
+                "Recognizer(samples={}, decided=True, label={}, committed_at={})",
+                self.inner.samples(),
+                c.label.as_ref().map_or("None".into(), |l| format!("{l:?}")),
+                c.samples
+            ),
+        }
     }
 }
 

@@ -227,6 +227,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<model::Hsom>()?;
     m.add_class::<gestures::GestureModel>()?;
     m.add_class::<gestures::Recognition>()?;
+    m.add_class::<gestures::Recognizer>()?;
     m.add_class::<stepper::Stepper>()?;
     m.add_class::<eval::GmrModel>()?;
     m.add_class::<eval::Dmp>()?;

@@ -51,7 +51,9 @@ pub use files::{
     check_model_output, config, demonstrations_from_rows, load_gesture_model, load_model,
     read_demos, read_reproduction, save_gesture_model, save_model,
 };
-pub use recognize::{recognize_files, recognize_paths, RecognisedFile};
+pub use recognize::{
+    answer_line, recognize_files, recognize_paths, recognize_stream, RecognisedFile,
+};
 pub use reproduce::{
     conditions, continue_file, reproduce, reproduce_conditioned, reproduce_file, reproduce_gesture,
     resume, stepper, ReproduceFile, ReproduceRequest,

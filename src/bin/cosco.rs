@@ -98,10 +98,30 @@ fn run(cli: Cli) -> Result<()> {
             outln!("saved {}", out.display());
         }
         Command::Reproduce(r) => outln!("{}", app::reproduce_file(&r.into())?),
-        Command::Recognize { model, demos, json } => {
+        Command::Recognize {
+            model,
+            stream: true,
+            ..
+        } => {
+            app::recognize_stream(&model, std::io::stdin().lock(), &mut |line| {
+                use std::io::Write as _;
+                let mut out = std::io::stdout().lock();
+                let _ = writeln!(out, "{line}");
+                let _ = out.flush();
+            })?;
+        }
+        Command::Recognize {
+            model,
+            demos: Some(demos),
+            json,
+            ..
+        } => {
             for line in app::recognize_files(&model, &demos, json.as_deref())? {
                 outln!("{line}");
             }
+        }
+        Command::Recognize { demos: None, .. } => {
+            anyhow::bail!("give --demos PATH, or --stream to read CSV rows from standard input")
         }
         Command::Recognition { study, common } => recognition(study, common)?,
         Command::Heldout {

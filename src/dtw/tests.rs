@@ -53,3 +53,62 @@ fn prefixes_cost_what_they_have_followed_so_far() {
     assert!(whole.per_step() > prefixes[5]);
     assert!(dtw_with_prefixes(&a, &[]).is_err());
 }
+
+/// The pruned DTW with every prefix's cost gives bit for bit what the full computation
+/// gives (whole cost, steps, every prefix), on sequences alike and unlike, of one sample and
+/// of lengths that differ, with ties (repeated samples); and it does skip cells.
+#[test]
+fn pruning_changes_no_answer() {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+    let walk = |rng: &mut rand_chacha::ChaCha8Rng, n: usize, d: usize, step: f64| {
+        let mut x = vec![0.0; d];
+        (0..n)
+            .map(|_| {
+                for v in &mut x {
+                    *v += rng.gen_range(-step..step);
+                }
+                x.clone()
+            })
+            .collect::<Vec<Vec<f64>>>()
+    };
+    let mut skipped = 0.0;
+    let mut cases = 0;
+    for case in 0..200 {
+        let d = 1 + case % 6;
+        let (n, m) = (1 + rng.gen_range(0..60), 1 + rng.gen_range(0..60));
+        let b = walk(&mut rng, m, d, 0.3);
+        let a = match case % 4 {
+            // a noisy copy of b, warped
+            0 => (0..n)
+                .map(|i| {
+                    let j = i * (m - 1) / (n - 1).max(1);
+                    b[j].iter()
+                        .map(|v| v + rng.gen_range(-0.01..0.01))
+                        .collect()
+                })
+                .collect(),
+            // ties: every sample repeated, of a coarse grid
+            1 => walk(&mut rng, n, d, 1.0)
+                .into_iter()
+                .map(|r| r.iter().map(|v| v.round()).collect())
+                .collect(),
+            _ => walk(&mut rng, n, d, 0.3),
+        };
+        let fast = dtw_with_prefixes(&a, &b).unwrap();
+        let full = dtw_with_prefixes_full(&a, &b).unwrap();
+        assert_eq!(
+            fast.0.distance.to_bits(),
+            full.0.distance.to_bits(),
+            "case {case}"
+        );
+        assert_eq!(fast.0.steps, full.0.steps, "case {case}");
+        let bits = |p: &[f64]| p.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&fast.1), bits(&full.1), "case {case}");
+        if case % 4 == 0 && n > 20 && m > 20 {
+            skipped += prefix_pruning_rate(&a, &b).unwrap();
+            cases += 1;
+        }
+    }
+    assert!(skipped / cases as f64 > 0.2, "{}", skipped / cases as f64);
+}

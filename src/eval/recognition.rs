@@ -11,6 +11,7 @@
 //! ([`recognition_study`]). Its errors are the held-out studies' [`LooError`].
 
 mod report;
+pub mod stream;
 pub mod teaching;
 
 use std::path::PathBuf;

@@ -47,7 +47,7 @@ pub(crate) fn posture_distances(model: &EventsHsom, norm: &[Vec<f64>]) -> Vec<f6
 
 /// `model`'s gesture reproduced from the first posture of `norm` (normalised rows), normalised;
 /// `None` when it cannot be reproduced from there.
-fn reproduction_from(model: &EventsHsom, norm: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
+pub(super) fn reproduction_from(model: &EventsHsom, norm: &[Vec<f64>]) -> Option<Vec<Vec<f64>>> {
     let rep = model.reproduce(&model.denormalise(norm.first()?)).ok()?;
     (!rep.postures.is_empty()).then(|| model.normalise_rows(&rep.postures))
 }
@@ -365,7 +365,7 @@ struct Evidence {
 impl GestureModel {
     /// The branches of a model of several gestures: the events extension's (so trained, and
     /// checked on loading).
-    fn labelled(&self) -> Result<Vec<&EventsHsom>, GestureError> {
+    pub(super) fn labelled(&self) -> Result<Vec<&EventsHsom>, GestureError> {
         if self.labels.is_empty() {
             return Err(GestureError::NoLabels);
         }

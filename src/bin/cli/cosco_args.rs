@@ -96,11 +96,16 @@ pub enum Command {
         #[arg(long)]
         model: PathBuf,
         /// A demonstration CSV, a directory of them, or a directory of label subdirectories.
-        #[arg(long)]
-        demos: PathBuf,
+        #[arg(long, required_unless_present = "stream")]
+        demos: Option<PathBuf>,
         /// Also write every answer as JSON here.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "stream")]
         json: Option<PathBuf>,
+        /// Recognise in the loop: CSV rows from standard input as they come (a header of the
+        /// model's columns, an optional first `time` column); a line when the recogniser
+        /// commits to a label or to unknown, the whole sequence's answer at the end.
+        #[arg(long, conflicts_with = "demos")]
+        stream: bool,
     },
     /// `cosco heldout --recognition` as a hidden alias, for scripts that call it by this name.
     #[command(hide = true, group = clap::ArgGroup::new("taught_given").args(["taught"]).required(true))]

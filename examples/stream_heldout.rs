@@ -1,0 +1,137 @@
+//! Recognition in the loop, held out on the Nao's gestures (docs/ALGORITHM.md, section 4,
+//! item 7): per seed, every gesture's demonstrations recorded in the simulator, the model of
+//! all of them taught the first `--train` of each and the rest streamed one sample at a
+//! time into its recogniser; then each gesture left out in turn (the model taught the
+//! others) and its demonstrations streamed as untaught. Beside the recogniser, the negative
+//! control that commits at the first sample. Markdown on stdout, every stream with
+//! `--json FILE`.
+//!
+//! ```sh
+//! cargo run --release --example stream_heldout -- --seeds 41-45
+//! ```
+
+mod common;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+use clap::Parser;
+
+use cosco_hsom::demos::Demonstration;
+use cosco_hsom::eval::recognition::stream::{
+    stream, Policy, StreamSummary, Streamed, MARKDOWN_HEADER,
+};
+use cosco_hsom::experiment::demonstrate::{
+    parse_gestures, parse_seeds, synthetic_demonstrations, DemoSettings,
+};
+use cosco_hsom::hsom::GestureModel;
+
+/// Recognition in the loop, held out.
+#[derive(Parser, Debug)]
+#[command(name = "stream_heldout")]
+struct Args {
+    /// Gestures, comma-separated.
+    #[arg(long, default_value = "reading-watch,wave,reach-point,salute")]
+    gestures: String,
+    /// Seeds of the demonstrations: numbers and ranges, e.g. `41-45`.
+    #[arg(long, default_value = "41-45")]
+    seeds: String,
+    /// Demonstrations per gesture to learn from.
+    #[arg(long, default_value_t = 3)]
+    train: usize,
+    /// Held-out demonstrations per gesture.
+    #[arg(long, default_value_t = 4)]
+    test: usize,
+    /// Encoder noise of the recordings, rad.
+    #[arg(long, default_value_t = 0.001)]
+    noise: f64,
+    /// CoSCo-HSOM configuration (XML).
+    #[arg(long, default_value = "configs/nao-gestures.xml")]
+    config: PathBuf,
+    /// Write every stream to this JSON file.
+    #[arg(long)]
+    json: Option<PathBuf>,
+}
+
+/// Stream every demonstration of `tests` (`(expected, demonstration)`) into `model`.
+fn streams(
+    model: &GestureModel,
+    tests: &[(Option<String>, &Demonstration)],
+    policy: Policy,
+) -> Result<Vec<Streamed>> {
+    let c = model.stream_calibration()?;
+    tests
+        .iter()
+        .map(|(e, d)| Ok(stream(model, c, &d.rows, e.as_deref(), policy)?))
+        .collect()
+}
+
+fn run(a: Args) -> Result<()> {
+    let gestures = parse_gestures(&a.gestures)?;
+    let seeds = parse_seeds(&a.seeds)?;
+    let (config, arm) = common::config_and_arm(&a.config)?;
+    let settings = DemoSettings {
+        encoder_noise: a.noise,
+        ..DemoSettings::default()
+    };
+    let (mut rule, mut first) = (Vec::new(), Vec::new());
+    for &seed in &seeds {
+        let mut sets = Vec::new();
+        for g in &gestures {
+            let mut d =
+                synthetic_demonstrations(&arm, g, a.train + a.test, seed, &settings, |_| {})?;
+            let test = d.split_off(a.train);
+            sets.push((g.name.to_string(), d, test));
+        }
+        let taught: Vec<(String, Vec<Demonstration>)> = sets
+            .iter()
+            .map(|(l, t, _)| (l.clone(), t.clone()))
+            .collect();
+        let model = config.fit_gestures(&taught, None)?;
+        let tests: Vec<(Option<String>, &Demonstration)> = sets
+            .iter()
+            .flat_map(|(l, _, t)| t.iter().map(move |d| (Some(l.clone()), d)))
+            .collect();
+        rule.extend(streams(&model, &tests, Policy::Rule)?);
+        first.extend(streams(&model, &tests, Policy::FirstSample)?);
+        for (u, (_, _, left_out)) in sets.iter().enumerate() {
+            let others: Vec<(String, Vec<Demonstration>)> = taught
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| i != u)
+                .map(|(_, s)| s.clone())
+                .collect();
+            let model = config.fit_gestures(&others, None)?;
+            let tests: Vec<(Option<String>, &Demonstration)> =
+                left_out.iter().map(|d| (None, d)).collect();
+            rule.extend(streams(&model, &tests, Policy::Rule)?);
+            first.extend(streams(&model, &tests, Policy::FirstSample)?);
+        }
+        eprintln!(
+            "seed {seed}: {}",
+            StreamSummary::of(&rule).markdown_row("so far")
+        );
+    }
+    let (r, f) = (StreamSummary::of(&rule), StreamSummary::of(&first));
+    println!("{MARKDOWN_HEADER}");
+    println!("{}", r.markdown_row("the recogniser"));
+    println!("{}", f.markdown_row("control: commits at the first sample"));
+    println!();
+    println!(
+        "seeds {}; gates failed by the recogniser: {:?}; by the control: {:?}",
+        a.seeds,
+        r.failures(),
+        f.failures()
+    );
+    if let Some(p) = &a.json {
+        let bytes = serde_json::to_vec_pretty(&(&rule, &first))?;
+        cosco_hsom::fsutil::write_atomic(p, &bytes)
+            .with_context(|| format!("writing {}", p.display()))?;
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    common::exit(run(Args::parse()))
+}

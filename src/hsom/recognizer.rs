@@ -1,0 +1,315 @@
+//! Recognition in the loop (docs/ALGORITHM.md, section 4, item 7): a [`Recognizer`] takes a
+//! sequence one sample at a time, commits to a label or to unknown as soon as the rule below
+//! allows, never changes a committed answer, and at the end gives what
+//! [`GestureModel::recognize`] gives on every sample pushed.
+//!
+//! Each label's score of the prefix pushed so far is the one recognition's early decision
+//! reads: the open-ended DTW cost per sample against the label's reproduction from the first
+//! posture, one row of the DTW per sample (O(reproduction length) a label a push). The rule
+//! eliminates labels: a label is out once its prefix score passes its ceiling, the label's
+//! threshold (what a whole new demonstration of it may score) times the model's rise (how far
+//! above its whole score a prefix of one of the model's own kept demonstrations ever scored,
+//! [`StreamCalibration`]). When one label is left and its prefix scores within its threshold,
+//! the recogniser commits to it; when none is left, to unknown.
+
+use std::borrow::Borrow;
+
+use crate::dtw::dtw_with_prefixes;
+use crate::dtw::pruned::Reference;
+
+use super::errors::{GestureError, HsomError};
+use super::model::{EventsHsom, GestureModel, Scoring};
+use super::recognize::{reproduction_from, Recognition};
+
+/// What a [`Recognizer`] committed to.
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+pub struct Commit {
+    /// The label, or `None` for unknown.
+    pub label: Option<String>,
+    /// The samples pushed when it committed (the sample it committed on, counted from 1).
+    pub samples: usize,
+}
+
+/// What the model's own kept demonstrations say about prefixes: the largest ratio of a
+/// prefix's score (open-ended DTW per sample against the reproduction) to the whole
+/// sequence's score (DTW per step), over every prefix of every kept demonstration of every
+/// label, each against its own label's reproduction from its first posture. Infinite (no
+/// label is ever ruled out early) when the model keeps no demonstration to measure it on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StreamCalibration {
+    /// The largest prefix score over whole score.
+    pub rise: f64,
+}
+
+/// One label's open-ended DTW against its reproduction, a row per sample pushed.
+struct Track {
+    /// The reproduction from the first posture, normalised, stored for a row's distances
+    /// (`None`: it could not be made).
+    rep: Option<Reference>,
+    /// The last row of accumulated costs, the row being filled, and its distances.
+    prev: Vec<f64>,
+    cur: Vec<f64>,
+    dist: Vec<f64>,
+    /// The prefix's cost per sample (infinite without a reproduction).
+    score: f64,
+    /// The prefix score passed the label's ceiling.
+    out: bool,
+}
+
+impl Track {
+    fn new(rep: Option<Vec<Vec<f64>>>) -> Self {
+        let m = rep.as_ref().map_or(0, Vec::len);
+        Track {
+            rep: rep.map(|r| Reference::new(&r)),
+            prev: vec![f64::INFINITY; m],
+            cur: vec![f64::INFINITY; m],
+            dist: vec![0.0; m],
+            score: f64::INFINITY,
+            out: false,
+        }
+    }
+
+    /// Row `i` of the DTW for normalised sample `x`: the recurrence of
+    /// [`dtw_with_prefixes`], so each prefix's score is the one it gives.
+    fn step(&mut self, x: &[f64], i: usize) {
+        let Some(rep) = &self.rep else { return };
+        let m = rep.len();
+        rep.distances(x, 0, m, &mut self.dist);
+        for (j, &c) in self.dist.iter().enumerate() {
+            if i == 0 && j == 0 {
+                self.cur[0] = c;
+                continue;
+            }
+            let mut b = if i > 0 && j > 0 {
+                self.prev[j - 1]
+            } else {
+                f64::INFINITY
+            };
+            let up = if i > 0 { self.prev[j] } else { f64::INFINITY };
+            if up < b {
+                b = up;
+            }
+            let left = if j > 0 {
+                self.cur[j - 1]
+            } else {
+                f64::INFINITY
+            };
+            if left < b {
+                b = left;
+            }
+            self.cur[j] = b + c;
+        }
+        std::mem::swap(&mut self.prev, &mut self.cur);
+        let open = self.prev.iter().copied().fold(f64::INFINITY, f64::min);
+        self.score = open / (i + 1) as f64;
+    }
+}
+
+/// Recognition in the loop: push samples one at a time ([`Recognizer::push`]); the answer
+/// once committed ([`Recognizer::commit`]) never changes; [`Recognizer::finish`] is
+/// [`GestureModel::recognize`] on every sample pushed. `M` is the model or what holds it
+/// (a reference, an `Arc`).
+pub struct Recognizer<M: Borrow<GestureModel>> {
+    model: M,
+    /// Per label: the prefix score above which no recognisable demonstration of it goes.
+    ceilings: Vec<f64>,
+    rows: Vec<Vec<f64>>,
+    tracks: Vec<Track>,
+    commit: Option<Commit>,
+}
+
+impl GestureModel {
+    /// [`StreamCalibration`] of this model, measured on the demonstrations it keeps.
+    pub fn stream_calibration(&self) -> Result<StreamCalibration, GestureError> {
+        let branches = self.labelled()?;
+        let mut rise: Option<f64> = None;
+        for b in &branches {
+            for rows in kept_rows(b) {
+                let Some(rep) = reproduction_from(b, &rows) else {
+                    continue;
+                };
+                let Ok((whole, prefix)) = dtw_with_prefixes(&rows, &rep) else {
+                    continue;
+                };
+                let w = whole.per_step();
+                if !(w > 0.0 && w.is_finite()) {
+                    continue;
+                }
+                let top = prefix.iter().fold(0.0, |a: f64, p| a.max(p / w));
+                rise = Some(rise.map_or(top, |r| r.max(top)));
+            }
+        }
+        Ok(StreamCalibration {
+            rise: rise.unwrap_or(f64::INFINITY),
+        })
+    }
+
+    /// Per label (in the model's order), its threshold: the score above which a sequence is
+    /// not that gesture.
+    pub fn thresholds(&self) -> Vec<f64> {
+        self.calibration.iter().map(|c| c.threshold).collect()
+    }
+
+    /// Per label (in the model's order), the share of the DTW's cells that recognition of
+    /// `rows` skips (its exact pruning, [`crate::dtw::prefix_pruning_rate`]; docs/BENCHMARKS.md);
+    /// `None` for a label whose gesture cannot be reproduced from the first posture.
+    pub fn pruning_rates(&self, rows: &[Vec<f64>]) -> Result<Vec<Option<f64>>, GestureError> {
+        let branches = self.labelled()?;
+        let norm = branches[0].normalise_rows(rows);
+        Ok(branches
+            .iter()
+            .map(|b| {
+                reproduction_from(b, &norm).and_then(|r| crate::dtw::prefix_pruning_rate(&norm, &r))
+            })
+            .collect())
+    }
+
+    /// A recogniser in the loop on this model ([`Recognizer`]), calibrated on the
+    /// demonstrations the model keeps ([`GestureModel::stream_calibration`]).
+    pub fn recognizer(&self) -> Result<Recognizer<&GestureModel>, GestureError> {
+        let c = self.stream_calibration()?;
+        Recognizer::new(self, c)
+    }
+}
+
+/// Rule out every label whose prefix score passed its ceiling (for good: no recognisable
+/// demonstration of it scores a prefix that high), then commit (after `samples` samples) when
+/// one label is left and within its threshold, or none is left (unknown).
+fn decide(
+    tracks: &mut [Track],
+    ceilings: &[f64],
+    m: &GestureModel,
+    samples: usize,
+) -> Option<Commit> {
+    for (t, &c) in tracks.iter_mut().zip(ceilings) {
+        if t.score.is_nan() || t.score > c {
+            t.out = true;
+        }
+    }
+    let mut left = tracks.iter().enumerate().filter(|(_, t)| !t.out);
+    match (left.next(), left.next()) {
+        (None, _) => Some(Commit {
+            label: None,
+            samples,
+        }),
+        (Some((k, t)), None) if t.score <= m.calibration[k].threshold => Some(Commit {
+            label: Some(m.labels[k].clone()),
+            samples,
+        }),
+        _ => None,
+    }
+}
+
+/// The kept demonstrations of `b` (normalised), each at its own length.
+fn kept_rows(b: &EventsHsom) -> Vec<Vec<Vec<f64>>> {
+    b.paths
+        .iter()
+        .zip(&b.kept.lengths)
+        .filter(|(_, &n)| n >= 2)
+        .map(|(path, &n)| {
+            let n = n as usize;
+            (0..n)
+                .map(|k| crate::curve::at_phase(path, k as f64 / (n - 1) as f64))
+                .collect()
+        })
+        .collect()
+}
+
+impl<M: Borrow<GestureModel>> Recognizer<M> {
+    /// A recogniser on `model` with `calibration` (its own, [`GestureModel::stream_calibration`],
+    /// measured once for many streams).
+    pub fn new(model: M, calibration: StreamCalibration) -> Result<Self, GestureError> {
+        let m = model.borrow();
+        m.labelled()?;
+        let ceilings = m
+            .calibration
+            .iter()
+            .map(|c| {
+                // 0 x infinity: a label whose threshold is 0 is out at the first miss
+                if c.threshold == 0.0 {
+                    0.0
+                } else {
+                    c.threshold * calibration.rise
+                }
+            })
+            .collect();
+        Ok(Recognizer {
+            model,
+            ceilings,
+            rows: Vec::new(),
+            tracks: Vec::new(),
+            commit: None,
+        })
+    }
+
+    /// Push the next sample (in the data's units, the model's columns): the commitment once
+    /// made (from the sample it was made on), `None` before. A sample of the wrong width or
+    /// with a value that is not finite is refused and leaves the recogniser as it was.
+    pub fn push(&mut self, sample: &[f64]) -> Result<Option<Commit>, GestureError> {
+        let m = self.model.borrow();
+        let branches = m.labelled()?;
+        let shared = branches[0];
+        let i = self.rows.len();
+        let width = shared.columns.len();
+        if sample.len() != width {
+            return Err(HsomError::DimensionMismatch {
+                demo: "the stream".into(),
+                row: i,
+                expected: width,
+                found: sample.len(),
+            }
+            .into());
+        }
+        if let Some(c) = sample.iter().position(|v| !v.is_finite()) {
+            return Err(HsomError::NonFinite {
+                demo: "the stream".into(),
+                row: i,
+                column: c,
+            }
+            .into());
+        }
+        let x = shared.normalise(sample);
+        if i == 0 {
+            let first = std::slice::from_ref(&x);
+            self.tracks = branches
+                .iter()
+                .map(|b| Track::new(reproduction_from(b, first)))
+                .collect();
+        }
+        self.rows.push(sample.to_vec());
+        for t in &mut self.tracks {
+            t.step(&x, i);
+        }
+        if self.commit.is_none() && m.scoring == Scoring::Reproduction {
+            self.commit = decide(&mut self.tracks, &self.ceilings, m, self.rows.len());
+        }
+        Ok(self.commit.clone())
+    }
+
+    /// The commitment, once made.
+    pub fn commit(&self) -> Option<&Commit> {
+        self.commit.as_ref()
+    }
+
+    /// Whether the recogniser has committed (to a label or to unknown).
+    pub fn decided(&self) -> bool {
+        self.commit.is_some()
+    }
+
+    /// Per label (in the model's order), the score of the prefix pushed so far (empty before
+    /// the first sample).
+    pub fn prefix_scores(&self) -> Vec<f64> {
+        self.tracks.iter().map(|t| t.score).collect()
+    }
+
+    /// The samples pushed so far.
+    pub fn samples(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// The whole sequence's answer: [`GestureModel::recognize`] on every sample pushed
+    /// (refused, as it refuses, with fewer than 2).
+    pub fn finish(&self) -> Result<Recognition, GestureError> {
+        self.model.borrow().recognize(&self.rows)
+    }
+}
