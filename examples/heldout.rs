@@ -1,9 +1,16 @@
 //! Held-out (leave-one-out) study of CoSCo-HSOM beside GMM/GMR and ProMP over gestures, seeds
 //! and configurations; Markdown tables on stdout, every number with `--json FILE`.
 //!
+//! With `--hold` or `--push`, the loop on the simulated arm instead: on every held-out fold
+//! each method's stepper drives the arm at 40 Hz from its encoders
+//! (`cosco_hsom::sim::in_loop::ArmLoop`), undisturbed and then held or pushed, scored as
+//! `cosco heldout --disturb` scores the kinematic loop (`cosco_hsom::eval::in_loop`).
+//!
 //! ```sh
 //! cargo run --release --example heldout -- --gestures reading-watch,wave --seeds 1-5 \
 //!     --config configs/nao-gestures.xml --config configs/table1.xml --in-sample --json h.json
+//! cargo run --release --example heldout -- --seeds 11-15 --hold 0.4:0.25 \
+//!     --push 0.4:LForeArm:0,0,-8:0.1
 //! ```
 
 mod common;
@@ -19,9 +26,12 @@ use anyhow::{Context, Result};
 use clap::Parser;
 
 use cosco_hsom::config::load_config;
+use cosco_hsom::eval::{in_loop, loop_markdown, GestureLoo, LoopDisturbance, Pool, LOOP_METHODS};
 use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
-use cosco_hsom::experiment::Transition;
-use cosco_hsom::sim::NaoArm;
+use cosco_hsom::experiment::{synthetic_demonstrations, Transition};
+use cosco_hsom::metrics::diagonal;
+use cosco_hsom::sim::in_loop::ArmLoop;
+use cosco_hsom::sim::{ControllerConfig, NaoArm};
 use study::{run_study, StudySettings};
 
 /// Leave-one-out evaluation of CoSCo-HSOM and GMM/GMR on synthetic demonstrations.
@@ -45,10 +55,79 @@ struct Args {
     /// Write every number to this JSON file.
     #[arg(long)]
     json: Option<PathBuf>,
+    /// The loop on the simulated arm, held: a hand holds it from phase P of the held-out
+    /// demonstration's duration for D of it (`P:D`, e.g. `0.4:0.25`); repeat for several.
+    #[arg(long, value_name = "P:D")]
+    hold: Vec<String>,
+    /// The loop on the simulated arm, pushed: a force (N, the torso's frame) on the link BODY
+    /// from phase P for D of the duration (`P:BODY:FX,FY,FZ:D`, e.g.
+    /// `0.4:LForeArm:0,0,-8:0.1`); repeat for several.
+    #[arg(long, value_name = "P:BODY:FX,FY,FZ:D")]
+    push: Vec<String>,
+}
+
+/// The loop on the simulated arm: every (gesture, seed) recorded, each method's stepper on
+/// every held-out fold, undisturbed and with each disturbance; a table per disturbance.
+fn arm_loop(a: &Args, disturbances: &[LoopDisturbance]) -> Result<String> {
+    let gestures = parse_gestures(&a.sets.gestures)?;
+    let seeds = parse_seeds(&a.sets.seeds)?;
+    let config = a.configs.first().cloned();
+    let config = config.unwrap_or_else(|| PathBuf::from("configs/nao-gestures.xml"));
+    let cfg = load_config(&config).with_context(|| format!("loading {}", config.display()))?;
+    let arm = NaoArm::load_default().context("loading the default arm model")?;
+    let mut sets = Vec::new();
+    for g in &gestures {
+        for &seed in &seeds {
+            let demos = synthetic_demonstrations(
+                &arm,
+                g,
+                a.sets.count,
+                seed,
+                &a.sets.demo_settings(),
+                |_| {},
+            )?;
+            sets.push(GestureLoo {
+                gesture: format!("{} seed {seed}", g.name),
+                diagonal: diagonal(&demos),
+                demonstrations: demos,
+                held_out: Vec::new(),
+                in_sample: Vec::new(),
+            });
+        }
+    }
+    let plant = ArmLoop {
+        arm: &arm,
+        config: ControllerConfig::default(),
+    };
+    let pool = Pool::new(2).map_err(anyhow::Error::msg)?;
+    let runs = in_loop(&cfg, &sets, &LOOP_METHODS, disturbances, &plant, &pool);
+    Ok(disturbances
+        .iter()
+        .zip(&runs)
+        .map(|(d, r)| {
+            loop_markdown(d, r).replacen(
+                "## In the loop:",
+                "## On the simulated arm in the loop:",
+                1,
+            )
+        })
+        .collect())
 }
 
 fn run(a: Args) -> Result<()> {
     let t = Instant::now();
+    let disturbances: Vec<LoopDisturbance> = (a.hold.iter().map(|h| format!("hold:{h}")))
+        .chain(a.push.iter().map(|p| format!("push:{p}")))
+        .map(|d| d.parse::<LoopDisturbance>().map_err(anyhow::Error::msg))
+        .collect::<Result<_>>()?;
+    if !disturbances.is_empty() {
+        a.sets.check_leave_one_out()?;
+        let text = arm_loop(&a, &disturbances)?;
+        let mut out = std::io::stdout().lock();
+        let _ = write!(out, "{text}");
+        let _ = writeln!(out, "in {:.1} s", t.elapsed().as_secs_f64());
+        return Ok(());
+    }
     let gestures = parse_gestures(&a.sets.gestures)?;
     let seeds = parse_seeds(&a.sets.seeds)?;
     let paths = if a.configs.is_empty() {

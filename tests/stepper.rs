@@ -25,7 +25,7 @@ use cosco_hsom::hsom::{Hsom, HsomStepper, NearestStepper};
 use cosco_hsom::metrics::column_swings;
 use cosco_hsom::promp::{PrompSettings, PrompStepper};
 use cosco_hsom::robot::Robot;
-use cosco_hsom::stepper::kinematic::{run, Disturbance, KinematicRun};
+use cosco_hsom::stepper::kinematic::{run, Disturbance, Trace};
 use cosco_hsom::stepper::{ByClock, Stepper, StepperError};
 use hsom_common::{dtw, recommended_for, table1_for};
 
@@ -141,7 +141,7 @@ fn push() -> Disturbance {
 }
 
 /// `s` run in the kinematic loop under `d`, the duration that of its undisturbed `plan`.
-fn loop_run(s: &mut dyn Stepper, plan: &[Vec<f64>], d: &Disturbance) -> KinematicRun {
+fn loop_run(s: &mut dyn Stepper, plan: &[Vec<f64>], d: &Disturbance) -> Trace {
     run(s, initial(), d, plan.len() - 1, 20 * plan.len()).unwrap()
 }
 
@@ -161,7 +161,7 @@ struct Judged {
     finished: bool,
 }
 
-fn judge(name: &str, r: &KinematicRun, plan: &[Vec<f64>], target: &[f64]) -> Judged {
+fn judge(name: &str, r: &Trace, plan: &[Vec<f64>], target: &[f64]) -> Judged {
     let j = Judged {
         dtw_ratio: cost(&r.path) / cost(plan),
         jump: r.release.map_or(0.0, |k| r.largest_step_from(k)) / step_scale(plan),

@@ -7,8 +7,10 @@ use std::process::ExitCode;
 
 use anyhow::Result;
 use clap::Parser;
+use cosco_hsom::experiment::arm_loop::LoopMode;
 use cosco_hsom::experiment::job;
 use cosco_hsom::robot::Robot;
+use cosco_hsom::sim::in_loop::ArmDisturbance;
 
 #[macro_use]
 mod cli;
@@ -70,6 +72,25 @@ struct Args {
     /// body models/nao_upper_body.xml).
     #[arg(long)]
     model: Option<PathBuf>,
+    /// How the gesture is reproduced: `open` (planned from the initial posture, then tracked)
+    /// or `closed` (also in the loop: each method's stepper drives the arm at 40 Hz from what
+    /// its encoders read, undisturbed and then disturbed; report section "In the loop",
+    /// in_loop.csv, in_loop.png, and the clip films the hierarchy's run).
+    #[arg(long = "loop", default_value = "open", value_name = "open|closed")]
+    loop_mode: LoopMode,
+    /// In the loop, a hand holds the arm where it is from T s for SECONDS (`T:SECONDS`, e.g.
+    /// `3.0:1.0`); repeatable. Needs `--loop closed`.
+    #[arg(long, value_name = "T:SECONDS", value_parser = ArmDisturbance::parse_hold)]
+    hold: Vec<ArmDisturbance>,
+    /// In the loop, a force (N, the torso's frame: x forward, y left, z up) on the link BODY
+    /// from T s for SECONDS (`T:BODY:FX,FY,FZ:SECONDS`, e.g. `3.0:LForeArm:0,0,-20:0.3`);
+    /// repeatable. Needs `--loop closed`.
+    #[arg(long, value_name = "T:BODY:FX,FY,FZ:SECONDS", value_parser = ArmDisturbance::parse_push, allow_hyphen_values = true)]
+    push: Vec<ArmDisturbance>,
+    /// In the loop, the goal moves to the posture V1,... (one value per joint) at T s
+    /// (`T:V1,...`); repeatable. Needs `--loop closed`.
+    #[arg(long, value_name = "T:V1,...", value_parser = ArmDisturbance::parse_goal, allow_hyphen_values = true)]
+    goal_at: Vec<ArmDisturbance>,
     /// Turn warnings into errors (posture values clamped into the joint ranges before
     /// execution): the outputs are written, the exit status is 1.
     #[arg(long)]
@@ -78,6 +99,15 @@ struct Args {
 
 fn run(a: Args) -> Result<()> {
     let strict = a.strict;
+    let mut disturbances = a.hold;
+    disturbances.extend(a.push);
+    disturbances.extend(a.goal_at);
+    if a.loop_mode == LoopMode::Open && !disturbances.is_empty() {
+        anyhow::bail!("--hold, --push and --goal-at disturb the loop: they need --loop closed");
+    }
+    if a.loop_mode == LoopMode::Closed && a.gesture.as_deref() == Some("all") {
+        anyhow::bail!("--loop closed runs one gesture in the loop; --gesture all is not one");
+    }
     let job = job::Job {
         robot: a.robot,
         gesture: a
@@ -95,6 +125,8 @@ fn run(a: Args) -> Result<()> {
         transition: cosco_hsom::experiment::Transition::parse(&a.transition)?,
         variants: !a.no_variants,
         heldout: !a.no_heldout,
+        in_loop: a.loop_mode,
+        disturbances,
     };
     if let Some(d) = &job.demos {
         let line = cosco_hsom::resample::report_line(std::slice::from_ref(d), job.resample)?;

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use crate::config::load_config_or_default;
 use crate::fsutil::check_output;
+use crate::stepper::KinematicLoop;
 
 use super::{
     failures, read_gestures_at, study, GestureLoo, Kinematic, LooError, LooSettings, Method,
@@ -96,7 +97,7 @@ pub fn heldout_with(
         let pool = super::Pool::new(job.settings.threads).map_err(LooError::Pool)?;
         let methods = job.settings.methods(true);
         let (mut markdown, mut json) = (String::new(), Vec::new());
-        let all = super::in_loop(&cfg, plain, &methods, &job.disturb, &pool);
+        let all = super::in_loop(&cfg, plain, &methods, &job.disturb, &KinematicLoop, &pool);
         for (d, runs) in job.disturb.iter().zip(all) {
             markdown.push_str(&super::loop_markdown(d, &runs));
             json.push(serde_json::json!({ "disturbance": d, "gestures": runs }));

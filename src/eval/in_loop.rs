@@ -21,8 +21,8 @@ use crate::hsom::{HsomStepper, NearestStepper};
 use crate::metrics::column_swings;
 use crate::promp::{PrompSettings, PrompStepper};
 use crate::stats::median;
-use crate::stepper::kinematic::{run, Disturbance, KinematicRun};
-use crate::stepper::Stepper;
+use crate::stepper::kinematic::{Disturbance, Trace};
+use crate::stepper::{Plant, Stepper};
 use crate::table::Table;
 
 use super::fold::{all_but, SWING_MIN_AMPLITUDE_RAD};
@@ -37,7 +37,7 @@ pub const JUMP_RATIO: f64 = 2.0;
 pub const FINAL_SHARE: f64 = 0.02;
 
 /// What the loop's folds are disturbed with.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "lowercase")]
 pub enum LoopDisturbance {
     /// `hold:P:D`: the arm held where it is from phase `at` for `share` of the duration.
@@ -56,6 +56,18 @@ pub enum LoopDisturbance {
         share: f64,
         /// How far, times the diagonal.
         k: f64,
+    },
+    /// `push:P:BODY:FX,FY,FZ:D`: from phase `at`, for `share` of the duration, the force
+    /// `force` (N, the torso's frame) on the link `body` (the simulated arm only).
+    Push {
+        /// When, 0 to 1.
+        at: f64,
+        /// How long, a share of the duration.
+        share: f64,
+        /// The link (the model's body name).
+        body: String,
+        /// The force, N.
+        force: [f64; 3],
     },
     /// `--goal-moves P:K`: at phase `at` the goal moved `k` times the diagonal from the
     /// undisturbed run's end (along the diagonal).
@@ -113,9 +125,32 @@ impl FromStr for LoopDisturbance {
                     k: v[2],
                 })
             }
+            Some(("push", rest)) => {
+                let usage = || {
+                    format!(
+                        "{what} {s:?}: needs push:P:BODY:FX,FY,FZ:D (a force in N on the link \
+                         BODY from phase P for D of the duration)"
+                    )
+                };
+                let [p, body, f, d] = rest.split(':').collect::<Vec<_>>()[..] else {
+                    return Err(usage());
+                };
+                let v = numbers(&format!("{p}:{d}"), 2, what)?;
+                let force: Vec<f64> = (f.split(','))
+                    .map(|x| x.trim().parse::<f64>().ok().filter(|x| x.is_finite()))
+                    .collect::<Option<_>>()
+                    .ok_or_else(usage)?;
+                Ok(LoopDisturbance::Push {
+                    at: phase(v[0], what)?,
+                    share: v[1],
+                    body: body.trim().to_string(),
+                    force: force.try_into().map_err(|_| usage())?,
+                })
+            }
             _ => Err(format!(
-                "{what} {s:?}: needs hold:P:D (held from phase P for D of the duration) or \
-                 move:P:D:K (moved K x the diagonal at phase P, held for D)"
+                "{what} {s:?}: needs hold:P:D (held from phase P for D of the duration), \
+                 move:P:D:K (moved K x the diagonal at phase P, held for D) or \
+                 push:P:BODY:FX,FY,FZ:D (the simulated arm's link BODY pushed)"
             )),
         }
     }
@@ -141,6 +176,15 @@ impl LoopDisturbance {
             LoopDisturbance::Move { at, share, k } => {
                 format!("moved {k} x the diagonal at phase {at}, held for {share}")
             }
+            LoopDisturbance::Push {
+                at,
+                share,
+                body,
+                force,
+            } => format!(
+                "{body} pushed with ({}, {}, {}) N from phase {at} for {share}",
+                force[0], force[1], force[2]
+            ),
             LoopDisturbance::Goal { at, k } => {
                 format!("goal moved {k} x the diagonal at phase {at}")
             }
@@ -153,6 +197,17 @@ impl LoopDisturbance {
         let along = |k: f64| extent.iter().map(|e| k * e).collect::<Vec<f64>>();
         match *self {
             LoopDisturbance::Hold { at, share } => Disturbance::Hold { at, share },
+            LoopDisturbance::Push {
+                at,
+                share,
+                ref body,
+                force,
+            } => Disturbance::Push {
+                at,
+                body: body.clone(),
+                force,
+                share,
+            },
             LoopDisturbance::Move { at, share, k } => Disturbance::Move {
                 at,
                 by: along(k),
@@ -193,6 +248,9 @@ pub struct LoopRun {
     pub swings: Option<[usize; 3]>,
     /// Times the stepper re-planned.
     pub replans: usize,
+    /// How far the disturbance took the arm from where the undisturbed run had it, the largest
+    /// over the disturbed ticks and the variables ([`Trace::displaced_from`]), data units.
+    pub displaced: f64,
 }
 
 /// The loop's runs of one gesture: per fold, one per method.
@@ -220,11 +278,14 @@ fn largest_step(rows: &[Vec<f64>]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// What a method learned on a fold, once for every run of the fold.
-enum Learned {
+/// What a method learned on a fold, once for every run of the fold: the one way the held-out
+/// studies and `simulate --loop closed` make a method's stepper.
+pub enum Learned {
     /// The hierarchy and the nearest sequence: the fold's model.
     Hsom,
+    /// ProMP's distribution of weights.
     Promp(crate::promp::Promp),
+    /// The DMP.
     Dmp(crate::dmp::Dmp),
     /// GMM/GMR and its lead-in speed.
     Gmr(crate::gmr::GmrModel, f64),
@@ -237,7 +298,7 @@ fn text(e: impl std::error::Error + 'static) -> String {
 
 impl Learned {
     /// `method` learned from `train`, for demonstrations at `period` seconds a sample.
-    fn of(method: Method, train: &[Demonstration], period: f64) -> Result<Learned, String> {
+    pub fn of(method: Method, train: &[Demonstration], period: f64) -> Result<Learned, String> {
         Ok(match method {
             Method::Hierarchy | Method::NearestSequence => Learned::Hsom,
             Method::ProMP => Learned::Promp(PrompSettings::default().fit(train).map_err(text)?),
@@ -255,7 +316,7 @@ impl Learned {
 
     /// The stepper of `method` from `initial` (the hierarchy and the nearest sequence of
     /// `model`, the latter following `train`).
-    fn stepper<'a>(
+    pub fn stepper<'a>(
         &'a self,
         method: Method,
         model: &'a crate::hsom::Hsom,
@@ -295,16 +356,18 @@ fn one(
     diag: f64,
     extent: &[f64],
     disturbances: &[LoopDisturbance],
+    plant: &dyn Plant,
 ) -> Result<Vec<LoopRun>, String> {
     let initial = target.rows.first().ok_or("no samples")?;
     let period = sample_period(target);
     let learned = Learned::of(method, train, period)?;
     let make = || learned.stepper(method, model, train, initial, period);
     let limit = 8 * target.rows.len().max(1) + 400;
-    let plain = run(make()?.as_mut(), initial, &Disturbance::None, 1, limit).map_err(text)?;
+    let plain =
+        (plant.run(make()?.as_mut(), initial, &Disturbance::None, 1, limit)).map_err(text)?;
     let duration = plain.path.len().saturating_sub(1).max(1);
     let end = plain.path.last().ok_or("no path")?;
-    let free = |k: &KinematicRun| -> Vec<Vec<f64>> {
+    let free = |k: &Trace| -> Vec<Vec<f64>> {
         (k.path.iter().zip(&k.held))
             .filter(|(_, h)| !**h)
             .map(|(p, _)| p.clone())
@@ -327,7 +390,9 @@ fn one(
     let disturbed = |disturbance: &LoopDisturbance| -> Result<LoopRun, String> {
         let d = disturbance.of(extent, end);
         let mut s = make()?;
-        let r = run(s.as_mut(), initial, &d, duration, limit).map_err(text)?;
+        let r = plant
+            .run(s.as_mut(), initial, &d, duration, limit)
+            .map_err(text)?;
         let should_end = match &d {
             Disturbance::Goal { goal, .. } => goal.clone(),
             _ => end.clone(),
@@ -354,6 +419,7 @@ fn one(
             finished: r.finished,
             swings,
             replans: s.replans(),
+            displaced: r.displaced_from(&plain.path),
         })
     };
     Ok(disturbances
@@ -376,6 +442,7 @@ impl LoopRun {
             finished: false,
             swings: None,
             replans: 0,
+            displaced: f64::NAN,
         }
     }
 }
@@ -390,6 +457,7 @@ pub fn in_loop(
     study: &[GestureLoo],
     methods: &[Method],
     disturbances: &[LoopDisturbance],
+    plant: &dyn Plant,
     pool: &Pool,
 ) -> Vec<Vec<GestureLoop>> {
     let methods: Vec<Method> = (methods.iter().copied())
@@ -418,7 +486,16 @@ pub fn in_loop(
             (methods.iter())
                 .map(|&m| {
                     let r = model.as_ref().map_err(Clone::clone).and_then(|model| {
-                        one(m, model, &train, target, s.diagonal, &extent, disturbances)
+                        one(
+                            m,
+                            model,
+                            &train,
+                            target,
+                            s.diagonal,
+                            &extent,
+                            disturbances,
+                            plant,
+                        )
                     });
                     r.unwrap_or_else(|e| {
                         let failed = LoopRun::failed(m, target, e);
@@ -458,6 +535,7 @@ pub fn loop_markdown(disturbance: &LoopDisturbance, gestures: &[GestureLoop]) ->
         "swings kept (at least as undisturbed)",
         "relative DTW disturbed (median)",
         "relative DTW undisturbed (median)",
+        "displaced from the undisturbed run (median, largest over the variables)",
     ]);
     let methods: Vec<Method> = gestures
         .iter()
@@ -496,6 +574,7 @@ pub fn loop_markdown(disturbance: &LoopDisturbance, gestures: &[GestureLoop]) ->
             },
             med(|r| r.relative_dtw),
             med(|r| r.undisturbed_dtw),
+            med(|r| r.displaced),
         ]);
     }
     // why a method did not run, each reason once with the folds it stopped

@@ -303,6 +303,7 @@ pub fn compare(job: &CompareJob, on_progress: Progress<'_>) -> Result<Report> {
         stages: clock.stages,
         files,
         not_run: Vec::new(),
+        in_loop: None,
     };
     report
         .write(out)

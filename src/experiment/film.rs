@@ -1,6 +1,7 @@
 //! Filming a recorded trajectory: each frame puts the simulated arm (or upper body) in a
 //! recorded posture and renders it off-screen from the model's camera.
 
+use crate::mujoco::Data;
 use crate::render::{Clip, RenderOptions, Renderer};
 use crate::sim::{NaoArm, Recording};
 use image::RgbImage;
@@ -33,6 +34,20 @@ pub fn film<const N: usize>(
     recording: &Recording,
     options: &RenderOptions,
     stride: usize,
+    on_frame: impl FnMut(usize, usize),
+) -> Result<Clip, ExperimentError> {
+    film_marked(arm, recording, options, stride, |_, _, _| {}, on_frame)
+}
+
+/// [`film`], each frame then marked by `mark(sample, data, frame)`: the sample it is taken at,
+/// MuJoCo's state of the posture it shows (to place a mark: [`crate::render::project`]) and
+/// the frame to draw on.
+pub fn film_marked<const N: usize>(
+    arm: &NaoArm<N>,
+    recording: &Recording,
+    options: &RenderOptions,
+    stride: usize,
+    mut mark: impl FnMut(usize, &Data<'_>, &mut RgbImage),
     mut on_frame: impl FnMut(usize, usize),
 ) -> Result<Clip, ExperimentError> {
     if stride == 0 {
@@ -59,7 +74,9 @@ pub fn film<const N: usize>(
                 renderer.render(sim.data())?
             }
         };
-        clip.push(recording.time[i], frame.clone())?;
+        let mut marked = frame.clone();
+        mark(i, sim.data(), &mut marked);
+        clip.push(recording.time[i], marked)?;
         shown = Some((source, frame));
         on_frame(n + 1, sources.len());
     }

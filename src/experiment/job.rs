@@ -16,6 +16,7 @@ use crate::gesture::Gesture;
 use crate::plot::BLACK;
 use crate::sim::{check_reachable_of, demo_wrist_paths, NaoArm, Recording, Touch, Transition};
 
+use super::arm_loop::{self, LoopMode};
 use super::baseline::GMR_NAME;
 use super::compare;
 use super::demonstrate::{as_demonstrations, record_demonstrations, write_demos};
@@ -30,6 +31,7 @@ use super::report::{DemoInfo, Report};
 use super::variants::{reference_variants, run_variant, variants};
 use super::{film, leave_one_out, DemoSettings, ExperimentError, Progress};
 use crate::robot::Robot;
+use crate::sim::in_loop::ArmDisturbance;
 
 /// The result of a job's step.
 type Result<T> = std::result::Result<T, ExperimentError>;
@@ -180,6 +182,11 @@ pub struct Job {
     pub variants: bool,
     /// Also run the held-out (leave-one-out) evaluation of both methods.
     pub heldout: bool,
+    /// Also reproduce in the loop (`--loop closed`): every method's stepper on the arm from
+    /// its encoders ([`super::arm_loop`]); the clip then films the hierarchy's run.
+    pub in_loop: LoopMode,
+    /// What disturbs the arm in the loop (`--hold`, `--push`, `--goal-at`).
+    pub disturbances: Vec<ArmDisturbance>,
 }
 
 /// What the main job produced: the report (also written as `report.md` and `report.json`) and
@@ -399,14 +406,42 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
         });
     }
 
-    // 6. Clip.
+    // 5e. In the loop: every method's stepper on the arm, undisturbed and disturbed.
+    let in_loop = match job.in_loop {
+        LoopMode::Open => None,
+        LoopMode::Closed => {
+            let model = hsom_model(&run)?.0;
+            let (section, h) =
+                arm_loop::closed_loop(&arm, model, &demos, &job.disturbances, out, &mut files)?;
+            arm_loop::loop_png(&out.join("in_loop.png"), &panel_joints(robot), &demos, &h)?;
+            files.push("in_loop.png".into());
+            clock.lap("in the loop (every method's stepper on the arm, undisturbed and disturbed)");
+            Some((section, h))
+        }
+    };
+
+    // 6. Clip: the reproduction (in the loop: the hierarchy's disturbed run, marked).
     if job.render {
         let opts = super::film::clip_options();
         let stride = 2;
-        let frames = executed.len().div_ceil(stride);
-        let clip = film(&arm, executed, &opts, stride, |n, _| {
-            on_progress("rendering", n, frames)
-        })?;
+        let filmed = in_loop.as_ref().map_or(executed, |(_, h)| &h.run.recording);
+        let frames = filmed.len().div_ceil(stride);
+        let progress = |n, _| on_progress("rendering", n, frames);
+        let clip = match &in_loop {
+            None => film(&arm, executed, &opts, stride, progress)?,
+            Some((_, h)) => {
+                let size = (opts.width as u32, opts.height as u32);
+                let camera = opts
+                    .camera
+                    .as_deref()
+                    .and_then(|c| arm.model().camera_id(c));
+                let mark =
+                    |i: usize, data: &crate::mujoco::Data<'_>, frame: &mut image::RgbImage| {
+                        arm_loop::mark_frame(h, i, data, camera, size, frame)
+                    };
+                super::film::film_marked(&arm, filmed, &opts, stride, mark, progress)?
+            }
+        };
         clip.write_gif(&out.join("clip.gif"))?;
         clip.write_contact_sheet(&out.join("contact_sheet.png"), 8, 4, true)?;
         files.extend(["clip.gif".into(), "contact_sheet.png".into()]);
@@ -438,6 +473,7 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
         stages: clock.stages,
         files,
         not_run: not_run(robot),
+        in_loop: in_loop.map(|(section, _)| section),
     };
     report
         .write(out)

@@ -6,6 +6,7 @@
 //! in [`crate::eval`]; the arm as the evaluator's executor here ([`executor`]).
 
 pub mod all_gestures;
+pub mod arm_loop;
 pub mod baseline;
 pub mod compare;
 pub mod demonstrate;

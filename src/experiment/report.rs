@@ -176,6 +176,9 @@ pub struct Report {
     /// What this job leaves out of the main job on this robot, and why, one line each.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub not_run: Vec<String>,
+    /// The reproduction in the loop (`simulate --loop closed`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub in_loop: Option<super::arm_loop::LoopSection>,
 }
 
 fn stat(s: &Stat, digits: usize) -> String {
@@ -600,6 +603,10 @@ impl Report {
             for n in &self.not_run {
                 let _ = writeln!(md, "- {n}");
             }
+        }
+        if let Some(l) = &self.in_loop {
+            md.push('\n');
+            md.push_str(&super::arm_loop::loop_markdown(l));
         }
         match &self.heldout {
             None if self.heldout_note.is_none() => {}

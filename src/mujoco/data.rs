@@ -188,6 +188,13 @@ impl<'m> Data<'m> {
         let (p, n) = (self.raw().ctrl, self.model.nu());
         self.slice_mut(p, n)
     }
+    /// External forces and torques applied to the bodies (`6 nbody`: per body a force, then a
+    /// torque, world frame, at the body's centre of mass), writable: they act at every step
+    /// until changed.
+    pub fn xfrc_applied_mut(&mut self) -> &mut [f64] {
+        let (p, n) = (self.raw().xfrc_applied, 6 * self.model.nbody());
+        self.slice_mut(p, n)
+    }
     /// Actuator forces of the last step (`nu`).
     pub fn actuator_force(&self) -> &[f64] {
         self.slice(self.raw().actuator_force, self.model.nu())

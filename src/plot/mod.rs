@@ -13,7 +13,7 @@ mod figure;
 mod legend;
 
 pub use boxplot::{boxplots_png, BoxPanel};
-pub use caption::caption;
+pub use caption::{caption, mark};
 pub use confusion::{confusion_png, ConfusionPanel};
 pub use figure::{panels_png, Band, Ellipse, Panel, PlotError, Scatter, Series, Tube};
 

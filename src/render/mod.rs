@@ -2,7 +2,8 @@
 //! [`image::RgbImage`], PNG files, animated GIF clips and PNG contact sheets.
 //!
 //! - [`Renderer`]: an owned OSMesa context with MuJoCo's scene and GPU context;
-//! - [`Clip`]: frames collected during a simulation, written as a GIF and a contact sheet.
+//! - [`Clip`]: frames collected during a simulation, written as a GIF and a contact sheet;
+//! - [`project`]: where a point of the world appears in a camera's frame.
 //!
 //! ```
 //! use cosco_hsom::mujoco::{Data, Model};
@@ -25,7 +26,9 @@ mod clip;
 mod error;
 mod font;
 mod offscreen;
+mod project;
 
 pub use clip::{contact_sheet, Clip};
 pub use error::{RenderError, Result};
 pub use offscreen::{save_png, RenderOptions, Renderer};
+pub use project::project;

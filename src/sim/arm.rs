@@ -398,6 +398,15 @@ impl<'a, const N: usize> ArmSim<'a, N> {
         }
     }
 
+    /// A force from outside on the body `body` (MuJoCo's body id), newtons, world frame, at the
+    /// body's centre of mass, acting from the next physics step until changed (`[0; 3]`: none).
+    pub(crate) fn apply_force(&mut self, body: usize, force: [f64; 3]) {
+        let f = self.data.xfrc_applied_mut();
+        if let Some(slot) = f.get_mut(6 * body..6 * body + 3) {
+            slot.copy_from_slice(&force);
+        }
+    }
+
     fn teleport(&mut self, p: [f64; N]) -> Result<()> {
         self.pin(&p);
         self.targets = p;

@@ -8,6 +8,8 @@
 //! - [`controller`]: [`Controller`] for key-pose sequences and dense target trajectories.
 //! - [`recording`]: [`Recording`], what the controller records.
 //! - [`execute`]: postures executed on the arm ([`execute_postures`]), their [`Transition`].
+//! - [`in_loop`]: a stepper driving the arm at 40 Hz from its encoders, held, pushed or
+//!   given a new goal ([`in_loop::run_in_loop`], [`in_loop::ArmLoop`]).
 //! - [`score`]: scoring on the arm with wrist paths ([`evaluate`]).
 //! - [`error`]: [`SimError`], the room's error type.
 
@@ -15,6 +17,7 @@ pub mod arm;
 pub mod controller;
 pub mod error;
 pub mod execute;
+pub mod in_loop;
 pub mod interp;
 pub mod recording;
 pub mod score;

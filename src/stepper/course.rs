@@ -115,6 +115,10 @@ impl Course {
     pub fn columns(&self) -> &[String] {
         &self.columns
     }
+    /// The plan first made, from the initial posture.
+    pub fn first_plan(&self) -> &[Vec<f64>] {
+        &self.reference
+    }
     /// The initial posture.
     pub fn initial(&self) -> &[f64] {
         &self.reference[0]

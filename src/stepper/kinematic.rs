@@ -21,6 +21,39 @@ use crate::dtw::euclidean;
 
 use super::{Stepper, StepperError};
 
+/// What a stepper runs on: an arm that reads the posture it is in and goes (or is kept from
+/// going) where it is commanded. [`KinematicLoop`] is the loop of [`run`]; the simulated arm is
+/// [`crate::sim::in_loop::ArmLoop`].
+pub trait Plant: Sync {
+    /// `stepper` (made from `initial`) run until it is done and the arm is free, or for
+    /// `limit` ticks, under `disturbance`, whose phases are shares of `duration` ticks.
+    fn run(
+        &self,
+        stepper: &mut dyn Stepper,
+        initial: &[f64],
+        disturbance: &Disturbance,
+        duration: usize,
+        limit: usize,
+    ) -> Result<Trace, StepperError>;
+}
+
+/// The kinematic loop ([`run`]) as a [`Plant`].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct KinematicLoop;
+
+impl Plant for KinematicLoop {
+    fn run(
+        &self,
+        stepper: &mut dyn Stepper,
+        initial: &[f64],
+        disturbance: &Disturbance,
+        duration: usize,
+        limit: usize,
+    ) -> Result<Trace, StepperError> {
+        run(stepper, initial, disturbance, duration, limit)
+    }
+}
+
 /// What happens to the arm, at a phase of the reproduction's duration (the `duration` given
 /// to [`run`]).
 #[derive(Debug, Clone, PartialEq)]
@@ -45,6 +78,19 @@ pub enum Disturbance {
         /// For how long it is held there, a share of the duration (>= 0).
         share: f64,
     },
+    /// From phase `at`, for `share` of the duration, a force `force` (N, the robot's torso
+    /// frame) pushes the link `body`: only a simulated arm can be pushed
+    /// ([`crate::sim::in_loop::ArmLoop`]); the kinematic loop refuses it.
+    Push {
+        /// When, 0 to 1.
+        at: f64,
+        /// The link (the model's body name).
+        body: String,
+        /// The force, N.
+        force: [f64; 3],
+        /// For how long, a share of the duration (>= 0).
+        share: f64,
+    },
     /// At phase `at` the stepper's goal is moved to `goal` ([`Stepper::set_goal`]); the arm
     /// goes wherever it is commanded.
     Goal {
@@ -55,12 +101,13 @@ pub enum Disturbance {
     },
 }
 
-/// A stepper's run in the kinematic loop.
+/// A stepper's run in a loop ([`run`], or any [`Plant`]).
 #[derive(Debug, Clone, PartialEq)]
-pub struct KinematicRun {
-    /// The arm's posture at each tick, the first the initial posture.
+pub struct Trace {
+    /// The arm's posture at each tick (what the stepper read), the first the initial posture.
     pub path: Vec<Vec<f64>>,
-    /// What the stepper commanded at each tick (`commanded[k]` given `path[k]`).
+    /// What the stepper commanded at each tick (`commanded[k]` given `path[k]`; on the
+    /// simulated arm the last row repeats the last command).
     pub commanded: Vec<Vec<f64>>,
     /// Per row of `path`: whether the disturbance had the arm (held or moved) at that tick.
     pub held: Vec<bool>,
@@ -70,12 +117,22 @@ pub struct KinematicRun {
     pub finished: bool,
 }
 
-impl KinematicRun {
+impl Trace {
     /// The largest step of the path (Euclidean) into row `from` or any row after it: with
     /// `from` the release, the step the arm makes when let go and every one after.
     pub fn largest_step_from(&self, from: usize) -> f64 {
         (from.max(1)..self.path.len())
             .map(|k| euclidean(&self.path[k], &self.path[k - 1]))
+            .fold(0.0, f64::max)
+    }
+
+    /// How far the disturbance took the arm from where `plain` (the same stepper's undisturbed
+    /// run) had it at the same ticks: the largest distance over the disturbed ticks and the
+    /// variables (0 without a hold, move or push).
+    pub fn displaced_from(&self, plain: &[Vec<f64>]) -> f64 {
+        (self.path.iter().zip(plain).zip(&self.held))
+            .filter(|(_, h)| **h)
+            .flat_map(|((a, b), _)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
             .fold(0.0, f64::max)
     }
 }
@@ -117,7 +174,7 @@ pub fn run(
     disturbance: &Disturbance,
     duration: usize,
     limit: usize,
-) -> Result<KinematicRun, StepperError> {
+) -> Result<Trace, StepperError> {
     if duration == 0 {
         return Err(StepperError::Invalid {
             what: "the duration",
@@ -129,6 +186,12 @@ pub fn run(
     // the ticks the arm is held: [from, to)
     let (from, to, by) = match disturbance {
         Disturbance::None | Disturbance::Goal { .. } => (usize::MAX, usize::MAX, None),
+        Disturbance::Push { .. } => {
+            return Err(StepperError::Unsupported {
+                method: "the kinematic loop",
+                reason: "cannot push a link: a push needs the simulated arm".into(),
+            })
+        }
         Disturbance::Hold { at, share } => {
             check_phase(*at)?;
             check_share(*share)?;
@@ -155,7 +218,7 @@ pub fn run(
         }
         _ => None,
     };
-    let mut out = KinematicRun {
+    let mut out = Trace {
         path: vec![initial.to_vec()],
         commanded: Vec::new(),
         held: vec![false],

@@ -28,6 +28,7 @@ pub mod kinematic;
 mod tests;
 
 pub use course::{Course, DEFAULT_TOLERANCE};
+pub use kinematic::{KinematicLoop, Plant, Trace};
 
 use crate::condition::ConditionError;
 
