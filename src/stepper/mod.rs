@@ -4,6 +4,7 @@
 //!
 //! This room holds the trait and its error, the plan a stepper follows tick by tick
 //! ([`Course`]: where the arm should be, the encoders' reading, re-joining and re-bending), the
+//! closed-loop stepper that follows it ([`Follower`], the method saying how it re-plans), the
 //! open-loop stepper of a fixed plan ([`ByClock`]) and the kinematic loop that runs any stepper
 //! against a disturbance ([`kinematic`]). Each method's stepper lives beside its method:
 //! [`crate::hsom::HsomStepper`] (both algorithms), [`crate::hsom::NearestStepper`],
@@ -23,11 +24,13 @@
 //! ```
 
 mod course;
+mod follower;
 pub mod kinematic;
 #[cfg(test)]
 mod tests;
 
 pub use course::{Course, DEFAULT_TOLERANCE};
+pub use follower::{Follower, Replan};
 
 use crate::condition::ConditionError;
 
