@@ -32,7 +32,7 @@ mod tests;
 pub use course::{Course, DEFAULT_TOLERANCE};
 pub use follower::{Follower, Replan};
 
-use crate::condition::ConditionError;
+use crate::condition::{self, ConditionError};
 
 /// A reproduction in the loop: each tick, given the posture the encoders read, the next
 /// posture to command. The first call reads the arm at the initial posture the stepper was
@@ -78,18 +78,9 @@ pub enum StepperError {
         /// The variables' names, comma-separated.
         columns: String,
     },
-    /// A value that is not a finite number.
-    #[error("{what}: {column} is {value}; need a finite number")]
-    NonFinite {
-        /// The posture.
-        what: String,
-        /// The variable.
-        column: String,
-        /// The value.
-        value: f64,
-    },
-    /// A goal or via-point refused (width, finite values, phase, the variables' ranges) or
-    /// one the reproduction could not be bent onto.
+    /// A goal or via-point refused (width, finite values, phase, the variables' ranges), one
+    /// the reproduction could not be bent onto, or a posture's value that is not a finite
+    /// number.
     #[error(transparent)]
     Condition(#[from] ConditionError),
     /// What the method cannot do (GMM/GMR takes no goal; the DMP no via-point).
@@ -133,24 +124,19 @@ impl StepperError {
     }
 }
 
-/// `posture` (named `what` in errors) is one finite value per variable of `columns`.
+/// `posture` (named `what` in errors) is one finite value per variable of `columns`
+/// ([`crate::condition::check_posture`]; a wrong width is the stepper's
+/// [`StepperError::Width`], a value not finite the condition's error).
 pub fn check_posture(what: &str, posture: &[f64], columns: &[String]) -> Result<(), StepperError> {
-    if posture.len() != columns.len() {
-        return Err(StepperError::Width {
-            what: what.to_string(),
-            found: posture.len(),
+    condition::check_posture(what, posture, columns, None).map_err(|e| match e {
+        ConditionError::Width { found, .. } => StepperError::Width {
+            what: what.into(),
+            found,
             expected: columns.len(),
             columns: columns.join(", "),
-        });
-    }
-    match posture.iter().position(|v| !v.is_finite()) {
-        Some(j) => Err(StepperError::NonFinite {
-            what: what.to_string(),
-            column: columns[j].clone(),
-            value: posture[j],
-        }),
-        None => Ok(()),
-    }
+        },
+        e => StepperError::Condition(e),
+    })
 }
 
 /// `x0`, `x1`, ...: the names of `n` variables that have none.
