@@ -8,6 +8,11 @@ CARGO ?= cargo
 PYTHON ?= python3
 # The Python package's virtual environment (git-ignored, under target/).
 PY_VENV := target/py-venv
+# The binaries (cosco, simulate) the Python tests and the docs' commands run, in target/debug:
+# built as `cargo test` builds them for the command-line tests (the crate with the test build's
+# features), so that after `cargo test --all-targets` nothing is compiled again (`cargo build
+# --bins` would compile the crate once more, with a plain build's features)
+TEST_BINS := $(CARGO) test --no-run --test cli_cosco
 
 .PHONY: deps demo test structure test-python doc-commands results bench bench-som bindings fmt clippy clean
 
@@ -51,8 +56,8 @@ structure:
 
 ## test-python: build the Python package (python/, without the simulator; in the dev profile,
 ## as the tests above) into a local virtual environment and run its tests against the `cosco`
-## binary (the export round trips are read back by mcap-ros2-support); skipped when python3
-## is absent
+## binary the tests above use (TEST_BINS; the export round trips are read back by
+## mcap-ros2-support); skipped when python3 is absent
 test-python:
 	@if ! command -v $(PYTHON) >/dev/null 2>&1; then echo "$(PYTHON) not found: Python tests skipped"; exit 0; fi; \
 	set -e; \
@@ -60,7 +65,7 @@ test-python:
 	  $(PYTHON) -m venv $(PY_VENV) || { $(SUDO) apt-get install -y --no-install-recommends python3-venv && $(PYTHON) -m venv $(PY_VENV); }; \
 	fi; \
 	$(PY_VENV)/bin/pip install -q --disable-pip-version-check "maturin>=1.5,<2" pytest numpy "mcap-ros2-support>=0.5,<1" "movement_primitives==0.9.1" scipy pytransform3d; \
-	$(CARGO) build --bins; \
+	$(TEST_BINS); \
 	PATH="$(CURDIR)/$(PY_VENV)/bin:$$PATH" CARGO_TARGET_DIR=$(CURDIR)/target MATURIN_PEP517_ARGS="--profile dev" $(PY_VENV)/bin/pip install -q --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python; \
 	COSCO_BIN=$(CURDIR)/target/debug/cosco $(PY_VENV)/bin/python -m pytest -q python/tests
 
@@ -68,7 +73,7 @@ test-python:
 ## in a clean clone (blocks fenced ```sh long are skipped; Python blocks need test-python)
 doc-commands:
 	@command -v $(PYTHON) >/dev/null 2>&1 || { $(SUDO) apt-get update && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y --no-install-recommends python3; }
-	$(CARGO) build --bins
+	$(TEST_BINS)
 	$(PYTHON) scripts/doc_commands.py
 
 ## results: rerun every study and rewrite docs/RESULTS.md and README.md's headline table

@@ -23,11 +23,12 @@ mod hsom_common;
 
 use std::process::ExitCode;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::Parser;
 
 use cosco_hsom::config::{HsomConfig, HsomParams};
 use cosco_hsom::demos::Demonstration;
+use cosco_hsom::eval::{loo_map, Pool};
 use cosco_hsom::experiment::demonstrate::parse_seeds;
 use cosco_hsom::stats::median;
 use cosco_hsom::table::Table;
@@ -45,47 +46,57 @@ struct Args {
     training_steps: Option<usize>,
 }
 
+/// `work(train, held)` on every leave-one-out fold of `demos` ([`loo_map`], one thread), in
+/// order; the first error.
+fn folds<T: Send>(
+    demos: &[Demonstration],
+    work: impl Fn(&[Demonstration], &Demonstration) -> Result<T> + Sync,
+) -> Result<Vec<T>> {
+    let pool = Pool::new(1).map_err(anyhow::Error::msg)?;
+    let folds = loo_map(&[demos], false, &pool, None, |_, split| {
+        let (train, held) = split.of(demos);
+        work(&train, &held[0])
+    });
+    folds
+        .into_iter()
+        .flat_map(|(held_out, _)| held_out)
+        .collect()
+}
+
 /// Held-out and in-sample relative DTW of one configuration, and held out the same models'
 /// nearest-sequence baseline; means over the folds.
 fn loo(cfg: &HsomConfig, demos: &[Demonstration], diag: f64) -> Result<(f64, f64, f64)> {
-    let (mut held, mut ins, mut seq) = (0.0, 0.0, 0.0);
-    for i in 0..demos.len() {
-        let train: Vec<Demonstration> = others(demos, i).cloned().collect();
-        let model = cfg.fit(&train)?;
-        let rep = model.reproduce(&demos[i].rows[0])?;
-        held += dtw(&rep.postures, &demos[i].rows) / diag;
-        let follow = model.follow_nearest(&train, &demos[i].rows[0])?;
-        seq += dtw(&follow.postures, &demos[i].rows) / diag;
-        ins += train
+    let scores = folds(demos, |train, held| {
+        let model = cfg.fit(train)?;
+        let rep = model.reproduce(&held.rows[0])?;
+        let follow = model.follow_nearest(train, &held.rows[0])?;
+        let ins = train
             .iter()
             .map(|d| dtw(&rep.postures, &d.rows))
             .sum::<f64>()
             / train.len() as f64
             / diag;
+        let held_out = dtw(&rep.postures, &held.rows) / diag;
+        Ok((held_out, ins, dtw(&follow.postures, &held.rows) / diag))
+    })?;
+    let (mut held, mut ins, mut seq) = (0.0, 0.0, 0.0);
+    for (h, i, s) in scores {
+        (held, ins, seq) = (held + h, ins + i, seq + s);
     }
     let n = demos.len() as f64;
     Ok((held / n, ins / n, seq / n))
 }
 
-fn others(demos: &[Demonstration], i: usize) -> impl Iterator<Item = &Demonstration> {
-    demos
-        .iter()
-        .enumerate()
-        .filter(move |&(j, _)| j != i)
-        .map(|(_, d)| d)
-}
-
 /// Held-out score of replaying the training demonstration whose first posture is nearest.
-fn replay(demos: &[Demonstration], diag: f64) -> f64 {
-    let mut sum = 0.0;
-    for (i, d) in demos.iter().enumerate() {
-        let start = |x: &Demonstration| cosco_hsom::dtw::euclidean(&x.rows[0], &d.rows[0]);
-        let near = others(demos, i)
+fn replay(demos: &[Demonstration], diag: f64) -> Result<f64> {
+    let scores = folds(demos, |train, held| {
+        let start = |x: &Demonstration| cosco_hsom::dtw::euclidean(&x.rows[0], &held.rows[0]);
+        let near = (train.iter())
             .min_by(|a, b| start(a).total_cmp(&start(b)))
-            .expect("at least two demonstrations");
-        sum += dtw(&near.rows, &d.rows) / diag;
-    }
-    sum / demos.len() as f64
+            .context("at least two demonstrations")?;
+        Ok(dtw(&near.rows, &held.rows) / diag)
+    })?;
+    Ok(scores.into_iter().fold(0.0, |sum, s| sum + s) / demos.len() as f64)
 }
 
 /// Mean relative DTW of each demonstration re-encoded by a model trained on all of them.
@@ -128,7 +139,7 @@ fn run(a: Args) -> Result<()> {
     for (name, demos) in &families {
         let dims = demos[0].rows[0].len();
         let diag = diagonal(demos);
-        let rp = replay(demos, diag);
+        let rp = replay(demos, diag)?;
         let mut rows: Vec<[f64; 6]> = Vec::new();
         for &seed in &seeds {
             let mut rec = recommended_for(dims).into_params();

@@ -12,7 +12,6 @@ mod common;
 mod multi;
 
 use std::io::Write as _;
-use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -27,24 +26,8 @@ use multi::{run_seed, to_markdown, MultiSettings};
 #[derive(Parser, Debug)]
 #[command(name = "multi_heldout")]
 struct Args {
-    /// Gestures, comma-separated.
-    #[arg(long, default_value = "reading-watch,wave,reach-point,salute")]
-    gestures: String,
-    /// Seeds of the demonstrations: numbers and ranges, e.g. `1-5`.
-    #[arg(long, default_value = "1-5")]
-    seeds: String,
-    /// Demonstrations per gesture to learn from.
-    #[arg(long, default_value_t = 3)]
-    train: usize,
-    /// Held-out demonstrations per gesture.
-    #[arg(long, default_value_t = 2)]
-    test: usize,
-    /// Encoder noise of the recordings, rad.
-    #[arg(long, default_value_t = 0.001)]
-    noise: f64,
-    /// CoSCo-HSOM configuration (XML).
-    #[arg(long, default_value = "configs/nao-gestures.xml")]
-    config: PathBuf,
+    #[command(flatten)]
+    sets: common::HeldOutSets,
     /// Skip reproducing and executing (recognition only).
     #[arg(long)]
     no_fidelity: bool,
@@ -54,20 +37,18 @@ struct Args {
     /// Skip the negative controls.
     #[arg(long)]
     no_controls: bool,
-    /// Write every number to this JSON file.
-    #[arg(long)]
-    json: Option<PathBuf>,
 }
 
 fn run(a: Args) -> Result<()> {
     let t = Instant::now();
-    let gestures = parse_gestures(&a.gestures)?;
-    let seeds = parse_seeds(&a.seeds)?;
-    let (config, arm) = common::config_and_arm(&a.config)?;
+    let sets = &a.sets;
+    let gestures = parse_gestures(&sets.gestures)?;
+    let seeds = parse_seeds(&sets.seeds)?;
+    let (config, arm) = common::config_and_arm(&sets.config)?;
     let settings = MultiSettings {
-        train: a.train,
-        test: a.test,
-        noise: a.noise,
+        train: sets.train,
+        test: sets.test,
+        noise: sets.noise,
         transition: Transition::parse("linear")?,
         fidelity: !a.no_fidelity,
         unknown: !a.no_unknown,
@@ -87,10 +68,10 @@ fn run(a: Args) -> Result<()> {
         out,
         "{} seeds, noise {} rad, {:.1} s",
         seeds.len(),
-        a.noise,
+        sets.noise,
         t.elapsed().as_secs_f64()
     );
-    if let Some(p) = &a.json {
+    if let Some(p) = &sets.json {
         let bytes = serde_json::to_vec_pretty(&results)?;
         cosco_hsom::fsutil::write_atomic(p, &bytes)
             .with_context(|| format!("writing {}", p.display()))?;

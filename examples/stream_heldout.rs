@@ -12,7 +12,6 @@
 
 mod common;
 
-use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::{Context, Result};
@@ -31,27 +30,8 @@ use cosco_hsom::hsom::GestureModel;
 #[derive(Parser, Debug)]
 #[command(name = "stream_heldout")]
 struct Args {
-    /// Gestures, comma-separated.
-    #[arg(long, default_value = "reading-watch,wave,reach-point,salute")]
-    gestures: String,
-    /// Seeds of the demonstrations: numbers and ranges, e.g. `41-45`.
-    #[arg(long, default_value = "41-45")]
-    seeds: String,
-    /// Demonstrations per gesture to learn from.
-    #[arg(long, default_value_t = 3)]
-    train: usize,
-    /// Held-out demonstrations per gesture.
-    #[arg(long, default_value_t = 4)]
-    test: usize,
-    /// Encoder noise of the recordings, rad.
-    #[arg(long, default_value_t = 0.001)]
-    noise: f64,
-    /// CoSCo-HSOM configuration (XML).
-    #[arg(long, default_value = "configs/nao-gestures.xml")]
-    config: PathBuf,
-    /// Write every stream to this JSON file.
-    #[arg(long)]
-    json: Option<PathBuf>,
+    #[command(flatten)]
+    sets: common::HeldOutSets,
 }
 
 /// Stream every demonstration of `tests` (`(expected, demonstration)`) into `model`.
@@ -68,6 +48,7 @@ fn streams(
 }
 
 fn run(a: Args) -> Result<()> {
+    let a = a.sets;
     let gestures = parse_gestures(&a.gestures)?;
     let seeds = parse_seeds(&a.seeds)?;
     let (config, arm) = common::config_and_arm(&a.config)?;
@@ -133,5 +114,6 @@ fn run(a: Args) -> Result<()> {
 }
 
 fn main() -> ExitCode {
-    common::exit(run(Args::parse()))
+    let a = common::parse_with_defaults::<Args>(&[("seeds", "41-45"), ("test", "4")]);
+    common::exit(run(a))
 }

@@ -152,6 +152,45 @@ impl std::str::FromStr for ViaPoint {
     }
 }
 
+/// `posture` (named `what` in errors) is one finite value per variable of `columns`, each
+/// within its range when `ranges` are given.
+pub fn check_posture(
+    what: &str,
+    posture: &[f64],
+    columns: &[String],
+    ranges: Option<&[(f64, f64)]>,
+) -> Result<(), ConditionError> {
+    if posture.len() != columns.len() {
+        return Err(ConditionError::Width {
+            what: what.to_string(),
+            found: posture.len(),
+            expected: columns.len(),
+            columns: columns.join(", "),
+        });
+    }
+    for (j, &value) in posture.iter().enumerate() {
+        if !value.is_finite() {
+            return Err(ConditionError::NonFinite {
+                what: what.to_string(),
+                column: columns[j].clone(),
+                value,
+            });
+        }
+        if let Some(&(lower, upper)) = ranges.and_then(|r| r.get(j)) {
+            if !(lower..=upper).contains(&value) {
+                return Err(ConditionError::Range {
+                    what: what.to_string(),
+                    column: columns[j].clone(),
+                    value,
+                    lower,
+                    upper,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
 impl Conditions {
     /// No goal and no via-point.
     pub fn is_empty(&self) -> bool {
@@ -183,34 +222,7 @@ impl Conditions {
             ));
         }
         for (_, what, p) in &named[1..] {
-            if p.len() != columns.len() {
-                return Err(ConditionError::Width {
-                    what: what.clone(),
-                    found: p.len(),
-                    expected: columns.len(),
-                    columns: columns.join(", "),
-                });
-            }
-            for (j, &value) in p.iter().enumerate() {
-                if !value.is_finite() {
-                    return Err(ConditionError::NonFinite {
-                        what: what.clone(),
-                        column: columns[j].clone(),
-                        value,
-                    });
-                }
-                if let Some(&(lower, upper)) = ranges.and_then(|r| r.get(j)) {
-                    if !(lower..=upper).contains(&value) {
-                        return Err(ConditionError::Range {
-                            what: what.clone(),
-                            column: columns[j].clone(),
-                            value,
-                            lower,
-                            upper,
-                        });
-                    }
-                }
-            }
+            check_posture(what, p, columns, ranges)?;
         }
         for (i, (pa, a, va)) in named.iter().enumerate() {
             for (pb, b, vb) in &named[i + 1..] {

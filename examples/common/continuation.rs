@@ -7,7 +7,9 @@ use std::time::Instant;
 
 use cosco_hsom::config::HsomConfig;
 use cosco_hsom::demos::Demonstration;
-use cosco_hsom::eval::{all_but, diagonal, fold_scores, Executor, FoldScores, Method, MethodRun};
+use cosco_hsom::eval::{
+    diagonal, fold_scores, loo_map, Executor, FoldScores, Method, MethodRun, Pool, Split,
+};
 use cosco_hsom::experiment::heldout::check_demos;
 use cosco_hsom::experiment::{ArmExecutor, ExperimentError};
 use cosco_hsom::sim::{NaoArm, Transition};
@@ -104,46 +106,48 @@ pub fn continuation_folds(
     }
     let needed = config.params().action_horizon() + 1;
     let executor = ArmExecutor { arm, transition };
-    (0..demos.len())
-        .map(|i| {
-            let train = all_but(demos, i);
-            let held = &demos[i];
-            let k = ((held.rows.len() as f64 * fraction).round() as usize)
-                .max(needed)
-                .min(held.rows.len() - 1);
-            let prefix = &disturbance.apply(&held.rows[..k])[..];
-            let t = Instant::now();
-            let model = config.fit(&train)?;
-            let train_s = t.elapsed().as_secs_f64();
-            let score = |rep: cosco_hsom::hsom::Reproduction, reproduce_s: f64| {
-                let postures: Vec<Vec<f64>> = prefix
-                    .iter()
-                    .chain(rep.postures.iter().skip(1))
-                    .cloned()
-                    .collect();
-                let executed = executor
-                    .execute(Method::Hierarchy, &postures, std::slice::from_ref(held))
-                    .map_err(ExperimentError::Invalid)?;
-                let run = MethodRun {
-                    postures,
-                    executed,
-                    train_s,
-                    reproduce_s,
-                    fitted: None,
-                    conditions: Default::default(),
-                    band: None,
-                };
-                fold_scores(&run, &executor, &train, held, diagonal(demos))
-                    .map_err(ExperimentError::Invalid)
+    let pool = Pool::new(1).map_err(ExperimentError::Invalid)?;
+    let fold = |split: Split| -> Result<_, ExperimentError> {
+        let (train, targets) = split.of(demos);
+        let held = &targets[0];
+        let k = ((held.rows.len() as f64 * fraction).round() as usize)
+            .max(needed)
+            .min(held.rows.len() - 1);
+        let prefix = &disturbance.apply(&held.rows[..k])[..];
+        let t = Instant::now();
+        let model = config.fit(&train)?;
+        let train_s = t.elapsed().as_secs_f64();
+        let score = |rep: cosco_hsom::hsom::Reproduction, reproduce_s: f64| {
+            let postures: Vec<Vec<f64>> = prefix
+                .iter()
+                .chain(rep.postures.iter().skip(1))
+                .cloned()
+                .collect();
+            let executed = executor
+                .execute(Method::Hierarchy, &postures, targets)
+                .map_err(ExperimentError::Invalid)?;
+            let run = MethodRun {
+                postures,
+                executed,
+                train_s,
+                reproduce_s,
+                fitted: None,
+                conditions: Default::default(),
+                band: None,
             };
-            let t = Instant::now();
-            let rep = model.continue_events(prefix)?;
-            let hsom = score(rep, t.elapsed().as_secs_f64())?;
-            let t = Instant::now();
-            let rep = model.follow_nearest_from(&train, prefix)?;
-            let sequence = score(rep, t.elapsed().as_secs_f64())?;
-            Ok((hsom, sequence))
-        })
+            fold_scores(&run, &executor, &train, held, diagonal(demos))
+                .map_err(ExperimentError::Invalid)
+        };
+        let t = Instant::now();
+        let rep = model.continue_events(prefix)?;
+        let hsom = score(rep, t.elapsed().as_secs_f64())?;
+        let t = Instant::now();
+        let rep = model.follow_nearest_from(&train, prefix)?;
+        let sequence = score(rep, t.elapsed().as_secs_f64())?;
+        Ok((hsom, sequence))
+    };
+    (loo_map(&[demos], false, &pool, None, |_, split| fold(split)).into_iter())
+        .flat_map(|(held_out, _)| held_out)
         .collect::<Result<Vec<_>, ExperimentError>>()
         .map(|v| v.into_iter().unzip())
 }

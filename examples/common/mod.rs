@@ -1,7 +1,7 @@
 //! What several examples share: the sets of synthetic demonstrations they record (the same
 //! flags and defaults in each) and how they exit.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Context;
@@ -48,6 +48,46 @@ impl Sets {
         );
         Ok(())
     }
+}
+
+/// The studies that teach every gesture some demonstrations and hold out others: which to
+/// record, the configuration and where every result goes.
+#[derive(clap::Args, Debug)]
+#[allow(dead_code)] // only the held-out studies of several gestures take it
+pub struct HeldOutSets {
+    /// Gestures, comma-separated.
+    #[arg(long, default_value = "reading-watch,wave,reach-point,salute")]
+    pub gestures: String,
+    /// Seeds of the demonstrations: numbers and ranges, e.g. `1-5`.
+    #[arg(long, default_value = "1-5")]
+    pub seeds: String,
+    /// Demonstrations per gesture to learn from.
+    #[arg(long, default_value_t = 3)]
+    pub train: usize,
+    /// Held-out demonstrations per gesture.
+    #[arg(long, default_value_t = 2)]
+    pub test: usize,
+    /// Encoder noise of the recordings, rad.
+    #[arg(long, default_value_t = 0.001)]
+    pub noise: f64,
+    /// CoSCo-HSOM configuration (XML).
+    #[arg(long, default_value = "configs/nao-gestures.xml")]
+    pub config: PathBuf,
+    /// Write every result to this JSON file.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+}
+
+/// `A` read from the command line, with `defaults` (`(flag, value)`) in place of the ones its
+/// flags declare (an example whose study wants other defaults for shared flags).
+#[allow(dead_code)] // used by the examples that change a shared default
+pub fn parse_with_defaults<A: clap::Parser>(defaults: &[(&'static str, &'static str)]) -> A {
+    let mut command = A::command();
+    for &(flag, value) in defaults {
+        command = command.mut_arg(flag, |a| a.default_value(value));
+    }
+    let mut matches = command.get_matches_mut();
+    A::from_arg_matches_mut(&mut matches).unwrap_or_else(|e| e.format(&mut command).exit())
 }
 
 /// A CoSCo-HSOM configuration file, loaded, and the default arm model.

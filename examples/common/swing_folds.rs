@@ -5,7 +5,7 @@ use serde::Serialize;
 
 use cosco_hsom::config::HsomConfig;
 use cosco_hsom::demos::Demonstration;
-use cosco_hsom::eval::{all_but, fold_scores, run_fold, FoldInput, Method, Swings};
+use cosco_hsom::eval::{fold_scores, loo_map, run_fold, FoldInput, Method, Pool, Split, Swings};
 use cosco_hsom::experiment::heldout::{check_demos, demo_trace, joint_trace};
 use cosco_hsom::experiment::{ArmExecutor, ExperimentError};
 use cosco_hsom::sim::{NaoArm, Transition, JOINT_NAMES, SWING_JOINT};
@@ -39,32 +39,36 @@ pub fn swing_folds(
 ) -> Result<Vec<SwingFold>, ExperimentError> {
     check_demos(demos)?;
     let executor = ArmExecutor { arm, transition };
-    demos
-        .iter()
-        .enumerate()
-        .map(|(i, demo)| {
-            let train = all_but(demos, i);
-            let input = FoldInput {
-                config: Some(config),
-                ..FoldInput::new(&train, std::slice::from_ref(demo))
-            };
-            let run = run_fold(&[Method::Hierarchy], &input, &executor)
-                .pop()
-                .map_or_else(|| Err("no run".to_string()), |(_, r)| r)
-                .map_err(ExperimentError::Invalid)?;
-            let scores = fold_scores(&run, &executor, &train, demo, 0.0)
-                .map_err(ExperimentError::Invalid)?;
-            Ok(SwingFold {
-                held_out: i,
-                swings: scores
-                    .swings
-                    .ok_or_else(|| ExperimentError::Invalid("no swings".into()))?,
-                joint_dtw: run.executed.fidelity.joint_dtw_rad_per_step.mean,
-                duration_ratio: run.executed.fidelity.duration_ratio.mean,
-                reproduction: joint_trace(&run.executed.trace),
-                demo: demo_trace(demo),
-            })
+    let pool = Pool::new(1).map_err(ExperimentError::Invalid)?;
+    let fold = |split: Split| {
+        let Split::HeldOut(i) = split else {
+            return Err(ExperimentError::Invalid(format!("{split:?}: not held out")));
+        };
+        let (train, held) = split.of(demos);
+        let demo = &held[0];
+        let input = FoldInput {
+            config: Some(config),
+            ..FoldInput::new(&train, held)
+        };
+        let run = run_fold(&[Method::Hierarchy], &input, &executor)
+            .pop()
+            .map_or_else(|| Err("no run".to_string()), |(_, r)| r)
+            .map_err(ExperimentError::Invalid)?;
+        let scores =
+            fold_scores(&run, &executor, &train, demo, 0.0).map_err(ExperimentError::Invalid)?;
+        Ok(SwingFold {
+            held_out: i,
+            swings: scores
+                .swings
+                .ok_or_else(|| ExperimentError::Invalid("no swings".into()))?,
+            joint_dtw: run.executed.fidelity.joint_dtw_rad_per_step.mean,
+            duration_ratio: run.executed.fidelity.duration_ratio.mean,
+            reproduction: joint_trace(&run.executed.trace),
+            demo: demo_trace(demo),
         })
+    };
+    (loo_map(&[demos], false, &pool, None, |_, split| fold(split)).into_iter())
+        .flat_map(|(held_out, _)| held_out)
         .collect()
 }
 

@@ -335,15 +335,14 @@ pub fn leave_one_out<E: Executor>(
     Ok(out)
 }
 
-/// The one leave-one-out loop: on each set of `sets` (one gesture's demonstrations and their
-/// diagonal), every demonstration held out in turn, `held_out`'s methods learning from the
-/// others as `base` says (its training progress aside), reproducing from its first posture and scored against it alone
-/// ([`fold`]); with `in_sample`, those methods also learn from all and are scored against
-/// it. The folds of every set share `pool` (`progress(done, total)` after each fold and
-/// each in-sample fold); the result does not depend on its threads. A baseline that learns
-/// from demonstrations alone (GMM/GMR, ProMP) and has fewer than [`MIN_DEMONSTRATIONS`] to
-/// learn from on a fold holds the reason. Per set, its held-out folds and its in-sample
-/// folds, in demonstration order.
+/// Leave-one-out with the evaluator's folds ([`loo_map`]): on each set of `sets` (one
+/// gesture's demonstrations and their diagonal), every demonstration held out in turn,
+/// `held_out`'s methods learning from the others as `base` says (its training progress
+/// aside), reproducing from its first posture and scored against it alone ([`fold`]); with
+/// `in_sample`, those methods also learn from all and are scored against it. A baseline that
+/// learns from demonstrations alone (GMM/GMR, ProMP) and has fewer than
+/// [`MIN_DEMONSTRATIONS`] to learn from on a fold holds the reason. Per set, its held-out
+/// folds and its in-sample folds, in demonstration order.
 pub fn loo_folds<E: Executor>(
     sets: &[(&[Demonstration], f64)],
     held_out: &[Method],
@@ -353,16 +352,6 @@ pub fn loo_folds<E: Executor>(
     pool: &super::Pool,
     progress: Option<&(dyn Fn(usize, usize) + Sync)>,
 ) -> Vec<(Vec<Fold>, Vec<Fold>)> {
-    // jobs: (set, demonstration, held out?)
-    let mut jobs = Vec::new();
-    for (s, (demos, _)) in sets.iter().enumerate() {
-        for i in 0..demos.len() {
-            jobs.push((s, i, true));
-            if in_sample.is_some() {
-                jobs.push((s, i, false));
-            }
-        }
-    }
     // `base` without its training progress (not shared between threads)
     let FoldInput {
         config,
@@ -373,36 +362,59 @@ pub fn loo_folds<E: Executor>(
         gmr_components,
         ..
     } = *base;
-    let done = pool.map(
-        &jobs,
-        |&(s, i, held)| {
-            let (demos, diag) = sets[s];
-            let base = &FoldInput {
-                config,
-                height_1,
-                training,
-                conditioning,
-                far,
-                gmr_components,
-                ..FoldInput::new(&[], &[])
-            };
-            match (held, in_sample) {
-                (false, Some(methods)) => {
-                    limited_fold(methods, base, demos, Split::InSample(i), diag, executor)
-                }
-                _ => limited_fold(held_out, base, demos, Split::HeldOut(i), diag, executor),
+    let demos: Vec<&[Demonstration]> = sets.iter().map(|(d, _)| *d).collect();
+    let work = |s: usize, split: Split| {
+        let (demos, diag) = sets[s];
+        let base = &FoldInput {
+            config,
+            height_1,
+            training,
+            conditioning,
+            far,
+            gmr_components,
+            ..FoldInput::new(&[], &[])
+        };
+        match (split, in_sample) {
+            (Split::InSample(_), Some(methods)) => {
+                limited_fold(methods, base, demos, split, diag, executor)
             }
-        },
-        progress,
-    );
-    let mut folds = done.into_iter();
+            _ => limited_fold(held_out, base, demos, split, diag, executor),
+        }
+    };
+    loo_map(&demos, in_sample.is_some(), pool, progress, work)
+}
+
+/// The one leave-one-out loop: on each set of `sets`, `work(set, Split::HeldOut(i))` for
+/// every demonstration `i` in turn and, with `in_sample`, `work(set, Split::InSample(i))`
+/// beside it. The work of every set shares `pool` (`progress(done, total)` after each job);
+/// the result does not depend on its threads. Per set, its held-out results and its
+/// in-sample results, in demonstration order.
+pub fn loo_map<T: Send>(
+    sets: &[&[Demonstration]],
+    in_sample: bool,
+    pool: &super::Pool,
+    progress: Option<&(dyn Fn(usize, usize) + Sync)>,
+    work: impl Fn(usize, Split) -> T + Sync,
+) -> Vec<(Vec<T>, Vec<T>)> {
+    let mut jobs = Vec::new();
+    for (s, demos) in sets.iter().enumerate() {
+        for i in 0..demos.len() {
+            jobs.push((s, Split::HeldOut(i)));
+            if in_sample {
+                jobs.push((s, Split::InSample(i)));
+            }
+        }
+    }
+    let mut done = pool
+        .map(&jobs, |&(s, split)| work(s, split), progress)
+        .into_iter();
     sets.iter()
-        .map(|(demos, _)| {
+        .map(|demos| {
             let (mut held, mut ins) = (Vec::new(), Vec::new());
             for _ in 0..demos.len() {
-                held.extend(folds.next());
-                if in_sample.is_some() {
-                    ins.extend(folds.next());
+                held.extend(done.next());
+                if in_sample {
+                    ins.extend(done.next());
                 }
             }
             (held, ins)

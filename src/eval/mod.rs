@@ -46,7 +46,8 @@ pub use in_loop::{
     in_loop, loop_markdown, GestureLoop, Learned, LoopDisturbance, LoopRun, LOOP_METHODS,
 };
 pub use loo::{
-    leave_one_out, loo_folds, read_gestures_at, Gestures, LooError, LooSettings, MIN_TAUGHT_DEMOS,
+    leave_one_out, loo_folds, loo_map, read_gestures_at, Gestures, LooError, LooSettings,
+    MIN_TAUGHT_DEMOS,
 };
 pub use method::{peak_speed, Method, GMR_COMPONENTS};
 pub use pool::Pool;

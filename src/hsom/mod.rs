@@ -53,5 +53,5 @@ pub use persist::{FilePart, FORMAT_VERSION};
 pub use recognize::{Recognition, PREFIX_BLEND};
 pub use recognizer::{Commit, Recognizer, StreamCalibration};
 pub use reproduction::{Reproduction, StopReason};
-pub use stepper::{HsomStepper, NearestStepper};
+pub use stepper::{HsomReplan, HsomStepper, NearestReplan, NearestStepper};
 pub use summary::{plans_word, LevelSummary, ModelSummary};

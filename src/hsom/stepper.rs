@@ -1,12 +1,12 @@
 //! The hierarchy and the nearest-sequence baseline in the loop (docs/ALGORITHM.md, section
 //! 11): each follows its plan while the arm is where it was sent, and re-plans from the
-//! encoders' reading when it is not.
+//! encoders' reading when it is not ([`Follower`]).
 
 use std::borrow::Borrow;
 
 use crate::condition::{meet, Conditions};
 use crate::demos::Demonstration;
-use crate::stepper::{check_posture, Course, Stepper, StepperError};
+use crate::stepper::{Course, Follower, Replan, StepperError};
 
 use super::model::Hsom;
 
@@ -14,25 +14,6 @@ use super::model::Hsom;
 const HIERARCHY: &str = "the hierarchy";
 /// The nearest sequence's.
 const NEAREST: &str = "the nearest sequence";
-
-/// The course of a plan from `initial` to `conditions` (checked first: width, finite values,
-/// the ranges) made by `plan`.
-fn course(
-    model: &Hsom,
-    initial: &[f64],
-    conditions: &Conditions,
-    ranges: Option<&[(f64, f64)]>,
-    plan: impl FnOnce() -> Result<Vec<Vec<f64>>, StepperError>,
-) -> Result<Course, StepperError> {
-    check_posture("the initial posture", initial, model.columns())?;
-    conditions.check(model.columns(), ranges, initial)?;
-    Course::new(
-        model.columns().to_vec(),
-        plan()?,
-        conditions.clone(),
-        ranges.map(<[_]>::to_vec),
-    )
-}
 
 /// Whether `model` can take `reading` as the context of a re-plan: at least `actionHorizon +
 /// 1` samples (and 2), as a prefix must have.
@@ -52,11 +33,27 @@ fn long_enough(model: &Hsom, reading: &[Vec<f64>]) -> bool {
 ///   is along it ([`Course::realigned`]).
 ///
 /// `M` is the model or anything that borrows it (`&Hsom`, `Arc<Hsom>`).
+pub type HsomStepper<M> = Follower<HsomReplan<M>>;
+
+/// How the hierarchy re-plans in the loop ([`HsomStepper`]): the model and the initial posture.
 #[derive(Debug, Clone)]
-pub struct HsomStepper<M: Borrow<Hsom>> {
+pub struct HsomReplan<M> {
     model: M,
     initial: Vec<f64>,
-    course: Course,
+}
+
+impl<M: Borrow<Hsom>> Replan for HsomReplan<M> {
+    const BEND: bool = true;
+    fn replan(&self, c: &Course, _observed: &[f64]) -> Result<Vec<Vec<f64>>, StepperError> {
+        let model = self.model.borrow();
+        if model.as_events().is_none() || !long_enough(model, c.reading()) {
+            return Ok(c.realigned());
+        }
+        model
+            .resume(&self.initial, c.reading())
+            .map(|r| r.postures)
+            .map_err(|e| StepperError::method(HIERARCHY, e))
+    }
 }
 
 impl<M: Borrow<Hsom>> HsomStepper<M> {
@@ -69,62 +66,17 @@ impl<M: Borrow<Hsom>> HsomStepper<M> {
         conditions: &Conditions,
         ranges: Option<&[(f64, f64)]>,
     ) -> Result<Self, StepperError> {
-        let m = model.borrow();
-        let course = course(m, initial, conditions, ranges, || {
-            m.reproduce_conditioned(initial, conditions, ranges)
-                .map(|r| r.postures)
-                .map_err(|e| StepperError::method(HIERARCHY, e))
-        })?;
-        Ok(HsomStepper {
+        let columns = model.borrow().columns().to_vec();
+        let method = HsomReplan {
             model,
             initial: initial.to_vec(),
-            course,
-        })
-    }
-
-    /// The same stepper taking the arm to be where it was sent within `share` of its plan's
-    /// bounding-box diagonal ([`Course::with_tolerance`]).
-    pub fn with_tolerance(mut self, share: f64) -> Result<Self, StepperError> {
-        self.course = self.course.with_tolerance(share)?;
-        Ok(self)
-    }
-
-    /// The plan followed, the reading and the conditions.
-    pub fn course(&self) -> &Course {
-        &self.course
-    }
-}
-
-impl<M: Borrow<Hsom>> Stepper for HsomStepper<M> {
-    fn width(&self) -> usize {
-        self.course.columns().len()
-    }
-    fn step(&mut self, observed: &[f64]) -> Result<Vec<f64>, StepperError> {
-        let (model, initial) = (self.model.borrow(), &self.initial);
-        self.course.step_with(observed, true, |c| {
-            if model.as_events().is_none() || !long_enough(model, c.reading()) {
-                return Ok(c.realigned());
-            }
-            model
-                .resume(initial, c.reading())
+        };
+        Follower::start(method, columns, initial, conditions, ranges, |h| {
+            (h.model.borrow())
+                .reproduce_conditioned(initial, conditions, ranges)
                 .map(|r| r.postures)
                 .map_err(|e| StepperError::method(HIERARCHY, e))
         })
-    }
-    fn done(&self) -> bool {
-        self.course.done()
-    }
-    fn set_goal(&mut self, goal: &[f64]) -> Result<(), StepperError> {
-        self.course.set_goal(goal)
-    }
-    fn phase(&self) -> f64 {
-        self.course.phase()
-    }
-    fn closed_loop(&self) -> bool {
-        true
-    }
-    fn replans(&self) -> usize {
-        self.course.replans()
     }
 }
 
@@ -133,11 +85,28 @@ impl<M: Borrow<Hsom>> Stepper for HsomStepper<M> {
 /// re-aligns with [`Hsom::follow_nearest_from`] on the whole reading (before the reading holds
 /// `actionHorizon + 1` samples: [`Course::realigned`]), met onto the goal and the via-points
 /// ahead.
+pub type NearestStepper<M> = Follower<NearestReplan<M>>;
+
+/// How the nearest sequence re-plans in the loop ([`NearestStepper`]): the model and the
+/// demonstrations it chooses from.
 #[derive(Debug, Clone)]
-pub struct NearestStepper<M: Borrow<Hsom>> {
+pub struct NearestReplan<M> {
     model: M,
     demos: Vec<Demonstration>,
-    course: Course,
+}
+
+impl<M: Borrow<Hsom>> Replan for NearestReplan<M> {
+    const BEND: bool = true;
+    fn replan(&self, c: &Course, _observed: &[f64]) -> Result<Vec<Vec<f64>>, StepperError> {
+        let model = self.model.borrow();
+        if !long_enough(model, c.reading()) {
+            return Ok(c.realigned());
+        }
+        model
+            .follow_nearest_from(&self.demos, c.reading())
+            .map(|r| r.postures)
+            .map_err(|e| StepperError::method(NEAREST, e))
+    }
 }
 
 impl<M: Borrow<Hsom>> NearestStepper<M> {
@@ -151,54 +120,17 @@ impl<M: Borrow<Hsom>> NearestStepper<M> {
         conditions: &Conditions,
         ranges: Option<&[(f64, f64)]>,
     ) -> Result<Self, StepperError> {
-        let m = model.borrow();
-        let course = course(m, initial, conditions, ranges, || {
-            let plan = m
-                .follow_nearest(&demos, initial)
+        let columns = model.borrow().columns().to_vec();
+        let method = NearestReplan { model, demos };
+        Follower::start(method, columns, initial, conditions, ranges, |n| {
+            let plan = (n.model.borrow())
+                .follow_nearest(&n.demos, initial)
                 .map_err(|e| StepperError::method(NEAREST, e))?
                 .postures;
             match conditions.is_empty() {
                 true => Ok(plan),
                 false => Ok(meet(&plan, &conditions.points(), ranges)?),
             }
-        })?;
-        Ok(NearestStepper {
-            model,
-            demos,
-            course,
         })
-    }
-}
-
-impl<M: Borrow<Hsom>> Stepper for NearestStepper<M> {
-    fn width(&self) -> usize {
-        self.course.columns().len()
-    }
-    fn step(&mut self, observed: &[f64]) -> Result<Vec<f64>, StepperError> {
-        let (model, demos) = (self.model.borrow(), &self.demos);
-        self.course.step_with(observed, true, |c| {
-            if !long_enough(model, c.reading()) {
-                return Ok(c.realigned());
-            }
-            model
-                .follow_nearest_from(demos, c.reading())
-                .map(|r| r.postures)
-                .map_err(|e| StepperError::method(NEAREST, e))
-        })
-    }
-    fn done(&self) -> bool {
-        self.course.done()
-    }
-    fn set_goal(&mut self, goal: &[f64]) -> Result<(), StepperError> {
-        self.course.set_goal(goal)
-    }
-    fn phase(&self) -> f64 {
-        self.course.phase()
-    }
-    fn closed_loop(&self) -> bool {
-        true
-    }
-    fn replans(&self) -> usize {
-        self.course.replans()
     }
 }

@@ -26,7 +26,7 @@ mod stepper;
 #[cfg(test)]
 mod tests;
 
-pub use stepper::PrompStepper;
+pub use stepper::{PrompReplan, PrompStepper};
 
 /// What can go wrong configuring, fitting or reproducing a ProMP.
 #[derive(Debug, thiserror::Error)]

@@ -2,7 +2,7 @@
 //! (docs/ALGORITHM.md, section 11).
 
 use crate::condition::Conditions;
-use crate::stepper::{check_posture, plain_columns, Course, Stepper, StepperError};
+use crate::stepper::{plain_columns, Course, Follower, Replan, StepperError};
 
 use super::Promp;
 
@@ -15,11 +15,11 @@ const PROMP: &str = "ProMP";
 /// again on the posture read at the current phase, the via-points still ahead and the goal
 /// (the earlier ones are past), and its mean from there on is followed. A moved goal conditions
 /// it again on the posture last commanded at the current phase.
+pub type PrompStepper = Follower<PrompReplan>;
+
+/// How ProMP re-plans in the loop ([`PrompStepper`]): conditioned again.
 #[derive(Debug, Clone)]
-pub struct PrompStepper {
-    promp: Promp,
-    course: Course,
-}
+pub struct PrompReplan(Promp);
 
 impl PrompStepper {
     /// The stepper of `promp` from `initial` through `conditions` (a goal, via-points),
@@ -31,15 +31,12 @@ impl PrompStepper {
         ranges: Option<&[(f64, f64)]>,
     ) -> Result<Self, StepperError> {
         let columns = plain_columns(promp.width());
-        check_posture("the initial posture", initial, &columns)?;
-        conditions.check(&columns, ranges, initial)?;
-        let (plan, _) = promp
-            .conditioned(initial, &conditions.points())
-            .map_err(|e| StepperError::method(PROMP, e))?;
-        let course = Course::new(columns, plan, conditions.clone(), ranges.map(<[_]>::to_vec))?;
-        Ok(PrompStepper {
-            promp: promp.clone(),
-            course,
+        let method = PrompReplan(promp.clone());
+        Follower::start(method, columns, initial, conditions, ranges, |_| {
+            let (plan, _) = promp
+                .conditioned(initial, &conditions.points())
+                .map_err(|e| StepperError::method(PROMP, e))?;
+            Ok(plan)
         })
     }
 }
@@ -72,33 +69,16 @@ fn reconditioned(
     Ok(rest)
 }
 
-impl Stepper for PrompStepper {
-    fn width(&self) -> usize {
-        self.promp.width()
+impl Replan for PrompReplan {
+    const BEND: bool = false;
+    fn replan(&self, c: &Course, observed: &[f64]) -> Result<Vec<Vec<f64>>, StepperError> {
+        reconditioned(&self.0, c, observed, c.conditions())
     }
-    fn step(&mut self, observed: &[f64]) -> Result<Vec<f64>, StepperError> {
-        let promp = &self.promp;
-        self.course.step_with(observed, false, |c| {
-            reconditioned(promp, c, observed, c.conditions())
-        })
-    }
-    fn done(&self) -> bool {
-        self.course.done()
-    }
-    fn set_goal(&mut self, goal: &[f64]) -> Result<(), StepperError> {
-        let conditions = self.course.with_goal(goal)?;
-        let commanded = self.course.commanded().to_vec();
-        let rest = reconditioned(&self.promp, &self.course, &commanded, &conditions)?;
-        self.course.restart_with(rest, conditions);
+    fn set_goal(&self, course: &mut Course, goal: &[f64]) -> Result<(), StepperError> {
+        let conditions = course.with_goal(goal)?;
+        let commanded = course.commanded().to_vec();
+        let rest = reconditioned(&self.0, course, &commanded, &conditions)?;
+        course.restart_with(rest, conditions);
         Ok(())
-    }
-    fn phase(&self) -> f64 {
-        self.course.phase()
-    }
-    fn closed_loop(&self) -> bool {
-        true
-    }
-    fn replans(&self) -> usize {
-        self.course.replans()
     }
 }

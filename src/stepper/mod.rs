@@ -4,6 +4,7 @@
 //!
 //! This room holds the trait and its error, the plan a stepper follows tick by tick
 //! ([`Course`]: where the arm should be, the encoders' reading, re-joining and re-bending), the
+//! closed-loop stepper that follows it ([`Follower`], the method saying how it re-plans), the
 //! open-loop stepper of a fixed plan ([`ByClock`]) and the kinematic loop that runs any stepper
 //! against a disturbance ([`kinematic`]). Each method's stepper lives beside its method:
 //! [`crate::hsom::HsomStepper`] (both algorithms), [`crate::hsom::NearestStepper`],
@@ -23,14 +24,16 @@
 //! ```
 
 mod course;
+mod follower;
 pub mod kinematic;
 #[cfg(test)]
 mod tests;
 
 pub use course::{Course, DEFAULT_TOLERANCE};
+pub use follower::{Follower, Replan};
 pub use kinematic::{KinematicLoop, Plant, Trace};
 
-use crate::condition::ConditionError;
+use crate::condition::{self, ConditionError};
 
 /// A reproduction in the loop: each tick, given the posture the encoders read, the next
 /// posture to command. The first call reads the arm at the initial posture the stepper was
@@ -76,18 +79,9 @@ pub enum StepperError {
         /// The variables' names, comma-separated.
         columns: String,
     },
-    /// A value that is not a finite number.
-    #[error("{what}: {column} is {value}; need a finite number")]
-    NonFinite {
-        /// The posture.
-        what: String,
-        /// The variable.
-        column: String,
-        /// The value.
-        value: f64,
-    },
-    /// A goal or via-point refused (width, finite values, phase, the variables' ranges) or
-    /// one the reproduction could not be bent onto.
+    /// A goal or via-point refused (width, finite values, phase, the variables' ranges), one
+    /// the reproduction could not be bent onto, or a posture's value that is not a finite
+    /// number.
     #[error(transparent)]
     Condition(#[from] ConditionError),
     /// What the method cannot do (GMM/GMR takes no goal; the DMP no via-point).
@@ -131,24 +125,19 @@ impl StepperError {
     }
 }
 
-/// `posture` (named `what` in errors) is one finite value per variable of `columns`.
+/// `posture` (named `what` in errors) is one finite value per variable of `columns`
+/// ([`crate::condition::check_posture`]; a wrong width is the stepper's
+/// [`StepperError::Width`], a value not finite the condition's error).
 pub fn check_posture(what: &str, posture: &[f64], columns: &[String]) -> Result<(), StepperError> {
-    if posture.len() != columns.len() {
-        return Err(StepperError::Width {
-            what: what.to_string(),
-            found: posture.len(),
+    condition::check_posture(what, posture, columns, None).map_err(|e| match e {
+        ConditionError::Width { found, .. } => StepperError::Width {
+            what: what.into(),
+            found,
             expected: columns.len(),
             columns: columns.join(", "),
-        });
-    }
-    match posture.iter().position(|v| !v.is_finite()) {
-        Some(j) => Err(StepperError::NonFinite {
-            what: what.to_string(),
-            column: columns[j].clone(),
-            value: posture[j],
-        }),
-        None => Ok(()),
-    }
+        },
+        e => StepperError::Condition(e),
+    })
 }
 
 /// `x0`, `x1`, ...: the names of `n` variables that have none.
