@@ -22,6 +22,17 @@ def demoted(markdown, levels=2):
     return "\n".join(out).strip()
 
 
+def loop_sections(markdown):
+    """The "## In the loop: ..." sections of `cosco heldout --disturb`, one level deeper."""
+    out, keep = [], False
+    for line in markdown.splitlines():
+        if line.startswith("## "):
+            keep = line.startswith("## In the loop")
+        if keep:
+            out.append("#" + line if line.startswith("## ") else line)
+    return "\n".join(out).strip()
+
+
 def section_of(markdown, heading):
     """The lines under `## heading` up to the next heading of that level."""
     lines, keep = [], False
@@ -805,11 +816,29 @@ def main():
         "",
         demoted(read(os.path.join(out, "swing_folds.md"))),
         "",
-        "## A grab during execution (closed loop)",
+        "## In the loop: held, moved, pushed, a new goal",
         "",
-        command(out, "closed_loop"),
+        "Each method's stepper reproduces from the held-out demonstration's first posture, tick by "
+        "tick from what the arm reads (docs/ALGORITHM.md, section 11), on the folds of the "
+        "undisturbed study: once undisturbed, then disturbed. First the kinematic loop (the arm "
+        "goes where it is commanded except while held or moved), on the Nao's four gestures "
+        "(seeds 11-15, 20 sets) and on LASA's 30 shapes:",
         "",
-        demoted(read(os.path.join(out, "closed_loop.md"))),
+        command(out, "nao_loop"),
+        "",
+        loop_sections(read(os.path.join(out, "nao_loop.md"))),
+        "",
+        command(out, "lasa_loop"),
+        "",
+        loop_sections(read(os.path.join(out, "lasa_loop.md"))),
+        "",
+        "Then the simulated arm: each stepper drives it at 40 Hz from its encoders "
+        "(`sim::in_loop`), a hand holding it, or a force pushing its forearm through MuJoCo's "
+        "applied forces (`simulate --loop closed` does the same on one run, with a clip):",
+        "",
+        command(out, "arm_loop"),
+        "",
+        demoted(read(os.path.join(out, "arm_loop.md"))),
         "",
         "## The simplest baselines: replay and the encoding ceiling",
         "",

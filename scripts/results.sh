@@ -87,7 +87,12 @@ lasa_group recognition_a Multi_Models_3 Multi_Models_4 NShape PShape RShape Saeg
 lasa_group teach_lasa Multi_Models_3 Multi_Models_4 NShape PShape RShape Saeghe Sharpc -- --one-at-a-time --no-control
 lasa_group recognition_b Sine Snake Spoon Sshape Trapezoid WShape Worm
 run families $ex/families --seeds 1-6
-run closed_loop $ex/closed_loop --seeds 11-15
+# In the loop: every method's stepper held, moved and given a new goal in the kinematic loop
+# (the Nao's 20 sets and LASA), then held and pushed on the simulated arm.
+loop_flags=(--no-in-sample --no-height-1 --disturb hold:0.4:0.25 --disturb move:0.1:0.1:0.1 --goal-moves 0.5:0.1)
+run nao_loop $bin/cosco heldout --demos "$out/nao-curves" "${loop_flags[@]}" --json "$out/nao_loop.json"
+run lasa_loop $bin/cosco heldout --demos "$out/lasa" --state-length-from-data "${loop_flags[@]}" --json "$out/lasa_loop.json"
+run arm_loop $ex/heldout --seeds 11-15 --hold 0.4:0.25 --push 0.4:LForeArm:0,0,-8:0.1
 run swing_folds $ex/swing_folds --seeds 12 --out docs/figures
 run replay $ex/replay_baseline --seeds 11-15
 run ceiling $ex/encoding_ceiling --seeds 11-15

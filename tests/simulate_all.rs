@@ -111,3 +111,54 @@ fn simulate_all_refuses_one_demonstration_per_gesture_and_recorded_files() {
         "nothing recorded"
     );
 }
+
+/// `--recognize`: each gesture's last held-out demonstration streamed into the recogniser of
+/// the fold that did not learn it; the report says what it committed to and when; without
+/// `--gesture all` the flag is refused.
+#[test]
+fn simulate_all_recognize_streams_the_held_out_gestures() {
+    let out = tempfile::tempdir().unwrap();
+    Command::cargo_bin("simulate")
+        .unwrap()
+        .args([
+            "--gesture",
+            "all",
+            "--count",
+            "3",
+            "--seed",
+            "11",
+            "--no-render",
+            "--recognize",
+            "--out",
+        ])
+        .arg(out.path())
+        .assert()
+        .success();
+    let report = std::fs::read_to_string(out.path().join("report.md")).unwrap();
+    assert!(
+        report.contains("| gesture shown | committed to | at sample |"),
+        "{report}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.path().join("report.json")).unwrap())
+            .unwrap();
+    let streamed = json["streamed"].as_array().unwrap();
+    assert_eq!(streamed.len(), 4);
+    // the taught gestures, held out, are committed to before their end
+    let right = (streamed.iter())
+        .filter(|s| {
+            s["committed"] == s["gesture"] && s["at_sample"].as_u64() < s["samples"].as_u64()
+        })
+        .count();
+    assert!(right >= 3, "{streamed:?}");
+    let err = Command::cargo_bin("simulate")
+        .unwrap()
+        .args(["--gesture", "wave", "--recognize", "--no-render", "--out"])
+        .arg(out.path())
+        .assert()
+        .failure()
+        .get_output()
+        .stderr
+        .clone();
+    assert!(String::from_utf8_lossy(&err).contains("--gesture all"));
+}

@@ -91,6 +91,11 @@ struct Args {
     /// (`T:V1,...`); repeatable. Needs `--loop closed`.
     #[arg(long, value_name = "T:V1,...", value_parser = ArmDisturbance::parse_goal, allow_hyphen_values = true)]
     goal_at: Vec<ArmDisturbance>,
+    /// With `--gesture all`: stream each gesture's last held-out demonstration, a sample at a
+    /// time, into the recogniser of the fold that did not learn it; the clip films those
+    /// demonstrations with the committed label, and the report says when it committed.
+    #[arg(long)]
+    recognize: bool,
     /// Turn warnings into errors (posture values clamped into the joint ranges before
     /// execution): the outputs are written, the exit status is 1.
     #[arg(long)]
@@ -104,6 +109,11 @@ fn run(a: Args) -> Result<()> {
     disturbances.extend(a.goal_at);
     if a.loop_mode == LoopMode::Open && !disturbances.is_empty() {
         anyhow::bail!("--hold, --push and --goal-at disturb the loop: they need --loop closed");
+    }
+    if a.recognize && a.gesture.as_deref() != Some("all") {
+        anyhow::bail!(
+            "--recognize streams the held-out gestures of --gesture all: give --gesture all"
+        );
     }
     if a.loop_mode == LoopMode::Closed && a.gesture.as_deref() == Some("all") {
         anyhow::bail!("--loop closed runs one gesture in the loop; --gesture all is not one");
@@ -127,6 +137,7 @@ fn run(a: Args) -> Result<()> {
         heldout: !a.no_heldout,
         in_loop: a.loop_mode,
         disturbances,
+        recognize: a.recognize,
     };
     if let Some(d) = &job.demos {
         let line = cosco_hsom::resample::report_line(std::slice::from_ref(d), job.resample)?;

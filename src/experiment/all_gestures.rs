@@ -26,7 +26,7 @@ use crate::table::Table;
 
 use super::demonstrate::{synthetic_demonstrations, write_demos, DemoSettings};
 use super::executor::ArmExecutor;
-use super::film::{clip_options, film};
+use super::film::{clip_options, film, film_marked};
 use super::heldout::on_arm;
 use super::job::Job;
 use super::output::{config_name, load_arm};
@@ -110,6 +110,71 @@ pub struct AllReport {
     pub reproductions: Vec<(String, usize, String)>,
     /// Files written, relative to the output directory.
     pub files: Vec<String>,
+    /// With `--recognize`: each gesture's last held-out demonstration streamed, a sample at a
+    /// time, into the recogniser of the fold that did not learn it.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub streamed: Vec<StreamedGesture>,
+}
+
+/// A held-out demonstration streamed into the recogniser (`simulate --gesture all --recognize`).
+#[derive(Debug, Clone, Serialize)]
+pub struct StreamedGesture {
+    /// The gesture shown.
+    pub gesture: String,
+    /// What the recogniser committed to (`None`: unknown), when it committed.
+    pub committed: Option<Option<String>>,
+    /// The sample it committed on (counted from 1), when it did.
+    pub at_sample: Option<usize>,
+    /// The demonstration's samples.
+    pub samples: usize,
+}
+
+/// A held-out demonstration streamed: what was committed after each sample (`None` before
+/// the commitment), and the demonstration as a recording to film.
+struct Stream {
+    report: StreamedGesture,
+    recording: Recording,
+}
+
+/// `test` (of `gesture`) pushed a sample at a time into `model`'s recogniser.
+fn stream(
+    model: &GestureModel,
+    gesture: &str,
+    test: &Demonstration,
+) -> Result<Stream, ExperimentError> {
+    let mut r = model.recognizer().map_err(gerr)?;
+    for row in &test.rows {
+        r.push(row).map_err(gerr)?;
+    }
+    let commit = r.commit();
+    let period = crate::demos::sample_period(test);
+    let mut recording = Recording::new(1.0 / period, crate::robot::Robot::LeftArm);
+    recording.time = (0..test.rows.len()).map(|k| k as f64 * period).collect();
+    recording.qpos = test.rows.clone();
+    recording.target = test.rows.clone();
+    Ok(Stream {
+        report: StreamedGesture {
+            gesture: gesture.to_string(),
+            committed: commit.map(|c| c.label.clone()),
+            at_sample: commit.map(|c| c.samples),
+            samples: test.rows.len(),
+        },
+        recording,
+    })
+}
+
+impl StreamedGesture {
+    /// What the clip says at sample `i` (from 0): the gesture shown and, once committed, the
+    /// answer.
+    fn caption(&self, i: usize, t: f64) -> String {
+        let answer = match (&self.committed, self.at_sample) {
+            (Some(label), Some(n)) if i + 1 >= n => {
+                format!("committed: {}", label.as_deref().unwrap_or("unknown"))
+            }
+            _ => "recognising...".to_string(),
+        };
+        format!("{} shown, t = {t:.1} s: {answer}", self.gesture)
+    }
 }
 
 impl AllReport {
@@ -207,6 +272,34 @@ impl AllReport {
             100.0 * self.nn_accuracy(),
             early(&|q| q.nn_ms).unwrap_or(f64::NAN),
         );
+        if !self.streamed.is_empty() {
+            let _ = writeln!(
+                s,
+                "Streamed (`--recognize`): each gesture's last held-out demonstration pushed a \
+                 sample at a time into the recogniser of the fold that did not learn it; the \
+                 clip shows the answer from the sample it committed on.\n"
+            );
+            let mut t = Table::new([
+                "gesture shown",
+                "committed to",
+                "at sample",
+                "share of the gesture",
+            ]);
+            for g in &self.streamed {
+                t.row([
+                    g.gesture.clone(),
+                    match &g.committed {
+                        Some(l) => l.clone().unwrap_or_else(|| "unknown".into()),
+                        None => "(not committed)".into(),
+                    },
+                    g.at_sample.map_or("-".into(), |n| n.to_string()),
+                    g.at_sample.map_or("-".into(), |n| {
+                        format!("{:.2}", n as f64 / g.samples.max(1) as f64)
+                    }),
+                ]);
+            }
+            let _ = writeln!(s, "{t}");
+        }
         let _ = writeln!(s, "CoSCo-HSOM (rows: gesture shown; columns: answer):\n");
         s += &confusion_markdown(&self.confusion, &self.labels, true);
         let _ = writeln!(s, "\n1-NN DTW:\n");
@@ -345,6 +438,7 @@ fn run_all_gestures(
     let mut last_model = None;
     // the saved model's reproductions on cue, kept for their files and the clip
     let (mut reproductions, mut executed) = (Vec::new(), Vec::<(String, Recording)>::new());
+    let mut streams = Vec::new();
     for k in 0..count {
         progress("held-out folds", k, count);
         let sets: Vec<(String, Vec<Demonstration>)> = labels
@@ -404,6 +498,9 @@ fn run_all_gestures(
                 wrist(&a).unwrap_or(f64::NAN),
                 s.fidelity.duration_ratio.mean,
             ]);
+            if k == count - 1 && job.recognize {
+                streams.push(stream(&model, label, test)?);
+            }
             if k == count - 1 {
                 let stop = format!("{:?}", shared.stop);
                 reproductions.push((label.clone(), shared.postures.len(), stop));
@@ -473,6 +570,7 @@ fn run_all_gestures(
         nn_confusion,
         reproductions,
         files,
+        streamed: streams.iter().map(|s| s.report.clone()).collect(),
     };
     confusion_png(
         &out.join("confusion.png"),
@@ -492,24 +590,45 @@ fn run_all_gestures(
     )
     .map_err(|e| werr("confusion.png", e))?;
     report.files.push("confusion.png".into());
-    // 5. the clip: the gestures in turn
+    // 5. the clip: the gestures in turn (with --recognize: the held-out demonstrations streamed,
+    // captioned with the recogniser's answer from the sample it committed on)
     if job.render {
         let opts = clip_options();
         let stride = 3;
-        let total: usize = executed.iter().map(|(_, r)| r.len().div_ceil(stride)).sum();
+        let filmed: Vec<(&str, &Recording, Option<&StreamedGesture>)> = match streams.is_empty() {
+            true => (executed.iter())
+                .map(|(l, r)| (l.as_str(), r, None))
+                .collect(),
+            false => (streams.iter())
+                .map(|s| (s.report.gesture.as_str(), &s.recording, Some(&s.report)))
+                .collect(),
+        };
+        let total: usize = filmed
+            .iter()
+            .map(|(_, r, _)| r.len().div_ceil(stride))
+            .sum();
         let mut clip: Option<Clip> = None;
         let mut sheet: Vec<image::RgbImage> = Vec::new();
         let (mut offset, mut done) = (0.0, 0);
-        for (label, rec) in &executed {
-            let part = film(arm, rec, &opts, stride, |n, _| {
-                progress("rendering", done + n, total)
-            })?;
+        for &(label, rec, streamed) in &filmed {
+            let on_frame = |n, _| progress("rendering", done + n, total);
+            let part = match streamed {
+                None => film(arm, rec, &opts, stride, on_frame)?,
+                Some(g) => {
+                    let mark = |i: usize, _: &crate::mujoco::Data<'_>, f: &mut image::RgbImage| {
+                        caption(f, &g.caption(i, rec.time[i]), 18)
+                    };
+                    film_marked(arm, rec, &opts, stride, mark, on_frame)?
+                }
+            };
             done += part.len();
             // four frames of each gesture, one row of the contact sheet, named
             for i in sheet_frames(rec, stride, part.len()) {
                 let (t, f) = part.frames().nth(i).expect("a key frame is a frame");
                 let mut f = f.clone();
-                caption(&mut f, &format!("{label}  t = {t:.1} s"), 18);
+                if streamed.is_none() {
+                    caption(&mut f, &format!("{label}  t = {t:.1} s"), 18);
+                }
                 sheet.push(f);
             }
             let c = match &mut clip {

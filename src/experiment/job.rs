@@ -187,6 +187,9 @@ pub struct Job {
     pub in_loop: LoopMode,
     /// What disturbs the arm in the loop (`--hold`, `--push`, `--goal-at`).
     pub disturbances: Vec<ArmDisturbance>,
+    /// With `--gesture all`: stream each gesture's last held-out demonstration into the
+    /// recogniser and film it captioned with the committed label.
+    pub recognize: bool,
 }
 
 /// What the main job produced: the report (also written as `report.md` and `report.json`) and
