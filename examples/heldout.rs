@@ -52,7 +52,7 @@ struct Args {
     /// Also run every configuration at height 1 (its bottom level alone).
     #[arg(long)]
     height_1: bool,
-    /// Write every number to this JSON file.
+    /// Write every number to this JSON file (with `--hold` or `--push`: every run in the loop).
     #[arg(long)]
     json: Option<PathBuf>,
     /// The loop on the simulated arm, held: a hand holds it from phase P of the held-out
@@ -101,6 +101,14 @@ fn arm_loop(a: &Args, disturbances: &[LoopDisturbance]) -> Result<String> {
     };
     let pool = Pool::new(2).map_err(anyhow::Error::msg)?;
     let runs = in_loop(&cfg, &sets, &LOOP_METHODS, disturbances, &plant, &pool);
+    if let Some(p) = &a.json {
+        let doc: Vec<serde_json::Value> = (disturbances.iter().zip(&runs))
+            .map(|(d, r)| serde_json::json!({ "disturbance": d, "gestures": r }))
+            .collect();
+        let text = serde_json::to_string_pretty(&doc)?;
+        cosco_hsom::fsutil::write_atomic(p, text.as_bytes())
+            .with_context(|| format!("writing {}", p.display()))?;
+    }
     Ok(disturbances
         .iter()
         .zip(&runs)

@@ -7,14 +7,14 @@ use assert_cmd::Command;
 use cosco_hsom::condition::Conditions;
 use cosco_hsom::config::load_config;
 use cosco_hsom::demos::Demonstration;
-use cosco_hsom::dtw::euclidean;
+use cosco_hsom::dtw::{dtw_distance, euclidean, Band};
 use cosco_hsom::experiment::{synthetic_demonstrations, DemoSettings};
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::hsom::{Hsom, HsomStepper};
 use cosco_hsom::metrics::{column_swings, diagonal};
 use cosco_hsom::robot::Robot;
 use cosco_hsom::sim::in_loop::{run_in_loop, ArmDisturbance, ArmRun};
-use cosco_hsom::sim::{ControllerConfig, NaoArm};
+use cosco_hsom::sim::{execute_postures, ControllerConfig, NaoArm};
 use cosco_hsom::stepper::{ByClock, Stepper};
 
 /// LElbowRoll, the wave's swinging joint.
@@ -77,8 +77,23 @@ fn window(plain: &ArmRun, share: f64) -> (f64, f64) {
 #[test]
 fn held_the_hierarchy_rejoins_without_a_jump_and_keeps_its_swings_a_replay_by_its_clock_does_not() {
     let f = fold();
-    let plain = run(&f, &mut hierarchy(&f), &[]);
+    let mut undisturbed = hierarchy(&f);
+    let plain = run(&f, &mut undisturbed, &[]);
     assert!(plain.finished);
+    // undisturbed, the closed loop is its plan executed: no re-plan, the same DTW to within 2 %
+    assert_eq!(undisturbed.replans(), 0);
+    let plan = undisturbed.course().first_plan().to_vec();
+    let open = execute_postures(&f.arm, &plan, 40.0).unwrap();
+    let dtw = |rows: &[Vec<f64>]| {
+        dtw_distance(rows, &f.target.rows, Band::None)
+            .unwrap()
+            .per_step()
+    };
+    let ratio = dtw(&plain.recording.qpos) / dtw(&open.qpos);
+    assert!(
+        (ratio - 1.0).abs() <= 0.02,
+        "closed / open loop DTW {ratio}"
+    );
     let (at_s, seconds) = window(&plain, 0.25);
     let hold = [ArmDisturbance::Hold { at_s, seconds }];
     let mut s = hierarchy(&f);
