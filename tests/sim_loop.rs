@@ -110,7 +110,7 @@ fn held_the_hierarchy_rejoins_without_a_jump_and_keeps_its_swings_a_replay_by_it
         jump <= 2.0,
         "largest step after the release {jump} x the demonstration's"
     );
-    let (kept, before) = (swings(&free(&held)), swings(&plain.recording.qpos));
+    let (kept, before) = (swings(&held.recording.qpos), swings(&plain.recording.qpos));
     assert!(kept >= before, "swings {kept} held, {before} undisturbed");
     // the negative control: the same plan commanded by its clock, whatever the encoders read,
     // skips what its clock ran through while the arm was held
@@ -122,7 +122,7 @@ fn held_the_hierarchy_rejoins_without_a_jump_and_keeps_its_swings_a_replay_by_it
     let plan = s.course().first_plan().to_vec();
     let mut replay = ByClock::new(columns, plan, "the replay");
     let by_clock = run(&f, &mut replay, &hold);
-    let lost = swings(&free(&by_clock));
+    let lost = swings(&by_clock.recording.qpos);
     assert!(
         lost < before,
         "by its clock: {lost} swings, {before} undisturbed"

@@ -243,7 +243,8 @@ pub struct LoopRun {
     pub undisturbed_dtw: f64,
     /// Whether the stepper finished (said it was done before the tick limit).
     pub finished: bool,
-    /// LElbowRoll's swings (the arm's data): disturbed, undisturbed, the held-out
+    /// LElbowRoll's swings over the whole path, the disturbed ticks included (a pushed arm may
+    /// go on swinging; a held one adds none): disturbed, undisturbed, the held-out
     /// demonstration's.
     pub swings: Option<[usize; 3]>,
     /// Times the stepper re-planned.
@@ -401,7 +402,7 @@ fn one(
             LoopDisturbance::Goal { at, .. } => (at * duration as f64).round() as usize + 1,
             _ => r.release.unwrap_or(1),
         };
-        let swings = match (count(&free(&r))?, plain_swings, demo_swings) {
+        let swings = match (count(&r.path)?, plain_swings, demo_swings) {
             (Some(a), Some(b), Some(c)) => Some([a, b, c]),
             _ => None,
         };

@@ -80,7 +80,8 @@ pub struct LoopMethod {
     pub relative_dtw: f64,
     /// The same of the undisturbed run.
     pub undisturbed_dtw: f64,
-    /// LElbowRoll's swings (the left arm): disturbed, undisturbed.
+    /// LElbowRoll's swings over the whole run, the disturbed ticks included (the left arm):
+    /// disturbed, undisturbed.
     pub swings: Option<[usize; 2]>,
     /// Per disturbance, how far it took the arm from where the undisturbed run had it (rad, the
     /// largest over the joints and the ticks it acted; 0 for a goal's move).
@@ -230,7 +231,7 @@ pub fn closed_loop<const N: usize>(
             jump: largest_step(rows, release.max(moved)) / demo_step.max(f64::MIN_POSITIVE),
             relative_dtw: dtw(&free_rows),
             undisturbed_dtw: dtw(plain_rows),
-            swings: swings(&free_rows)
+            swings: swings(rows)
                 .zip(swings(plain_rows))
                 .map(|(a, b)| [a, b]),
             displaced: (disturbances.iter())
