@@ -122,7 +122,11 @@ fn steppers(c: &mut Criterion) {
     {
         let mut s = at.clone();
         s.step(&off).unwrap();
-        assert_eq!(s.replans(), at.replans() + 1, "the step off the plan re-plans");
+        assert_eq!(
+            s.replans(),
+            at.replans() + 1,
+            "the step off the plan re-plans"
+        );
         eprintln!(
             "hierarchy: the re-plan at phase 0.4 reads {} postures",
             at.course().reading().len() + 1
