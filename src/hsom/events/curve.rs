@@ -619,28 +619,33 @@ fn as_smooth_as(y: &[Vec<f64>], slope: &[f64], target: Option<DemoSmoothness>) -
     let Some(target) = target else {
         return y.to_vec();
     };
-    // (smooth and slow enough, smooth enough)
-    let judge = |cols: &[Vec<f64>]| {
-        let n = cols.first().map_or(0, Vec::len);
-        let rows: Vec<Vec<f64>> = (0..n)
-            .map(|i| cols.iter().map(|c| c[i]).collect())
-            .collect();
-        let first = rows
-            .get(1)
-            .map_or(0.0, |r| crate::dtw::euclidean(r, &rows[0]));
-        let smooth = crate::metrics::normalized_jerk(&rows, 1.0).map_or(true, |j| j <= target.jerk)
-            && first <= target.start_step;
+    // (smooth and slow enough, smooth enough); whether smooth enough is told only when
+    // `need_smooth` or when slow enough (else false)
+    let judge = |cols: &[Vec<f64>], need_smooth: bool| {
         let slow = cols
             .iter()
             .zip(&target.peak_step)
             .all(|(c, &peak)| c.windows(2).all(|w| (w[1] - w[0]).abs() <= peak));
+        if !slow && !need_smooth {
+            return (false, false);
+        }
+        let n = cols.first().map_or(0, Vec::len);
+        let flat: Vec<f64> = (0..n)
+            .flat_map(|i| cols.iter().map(move |c| c[i]))
+            .collect();
+        let rows: Vec<&[f64]> = flat.chunks(cols.len().max(1)).collect();
+        let first = rows
+            .get(1)
+            .map_or(0.0, |r| crate::dtw::euclidean(r, rows[0]));
+        let smooth = crate::metrics::normalized_jerk(&rows, 1.0).map_or(true, |j| j <= target.jerk)
+            && first <= target.start_step;
         (smooth && slow, smooth)
     };
     // every column has one length: one factor per weight serves them all
     let len = y.first().map_or(0, Vec::len);
     let candidates = std::iter::once(y.to_vec()).chain(SMOOTHING.iter().map(|&lambda| {
         if len >= 5 && y.iter().all(|c| c.len() == len) {
-            JerkFactor::new(len, lambda).solve_columns(y, slope)
+            JerkFactor::shared(len, lambda).solve_columns(y, slope)
         } else {
             y.iter()
                 .zip(slope)
@@ -651,7 +656,7 @@ fn as_smooth_as(y: &[Vec<f64>], slope: &[f64], target: Option<DemoSmoothness>) -
     let mut smooth_only: Option<Vec<Vec<f64>>> = None;
     let mut last = Vec::new();
     for c in candidates {
-        let (all, smooth) = judge(&c);
+        let (all, smooth) = judge(&c, smooth_only.is_none());
         if all {
             return c;
         }

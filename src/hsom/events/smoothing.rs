@@ -2,6 +2,9 @@
 //! (docs/ALGORITHM.md, section 3.8), by a banded factorisation built once for a length and a
 //! weight and shared by every variable of a reproduction.
 
+use std::cell::RefCell;
+use std::rc::Rc;
+
 /// The curve nearest `c` (sampled) whose jerk is least: `x` minimising
 /// `Σ_{i≥1} (x_i − c_i)² + λ Σ_i (x_{i+3} − 3x_{i+2} + 3x_{i+1} − x_i)²` with `x_0 = c_0`
 /// (Whittaker-Henderson smoothing with third differences), the third differences reaching
@@ -66,6 +69,24 @@ impl JerkFactor {
             }
         }
         JerkFactor { a, l }
+    }
+
+    /// The factor for `len` samples and weight `lambda`, built once and kept (per thread, the
+    /// last [`KEPT_FACTORS`] made): reproductions of one length share it.
+    pub(super) fn shared(len: usize, lambda: f64) -> Rc<JerkFactor> {
+        FACTORS.with(|kept| {
+            let mut kept = kept.borrow_mut();
+            let key = (len, lambda.to_bits());
+            if let Some((_, f)) = kept.iter().find(|(k, _)| *k == key) {
+                return Rc::clone(f);
+            }
+            let f = Rc::new(JerkFactor::new(len, lambda));
+            if kept.len() >= KEPT_FACTORS {
+                kept.remove(0);
+            }
+            kept.push((key, Rc::clone(&f)));
+            f
+        })
     }
 
     /// [`jerk_smoothed`] of every column of `cols` (each of the factor's length, column
@@ -151,6 +172,16 @@ impl JerkFactor {
             })
             .collect()
     }
+}
+
+/// Factors a thread keeps ([`JerkFactor::shared`]): every weight of [`super::curve`]'s
+/// smoothing for several lengths (a few megabytes at most for gestures of a few hundred
+/// samples).
+const KEPT_FACTORS: usize = 64;
+
+thread_local! {
+    /// The factors kept, by length and weight (its bits), the oldest first.
+    static FACTORS: RefCell<Vec<((usize, u64), Rc<JerkFactor>)>> = const { RefCell::new(Vec::new()) };
 }
 
 /// Samples before the curve (and after it) that [`jerk_smoothed`]'s third differences reach:
