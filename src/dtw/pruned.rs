@@ -290,7 +290,9 @@ pub(crate) fn prefixes(a: &[Vec<f64>], b: &Reference) -> Prefixes {
                     }
                     last_within = j;
                 }
-                open = open.min(lc);
+                if lc < open {
+                    open = lc;
+                }
             }};
         }
         for (j, &c) in (lo..batch_hi).zip(&dist) {
