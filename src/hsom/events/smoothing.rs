@@ -179,9 +179,12 @@ impl JerkFactor {
 /// samples).
 const KEPT_FACTORS: usize = 64;
 
+/// A factor kept, by its length and its weight's bits.
+type Kept = ((usize, u64), Rc<JerkFactor>);
+
 thread_local! {
-    /// The factors kept, by length and weight (its bits), the oldest first.
-    static FACTORS: RefCell<Vec<((usize, u64), Rc<JerkFactor>)>> = const { RefCell::new(Vec::new()) };
+    /// The factors kept, the oldest first.
+    static FACTORS: RefCell<Vec<Kept>> = const { RefCell::new(Vec::new()) };
 }
 
 /// Samples before the curve (and after it) that [`jerk_smoothed`]'s third differences reach:
