@@ -3,6 +3,7 @@
 //! demonstrations (docs/ALGORITHM.md, section 3.8).
 
 use super::encode::Step;
+use super::smoothing::{jerk_smoothed, JerkFactor};
 use super::traces::HALF_PLACES;
 use crate::curve::{hermite, minimum_jerk_at, pchip_slopes, PchipEnds, MINIMUM_JERK_PEAK};
 use crate::hsom::model::{DemoSmoothness, Model, Part};
@@ -618,40 +619,44 @@ fn as_smooth_as(y: &[Vec<f64>], slope: &[f64], target: Option<DemoSmoothness>) -
     let Some(target) = target else {
         return y.to_vec();
     };
-    // (smooth and slow enough, smooth enough)
-    let judge = |cols: &[Vec<f64>]| {
-        let n = cols.first().map_or(0, Vec::len);
-        let rows: Vec<Vec<f64>> = (0..n)
-            .map(|i| cols.iter().map(|c| c[i]).collect())
-            .collect();
-        let first = rows
-            .get(1)
-            .map_or(0.0, |r| crate::dtw::euclidean(r, &rows[0]));
-        let smooth = crate::metrics::normalized_jerk(&rows, 1.0).map_or(true, |j| j <= target.jerk)
-            && first <= target.start_step;
+    // (smooth and slow enough, smooth enough); whether smooth enough is told only when
+    // `need_smooth` or when slow enough (else false)
+    let judge = |cols: &[Vec<f64>], need_smooth: bool| {
         let slow = cols
             .iter()
             .zip(&target.peak_step)
             .all(|(c, &peak)| c.windows(2).all(|w| (w[1] - w[0]).abs() <= peak));
+        if !slow && !need_smooth {
+            return (false, false);
+        }
+        let n = cols.first().map_or(0, Vec::len);
+        let flat: Vec<f64> = (0..n)
+            .flat_map(|i| cols.iter().map(move |c| c[i]))
+            .collect();
+        let rows: Vec<&[f64]> = flat.chunks(cols.len().max(1)).collect();
+        let first = rows
+            .get(1)
+            .map_or(0.0, |r| crate::dtw::euclidean(r, rows[0]));
+        let smooth = crate::metrics::normalized_jerk(&rows, 1.0).map_or(true, |j| j <= target.jerk)
+            && first <= target.start_step;
         (smooth && slow, smooth)
     };
     // every column has one length: one factor per weight serves them all
     let len = y.first().map_or(0, Vec::len);
     let candidates = std::iter::once(y.to_vec()).chain(SMOOTHING.iter().map(|&lambda| {
-        let factor =
-            (len >= 5 && y.iter().all(|c| c.len() == len)).then(|| JerkFactor::new(len, lambda));
-        y.iter()
-            .zip(slope)
-            .map(|(c, &m)| match &factor {
-                Some(f) => f.solve(c, m),
-                None => jerk_smoothed(c, lambda, m),
-            })
-            .collect::<Vec<_>>()
+        if len >= 5 && y.iter().all(|c| c.len() == len) {
+            JerkFactor::shared(len, lambda).solve_columns(y, slope)
+        } else {
+            y.iter()
+                .zip(slope)
+                .map(|(c, &m)| jerk_smoothed(c, lambda, m))
+                .collect::<Vec<_>>()
+        }
     }));
     let mut smooth_only: Option<Vec<Vec<f64>>> = None;
     let mut last = Vec::new();
     for c in candidates {
-        let (all, smooth) = judge(&c);
+        let (all, smooth) = judge(&c, smooth_only.is_none());
         if all {
             return c;
         }
@@ -662,126 +667,3 @@ fn as_smooth_as(y: &[Vec<f64>], slope: &[f64], target: Option<DemoSmoothness>) -
     }
     smooth_only.unwrap_or(last)
 }
-
-/// The curve nearest `c` (sampled) whose jerk is least: `x` minimising
-/// `Σ_{i≥1} (x_i − c_i)² + λ Σ_i (x_{i+3} − 3x_{i+2} + 3x_{i+1} − x_i)²` with `x_0 = c_0`
-/// (Whittaker-Henderson smoothing with third differences), the third differences reaching
-/// back before the start over [`BEFORE`] samples where the arm moved at `slope` per sample
-/// (0: at rest), so the curve leaves `c_0` as the arm was moving, and `x_{n−1} = c_{n−1}`
-/// with the arm at rest there after (the curve ends where and as it ends). Its normal equations are
-/// banded (three diagonals each side), solved by a banded Cholesky factorisation in O(n).
-pub(super) fn jerk_smoothed(c: &[f64], lambda: f64, slope: f64) -> Vec<f64> {
-    if c.len() < 5 || lambda <= 0.0 {
-        return c.to_vec();
-    }
-    JerkFactor::new(c.len(), lambda).solve(c, slope)
-}
-
-/// [`jerk_smoothed`]'s normal matrix and its banded Cholesky factor for curves of one length
-/// and one weight: they do not depend on the curve, so the columns of a reproduction share
-/// them (the same operations on the same numbers: the same values).
-struct JerkFactor {
-    /// a[i][k]: the normal matrix's entry (i, i - k) over every sample, k = 0..=3.
-    a: Vec<[f64; 4]>,
-    /// l[i][k] = L(i, i - k) of the unknowns' block.
-    l: Vec<[f64; 4]>,
-}
-
-impl JerkFactor {
-    /// For curves of `len` samples (at least 5) and weight `lambda` (above 0).
-    fn new(len: usize, lambda: f64) -> Self {
-        let known = BEFORE + 1;
-        let n = len + 2 * BEFORE;
-        const D: [f64; 4] = [-1.0, 3.0, -3.0, 1.0];
-        let mut a = vec![[0.0f64; 4]; n];
-        for row in a.iter_mut() {
-            row[0] = 1.0;
-        }
-        for j in 0..n - 3 {
-            for p in 0..4 {
-                for q in 0..=p {
-                    a[j + p][p - q] += lambda * D[p] * D[q];
-                }
-            }
-        }
-        let m = n - 2 * known;
-        // banded Cholesky of the unknowns' block: l[i][k] = L(i, i - k)
-        let mut l = vec![[0.0f64; 4]; m];
-        for i in 0..m {
-            for k in (0..=3.min(i)).rev() {
-                let j = i - k;
-                let mut sum = a[i + known][k];
-                for r in 1..=3usize {
-                    // L(i, j - r) L(j, j - r)
-                    if r + k <= 3 && r <= j {
-                        sum -= l[i][k + r] * l[j][r];
-                    }
-                }
-                if k == 0 {
-                    l[i][0] = sum.max(f64::MIN_POSITIVE).sqrt();
-                } else {
-                    l[i][k] = sum / l[j][0];
-                }
-            }
-        }
-        JerkFactor { a, l }
-    }
-
-    /// [`jerk_smoothed`] of `c` (of the factor's length) moving at `slope` before it.
-    fn solve(&self, c: &[f64], slope: f64) -> Vec<f64> {
-        let (a, l) = (&self.a, &self.l);
-        // the samples before the curve and its first one, its last one and the samples at
-        // rest after it: known values
-        let known = BEFORE + 1;
-        let last = c[c.len() - 1];
-        let full: Vec<f64> = (0..BEFORE)
-            .map(|k| c[0] - (BEFORE - k) as f64 * slope)
-            .chain(c.iter().copied())
-            .chain(std::iter::repeat(last).take(BEFORE))
-            .collect();
-        let n = full.len();
-        // the unknowns are x_known..n - known; their right-hand side without the known
-        // values' terms (the normal matrix is symmetric: entry (i, i + k) is a[i + k][k])
-        let m = n - 2 * known;
-        let mut b: Vec<f64> = full[known..n - known].to_vec();
-        for (u, bu) in b.iter_mut().enumerate() {
-            let i = u + known;
-            for k in 1..=3usize {
-                if i - k < known {
-                    *bu -= a[i][k] * full[i - k];
-                }
-                if i + k >= n - known {
-                    *bu -= a[i + k][k] * full[i + k];
-                }
-            }
-        }
-        // L y = b, then Lᵀ x = y
-        let mut y = vec![0.0; m];
-        for i in 0..m {
-            let mut sum = b[i];
-            for k in 1..=3.min(i) {
-                sum -= l[i][k] * y[i - k];
-            }
-            y[i] = sum / l[i][0];
-        }
-        let mut x = vec![0.0; m];
-        for i in (0..m).rev() {
-            let mut sum = y[i];
-            for k in 1..=3usize {
-                if i + k < m {
-                    sum -= l[i + k][k] * x[i + k];
-                }
-            }
-            x[i] = sum / l[i][0];
-        }
-        std::iter::once(c[0])
-            .chain(x)
-            .chain(std::iter::once(last))
-            .collect()
-    }
-}
-
-/// Samples before the curve (and after it) that [`jerk_smoothed`]'s third differences reach:
-/// three, so the curve's first velocity and acceleration continue the arm's (and its last
-/// come to rest).
-const BEFORE: usize = 3;

@@ -22,7 +22,8 @@
 //!   expanded to timed bottom events, re-planning on a surprise;
 //! - [`consensus`] and [`start`]: where each bottom event is placed (the demonstrations'
 //!   consensus, weighed by their starts);
-//! - [`curve`]: the executed curve through the placed, timed events;
+//! - [`curve`]: the executed curve through the placed, timed events, and [`smoothing`]: it
+//!   made as smooth as the demonstrations;
 //! - [`follow`]: following the nearest demonstration, re-encoding one, continuing a prefix.
 
 mod consensus;
@@ -31,6 +32,7 @@ mod encode;
 mod follow;
 mod levels;
 mod plan;
+mod smoothing;
 mod start;
 mod traces;
 

@@ -8,6 +8,7 @@ use super::curve::*;
 use super::encode::*;
 use super::levels::*;
 use super::plan::*;
+use super::smoothing::*;
 use super::start::*;
 use super::traces::*;
 use super::END;
