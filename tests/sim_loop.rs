@@ -2,6 +2,7 @@
 //! (`sim::in_loop`), held by a hand, pushed by a force on a link, or given a new goal; and
 //! `simulate --loop closed`. A held-out fold of the wave (seed 11): the hierarchy learns from
 //! three demonstrations and runs from the fourth's initial posture.
+#![cfg(feature = "sim")] // needs the simulated arm (MuJoCo)
 
 use assert_cmd::Command;
 use cosco_hsom::condition::Conditions;
@@ -50,13 +51,6 @@ fn largest_step(rows: &[Vec<f64>], from: usize) -> f64 {
 
 fn swings(rows: &[Vec<f64>]) -> usize {
     column_swings(rows, ELBOW_ROLL, cosco_hsom::eval::SWING_MIN_AMPLITUDE_RAD).unwrap()
-}
-
-fn free(run: &ArmRun) -> Vec<Vec<f64>> {
-    (run.recording.qpos.iter().zip(&run.held))
-        .filter(|(_, h)| !**h)
-        .map(|(q, _)| q.clone())
-        .collect()
 }
 
 fn run(f: &Fold, s: &mut dyn Stepper, d: &[ArmDisturbance]) -> ArmRun {

@@ -231,9 +231,7 @@ pub fn closed_loop<const N: usize>(
             jump: largest_step(rows, release.max(moved)) / demo_step.max(f64::MIN_POSITIVE),
             relative_dtw: dtw(&free_rows),
             undisturbed_dtw: dtw(plain_rows),
-            swings: swings(rows)
-                .zip(swings(plain_rows))
-                .map(|(a, b)| [a, b]),
+            swings: swings(rows).zip(swings(plain_rows)).map(|(a, b)| [a, b]),
             displaced: (disturbances.iter())
                 .map(|d| displaced(&disturbed, plain_rows, d))
                 .collect(),
