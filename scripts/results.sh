@@ -83,9 +83,9 @@ lasa_group() { # lasa_group NAME SHAPE... [-- OPTION...]: the shapes taught, the
     --state-length-from-data --json "$out/$name.json"
   echo "$SECONDS" > "$out/$name.time"
 }
-lasa_group recognition_a Multi_Models_3 Multi_Models_4 NShape PShape RShape Saeghe Sharpc
+lasa_group recognition_a Multi_Models_3 Multi_Models_4 NShape PShape RShape Saeghe Sharpc -- --stream
 lasa_group teach_lasa Multi_Models_3 Multi_Models_4 NShape PShape RShape Saeghe Sharpc -- --one-at-a-time --no-control
-lasa_group recognition_b Sine Snake Spoon Sshape Trapezoid WShape Worm
+lasa_group recognition_b Sine Snake Spoon Sshape Trapezoid WShape Worm -- --stream
 run families $ex/families --seeds 1-6
 # In the loop: every method's stepper held, moved and given a new goal in the kinematic loop
 # (the Nao's 20 sets and LASA), then held and pushed on the simulated arm.

@@ -132,6 +132,7 @@ fn gestures_taught_one_at_a_time_are_recognised_and_not_forgotten_unlike_a_retra
         control: false,
         one_at_a_time: true,
         threads: 2,
+        stream: false,
     };
     let cfg = apex_config();
     let s = recognition_study(&cfg, &taught, &untaught, &settings, None).unwrap();
@@ -324,4 +325,42 @@ fn cosco_heldout_recognition_runs_on_directories_and_names_bad_ones() {
             predicate::str::contains("'down_other_arc'")
                 .and(predicate::str::contains("at least 3")),
         );
+}
+
+/// With `stream`: every demonstration is also streamed into the recogniser of the model that
+/// answered it; under the rule no taught one is committed to another label, most to their own,
+/// and `finish()` is `recognize`; the recogniser that commits at the first sample (the control)
+/// fails the wrong-commit gate; the report has the table.
+#[test]
+fn streamed_the_rule_commits_rightly_and_the_first_sample_control_fails() {
+    use cosco_hsom::eval::recognition::stream::StreamSummary;
+    let taught = labelled(&TAUGHT, 4);
+    let untaught = labelled(&UNTAUGHT, 3);
+    let settings = RecognitionSettings {
+        control: false,
+        threads: 2,
+        stream: true,
+        ..RecognitionSettings::default()
+    };
+    let s = recognition_study(&apex_config(), &taught, &untaught, &settings, None).unwrap();
+    let all: Vec<_> = s.model.held_out.iter().chain(&s.model.untaught).collect();
+    let pick = |i: usize| -> Vec<_> {
+        (all.iter())
+            .map(|a| a.streamed.as_ref().expect("streamed")[i].clone())
+            .collect()
+    };
+    let (rule, first) = (StreamSummary::of(&pick(0)), StreamSummary::of(&pick(1)));
+    assert_eq!((rule.taught, rule.untaught), (16, 6));
+    assert_eq!(rule.finish_differs, 0);
+    assert_eq!(rule.wrong, 0, "{rule:?}");
+    // on these near shapes it commits rightly to most, never wrongly (13 of 16 here)
+    assert!(rule.right * 4 >= 3 * rule.taught, "{rule:?}");
+    let failed = first.failures();
+    assert!(
+        failed.iter().any(|f| f.starts_with("wrong commits")),
+        "{first:?}"
+    );
+    let report = recognition_markdown(&s);
+    assert!(report.contains("Streamed (`--stream`)"), "{report}");
+    assert!(report.contains("| first sample (control) |"), "{report}");
 }

@@ -266,6 +266,7 @@ fn recognition(study: RecognitionArgs, common: StudyArgs) -> Result<()> {
             control: !study.no_control,
             one_at_a_time: study.one_at_a_time,
             threads: common.threads.map_or_else(cli::cores, |t| t as usize),
+            stream: study.stream,
         },
         json: common.json,
     };

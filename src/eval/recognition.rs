@@ -25,7 +25,7 @@ use crate::config::{load_config_or_default, HsomConfig};
 use crate::demo_sets::{read_demo_sets, DemoSets};
 use crate::demos::{is_plain_label, Demonstration};
 use crate::fsutil::check_output;
-use crate::hsom::GestureModel;
+use crate::hsom::{GestureError, GestureModel};
 
 pub use report::{recognition_json, recognition_markdown};
 
@@ -50,6 +50,9 @@ pub struct RecognitionSettings {
     pub one_at_a_time: bool,
     /// Worker threads (at least 1); the result does not depend on their number.
     pub threads: usize,
+    /// Also stream every demonstration, a sample at a time, into the recogniser of the model
+    /// that answers it ([`stream`]), under the rule and under the first-sample control.
+    pub stream: bool,
 }
 
 impl Default for RecognitionSettings {
@@ -58,6 +61,7 @@ impl Default for RecognitionSettings {
             control: true,
             one_at_a_time: false,
             threads: 1,
+            stream: false,
         }
     }
 }
@@ -79,6 +83,10 @@ pub struct Answer {
     pub threshold: f64,
     /// The score of its own label (`None` for an untaught gesture).
     pub own_score: Option<f64>,
+    /// Streamed into the recogniser (with [`RecognitionSettings::stream`]): under the rule,
+    /// then under the first-sample control.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub streamed: Option<[stream::Streamed; 2]>,
 }
 
 /// The answers of one model (trained, or the untrained control).
@@ -173,16 +181,35 @@ enum Done {
     All(Vec<Answer>),
 }
 
+/// How a demonstration is asked: its label, whether the label is taught, whether to stream it.
+struct Query<'a> {
+    label: &'a str,
+    taught: bool,
+    stream: bool,
+}
+
 fn answer(
     model: &GestureModel,
-    label: &str,
+    q: &Query<'_>,
     demo: &Demonstration,
     what: &str,
 ) -> Result<Answer, LooError> {
-    let r = model.recognize(&demo.rows).map_err(|e| LooError::Gesture {
+    let label = q.label;
+    let gesture = |e: GestureError| LooError::Gesture {
         what: format!("{what}, recognising {}", demo.source),
         source: Box::new(e),
-    })?;
+    };
+    let r = model.recognize(&demo.rows).map_err(gesture)?;
+    let streamed = match q.stream {
+        false => None,
+        true => {
+            let c = model.stream_calibration().map_err(gesture)?;
+            let expected = q.taught.then_some(label);
+            let rule = stream::stream(model, c, &demo.rows, expected, stream::Policy::Rule);
+            let first = stream::stream(model, c, &demo.rows, expected, stream::Policy::FirstSample);
+            Some([rule.map_err(gesture)?, first.map_err(gesture)?])
+        }
+    };
     let b = model
         .labels()
         .iter()
@@ -196,6 +223,7 @@ fn answer(
         best_score: r.scores[b].1,
         threshold: r.thresholds[b],
         own_score: r.scores.iter().find(|(l, _)| l == label).map(|s| s.1),
+        streamed,
     })
 }
 
@@ -219,12 +247,20 @@ fn train(
 fn untaught_answers(
     model: &GestureModel,
     untaught: &[(String, Vec<Demonstration>)],
+    stream: bool,
     what: &str,
 ) -> Result<Done, LooError> {
     untaught
         .iter()
         .flat_map(|(l, ds)| ds.iter().map(move |d| (l, d)))
-        .map(|(l, d)| answer(model, l, d, what))
+        .map(|(label, d)| {
+            let q = Query {
+                label,
+                taught: false,
+                stream,
+            };
+            answer(model, &q, d, what)
+        })
         .collect::<Result<_, _>>()
         .map(Done::All)
 }
@@ -234,8 +270,14 @@ fn run_job(
     taught: &[(String, Vec<Demonstration>)],
     untaught: &[(String, Vec<Demonstration>)],
     job: Job,
-    one_at_a_time: bool,
+    settings: &RecognitionSettings,
 ) -> Result<Done, LooError> {
+    let (one_at_a_time, stream) = (settings.one_at_a_time, settings.stream);
+    let taught_query = |g: usize| Query {
+        label: &taught[g].0,
+        taught: true,
+        stream,
+    };
     match job {
         Job::Fold { g, i, learn: true } if one_at_a_time => {
             let (m, r) = teaching::fold(config, taught, g, i)?;
@@ -243,26 +285,29 @@ fn run_job(
                 "the model taught one gesture at a time without {}",
                 taught[g].1[i].source
             );
-            let a = answer(&m, &taught[g].0, &taught[g].1[i], &what)?;
+            let a = answer(&m, &taught_query(g), &taught[g].1[i], &what)?;
             Ok(Done::Fold(a, Some(r)))
         }
         Job::All { learn: true } if one_at_a_time => {
             let what = "the model taught every taught gesture one at a time";
             let m = teaching::in_turn(config, taught, what, |_, _| Ok(()))?;
-            untaught_answers(&m, untaught, what)
+            untaught_answers(&m, untaught, stream, what)
         }
         Job::Fold { g, i, learn } => {
-            let (label, demos) = &taught[g];
+            let demos = &taught[g].1;
             let mut sets = taught.to_vec();
             sets[g].1.remove(i);
             let what = format!("the model trained without {}", demos[i].source);
             let m = train(config, &sets, learn, &what)?;
-            Ok(Done::Fold(answer(&m, label, &demos[i], &what)?, None))
+            Ok(Done::Fold(
+                answer(&m, &taught_query(g), &demos[i], &what)?,
+                None,
+            ))
         }
         Job::All { learn } => {
             let what = "the model trained on every taught demonstration";
             let m = train(config, taught, learn, what)?;
-            untaught_answers(&m, untaught, what)
+            untaught_answers(&m, untaught, stream, what)
         }
     }
 }
@@ -347,10 +392,9 @@ pub fn recognition_study(
         }
     }
     let pool = super::Pool::new(settings.threads).map_err(LooError::Pool)?;
-    let one = settings.one_at_a_time;
     let done = pool.map(
         &jobs,
-        |&j| run_job(config, taught, untaught, j, one),
+        |&j| run_job(config, taught, untaught, j, settings),
         progress,
     );
     let (mut model, mut control) = (Answers::default(), Answers::default());

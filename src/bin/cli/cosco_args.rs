@@ -123,7 +123,7 @@ pub enum Command {
     /// demonstration is recognised by the hierarchy taught all (right: `unknown`); the
     /// untrained hierarchy beside it as the control. Markdown on stdout.
     #[command(group = clap::ArgGroup::new("recognition_study")
-        .args(["taught", "untaught", "no_control", "one_at_a_time"]).multiple(true).requires("recognition"))]
+        .args(["taught", "untaught", "no_control", "one_at_a_time", "stream"]).multiple(true).requires("recognition"))]
     Heldout {
         /// Demonstrations: a directory of *.csv files or files (one gesture), or directories of
         /// gesture subdirectories (DIR/<gesture>/*.csv, each gesture on its own); at least 3
@@ -273,6 +273,11 @@ pub struct RecognitionArgs {
     /// the hierarchy taught at once and with the one right after its gesture was taught.
     #[arg(long)]
     pub one_at_a_time: bool,
+    /// Also stream every demonstration, a sample at a time, into the recogniser of the
+    /// hierarchy that answers it (as `cosco recognize --stream`): what it committed to and
+    /// when, against the gates, beside a recogniser that commits at the first sample.
+    #[arg(long)]
+    pub stream: bool,
 }
 
 /// What both held-out studies share: how they read demonstrations, their threads, their JSON.

@@ -94,6 +94,24 @@ pub fn recognition_markdown(study: &RecognitionStudy) -> String {
         model_row(&mut table, "untrained (control, must fail)", c);
     }
     let _ = writeln!(out, "{table}");
+    let streams = |pick: usize| -> Vec<super::stream::Streamed> {
+        (m.held_out.iter().chain(&m.untaught))
+            .filter_map(|a| Some(a.streamed.as_ref()?[pick].clone()))
+            .collect()
+    };
+    let rule = streams(0);
+    if !rule.is_empty() {
+        use super::stream::{StreamSummary, MARKDOWN_HEADER};
+        let _ = writeln!(
+            out,
+            "Streamed (`--stream`): each demonstration above pushed a sample at a time into the \
+             recogniser of the model that answered it (docs/ALGORITHM.md, section 4, item 7), \
+             beside a recogniser that commits at the first sample (the control: it must fail \
+             the wrong-commit gate).\n\n{MARKDOWN_HEADER}\n{}\n{}\n",
+            StreamSummary::of(&rule).markdown_row("the rule"),
+            StreamSummary::of(&streams(1)).markdown_row("first sample (control)"),
+        );
+    }
     let mut table = Table::new([
         "gesture",
         "taught",
