@@ -86,7 +86,7 @@ pub struct Answer {
     /// Streamed into the recogniser (with [`RecognitionSettings::stream`]): under the rule,
     /// then under the first-sample control.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub streamed: Option<[stream::Streamed; 2]>,
+    pub streamed: Option<Box<[stream::Streamed; 2]>>,
 }
 
 /// The answers of one model (trained, or the untrained control).
@@ -207,7 +207,7 @@ fn answer(
             let expected = q.taught.then_some(label);
             let rule = stream::stream(model, c, &demo.rows, expected, stream::Policy::Rule);
             let first = stream::stream(model, c, &demo.rows, expected, stream::Policy::FirstSample);
-            Some([rule.map_err(gesture)?, first.map_err(gesture)?])
+            Some(Box::new([rule.map_err(gesture)?, first.map_err(gesture)?]))
         }
     };
     let b = model
