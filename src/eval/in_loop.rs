@@ -21,7 +21,7 @@ use crate::hsom::{HsomStepper, NearestStepper};
 use crate::metrics::column_swings;
 use crate::promp::{PrompSettings, PrompStepper};
 use crate::stats::median;
-use crate::stepper::kinematic::{Disturbance, Trace};
+use crate::stepper::kinematic::{largest_step, Disturbance, Trace};
 use crate::stepper::{Plant, Stepper};
 use crate::table::Table;
 
@@ -272,13 +272,6 @@ pub const LOOP_METHODS: [Method; 5] = [
     Method::GmmGmr,
 ];
 
-/// The largest step between consecutive rows.
-fn largest_step(rows: &[Vec<f64>]) -> f64 {
-    rows.windows(2)
-        .map(|w| euclidean(&w[0], &w[1]))
-        .fold(0.0, f64::max)
-}
-
 /// What a method learned on a fold, once for every run of the fold: the one way the held-out
 /// studies and `simulate --loop closed` make a method's stepper.
 pub enum Learned {
@@ -387,7 +380,7 @@ fn one(
     };
     let (plain_swings, demo_swings) = (count(&plain.path)?, count(&target.rows)?);
     let undisturbed_dtw = dtw(&plain.path)?;
-    let demo_step = largest_step(&target.rows);
+    let demo_step = largest_step(&target.rows, 1);
     let disturbed = |disturbance: &LoopDisturbance| -> Result<LoopRun, String> {
         let d = disturbance.of(extent, end);
         let mut s = make()?;

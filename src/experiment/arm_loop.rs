@@ -22,6 +22,7 @@ use crate::plot::{demo_color, panels_png, Band, Panel, Series, BLACK};
 use crate::robot::Robot;
 use crate::sim::in_loop::{run_in_loop, ArmDisturbance, ArmRun};
 use crate::sim::{ControllerConfig, NaoArm};
+use crate::stepper::kinematic::largest_step;
 use crate::table::Table;
 
 use super::ExperimentError;
@@ -105,13 +106,6 @@ pub struct HierarchyLoop {
     pub undisturbed: ArmRun,
     /// The disturbances it ran with.
     pub disturbances: Vec<ArmDisturbance>,
-}
-
-/// The largest step (Euclidean) between consecutive rows from `from`.
-fn largest_step(rows: &[Vec<f64>], from: usize) -> f64 {
-    (from.max(1)..rows.len())
-        .map(|k| euclidean(&rows[k], &rows[k - 1]))
-        .fold(0.0, f64::max)
 }
 
 /// How far `d` took the arm of `run` from where the undisturbed run `plain` had it: the

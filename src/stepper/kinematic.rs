@@ -121,9 +121,7 @@ impl Trace {
     /// The largest step of the path (Euclidean) into row `from` or any row after it: with
     /// `from` the release, the step the arm makes when let go and every one after.
     pub fn largest_step_from(&self, from: usize) -> f64 {
-        (from.max(1)..self.path.len())
-            .map(|k| euclidean(&self.path[k], &self.path[k - 1]))
-            .fold(0.0, f64::max)
+        largest_step(&self.path, from)
     }
 
     /// How far the disturbance took the arm from where `plain` (the same stepper's undisturbed
@@ -135,6 +133,14 @@ impl Trace {
             .flat_map(|((a, b), _)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
             .fold(0.0, f64::max)
     }
+}
+
+/// The largest step (Euclidean) between consecutive rows of `rows`, into row `from` or any
+/// row after it (`from` 1: every step).
+pub fn largest_step(rows: &[Vec<f64>], from: usize) -> f64 {
+    (from.max(1)..rows.len())
+        .map(|k| euclidean(&rows[k], &rows[k - 1]))
+        .fold(0.0, f64::max)
 }
 
 /// A phase 0 to 1.
