@@ -25,7 +25,7 @@ use crate::config::{load_config_or_default, HsomConfig};
 use crate::demo_sets::{read_demo_sets, DemoSets};
 use crate::demos::{is_plain_label, Demonstration};
 use crate::fsutil::check_output;
-use crate::hsom::{GestureError, GestureModel};
+use crate::hsom::{GestureError, GestureModel, StreamCalibration};
 
 pub use report::{recognition_json, recognition_markdown};
 
@@ -181,11 +181,25 @@ enum Done {
     All(Vec<Answer>),
 }
 
-/// How a demonstration is asked: its label, whether the label is taught, whether to stream it.
+/// How a demonstration is asked: its label, whether the label is taught, and the recogniser's
+/// calibration of the model when it is also streamed (made once a model).
 struct Query<'a> {
     label: &'a str,
     taught: bool,
+    calibration: Option<StreamCalibration>,
+}
+
+/// `model`'s recogniser calibration when the study streams (`stream`).
+fn calibration(
+    model: &GestureModel,
     stream: bool,
+    what: &str,
+) -> Result<Option<StreamCalibration>, LooError> {
+    let c = stream.then(|| model.stream_calibration()).transpose();
+    c.map_err(|e| LooError::Gesture {
+        what: format!("{what}, calibrating its recogniser"),
+        source: Box::new(e),
+    })
 }
 
 fn answer(
@@ -200,10 +214,9 @@ fn answer(
         source: Box::new(e),
     };
     let r = model.recognize(&demo.rows).map_err(gesture)?;
-    let streamed = match q.stream {
-        false => None,
-        true => {
-            let c = model.stream_calibration().map_err(gesture)?;
+    let streamed = match q.calibration {
+        None => None,
+        Some(c) => {
             let expected = q.taught.then_some(label);
             let rule = stream::stream(model, c, &demo.rows, expected, stream::Policy::Rule);
             let first = stream::stream(model, c, &demo.rows, expected, stream::Policy::FirstSample);
@@ -250,6 +263,7 @@ fn untaught_answers(
     stream: bool,
     what: &str,
 ) -> Result<Done, LooError> {
+    let calibration = calibration(model, stream, what)?;
     untaught
         .iter()
         .flat_map(|(l, ds)| ds.iter().map(move |d| (l, d)))
@@ -257,7 +271,7 @@ fn untaught_answers(
             let q = Query {
                 label,
                 taught: false,
-                stream,
+                calibration,
             };
             answer(model, &q, d, what)
         })
@@ -273,10 +287,12 @@ fn run_job(
     settings: &RecognitionSettings,
 ) -> Result<Done, LooError> {
     let (one_at_a_time, stream) = (settings.one_at_a_time, settings.stream);
-    let taught_query = |g: usize| Query {
-        label: &taught[g].0,
-        taught: true,
-        stream,
+    let taught_query = |g: usize, m: &GestureModel, what: &str| -> Result<Query, LooError> {
+        Ok(Query {
+            label: &taught[g].0,
+            taught: true,
+            calibration: calibration(m, stream, what)?,
+        })
     };
     match job {
         Job::Fold { g, i, learn: true } if one_at_a_time => {
@@ -285,7 +301,7 @@ fn run_job(
                 "the model taught one gesture at a time without {}",
                 taught[g].1[i].source
             );
-            let a = answer(&m, &taught_query(g), &taught[g].1[i], &what)?;
+            let a = answer(&m, &taught_query(g, &m, &what)?, &taught[g].1[i], &what)?;
             Ok(Done::Fold(a, Some(r)))
         }
         Job::All { learn: true } if one_at_a_time => {
@@ -300,7 +316,7 @@ fn run_job(
             let what = format!("the model trained without {}", demos[i].source);
             let m = train(config, &sets, learn, &what)?;
             Ok(Done::Fold(
-                answer(&m, &taught_query(g), &demos[i], &what)?,
+                answer(&m, &taught_query(g, &m, &what)?, &demos[i], &what)?,
                 None,
             ))
         }
