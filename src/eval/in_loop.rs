@@ -21,7 +21,7 @@ use crate::hsom::{HsomStepper, NearestStepper};
 use crate::metrics::column_swings;
 use crate::promp::{PrompSettings, PrompStepper};
 use crate::stats::median;
-use crate::stepper::kinematic::{largest_step, Disturbance, Trace};
+use crate::stepper::kinematic::{largest_step, Disturbance};
 use crate::stepper::{Plant, Stepper};
 use crate::table::Table;
 
@@ -250,7 +250,7 @@ pub struct LoopRun {
     /// Times the stepper re-planned.
     pub replans: usize,
     /// How far the disturbance took the arm from where the undisturbed run had it, the largest
-    /// over the disturbed ticks and the variables ([`Trace::displaced_from`]), data units.
+    /// over the disturbed ticks and the variables ([`crate::stepper::Trace::displaced_from`]), data units.
     pub displaced: f64,
 }
 
@@ -361,12 +361,6 @@ fn one(
         (plant.run(make()?.as_mut(), initial, &Disturbance::None, 1, limit)).map_err(text)?;
     let duration = plain.path.len().saturating_sub(1).max(1);
     let end = plain.path.last().ok_or("no path")?;
-    let free = |k: &Trace| -> Vec<Vec<f64>> {
-        (k.path.iter().zip(&k.held))
-            .filter(|(_, h)| !**h)
-            .map(|(p, _)| p.clone())
-            .collect()
-    };
     let dtw = |rows: &[Vec<f64>]| -> Result<f64, String> {
         let c = dtw_distance(rows, &target.rows, Band::None).map_err(|e| e.to_string())?;
         Ok(c.per_step() / diag)
@@ -408,7 +402,7 @@ fn one(
                 true => r.largest_step_from(from) / demo_step,
                 false => f64::NAN,
             },
-            relative_dtw: dtw(&free(&r))?,
+            relative_dtw: dtw(&r.free())?,
             undisturbed_dtw,
             finished: r.finished,
             swings,

@@ -22,7 +22,7 @@ use crate::plot::{demo_color, panels_png, Band, Panel, Series, BLACK};
 use crate::robot::Robot;
 use crate::sim::in_loop::{run_in_loop, ArmDisturbance, ArmRun};
 use crate::sim::{ControllerConfig, NaoArm};
-use crate::stepper::kinematic::largest_step;
+use crate::stepper::kinematic::{free_rows, largest_step};
 use crate::table::Table;
 
 use super::ExperimentError;
@@ -121,14 +121,6 @@ fn displaced(run: &ArmRun, plain: &[Vec<f64>], d: &ArmDisturbance) -> f64 {
     .fold(0.0, f64::max)
 }
 
-/// The rows of `run` at ticks no disturbance had.
-fn free(run: &ArmRun) -> Vec<Vec<f64>> {
-    (run.recording.qpos.iter().zip(&run.held))
-        .filter(|(_, h)| !**h)
-        .map(|(q, _)| q.clone())
-        .collect()
-}
-
 /// Every method of [`METHODS`] in the loop on `arm`, learned from `demos` (the hierarchy is
 /// `model`), undisturbed and with `disturbances`; `in_loop.csv` and `in_loop.png` written into
 /// `out` (listed in `files`). The section and the hierarchy's run.
@@ -211,7 +203,10 @@ pub fn closed_loop<const N: usize>(
         let moved = goal
             .as_ref()
             .map_or(1, |(_, at)| (at / period).round() as usize + 1);
-        let (free_rows, plain_rows) = (free(&disturbed), &undisturbed.recording.qpos);
+        let (free_rows, plain_rows) = (
+            free_rows(&disturbed.recording.qpos, &disturbed.held),
+            &undisturbed.recording.qpos,
+        );
         methods.push(LoopMethod {
             method: method.name().to_string(),
             closed_loop: closed,

@@ -124,6 +124,11 @@ impl Trace {
         largest_step(&self.path, from)
     }
 
+    /// The path without its disturbed ticks ([`free_rows`]).
+    pub fn free(&self) -> Vec<Vec<f64>> {
+        free_rows(&self.path, &self.held)
+    }
+
     /// How far the disturbance took the arm from where `plain` (the same stepper's undisturbed
     /// run) had it at the same ticks: the largest distance over the disturbed ticks and the
     /// variables (0 without a hold, move or push).
@@ -141,6 +146,14 @@ pub fn largest_step(rows: &[Vec<f64>], from: usize) -> f64 {
     (from.max(1)..rows.len())
         .map(|k| euclidean(&rows[k], &rows[k - 1]))
         .fold(0.0, f64::max)
+}
+
+/// The rows of `path` at the ticks `held` does not mark: a path without its disturbed ticks.
+pub fn free_rows(path: &[Vec<f64>], held: &[bool]) -> Vec<Vec<f64>> {
+    (path.iter().zip(held))
+        .filter(|(_, h)| !**h)
+        .map(|(p, _)| p.clone())
+        .collect()
 }
 
 /// A phase 0 to 1.
