@@ -12,7 +12,7 @@ PY_VENV := target/py-venv
 # built as `cargo test` builds them for the command-line tests (the crate with the test build's
 # features), so that after `cargo test --all-targets` nothing is compiled again (`cargo build
 # --bins` would compile the crate once more, with a plain build's features)
-TEST_BINS := $(CARGO) test --no-run --test cli_cosco
+TEST_BINS := $(CARGO) test --no-run --test cli
 
 .PHONY: deps demo test structure test-python doc-commands results bench bench-som bindings fmt clippy clean
 
@@ -39,7 +39,7 @@ demo: deps
 test: deps structure
 	$(CARGO) test --all-targets
 	$(CARGO) test --doc
-	$(CARGO) test --no-default-features --bins --test cli_cosco --test bad_input
+	$(CARGO) test --no-default-features --bins --test cli
 	$(CARGO) test --no-default-features --doc
 	$(MAKE) test-python
 	$(MAKE) doc-commands

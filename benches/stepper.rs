@@ -1,51 +1,28 @@
 //! Steppers in the loop (issue 52): the time of one `step`, given the posture the encoders
 //! read. The hierarchy (events algorithm, the built-in configs/nao-gestures.xml) learned from
 //! three waves of the demonstrator on the Nao's left arm (6 joints, 40 Hz, as
-//! tests/stepper.rs makes them), following its plan undisturbed and re-planning with the arm
-//! off its plan at phase 0.4 (its `resume` on the whole reading); the DMP and ProMP on the
-//! same waves, undisturbed. The undisturbed steps are timed over whole reproductions (a
-//! fresh stepper, cloned outside the timing, whenever one ends): criterion's figure is the
-//! time per step. Before criterion's statistics, the median of single steps timed one by one
-//! over 20 undisturbed reproductions is printed.
+//! tests/algorithm/stepper.rs makes them), following its plan undisturbed and re-planning with
+//! the arm off its plan at phase 0.4 (its `resume` on the whole reading); the DMP and ProMP on
+//! the same waves, undisturbed. The undisturbed steps are timed over whole reproductions (a
+//! fresh stepper, cloned outside the timing, whenever one ends): criterion's figure is the time
+//! per step. Before criterion's statistics, the median of single steps timed one by one over 20
+//! undisturbed reproductions is printed.
 //!
 //! cargo bench --bench stepper --no-default-features -- --warm-up-time 1 --measurement-time 3
 
 use std::time::{Duration, Instant};
 
 use cosco_hsom::condition::Conditions;
-use cosco_hsom::demos::Demonstration;
 use cosco_hsom::dmp::{DmpSettings, DmpStepper};
-use cosco_hsom::gesture::{Gesture, HumanTrajectory, Variation};
 use cosco_hsom::hsom::HsomStepper;
 use cosco_hsom::promp::{PrompSettings, PrompStepper};
-use cosco_hsom::robot::Robot;
 use cosco_hsom::stepper::Stepper;
 use criterion::{black_box, criterion_group, criterion_main, BatchSize, Criterion};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
 
-/// Four waves of the demonstrator (seed 7) at 40 Hz: the first held out (its first posture
-/// starts every reproduction), the others to learn from.
-fn waves() -> Vec<Demonstration> {
-    let g = Gesture::by_name(Robot::LeftArm, "wave").unwrap();
-    let mut rng = ChaCha8Rng::seed_from_u64(7);
-    let columns: Vec<String> = Robot::LeftArm
-        .joint_names()
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
-    (0..4)
-        .map(|i| {
-            let t = HumanTrajectory::sample(&g, &Variation::default(), &mut rng).unwrap();
-            Demonstration {
-                source: format!("wave {i}"),
-                columns: columns.clone(),
-                time: None,
-                rows: t.sampled(0.025).into_iter().map(|(_, q)| q).collect(),
-            }
-        })
-        .collect()
-}
+/// The demonstrator's waves (tests/common/waves.rs): seed 7, the first held out (its first
+/// posture starts every reproduction), the others to learn from.
+#[path = "../tests/common/waves.rs"]
+mod waves;
 
 /// `iters` undisturbed steps (the arm reads where it was sent), fresh copies of `template`
 /// taken outside the timing whenever one is done; the time spent stepping.
@@ -96,7 +73,7 @@ fn stepped_to<S: Stepper + Clone>(template: &S, initial: &[f64], phase: f64) -> 
 }
 
 fn steppers(c: &mut Criterion) {
-    let demos = waves();
+    let demos = waves::waves(7);
     let (held, train) = (&demos[0], &demos[1..]);
     let initial = held.rows[0].clone();
     let none = Conditions::default();

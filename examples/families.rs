@@ -1,8 +1,8 @@
-//! Generality, held out first: the synthetic families of `tests/hsom_measure.rs` (figure
-//! eight, open stroke, handwriting-like 2-D, six joints), leave-one-out. For each
+//! Generality, held out first: the synthetic families of `tests/algorithm/hsom_measure.rs`
+//! (figure eight, open stroke, handwriting-like 2-D, six joints), leave-one-out. For each
 //! demonstration: train on the others, reproduce from its first posture, score against it
 //! (held out) and against the training demonstrations (in-sample, the figure
-//! `tests/hsom_measure.rs` prints). Side by side: the recommended configuration
+//! `tests/algorithm/hsom_measure.rs` prints). Side by side: the recommended configuration
 //! (configs/nao-gestures.xml, stateLength adapted), the paper's Table I (literal,
 //! configs/table1.xml), a replay of the
 //! training demonstration whose first posture is nearest (no model), the nearest-sequence

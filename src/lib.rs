@@ -93,3 +93,8 @@ pub mod stepper;
 pub mod sweep;
 pub mod table;
 pub(crate) mod trajectory;
+
+// The unit tests share the synthetic data of the integration tests (tests/hsom_common), which
+// name this crate `cosco_hsom`.
+#[cfg(test)]
+extern crate self as cosco_hsom;

@@ -17,3 +17,6 @@ pub use xml::{
     load_config, load_config_or_default, parse_config, DEFAULT_CONFIG_NAME, NAO_GESTURES_XML,
     NAO_UPPER_BODY_XML, UPPER_BODY_CONFIG_NAME,
 };
+
+#[cfg(test)]
+mod tests;

@@ -14,3 +14,5 @@ fn time_header_is_case_insensitive() {
     assert_eq!(d.time, Some(vec![0.0, 0.5]));
     assert_eq!(d.columns, vec!["a"]);
 }
+
+mod io;

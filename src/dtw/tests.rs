@@ -115,3 +115,5 @@ fn pruning_changes_no_answer() {
     }
     assert!(skipped / cases as f64 > 0.2, "{}", skipped / cases as f64);
 }
+
+mod props;

@@ -36,3 +36,6 @@ pub use io::{
 pub use lead_in::{lead_in_ticks_at, plan_at, GmrPlan, LEAD_IN_MIN_S};
 pub use preprocess::{active_range, TrainingSet};
 pub use stepper::{stepper, UNCONDITIONED};
+
+#[cfg(test)]
+mod tests;

@@ -286,3 +286,6 @@ pub fn preprocess(
         kept,
     })
 }
+
+#[cfg(test)]
+mod tests;

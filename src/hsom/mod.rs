@@ -55,3 +55,6 @@ pub use recognizer::{Commit, Recognizer, StreamCalibration};
 pub use reproduction::{Reproduction, StopReason};
 pub use stepper::{HsomReplan, HsomStepper, NearestReplan, NearestStepper};
 pub use summary::{plans_word, LevelSummary, ModelSummary};
+
+#[cfg(test)]
+mod tests;

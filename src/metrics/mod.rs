@@ -22,3 +22,6 @@ pub use start_end::{
     diagonal, end_spread, end_tolerance, start_speed, StartEnd, StartEndReference,
     END_DIAGONAL_FRACTION, END_SPREAD_FACTOR, START_SPEED_RTOL,
 };
+
+#[cfg(test)]
+mod tests;

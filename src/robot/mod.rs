@@ -207,7 +207,7 @@ pub fn arm_ranges(columns: &[String]) -> Option<Vec<(f64, f64)>> {
 /// How far beyond a joint's range a recorded or reproduced value may lie and still be scored,
 /// rad: encoders read a hair beyond a limit, and the simulated joints' soft limits let a
 /// motion driven into a limit pass it by up to 0.07 rad (measured on the shuffled controls of
-/// tests/gesture_fidelity.rs).
+/// tests/sim/gesture_fidelity.rs).
 pub const RANGE_TOLERANCE_RAD: f64 = 0.25;
 
 #[cfg(test)]

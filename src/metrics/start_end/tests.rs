@@ -62,3 +62,5 @@ fn a_slower_start_is_in_range_a_faster_one_is_not() {
     assert!(!r.judge(&[vec![0.0]], 0.1, 1.01).end_within_spread);
     assert_eq!(r.judge(&[vec![0.0]], 0.1, 0.3).end_tolerance, 1.0);
 }
+
+mod held_out;
