@@ -347,7 +347,7 @@ fn stack_overflow_aborts_with_mujocos_message_and_no_log_file() {
     let out = std::process::Command::new(std::env::current_exe().unwrap())
         .args([
             "--exact",
-            "stack_overflow_aborts_with_mujocos_message_and_no_log_file",
+            "mujoco_safe_layer::stack_overflow_aborts_with_mujocos_message_and_no_log_file",
             "--nocapture",
             "--test-threads=1",
         ])
