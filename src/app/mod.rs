@@ -41,6 +41,9 @@ pub mod recognize;
 pub mod reproduce;
 pub mod train;
 
+#[cfg(test)]
+mod tests;
+
 use std::path::PathBuf;
 
 pub use evaluate::{evaluate_files, inspect, Evaluation};
