@@ -400,10 +400,10 @@ fn bad_labelled_directories_are_refused_naming_the_directory_or_label() {
 
 #[test]
 fn a_label_without_demonstrations_is_named_by_the_library_step() {
-    // `app::train_gestures` (what the Python package calls): a label with no
+    // `app::train` (what the Python package calls): a label with no
     // demonstrations is refused naming it, not as "no demonstrations" of no one
     let mut s = sets(&APEXES[..2]);
     s[1].1.clear();
-    let e = cosco_hsom::app::train_gestures(&config(), &s, None).unwrap_err();
+    let e = cosco_hsom::app::train(&config(), &s, None).unwrap_err();
     assert_eq!(e.to_string(), "gesture \"right\" has no demonstrations");
 }
