@@ -40,7 +40,9 @@ fn recognize(c: &mut Criterion) {
             (format!("g{g}"), demos)
         })
         .collect();
-    let model = cfg.fit_gestures(&sets, None).unwrap();
+    let model = cfg
+        .fit_model(&sets, cosco_hsom::hsom::Fit::default())
+        .unwrap();
     let nn = NearestNeighbour::new(
         sets.iter()
             .flat_map(|(l, ds)| ds.iter().map(move |d| (l.clone(), d.rows.clone())))
@@ -55,7 +57,13 @@ fn recognize(c: &mut Criterion) {
     let labels: Vec<String> = sets.iter().map(|(l, _)| l.clone()).collect();
     let reps: Vec<Vec<Vec<f64>>> = labels
         .iter()
-        .map(|l| model.reproduce(Some(l), &query[0]).unwrap().postures)
+        .map(|l| {
+            model
+                .branch(Some(l))
+                .and_then(|b| Ok(b.reproduce(&query[0])?))
+                .unwrap()
+                .postures
+        })
         .collect();
     let best_of = |f: &mut dyn FnMut()| {
         let mut best = f64::INFINITY;
@@ -73,7 +81,12 @@ fn recognize(c: &mut Criterion) {
     });
     let reproductions = best_of(&mut || {
         for l in &labels {
-            black_box(model.reproduce(Some(l), black_box(&query[0])).unwrap());
+            black_box(
+                model
+                    .branch(Some(l))
+                    .and_then(|b| Ok(b.reproduce(black_box(&query[0]))?))
+                    .unwrap(),
+            );
         }
     });
     let dtws = best_of(&mut || {
@@ -99,7 +112,12 @@ fn recognize(c: &mut Criterion) {
         b.iter(|| nn.classify(black_box(&query)).unwrap())
     });
     g.bench_function("reproduce_one_label", |b| {
-        b.iter(|| model.reproduce(Some("g2"), black_box(&query[0])).unwrap())
+        b.iter(|| {
+            model
+                .branch(Some("g2"))
+                .and_then(|b| Ok(b.reproduce(black_box(&query[0]))?))
+                .unwrap()
+        })
     });
     g.finish();
     let cal = model.stream_calibration().unwrap();

@@ -105,7 +105,7 @@ fn shared(a: &Args, arm: &NaoArm, config: &HsomConfig, settings: &DemoSettings) 
                 ))
             })
             .collect::<Result<_>>()?;
-        let model = config.fit_gestures(&sets, None)?;
+        let model = config.fit_model(&sets, cosco_hsom::hsom::Fit::default())?;
         for (label, demos) in &sets {
             let (da, ea, ua) = ceiling(&config.fit(demos)?, demos)?;
             let (ds, es, us) = ceiling(model.branch(Some(label))?, demos)?;

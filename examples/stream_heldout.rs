@@ -69,7 +69,7 @@ fn run(a: Args) -> Result<()> {
             .iter()
             .map(|(l, t, _)| (l.clone(), t.clone()))
             .collect();
-        let model = config.fit_gestures(&taught, None)?;
+        let model = config.fit_model(&taught, cosco_hsom::hsom::Fit::default())?;
         let tests: Vec<(Option<String>, &Demonstration)> = sets
             .iter()
             .flat_map(|(l, _, t)| t.iter().map(move |d| (Some(l.clone()), d)))
@@ -83,7 +83,7 @@ fn run(a: Args) -> Result<()> {
                 .filter(|&(i, _)| i != u)
                 .map(|(_, s)| s.clone())
                 .collect();
-            let model = config.fit_gestures(&others, None)?;
+            let model = config.fit_model(&others, cosco_hsom::hsom::Fit::default())?;
             let tests: Vec<(Option<String>, &Demonstration)> =
                 left_out.iter().map(|d| (None, d)).collect();
             rule.extend(streams(&model, &tests, Policy::Rule)?);

@@ -41,6 +41,14 @@ pub enum DemoSets {
 }
 
 impl DemoSets {
+    /// The sets as a model is fitted on them ([`crate::hsom::HsomConfig::fit_model`]).
+    pub fn gestures(&self) -> crate::hsom::Gestures<'_> {
+        match self {
+            DemoSets::Plain(d) => d.into(),
+            DemoSets::Labelled(s) => s.into(),
+        }
+    }
+
     /// The number of variables of the first demonstration.
     pub fn width(&self) -> usize {
         match self {

@@ -42,6 +42,21 @@ pub struct Demonstration {
 }
 
 impl Demonstration {
+    /// Plain time series (rows of values) as demonstrations: `series #0`, `series #1`, ... in
+    /// messages, columns `x0`, `x1`, ..., no times.
+    pub fn from_series(series: &[Vec<Vec<f64>>]) -> Vec<Demonstration> {
+        let width = series.first().and_then(|s| s.first()).map_or(0, Vec::len);
+        let columns: Vec<String> = (0..width).map(|i| format!("x{i}")).collect();
+        (series.iter().enumerate())
+            .map(|(i, rows)| Demonstration {
+                source: format!("series #{i}"),
+                columns: columns.clone(),
+                time: None,
+                rows: rows.clone(),
+            })
+            .collect()
+    }
+
     /// Number of samples.
     pub fn len(&self) -> usize {
         self.rows.len()

@@ -206,7 +206,9 @@ pub fn run_seed(
         .flat_map(|(l, _, t)| t.iter().map(move |d| (l.clone(), d)))
         .collect();
     let t0 = Instant::now();
-    let model = config.fit_gestures(&sets, None).map_err(gerr)?;
+    let model = config
+        .fit_model(&sets, cosco_hsom::hsom::Fit::default())
+        .map_err(gerr)?;
     let train_s = t0.elapsed().as_secs_f64();
     let model_bytes = model.to_bytes().len();
     let nn = NearestNeighbour::new(
@@ -276,7 +278,10 @@ pub fn run_seed(
                             .map_or(f64::NAN, |d| d.total_reversals as f64),
                     ])
                 };
-                let shared = model.reproduce(Some(label), &d.rows[0]).map_err(gerr)?;
+                let shared = model
+                    .branch(Some(label))
+                    .and_then(|b| Ok(b.reproduce(&d.rows[0])?))
+                    .map_err(gerr)?;
                 let own = alone.reproduce(&d.rows[0])?;
                 let (sh, al) = (score(&shared.postures)?, score(&own.postures)?);
                 fidelity.push(FidelityPair {
@@ -301,7 +306,9 @@ pub fn run_seed(
                 .filter(|&(i, _)| i != u)
                 .map(|(_, s)| s.clone())
                 .collect();
-            let m = config.fit_gestures(&taught, None).map_err(gerr)?;
+            let m = config
+                .fit_model(&taught, cosco_hsom::hsom::Fit::default())
+                .map_err(gerr)?;
             for (label, d) in &tests {
                 let r = m.recognize(&d.rows).map_err(gerr)?;
                 if *label == sets[u].0 {
@@ -320,7 +327,9 @@ pub fn run_seed(
     }
     let (mut untrained, mut shuffled) = (Answers::default(), Answers::default());
     if settings.controls {
-        let m = config.initialise_gestures(&sets).map_err(gerr)?;
+        let m = config
+            .fit_model(&sets, cosco_hsom::hsom::Fit::UNTRAINED)
+            .map_err(gerr)?;
         untrained = answers(&m, &tests)?;
         let mut all: Vec<Demonstration> = sets.iter().flat_map(|(_, d)| d.clone()).collect();
         all.shuffle(&mut ChaCha8Rng::seed_from_u64(seed ^ 0x5eed));
@@ -330,7 +339,9 @@ pub fn run_seed(
             .enumerate()
             .map(|(i, (l, _))| (l.clone(), all[i * per..(i + 1) * per].to_vec()))
             .collect();
-        let m = config.fit_gestures(&mixed, None).map_err(gerr)?;
+        let m = config
+            .fit_model(&mixed, cosco_hsom::hsom::Fit::default())
+            .map_err(gerr)?;
         shuffled = answers(&m, &tests)?;
     }
     Ok(SeedResult {

@@ -51,7 +51,7 @@ impl GestureModel {
         let sets = labelled_sets(gestures, columns)?;
         let cfg = config.inner.clone();
         let model = py
-            .allow_threads(move || app::train_gestures(&cfg, &sets, None))
+            .allow_threads(move || app::train(&cfg, &sets, None))
             .map_err(app_err)?;
         Ok(GestureModel::new(model, "in memory"))
     }
@@ -114,14 +114,8 @@ impl GestureModel {
         py: Python<'py>,
         label: Option<&str>,
         initial: &Bound<'py, PyAny>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        // the label is checked before the posture, as `cosco reproduce --gesture` does
-        self.inner.branch(label).map_err(|e| py_err(&e))?;
-        let initial = posture_of(initial, "initial")?;
-        let rep = py
-            .allow_threads(|| app::reproduce_gesture(&self.inner, &self.name, label, &initial))
-            .map_err(app_err)?;
-        Ok(array2(py, &rep.postures, self.inner.columns().len()))
+    ) -> PyResult<Bound<'py, PyAny>> {
+        crate::model::reproduce(py, &self.inner, &self.name, label, initial, None, false)
     }
 
     /// Gesture `label` in the loop from an initial posture, through `goal` and `via` as
@@ -137,9 +131,7 @@ impl GestureModel {
         goal: Option<&Bound<'_, PyAny>>,
         via: Option<Vec<(f64, Bound<'_, PyAny>)>>,
     ) -> PyResult<crate::stepper::Stepper> {
-        let branch = self.inner.branch(label).map_err(|e| py_err(&e))?;
-        let model = std::sync::Arc::new(branch.clone());
-        crate::stepper::Stepper::new(py, model, &self.name, initial, goal, via)
+        crate::stepper::Stepper::new(py, &self.inner, label, &self.name, initial, goal, via)
     }
 
     /// Per label (in the model's order), the score of a whole sequence (2-D, samples x

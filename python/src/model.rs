@@ -129,23 +129,29 @@ impl Config {
     }
 }
 
-/// A trained CoSCo-HSOM hierarchy.
+/// A trained CoSCo-HSOM hierarchy: a model of one gesture (a `GestureModel` without labels).
 #[pyclass(module = "cosco_hsom", name = "Hsom", frozen)]
 pub(crate) struct Hsom {
-    inner: cosco_hsom::hsom::Hsom,
+    /// One unlabelled branch.
+    inner: cosco_hsom::hsom::GestureModel,
     /// The model in messages: its file, or `in memory`.
     name: String,
 }
 
 impl Hsom {
-    /// `f` on the model with the GIL released; the postures it gives, as a 2-D array.
+    /// The model's hierarchy.
+    fn branch(&self) -> &cosco_hsom::hsom::Hsom {
+        &self.inner.branches()[0]
+    }
+
+    /// `f` on the hierarchy with the GIL released; the postures it gives, as a 2-D array.
     fn postures<'py, E: Error + Send + 'static>(
         &self,
         py: Python<'py>,
         f: impl FnOnce(&cosco_hsom::hsom::Hsom) -> Result<cosco_hsom::hsom::Reproduction, E> + Send,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let rep = py
-            .allow_threads(|| f(&self.inner))
+            .allow_threads(|| f(self.branch()))
             .map_err(|e| py_err(&e))?;
         Ok(array2(py, &rep.postures, self.inner.columns().len()))
     }
@@ -178,14 +184,14 @@ impl Hsom {
     /// gestures is refused, naming `GestureModel.load`.
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
-        let inner = app::load_model(&path).map_err(|e| match app::load_gesture_model(&path) {
-            Ok(m) if !m.labels().is_empty() => PyValueError::new_err(format!(
+        let inner = app::load_gesture_model(&path).map_err(app_err)?;
+        if !inner.labels().is_empty() {
+            return Err(PyValueError::new_err(format!(
                 "{}: a model of several gestures ({}): load it with GestureModel.load",
                 path.display(),
-                m.labels().join(", ")
-            )),
-            _ => app_err(e),
-        })?;
+                inner.labels().join(", ")
+            )));
+        }
         Ok(Hsom {
             inner,
             name: path.display().to_string(),
@@ -194,7 +200,7 @@ impl Hsom {
 
     /// Save the model (.bin binary, .txt plain text; written atomically).
     fn save(&self, path: PathBuf) -> PyResult<()> {
-        app::save_model(&self.inner, &path).map_err(app_err)
+        app::save_gesture_model(&self.inner, &path).map_err(app_err)
     }
 
     /// The model taught `demos` more (2-D arrays of the model's columns), from the model and
@@ -208,12 +214,11 @@ impl Hsom {
         label: Option<String>,
     ) -> PyResult<Self> {
         let demos = demonstrations_of(demos, Some(self.inner.columns().to_vec()))?;
-        let model: cosco_hsom::hsom::GestureModel = self.inner.clone().into();
         let updated = py
-            .allow_threads(|| app::update(&model, label.as_deref(), &demos, None))
+            .allow_threads(|| app::update(&self.inner, label.as_deref(), &demos, None))
             .map_err(app_err)?;
         Ok(Hsom {
-            inner: updated.branches()[0].clone(),
+            inner: updated,
             name: "in memory".into(),
         })
     }
@@ -223,7 +228,7 @@ impl Hsom {
     /// its updates).
     #[getter]
     fn learned<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
-        learned_dict(py, &self.inner)
+        learned_dict(py, self.branch())
     }
 
     /// Reproduce the gesture from an initial posture: a 2-D array, one row per step (the first
@@ -240,33 +245,15 @@ impl Hsom {
         via: Option<Vec<(f64, Bound<'py, PyAny>)>>,
         band: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let initial = posture_of(initial, "initial")?;
-        let conditions = crate::stepper::conditions_of(goal, via)?;
-        let (name, width) = (&self.name, self.inner.columns().len());
-        let (rep, lohi) = py
-            .allow_threads(|| {
-                let rep = app::reproduce_conditioned(&self.inner, name, &initial, &conditions)?;
-                let lohi = match band {
-                    true => Some(self.inner.band(&rep.postures, &conditions.phases()).ok_or_else(
-                        || {
-                            app::Error::value(
-                                "band=True",
-                                "the model keeps fewer than 2 training demonstrations to measure a band from",
-                            )
-                        },
-                    )?),
-                    false => None,
-                };
-                Ok::<_, app::Error>((rep, lohi))
-            })
-            .map_err(|e| py_err(&e))?;
-        let postures = array2(py, &rep.postures, width);
-        Ok(match lohi {
-            Some(b) => (postures, array2(py, &b.lo, width), array2(py, &b.hi, width))
-                .into_pyobject(py)?
-                .into_any(),
-            None => postures.into_any(),
-        })
+        reproduce(
+            py,
+            &self.inner,
+            &self.name,
+            None,
+            initial,
+            Some((goal, via)),
+            band,
+        )
     }
 
     /// The hierarchy in the loop from an initial posture, through `goal` and `via` as
@@ -280,8 +267,7 @@ impl Hsom {
         goal: Option<&Bound<'_, PyAny>>,
         via: Option<Vec<(f64, Bound<'_, PyAny>)>>,
     ) -> PyResult<crate::stepper::Stepper> {
-        let model = std::sync::Arc::new(self.inner.clone());
-        crate::stepper::Stepper::new(py, model, &self.name, initial, goal, via)
+        crate::stepper::Stepper::new(py, &self.inner, None, &self.name, initial, goal, via)
     }
 
     /// The nearest-sequence baseline (docs/ALGORITHM.md, section 3.6): of
@@ -353,13 +339,13 @@ impl Hsom {
     #[getter]
     fn config(&self) -> Config {
         Config {
-            inner: self.inner.config().clone(),
+            inner: self.branch().config().clone(),
         }
     }
 
     /// The model's levels, sizes and quality measures (what `cosco inspect` prints).
     fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let s = self.inner.summary();
+        let s = self.branch().summary();
         let d = PyDict::new(py);
         d.set_item("memory_mode", format!("{:?}", s.memory_mode))?;
         d.set_item("memory", s.memory)?;
@@ -393,7 +379,7 @@ impl Hsom {
     }
 
     fn __str__(&self) -> String {
-        self.inner.summary().to_string()
+        self.branch().summary().to_string()
     }
 
     fn __repr__(&self) -> String {
@@ -401,7 +387,7 @@ impl Hsom {
             "Hsom(model={:?}, columns={:?}, height={})",
             self.name,
             self.inner.columns(),
-            self.inner.height()
+            self.branch().height()
         )
     }
 }
@@ -417,4 +403,55 @@ pub(crate) fn learned_dict<'py>(
     d.set_item("kept", kept)?;
     d.set_item("updates", updates)?;
     Ok(d)
+}
+
+/// The goal and via-points of `Hsom.reproduce` (a posture; a list of `(phase, posture)`).
+type Conditioning<'a, 'py> = (
+    Option<&'a Bound<'py, PyAny>>,
+    Option<Vec<(f64, Bound<'py, PyAny>)>>,
+);
+
+/// Gesture `label` of `model` (named `name` in messages; `None` for a model of one gesture)
+/// reproduced from `initial`, as `Hsom.reproduce` and `GestureModel.reproduce` give it: the
+/// label checked before the posture, as `cosco reproduce --gesture` does; through the goal and
+/// via-points when `conditioning` is given; with `band`, the postures and the lower and upper
+/// ends of their central 95 % band.
+pub(crate) fn reproduce<'py>(
+    py: Python<'py>,
+    model: &cosco_hsom::hsom::GestureModel,
+    name: &str,
+    label: Option<&str>,
+    initial: &Bound<'py, PyAny>,
+    conditioning: Option<Conditioning<'_, 'py>>,
+    band: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let branch = model.branch(label).map_err(|e| py_err(&e))?;
+    let initial = posture_of(initial, "initial")?;
+    let conditions = conditioning
+        .map(|(goal, via)| crate::stepper::conditions_of(goal, via))
+        .transpose()?;
+    let width = model.columns().len();
+    let (rep, lohi) = py
+        .allow_threads(|| {
+            let rep = app::reproduce(model, name, label, &initial, conditions.as_ref())?;
+            let phases = conditions.as_ref().map(|c| c.phases()).unwrap_or_default();
+            let lohi = match band {
+                true => Some(branch.band(&rep.postures, &phases).ok_or_else(|| {
+                    app::Error::value(
+                        "band=True",
+                        "the model keeps fewer than 2 training demonstrations to measure a band from",
+                    )
+                })?),
+                false => None,
+            };
+            Ok::<_, app::Error>((rep, lohi))
+        })
+        .map_err(|e| py_err(&e))?;
+    let postures = array2(py, &rep.postures, width);
+    Ok(match lohi {
+        Some(b) => (postures, array2(py, &b.lo, width), array2(py, &b.hi, width))
+            .into_pyobject(py)?
+            .into_any(),
+        None => postures.into_any(),
+    })
 }

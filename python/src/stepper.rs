@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 
 use cosco_hsom::app;
 use cosco_hsom::condition::{Conditions, ViaPoint};
-use cosco_hsom::hsom::{Hsom, HsomStepper};
+use cosco_hsom::hsom::{GestureModel, Hsom, HsomStepper};
 use cosco_hsom::stepper::Stepper as _;
 
 use crate::{app_err, posture_of, py_err};
@@ -41,16 +41,19 @@ pub(crate) fn conditions_of(
 }
 
 impl Stepper {
-    /// The stepper of `model` (named `name` in messages) from `initial` through `goal` and
-    /// `via`, checked as `reproduce` checks them (the plan is made with the GIL released).
+    /// The stepper of gesture `label` of `model` (named `name` in messages; `None` for a model
+    /// of one gesture) from `initial` through `goal` and `via`, checked as `reproduce` checks
+    /// them (the plan is made with the GIL released).
     pub(crate) fn new(
         py: Python<'_>,
-        model: Arc<Hsom>,
+        model: &GestureModel,
+        label: Option<&str>,
         name: &str,
         initial: &Bound<'_, PyAny>,
         goal: Option<&Bound<'_, PyAny>>,
         via: Option<Vec<(f64, Bound<'_, PyAny>)>>,
     ) -> PyResult<Self> {
+        let model = Arc::new(model.branch(label).map_err(|e| py_err(&e))?.clone());
         let initial = posture_of(initial, "initial")?;
         let conditions = conditions_of(goal, via)?;
         let inner = py

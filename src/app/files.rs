@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use super::{Error, Result};
 use crate::config::{load_config_or_default, HsomConfig};
 use crate::demos::{self, Demonstration};
-use crate::hsom::{GestureModel, Hsom};
+use crate::hsom::GestureModel;
 
 /// Load a CoSCo-HSOM configuration file, or the built-in recommended configuration.
 pub fn config(path: Option<&Path>) -> Result<HsomConfig> {
@@ -37,18 +37,6 @@ fn check_model_extension(path: &Path) -> Result<()> {
 pub fn check_model_output(path: &Path) -> Result<()> {
     check_model_extension(path)?;
     Ok(crate::fsutil::check_output(path)?)
-}
-
-/// Save a model of one gesture (`.bin` or `.txt`, atomically).
-pub fn save_model(model: &Hsom, path: &Path) -> Result<()> {
-    check_model_extension(path)?;
-    Ok(model.save(path)?)
-}
-
-/// Load a saved model of one gesture (`.bin` or `.txt`).
-pub fn load_model(path: &Path) -> Result<Hsom> {
-    check_model_extension(path)?;
-    Ok(Hsom::load(path)?)
 }
 
 /// Save a model (`.bin` or `.txt`, atomically): one gesture without labels, several with.

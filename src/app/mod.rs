@@ -30,7 +30,7 @@
 //! let demos = app::demonstrations_from_rows(vec![rows.clone(), rows], None).unwrap();
 //! let model = app::train(&cfg, &demos, None).unwrap();
 //! assert_eq!(model.columns(), ["x0", "x1"]);
-//! let e = app::reproduce(&model, "in memory", &[0.0]).unwrap_err();
+//! let e = app::reproduce(&model, "in memory", None, &[0.0], None).unwrap_err();
 //! assert!(e.to_string().contains("the initial posture has 1 values; the model in memory learned 2"));
 //! ```
 
@@ -41,6 +41,9 @@ pub mod recognize;
 pub mod reproduce;
 pub mod train;
 
+#[cfg(test)]
+mod tests;
+
 use std::path::PathBuf;
 
 pub use evaluate::{evaluate_files, inspect, Evaluation};
@@ -48,17 +51,17 @@ pub use evaluate::{evaluate_files, inspect, Evaluation};
 pub use export::import;
 pub use export::{export, ExportFrom};
 pub use files::{
-    check_model_output, config, demonstrations_from_rows, load_gesture_model, load_model,
-    read_demos, read_reproduction, save_gesture_model, save_model,
+    check_model_output, config, demonstrations_from_rows, load_gesture_model, read_demos,
+    read_reproduction, save_gesture_model,
 };
 pub use recognize::{
     answer_line, recognize_files, recognize_paths, recognize_stream, RecognisedFile,
 };
 pub use reproduce::{
-    conditions, continue_file, reproduce, reproduce_conditioned, reproduce_file, reproduce_gesture,
-    resume, stepper, ReproduceFile, ReproduceRequest,
+    conditions, continue_file, reproduce, reproduce_file, resume, stepper, ReproduceFile,
+    ReproduceRequest,
 };
-pub use train::{train, train_files, train_gestures, update, update_files};
+pub use train::{train, train_files, update, update_files};
 
 pub use crate::errors::error_line;
 

@@ -89,24 +89,32 @@ fn arm_ranges(columns: &[String]) -> Option<Vec<(f64, f64)>> {
     crate::robot::arm_ranges(columns).filter(|_| cfg!(feature = "sim"))
 }
 
-/// Reproduce from `initial` through `conditions` (a goal, via-points; [`Hsom::reproduce_conditioned`]),
-/// each checked against the arm's joint ranges when the model's variables are the arm's.
-pub fn reproduce_conditioned(
-    model: &Hsom,
+/// Reproduce gesture `label` of `model` (`None` only for a model of one gesture; `model_name`
+/// names it in messages: its file, or `in memory`) from `initial`; with `conditions`, through
+/// them (a goal, via-points; [`Hsom::reproduce_conditioned`]), each checked against the arm's
+/// joint ranges when the model's variables are the arm's.
+pub fn reproduce(
+    model: &GestureModel,
     model_name: &str,
+    label: Option<&str>,
     initial: &[f64],
-    conditions: &Conditions,
+    conditions: Option<&Conditions>,
 ) -> Result<Reproduction> {
+    let model = model.branch(label)?;
     check_arm_range(model.columns(), initial)?;
-    let ranges = arm_ranges(model.columns());
-    conditions.check(model.columns(), ranges.as_deref(), initial)?;
-    model
-        .reproduce_conditioned(initial, conditions, ranges.as_deref())
-        .map_err(|e| naming_model(e, model, model_name))
+    let rep = match conditions {
+        None => model.reproduce(initial),
+        Some(conditions) => {
+            let ranges = arm_ranges(model.columns());
+            conditions.check(model.columns(), ranges.as_deref(), initial)?;
+            model.reproduce_conditioned(initial, conditions, ranges.as_deref())
+        }
+    };
+    rep.map_err(|e| naming_model(e, model, model_name))
 }
 
 /// The hierarchy in the loop ([`HsomStepper`]) from `initial` through `conditions` (a goal,
-/// via-points), checked as [`reproduce_conditioned`] checks them: the initial posture's
+/// via-points), checked as [`reproduce`] checks them: the initial posture's
 /// width (naming `model_name`), and the arm's joint ranges when the model's variables are
 /// the arm's (they also bound a goal set later). `M` is the model or anything that borrows
 /// it.
@@ -145,15 +153,6 @@ pub fn conditions(goal: Option<&PostureArg>, via: &[ViaPoint]) -> Conditions {
     }
 }
 
-/// Reproduce from `initial` (`model_name` names the model in messages: its file, or
-/// `in memory`).
-pub fn reproduce(model: &Hsom, model_name: &str, initial: &[f64]) -> Result<Reproduction> {
-    check_arm_range(model.columns(), initial)?;
-    model
-        .reproduce(initial)
-        .map_err(|e| naming_model(e, model, model_name))
-}
-
 /// Resume the reproduction from `initial` after part of it was executed (`reading`: what the
 /// encoders read meanwhile; [`Hsom::resume`]).
 pub fn resume(
@@ -166,16 +165,6 @@ pub fn resume(
     model
         .resume(initial, reading)
         .map_err(|e| naming_model(e, model, model_name))
-}
-
-/// Reproduce gesture `label` (required for a model of several gestures) from `initial`.
-pub fn reproduce_gesture(
-    model: &GestureModel,
-    model_name: &str,
-    label: Option<&str>,
-    initial: &[f64],
-) -> Result<Reproduction> {
-    reproduce(model.branch(label)?, model_name, initial)
 }
 
 /// A gesture of a saved model reproduced from an initial posture, as `cosco reproduce` and
@@ -257,7 +246,13 @@ impl ReproduceRequest {
                     source: Box::new(e),
                 })?
             }
-            None => reproduce_conditioned(branch, &name, &initial, conditions)?,
+            None => reproduce(
+                &m,
+                &name,
+                self.gesture.as_deref(),
+                &initial,
+                Some(conditions),
+            )?,
         };
         let band = (self.band.as_ref())
             .map(|path| (path.clone(), band_csv(branch, &rep, conditions, path)));

@@ -1,7 +1,7 @@
 //! Training: one gesture or several, from values (Python) or from files (`cosco train`).
 //!
 //! ```
-//! use cosco_hsom::app::{demonstrations_from_rows, train_gestures};
+//! use cosco_hsom::app::{demonstrations_from_rows, train};
 //! use cosco_hsom::config::{AlgorithmParams, EventsParams, HsomParams};
 //! let mut p = HsomParams::table1();
 //! p.algorithm = AlgorithmParams::Events(EventsParams { change_ratio: 1.0, action_horizon: 1 });
@@ -15,7 +15,7 @@
 //!     ("up".to_string(), demonstrations_from_rows(vec![up.clone(), up.clone()], None).unwrap()),
 //!     ("side".to_string(), demonstrations_from_rows(vec![side.clone(), side.clone()], None).unwrap()),
 //! ];
-//! let model = train_gestures(&cfg, &sets, None).unwrap();
+//! let model = train(&cfg, &sets, None).unwrap();
 //! assert_eq!(model.labels(), ["up", "side"]);
 //! assert_eq!(model.recognize(&side).unwrap().best, "side");
 //! ```
@@ -27,38 +27,42 @@ use super::Result;
 use crate::config::HsomConfig;
 use crate::demo_sets::{read_demo_sets, DemoSets};
 use crate::demos::{self, Demonstration};
-use crate::hsom::{GestureError, GestureModel, Hsom, HsomError};
+use crate::hsom::{Fit, GestureError, GestureModel, Gestures, HsomError};
 
-/// Check the demonstrations as a set against the configuration (at least one; see
-/// [`demos::validate_set`]), then train, calling `progress(done, total)` now and then when
-/// given.
-pub fn train(
+/// Check the demonstrations against the configuration (one gesture's as a set, at least
+/// one; every label's set, each with demonstrations; see [`demos::validate_set`]), then fit
+/// the model of one gesture or several ([`HsomConfig::fit_model`]), calling
+/// `progress(done, total)` now and then when given (with several, the shared bottom level's
+/// training).
+pub fn train<'a>(
     cfg: &HsomConfig,
-    demos: &[Demonstration],
-    progress: Option<&dyn Fn(usize, usize)>,
-) -> Result<Hsom> {
-    demos::validate_set(demos, Some(cfg.params().state_length))?;
-    Ok(cfg.fit_with_progress(demos, progress)?)
-}
-
-/// Check every label's set against the configuration, then train one hierarchy on them,
-/// calling `progress(done, total)` now and then (the shared bottom level's training).
-pub fn train_gestures(
-    cfg: &HsomConfig,
-    sets: &[(String, Vec<Demonstration>)],
+    sets: impl Into<Gestures<'a>>,
     progress: Option<&dyn Fn(usize, usize)>,
 ) -> Result<GestureModel> {
-    for (label, demos) in sets {
-        // a label without demonstrations is named (validate_set would only say "none")
-        if demos.is_empty() {
-            return Err(GestureError::EmptyLabel {
-                label: label.clone(),
+    let sets = sets.into();
+    let state = Some(cfg.params().state_length);
+    match sets {
+        Gestures::One(demos) => demos::validate_set(demos, state)?,
+        Gestures::Labelled(sets) => {
+            for (label, demos) in sets {
+                // a label without demonstrations is named (validate_set would only say "none")
+                if demos.is_empty() {
+                    return Err(GestureError::EmptyLabel {
+                        label: label.clone(),
+                    }
+                    .into());
+                }
+                demos::validate_set(demos, state)?;
             }
-            .into());
         }
-        demos::validate_set(demos, Some(cfg.params().state_length))?;
     }
-    Ok(cfg.fit_gestures(sets, progress)?)
+    Ok(cfg.fit_model(
+        sets,
+        Fit {
+            progress,
+            untrained: false,
+        },
+    )?)
 }
 
 /// Check `demos` as a set against `model`'s configuration, then teach them to it as gesture
@@ -148,10 +152,8 @@ pub fn train_files(
         cfg = cfg.for_width(width)?;
     }
     // the sets are checked as they are read, against the configuration's stateLength
-    let model = match read_demo_sets(demo_paths, Some(cfg.params().state_length), resample)? {
-        DemoSets::Plain(d) => cfg.fit_with_progress(&d, progress)?.into(),
-        DemoSets::Labelled(s) => cfg.fit_gestures(&s, progress)?,
-    };
+    let sets = read_demo_sets(demo_paths, Some(cfg.params().state_length), resample)?;
+    let model = train(&cfg, sets.gestures(), progress)?;
     files::save_gesture_model(&model, out)?;
     Ok(model)
 }

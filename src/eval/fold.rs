@@ -262,14 +262,22 @@ fn fit(
     input: &FoldInput<'_>,
     progress: Option<&dyn Fn(usize, usize)>,
 ) -> Result<(Hsom, f64), String> {
+    // one gesture's model: its one branch
+    let fit = |demos, untrained| {
+        let how = crate::hsom::Fit {
+            progress,
+            untrained,
+        };
+        config
+            .fit_model(demos, how)
+            .map(|m| m.branches()[0].clone())
+    };
     let (model, s) = timed(|| match input.training {
-        Training::Trained => config.fit_with_progress(input.train, progress),
-        Training::Untrained => config.initialise(input.train),
+        Training::Trained => fit(input.train, false),
+        Training::Untrained => fit(input.train, true),
         Training::Sittings => {
             let (first, rest) = input.train.split_at(sitting(input.train.len()));
-            config
-                .fit_with_progress(first, progress)
-                .and_then(|m| m.update(rest))
+            fit(first, false).and_then(|m| Ok(m.update(rest)?))
         }
     });
     Ok((model.map_err(msg)?, s))

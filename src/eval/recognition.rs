@@ -246,11 +246,11 @@ fn train(
     learn: bool,
     what: &str,
 ) -> Result<GestureModel, LooError> {
-    let r = match learn {
-        true => config.fit_gestures(sets, None),
-        false => config.initialise_gestures(sets),
+    let how = crate::hsom::Fit {
+        progress: None,
+        untrained: !learn,
     };
-    r.map_err(|e| LooError::Gesture {
+    config.fit_model(sets, how).map_err(|e| LooError::Gesture {
         what: what.to_string(),
         source: Box::new(e),
     })

@@ -454,7 +454,9 @@ fn run_all_gestures(
                 (l.clone(), train)
             })
             .collect();
-        let model = config.fit_gestures(&sets, None).map_err(gerr)?;
+        let model = config
+            .fit_model(&sets, crate::hsom::Fit::default())
+            .map_err(gerr)?;
         let nn = NearestNeighbour::new(
             sets.iter()
                 .flat_map(|(l, ds)| ds.iter().map(move |d| (l.clone(), d.rows.clone())))
@@ -480,7 +482,10 @@ fn run_all_gestures(
             });
             // fidelity on cue, shared and alone, executed on the arm
             let targets = std::slice::from_ref(test);
-            let shared = model.reproduce(Some(label), &test.rows[0]).map_err(gerr)?;
+            let shared = model
+                .branch(Some(label))
+                .and_then(|b| Ok(b.reproduce(&test.rows[0])?))
+                .map_err(gerr)?;
             let s = ArmExecutor { arm, transition }
                 .execute(Method::Hierarchy, &shared.postures, targets)
                 .map_err(ExperimentError::Invalid)?;

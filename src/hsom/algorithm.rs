@@ -37,95 +37,62 @@ pub(crate) enum Presentation {
     Shuffled,
 }
 
+/// How a model is fitted ([`HsomConfig::fit_model`]): the default trains quietly.
+#[derive(Clone, Copy, Default)]
+pub struct Fit<'a> {
+    /// Called with `(done, total)` about a hundred times (for a progress bar).
+    pub progress: Option<&'a dyn Fn(usize, usize)>,
+    /// Leave the seeded initial weights (inside the data's bounding box) untrained, with the
+    /// same statistics as a trained model: the negative control of fidelity and recognition.
+    pub untrained: bool,
+}
+
+impl Fit<'_> {
+    /// The untrained model, quietly.
+    pub const UNTRAINED: Fit<'static> = Fit {
+        progress: None,
+        untrained: true,
+    };
+}
+
 impl HsomConfig {
-    /// Train a hierarchy on demonstrations (each `stateLength` columns wide, at least two
-    /// samples), quietly.
+    /// Train a hierarchy on the demonstrations of one gesture (each `stateLength` columns
+    /// wide, at least two samples), quietly: the branch of [`HsomConfig::fit_model`]'s model
+    /// of one gesture.
     pub fn fit(&self, demos: &[Demonstration]) -> Result<Hsom, HsomError> {
-        self.fit_with_progress(demos, None)
+        self.fit_one(demos, Fit::default())
     }
 
-    /// Train, calling `progress(done, total)` about a hundred times (for a progress bar).
-    pub fn fit_with_progress(
-        &self,
-        demos: &[Demonstration],
-        progress: Option<&dyn Fn(usize, usize)>,
-    ) -> Result<Hsom, HsomError> {
-        let mut model = self.fit_presented(demos, progress, Presentation::InOrder)?;
-        if let Hsom::Events(m) = &mut model {
+    /// One gesture's hierarchy as `how` says.
+    pub(super) fn fit_one(&self, demos: &[Demonstration], how: Fit<'_>) -> Result<Hsom, HsomError> {
+        let mut model = self.fit_presented(demos, how, Presentation::InOrder)?;
+        if let (false, Hsom::Events(m)) = (how.untrained, &mut model) {
             m.learn_postures(demos.iter().map(|d| d.rows.as_slice()));
         }
         Ok(model)
     }
 
-    /// Train with the bottom's samples presented as `presentation` says; the bottom level
+    /// Fit with the bottom's samples presented as `presentation` says; the bottom level
     /// shared by several gestures draws them at random (see [`Presentation`]).
-    pub(crate) fn fit_presented(
+    pub(super) fn fit_presented(
         &self,
         demos: &[Demonstration],
-        progress: Option<&dyn Fn(usize, usize)>,
+        how: Fit<'_>,
         presentation: Presentation,
     ) -> Result<Hsom, HsomError> {
         let series = demo_series(demos);
-        let mut model =
-            self.fit_inner(&series, progress, true, demo_columns(demos), presentation)?;
-        model.set_period(demos.first().and_then(crate::demos::median_interval));
-        Ok(model)
-    }
-
-    /// An untrained hierarchy: the seeded initial weights (inside the data's bounding box)
-    /// with the same statistics as a trained one; the negative control of fidelity tests.
-    pub fn initialise(&self, demos: &[Demonstration]) -> Result<Hsom, HsomError> {
-        let series = demo_series(demos);
-        self.fit_inner(
-            &series,
-            None,
-            false,
-            demo_columns(demos),
-            Presentation::InOrder,
-        )
-    }
-
-    /// Train on plain time series (rows of `stateLength` values), quietly.
-    pub fn fit_series(&self, series: &[Vec<Vec<f64>>]) -> Result<Hsom, HsomError> {
-        self.series_inner(series, true)
-    }
-
-    /// The untrained model of [`HsomConfig::fit_series`] (seeded initial weights; the
-    /// negative control of quality checks on plain series).
-    pub fn initialise_series(&self, series: &[Vec<Vec<f64>>]) -> Result<Hsom, HsomError> {
-        self.series_inner(series, false)
-    }
-
-    fn series_inner(&self, series: &[Vec<Vec<f64>>], learn: bool) -> Result<Hsom, HsomError> {
-        let names: Vec<String> = (0..series.len()).map(|i| format!("series #{i}")).collect();
-        let s: Vec<Series<'_>> = series
-            .iter()
-            .zip(&names)
-            .map(|(r, n)| Series { source: n, rows: r })
-            .collect();
-        let columns = (0..self.params().state_length)
-            .map(|i| format!("x{i}"))
-            .collect();
-        let mut model = self.fit_inner(&s, None, learn, columns, Presentation::InOrder)?;
-        if let (true, Hsom::Events(m)) = (learn, &mut model) {
-            m.learn_postures(series.iter().map(|r| r.as_slice()));
+        let learn = !how.untrained;
+        let columns = demo_columns(demos);
+        let mut model = self.fit_from(&series, how.progress, learn, columns, presentation, None)?;
+        if learn {
+            model.set_period(demos.first().and_then(crate::demos::median_interval));
         }
         Ok(model)
     }
 
-    pub(crate) fn fit_inner(
-        &self,
-        series: &[Series<'_>],
-        progress: Option<&dyn Fn(usize, usize)>,
-        learn: bool,
-        columns: Vec<String>,
-        presentation: Presentation,
-    ) -> Result<Hsom, HsomError> {
-        self.fit_from(series, progress, learn, columns, presentation, None)
-    }
-
-    /// [`HsomConfig::fit_inner`] from the seeded initial weights (`warm` `None`) or going on
-    /// from a trained model's maps and normalisation ([`Warm`]: an update).
+    /// Fit `series` from the seeded initial weights (`warm` `None`) or going on from a
+    /// trained model's maps and normalisation ([`Warm`]: an update); only the seeded weights
+    /// and the statistics unless `learn`.
     pub(crate) fn fit_from(
         &self,
         series: &[Series<'_>],

@@ -3,7 +3,7 @@
 //! prefix, resuming) is refused for a model of the paper's algorithm.
 
 use crate::condition::{self, Conditions};
-use crate::config::{HsomConfig, ReproductionParams};
+use crate::config::HsomConfig;
 use crate::demos::Demonstration;
 use crate::som::SelfOrganizingMap;
 
@@ -111,15 +111,6 @@ impl Hsom {
         pinned: &[f64],
     ) -> Option<crate::condition::ConfidenceBand> {
         either!(self, m => m.band(rows, pinned))
-    }
-    /// Reproduce with other reproduction settings; out-of-range values are an error, as
-    /// [`HsomConfig::with_reproduction`] says.
-    pub fn reproduce_with(
-        &self,
-        initial: &[f64],
-        r: &ReproductionParams,
-    ) -> Result<Reproduction, HsomError> {
-        either!(self, m => m.reproduce_with(initial, r))
     }
     /// The demonstration through the bottom level's own code and back: the ceiling of what
     /// the hierarchy can reproduce of it (docs/ALGORITHM.md, section 3.6).

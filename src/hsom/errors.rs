@@ -9,8 +9,8 @@ pub enum HsomError {
     /// A goal or via-point that cannot be met ([`crate::condition::Conditions::check`]).
     #[error(transparent)]
     Condition(#[from] crate::condition::ConditionError),
-    /// Settings out of their documented range (e.g. reproduction settings given to
-    /// [`Hsom::reproduce_with`](crate::hsom::Hsom::reproduce_with)).
+    /// Settings out of their documented range, or a configuration its model's part does not
+    /// fit.
     #[error(transparent)]
     Config(#[from] crate::config::ConfigError),
     /// No demonstration was given.

@@ -19,13 +19,12 @@ use rand_chacha::ChaCha8Rng;
 use crate::config::{Algorithm, HsomConfig};
 use crate::demos::{check_gesture_columns, is_plain_label, Demonstration};
 
-use super::algorithm::Presentation;
+use super::algorithm::{Fit, Presentation};
 use super::errors::{GestureError, HsomError, PersistError};
 use super::inputs::spread;
 use super::model::{EventsHsom, GestureModel, Hsom, Scoring};
 use super::persist::FORMAT_VERSION;
 use super::recognize::branch_seed;
-use super::reproduction::Reproduction;
 
 /// Format version of a multi-gesture model file: the one version of model files (the header
 /// says the kind).
@@ -66,33 +65,74 @@ impl From<Hsom> for GestureModel {
     }
 }
 
+/// What a model is fitted on: one gesture's demonstrations (a model without labels), or
+/// labelled sets `(label, demonstrations)` of several gestures.
+#[derive(Debug, Clone, Copy)]
+pub enum Gestures<'a> {
+    /// One gesture, no label.
+    One(&'a [Demonstration]),
+    /// Labelled sets, in the order given.
+    Labelled(&'a [(String, Vec<Demonstration>)]),
+}
+
+impl<'a> From<&'a [Demonstration]> for Gestures<'a> {
+    fn from(demos: &'a [Demonstration]) -> Self {
+        Gestures::One(demos)
+    }
+}
+
+impl<'a> From<&'a Vec<Demonstration>> for Gestures<'a> {
+    fn from(demos: &'a Vec<Demonstration>) -> Self {
+        Gestures::One(demos)
+    }
+}
+
+impl<'a, const N: usize> From<&'a [Demonstration; N]> for Gestures<'a> {
+    fn from(demos: &'a [Demonstration; N]) -> Self {
+        Gestures::One(demos)
+    }
+}
+
+impl<'a> From<&'a [(String, Vec<Demonstration>)]> for Gestures<'a> {
+    fn from(sets: &'a [(String, Vec<Demonstration>)]) -> Self {
+        Gestures::Labelled(sets)
+    }
+}
+
+impl<'a> From<&'a Vec<(String, Vec<Demonstration>)>> for Gestures<'a> {
+    fn from(sets: &'a Vec<(String, Vec<Demonstration>)>) -> Self {
+        Gestures::Labelled(sets)
+    }
+}
+
+impl<'a, const N: usize> From<&'a [(String, Vec<Demonstration>); N]> for Gestures<'a> {
+    fn from(sets: &'a [(String, Vec<Demonstration>); N]) -> Self {
+        Gestures::Labelled(sets)
+    }
+}
+
 impl HsomConfig {
-    /// Train one hierarchy on labelled demonstration sets `(label, demonstrations)`: the
-    /// bottom level on all of them, then one branch of upper levels per label; each label's
-    /// recognition threshold is calibrated on its training data (leave-one-out). Labels must
-    /// be plain words, distinct, each with demonstrations of the same columns.
-    pub fn fit_gestures(
+    /// Fit a model of one gesture or several, as `how` says (trained, or the untrained
+    /// negative control; a progress callback). One gesture: its hierarchy, the model's one
+    /// unlabelled branch. Labelled sets: one hierarchy, the bottom level trained on all of
+    /// them, then one branch of upper levels per label; each label's recognition threshold is
+    /// calibrated on its training data (leave-one-out). Labels must be plain words, distinct,
+    /// each with demonstrations of the same columns, and the algorithm the events extension.
+    pub fn fit_model<'a>(
         &self,
-        sets: &[(String, Vec<Demonstration>)],
-        progress: Option<&dyn Fn(usize, usize)>,
+        sets: impl Into<Gestures<'a>>,
+        how: Fit<'_>,
     ) -> Result<GestureModel, GestureError> {
-        self.gestures_inner(sets, progress, true)
+        match sets.into() {
+            Gestures::One(demos) => Ok(self.fit_one(demos, how)?.into()),
+            Gestures::Labelled(sets) => self.fit_labelled(sets, how),
+        }
     }
 
-    /// The untrained counterpart of [`HsomConfig::fit_gestures`] (seeded initial weights,
-    /// calibrated in the same way): the negative control of recognition.
-    pub fn initialise_gestures(
+    fn fit_labelled(
         &self,
         sets: &[(String, Vec<Demonstration>)],
-    ) -> Result<GestureModel, GestureError> {
-        self.gestures_inner(sets, None, false)
-    }
-
-    fn gestures_inner(
-        &self,
-        sets: &[(String, Vec<Demonstration>)],
-        progress: Option<&dyn Fn(usize, usize)>,
-        learn: bool,
+        how: Fit<'_>,
     ) -> Result<GestureModel, GestureError> {
         if self.params().kind() != Algorithm::Events {
             return Err(GestureError::NeedsEvents);
@@ -124,17 +164,13 @@ impl HsomConfig {
         } else {
             self.clone()
         };
-        let shared = if learn {
-            // drawn at random when shared (docs/ALGORITHM.md, section 4)
-            let order = if sets.len() > 1 {
-                Presentation::Shuffled
-            } else {
-                Presentation::InOrder
-            };
-            cfg.fit_presented(&all, progress, order)?
-        } else {
-            cfg.initialise(&all)?
+        let learn = !how.untrained;
+        // drawn at random when shared and trained (docs/ALGORITHM.md, section 4)
+        let order = match sets.len() > 1 && learn {
+            true => Presentation::Shuffled,
+            false => Presentation::InOrder,
         };
+        let shared = cfg.fit_presented(&all, how, order)?;
         let Hsom::Events(shared) = shared else {
             return Err(GestureError::NeedsEvents);
         };
@@ -245,15 +281,6 @@ impl GestureModel {
                     },
                 }),
         }
-    }
-
-    /// Reproduce gesture `label` from `initial` (the label primes the top of the hierarchy).
-    pub fn reproduce(
-        &self,
-        label: Option<&str>,
-        initial: &[f64],
-    ) -> Result<Reproduction, GestureError> {
-        Ok(self.branch(label)?.reproduce(initial)?)
     }
 
     /// Check what was read: at least one and at most [`MAX_LABELS`] plain, distinct labels,

@@ -43,10 +43,11 @@ mod stepper;
 mod summary;
 mod update;
 
+pub use algorithm::Fit;
 pub use errors::{GestureError, HsomError, PersistError};
 pub use kept::kept_demonstrations;
 pub use kept::{BAND_ROWS, KEPT_DEMONSTRATIONS, MAX_LEARNED};
-pub use labels::{GESTURES_FORMAT_VERSION, MAX_LABELS};
+pub use labels::{Gestures, GESTURES_FORMAT_VERSION, MAX_LABELS};
 pub use memory::{ActivityLevels, ActivityList};
 pub use model::{GestureModel, Hsom, Scoring};
 pub use persist::{FilePart, FORMAT_VERSION};

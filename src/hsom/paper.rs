@@ -288,24 +288,14 @@ impl<A: Part> Model<A> {
     }
 
     /// Reproduce the learned gesture from `initial` (a posture of `stateLength` values, in the
-    /// data's units) with the configuration's reproduction settings.
+    /// data's units) with the configuration's reproduction settings: the paper's reproduction
+    /// ([`PaperHsom::reproduce_paper`]) or the events extension's.
     pub(crate) fn reproduce(&self, initial: &[f64]) -> Result<Reproduction, HsomError> {
-        self.reproduce_with(initial, &self.config.params().reproduction)
-    }
-
-    /// Reproduce with other reproduction settings; out-of-range values are an error, as
-    /// [`HsomConfig::with_reproduction`](crate::config::HsomConfig::with_reproduction) says.
-    /// The paper's reproduction ([`PaperHsom::reproduce_paper`]) or the events extension's.
-    pub(crate) fn reproduce_with(
-        &self,
-        initial: &[f64],
-        r: &ReproductionParams,
-    ) -> Result<Reproduction, HsomError> {
-        let checked = self.config.clone().with_reproduction(r.clone())?;
+        let p = self.config.params();
         self.check_initial(initial)?;
         let y0 = self.normalise(initial);
-        let mut rep = A::reproduce(self, y0, checked.params())?;
-        rep.truncate(checked.params().reproduction.max_length);
+        let mut rep = A::reproduce(self, y0, p)?;
+        rep.truncate(p.reproduction.max_length);
         Ok(rep)
     }
 }

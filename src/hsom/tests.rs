@@ -61,7 +61,12 @@ fn action_horizon_changes_the_bottom_input_and_keeps_reproducing() {
         &b.reproduce(&demos[0].rows[0]).unwrap().postures,
         &demos[1..],
     );
-    let u = p.check("t").unwrap().initialise(&demos[1..]).unwrap();
+    let u = p
+        .check("t")
+        .unwrap()
+        .fit_model(&demos[1..], cosco_hsom::hsom::Fit::UNTRAINED)
+        .map(|m| m.branches()[0].clone())
+        .unwrap();
     let eu = relative_dtw(
         &u.reproduce(&demos[0].rows[0]).unwrap().postures,
         &demos[1..],
@@ -77,7 +82,9 @@ fn the_model_keeps_the_column_names_in_both_formats() {
     let m = cfg.fit(&demos).unwrap();
     assert_eq!(m.columns(), &["u".to_string(), "v".to_string()]);
     let series: Vec<Vec<Vec<f64>>> = demos.iter().map(|d| d.rows.clone()).collect();
-    let s = cfg.fit_series(&series).unwrap();
+    let s = cfg
+        .fit(&cosco_hsom::demos::Demonstration::from_series(&series))
+        .unwrap();
     assert_eq!(s.columns(), &["x0".to_string(), "x1".to_string()]);
     let dir = tempfile::tempdir().unwrap();
     for name in ["m.bin", "m.txt"] {

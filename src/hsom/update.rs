@@ -327,7 +327,7 @@ impl GestureModel {
             // wide neighbourhoods make: the bottom learns again, from the seeded initial
             // weights, from every gesture's kept and new demonstrations, as training at once
             // on them does
-            true => cfg.fit_inner(&all, progress, true, columns, Presentation::Shuffled)?,
+            true => cfg.fit_from(&all, progress, true, columns, Presentation::Shuffled, None)?,
             // more of known gestures: the bottom goes on from its weights over the end of the
             // schedule, the earlier demonstrations' share of it done
             false => {

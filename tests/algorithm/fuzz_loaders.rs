@@ -106,7 +106,8 @@ fn small_model_of(algorithm: cosco_hsom::config::Algorithm) -> Hsom {
                 .collect()
         })
         .collect();
-    cfg.fit_series(&series).unwrap()
+    cfg.fit(&cosco_hsom::demos::Demonstration::from_series(&series))
+        .unwrap()
 }
 
 fn csv_file() -> Vec<u8> {

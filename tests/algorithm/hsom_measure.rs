@@ -35,7 +35,10 @@ fn run(name: &str, demos: &[cosco_hsom::demos::Demonstration], cfg: &HsomConfig)
         );
         res.push(e);
     }
-    let untrained = cfg.initialise(&demos[1..]).unwrap();
+    let untrained = cfg
+        .fit_model(&demos[1..], cosco_hsom::hsom::Fit::UNTRAINED)
+        .map(|m| m.branches()[0].clone())
+        .unwrap();
     let rep = untrained.reproduce(init).unwrap();
     let e_un = relative_dtw(&rep.postures, &demos[1..]);
     println!(

@@ -49,7 +49,10 @@ fn trained_hierarchy_reproduces_the_key_posture_gesture_and_untrained_does_not()
     let model = cfg.fit(&demos).unwrap();
     let rep = model.reproduce(&demos[0].rows[0]).unwrap();
     let e = relative_dtw(&rep.postures, &demos);
-    let untrained = cfg.initialise(&demos).unwrap();
+    let untrained = cfg
+        .fit_model(&demos, cosco_hsom::hsom::Fit::UNTRAINED)
+        .map(|m| m.branches()[0].clone())
+        .unwrap();
     let rep_u = untrained.reproduce(&demos[0].rows[0]).unwrap();
     let e_u = relative_dtw(&rep_u.postures, &demos);
     println!(

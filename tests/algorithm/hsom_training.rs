@@ -86,7 +86,15 @@ fn progress_callback_reports_up_to_the_total() {
     let p = small(2, 2, 4, 500).check("t").unwrap();
     let seen = std::cell::RefCell::new(Vec::new());
     let cb = |done: usize, total: usize| seen.borrow_mut().push((done, total));
-    p.fit_with_progress(&[line(50, "d")], Some(&cb)).unwrap();
+    p.fit_model(
+        &[line(50, "d")],
+        cosco_hsom::hsom::Fit {
+            progress: Some(&cb),
+            untrained: false,
+        },
+    )
+    .map(|m| m.branches()[0].clone())
+    .unwrap();
     let seen = seen.into_inner();
     assert!(seen.len() >= 50 && seen.len() <= 101, "{}", seen.len());
     assert_eq!(*seen.last().unwrap(), (500, 500));
@@ -107,7 +115,8 @@ fn initial_weights_lie_in_the_data_bounding_box_whatever_the_units() {
     let m = small(2, 2, 4, 10)
         .check("t")
         .unwrap()
-        .initialise(std::slice::from_ref(&d))
+        .fit_model(std::slice::from_ref(&d), cosco_hsom::hsom::Fit::UNTRAINED)
+        .map(|m| m.branches()[0].clone())
         .unwrap();
     // postures are the nodes' action halves
     let rep = m.reproduce(&d.rows[0]).unwrap();
@@ -156,7 +165,8 @@ fn summary_lists_every_level_with_quality() {
     let untrained = small(3, 2, 4, 2000)
         .check("t")
         .unwrap()
-        .initialise(&demos)
+        .fit_model(&demos, cosco_hsom::hsom::Fit::UNTRAINED)
+        .map(|m| m.branches()[0].clone())
         .unwrap();
     assert!(s.levels[0].quantization_error < untrained.summary().levels[0].quantization_error);
     let text = s.to_string();

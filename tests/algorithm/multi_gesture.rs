@@ -28,7 +28,9 @@ fn accuracy(model: &GestureModel, labels: &[(&str, [f64; 2])]) -> f64 {
 
 #[test]
 fn held_out_gestures_are_recognised_and_shuffled_labels_are_not() {
-    let m = config().fit_gestures(&sets(&APEXES), None).unwrap();
+    let m = config()
+        .fit_model(&sets(&APEXES), cosco_hsom::hsom::Fit::default())
+        .unwrap();
     assert_eq!(m.labels(), ["up", "right", "diag"]);
     let acc = accuracy(&m, &APEXES);
     assert!(acc >= 0.95, "held-out accuracy {acc}");
@@ -48,7 +50,9 @@ fn held_out_gestures_are_recognised_and_shuffled_labels_are_not() {
             )
         })
         .collect();
-    let ms = config().fit_gestures(&shuffled, None).unwrap();
+    let ms = config()
+        .fit_model(&shuffled, cosco_hsom::hsom::Fit::default())
+        .unwrap();
     let acc = accuracy(&ms, &APEXES);
     assert!(acc < 0.95, "shuffled labels: {acc}");
 }
@@ -56,7 +60,9 @@ fn held_out_gestures_are_recognised_and_shuffled_labels_are_not() {
 #[test]
 fn a_gesture_never_taught_is_unknown_and_the_taught_ones_are_not() {
     let taught = &APEXES[..2];
-    let m = config().fit_gestures(&sets(taught), None).unwrap();
+    let m = config()
+        .fit_model(&sets(taught), cosco_hsom::hsom::Fit::default())
+        .unwrap();
     for s in 100..104 {
         let r = m.recognize(&gesture(APEXES[2].1, s)).unwrap();
         assert_eq!(r.label, None, "{r:?}");
@@ -72,7 +78,9 @@ fn a_gesture_never_taught_is_unknown_and_the_taught_ones_are_not() {
 #[test]
 fn part_of_a_taught_path_is_unknown() {
     let taught = &APEXES[..2];
-    let m = config().fit_gestures(&sets(taught), None).unwrap();
+    let m = config()
+        .fit_model(&sets(taught), cosco_hsom::hsom::Fit::default())
+        .unwrap();
     let by_postures = m.clone().with_scoring(Scoring::Postures);
     let up = |model: &GestureModel, rows: &[Vec<f64>]| model.scores(rows).unwrap()[0];
     let new_up: Vec<Vec<Vec<f64>>> = (100..104).map(|s| gesture(APEXES[0].1, s)).collect();
@@ -105,9 +113,14 @@ fn part_of_a_taught_path_is_unknown() {
 
 #[test]
 fn the_label_chooses_the_gesture_reproduced_and_is_required() {
-    let m = config().fit_gestures(&sets(&APEXES), None).unwrap();
+    let m = config()
+        .fit_model(&sets(&APEXES), cosco_hsom::hsom::Fit::default())
+        .unwrap();
     for (l, a) in APEXES {
-        let rep = m.reproduce(Some(l), &[0.0, 0.0]).unwrap();
+        let rep = m
+            .branch(Some(l))
+            .and_then(|b| Ok(b.reproduce(&[0.0, 0.0])?))
+            .unwrap();
         let far = rep
             .postures
             .iter()
@@ -116,14 +129,17 @@ fn the_label_chooses_the_gesture_reproduced_and_is_required() {
         let d = (far[0] - a[0]).hypot(far[1] - a[1]);
         assert!(d < 0.25, "{l}: apex {far:?} vs {a:?}");
     }
-    match m.reproduce(None, &[0.0, 0.0]) {
+    match m.branch(None).and_then(|b| Ok(b.reproduce(&[0.0, 0.0])?)) {
         Err(e @ GestureError::LabelNeeded { .. }) => {
             let t = e.to_string();
             assert!(t.contains("up, right, diag"), "{t}");
         }
         other => panic!("{other:?}"),
     }
-    match m.reproduce(Some("wave"), &[0.0, 0.0]) {
+    match m
+        .branch(Some("wave"))
+        .and_then(|b| Ok(b.reproduce(&[0.0, 0.0])?))
+    {
         Err(e @ GestureError::UnknownLabel { .. }) => assert!(e.to_string().contains("\"wave\"")),
         other => panic!("{other:?}"),
     }
@@ -138,7 +154,9 @@ fn the_label_chooses_the_gesture_reproduced_and_is_required() {
 #[test]
 fn save_and_load_keep_the_model_and_its_size_does_not_grow_with_the_demonstrations() {
     let dir = tempfile::tempdir().unwrap();
-    let m = config().fit_gestures(&sets(&APEXES), None).unwrap();
+    let m = config()
+        .fit_model(&sets(&APEXES), cosco_hsom::hsom::Fit::default())
+        .unwrap();
     for ext in ["bin", "txt"] {
         let p = dir.path().join(format!("m.{ext}"));
         m.save(&p).unwrap();
@@ -188,7 +206,10 @@ fn save_and_load_keep_the_model_and_its_size_does_not_grow_with_the_demonstratio
     }
     // stored postures of the wrong size (with a valid checksum): refused, named
     let single_text = config()
-        .fit_series(&[gesture([1.0, 0.0], 1), gesture([1.0, 0.0], 2)])
+        .fit(&cosco_hsom::demos::Demonstration::from_series(&[
+            gesture([1.0, 0.0], 1),
+            gesture([1.0, 0.0], 2),
+        ]))
         .unwrap()
         .to_text();
     // `single_text` with its model edited by `edit`, written with a valid checksum
@@ -237,7 +258,9 @@ fn save_and_load_keep_the_model_and_its_size_does_not_grow_with_the_demonstratio
             (l, ds)
         })
         .collect();
-    let ml = config().fit_gestures(&long, None).unwrap();
+    let ml = config()
+        .fit_model(&long, cosco_hsom::hsom::Fit::default())
+        .unwrap();
     // every part of every branch the same size but the traced chunks, which the file keeps
     // only where a node has them, within a ceiling set by the configuration alone
     for (a, b) in m.branches().iter().zip(ml.branches()) {
@@ -254,7 +277,12 @@ fn save_and_load_keep_the_model_and_its_size_does_not_grow_with_the_demonstratio
         assert_eq!(total, a.to_bytes().len());
     }
     // a single-gesture model loads as one unlabelled gesture, byte for byte
-    let single = config().fit_series(&[gesture([1.0, 0.0], 1)]).unwrap();
+    let single = config()
+        .fit(&cosco_hsom::demos::Demonstration::from_series(&[gesture(
+            [1.0, 0.0],
+            1,
+        )]))
+        .unwrap();
     let p = dir.path().join("single.bin");
     single.save(&p).unwrap();
     let g = GestureModel::load(&p).unwrap();
@@ -369,10 +397,10 @@ fn bad_labelled_directories_are_refused_naming_the_directory_or_label() {
 
 #[test]
 fn a_label_without_demonstrations_is_named_by_the_library_step() {
-    // `app::train_gestures` (what the Python package calls): a label with no
+    // `app::train` (what the Python package calls): a label with no
     // demonstrations is refused naming it, not as "no demonstrations" of no one
     let mut s = sets(&APEXES[..2]);
     s[1].1.clear();
-    let e = cosco_hsom::app::train_gestures(&config(), &s, None).unwrap_err();
+    let e = cosco_hsom::app::train(&config(), &s, None).unwrap_err();
     assert_eq!(e.to_string(), "gesture \"right\" has no demonstrations");
 }

@@ -151,13 +151,21 @@ fn gestures_taught_one_at_a_time_are_recognised_and_not_forgotten_unlike_a_retra
     // files alone; every earlier gesture, reproduced from its held-out start by what that
     // model knows, is forgotten
     let (last, _) = taught.last().unwrap();
-    let alone = cfg.fit_gestures(&taught[taught.len() - 1..], None).unwrap();
+    let alone = cfg
+        .fit_model(
+            &taught[taught.len() - 1..],
+            cosco_hsom::hsom::Fit::default(),
+        )
+        .unwrap();
     let control: Vec<Reproduced> = (s.reproduced.iter())
         .filter(|r| r.label != *last)
         .map(|r| {
             let (_, demos) = taught.iter().find(|(l, _)| *l == r.label).unwrap();
             let held = demos.iter().find(|d| d.source == r.demonstration).unwrap();
-            let rep = alone.reproduce(Some(last), &held.rows[0]).unwrap();
+            let rep = alone
+                .branch(Some(last))
+                .and_then(|b| Ok(b.reproduce(&held.rows[0])?))
+                .unwrap();
             let diag = cosco_hsom::eval::diagonal(demos);
             let d = cosco_hsom::dtw::dtw_distance(
                 &rep.postures,

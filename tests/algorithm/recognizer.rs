@@ -24,7 +24,9 @@ fn new_streams(labels: &[(&str, [f64; 2])]) -> Vec<(String, Vec<Vec<f64>>)> {
 
 #[test]
 fn the_recogniser_commits_early_never_changes_and_finishes_as_recognize() {
-    let m = config().fit_gestures(&sets(&APEXES), None).unwrap();
+    let m = config()
+        .fit_model(&sets(&APEXES), cosco_hsom::hsom::Fit::default())
+        .unwrap();
     let cal = m.stream_calibration().unwrap();
     assert!(cal.rise.is_finite() && cal.rise >= 1.0, "{cal:?}");
     for (label, rows) in new_streams(&APEXES) {
@@ -51,7 +53,9 @@ fn the_recogniser_commits_early_never_changes_and_finishes_as_recognize() {
 
 #[test]
 fn the_prefix_scores_are_recognitions_and_bad_samples_are_refused() {
-    let m = config().fit_gestures(&sets(&APEXES[..2]), None).unwrap();
+    let m = config()
+        .fit_model(&sets(&APEXES[..2]), cosco_hsom::hsom::Fit::default())
+        .unwrap();
     let rows = gesture(APEXES[0].1, 100);
     let mut r = m.recognizer().unwrap();
     // fewer than 2 samples: refused as recognize refuses them
@@ -92,7 +96,9 @@ fn summary(
 
 #[test]
 fn untaught_gestures_are_not_committed_to_and_committing_at_once_fails_the_gate() {
-    let all = config().fit_gestures(&sets(&APEXES), None).unwrap();
+    let all = config()
+        .fit_model(&sets(&APEXES), cosco_hsom::hsom::Fit::default())
+        .unwrap();
     let taught: Vec<_> = new_streams(&APEXES)
         .into_iter()
         .map(|(l, r)| (Some(l), r))
@@ -111,7 +117,9 @@ fn untaught_gestures_are_not_committed_to_and_committing_at_once_fails_the_gate(
         .iter()
         .any(|f| f.starts_with("wrong commits")));
     // a gesture never taught: committed to no label
-    let two = config().fit_gestures(&sets(&APEXES[..2]), None).unwrap();
+    let two = config()
+        .fit_model(&sets(&APEXES[..2]), cosco_hsom::hsom::Fit::default())
+        .unwrap();
     let untaught: Vec<_> = new_streams(&APEXES[2..])
         .into_iter()
         .map(|(_, r)| (None, r))
@@ -128,7 +136,7 @@ fn cosco_recognize_stream_prints_the_commit_and_the_whole_answer() {
     let dir = tempfile::tempdir().unwrap();
     let model = dir.path().join("m.bin");
     config()
-        .fit_gestures(&sets(&APEXES), None)
+        .fit_model(&sets(&APEXES), cosco_hsom::hsom::Fit::default())
         .unwrap()
         .save(&model)
         .unwrap();

@@ -102,7 +102,10 @@ fn line(n: usize, scale: f64) -> Vec<Vec<f64>> {
 #[test]
 fn demonstrations_shorter_than_the_action_horizon_are_refused() {
     let e = config(10, "global")
-        .fit_series(&[line(3, 1.0), line(40, 1.0)])
+        .fit(&cosco_hsom::demos::Demonstration::from_series(&[
+            line(3, 1.0),
+            line(40, 1.0),
+        ]))
         .unwrap_err();
     assert!(
         matches!(
@@ -118,7 +121,10 @@ fn demonstrations_shorter_than_the_action_horizon_are_refused() {
     assert!(e.to_string().contains("series #0"), "{e}");
     // long enough: trains
     assert!(config(10, "global")
-        .fit_series(&[line(11, 1.0), line(40, 1.0)])
+        .fit(&cosco_hsom::demos::Demonstration::from_series(&[
+            line(11, 1.0),
+            line(40, 1.0)
+        ]))
         .is_ok());
 }
 
@@ -127,14 +133,20 @@ fn data_too_large_to_train_on_is_refused_instead_of_saving_an_unloadable_model()
     // 1e200 raw (normalisation none) and +-1e308 (the range overflows: no normalisation)
     for (scale, norm) in [(1e200, "none"), (1e308, "global")] {
         let e = config(1, norm)
-            .fit_series(&[line(40, scale), line(40, scale)])
+            .fit(&cosco_hsom::demos::Demonstration::from_series(&[
+                line(40, scale),
+                line(40, scale),
+            ]))
             .unwrap_err();
         assert!(matches!(e, HsomError::OutOfScale { .. }), "{scale}: {e}");
         assert!(e.to_string().contains("series #"), "{e}");
     }
     // large but representable: trains, saves and loads
     let m = config(1, "none")
-        .fit_series(&[line(40, 1e6), line(40, 1e6)])
+        .fit(&cosco_hsom::demos::Demonstration::from_series(&[
+            line(40, 1e6),
+            line(40, 1e6),
+        ]))
         .unwrap();
     let dir = tempfile::tempdir().unwrap();
     let p = dir.path().join("m.bin");
@@ -145,7 +157,10 @@ fn data_too_large_to_train_on_is_refused_instead_of_saving_an_unloadable_model()
 #[test]
 fn model_statistics_that_would_size_the_reproduction_without_bound_are_refused() {
     let m = config(1, "global")
-        .fit_series(&[line(40, 1.0), line(50, 1.0)])
+        .fit(&cosco_hsom::demos::Demonstration::from_series(&[
+            line(40, 1.0),
+            line(50, 1.0),
+        ]))
         .unwrap();
     let text = m.to_text();
     let dir = tempfile::tempdir().unwrap();
@@ -168,7 +183,10 @@ fn model_statistics_that_would_size_the_reproduction_without_bound_are_refused()
 /// A model file of a small trained model, resealed (the checksum recomputed) after `edit`.
 fn resealed(edit: impl FnOnce(&mut serde_json::Value)) -> (tempfile::TempDir, std::path::PathBuf) {
     let m = config(1, "global")
-        .fit_series(&[line(40, 1.0), line(50, 1.0)])
+        .fit(&cosco_hsom::demos::Demonstration::from_series(&[
+            line(40, 1.0),
+            line(50, 1.0),
+        ]))
         .unwrap();
     let dir = tempfile::tempdir().unwrap();
     let p = dir.path().join("m.txt");
@@ -208,7 +226,10 @@ fn a_scale_training_cannot_make_is_refused_naming_the_normalisation() {
     );
     // normalisation none keeps offset 0 and scale 1
     let m = config(1, "none")
-        .fit_series(&[line(40, 1.0), line(50, 1.0)])
+        .fit(&cosco_hsom::demos::Demonstration::from_series(&[
+            line(40, 1.0),
+            line(50, 1.0),
+        ]))
         .unwrap();
     let bad = hsom_common::edit_model_text(&m.to_text(), |m| m["scale"][1] = 2.0.into());
     std::fs::write(&p, bad).unwrap();
@@ -231,7 +252,10 @@ fn a_model_file_without_its_kind_line_is_refused_quoting_a_short_prefix() {
 #[test]
 fn what_the_binary_form_cannot_decode_is_said_in_words() {
     let m = config(1, "global")
-        .fit_series(&[line(40, 1.0), line(50, 1.0)])
+        .fit(&cosco_hsom::demos::Demonstration::from_series(&[
+            line(40, 1.0),
+            line(50, 1.0),
+        ]))
         .unwrap();
     let mut b = m.to_bytes();
     // the embedded configuration made unreadable (same length), the file resealed
@@ -457,7 +481,10 @@ fn set_memory(m: &mut serde_json::Value, field: &str, value: u64) {
 fn counted(field: &str, value: u64) -> (tempfile::TempDir, std::path::PathBuf) {
     let (dir, p) = resealed(|m| set_memory(m, field, value));
     let columns = config(1, "global")
-        .fit_series(&[line(40, 1.0), line(50, 1.0)])
+        .fit(&cosco_hsom::demos::Demonstration::from_series(&[
+            line(40, 1.0),
+            line(50, 1.0),
+        ]))
         .unwrap()
         .columns()
         .join(",");

@@ -44,8 +44,12 @@ fn each_gesture_of_the_shared_hierarchy_is_reproduced_within_1_2x_of_the_gesture
             tests.push(d.split_off(3));
             sets.push((name.to_string(), d));
         }
-        let shared = cfg.fit_gestures(&sets, None).unwrap();
-        let untrained = cfg.initialise_gestures(&sets).unwrap();
+        let shared = cfg
+            .fit_model(&sets, cosco_hsom::hsom::Fit::default())
+            .unwrap();
+        let untrained = cfg
+            .fit_model(&sets, cosco_hsom::hsom::Fit::UNTRAINED)
+            .unwrap();
         for (gi, (label, train)) in sets.iter().enumerate() {
             let alone = cfg.fit(train).unwrap();
             let other = &sets[(gi + 1) % sets.len()].0;
@@ -69,10 +73,28 @@ fn each_gesture_of_the_shared_hierarchy_is_reproduced_within_1_2x_of_the_gesture
                 };
                 let y0 = &d.rows[0];
                 scores[gi].push([
-                    score(&shared.reproduce(Some(label), y0).unwrap().postures),
+                    score(
+                        &shared
+                            .branch(Some(label))
+                            .and_then(|b| Ok(b.reproduce(y0)?))
+                            .unwrap()
+                            .postures,
+                    ),
                     score(&alone.reproduce(y0).unwrap().postures),
-                    score(&untrained.reproduce(Some(label), y0).unwrap().postures),
-                    score(&shared.reproduce(Some(other), y0).unwrap().postures),
+                    score(
+                        &untrained
+                            .branch(Some(label))
+                            .and_then(|b| Ok(b.reproduce(y0)?))
+                            .unwrap()
+                            .postures,
+                    ),
+                    score(
+                        &shared
+                            .branch(Some(other))
+                            .and_then(|b| Ok(b.reproduce(y0)?))
+                            .unwrap()
+                            .postures,
+                    ),
                 ]);
             }
         }

@@ -56,7 +56,7 @@ pub(super) fn in_turn(
         return Err(LooError::NoTaught);
     };
     let mut model = config
-        .fit_gestures(std::slice::from_ref(first), None)
+        .fit_model(std::slice::from_ref(first), crate::hsom::Fit::default())
         .map_err(refused(what))?;
     each(0, &model)?;
     for (g, (label, demos)) in rest.iter().enumerate() {
@@ -78,7 +78,8 @@ fn relative_dtw(
     what: &str,
 ) -> Result<f64, LooError> {
     let rep = model
-        .reproduce(Some(label), &demo.rows[0])
+        .branch(Some(label))
+        .and_then(|b| Ok(b.reproduce(&demo.rows[0])?))
         .map_err(refused(what))?;
     let d = dtw_distance(&rep.postures, &demo.rows, Band::None).map_err(|e| {
         LooError::NoReproduction(format!("{what}: DTW against {}: {e}", demo.source))
@@ -113,7 +114,7 @@ pub(super) fn fold(
     })?;
     let once_what = format!("the model taught at once without {}", held.source);
     let once = config
-        .fit_gestures(&sets, None)
+        .fit_model(&sets, crate::hsom::Fit::default())
         .map_err(refused(&once_what))?;
     let at_once_accepted = once
         .recognize(&held.rows)

@@ -68,9 +68,21 @@ fn config(height: usize) -> HsomConfig {
     p.check("test").unwrap()
 }
 
+/// The untrained model of `series` (height 3, the seeded weights): the negative control.
+fn untrained(series: &[Vec<Vec<f64>>]) -> EventsHsom {
+    let m = config(3).fit_model(
+        &Demonstration::from_series(series),
+        crate::hsom::Fit::UNTRAINED,
+    );
+    m.unwrap().branches()[0].clone().into_events()
+}
+
 fn trained(height: usize) -> EventsHsom {
     let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
-    config(height).fit_series(&series).unwrap().into_events()
+    config(height)
+        .fit(&Demonstration::from_series(&series))
+        .unwrap()
+        .into_events()
 }
 
 /// Mean distance of `rows` (with their postures `horizon` samples later, as the bottom is
@@ -382,7 +394,10 @@ fn traced_events_at_their_place_in_the_consensus_are_smoother_than_at_their_node
             .filter(|&i| i != out)
             .map(|i| all[i].clone())
             .collect();
-        let mut m = config(2).fit_series(&train).unwrap().into_events();
+        let mut m = config(2)
+            .fit(&Demonstration::from_series(&train))
+            .unwrap()
+            .into_events();
         m.part.demo_smoothness = None;
         let cleared = at_nodes(&m);
         let y0 = &all[out][0];
@@ -553,7 +568,10 @@ fn a_plan_that_ends_by_its_end_event_ends_where_the_demonstrations_ended() {
         rows
     };
     let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| stroke(30 + 5 * i, i as u64)).collect();
-    let m = config(3).fit_series(&series).unwrap().into_events();
+    let m = config(3)
+        .fit(&Demonstration::from_series(&series))
+        .unwrap()
+        .into_events();
     let ended: Vec<f64> = (0..2)
         .map(|j| series.iter().map(|d| d.last().unwrap()[j]).sum::<f64>() / 3.0)
         .collect();
@@ -651,7 +669,7 @@ fn reencoding_keeps_what_the_bottom_code_keeps_and_an_untrained_code_loses_it() 
     assert!(good < 0.05, "trained: {good}");
     // negative control: the initial (random) bottom map
     let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
-    let untrained = err(&config(3).initialise_series(&series).unwrap().into_events());
+    let untrained = err(&untrained(&series));
     // it fails the gate the trained code passes, by an order of magnitude
     assert!(
         untrained > 0.05 && untrained > 10.0 * good,
@@ -669,7 +687,7 @@ fn reencoding_keeps_what_the_bottom_code_keeps_and_an_untrained_code_loses_it() 
 #[test]
 fn an_untrained_hierarchy_does_not_reproduce_the_gesture() {
     let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
-    let m = config(3).initialise_series(&series).unwrap().into_events();
+    let m = untrained(&series);
     let rep = m.reproduce(&[0.0, 0.0]).unwrap();
     let xs: Vec<f64> = rep.postures.iter().map(|p| p[0]).collect();
     let held = xs.iter().filter(|&&x| x > 0.9).count();

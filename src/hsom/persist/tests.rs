@@ -10,7 +10,11 @@ fn saving_refuses_what_loading_would_refuse_and_writes_nothing() {
     let series: Vec<Vec<Vec<f64>>> = (0..2)
         .map(|k| (0..30 + k).map(|i| vec![(i as f64 / 10.0).sin()]).collect())
         .collect();
-    let mut m = p.check("t").unwrap().fit_series(&series).unwrap();
+    let mut m = p
+        .check("t")
+        .unwrap()
+        .fit(&crate::demos::Demonstration::from_series(&series))
+        .unwrap();
     let dir = tempfile::tempdir().unwrap();
     for name in ["m.bin", "m.txt"] {
         m.save(&dir.path().join(name)).unwrap();

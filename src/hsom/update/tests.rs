@@ -64,7 +64,10 @@ fn an_update_with_nothing_is_the_model_it_came_from() {
         assert_eq!(m.update(&[]).unwrap(), m);
     }
     let g = config(false)
-        .fit_gestures(&[("a".into(), demos(0..3, false))], None)
+        .fit_model(
+            &[("a".into(), demos(0..3, false))],
+            crate::hsom::Fit::default(),
+        )
         .unwrap();
     assert_eq!(g.update(Some("b"), &[], None).unwrap(), g);
     assert_eq!(g.update_labelled(&[], None).unwrap(), g);
@@ -182,12 +185,12 @@ fn an_update_that_would_count_past_the_bound_is_refused_before_training() {
     assert_eq!(u.learned().0, MAX_LEARNED);
     // a gesture of several: named by its label; another gesture's count is its own
     let g = config(false)
-        .fit_gestures(
+        .fit_model(
             &[
                 ("a".into(), demos(0..3, false)),
                 ("b".into(), demos(0..3, true)),
             ],
-            None,
+            crate::hsom::Fit::default(),
         )
         .unwrap();
     let mut branches = g.branches.clone();

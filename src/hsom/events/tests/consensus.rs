@@ -109,7 +109,10 @@ fn each_node_is_placed_where_the_demonstrations_agree() {
                 .collect()
         })
         .collect();
-    let m = config(2).fit_series(&series).unwrap().into_events();
+    let m = config(2)
+        .fit(&Demonstration::from_series(&series))
+        .unwrap()
+        .into_events();
     // where each demonstration's apex events are placed, raw units
     let apex = |h: &EventsHsom, d: &[Vec<f64>]| {
         let y = m.normalise_rows(d);

@@ -269,7 +269,10 @@ fn from_elsewhere(i: usize) -> Vec<Vec<f64>> {
 #[test]
 fn a_start_away_from_the_demonstrations_is_joined_smoothly() {
     let train: Vec<Vec<Vec<f64>>> = (0..5).map(from_elsewhere).collect();
-    let m = config(2).fit_series(&train).unwrap().into_events();
+    let m = config(2)
+        .fit(&Demonstration::from_series(&train))
+        .unwrap()
+        .into_events();
     let speed = |r: &[Vec<f64>]| crate::dtw::euclidean(&r[1], &r[0]);
     let fastest_start = train.iter().map(|d| speed(d)).fold(0.0, f64::max);
     let y0 = [0.02, 0.33];
@@ -435,7 +438,7 @@ fn two_knots_per_event_keep_the_swings() {
         let m = p
             .check("test")
             .unwrap()
-            .fit_series(&train)
+            .fit(&Demonstration::from_series(&train))
             .unwrap()
             .into_events();
         let mut cleared = m.clone();
@@ -454,7 +457,10 @@ fn two_knots_per_event_keep_the_swings() {
     // an event passes through two knots only where each half lasts two samples: one
     // of 3.5 samples keeps one knot at its middle, one of 4 two, at its quarters, each
     // at its half's place
-    let m = config(2).fit_series(&all[..4]).unwrap().into_events();
+    let m = config(2)
+        .fit(&Demonstration::from_series(&all[..4]))
+        .unwrap()
+        .into_events();
     let y0 = m.normalise(&all[0][0]);
     // the event, its halves, then each half's lowest and highest values (s = 2)
     let at: Vec<f64> = vec![

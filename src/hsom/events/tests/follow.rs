@@ -99,7 +99,11 @@ fn resuming_its_own_reproduction_goes_on_as_planned() {
     let mut p = HsomParams::table1();
     p.state_length = 2;
     p.action_length = 2;
-    let paper = p.check("paper").unwrap().fit_series(&series).unwrap();
+    let paper = p
+        .check("paper")
+        .unwrap()
+        .fit(&Demonstration::from_series(&series))
+        .unwrap();
     let e = paper.resume(&initial, &reading).unwrap_err().to_string();
     assert!(e.contains("algorithm = events"), "{e}");
 }
@@ -130,12 +134,16 @@ fn continuing_a_prefix_plans_the_rest_from_the_lists() {
     let (ok, xs) = goes_home(&trained(3));
     assert!(ok, "trained: {xs}");
     let series: Vec<Vec<Vec<f64>>> = (0..3).map(|i| gesture(30 + 5 * i, i as u64)).collect();
-    let (ok, xs) = goes_home(&config(3).initialise_series(&series).unwrap().into_events());
+    let (ok, xs) = goes_home(&untrained(&series));
     assert!(!ok, "untrained: {xs}");
     let mut p = HsomParams::table1();
     p.state_length = 2;
     p.action_length = 2;
-    let paper = p.check("paper").unwrap().fit_series(&series).unwrap();
+    let paper = p
+        .check("paper")
+        .unwrap()
+        .fit(&Demonstration::from_series(&series))
+        .unwrap();
     let e = paper.continue_events(&prefix).unwrap_err().to_string();
     assert!(e.contains("algorithm = events"), "{e}");
     let e = trained(3)

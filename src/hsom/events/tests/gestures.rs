@@ -24,9 +24,16 @@ fn a_shared_bottom_drawn_at_random_keeps_the_first_gesture() {
         .collect();
     let cfg = config(2);
     let fit = |order| {
-        cfg.fit_inner(&series, None, true, vec!["x".into(), "y".into()], order)
-            .unwrap()
-            .into_events()
+        cfg.fit_from(
+            &series,
+            None,
+            true,
+            vec!["x".into(), "y".into()],
+            order,
+            None,
+        )
+        .unwrap()
+        .into_events()
     };
     let (in_order, drawn) = (fit(Presentation::InOrder), fit(Presentation::Shuffled));
     let h = cfg.params().action_horizon();
@@ -76,7 +83,7 @@ fn each_branch_executes_its_own_gesture_on_the_shared_nodes() {
     p.levels[0] = crate::config::LevelParams::new(4, 4, crate::som::Topology::Orthogonal, 0.1);
     let cfg = p.check("test").unwrap();
     let sets = vec![("a".to_string(), demos(&a)), ("b".to_string(), demos(&b))];
-    let m = cfg.fit_gestures(&sets, None).unwrap();
+    let m = cfg.fit_model(&sets, crate::hsom::Fit::default()).unwrap();
     // mean distance between a demonstration and its re-encoding by a branch
     let err = |br: &EventsHsom, set: &[Demonstration]| {
         let mut e = 0.0;
@@ -116,14 +123,19 @@ fn each_branch_executes_its_own_gesture_on_the_shared_nodes() {
         wrong > plain,
         "the other gesture's postures {wrong} vs weights {plain}"
     );
-    // one gesture through fit_gestures places them as fit does; an untrained model, or one
+    // one gesture through fit_model's labelled sets places them as fit does; an untrained model, or one
     // demonstration (nothing to agree on), executes the nodes' weights
-    let alone = cfg.fit_gestures(&sets[..1], None).unwrap();
+    let alone = cfg
+        .fit_model(&sets[..1], crate::hsom::Fit::default())
+        .unwrap();
     assert_eq!(
         alone.branches[0].as_events().unwrap().part.knots,
         cfg.fit(&sets[0].1).unwrap().into_events().part.knots
     );
-    assert!(cfg.initialise_gestures(&sets).unwrap().branches[0]
+    assert!(cfg
+        .fit_model(&sets, crate::hsom::Fit::UNTRAINED)
+        .unwrap()
+        .branches[0]
         .as_events()
         .unwrap()
         .part
