@@ -1,6 +1,5 @@
 //! An evaluation as JSON, Markdown and a figure (`cosco heldout`).
 
-use crate::config::HsomConfig;
 use crate::table::Table;
 
 #[cfg(feature = "plot")]
@@ -10,20 +9,12 @@ use super::results::{failures, passed, summary, GestureLoo, Score};
 #[cfg(feature = "plot")]
 use crate::demos::sample_period;
 
-/// The study as a JSON document (what `cosco heldout --json` writes): the configuration's
-/// name, the [`summary`] and every gesture's folds with every method's score.
-pub fn json(config: &HsomConfig, study: &[GestureLoo]) -> String {
-    // cannot fail: plain numbers (non-finite ones become null), strings and enums
-    serde_json::to_string_pretty(&json_value(config, study)).unwrap_or_default()
-}
-
-/// [`json`]'s document as a value.
-pub(super) fn json_value(config: &HsomConfig, study: &[GestureLoo]) -> serde_json::Value {
-    serde_json::json!({
-        "config": config.source(),
-        "summary": summary(study),
-        "gestures": study,
-    })
+/// `doc` as pretty JSON, its keys in alphabetical order at every level (serde_json's map
+/// keeps them sorted), non-finite numbers as null: how every study document is written.
+pub(super) fn json_text(doc: &impl serde::Serialize) -> String {
+    // cannot fail: string keys, plain numbers, strings and enums
+    let value = serde_json::to_value(doc).unwrap_or_default();
+    serde_json::to_string_pretty(&value).unwrap_or_default()
 }
 
 /// The study as Markdown: per gesture, each method's mean relative DTW over the folds held
