@@ -109,19 +109,7 @@ pub fn heldout_with(
         });
     }
     if let Some(p) = &job.json {
-        let text = match sections.is_empty() {
-            true => all.json(&cfg),
-            false => {
-                let mut doc: serde_json::Value =
-                    serde_json::from_str(&all.json(&cfg)).unwrap_or_default();
-                if let Some(map) = doc.as_object_mut() {
-                    for s in &sections {
-                        map.insert(s.key.into(), s.json.clone());
-                    }
-                }
-                serde_json::to_string_pretty(&doc).unwrap_or_default()
-            }
-        };
+        let text = super::report::json_text(&all.document(&cfg, &sections));
         super::loo::write(p, text.as_bytes())?;
     }
     #[cfg(feature = "plot")]

@@ -51,12 +51,12 @@ pub use loo::{
 };
 pub use method::{peak_speed, Method, GMR_COMPONENTS};
 pub use pool::Pool;
+pub use report::markdown;
 #[cfg(feature = "plot")]
 pub use report::png;
-pub use report::{json, markdown};
 pub use results::{
     failures, passed, summary, Commanded, ConditionErrors, Fold, FoldScores, FoldsError,
     GestureLoo, HeldOut, HeldOutSummary, MethodSummary, Run, Score, Swings, MIN_DEMO_JERK,
 };
-pub use study::{sittings_ratios, study, SittingsRatio, Study};
+pub use study::{sittings_ratios, study, SittingsRatio, Study, StudyDocument};
 pub use two_arms::{two_arms, GestureLags, MethodLags};

@@ -1,6 +1,8 @@
 //! An evaluation as JSON, Markdown and a figure (`cosco heldout`).
 
-use crate::config::HsomConfig;
+use crate::metrics::registry::{
+    Metric, DURATION_RATIO, JERK_RATIO, RELATIVE_DTW, RELATIVE_DTW_IN_SAMPLE, RELATIVE_FINAL_ERROR,
+};
 use crate::table::Table;
 
 #[cfg(feature = "plot")]
@@ -10,21 +12,22 @@ use super::results::{failures, passed, summary, GestureLoo, Score};
 #[cfg(feature = "plot")]
 use crate::demos::sample_period;
 
-/// The study as a JSON document (what `cosco heldout --json` writes): the configuration's
-/// name, the [`summary`] and every gesture's folds with every method's score.
-pub fn json(config: &HsomConfig, study: &[GestureLoo]) -> String {
-    // cannot fail: plain numbers (non-finite ones become null), strings and enums
-    serde_json::to_string_pretty(&json_value(config, study)).unwrap_or_default()
+/// `doc` as pretty JSON, its keys in alphabetical order at every level (serde_json's map
+/// keeps them sorted), non-finite numbers as null: how every study document is written.
+pub(super) fn json_text(doc: &impl serde::Serialize) -> String {
+    // cannot fail: string keys, plain numbers, strings and enums
+    let value = serde_json::to_value(doc).unwrap_or_default();
+    serde_json::to_string_pretty(&value).unwrap_or_default()
 }
 
-/// [`json`]'s document as a value.
-pub(super) fn json_value(config: &HsomConfig, study: &[GestureLoo]) -> serde_json::Value {
-    serde_json::json!({
-        "config": config.source(),
-        "summary": summary(study),
-        "gestures": study,
-    })
-}
+/// The metric columns of the summary table, in order (a [`super::MethodSummary`] field each).
+const SUMMARY_METRICS: [Metric; 5] = [
+    RELATIVE_DTW,
+    RELATIVE_DTW_IN_SAMPLE,
+    DURATION_RATIO.to(2),
+    RELATIVE_FINAL_ERROR,
+    JERK_RATIO.titled("jerk ratio"),
+];
 
 /// The study as Markdown: per gesture, each method's mean relative DTW over the folds held
 /// out (and in-sample), then the summary over the gestures.
@@ -66,20 +69,15 @@ pub fn markdown(study: &[GestureLoo]) -> String {
          end\"):\n",
         study.len()
     );
-    let mut table = Table::new([
-        "method",
-        "relative DTW",
-        "in-sample",
-        "duration ratio",
-        "final error / diagonal",
-        "jerk ratio",
+    let columns = SUMMARY_METRICS.map(|m| m.label);
+    let mut table = Table::new(["method"].into_iter().chain(columns).chain([
         "band coverage",
         "start in range",
         "end within spread",
         "hierarchy / method",
         "hierarchy closer",
         "failed folds",
-    ]);
+    ]));
     let folds = |m: Method, pass: fn(&Score) -> bool| {
         let (k, n) = passed(study, m, pass);
         format!("{k} of {n}")
@@ -94,24 +92,29 @@ pub fn markdown(study: &[GestureLoo]) -> String {
                 v
             }
         };
-        table.row([
-            s.method.name().to_string(),
-            opt(s.relative_dtw, 4),
-            opt(s.relative_dtw_in_sample, 4),
-            opt(s.duration_ratio, 2),
-            opt(s.relative_final_error, 4),
-            opt(s.jerk_ratio, 2),
-            s.coverage
-                .map_or("-".to_string(), |c| format!("{:.1} %", 100.0 * c)),
-            folds(s.method, |s| s.start_in_range),
-            folds(s.method, |s| s.end_within_spread),
-            against(opt(s.hierarchy_ratio, 3)),
-            against(format!(
-                "{} of {}",
-                s.hierarchy_closer.0, s.hierarchy_closer.1
-            )),
-            format!("{} of {}", s.failed, s.folds),
-        ]);
+        let figures = [
+            s.relative_dtw,
+            s.relative_dtw_in_sample,
+            s.duration_ratio,
+            s.relative_final_error,
+            s.jerk_ratio,
+        ];
+        let cells = (SUMMARY_METRICS.iter().zip(figures)).map(|(m, v)| m.cell(v, "-"));
+        let name = s.method.name().to_string();
+        table.row(
+            std::iter::once(name).chain(cells).chain([
+                s.coverage
+                    .map_or("-".to_string(), |c| format!("{:.1} %", 100.0 * c)),
+                folds(s.method, |s| s.start_in_range),
+                folds(s.method, |s| s.end_within_spread),
+                against(opt(s.hierarchy_ratio, 3)),
+                against(format!(
+                    "{} of {}",
+                    s.hierarchy_closer.0, s.hierarchy_closer.1
+                )),
+                format!("{} of {}", s.failed, s.folds),
+            ]),
+        );
     }
     out.push_str(&table.to_string());
     let outside: Vec<String> = (summary(study).iter())

@@ -2,14 +2,20 @@
 //! demonstrations were recorded and, when asked, the same folds conditioned on each held-out
 //! demonstration's end (and middle) beside it.
 
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
 use crate::config::HsomConfig;
 use crate::table::Table;
 
 use super::executor::Executor;
+use super::files::Section;
 use super::fold::Conditioning;
 use super::loo::{leave_one_out, Gestures, LooError, LooSettings};
-use super::report::{json_value, markdown};
-use super::results::{summary, GestureLoo};
+use super::report::{json_text, markdown};
+use super::results::{summary, GestureLoo, MethodSummary};
+use super::two_arms::GestureLags;
 
 /// Leave-one-out, and the conditioned folds beside it.
 #[derive(Debug, Clone, PartialEq)]
@@ -93,46 +99,87 @@ pub fn study<E: Executor>(
     })
 }
 
+/// The JSON document of a held-out study (`cosco heldout --json`): the configuration's name,
+/// the [`summary`] and every gesture's folds; on the upper body, the two arms' lags; the
+/// conditioned, far-goal and two-sittings folds when run; and the sections computed besides
+/// ([`Section`]) under their keys. Written by [`json_text`]: keys in alphabetical order at
+/// every level.
+#[derive(Debug, Serialize)]
+pub struct StudyDocument<'a> {
+    config: &'a str,
+    summary: Vec<MethodSummary>,
+    gestures: &'a [GestureLoo],
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    two_arms: Vec<GestureLags>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    conditioned: Option<Folds<'a>>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    far: Vec<Folds<'a>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sittings: Option<Folds<'a>>,
+    #[serde(flatten)]
+    sections: BTreeMap<&'static str, &'a serde_json::Value>,
+}
+
+/// A run of the study's folds besides the unconditioned one: its summary, its folds and what
+/// sets it apart (the condition, the far goal's `K`, or the ratios to the folds taught at once).
+#[derive(Debug, Serialize)]
+struct Folds<'a> {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    condition: Option<&'static str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    k: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    against_at_once: Option<Vec<SittingsRatio>>,
+    summary: Vec<MethodSummary>,
+    gestures: &'a [GestureLoo],
+}
+
+impl<'a> Folds<'a> {
+    fn of(study: &'a [GestureLoo]) -> Self {
+        Folds {
+            condition: None,
+            k: None,
+            against_at_once: None,
+            summary: summary(study),
+            gestures: study,
+        }
+    }
+}
+
 impl Study {
-    /// The JSON document of `cosco heldout --json`: the configuration's name, the summary and
-    /// every gesture's folds (on the upper body, the two arms' lags under `two_arms`); with conditioning, the same under `conditioned` with its
-    /// `condition` (`end` or `end+mid`).
-    pub fn json(&self, config: &HsomConfig) -> String {
-        let mut doc = json_value(config, &self.unconditioned);
-        let lags = super::two_arms(&self.unconditioned);
-        if let (false, Some(map)) = (lags.is_empty(), doc.as_object_mut()) {
-            map.insert("two_arms".into(), serde_json::json!(lags));
-        }
-        if let (Some((c, study)), Some(map)) = (&self.conditioned, doc.as_object_mut()) {
-            map.insert(
-                "conditioned".into(),
-                serde_json::json!({
-                    "condition": c.name(),
-                    "summary": summary(study),
-                    "gestures": study,
-                }),
-            );
-        }
-        if let (false, Some(map)) = (self.far.is_empty(), doc.as_object_mut()) {
-            let far: Vec<serde_json::Value> = (self.far.iter())
-                .map(|(k, study)| {
-                    serde_json::json!({ "k": k, "summary": summary(study), "gestures": study })
+    /// The study's [`StudyDocument`], with `sections` under their keys.
+    pub fn document<'a>(
+        &'a self,
+        config: &'a HsomConfig,
+        sections: &'a [Section],
+    ) -> StudyDocument<'a> {
+        StudyDocument {
+            config: config.source(),
+            summary: summary(&self.unconditioned),
+            gestures: &self.unconditioned,
+            two_arms: super::two_arms(&self.unconditioned),
+            conditioned: (self.conditioned.as_ref()).map(|(c, study)| Folds {
+                condition: Some(c.name()),
+                ..Folds::of(study)
+            }),
+            far: (self.far.iter())
+                .map(|(k, study)| Folds {
+                    k: Some(*k),
+                    ..Folds::of(study)
                 })
-                .collect();
-            map.insert("far".into(), far.into());
+                .collect(),
+            sittings: self.sittings.as_deref().map(|study| Folds {
+                against_at_once: Some(sittings_ratios(&self.unconditioned, study)),
+                ..Folds::of(study)
+            }),
+            sections: sections.iter().map(|s| (s.key, &s.json)).collect(),
         }
-        if let (Some(study), Some(map)) = (&self.sittings, doc.as_object_mut()) {
-            map.insert(
-                "sittings".into(),
-                serde_json::json!({
-                    "summary": summary(study),
-                    "against_at_once": sittings_ratios(&self.unconditioned, study),
-                    "gestures": study,
-                }),
-            );
-        }
-        // cannot fail: plain numbers (non-finite ones become null), strings and enums
-        serde_json::to_string_pretty(&doc).unwrap_or_default()
+    }
+
+    /// The JSON document of `cosco heldout --json` without sections ([`Study::document`]).
+    pub fn json(&self, config: &HsomConfig) -> String {
+        json_text(&self.document(config, &[]))
     }
 
     /// The Markdown tables: unconditioned (on the upper body with the two arms' lags), then

@@ -8,6 +8,9 @@ use serde::ser::SerializeStruct as _;
 use serde::{Serialize, Serializer};
 
 use crate::fsutil::write_atomic;
+use crate::metrics::registry::{
+    Metric, APEX_ERROR, DURATION_RATIO, FINAL_ERROR, JOINT_DTW, WRIST_DTW,
+};
 use crate::metrics::{FidelityReport, Smoothness, Stat};
 
 use crate::demos::{sample_period, Demonstration};
@@ -194,21 +197,42 @@ fn opt_stat(s: &Option<Stat>, digits: usize) -> String {
 /// demonstrations' mean normalized jerk and velocity reversals.
 type ComparisonRow = (&'static str, fn(&MethodResult, (f64, f64)) -> String);
 
-/// The wrist-path row of [`COMPARISON_ROWS`].
-const WRIST_ROW: &str = "wrist-path DTW (mm/step)";
+/// The wrist-path DTW as the report shows it (to 1 decimal).
+const WRIST_PATH: Metric = WRIST_DTW.titled("wrist-path DTW (mm/step)").to(1);
+
+/// The duration ratio as the report shows it (to 2 decimals).
+const DURATION: Metric = DURATION_RATIO.to(2);
+
+/// The fidelity metrics of the report's tables, in order.
+const FIDELITY: [Metric; 5] = [JOINT_DTW, WRIST_PATH, APEX_ERROR, FINAL_ERROR, DURATION];
+
+/// The means of `f`'s [`FIDELITY`] metrics over the demonstrations.
+fn fidelity_means(f: &FidelityReport) -> [Option<f64>; 5] {
+    [
+        Some(f.joint_dtw_rad_per_step.mean),
+        f.wrist_dtw_mm.map(|w| w.mean),
+        Some(f.apex_error_rad.mean),
+        Some(f.final_error_rad.mean),
+        Some(f.duration_ratio.mean),
+    ]
+}
 
 const COMPARISON_ROWS: [ComparisonRow; 15] = [
-    ("joint DTW (rad/step)", |r, _| {
-        stat(&r.fidelity.joint_dtw_rad_per_step, 4)
+    (JOINT_DTW.label, |r, _| {
+        stat(&r.fidelity.joint_dtw_rad_per_step, JOINT_DTW.digits)
     }),
-    (WRIST_ROW, |r, _| opt_stat(&r.fidelity.wrist_dtw_mm, 1)),
-    ("apex error (rad)", |r, _| {
-        stat(&r.fidelity.apex_error_rad, 3)
+    (WRIST_PATH.label, |r, _| {
+        opt_stat(&r.fidelity.wrist_dtw_mm, WRIST_PATH.digits)
     }),
-    ("final-posture error (rad)", |r, _| {
-        stat(&r.fidelity.final_error_rad, 3)
+    (APEX_ERROR.label, |r, _| {
+        stat(&r.fidelity.apex_error_rad, APEX_ERROR.digits)
     }),
-    ("duration ratio", |r, _| stat(&r.fidelity.duration_ratio, 2)),
+    (FINAL_ERROR.label, |r, _| {
+        stat(&r.fidelity.final_error_rad, FINAL_ERROR.digits)
+    }),
+    (DURATION.label, |r, _| {
+        stat(&r.fidelity.duration_ratio, DURATION.digits)
+    }),
     (
         "normalized jerk (demos' mean in brackets)",
         |r, (jerk, _)| {
@@ -269,7 +293,7 @@ pub fn comparison_table(results: &[MethodResult]) -> String {
         table.row(std::iter::once(name.to_string()).chain(results.iter().map(cell)));
     };
     for (name, cell) in COMPARISON_ROWS {
-        if two_wrists && name == WRIST_ROW {
+        if two_wrists && name == WRIST_PATH.label {
             row("left wrist-path DTW, l_wrist (mm/step)", &|r| {
                 opt_stat(&r.fidelity.wrist_dtw_mm, 1)
             });
@@ -322,18 +346,17 @@ pub fn heldout_table(
         "{} swings > {} rad, held-out (demo)",
         JOINT_NAMES[SWING_JOINT], SWING_MIN_AMPLITUDE_RAD
     );
-    let mut table = Table::new([
-        "method (in-sample / held-out)",
-        "folds",
-        "joint DTW (rad/step)",
-        "wrist-path DTW (mm/step)",
-        "apex error (rad)",
-        "final-posture error (rad)",
-        "duration ratio",
-        "normalized jerk (demos')",
-        "velocity reversals (demos')",
-        &swings,
-    ]);
+    let fidelity = FIDELITY.map(|m| m.label);
+    let mut table = Table::new(
+        ["method (in-sample / held-out)", "folds"]
+            .into_iter()
+            .chain(fidelity)
+            .chain([
+                "normalized jerk (demos')",
+                "velocity reversals (demos')",
+                &swings,
+            ]),
+    );
     for r in results {
         table.row(heldout_row(&r.name, Some(&r.fidelity), r.heldout.as_ref()));
     }
@@ -344,16 +367,27 @@ pub fn heldout_table(
 }
 
 /// Decimals of the in-sample / held-out pairs of [`heldout_row`], in its column order.
-const HELDOUT_DIGITS: [usize; 9] = [4, 1, 3, 3, 2, 0, 0, 1, 1];
+const HELDOUT_DIGITS: [usize; 9] = [
+    FIDELITY[0].digits,
+    FIDELITY[1].digits,
+    FIDELITY[2].digits,
+    FIDELITY[3].digits,
+    FIDELITY[4].digits,
+    0,
+    0,
+    1,
+    1,
+];
 
 /// The in-sample figures of [`heldout_row`]'s pairs, in its column order.
 fn in_sample_figures(f: &FidelityReport) -> [Option<f64>; 9] {
+    let [joint, wrist, apex, last, duration] = fidelity_means(f);
     [
-        Some(f.joint_dtw_rad_per_step.mean),
-        f.wrist_dtw_mm.map(|w| w.mean),
-        Some(f.apex_error_rad.mean),
-        Some(f.final_error_rad.mean),
-        Some(f.duration_ratio.mean),
+        joint,
+        wrist,
+        apex,
+        last,
+        duration,
         f.reproduction_smoothness.normalized_jerk,
         demo_mean(&f.demo_smoothness, |s| s.normalized_jerk),
         Some(f.reproduction_smoothness.total_reversals as f64),
@@ -503,14 +537,11 @@ pub fn folds_table(h: &HeldOut) -> String {
             continue;
         };
         let scores = |s: &FoldScores| {
-            let r = &s.fidelity;
-            [
-                format!("{:.4}", r.joint_dtw_rad_per_step.mean),
-                num(r.wrist_dtw_mm.map(|w| w.mean), 1),
-                format!("{:.3}", r.apex_error_rad.mean),
-                format!("{:.3}", r.final_error_rad.mean),
-                format!("{:.2}", r.duration_ratio.mean),
-            ]
+            let means = fidelity_means(&s.fidelity);
+            (FIDELITY.iter().zip(means)).map(|(m, v)| match m.key {
+                k if k == WRIST_DTW.key => num(v, m.digits),
+                _ => m.cell(v, "n/a"),
+            })
         };
         let mut row = vec![(i + 1).to_string(), f.demonstration.clone()];
         row.extend(scores(hsom));
@@ -524,15 +555,15 @@ pub fn folds_table(h: &HeldOut) -> String {
         }
         match f.scores(Method::NearestSequence) {
             Some(s) => row.extend([
-                format!("{:.4}", s.fidelity.joint_dtw_rad_per_step.mean),
+                JOINT_DTW.cell(Some(s.fidelity.joint_dtw_rad_per_step.mean), "n/a"),
                 swings(s, false),
             ]),
             None => row.extend(["n/a".to_string(), "n/a".to_string()]),
         }
         match (f.scores(Method::ProMP), f.error(Method::ProMP)) {
             (Some(p), _) => row.extend([
-                format!("{:.4}", p.fidelity.joint_dtw_rad_per_step.mean),
-                format!("{:.3}", p.fidelity.final_error_rad.mean),
+                JOINT_DTW.cell(Some(p.fidelity.joint_dtw_rad_per_step.mean), "n/a"),
+                FINAL_ERROR.cell(Some(p.fidelity.final_error_rad.mean), "n/a"),
                 swings(p, false),
             ]),
             (None, Some(e)) => row.extend(not_run(e, 3)),
@@ -636,9 +667,9 @@ impl Report {
                          joint DTW {} rad/step, wrist-path DTW {} mm/step, duration ratio {}, \
                          {} swings {} ({}).",
                         s.folds,
-                        num(Some(s.joint_dtw_rad_per_step), 4),
-                        num(s.wrist_dtw_mm, 1),
-                        num(Some(s.duration_ratio), 2),
+                        num(Some(s.joint_dtw_rad_per_step), JOINT_DTW.digits),
+                        num(s.wrist_dtw_mm, WRIST_PATH.digits),
+                        num(Some(s.duration_ratio), DURATION.digits),
                         JOINT_NAMES[SWING_JOINT],
                         num(Some(s.swings), 1),
                         num(Some(s.demo_swings), 1)

@@ -5,6 +5,7 @@
 
 mod errors;
 mod fidelity;
+pub mod registry;
 mod smoothness;
 mod start_end;
 pub mod two_arms;

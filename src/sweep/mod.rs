@@ -23,7 +23,8 @@ use serde::{de::DeserializeOwned, Serialize};
 
 use crate::fsutil::write_atomic;
 
-pub use merge::{merge, MergeSummary, Stats, METRICS};
+pub use crate::metrics::registry::SWEEP as METRICS;
+pub use merge::{merge, MergeSummary, Stats};
 pub use run::{execute_run, MethodRecord, RunRecord};
 pub use runner::{run_sweep, Manifest, Progress, SweepOptions, SweepSummary};
 pub use shard::Shard;

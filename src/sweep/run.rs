@@ -17,6 +17,10 @@ use crate::eval::{
 use crate::experiment::{folds, synthetic_demonstrations, ArmExecutor, DemoSettings};
 use crate::gesture::Gesture;
 use crate::metrics::column_swings;
+use crate::metrics::registry::{
+    APEX_ERROR, DEMO_SWINGS, DEMO_VELOCITY_REVERSALS, DURATION_RATIO, FINAL_ERROR, JERK_RATIO,
+    JOINT_DTW, SWINGS, VELOCITY_REVERSALS, WRIST_DTW,
+};
 use crate::robot::Robot;
 use crate::sim::NaoArm;
 
@@ -32,7 +36,7 @@ pub struct MethodRecord {
     /// `cosco-hsom` or `gmr` ([`super::spec::method_name`]).
     #[serde(with = "super::spec::method_serde")]
     pub method: Method,
-    /// Fidelity metrics (names in [`super::merge::METRICS`]); a metric that is undefined for
+    /// Fidelity metrics (names in [`super::METRICS`]); a metric that is undefined for
     /// this run is absent.
     pub metrics: BTreeMap<String, f64>,
     /// Seconds: `train_s` and `reproduce_s` (means over folds for leave-one-out).
@@ -281,19 +285,19 @@ fn scored(
         None => Some(s.demo_swings),
     };
     let metrics = finite([
-        ("joint_dtw_rad_per_step", Some(s.joint_dtw_rad_per_step)),
-        ("wrist_dtw_mm_per_step", s.wrist_dtw_mm),
-        ("apex_error_rad", Some(s.apex_error_rad)),
-        ("final_error_rad", Some(s.final_error_rad)),
-        ("duration_ratio", Some(s.duration_ratio)),
-        ("velocity_reversals", Some(s.velocity_reversals)),
-        ("demo_velocity_reversals", Some(s.demo_velocity_reversals)),
+        (JOINT_DTW.key, Some(s.joint_dtw_rad_per_step)),
+        (WRIST_DTW.key, s.wrist_dtw_mm),
+        (APEX_ERROR.key, Some(s.apex_error_rad)),
+        (FINAL_ERROR.key, Some(s.final_error_rad)),
+        (DURATION_RATIO.key, Some(s.duration_ratio)),
+        (VELOCITY_REVERSALS.key, Some(s.velocity_reversals)),
+        (DEMO_VELOCITY_REVERSALS.key, Some(s.demo_velocity_reversals)),
         (
-            "jerk_ratio",
+            JERK_RATIO.key,
             ratio(s.normalized_jerk, s.demo_normalized_jerk),
         ),
-        ("swings", Some(s.swings)),
-        ("demo_swings", demo_swings),
+        (SWINGS.key, Some(s.swings)),
+        (DEMO_SWINGS.key, demo_swings),
         ("folds", in_sample.is_none().then_some(s.folds as f64)),
     ]);
     let timing = finite([

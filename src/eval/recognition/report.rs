@@ -2,7 +2,12 @@
 
 use std::fmt::Write as _;
 
+use serde::Serialize;
+
+use crate::eval::report::json_text;
 use crate::table::Table;
+
+use super::teaching::Forgetting;
 
 use super::{fraction, Answer, Answers, RecognitionStudy, ACCEPT_GATE, UNKNOWN_GATE};
 
@@ -24,30 +29,67 @@ fn counted(v: Option<f64>, n: usize) -> String {
 }
 
 /// The summary of one model's answers (what `--json` holds beside every answer).
-fn summary(a: &Answers) -> serde_json::Value {
-    serde_json::json!({
-        "accepted": a.accepted(),
-        "right_by_best": a.right_by_best(),
-        "unknown": a.unknown(),
-        "held_out": a.held_out.len(),
-        "untaught": a.untaught.len(),
-        "passes": a.passes(),
-    })
+#[derive(Debug, Serialize)]
+struct AnswersSummary {
+    accepted: Option<f64>,
+    right_by_best: Option<f64>,
+    unknown: Option<f64>,
+    held_out: usize,
+    untaught: usize,
+    passes: bool,
+}
+
+impl AnswersSummary {
+    fn of(a: &Answers) -> Self {
+        AnswersSummary {
+            accepted: a.accepted(),
+            right_by_best: a.right_by_best(),
+            unknown: a.unknown(),
+            held_out: a.held_out.len(),
+            untaught: a.untaught.len(),
+            passes: a.passes(),
+        }
+    }
+}
+
+/// The recognition study's JSON document: the gates, each model's summary, what teaching one
+/// gesture at a time forgot, and every answer.
+#[derive(Debug, Serialize)]
+struct RecognitionDocument<'a> {
+    gates: Gates,
+    summary: Summaries,
+    forgetting: Vec<Forgetting>,
+    study: &'a RecognitionStudy,
+}
+
+/// The gates the trained model must pass ([`ACCEPT_GATE`], [`UNKNOWN_GATE`]).
+#[derive(Debug, Serialize)]
+struct Gates {
+    accepted: f64,
+    unknown: f64,
+}
+
+/// The trained model's summary and the control's.
+#[derive(Debug, Serialize)]
+struct Summaries {
+    model: AnswersSummary,
+    control: Option<AnswersSummary>,
 }
 
 /// The study as a JSON document: the gates, each model's summary and every answer.
 pub fn recognition_json(study: &RecognitionStudy) -> String {
-    let doc = serde_json::json!({
-        "gates": { "accepted": ACCEPT_GATE, "unknown": UNKNOWN_GATE },
-        "summary": {
-            "model": summary(&study.model),
-            "control": study.control.as_ref().map(summary),
+    json_text(&RecognitionDocument {
+        gates: Gates {
+            accepted: ACCEPT_GATE,
+            unknown: UNKNOWN_GATE,
         },
-        "forgetting": super::teaching::forgetting(&study.taught, &study.reproduced),
-        "study": study,
-    });
-    // cannot fail: plain numbers (non-finite ones become null), strings and options
-    serde_json::to_string_pretty(&doc).unwrap_or_default()
+        summary: Summaries {
+            model: AnswersSummary::of(&study.model),
+            control: study.control.as_ref().map(AnswersSummary::of),
+        },
+        forgetting: super::teaching::forgetting(&study.taught, &study.reproduced),
+        study,
+    })
 }
 
 fn model_row(table: &mut Table, name: &str, a: &Answers) {
