@@ -7,6 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::demos::{self, check_gesture_columns, is_plain_label, DemoError, Demonstration};
+use crate::robot::Robot;
 
 /// Read demonstration files (a directory of *.csv or explicit files), each first resampled
 /// to `resample_hz` when given ([`crate::resample::resample_all`]), checked as a set (against
@@ -51,11 +52,25 @@ impl DemoSets {
 
     /// The number of variables of the first demonstration.
     pub fn width(&self) -> usize {
+        self.columns().len()
+    }
+
+    /// The columns of the first demonstration (every demonstration's: a set has one).
+    pub fn columns(&self) -> &[String] {
         match self {
-            DemoSets::Plain(d) => d[0].width(),
-            DemoSets::Labelled(s) => s[0].1[0].width(),
+            DemoSets::Plain(d) => &d[0].columns,
+            DemoSets::Labelled(s) => &s[0].1[0].columns,
         }
     }
+}
+
+/// The robot whose recommended configuration the demonstrations at `paths` take without
+/// `--config`: the one whose joints their columns are ([`Robot::of_columns`]), the left arm
+/// for any other variables. They are read as [`read_demo_sets`] reads them (each resampled to
+/// `resample_hz` when given), and its errors are theirs.
+pub fn robot_of(paths: &[PathBuf], resample_hz: Option<f64>) -> Result<Robot, DemoError> {
+    let sets = read_demo_sets(paths, None, resample_hz)?;
+    Ok(Robot::of_columns(sets.columns()).unwrap_or(Robot::LeftArm))
 }
 
 /// Read `--demos`: a directory whose subdirectories hold CSV files is labelled (each

@@ -76,7 +76,7 @@ pub enum ExportError {
         allowed: &'static str,
     },
     /// A motion that brings two parts of the robot into contact (seen on the simulated robot).
-    #[error("the motion brings {} and {} into contact at t = {time_s:.2} s ({:.1} mm deep on the simulated {robot}); the robot's motors do not stop for it: change the reproduction (a goal, via-points), or export it anyway with --allow-contact", parts[0], parts[1], depth_m * 1000.0)]
+    #[error("the motion brings {} and {} into contact at t = {time_s:.2} s ({} on the simulated {robot}); the robot's motors do not stop for it: change the reproduction (a goal, via-points), or export it anyway with --allow-contact", parts[0], parts[1], contact_depth(*depth_m))]
     Contact {
         /// When the contact begins, s from the start of the exported motion.
         time_s: f64,
@@ -125,6 +125,15 @@ pub struct Trajectory {
     pub times: Vec<f64>,
     /// One posture per time.
     pub positions: Vec<Vec<f64>>,
+}
+
+/// How deep a contact is, for people: "1.8 mm deep", or "touching" when it rounds to 0.0 mm
+/// (the shapes meet, or penetrate by less than 0.05 mm).
+pub fn contact_depth(depth_m: f64) -> String {
+    match depth_m * 1e3 {
+        mm if mm < 0.05 => "touching".into(),
+        mm => format!("{mm:.1} mm deep"),
+    }
 }
 
 fn invalid(reason: String) -> ExportError {

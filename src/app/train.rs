@@ -24,10 +24,11 @@ use std::path::{Path, PathBuf};
 
 use super::files;
 use super::Result;
-use crate::config::HsomConfig;
-use crate::demo_sets::{read_demo_sets, DemoSets};
+use crate::config::{load_config_or_robots, HsomConfig};
+use crate::demo_sets::{read_demo_sets, robot_of, DemoSets};
 use crate::demos::{self, Demonstration};
 use crate::hsom::{Fit, GestureError, GestureModel, Gestures, HsomError};
+use crate::robot::Robot;
 
 /// Check the demonstrations against the configuration (one gesture's as a set, at least
 /// one; every label's set, each with demonstrations; see [`demos::validate_set`]), then fit
@@ -135,7 +136,9 @@ pub fn update_files(
 
 /// `cosco train`: check where the model goes, read the demonstrations (one gesture, or
 /// labelled directories of several; resampled to `resample` Hz when given), train
-/// (`progress(done, total)`) and save atomically.
+/// (`progress(done, total)`) and save atomically. Without `config`, demonstrations whose
+/// columns are a robot's joints take that robot's recommended configuration
+/// ([`robot_of`], [`Robot::config`]).
 pub fn train_files(
     config: Option<&Path>,
     demo_paths: &[PathBuf],
@@ -146,7 +149,12 @@ pub fn train_files(
 ) -> Result<GestureModel> {
     // where the model goes is checked before any reading or training
     files::check_model_output(out)?;
-    let mut cfg = files::config(config)?;
+    // without --config, demonstrations of a robot's joints take that robot's configuration
+    let robot = match config {
+        Some(_) => Robot::LeftArm,
+        None => robot_of(demo_paths, resample)?,
+    };
+    let mut cfg = load_config_or_robots(config, robot)?;
     if state_length_from_data {
         let width = read_demo_sets(demo_paths, None, resample)?.width();
         cfg = cfg.for_width(width)?;

@@ -22,7 +22,7 @@ mod cli;
 struct Args {
     /// The robot: `left-arm` (the paper's experiment) or `upper-body` (the head and both arms,
     /// 14 joints, with collision shapes: in-sample only, contacts in the report).
-    #[arg(long, default_value = "left-arm", value_parser = cli::parse_robot)]
+    #[arg(long, default_value = "left-arm")]
     robot: Robot,
     /// Gesture of the synthetic demonstrations. Left arm: reading-watch (default), wave,
     /// reach-point, salute, or `all`: one hierarchy learns every gesture (`--count`
@@ -122,7 +122,7 @@ fn run(a: Args) -> Result<()> {
         robot: a.robot,
         gesture: a
             .gesture
-            .unwrap_or_else(|| job::default_gesture(a.robot).to_string()),
+            .unwrap_or_else(|| a.robot.default_gesture().to_string()),
         config: a.config,
         demos: a.demos,
         resample: a.resample,

@@ -14,8 +14,8 @@ pub use hyperparams::{
 };
 pub(crate) use xml::Text;
 pub use xml::{
-    load_config, load_config_or_default, parse_config, DEFAULT_CONFIG_NAME, NAO_GESTURES_XML,
-    NAO_UPPER_BODY_XML, UPPER_BODY_CONFIG_NAME,
+    load_config, load_config_or_default, load_config_or_robots, parse_config, DEFAULT_CONFIG_NAME,
+    NAO_GESTURES_XML,
 };
 
 #[cfg(test)]

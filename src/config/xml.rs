@@ -10,6 +10,7 @@ use quick_xml::events::Event;
 use serde::de::{self, DeserializeOwned, IntoDeserializer};
 use serde::{Deserialize, Serialize};
 
+use crate::robot::Robot;
 use crate::som::{Decay, Neighbourhood, Schedule, Topology};
 
 use super::errors::ConfigError;
@@ -201,26 +202,28 @@ const RETIRED: &[(&str, &str)] = &[
 const LOOPS: &str =
     "the paper algorithm executes what the hierarchy predicts, with no loop breaking";
 
-/// The recommended configuration for the simulated Nao (the events extension), built in so
-/// that the binaries run from any directory; the default of `simulate` and `cosco`.
-pub const NAO_GESTURES_XML: &str = include_str!("../../configs/nao-gestures.xml");
+/// The recommended configuration for the simulated Nao (the events extension): the left arm's
+/// built-in configuration ([`Robot::config`]), the default of `simulate` and `cosco`.
+pub const NAO_GESTURES_XML: &str = Robot::LeftArm.config().1;
 
 /// Name of the built-in default configuration in reports and messages.
-pub const DEFAULT_CONFIG_NAME: &str = "configs/nao-gestures.xml (built in)";
-
-/// The simulated upper body's configuration (configs/nao-upper-body.xml: the recommended one
-/// for 14 joints), built in; the default of `simulate` on the upper body.
-pub const NAO_UPPER_BODY_XML: &str = include_str!("../../configs/nao-upper-body.xml");
-
-/// Name of the built-in upper-body configuration in reports and messages.
-pub const UPPER_BODY_CONFIG_NAME: &str = "configs/nao-upper-body.xml (built in)";
+pub const DEFAULT_CONFIG_NAME: &str = Robot::LeftArm.config().0;
 
 /// Load a configuration file ([`load_config`]), or without one the built-in recommended
 /// configuration ([`NAO_GESTURES_XML`]).
 pub fn load_config_or_default(path: Option<&Path>) -> Result<HsomConfig, ConfigError> {
+    load_config_or_robots(path, Robot::LeftArm)
+}
+
+/// Load a configuration file ([`load_config`]), or without one `robot`'s built-in recommended
+/// configuration ([`Robot::config`]).
+pub fn load_config_or_robots(path: Option<&Path>, robot: Robot) -> Result<HsomConfig, ConfigError> {
     match path {
         Some(p) => load_config(p),
-        None => parse_config(NAO_GESTURES_XML, DEFAULT_CONFIG_NAME),
+        None => {
+            let (name, xml) = robot.config();
+            parse_config(xml, name)
+        }
     }
 }
 

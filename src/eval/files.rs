@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use crate::config::load_config_or_default;
+use crate::config::load_config_or_robots;
 use crate::fsutil::check_output;
 use crate::stepper::KinematicLoop;
 
@@ -69,7 +69,12 @@ pub fn heldout_with(
     for p in job.json.iter().chain(&job.png) {
         check_output(p)?;
     }
-    let cfg = load_config_or_default(job.config.as_deref())?;
+    // without --config, demonstrations of a robot's joints take that robot's configuration
+    let robot = match &job.config {
+        Some(_) => crate::robot::Robot::LeftArm,
+        None => crate::demo_sets::robot_of(&job.demos, job.resample)?,
+    };
+    let cfg = load_config_or_robots(job.config.as_deref(), robot)?;
     let (cfg, gestures) =
         read_gestures_at(&job.demos, &cfg, job.state_length_from_data, job.resample)?;
     let all = study(

@@ -467,14 +467,7 @@ pub fn fold_scores<E: Executor>(
         _ => None,
     };
     // without the arm's executor, data of its joints still count LElbowRoll's swings
-    let arm_swing = || {
-        let robot = crate::robot::Robot::of_columns(&target.columns)?;
-        let j = robot
-            .joint_names()
-            .iter()
-            .position(|n| *n == "LElbowRoll")?;
-        Some((j, "LElbowRoll"))
-    };
+    let arm_swing = || crate::robot::Robot::of_columns(&target.columns).map(|r| r.swing_joint());
     let swings = match executor.swing_joint().or_else(arm_swing) {
         Some((j, name)) => {
             let count = |rows: &[Vec<f64>]| {

@@ -365,8 +365,7 @@ fn one(
         let c = dtw_distance(rows, &target.rows, Band::None).map_err(|e| e.to_string())?;
         Ok(c.per_step() / diag)
     };
-    let swing_joint = crate::robot::Robot::of_columns(&target.columns)
-        .and_then(|robot| robot.joint_names().iter().position(|n| *n == "LElbowRoll"));
+    let swing_joint = crate::robot::Robot::of_columns(&target.columns).map(|r| r.swing_joint().0);
     let count = |rows: &[Vec<f64>]| -> Result<Option<usize>, String> {
         swing_joint
             .map(|j| column_swings(rows, j, SWING_MIN_AMPLITUDE_RAD).map_err(|e| e.to_string()))

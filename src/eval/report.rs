@@ -43,7 +43,7 @@ pub fn markdown(study: &[GestureLoo]) -> String {
          leave-one-out folds, held out (in-sample in brackets where learned from all):\n"
     );
     let mut table = Table::new(
-        ["gesture", "demos"]
+        ["gesture", "demonstrations"]
             .into_iter()
             .chain(methods.iter().map(|m| m.name())),
     );
@@ -62,12 +62,14 @@ pub fn markdown(study: &[GestureLoo]) -> String {
         );
     }
     out.push_str(&table.to_string());
+    let over = match study.len() {
+        1 => "The gesture's means over the leave-one-out folds (held out)".to_string(),
+        n => format!("Medians over the {n} gestures (held out; per-gesture means over the folds)"),
+    };
     let _ = writeln!(
         out,
-        "\nMedians over the {} gestures (held out; per-gesture means over the folds); start in \
-         range and end within spread count the held-out folds (docs/METRICS.md, \"Start and \
-         end\"):\n",
-        study.len()
+        "\n{over}; start in range and end within spread count the held-out folds \
+         (docs/METRICS.md, \"Start and end\"):\n"
     );
     let columns = SUMMARY_METRICS.map(|m| m.label);
     let mut table = Table::new(["method"].into_iter().chain(columns).chain([

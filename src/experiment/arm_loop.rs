@@ -29,26 +29,13 @@ use super::ExperimentError;
 
 /// How `simulate` reproduces: `open` (the plan made from the initial posture, then tracked)
 /// or `closed` (a stepper in the loop, from the encoders).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum LoopMode {
     /// Plan, then track (the paper's experiment as the main job runs it).
     #[default]
     Open,
     /// A stepper in the loop.
     Closed,
-}
-
-impl std::str::FromStr for LoopMode {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "open" => Ok(LoopMode::Open),
-            "closed" => Ok(LoopMode::Closed),
-            _ => Err(format!(
-                "--loop {s:?}: allowed open (plan, then track) or closed (a stepper from the encoders)"
-            )),
-        }
-    }
 }
 
 /// The methods run in the loop, in the report's order: the hierarchy, its closed-loop peer,
@@ -149,14 +136,7 @@ pub fn closed_loop<const N: usize>(
         ArmDisturbance::Goal { goal, at_s } => Some((goal.clone(), *at_s)),
         _ => None,
     });
-    let swing_joint = (arm.robot() == Robot::LeftArm)
-        .then(|| {
-            arm.robot()
-                .joint_names()
-                .iter()
-                .position(|n| *n == "LElbowRoll")
-        })
-        .flatten();
+    let swing_joint = (arm.robot() == Robot::LeftArm).then(|| arm.robot().swing_joint().0);
     let swings = |rows: &[Vec<f64>]| {
         swing_joint.and_then(|j| column_swings(rows, j, crate::eval::SWING_MIN_AMPLITUDE_RAD).ok())
     };
@@ -371,7 +351,7 @@ pub fn loop_png(
     let rec = &h.run.recording;
     let out: Vec<Panel> = (panels.iter().enumerate())
         .map(|(i, &(k, name))| {
-            let mut p = Panel::new(name, "time (s)", format!("{name} (rad)"));
+            let mut p = Panel::new(name, "time (s)", crate::robot::axis_label(name));
             let first = i == 0;
             let column = |t: &[f64], rows: &[Vec<f64>]| -> Vec<(f64, f64)> {
                 (t.iter().zip(rows))

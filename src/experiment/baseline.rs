@@ -79,9 +79,7 @@ pub fn fig3_png(
             .map_or(String::new(), |r| format!(" to demonstration {}", r + 1)),
         training.times.len()
     );
-    Ok(joint_panels_png(
-        path, &title, joints, &curves, None, "rad",
-    )?)
+    Ok(joint_panels_png(path, &title, joints, &curves, None)?)
 }
 
 /// The paper's Fig. 5 for column `joint` (named `name`): each Gaussian's marginal over

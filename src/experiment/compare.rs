@@ -17,7 +17,6 @@ use super::baseline::{fig3_png, fig5_png, GMR_COLOR, GMR_NAME, GMR_NEEDS};
 use super::figures::right_wrist_png;
 use super::figures::{demo_curves, demo_paths, joint_panels_png, reproduction, wrist_png};
 use super::heldout::on_arm;
-use super::output::panel_joints;
 use super::output::{config_name, file_size, hsom_on_arm, load_arm, write_hsom_run, Stopwatch};
 use super::report::{DemoInfo, MethodResult, Report};
 use super::{ExperimentError, Progress};
@@ -107,7 +106,7 @@ pub fn baseline_section<const N: usize>(
     files.push("gmr_reproduction.csv".into());
 
     let robot = arm.robot();
-    let panels = panel_joints(robot);
+    let panels = robot.plot_panels();
     fig3_png(&out.join("fig3_gmr_training_data.png"), training, &panels)?;
     files.push("fig3_gmr_training_data.png".into());
     // Fig. 5 is drawn for LShoulderPitch (the left arm's first joint) on every robot
@@ -136,7 +135,6 @@ pub fn baseline_section<const N: usize>(
         &panels,
         &curves,
         None,
-        "rad",
     )?;
     files.push("joints_compare.png".into());
 

@@ -13,10 +13,6 @@ use crate::sim::{
     LEAD_IN_PEAK_SPEED, NJ,
 };
 
-/// The joint whose large swings are counted, by name (the wave's joint; the left arm's
-/// [`SWING_JOINT`](crate::sim::SWING_JOINT)).
-const SWING_JOINT_NAME: &str = "LElbowRoll";
-
 /// Clamp `postures` into the joint ranges, shape them with `transition`, execute them on
 /// `arm` at the rate of `metrics.sample_period` and score the executed trajectory against
 /// `test`: what [`ArmExecutor`] does, for callers that produce postures themselves.
@@ -99,11 +95,9 @@ impl<const N: usize> Executor for ArmExecutor<'_, N> {
         LEAD_IN_PEAK_SPEED
     }
 
-    /// `LElbowRoll` ([`SWING_JOINT`](crate::sim::SWING_JOINT) on the left arm).
+    /// The robot's ([`Robot::swing_joint`]).
     fn swing_joint(&self) -> Option<(usize, &'static str)> {
-        let names = self.arm.robot().joint_names();
-        let j = names.iter().position(|n| *n == SWING_JOINT_NAME)?;
-        Some((j, SWING_JOINT_NAME))
+        Some(self.arm.robot().swing_joint())
     }
 }
 

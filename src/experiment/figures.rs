@@ -87,21 +87,20 @@ pub fn demo_curves(demos: &[Demonstration]) -> Vec<Curve<'_>> {
 /// its rows, and the band.
 pub type BandTrace<'a> = Trace<(f64, &'a ConfidenceBand)>;
 
-/// One panel per named column (`columns[k]` names column `k` of the rows), every curve in
-/// each over `band` when given, time in seconds: the paper's Fig. 4 when the columns are the
-/// four arm joints.
+/// One panel per named joint (`columns[k]` names column `k` of the rows, its axis
+/// [`axis_label`](crate::robot::axis_label)), every curve in each over `band` when given, time
+/// in seconds: the paper's Fig. 4 when the columns are the four arm joints.
 pub fn joint_panels_png(
     path: &Path,
     title: &str,
     columns: &[(usize, &str)],
     curves: &[Curve<'_>],
     band: Option<&BandTrace<'_>>,
-    unit: &str,
 ) -> Result<(), PlotError> {
     let panels: Vec<Panel> = columns
         .iter()
         .map(|&(k, name)| {
-            let mut p = Panel::new(name, "time (s)", format!("{name} ({unit})"));
+            let mut p = Panel::new(name, "time (s)", crate::robot::axis_label(name));
             if let Some(b) = band {
                 let (period, rows) = b.data;
                 p.bands.push(Band {

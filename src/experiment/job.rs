@@ -6,9 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::config::{
-    load_config_or_default, parse_config, HsomConfig, NAO_UPPER_BODY_XML, UPPER_BODY_CONFIG_NAME,
-};
+use crate::config::{load_config_or_robots, HsomConfig};
 use crate::demo_sets::read_demos;
 use crate::demos::Demonstration;
 use crate::eval::Training;
@@ -24,9 +22,7 @@ use super::figures::{
     demo_curves, demo_paths, joint_panels_png, reproduction, right_wrist_png, wrist_png, BandTrace,
 };
 use super::heldout::hierarchy_held_out;
-use super::output::{
-    config_name, hsom_model, hsom_on_arm, load_robot, panel_joints, write_hsom_run, Stopwatch,
-};
+use super::output::{hsom_model, hsom_on_arm, load_robot, write_hsom_run, Stopwatch};
 use super::report::{DemoInfo, Report};
 use super::variants::{reference_variants, run_variant, variants};
 use super::{film, leave_one_out, DemoSettings, ExperimentError, Progress};
@@ -39,16 +35,26 @@ type Result<T> = std::result::Result<T, ExperimentError>;
 /// Default encoder noise of synthetic demonstrations, rad (about Nao's encoder resolution).
 pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
 
-/// Look a gesture up by name, with the list of known names on failure.
-pub fn gesture(robot: Robot, name: &str) -> Result<Gesture> {
-    match Gesture::by_name(robot, name) {
-        Some(g) => Ok(g),
-        None => Err(ExperimentError::Invalid(format!(
-            "unknown gesture '{name}' of the {}: allowed {}, or all (every gesture)",
+/// Look a gesture of `robot` up by name. The error lists the robot's gestures (and `all`
+/// when the command takes it: `all`) and names the robot whose gesture it is, if another's.
+pub fn gesture(robot: Robot, name: &str, all: bool) -> Result<Gesture> {
+    Gesture::by_name(robot, name).ok_or_else(|| {
+        let all = if all { ", or all (every gesture)" } else { "" };
+        let other = (Robot::ALL.into_iter())
+            .find(|&r| Gesture::by_name(r, name).is_some())
+            .map_or(String::new(), |r| {
+                format!(
+                    "; '{name}' is the {}'s: give --robot {}",
+                    r.name(),
+                    r.name()
+                )
+            });
+        ExperimentError::Invalid(format!(
+            "unknown gesture '{name}' of the {}: allowed {}{all}{other}",
             robot.name(),
             Gesture::names(robot).join(", ")
-        ))),
-    }
+        ))
+    })
 }
 
 /// Record synthetic demonstrations in the simulator (stage `demonstrating`).
@@ -85,26 +91,11 @@ fn record_traced<const N: usize>(
     })
 }
 
-/// The gesture `simulate` demonstrates on `robot` without `--gesture`: the left arm's
-/// `reading-watch`, the upper body's `wave-right`.
-pub fn default_gesture(robot: Robot) -> &'static str {
-    match robot {
-        Robot::LeftArm => "reading-watch",
-        Robot::UpperBody => "wave-right",
-    }
-}
-
 /// The configuration of the main job on `robot` from `path`, or without one the robot's
-/// built-in configuration (the left arm's configs/nao-gestures.xml, the upper body's
-/// configs/nao-upper-body.xml), and its name in the report.
+/// built-in configuration ([`Robot::config`]), and its name in the report.
 fn job_config(robot: Robot, path: Option<&Path>) -> Result<(HsomConfig, String)> {
-    match (robot, path) {
-        (Robot::UpperBody, None) => Ok((
-            parse_config(NAO_UPPER_BODY_XML, UPPER_BODY_CONFIG_NAME)?,
-            UPPER_BODY_CONFIG_NAME.to_string(),
-        )),
-        _ => Ok((load_config_or_default(path)?, config_name(path))),
-    }
+    let name = path.map_or(robot.config().0.into(), |p| p.display().to_string());
+    Ok((load_config_or_robots(path, robot)?, name))
 }
 
 /// What `cosco demos` records: which robot's gesture, how many, from which seed, with how
@@ -148,7 +139,7 @@ fn demos_on<const N: usize>(
         }
         return Ok(files);
     }
-    write_demos(out, &record(&gesture(r.robot, r.gesture)?)?)
+    write_demos(out, &record(&gesture(r.robot, r.gesture, true)?)?)
 }
 
 /// Everything the main job needs to know.
@@ -234,7 +225,6 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
     let mut warnings = Vec::new();
     let mut clock = Stopwatch::default();
     let out = &job.out;
-    std::fs::create_dir_all(out.join("demos")).map_err(ExperimentError::io("creating", out))?;
     let (cfg, cfg_name) = job_config(robot, job.config.as_deref())?;
     let arm = load_robot::<N>(robot, job.model.as_deref())?;
     let mut files = Vec::new();
@@ -251,7 +241,8 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
             None,
         ),
         None => {
-            let g = gesture(robot, &job.gesture)?;
+            // `simulate --gesture all` runs on the left arm alone
+            let g = gesture(robot, &job.gesture, robot == Robot::LeftArm)?;
             let recs = record_traced(&arm, &g, job.count, job.seed, job.noise, on_progress)?;
             let contacts = robot
                 .has_collision_shapes()
@@ -306,10 +297,9 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
     joint_panels_png(
         &out.join("joints.png"),
         "Training demonstrations (colour) and the reproduced gesture (black) with its 95 % band",
-        &panel_joints(robot),
+        &robot.plot_panels(),
         &curves,
         band.as_ref(),
-        "rad",
     )?;
     files.push("joints.png".into());
     let demo_wrists = demo_wrist_paths(&arm, &demos)?;
@@ -416,7 +406,7 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
             let model = hsom_model(&run)?.0;
             let (section, h) =
                 arm_loop::closed_loop(&arm, model, &demos, &job.disturbances, out, &mut files)?;
-            arm_loop::loop_png(&out.join("in_loop.png"), &panel_joints(robot), &demos, &h)?;
+            arm_loop::loop_png(&out.join("in_loop.png"), &robot.plot_panels(), &demos, &h)?;
             files.push("in_loop.png".into());
             clock.lap("in the loop (every method's stepper on the arm, undisturbed and disturbed)");
             Some((section, h))

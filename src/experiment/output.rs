@@ -86,23 +86,6 @@ pub fn file_size(p: &Path) -> u64 {
     std::fs::metadata(p).map(|m| m.len()).unwrap_or(0)
 }
 
-/// The four joints of the paper's Fig. 4.
-pub const FIG4_JOINTS: [(usize, &str); 4] = [
-    (0, "LShoulderPitch"),
-    (1, "LShoulderRoll"),
-    (2, "LElbowYaw"),
-    (3, "LElbowRoll"),
-];
-
-/// The joints the main job's joint figures show, `(column, name)`: the paper's Fig. 4 on the
-/// left arm ([`FIG4_JOINTS`]), every joint on the upper body.
-pub fn panel_joints(robot: Robot) -> Vec<(usize, &'static str)> {
-    match robot {
-        Robot::LeftArm => FIG4_JOINTS.to_vec(),
-        Robot::UpperBody => robot.joint_names().iter().copied().enumerate().collect(),
-    }
-}
-
 /// The model and the reproduction of a run of [`Method::Hierarchy`](crate::eval::Method)
 /// (an error for a run of another method).
 pub fn hsom_model(run: &MethodRun<Recording>) -> Result<(&Hsom, &Reproduction), ExperimentError> {

@@ -26,8 +26,8 @@ pub use request::{export_request, ExportRequest, DEFAULT_STEP_RATE_HZ};
 
 use serde::Serialize;
 
-/// Output format.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Output format (`--format naoqi|ros2|csv`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum Format {
     /// JSON arguments of NAOqi's `ALMotion.angleInterpolation`.
     Naoqi,
@@ -35,18 +35,6 @@ pub enum Format {
     Ros2,
     /// CSV (`time`, then one column per joint) at a chosen rate.
     Csv,
-}
-
-impl std::str::FromStr for Format {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "naoqi" => Ok(Format::Naoqi),
-            "ros2" => Ok(Format::Ros2),
-            "csv" => Ok(Format::Csv),
-            _ => Err(format!("`{s}`: expected naoqi, ros2 or csv")),
-        }
-    }
 }
 
 /// What an export did.

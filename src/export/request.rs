@@ -36,8 +36,9 @@ pub struct ExportRequest {
     pub step_rate: f64,
     /// The robot the motion is for: its joints' limits, and on the upper body (whose model has
     /// collision shapes) the contact check: the motion is executed on the simulated robot
-    /// first, the joints not exported holding `StandInit` (feature `sim`).
-    pub robot: Robot,
+    /// first, the joints not exported holding `StandInit` (feature `sim`). `None`: the robot
+    /// whose joints the trajectory's columns are ([`Robot::of_columns`]), else the left arm.
+    pub robot: Option<Robot>,
     /// Export a motion that brings two parts of the robot into contact anyway (reported).
     pub allow_contact: bool,
     /// Another robot: the joint ranges from this MJCF file (with `velocity_table`).
@@ -57,9 +58,12 @@ pub struct ExportRequest {
 /// `r.allow_contact`; write it atomically (with `executed`, the recording goes into the MCAP
 /// file). Returns the report's lines.
 pub fn export_request(r: &ExportRequest, t: &Trajectory) -> Result<Vec<String>, ExportError> {
+    let robot = (r.robot)
+        .or_else(|| Robot::of_columns(&t.names))
+        .unwrap_or(Robot::LeftArm);
     let limits = match (&r.mjcf, &r.velocity_table) {
         (Some(m), Some(v)) => limits::from_mjcf(m, &limits::read_velocity_table(v)?)?,
-        _ => limits::RobotLimits::of(r.robot),
+        _ => limits::RobotLimits::of(robot),
     };
     if r.executed && r.format != Format::Ros2 {
         return Err(ExportError::Usage(
@@ -68,11 +72,11 @@ pub fn export_request(r: &ExportRequest, t: &Trajectory) -> Result<Vec<String>, 
     }
     let (t, report) = prepare(t, &limits, r)?;
     let mut lines = report.lines();
-    let checks_contacts = r.robot.has_collision_shapes();
+    let checks_contacts = robot.has_collision_shapes();
     #[cfg(feature = "sim")]
     let executed = match r.executed || checks_contacts {
         true => Some(super::executed::execute(
-            r.robot,
+            robot,
             &t,
             crate::sim::DEFAULT_RECORD_RATE_HZ,
         )?),
@@ -81,7 +85,7 @@ pub fn export_request(r: &ExportRequest, t: &Trajectory) -> Result<Vec<String>, 
     #[cfg(feature = "sim")]
     if checks_contacts {
         let contacts = &executed.as_ref().map_or(&[][..], |e| &e.contacts[..]);
-        lines.extend(contact_lines(r, contacts)?);
+        lines.extend(contact_lines(r, robot, contacts)?);
     }
     #[cfg(feature = "sim")]
     let executed = executed.filter(|_| r.executed).map(|e| e.encoders);
@@ -91,7 +95,7 @@ pub fn export_request(r: &ExportRequest, t: &Trajectory) -> Result<Vec<String>, 
     if checks_contacts {
         lines.push(format!(
             "contacts: not checked (this build has no simulator to execute the motion on the {})",
-            r.robot.name()
+            robot.name()
         ));
     }
     let bytes = encode(&t, r.format, executed.as_ref())?;
@@ -108,9 +112,10 @@ pub fn export_request(r: &ExportRequest, t: &Trajectory) -> Result<Vec<String>, 
 #[cfg(feature = "sim")]
 fn contact_lines(
     r: &ExportRequest,
+    robot: Robot,
     contacts: &[crate::sim::Touch],
 ) -> Result<Vec<String>, ExportError> {
-    let robot = r.robot.name().replace('-', " ");
+    let robot = robot.name().replace('-', " ");
     match contacts.first() {
         None => Ok(vec![format!(
             "contacts: none (the motion executed on the simulated {robot})"

@@ -37,7 +37,7 @@ fn opts(format: Format) -> ExportRequest {
         mjcf: None,
         velocity_table: None,
         executed: false,
-        robot: crate::robot::Robot::LeftArm,
+        robot: Some(crate::robot::Robot::LeftArm),
         allow_contact: false,
     }
 }
@@ -214,4 +214,24 @@ fn the_simulated_arm_executes_the_export_and_records_its_joints() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("RShoulderPitch"), "{e}");
+}
+
+#[test]
+fn a_contact_shallower_than_a_tenth_of_a_millimetre_is_touching_not_0_0_mm_deep() {
+    let refusal = |depth_m: f64| {
+        ExportError::Contact {
+            time_s: 0.76,
+            parts: ["LHand_fingers".into(), "torso".into()],
+            depth_m,
+            robot: "upper body".into(),
+        }
+        .to_string()
+    };
+    let shallow = refusal(0.00002);
+    assert!(
+        shallow.contains("(touching on the simulated upper body)"),
+        "{shallow}"
+    );
+    assert!(!shallow.contains("0.0 mm"), "{shallow}");
+    assert!(refusal(0.0003).contains("(0.3 mm deep on the simulated upper body)"));
 }

@@ -295,6 +295,9 @@ pub(crate) fn grid_png(
     framed_png(path, title, (n, cols, panel_size), 0, |_| Ok(()), draw)
 }
 
+/// Pixels a figure's title leaves free, both ends together.
+const TITLE_MARGIN: u32 = 16;
+
 /// [`grid_png`] with a strip `footer_h` pixels high below the panels, drawn by `footer`.
 fn framed_png(
     path: &Path,
@@ -326,7 +329,15 @@ fn framed_png(
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| draw_err(&e))?;
         let (top, rest) = root.split_vertically(title_h);
-        top.titled(title, ("sans-serif", 24))
+        // 24 px, smaller when the title is wider than the figure (one narrow panel)
+        let wide = (top.estimate_text_size(title, &("sans-serif", 24).into_text_style(&top)))
+            .map_err(|e| draw_err(&e))?
+            .0;
+        let size = match wide + TITLE_MARGIN > w {
+            true => 24.0 * f64::from(w.saturating_sub(TITLE_MARGIN)) / f64::from(wide),
+            false => 24.0,
+        };
+        top.titled(title, ("sans-serif", size))
             .map_err(|e| draw_err(&e))?;
         let (body, bottom) = rest.split_vertically(panel_size.1 * rows as u32);
         footer(&bottom)?;

@@ -1,6 +1,8 @@
 //! The Nao H25 V5 as this project simulates and exports it: one description of each robot
 //! it knows ([`Robot`]): its joints in NAOqi order with their ranges, maximum velocities and
-//! torques ([`Joint`]), its named postures, and its MJCF model.
+//! torques ([`Joint`]), its named postures, its MJCF model, its recommended configuration,
+//! the gesture `simulate` shows without `--gesture`, the joint whose swings the studies count
+//! and the joints its figures show.
 //!
 //! The MJCF files under `models/` hold the ranges (joint `range`), the torques (actuator
 //! `forcerange`) and the named postures (keyframes): they are read from there, once. What
@@ -19,8 +21,12 @@ use std::sync::LazyLock;
 
 pub use mjcf::joint_ranges;
 
-/// A robot this project simulates, exports to, and checks postures against.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+/// A robot this project simulates, exports to, and checks postures against. Its name on the
+/// command line (`--robot`) and in files is [`Robot::name`]'s.
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, clap::ValueEnum,
+)]
+#[serde(rename_all = "kebab-case")]
 pub enum Robot {
     /// The left arm of the paper's experiment: five arm joints and the hand.
     LeftArm,
@@ -133,6 +139,50 @@ impl Robot {
             })
     }
 
+    /// Its recommended configuration, built in so that the binaries run from any directory:
+    /// `(its name in reports and messages, the XML)`. The left arm's is the default of
+    /// `simulate` and `cosco`; demonstrations of the upper body's joints take the upper body's.
+    pub const fn config(self) -> (&'static str, &'static str) {
+        match self {
+            Robot::LeftArm => (
+                "configs/nao-gestures.xml (built in)",
+                include_str!("../../configs/nao-gestures.xml"),
+            ),
+            Robot::UpperBody => (
+                "configs/nao-upper-body.xml (built in)",
+                include_str!("../../configs/nao-upper-body.xml"),
+            ),
+        }
+    }
+
+    /// The gesture `simulate` demonstrates without `--gesture`: the left arm's
+    /// `reading-watch`, the upper body's `wave-right`.
+    pub const fn default_gesture(self) -> &'static str {
+        match self {
+            Robot::LeftArm => "reading-watch",
+            Robot::UpperBody => "wave-right",
+        }
+    }
+
+    /// The joint whose large swings the studies count, `(column, name)`: `LElbowRoll`, the
+    /// wave's joint.
+    pub const fn swing_joint(self) -> (usize, &'static str) {
+        match self {
+            Robot::LeftArm => (3, "LElbowRoll"),
+            Robot::UpperBody => (5, "LElbowRoll"),
+        }
+    }
+
+    /// The joints its joint figures show, `(column, name)`: the paper's Fig. 4 on the left
+    /// arm (the shoulder's two joints and the elbow's), every joint on the upper body.
+    pub fn plot_panels(self) -> Vec<(usize, &'static str)> {
+        let all = self.joint_names().iter().copied().enumerate();
+        match self {
+            Robot::LeftArm => all.take(4).collect(),
+            Robot::UpperBody => all.collect(),
+        }
+    }
+
     fn description(self) -> &'static Description {
         match self {
             Robot::LeftArm => &LEFT_ARM,
@@ -202,6 +252,15 @@ pub fn are_arm_joints(columns: &[String]) -> bool {
 /// ([`Robot::of_columns`]); `None` otherwise.
 pub fn arm_ranges(columns: &[String]) -> Option<Vec<(f64, f64)>> {
     Robot::of_columns(columns).map(Robot::ranges)
+}
+
+/// A joint's axis in a figure, its name with its unit: `LElbowRoll (rad)`, a hand's
+/// `LHand (open fraction)`.
+pub fn axis_label(joint: &str) -> String {
+    match joint {
+        "LHand" | "RHand" => format!("{joint} (open fraction)"),
+        _ => format!("{joint} (rad)"),
+    }
 }
 
 /// How far beyond a joint's range a recorded or reproduced value may lie and still be scored,

@@ -96,3 +96,34 @@ fn a_malformed_model_is_named() {
         .unwrap();
     assert!(e.contains("`k`") && e.contains("2 joint positions"), "{e}");
 }
+
+#[test]
+fn each_robot_is_described_once() {
+    for r in Robot::ALL {
+        // one spelling: the command line's, serde's and clap's
+        let json = serde_json::to_string(&r).unwrap();
+        assert_eq!(json, format!("\"{}\"", r.name()));
+        assert_eq!(serde_json::from_str::<Robot>(&json).unwrap(), r);
+        let value = clap::ValueEnum::to_possible_value(&r).unwrap();
+        assert_eq!(value.get_name(), r.name());
+        // the swing joint by its column
+        let (j, name) = r.swing_joint();
+        assert_eq!(r.joint_names()[j], name);
+        // its configuration reads the robot's joints
+        let (file, xml) = r.config();
+        let cfg = crate::config::parse_config(xml, file).unwrap();
+        assert_eq!(cfg.params().state_length, r.joint_names().len());
+        // its default gesture is one of its own
+        assert!(crate::gesture::Gesture::by_name(r, r.default_gesture()).is_some());
+    }
+    let fig4: Vec<&str> = Robot::LeftArm.plot_panels().iter().map(|p| p.1).collect();
+    assert_eq!(fig4, LEFT_ARM_JOINTS[..4]);
+    assert_eq!(Robot::UpperBody.plot_panels().len(), 14);
+}
+
+#[test]
+fn a_hand_is_plotted_as_an_open_fraction() {
+    assert_eq!(axis_label("LHand"), "LHand (open fraction)");
+    assert_eq!(axis_label("RHand"), "RHand (open fraction)");
+    assert_eq!(axis_label("LElbowRoll"), "LElbowRoll (rad)");
+}

@@ -42,15 +42,16 @@ pub struct Touch {
 }
 
 impl Touch {
-    /// One line for people: "0.52-0.61 s: LForeArm and torso, 1.8 mm deep".
+    /// One line for people: "0.52-0.61 s: LForeArm and torso, 1.8 mm deep" (or "touching",
+    /// [`contact_depth`](crate::trajectory::contact_depth)).
     pub fn describe(&self) -> String {
         format!(
-            "{:.2}-{:.2} s: {} and {}, {:.1} mm deep",
+            "{:.2}-{:.2} s: {} and {}, {}",
             self.start_s,
             self.end_s,
             self.parts[0],
             self.parts[1],
-            self.depth_m * 1e3
+            crate::trajectory::contact_depth(self.depth_m)
         )
     }
 }

@@ -10,8 +10,10 @@ use super::{NaoArm, SimError};
 /// Name of the site at the RWristYaw joint origin (the upper body's right wrist).
 pub const RIGHT_WRIST_SITE: &str = "r_wrist";
 
-/// The joint whose large swings are counted (column 3, `LElbowRoll`: the wave's joint).
-pub const SWING_JOINT: usize = 3;
+/// The left arm's column whose large swings are counted ([`Robot::swing_joint`]).
+///
+/// [`Robot::swing_joint`]: crate::robot::Robot::swing_joint
+pub const SWING_JOINT: usize = crate::robot::Robot::LeftArm.swing_joint().0;
 
 /// Peak joint speed of GMM/GMR's lead-in from the initial posture to its first point on the
 /// arm, rad/s.

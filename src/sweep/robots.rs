@@ -1,34 +1,16 @@
 //! The `robot` axis of a sweep: the left arm (the default: a spec without the axis has the
-//! identity, run files and run ids it has always had) or the upper body. The robot's name in
-//! identities and run files (the serde functions of [`AxisValues::robot`] and
-//! [`Axes::robot`], which leave the left arm out), its default gesture and its catalogue of
-//! gestures, its model.
+//! identity, run files and run ids it has always had) or the upper body. The defaults of
+//! [`AxisValues::robot`] and [`Axes::robot`] (which leave the left arm out of identities and
+//! run files), the axis' default gesture and its catalogue of gestures, its model.
 //!
 //! [`AxisValues::robot`]: super::spec::AxisValues::robot
 //! [`Axes::robot`]: super::spec::Axes::robot
 
 use std::path::Path;
 
-use crate::experiment::job::default_gesture;
 use crate::gesture::Gesture;
 use crate::robot::Robot;
 use crate::sim::{NaoArm, SimError};
-
-/// Write the robot's name.
-pub fn serialize<S: serde::Serializer>(r: &Robot, s: S) -> Result<S::Ok, S::Error> {
-    s.serialize_str(r.name())
-}
-
-/// Read a robot's name back.
-pub fn deserialize<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Robot, D::Error> {
-    let text = <String as serde::Deserialize>::deserialize(d)?;
-    Robot::from_name(&text).map_err(serde::de::Error::custom)
-}
-
-/// Write the robots' names.
-pub fn serialize_all<S: serde::Serializer>(r: &[Robot], s: S) -> Result<S::Ok, S::Error> {
-    s.collect_seq(r.iter().map(|r| r.name()))
-}
 
 /// The default robot.
 pub fn left_arm() -> Robot {
@@ -52,9 +34,9 @@ pub fn shared_default_gesture(robots: &[Robot]) -> &'static str {
     let shared = |g: &str| robots.iter().all(|&r| Gesture::by_name(r, g).is_some());
     robots
         .iter()
-        .map(|&r| default_gesture(r))
+        .map(|&r| r.default_gesture())
         .find(|g| shared(g))
-        .unwrap_or_else(|| default_gesture(Robot::LeftArm))
+        .unwrap_or_else(|| Robot::LeftArm.default_gesture())
 }
 
 /// A gesture of the `gesture` axis, if every robot of `robots` has it; the error names the

@@ -162,7 +162,6 @@ pub struct AxisValues {
     /// The robot: demonstrations, training and execution on its simulation (absent from run
     /// files for the left arm).
     #[serde(
-        with = "robots",
         default = "robots::left_arm",
         skip_serializing_if = "robots::is_left_arm"
     )]
@@ -257,10 +256,7 @@ pub struct Settings {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Axes {
     /// Robots (absent from the identity when the left arm alone).
-    #[serde(
-        serialize_with = "robots::serialize_all",
-        skip_serializing_if = "robots::left_arm_only"
-    )]
+    #[serde(skip_serializing_if = "robots::left_arm_only")]
     pub robot: Vec<Robot>,
     /// Gesture names.
     pub gesture: Vec<String>,

@@ -289,6 +289,11 @@ fn cosco_heldout_on_directories_of_gestures() {
         .success()
         .stdout(
             predicate::str::contains("| loops | 3 |")
+                .and(predicate::str::contains("| gesture | demonstrations |"))
+                .and(predicate::str::contains(
+                    "The gesture's means over the leave-one-out",
+                ))
+                .and(predicate::str::contains("1 gestures").not())
                 .and(predicate::str::contains("GMM/GMR").not())
                 .and(predicate::str::contains("ProMP").not())
                 .and(predicate::str::contains("DMP").not()),

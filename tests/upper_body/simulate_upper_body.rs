@@ -122,8 +122,23 @@ fn the_upper_body_refuses_what_it_cannot_do_naming_what_is_allowed() {
     for g in Gesture::names(Robot::UpperBody) {
         assert!(e.contains(g), "{e} lacks {g}");
     }
+    // `all`, which the upper body refuses, is not offered; where wave is, is said
+    assert!(!e.contains("or all"), "{e}");
+    assert!(
+        e.contains("'wave' is the left-arm's: give --robot left-arm"),
+        "{e}"
+    );
     let e = run(&["--robot", "torso"]);
     assert!(e.contains("left-arm, upper-body"), "{e}");
+    // the left arm's list, with the robot whose gesture clap is
+    let e = run(&["--gesture", "clap", "--no-render"]);
+    assert!(e.contains("reading-watch") && e.contains("or all"), "{e}");
+    assert!(
+        e.contains("'clap' is the upper-body's: give --robot upper-body"),
+        "{e}"
+    );
+    // a refused run leaves nothing behind (no empty OUT/demos/)
+    assert!(!tmp.path().join("out").exists());
 }
 
 #[test]
@@ -143,6 +158,9 @@ fn contacts_read_none_or_each_touch_with_its_time_parts_and_depth() {
         text,
         "0.50-0.60 s: LForeArm and torso, 1.8 mm deep; 2.00-2.10 s: l_wrist and r_wrist, 0.4 mm deep"
     );
+    // shapes that meet, or nearly: touching, not "0.0 mm deep"
+    let text = contacts_text(&[touch("LHand_fingers", "torso", 0.5, 0.00002)]);
+    assert_eq!(text, "0.50-0.60 s: LHand_fingers and torso, touching");
 }
 
 /// The fraction of pixels in columns `cols` that differ between two frames.

@@ -27,7 +27,7 @@ pub enum Command {
         action: Option<super::export::DemosAction>,
         /// The robot: `left-arm` (the paper's experiment) or `upper-body` (the head and both
         /// arms, 14 joints).
-        #[arg(long, default_value = "left-arm", value_parser = super::parse_robot)]
+        #[arg(long, default_value = "left-arm")]
         robot: cosco_hsom::robot::Robot,
         /// Gesture name (left arm: reading-watch, wave, reach-point, salute; upper body:
         /// wave-right, clap, welcome, shrug, nod, shake-head, reading-watch, salute), or `all`:
@@ -63,7 +63,9 @@ pub enum Command {
     Export(super::export::ExportArgs),
     /// Train a CoSCo-HSOM hierarchy on demonstration CSV files and save it (.bin or .txt).
     Train {
-        /// XML configuration (default: the built-in configs/nao-gestures.xml, the recommended events extension).
+        /// XML configuration (default: the built-in configs/nao-upper-body.xml for demonstrations
+        /// of the upper body's joints, else configs/nao-gestures.xml, the recommended events
+        /// extension).
         #[arg(long)]
         config: Option<PathBuf>,
         /// Demonstrations: a directory of *.csv files, or files (one gesture); or directories
@@ -296,7 +298,8 @@ pub struct StudyArgs {
 /// How a held-out study reads demonstrations: the configuration and its fit to the data.
 #[derive(clap::Args)]
 pub struct DataArgs {
-    /// XML configuration (default: the built-in configs/nao-gestures.xml).
+    /// XML configuration (default: the built-in configs/nao-gestures.xml; `heldout` of the upper
+    /// body's joints: configs/nao-upper-body.xml).
     #[arg(long)]
     pub config: Option<PathBuf>,
     /// Take stateLength and actionLength from the demonstrations' columns.

@@ -68,11 +68,12 @@ pub struct ExportArgs {
     /// Rate of a `step` column (a reproduction without `time`), Hz.
     #[arg(long, default_value_t = DEFAULT_STEP_RATE_HZ)]
     pub step_rate: f64,
-    /// The robot the motion is for: left-arm or upper-body. Its joints' ranges and velocity
-    /// limits apply; on the upper body the motion is first executed on the simulated robot
-    /// (joints not exported hold StandInit) and refused if two parts come into contact.
-    #[arg(long, default_value = "left-arm", value_parser = super::parse_robot)]
-    pub robot: Robot,
+    /// The robot the motion is for: left-arm or upper-body (default: the robot whose joints
+    /// the motion's columns are, else left-arm). Its joints' ranges and velocity limits apply;
+    /// on the upper body the motion is first executed on the simulated robot (joints not
+    /// exported hold StandInit) and refused if two parts come into contact.
+    #[arg(long)]
+    pub robot: Option<Robot>,
     /// Export a motion that brings two parts of the robot into contact anyway (said in the
     /// report, with every contact).
     #[arg(long)]
@@ -146,7 +147,7 @@ pub enum DemosAction {
         joints: Vec<String>,
         /// Keep this robot's joints, in NAOqi order: left-arm (6) or upper-body (14 of the
         /// whole Nao's JointState: the head and both arms).
-        #[arg(long, default_value = "left-arm", value_parser = super::parse_robot)]
+        #[arg(long, default_value = "left-arm")]
         robot: Robot,
         /// Split at pauses of at least this many seconds (every joint below 0.05 rad/s).
         #[arg(long)]

@@ -107,11 +107,6 @@ pub fn parse_count(s: &str) -> Result<usize, String> {
     }
 }
 
-/// `--robot`: a robot of the description, by name.
-pub fn parse_robot(s: &str) -> Result<cosco_hsom::robot::Robot, String> {
-    cosco_hsom::robot::Robot::from_name(s)
-}
-
 /// `--seed`: a whole number from 0 to 2^64 - 1.
 #[cfg(feature = "sim")]
 pub fn parse_seed(s: &str) -> Result<u64, String> {

@@ -52,7 +52,7 @@ pub struct ReproduceArgs {
     /// The robot the model must be of: `left-arm` (6 joints) or `upper-body` (14: the head
     /// and both arms); its joint ranges bound the initial posture, the goal and via-points.
     /// Default: whichever robot's joints the model's variables are (none for other data).
-    #[arg(long, value_parser = super::parse_robot)]
+    #[arg(long)]
     pub robot: Option<cosco_hsom::robot::Robot>,
     /// Output CSV.
     #[arg(long)]

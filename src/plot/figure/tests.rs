@@ -77,3 +77,23 @@ fn tick_label_prints_a_tick_that_rounds_to_zero_without_a_sign() {
         assert_eq!(tick_label(v), plotters(v));
     }
 }
+
+#[test]
+fn a_title_wider_than_its_one_panel_is_drawn_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("x.png");
+    let mut panel = Panel::new("one", "x", "y");
+    panel
+        .series
+        .push(Series::new("", BLACK, vec![(0.0, 0.0), (1.0, 1.0)]));
+    // `cosco heldout --png`'s title over its one panel of one gesture
+    let title = "Held out (black), reproduced from its first sample";
+    panels_png(&p, title, &[panel], 1, (420, 360)).unwrap();
+    let img = image::open(&p).unwrap().to_rgb8();
+    // nothing drawn in the title strip's first and last 4 pixel columns: not cut at either end
+    let inked = |x: u32| (0..40).any(|y| img.get_pixel(x, y).0 != [255, 255, 255]);
+    let edges: Vec<u32> = (0..4).chain(416..420).filter(|&x| inked(x)).collect();
+    assert!(edges.is_empty(), "title ink at columns {edges:?}");
+    // and it is there: ink in the middle of the strip
+    assert!((100..320).any(inked));
+}
