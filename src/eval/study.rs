@@ -47,6 +47,7 @@ pub fn study<E: Executor>(
             let s = LooSettings {
                 sittings: true,
                 in_sample: false,
+                keep_learned: false,
                 ..plain
             };
             Some(leave_one_out(
@@ -63,6 +64,7 @@ pub fn study<E: Executor>(
         .map(|&k| {
             let s = LooSettings {
                 far: Some(k),
+                keep_learned: false,
                 ..plain
             };
             Ok((
@@ -77,6 +79,7 @@ pub fn study<E: Executor>(
             let s = LooSettings {
                 far: None,
                 sittings: false,
+                keep_learned: false,
                 ..*settings
             };
             Some((
