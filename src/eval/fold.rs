@@ -11,13 +11,13 @@ use crate::config::HsomConfig;
 use crate::curve::at_phase;
 use crate::demos::{sample_period, Demonstration};
 use crate::dtw::{dtw, euclidean, Band};
-use crate::gmr::{BicScore, ComponentChoice, GmrModel, GmrPlan, TrainingSet};
-use crate::hsom::{Hsom, Reproduction};
+use crate::gmr::ComponentChoice;
+use crate::hsom::Hsom;
 use crate::metrics::{column_swings, trimmed_normalized_jerk, MetricsParams, StartEndReference};
 use crate::robot::arm_ranges;
 
 use super::executor::{Executed, Executor};
-use super::learned::{msg, timed, Kept, Learned};
+use super::learned::{msg, timed, Fitted, Kept, Learned};
 use super::method::{Method, GMR_COMPONENTS};
 use super::results::{Commanded, ConditionErrors, Fold, FoldScores, Run, Score, Swings};
 
@@ -200,30 +200,6 @@ impl<'a> FoldInput<'a> {
             keep: false,
         }
     }
-}
-
-/// What a method learned, kept for the reports that show it.
-#[derive(Debug, Clone)]
-pub enum Fitted {
-    /// The hierarchy and its reproduction (how each posture was produced, why it stopped).
-    Hierarchy {
-        /// The model.
-        model: Box<Hsom>,
-        /// Its reproduction.
-        reproduction: Reproduction,
-    },
-    /// GMM/GMR, its pre-processed training data, the BIC of each component count tried and
-    /// the plan it executed (lead-in, then GMR's mean).
-    GmmGmr {
-        /// The model.
-        model: Box<GmrModel>,
-        /// The pre-processed training data.
-        training: Box<TrainingSet>,
-        /// BIC of every component count tried.
-        bic: Vec<BicScore>,
-        /// The plan.
-        plan: GmrPlan,
-    },
 }
 
 /// A method's run on one fold.

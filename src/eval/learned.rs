@@ -11,13 +11,12 @@ use crate::condition::{meet, Conditions, ConfidenceBand};
 use crate::demos::Demonstration;
 use crate::dmp::{Dmp, DmpSettings, DmpStepper};
 use crate::dtw::euclidean;
-use crate::gmr::{plan_at, BicScore, ComponentChoice, GmrModel, GmrParams, TrainingSet};
-use crate::hsom::{Hsom, HsomStepper, NearestStepper};
+use crate::gmr::{plan_at, BicScore, ComponentChoice, GmrModel, GmrParams, GmrPlan, TrainingSet};
+use crate::hsom::{Hsom, HsomStepper, NearestStepper, Reproduction};
 use crate::promp::{Promp, PrompSettings, PrompStepper};
 use crate::robot::arm_ranges;
 use crate::stepper::Stepper;
 
-use super::fold::Fitted;
 use super::method::{peak_speed, Method};
 
 /// What a method learned from a fold's training demonstrations.
@@ -40,6 +39,30 @@ pub enum Learned {
     Dmp(Dmp),
     /// The replay: nothing learned, the training demonstrations as recorded.
     Replay,
+}
+
+/// What a method learned, kept for the reports that show it.
+#[derive(Debug, Clone)]
+pub enum Fitted {
+    /// The hierarchy and its reproduction (how each posture was produced, why it stopped).
+    Hierarchy {
+        /// The model.
+        model: Box<Hsom>,
+        /// Its reproduction.
+        reproduction: Reproduction,
+    },
+    /// GMM/GMR, its pre-processed training data, the BIC of each component count tried and
+    /// the plan it executed (lead-in, then GMR's mean).
+    GmmGmr {
+        /// The model.
+        model: Box<GmrModel>,
+        /// The pre-processed training data.
+        training: Box<TrainingSet>,
+        /// BIC of every component count tried.
+        bic: Vec<BicScore>,
+        /// The plan.
+        plan: GmrPlan,
+    },
 }
 
 /// What a method planned: the postures, the seconds it took, what it learned for the reports
