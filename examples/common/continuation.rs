@@ -134,6 +134,7 @@ pub fn continuation_folds(
                 fitted: None,
                 conditions: Default::default(),
                 band: None,
+                learned: None,
             };
             fold_scores(&run, &executor, &train, held, diagonal(demos))
                 .map_err(ExperimentError::Invalid)

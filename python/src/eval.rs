@@ -173,6 +173,7 @@ pub(crate) fn heldout<'py>(
         far: None,
         sittings,
         threads,
+        keep_learned: false,
     };
     let cfg = config.inner.clone();
     let text = py

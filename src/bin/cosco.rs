@@ -173,6 +173,7 @@ fn run(cli: Cli) -> Result<()> {
                     far: None,
                     sittings,
                     threads: threads.map_or_else(cli::cores, |t| t as usize),
+                    keep_learned: false,
                 },
                 json,
                 png,

@@ -77,14 +77,12 @@ pub fn heldout_with(
     let cfg = load_config_or_robots(job.config.as_deref(), robot)?;
     let (cfg, gestures) =
         read_gestures_at(&job.demos, &cfg, job.state_length_from_data, job.resample)?;
-    let all = study(
-        &cfg,
-        gestures,
-        &job.settings,
-        &job.far,
-        &Kinematic,
-        progress,
-    )?;
+    // the loop study runs what the folds learned
+    let settings = LooSettings {
+        keep_learned: !job.disturb.is_empty(),
+        ..job.settings
+    };
+    let all = study(&cfg, gestures, &settings, &job.far, &Kinematic, progress)?;
     // nothing to compare when the hierarchy itself never ran: the reason, as an error
     let plain = &all.unconditioned;
     if !super::results::held_out_runs(plain, Method::Hierarchy).any(|r| r.score.is_some()) {

@@ -4,21 +4,20 @@
 //! [`run_fold`]; [`fold`] scores every run of a split into a [`Fold`].
 
 use std::borrow::Cow;
-use std::time::Instant;
+use std::sync::Arc;
 
-use crate::condition::{meet, Conditions, ConfidenceBand};
+use crate::condition::{Conditions, ConfidenceBand};
 use crate::config::HsomConfig;
 use crate::curve::at_phase;
 use crate::demos::{sample_period, Demonstration};
-use crate::dmp::DmpSettings;
 use crate::dtw::{dtw, euclidean, Band};
-use crate::gmr::{plan_at, BicScore, ComponentChoice, GmrModel, GmrParams, GmrPlan, TrainingSet};
-use crate::hsom::{Hsom, Reproduction};
+use crate::gmr::ComponentChoice;
+use crate::hsom::Hsom;
 use crate::metrics::{column_swings, trimmed_normalized_jerk, MetricsParams, StartEndReference};
-use crate::promp::PrompSettings;
 use crate::robot::arm_ranges;
 
 use super::executor::{Executed, Executor};
+use super::learned::{msg, timed, Fitted, Kept, Learned};
 use super::method::{Method, GMR_COMPONENTS};
 use super::results::{Commanded, ConditionErrors, Fold, FoldScores, Run, Score, Swings};
 
@@ -180,6 +179,8 @@ pub struct FoldInput<'a> {
     pub gmr_components: ComponentChoice,
     /// Called with `(done, total)` as the hierarchy trains.
     pub progress: Option<&'a dyn Fn(usize, usize)>,
+    /// Keep what the methods learned in the [`Fold`] ([`Fold::learned`]), for the loop study.
+    pub keep: bool,
 }
 
 impl<'a> FoldInput<'a> {
@@ -196,32 +197,9 @@ impl<'a> FoldInput<'a> {
             far: None,
             gmr_components: GMR_COMPONENTS,
             progress: None,
+            keep: false,
         }
     }
-}
-
-/// What a method learned, kept for the reports that show it.
-#[derive(Debug, Clone)]
-pub enum Fitted {
-    /// The hierarchy and its reproduction (how each posture was produced, why it stopped).
-    Hierarchy {
-        /// The model.
-        model: Box<Hsom>,
-        /// Its reproduction.
-        reproduction: Reproduction,
-    },
-    /// GMM/GMR, its pre-processed training data, the BIC of each component count tried and
-    /// the plan it executed (lead-in, then GMR's mean).
-    GmmGmr {
-        /// The model.
-        model: Box<GmrModel>,
-        /// The pre-processed training data.
-        training: Box<TrainingSet>,
-        /// BIC of every component count tried.
-        bic: Vec<BicScore>,
-        /// The plan.
-        plan: GmrPlan,
-    },
 }
 
 /// A method's run on one fold.
@@ -243,6 +221,8 @@ pub struct MethodRun<T> {
     /// hierarchy, the nearest sequence and height 1 from their training paths; GMM/GMR and
     /// ProMP their own).
     pub band: Option<ConfidenceBand>,
+    /// What the method learned (`None` for a run made otherwise).
+    pub learned: Option<Arc<Learned>>,
 }
 
 /// Each method of a fold with its run, or the reason it produced none.
@@ -251,17 +231,12 @@ pub type FoldRuns<T> = Vec<(Method, Result<MethodRun<T>, String>)>;
 /// Why a fold without a target has no run.
 const NO_TARGET: &str = "no demonstration to score against";
 
-/// The error and its causes on one line.
-fn msg(e: impl std::error::Error + 'static) -> String {
-    crate::errors::error_line(&e)
-}
-
 /// Train with `config` (or only initialise, the negative control), timed.
 fn fit(
     config: &HsomConfig,
     input: &FoldInput<'_>,
     progress: Option<&dyn Fn(usize, usize)>,
-) -> Result<(Hsom, f64), String> {
+) -> Result<(Arc<Hsom>, f64), String> {
     // one gesture's model: its one branch
     let fit = |demos, untrained| {
         let how = crate::hsom::Fit {
@@ -280,46 +255,13 @@ fn fit(
             fit(first, false).and_then(|m| Ok(m.update(rest)?))
         }
     });
-    Ok((model.map_err(msg)?, s))
+    Ok((Arc::new(model.map_err(msg)?), s))
 }
 
-/// What `f` returns, and the seconds it took.
-fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
-    let t = Instant::now();
-    let r = f();
-    (r, t.elapsed().as_secs_f64())
-}
-
-/// What a method produced: postures, training and reproduction times, what it learned, its
-/// band.
-type Produced = (
-    Vec<Vec<f64>>,
-    f64,
-    f64,
-    Option<Fitted>,
-    Option<ConfidenceBand>,
-);
-
-/// `rep`'s postures conditioned on `points` ([`meet`], when there are any), with `model`'s band about them
-/// pinned at `phases`.
-fn bent(
-    model: &Hsom,
-    mut rep: Reproduction,
-    points: &[(f64, Vec<f64>)],
-    phases: &[f64],
-) -> Result<(Reproduction, Option<ConfidenceBand>), String> {
-    if !points.is_empty() {
-        let ranges = arm_ranges(model.columns());
-        rep.postures = meet(&rep.postures, points, ranges.as_deref()).map_err(msg)?;
-    }
-    let band = model.band(&rep.postures, phases);
-    Ok((rep, band))
-}
-
-/// Each of `methods` on one fold: learned from `input.train`, started from the first
-/// target's first sample, executed by `executor` and scored against `input.targets`; in
-/// `methods`' order, each with its run or the reason it produced none. The hierarchy and the
-/// nearest sequence share one trained model.
+/// Each of `methods` on one fold: learned from `input.train` ([`Learned::fit`]), planned from
+/// the first target's first sample, executed by `executor` and scored against
+/// `input.targets`; in `methods`' order, each with its run or the reason it produced none. The
+/// hierarchy and the nearest sequence share one trained model.
 pub fn run_fold<E: Executor>(
     methods: &[Method],
     input: &FoldInput<'_>,
@@ -337,106 +279,43 @@ pub fn run_fold<E: Executor>(
         return methods.iter().map(|&m| (m, Err(why.clone()))).collect();
     };
     let conditions = input.conditioning.of(target);
-    let (points, phases) = (conditions.points(), conditions.phases());
-    let mut model: Option<Result<(Hsom, f64), String>> = None;
-    let mut produce = |method| -> Result<Produced, String> {
-        match method {
-            Method::Hierarchy | Method::NearestSequence => {
-                let trained = model.get_or_insert_with(|| {
-                    input
-                        .config
-                        .ok_or_else(|| "no configuration of the hierarchy given".to_string())
-                        .and_then(|c| fit(c, input, input.progress))
-                });
-                let (m, train_s) = trained.as_ref().map_err(Clone::clone)?;
-                let (rep, reproduce_s) = timed(|| match method {
-                    Method::Hierarchy => m.reproduce(initial),
-                    _ => m.follow_nearest(train, initial),
-                });
-                let (r, band) = bent(m, rep.map_err(msg)?, &points, &phases)?;
-                let fitted = (method == Method::Hierarchy).then(|| Fitted::Hierarchy {
-                    model: Box::new(m.clone()),
-                    reproduction: r.clone(),
-                });
-                Ok((r.postures, *train_s, reproduce_s, fitted, band))
-            }
-            Method::Height1 => {
-                let h1 = input.height_1.ok_or("no configuration at height 1 given")?;
-                let (m, train_s) = fit(h1, input, None)?;
-                let (rep, reproduce_s) = timed(|| m.reproduce(initial));
-                let (r, band) = bent(&m, rep.map_err(msg)?, &points, &phases)?;
-                Ok((r.postures, train_s, reproduce_s, None, band))
-            }
-            Method::GmmGmr if !points.is_empty() => Err(GMR_UNCONDITIONED.to_string()),
-            Method::GmmGmr => {
-                let period = sample_period(target);
-                let (fitted, train_s) = timed(|| {
-                    let p = GmrParams::new().components(input.gmr_components);
-                    p.sample_period(period).check()?.fit_with_details(train)
-                });
-                let (m, training, bic) = fitted.map_err(msg)?;
-                let (plan, reproduce_s) = timed(|| {
-                    let speed = executor.gmr_lead_in_speed(train, period);
-                    plan_at(&m, initial, 1.0 / period, speed)
-                });
-                let plan = plan.map_err(msg)?;
-                let band = ConfidenceBand::around(&plan.postures, &plan.band_half_widths());
-                let fitted = Fitted::GmmGmr {
-                    model: Box::new(m),
-                    training: Box::new(training),
-                    bic,
-                    plan: plan.clone(),
-                };
-                Ok((
-                    plan.postures,
-                    train_s,
-                    reproduce_s,
-                    Some(fitted),
-                    Some(band),
-                ))
-            }
-            Method::ProMP => {
-                let (m, train_s) = timed(|| PrompSettings::default().fit(train));
-                let (p, reproduce_s) =
-                    timed(|| m.map_err(msg)?.conditioned(initial, &points).map_err(msg));
-                let (rows, band) = p?;
-                Ok((rows, train_s, reproduce_s, None, Some(band)))
-            }
-            Method::Dmp => {
-                let (m, train_s) = timed(|| DmpSettings::default().fit(train));
-                let goal = conditions.goal.as_deref();
-                let (p, reproduce_s) =
-                    timed(|| m.map_err(msg)?.reproduce(initial, goal).map_err(msg));
-                Ok((p?, train_s, reproduce_s, None, None))
-            }
-            Method::Replay => {
-                let start = |d: &Demonstration| euclidean(&d.rows[0], initial);
-                train
-                    .iter()
-                    .min_by(|a, b| start(a).total_cmp(&start(b)))
-                    .map(|d| (d.rows.clone(), 0.0, 0.0, None, None))
-                    .ok_or_else(|| "no training demonstration".to_string())
-            }
+    let period = sample_period(target);
+    let mut model: Option<Result<(Arc<Hsom>, f64), String>> = None;
+    let mut hsom = |method| match method {
+        Method::Height1 => {
+            let h1 = input.height_1.ok_or("no configuration at height 1 given")?;
+            fit(h1, input, None)
         }
+        _ => model
+            .get_or_insert_with(|| {
+                input
+                    .config
+                    .ok_or_else(|| "no configuration of the hierarchy given".to_string())
+                    .and_then(|c| fit(c, input, input.progress))
+            })
+            .clone(),
     };
-    methods
-        .iter()
-        .map(|&method| {
-            let run = produce(method).and_then(|(postures, train_s, reproduce_s, fitted, band)| {
-                let executed = executor.execute(method, &postures, input.targets)?;
-                Ok(MethodRun {
-                    postures,
-                    executed,
-                    train_s,
-                    reproduce_s,
-                    fitted,
-                    conditions: conditions.clone(),
-                    band,
-                })
-            });
-            (method, run)
+    let mut run = |method| -> Result<MethodRun<E::Trace>, String> {
+        if method == Method::GmmGmr && !conditions.points().is_empty() {
+            return Err(GMR_UNCONDITIONED.to_string());
+        }
+        let (learned, train_s) =
+            Learned::fit(method, train, period, input.gmr_components, &mut hsom)?;
+        let speed = executor.gmr_lead_in_speed(train, period);
+        let p = learned.plan(method, train, initial, &conditions, period, speed)?;
+        let executed = executor.execute(method, &p.postures, input.targets)?;
+        Ok(MethodRun {
+            postures: p.postures,
+            executed,
+            train_s,
+            reproduce_s: p.reproduce_s,
+            fitted: p.fitted,
+            conditions: conditions.clone(),
+            band: p.band,
+            learned: Some(Arc::new(learned)),
         })
-        .collect()
+    };
+    methods.iter().map(|&m| (m, run(m))).collect()
 }
 
 /// Every metric of `run` (executed by `executor`) against its first target, the motion's and
@@ -574,13 +453,17 @@ pub fn fold<E: Executor>(
         conditioning,
         ..*base
     };
-    let runs = run_fold(methods, &input, executor).into_iter();
+    let runs = run_fold(methods, &input, executor);
+    let kept = (runs.iter().filter(|_| base.keep))
+        .filter_map(|(m, r)| Some((*m, r.as_ref().ok()?.learned.clone()?)))
+        .collect();
     Fold {
         demonstration: targets
             .first()
             .map_or_else(String::new, |t| t.source.clone()),
-        runs: runs
+        runs: (runs.into_iter())
             .map(|(m, r)| scored(m, r, executor, &train, targets, diag))
             .collect(),
+        learned: Kept(kept),
     }
 }

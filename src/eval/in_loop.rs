@@ -8,25 +8,24 @@
 //! path without the disturbed ticks, whether it finished, and the swings.
 
 use std::str::FromStr;
+use std::sync::Arc;
 
 use serde::Serialize;
 
 use crate::condition::Conditions;
 use crate::config::HsomConfig;
 use crate::demos::{sample_period, Demonstration};
-use crate::dmp::{DmpSettings, DmpStepper};
 use crate::dtw::{dtw_distance, euclidean, Band};
-use crate::gmr::GmrParams;
-use crate::hsom::{HsomStepper, NearestStepper};
 use crate::metrics::column_swings;
-use crate::promp::{PrompSettings, PrompStepper};
 use crate::stats::median;
 use crate::stepper::kinematic::{largest_step, Disturbance};
-use crate::stepper::{Plant, Stepper};
+use crate::stepper::Plant;
 use crate::table::Table;
 
-use super::fold::{all_but, SWING_MIN_AMPLITUDE_RAD};
-use super::method::{peak_speed, Method, GMR_COMPONENTS};
+use super::fold::{all_but, Split, SWING_MIN_AMPLITUDE_RAD};
+use super::learned::Learned;
+use super::loo::loo_map;
+use super::method::{Method, GMR_COMPONENTS};
 use super::results::GestureLoo;
 use super::Pool;
 
@@ -272,71 +271,9 @@ pub const LOOP_METHODS: [Method; 5] = [
     Method::GmmGmr,
 ];
 
-/// What a method learned on a fold, once for every run of the fold: the one way the held-out
-/// studies and `simulate --loop closed` make a method's stepper.
-pub enum Learned {
-    /// The hierarchy and the nearest sequence: the fold's model.
-    Hsom,
-    /// ProMP's distribution of weights.
-    Promp(crate::promp::Promp),
-    /// The DMP.
-    Dmp(crate::dmp::Dmp),
-    /// GMM/GMR and its lead-in speed.
-    Gmr(crate::gmr::GmrModel, f64),
-}
-
 /// `e` as one line.
 fn text(e: impl std::error::Error + 'static) -> String {
     crate::errors::error_line(&e)
-}
-
-impl Learned {
-    /// `method` learned from `train`, for demonstrations at `period` seconds a sample.
-    pub fn of(method: Method, train: &[Demonstration], period: f64) -> Result<Learned, String> {
-        Ok(match method {
-            Method::Hierarchy | Method::NearestSequence => Learned::Hsom,
-            Method::ProMP => Learned::Promp(PrompSettings::default().fit(train).map_err(text)?),
-            Method::Dmp => Learned::Dmp(DmpSettings::default().fit(train).map_err(text)?),
-            Method::GmmGmr => {
-                let params = GmrParams::new().components(GMR_COMPONENTS);
-                let g = (params.sample_period(period).check())
-                    .and_then(|p| p.fit(train))
-                    .map_err(text)?;
-                Learned::Gmr(g, peak_speed(train, period))
-            }
-            other => return Err(format!("{} does not step", other.name())),
-        })
-    }
-
-    /// The stepper of `method` from `initial` (the hierarchy and the nearest sequence of
-    /// `model`, the latter following `train`).
-    pub fn stepper<'a>(
-        &'a self,
-        method: Method,
-        model: &'a crate::hsom::Hsom,
-        train: &[Demonstration],
-        initial: &[f64],
-        period: f64,
-    ) -> Result<Box<dyn Stepper + 'a>, String> {
-        let none = Conditions::default();
-        Ok(match (self, method) {
-            (Learned::Hsom, Method::NearestSequence) => Box::new(
-                NearestStepper::new(model, train.to_vec(), initial, &none, None).map_err(text)?,
-            ),
-            (Learned::Hsom, _) => {
-                Box::new(HsomStepper::new(model, initial, &none, None).map_err(text)?)
-            }
-            (Learned::Promp(p), _) => {
-                Box::new(PrompStepper::new(p, initial, &none, None).map_err(text)?)
-            }
-            (Learned::Dmp(d), _) => {
-                Box::new(DmpStepper::new(d, initial, &none, None).map_err(text)?)
-            }
-            (Learned::Gmr(g, speed), _) => Box::new(
-                crate::gmr::stepper(g, initial, 1.0 / period, *speed, &none).map_err(text)?,
-            ),
-        })
-    }
 }
 
 /// `method` on one fold (learned from `train`, the held-out demonstration `target`),
@@ -344,7 +281,7 @@ impl Learned {
 #[allow(clippy::too_many_arguments)]
 fn one(
     method: Method,
-    model: &crate::hsom::Hsom,
+    learned: &Learned,
     train: &[Demonstration],
     target: &Demonstration,
     diag: f64,
@@ -354,8 +291,8 @@ fn one(
 ) -> Result<Vec<LoopRun>, String> {
     let initial = target.rows.first().ok_or("no samples")?;
     let period = sample_period(target);
-    let learned = Learned::of(method, train, period)?;
-    let make = || learned.stepper(method, model, train, initial, period);
+    let none = Conditions::default();
+    let make = || learned.stepper(method, train, initial, &none, period);
     let limit = 8 * target.rows.len().max(1) + 400;
     let plain =
         (plant.run(make()?.as_mut(), initial, &Disturbance::None, 1, limit)).map_err(text)?;
@@ -436,9 +373,9 @@ impl LoopRun {
 
 /// Every method of `methods` that steps, in the loop on every held-out fold of `study`'s
 /// gestures (their demonstrations and diagonals), undisturbed and with each of
-/// `disturbances`; the hierarchy and the nearest sequence learned with `config`, every method
-/// learned once a fold. Folds run on `pool`; a method that cannot run holds the reason. Per
-/// disturbance, its runs.
+/// `disturbances`: each method as its fold kept it ([`super::Fold::learned`]), else learned
+/// once a fold (the hierarchy and the nearest sequence with `config`). Folds run on `pool`
+/// ([`loo_map`]); a method that cannot run holds the reason. Per disturbance, its runs.
 pub fn in_loop(
     config: &HsomConfig,
     study: &[GestureLoo],
@@ -450,56 +387,63 @@ pub fn in_loop(
     let methods: Vec<Method> = (methods.iter().copied())
         .filter(|m| LOOP_METHODS.contains(m))
         .collect();
-    let jobs: Vec<(usize, usize)> = (study.iter().enumerate())
-        .flat_map(|(g, s)| (0..s.demonstrations.len()).map(move |i| (g, i)))
-        .collect();
-    // per job, per method, per disturbance
-    let runs = pool.map(
-        &jobs,
-        |&(g, i)| {
-            let s = &study[g];
-            let demos = &s.demonstrations;
-            let (train, target) = (all_but(demos, i), &demos[i]);
-            let extent: Vec<f64> = (0..target.width())
-                .map(|j| {
-                    let col = demos.iter().flat_map(|d| d.rows.iter().map(move |r| r[j]));
-                    let (lo, hi) = col.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-                        (lo.min(v), hi.max(v))
-                    });
-                    hi - lo
+    let sets: Vec<&[Demonstration]> = study.iter().map(|s| &s.demonstrations[..]).collect();
+    // per set, per held-out fold, per method, per disturbance
+    let runs = loo_map(&sets, false, pool, None, |g, split| {
+        let (s, Split::HeldOut(i)) = (&study[g], split) else {
+            return Vec::new();
+        };
+        let demos = &s.demonstrations;
+        let (train, target) = (all_but(demos, i), &demos[i]);
+        let extent: Vec<f64> = (0..target.width())
+            .map(|j| {
+                let col = demos.iter().flat_map(|d| d.rows.iter().map(move |r| r[j]));
+                let (lo, hi) = col.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                    (lo.min(v), hi.max(v))
+                });
+                hi - lo
+            })
+            .collect();
+        // what the study's fold learned, else learned here (once a fold)
+        let kept = s.held_out.get(i).map(|f| &f.learned);
+        let period = sample_period(target);
+        let mut model = None;
+        let mut hsom = |_| {
+            let fit = || Ok((Arc::new(config.fit(&train).map_err(text)?), 0.0));
+            model.get_or_insert_with(fit).clone()
+        };
+        (methods.iter())
+            .map(|&m| {
+                let learned = match kept.and_then(|k| k.get(m)) {
+                    Some(l) => Ok(l.clone()),
+                    None => Learned::fit(m, &train, period, GMR_COMPONENTS, &mut hsom)
+                        .map(|(l, _)| Arc::new(l)),
+                };
+                let r = learned.and_then(|l| {
+                    one(
+                        m,
+                        &l,
+                        &train,
+                        target,
+                        s.diagonal,
+                        &extent,
+                        disturbances,
+                        plant,
+                    )
+                });
+                r.unwrap_or_else(|e| {
+                    let failed = LoopRun::failed(m, target, e);
+                    vec![failed; disturbances.len()]
                 })
-                .collect();
-            let model = config.fit(&train).map_err(text);
-            (methods.iter())
-                .map(|&m| {
-                    let r = model.as_ref().map_err(Clone::clone).and_then(|model| {
-                        one(
-                            m,
-                            model,
-                            &train,
-                            target,
-                            s.diagonal,
-                            &extent,
-                            disturbances,
-                            plant,
-                        )
-                    });
-                    r.unwrap_or_else(|e| {
-                        let failed = LoopRun::failed(m, target, e);
-                        vec![failed; disturbances.len()]
-                    })
-                })
-                .collect::<Vec<Vec<LoopRun>>>()
-        },
-        None,
-    );
+            })
+            .collect::<Vec<Vec<LoopRun>>>()
+    });
     (0..disturbances.len())
         .map(|d| {
-            let mut folds = runs.iter();
-            (study.iter())
-                .map(|s| GestureLoop {
+            (study.iter().zip(&runs))
+                .map(|(s, (held_out, _))| GestureLoop {
                     gesture: s.gesture.clone(),
-                    folds: (folds.by_ref().take(s.demonstrations.len()))
+                    folds: (held_out.iter())
                         .map(|per_method| per_method.iter().map(|r| r[d].clone()).collect())
                         .collect(),
                 })

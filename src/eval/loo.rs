@@ -41,6 +41,9 @@ pub struct LooSettings {
     pub sittings: bool,
     /// Worker threads (at least 1).
     pub threads: usize,
+    /// Keep what every fold's methods learned ([`super::Fold::learned`]), for the loop study
+    /// ([`super::in_loop`]).
+    pub keep_learned: bool,
 }
 
 impl Default for LooSettings {
@@ -56,6 +59,7 @@ impl Default for LooSettings {
             far: None,
             sittings: false,
             threads: 1,
+            keep_learned: false,
         }
     }
 }
@@ -305,6 +309,7 @@ pub fn leave_one_out<E: Executor>(
             true => Training::Sittings,
             false => Training::Trained,
         },
+        keep: settings.keep_learned,
         ..FoldInput::new(&[], &[])
     };
     let sets: Vec<(&[Demonstration], f64)> = (gestures.iter().map(|(_, d)| &d[..]))
@@ -360,6 +365,7 @@ pub fn loo_folds<E: Executor>(
         conditioning,
         far,
         gmr_components,
+        keep,
         ..
     } = *base;
     let demos: Vec<&[Demonstration]> = sets.iter().map(|(d, _)| *d).collect();
@@ -372,6 +378,7 @@ pub fn loo_folds<E: Executor>(
             conditioning,
             far,
             gmr_components,
+            keep,
             ..FoldInput::new(&[], &[])
         };
         match (split, in_sample) {

@@ -26,6 +26,7 @@ mod far;
 mod files;
 mod fold;
 mod in_loop;
+mod learned;
 mod loo;
 mod method;
 mod pool;
@@ -39,12 +40,11 @@ pub use executor::{Executed, Executor, Kinematic};
 pub use far::far_target;
 pub use files::{heldout, heldout_with, Extra, HeldoutJob, Section};
 pub use fold::{
-    all_but, diagonal, fold, fold_scores, run_fold, scored, sitting, Conditioning, Fitted,
-    FoldInput, FoldRuns, MethodRun, Split, Training, GMR_UNCONDITIONED, SWING_MIN_AMPLITUDE_RAD,
+    all_but, diagonal, fold, fold_scores, run_fold, scored, sitting, Conditioning, FoldInput,
+    FoldRuns, MethodRun, Split, Training, GMR_UNCONDITIONED, SWING_MIN_AMPLITUDE_RAD,
 };
-pub use in_loop::{
-    in_loop, loop_markdown, GestureLoop, Learned, LoopDisturbance, LoopRun, LOOP_METHODS,
-};
+pub use in_loop::{in_loop, loop_markdown, GestureLoop, LoopDisturbance, LoopRun, LOOP_METHODS};
+pub use learned::{Fitted, Kept, Learned, Planned};
 pub use loo::{
     leave_one_out, loo_folds, loo_map, read_gestures_at, Gestures, LooError, LooSettings,
     MIN_TAUGHT_DEMOS,

@@ -18,7 +18,8 @@ use std::path::PathBuf;
 
 use serde::Serialize;
 
-use super::loo::{check_width, write};
+use super::loo::{check_width, loo_map, write};
+use super::Split;
 use super::{LooError, MIN_TAUGHT_DEMOS};
 
 use crate::config::{load_config_or_default, HsomConfig};
@@ -395,37 +396,56 @@ pub fn recognition_study(
         return Err(LooError::Threads(0));
     }
     check_sets(config, taught, untaught)?;
-    let mut jobs = Vec::new();
-    for learn in [true, false] {
-        if !learn && !settings.control {
-            break;
-        }
-        for (g, (_, demos)) in taught.iter().enumerate() {
-            jobs.extend((0..demos.len()).map(|i| Job::Fold { g, i, learn }));
-        }
-        if !untaught.is_empty() {
-            jobs.push(Job::All { learn });
-        }
-    }
+    // the trained model's folds, then the control's: the held-out loop on the taught sets,
+    // once per model; each model's answers to the untaught beside
+    let learns: Vec<bool> = [true, false]
+        .into_iter()
+        .filter(|&learn| learn || settings.control)
+        .collect();
+    let sets: Vec<&[Demonstration]> = (learns.iter())
+        .flat_map(|_| taught.iter().map(|(_, d)| &d[..]))
+        .collect();
     let pool = super::Pool::new(settings.threads).map_err(LooError::Pool)?;
-    let done = pool.map(
-        &jobs,
-        |&j| run_job(config, taught, untaught, j, settings),
-        progress,
-    );
+    let n = taught.len();
+    let folds = loo_map(&sets, false, &pool, progress, |s, split| {
+        let Split::HeldOut(i) = split else {
+            return Err(LooError::NoTaught);
+        };
+        let learn = s < n;
+        run_job(
+            config,
+            taught,
+            untaught,
+            Job::Fold { g: s % n, i, learn },
+            settings,
+        )
+    });
+    let whole: Vec<bool> = learns
+        .iter()
+        .filter(|_| !untaught.is_empty())
+        .copied()
+        .collect();
+    let mut whole = pool
+        .map(
+            &whole,
+            |&learn| run_job(config, taught, untaught, Job::All { learn }, settings),
+            None,
+        )
+        .into_iter();
     let (mut model, mut control) = (Answers::default(), Answers::default());
     let mut reproduced = Vec::new();
-    for (job, d) in jobs.iter().zip(done) {
-        let learn = match job {
-            Job::Fold { learn, .. } | Job::All { learn } => *learn,
-        };
+    let per_model = taught.iter().map(|(_, d)| d.len()).sum();
+    let mut folds = folds.into_iter().flat_map(|(held_out, _)| held_out);
+    for learn in learns {
         let to = if learn { &mut model } else { &mut control };
-        match d? {
-            Done::Fold(a, r) => {
-                to.held_out.push(a);
-                reproduced.extend(r);
+        for d in folds.by_ref().take(per_model).chain(whole.next()) {
+            match d? {
+                Done::Fold(a, r) => {
+                    to.held_out.push(a);
+                    reproduced.extend(r);
+                }
+                Done::All(a) => to.untaught = a,
             }
-            Done::All(a) => to.untaught = a,
         }
     }
     Ok(RecognitionStudy {

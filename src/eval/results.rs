@@ -102,6 +102,10 @@ pub struct Fold {
     pub demonstration: String,
     /// One run per method, in [`Method::ALL`]'s order.
     pub runs: Vec<Run>,
+    /// What the methods learned, when the fold was asked to keep it
+    /// ([`FoldInput::keep`](super::FoldInput::keep)).
+    #[serde(skip)]
+    pub learned: super::learned::Kept,
 }
 
 impl Fold {

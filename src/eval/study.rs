@@ -53,6 +53,7 @@ pub fn study<E: Executor>(
             let s = LooSettings {
                 sittings: true,
                 in_sample: false,
+                keep_learned: false,
                 ..plain
             };
             Some(leave_one_out(
@@ -69,6 +70,7 @@ pub fn study<E: Executor>(
         .map(|&k| {
             let s = LooSettings {
                 far: Some(k),
+                keep_learned: false,
                 ..plain
             };
             Ok((
@@ -83,6 +85,7 @@ pub fn study<E: Executor>(
             let s = LooSettings {
                 far: None,
                 sittings: false,
+                keep_learned: false,
                 ..*settings
             };
             Some((

@@ -13,9 +13,10 @@ use std::path::Path;
 
 use serde::Serialize;
 
+use crate::condition::Conditions;
 use crate::demos::{sample_period, Demonstration};
 use crate::dtw::{dtw_distance, euclidean, Band as DtwBand};
-use crate::eval::{Learned, Method};
+use crate::eval::{Learned, Method, GMR_COMPONENTS};
 use crate::hsom::Hsom;
 use crate::metrics::{column_swings, diagonal};
 use crate::plot::{demo_color, panels_png, Band, Panel, Series, BLACK};
@@ -149,10 +150,13 @@ pub fn closed_loop<const N: usize>(
     };
     let mut methods = Vec::new();
     let mut hierarchy = None;
+    let shared = std::sync::Arc::new(model.clone());
     for method in METHODS {
         let runs = (|| -> Result<(ArmRun, ArmRun, bool, usize), String> {
-            let learned = Learned::of(method, demos, period)?;
-            let make = || learned.stepper(method, model, demos, &initial, period);
+            let hsom = &mut |_| Ok((shared.clone(), 0.0));
+            let (learned, _) = Learned::fit(method, demos, period, GMR_COMPONENTS, hsom)?;
+            let none = Conditions::default();
+            let make = || learned.stepper(method, demos, &initial, &none, period);
             let mut plain = make()?;
             let undisturbed = run_in_loop(arm, &config, plain.as_mut(), &initial, &[], limit_s)
                 .map_err(|e| e.to_string())?;

@@ -24,7 +24,7 @@ use std::path::Path;
 use plotters::style::RGBColor;
 
 use crate::gmr::TrainingSet;
-use crate::gmr::{plan_at, ComponentChoice, GmrModel, GmrParams, GmrPlan, GmrValidParams};
+use crate::gmr::{plan_at, ComponentChoice, GmrModel, GmrPlan};
 use crate::plot::{panels_png, Band, Ellipse, Panel, Scatter, Series};
 use crate::sim::LEAD_IN_PEAK_SPEED;
 
@@ -48,18 +48,6 @@ pub const GMR_COLOR: RGBColor = RGBColor(200, 0, 130);
 /// `1 / rate_hz` seconds over the model's duration.
 pub fn plan(model: &GmrModel, initial: &[f64], rate_hz: f64) -> Result<GmrPlan, ExperimentError> {
     Ok(plan_at(model, initial, rate_hz, LEAD_IN_PEAK_SPEED)?)
-}
-
-/// The baseline's settings used by the experiment: `components` chosen as given, the
-/// library's defaults otherwise, for demonstrations sampled every `sample_period` seconds.
-pub fn gmr_params(
-    components: ComponentChoice,
-    sample_period: f64,
-) -> Result<GmrValidParams, ExperimentError> {
-    Ok(GmrParams::new()
-        .components(components)
-        .sample_period(sample_period)
-        .check()?)
 }
 
 /// The paper's Fig. 3: the pre-processed (trimmed, aligned, resampled) training data, one

@@ -34,6 +34,7 @@ fn study(conditioning: Conditioning) -> GestureLoo {
         far: None,
         sittings: false,
         threads: 2,
+        keep_learned: false,
     };
     let demos = handwriting(6, 21);
     leave_one_out(
