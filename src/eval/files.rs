@@ -8,7 +8,7 @@ use crate::fsutil::check_output;
 use crate::stepper::KinematicLoop;
 
 use super::{
-    failures, read_gestures_at, study, GestureLoo, Kinematic, LooError, LooSettings, Method,
+    failures, read_gestures_at, study, Extra, Kinematic, LooError, LooSettings, Method, Section,
 };
 
 /// What `cosco heldout` does.
@@ -32,22 +32,6 @@ pub struct HeldoutJob {
     /// Where to draw one fold per gesture.
     pub png: Option<PathBuf>,
 }
-
-/// A part of a held-out study computed from its folds besides the tables (the simulator's
-/// contacts, `experiment::upper_body`): Markdown appended to the tables, JSON under `key`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Section {
-    /// The key of the JSON document it goes under.
-    pub key: &'static str,
-    /// Its Markdown.
-    pub markdown: String,
-    /// Its JSON.
-    pub json: serde_json::Value,
-}
-
-/// What computes a [`Section`] from the unconditioned folds (`None`: nothing for this data;
-/// the reason as a line when it fails).
-pub type Extra<'a> = &'a (dyn Fn(&[GestureLoo]) -> Result<Option<Section>, String> + Sync);
 
 /// `cosco heldout`: leave-one-out on the demonstrations' files with the kinematic executor
 /// (`progress(done, total)` after each fold); the Markdown tables, after writing the JSON and

@@ -38,7 +38,7 @@ mod two_arms;
 
 pub use executor::{Executed, Executor, Kinematic};
 pub use far::far_target;
-pub use files::{heldout, heldout_with, Extra, HeldoutJob, Section};
+pub use files::{heldout, heldout_with, HeldoutJob};
 pub use fold::{
     all_but, diagonal, fold, fold_scores, run_fold, scored, sitting, Conditioning, FoldInput,
     FoldRuns, MethodRun, Split, Training, GMR_UNCONDITIONED, SWING_MIN_AMPLITUDE_RAD,
@@ -58,5 +58,5 @@ pub use results::{
     failures, passed, summary, Commanded, ConditionErrors, Fold, FoldScores, FoldsError,
     GestureLoo, HeldOut, HeldOutSummary, MethodSummary, Run, Score, Swings, MIN_DEMO_JERK,
 };
-pub use study::{sittings_ratios, study, SittingsRatio, Study, StudyDocument};
+pub use study::{sittings_ratios, study, Extra, Section, SittingsRatio, Study, StudyDocument};
 pub use two_arms::{two_arms, GestureLags, MethodLags};

@@ -10,7 +10,6 @@ use crate::config::HsomConfig;
 use crate::table::Table;
 
 use super::executor::Executor;
-use super::files::Section;
 use super::fold::Conditioning;
 use super::loo::{leave_one_out, Gestures, LooError, LooSettings};
 use super::report::{json_text, markdown};
@@ -101,6 +100,22 @@ pub fn study<E: Executor>(
         sittings,
     })
 }
+
+/// A part of a held-out study computed from its folds besides the tables (the simulator's
+/// contacts, `experiment::upper_body`): Markdown appended to the tables, JSON under `key`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Section {
+    /// The key of the JSON document it goes under.
+    pub key: &'static str,
+    /// Its Markdown.
+    pub markdown: String,
+    /// Its JSON.
+    pub json: serde_json::Value,
+}
+
+/// What computes a [`Section`] from the unconditioned folds (`None`: nothing for this data;
+/// the reason as a line when it fails).
+pub type Extra<'a> = &'a (dyn Fn(&[GestureLoo]) -> Result<Option<Section>, String> + Sync);
 
 /// The JSON document of a held-out study (`cosco heldout --json`): the configuration's name,
 /// the [`summary`] and every gesture's folds; on the upper body, the two arms' lags; the
