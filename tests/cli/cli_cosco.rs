@@ -804,6 +804,6 @@ fn the_upper_bodys_demonstrations_take_its_configuration_and_its_limits_without_
         .arg(&out)
         .assert()
         .success()
-        .stdout(predicate::str::contains("upper body"));
+        .stdout(predicate::str::contains(" of 14 joints"));
     assert!(out.exists());
 }
