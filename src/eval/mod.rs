@@ -43,7 +43,7 @@ pub use fold::{
     FoldInput, FoldRuns, MethodRun, Split, Training, GMR_UNCONDITIONED, SWING_MIN_AMPLITUDE_RAD,
 };
 pub use in_loop::{
-    in_loop, loop_markdown, GestureLoop, Learned, LoopDisturbance, LoopRun, LOOP_METHODS,
+    in_loop, loop_markdown, method_runs, Against, GestureLoop, Learned, LoopRun, Runs, LOOP_METHODS,
 };
 pub use loo::{
     leave_one_out, loo_folds, loo_map, read_gestures_at, Gestures, LooError, LooSettings,
