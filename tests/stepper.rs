@@ -204,7 +204,7 @@ fn held_and_moved_the_hierarchy_rejoins_its_gesture_without_a_jump() {
         let plan = m.reproduce(initial()).unwrap().postures;
         for (what, d) in [("held", hold()), ("moved", push())] {
             let mut s = HsomStepper::new(m, initial(), &Conditions::default(), None).unwrap();
-            let r = loop_run(&mut s, &plan, &[d.clone()]);
+            let r = loop_run(&mut s, &plan, std::slice::from_ref(&d));
             let j = judge(
                 &format!("{algorithm:?} {what}"),
                 &r,
@@ -231,7 +231,7 @@ fn the_plan_replayed_by_its_clock_jumps_after_a_hold() {
     // move separates them
     for (what, d) in [("held", hold()), ("moved", push())] {
         let mut s = ByClock::new(columns.clone(), plan.clone(), "the replay");
-        let r = loop_run(&mut s, &plan, &[d.clone()]);
+        let r = loop_run(&mut s, &plan, std::slice::from_ref(&d));
         let j = judge(
             &format!("replayed by its clock, {what}"),
             &r,
@@ -254,7 +254,7 @@ fn a_goal_moved_half_way_is_reached_exactly_without_a_jump() {
         let goal: Vec<f64> = plan.last().unwrap().iter().map(|v| v + d).collect();
         let moved = Disturbance::goal(0.5, goal.clone());
         let mut s = HsomStepper::new(m, initial(), &Conditions::default(), None).unwrap();
-        let r = loop_run(&mut s, &plan, &[moved.clone()]);
+        let r = loop_run(&mut s, &plan, std::slice::from_ref(&moved));
         let at = ((plan.len() - 1) as f64 * 0.5).round() as usize;
         let jump = r.largest_step_from(at) / step_scale(&plan);
         let error = euclidean(r.path.last().unwrap(), &goal) / diag();
@@ -337,7 +337,7 @@ fn the_dmp_closes_its_loop_and_slows_its_phase_while_held() {
     assert!(held < 0.5 * free, "{held} {free}");
     for (what, d) in [("held", hold()), ("moved", push())] {
         let mut s = fresh();
-        let r = loop_run(&mut s, &plan, &[d.clone()]);
+        let r = loop_run(&mut s, &plan, std::slice::from_ref(&d));
         let j = judge(&format!("DMP {what}"), &r, &plan, plan.last().unwrap());
         assert!(j.finished);
     }
@@ -393,7 +393,7 @@ fn every_method_steps_through_a_hold_and_a_move() {
         assert_eq!(s.closed_loop(), *name != "GMM/GMR");
         for (what, d) in [("held", hold()), ("moved", push())] {
             let mut s = make();
-            let r = loop_run(s.as_mut(), &plan, &[d.clone()]);
+            let r = loop_run(s.as_mut(), &plan, std::slice::from_ref(&d));
             let j = judge(&format!("{name} {what}"), &r, &plan, plan.last().unwrap());
             assert!(j.finished);
             if *name == "nearest sequence" {

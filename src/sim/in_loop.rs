@@ -254,7 +254,7 @@ pub fn resistible_force<const N: usize>(
             continue;
         }
         let holds = lo.abs().min(hi.abs()) / per_newton;
-        if weakest.as_ref().is_none_or(|(f, _)| holds < *f) {
+        if weakest.as_ref().map_or(true, |(f, _)| holds < *f) {
             weakest = Some((holds, model.joint_name(j).unwrap_or_default()));
         }
     }

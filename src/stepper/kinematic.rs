@@ -141,6 +141,10 @@ fn check_share(share: f64) -> Result<(), StepperError> {
     })
 }
 
+/// The ticks a disturbance has the arm, `[from, to)`, and a move's displacement (a goal's
+/// move: none).
+type Span<'d> = Option<(usize, usize, Option<&'d Vec<f64>>)>;
+
 /// `stepper` (made from `initial`) run until it is done: each tick it is given the arm's
 /// posture and the arm goes where it commands, except at the ticks a disturbance of
 /// `disturbances` (on the phase clock, amounts absolute) holds or moves it. `duration`
@@ -165,7 +169,7 @@ pub fn run(
     }
     let tick = |phase: f64| (phase * duration as f64).round() as usize;
     // per disturbance, the ticks it has the arm, [from, to), and a move's displacement
-    let mut spans: Vec<Option<(usize, usize, Option<&Vec<f64>>)>> = Vec::new();
+    let mut spans: Vec<Span> = Vec::new();
     let mut goals = Vec::new();
     for d in disturbances {
         if d.clock != Clock::Phase {
