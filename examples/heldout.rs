@@ -26,12 +26,13 @@ use anyhow::{Context, Result};
 use clap::Parser;
 
 use cosco_hsom::config::load_config;
-use cosco_hsom::eval::{in_loop, loop_markdown, GestureLoo, LoopDisturbance, Pool, LOOP_METHODS};
+use cosco_hsom::eval::{in_loop, loop_markdown, GestureLoo, Pool, LOOP_METHODS};
 use cosco_hsom::experiment::demonstrate::{parse_gestures, parse_seeds};
 use cosco_hsom::experiment::{synthetic_demonstrations, Transition};
 use cosco_hsom::metrics::diagonal;
 use cosco_hsom::sim::in_loop::ArmLoop;
 use cosco_hsom::sim::{ControllerConfig, NaoArm};
+use cosco_hsom::stepper::Disturbance;
 use study::{run_study, StudySettings};
 
 /// Leave-one-out evaluation of CoSCo-HSOM and GMM/GMR on synthetic demonstrations.
@@ -68,7 +69,7 @@ struct Args {
 
 /// The loop on the simulated arm: every (gesture, seed) recorded, each method's stepper on
 /// every held-out fold, undisturbed and with each disturbance; a table per disturbance.
-fn arm_loop(a: &Args, disturbances: &[LoopDisturbance]) -> Result<String> {
+fn arm_loop(a: &Args, disturbances: &[Disturbance]) -> Result<String> {
     let gestures = parse_gestures(&a.sets.gestures)?;
     let seeds = parse_seeds(&a.sets.seeds)?;
     let config = a.configs.first().cloned();
@@ -124,9 +125,9 @@ fn arm_loop(a: &Args, disturbances: &[LoopDisturbance]) -> Result<String> {
 
 fn run(a: Args) -> Result<()> {
     let t = Instant::now();
-    let disturbances: Vec<LoopDisturbance> = (a.hold.iter().map(|h| format!("hold:{h}")))
+    let disturbances: Vec<Disturbance> = (a.hold.iter().map(|h| format!("hold:{h}")))
         .chain(a.push.iter().map(|p| format!("push:{p}")))
-        .map(|d| d.parse::<LoopDisturbance>().map_err(anyhow::Error::msg))
+        .map(|d| Disturbance::disturb(&d).map_err(anyhow::Error::msg))
         .collect::<Result<_>>()?;
     if !disturbances.is_empty() {
         a.sets.check_leave_one_out()?;

@@ -10,7 +10,7 @@ use clap::Parser;
 use cosco_hsom::experiment::arm_loop::LoopMode;
 use cosco_hsom::experiment::job;
 use cosco_hsom::robot::Robot;
-use cosco_hsom::sim::in_loop::ArmDisturbance;
+use cosco_hsom::stepper::{Clock, Disturbance};
 
 #[macro_use]
 mod cli;
@@ -80,17 +80,17 @@ struct Args {
     loop_mode: LoopMode,
     /// In the loop, a hand holds the arm where it is from T s for SECONDS (`T:SECONDS`, e.g.
     /// `3.0:1.0`); repeatable. Needs `--loop closed`.
-    #[arg(long, value_name = "T:SECONDS", value_parser = ArmDisturbance::parse_hold)]
-    hold: Vec<ArmDisturbance>,
+    #[arg(long, value_name = "T:SECONDS", value_parser = |s: &str| Disturbance::parse("hold", s, Clock::Seconds))]
+    hold: Vec<Disturbance>,
     /// In the loop, a force (N, the torso's frame: x forward, y left, z up) on the link BODY
     /// from T s for SECONDS (`T:BODY:FX,FY,FZ:SECONDS`, e.g. `3.0:LForeArm:0,0,-20:0.3`);
     /// repeatable. Needs `--loop closed`.
-    #[arg(long, value_name = "T:BODY:FX,FY,FZ:SECONDS", value_parser = ArmDisturbance::parse_push, allow_hyphen_values = true)]
-    push: Vec<ArmDisturbance>,
+    #[arg(long, value_name = "T:BODY:FX,FY,FZ:SECONDS", value_parser = |s: &str| Disturbance::parse("push", s, Clock::Seconds), allow_hyphen_values = true)]
+    push: Vec<Disturbance>,
     /// In the loop, the goal moves to the posture V1,... (one value per joint) at T s
     /// (`T:V1,...`); repeatable. Needs `--loop closed`.
-    #[arg(long, value_name = "T:V1,...", value_parser = ArmDisturbance::parse_goal, allow_hyphen_values = true)]
-    goal_at: Vec<ArmDisturbance>,
+    #[arg(long, value_name = "T:V1,...", value_parser = |s: &str| Disturbance::parse("goal", s, Clock::Seconds), allow_hyphen_values = true)]
+    goal_at: Vec<Disturbance>,
     /// With `--gesture all`: stream each gesture's last held-out demonstration, a sample at a
     /// time, into the recogniser of the fold that did not learn it; the clip films those
     /// demonstrations with the committed label, and the report says when it committed.

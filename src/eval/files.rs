@@ -26,7 +26,7 @@ pub struct HeldoutJob {
     /// Far goals to run the folds with besides (`K` each, [`super::far_target`]).
     pub far: Vec<f64>,
     /// Disturbances to run every fold in the loop with besides ([`super::in_loop`]).
-    pub disturb: Vec<super::LoopDisturbance>,
+    pub disturb: Vec<crate::stepper::Disturbance>,
     /// Where to write every fold's scores as JSON.
     pub json: Option<PathBuf>,
     /// Where to draw one fold per gesture.

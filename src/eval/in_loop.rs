@@ -7,7 +7,6 @@
 //! the held-out demonstration's largest step (a jump when above 2), the DTW of the executed
 //! path without the disturbed ticks, whether it finished, and the swings.
 
-use std::str::FromStr;
 use std::sync::Arc;
 
 use serde::Serialize;
@@ -18,8 +17,8 @@ use crate::demos::{sample_period, Demonstration};
 use crate::dtw::{dtw_distance, euclidean, Band};
 use crate::metrics::column_swings;
 use crate::stats::median;
-use crate::stepper::kinematic::{largest_step, Disturbance};
-use crate::stepper::Plant;
+use crate::stepper::kinematic::largest_step;
+use crate::stepper::{Amount, Clock, Disturbance, Kind, Plant, Stepper, Trace};
 use crate::table::Table;
 
 use super::fold::{all_but, Split, SWING_MIN_AMPLITUDE_RAD};
@@ -35,222 +34,51 @@ pub const JUMP_RATIO: f64 = 2.0;
 /// The final error, a share of the diagonal, within which a run ends where it should.
 pub const FINAL_SHARE: f64 = 0.02;
 
-/// What the loop's folds are disturbed with.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(tag = "kind", rename_all = "lowercase")]
-pub enum LoopDisturbance {
-    /// `hold:P:D`: the arm held where it is from phase `at` for `share` of the duration.
-    Hold {
-        /// When, 0 to 1.
-        at: f64,
-        /// How long, a share of the duration.
-        share: f64,
-    },
-    /// `move:P:D:K`: at phase `at` the arm moved `k` times the demonstrations' diagonal
-    /// (along it: `k` times each variable's extent) and held there for `share`.
-    Move {
-        /// When, 0 to 1.
-        at: f64,
-        /// How long, a share of the duration.
-        share: f64,
-        /// How far, times the diagonal.
-        k: f64,
-    },
-    /// `push:P:BODY:FX,FY,FZ:D`: from phase `at`, for `share` of the duration, the force
-    /// `force` (N, the torso's frame) on the link `body` (the simulated arm only).
-    Push {
-        /// When, 0 to 1.
-        at: f64,
-        /// How long, a share of the duration.
-        share: f64,
-        /// The link (the model's body name).
-        body: String,
-        /// The force, N.
-        force: [f64; 3],
-    },
-    /// `--goal-moves P:K`: at phase `at` the goal moved `k` times the diagonal from the
-    /// undisturbed run's end (along the diagonal).
-    Goal {
-        /// When, 0 to 1.
-        at: f64,
-        /// How far, times the diagonal.
-        k: f64,
-    },
-}
-
-/// `TEXT` as `n` numbers separated by ':', each finite and >= 0, or the reason naming `what`.
-fn numbers(text: &str, n: usize, what: &str) -> Result<Vec<f64>, String> {
-    let v: Vec<f64> = text
-        .split(':')
-        .map(|p| p.trim().parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| format!("{what} {text:?}: needs {n} numbers separated by ':'"))?;
-    if v.len() != n || v.iter().any(|x| !(x.is_finite() && *x >= 0.0)) {
-        return Err(format!(
-            "{what} {text:?}: needs {n} finite numbers >= 0 separated by ':'"
-        ));
-    }
-    Ok(v)
-}
-
-/// A phase from 0 to 1, or the reason naming `what`.
-fn phase(at: f64, what: &str) -> Result<f64, String> {
-    match at <= 1.0 {
-        true => Ok(at),
-        false => Err(format!(
-            "{what}: the phase {at} is past 1 (0 is the start, 1 the end)"
-        )),
-    }
-}
-
-impl FromStr for LoopDisturbance {
-    type Err = String;
-    /// `hold:P:D` or `move:P:D:K` (`cosco heldout --disturb`).
-    fn from_str(s: &str) -> Result<Self, String> {
-        let what = "--disturb";
-        match s.split_once(':') {
-            Some(("hold", rest)) => {
-                let v = numbers(rest, 2, what)?;
-                Ok(LoopDisturbance::Hold {
-                    at: phase(v[0], what)?,
-                    share: v[1],
-                })
-            }
-            Some(("move", rest)) => {
-                let v = numbers(rest, 3, what)?;
-                Ok(LoopDisturbance::Move {
-                    at: phase(v[0], what)?,
-                    share: v[1],
-                    k: v[2],
-                })
-            }
-            Some(("push", rest)) => {
-                let usage = || {
-                    format!(
-                        "{what} {s:?}: needs push:P:BODY:FX,FY,FZ:D (a force in N on the link \
-                         BODY from phase P for D of the duration)"
-                    )
-                };
-                let [p, body, f, d] = rest.split(':').collect::<Vec<_>>()[..] else {
-                    return Err(usage());
-                };
-                let v = numbers(&format!("{p}:{d}"), 2, what)?;
-                let force: Vec<f64> = (f.split(','))
-                    .map(|x| x.trim().parse::<f64>().ok().filter(|x| x.is_finite()))
-                    .collect::<Option<_>>()
-                    .ok_or_else(usage)?;
-                Ok(LoopDisturbance::Push {
-                    at: phase(v[0], what)?,
-                    share: v[1],
-                    body: body.trim().to_string(),
-                    force: force.try_into().map_err(|_| usage())?,
-                })
-            }
-            _ => Err(format!(
-                "{what} {s:?}: needs hold:P:D (held from phase P for D of the duration), \
-                 move:P:D:K (moved K x the diagonal at phase P, held for D) or \
-                 push:P:BODY:FX,FY,FZ:D (the simulated arm's link BODY pushed)"
-            )),
-        }
-    }
-}
-
-impl LoopDisturbance {
-    /// `--goal-moves P:K`.
-    pub fn goal_moves(s: &str) -> Result<Self, String> {
-        let what = "--goal-moves";
-        let v = numbers(s, 2, what)?;
-        Ok(LoopDisturbance::Goal {
-            at: phase(v[0], what)?,
-            k: v[1],
-        })
-    }
-
-    /// Its name in the tables.
-    pub fn name(&self) -> String {
-        match self {
-            LoopDisturbance::Hold { at, share } => {
-                format!("held from phase {at} for {share} of the duration")
-            }
-            LoopDisturbance::Move { at, share, k } => {
-                format!("moved {k} x the diagonal at phase {at}, held for {share}")
-            }
-            LoopDisturbance::Push {
-                at,
-                share,
-                body,
-                force,
-            } => format!(
-                "{body} pushed with ({}, {}, {}) N from phase {at} for {share}",
-                force[0], force[1], force[2]
-            ),
-            LoopDisturbance::Goal { at, k } => {
-                format!("goal moved {k} x the diagonal at phase {at}")
-            }
-        }
-    }
-
-    /// The kinematic loop's disturbance, for demonstrations spanning `extent` per variable,
-    /// and the undisturbed run's end `end`.
-    fn of(&self, extent: &[f64], end: &[f64]) -> Disturbance {
-        let along = |k: f64| extent.iter().map(|e| k * e).collect::<Vec<f64>>();
-        match *self {
-            LoopDisturbance::Hold { at, share } => Disturbance::Hold { at, share },
-            LoopDisturbance::Push {
-                at,
-                share,
-                ref body,
-                force,
-            } => Disturbance::Push {
-                at,
-                body: body.clone(),
-                force,
-                share,
-            },
-            LoopDisturbance::Move { at, share, k } => Disturbance::Move {
-                at,
-                by: along(k),
-                share,
-            },
-            LoopDisturbance::Goal { at, k } => Disturbance::Goal {
-                at,
-                goal: end.iter().zip(along(k)).map(|(e, d)| e + d).collect(),
-            },
-        }
-    }
-}
-
-/// One method's run in the loop on one fold.
+/// One method's run in the loop: on a held-out fold (`cosco heldout --disturb`), or on the
+/// simulated arm from the demonstrations' first posture (`simulate --loop closed`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LoopRun {
     /// The method.
     pub method: Method,
-    /// The held-out demonstration.
+    /// The held-out demonstration (the first one on the simulated arm).
     pub demonstration: String,
     /// Why it has no run (it cannot be fitted, cannot take the disturbance).
     pub error: Option<String>,
     /// The distance of the disturbed run's end from where it should end (the undisturbed
     /// run's end; with a moved goal, the goal), a share of the diagonal.
     pub final_error: f64,
-    /// The largest step from the release (a moved goal: from its tick) over the held-out
-    /// demonstration's largest step.
+    /// The largest step from the last release (or the goal's move, the later) over the
+    /// demonstrations' largest step.
     pub jump: f64,
-    /// DTW per step of the executed path without its disturbed ticks against the held-out
-    /// demonstration, a share of the diagonal.
+    /// DTW per step of the executed path without its disturbed ticks against the
+    /// demonstrations (mean), a share of the diagonal.
     pub relative_dtw: f64,
     /// The same of the undisturbed run.
     pub undisturbed_dtw: f64,
-    /// Whether the stepper finished (said it was done before the tick limit).
+    /// Whether the stepper finished (said it was done, the arm free, before the tick limit).
     pub finished: bool,
     /// LElbowRoll's swings over the whole path, the disturbed ticks included (a pushed arm may
-    /// go on swinging; a held one adds none): disturbed, undisturbed, the held-out
+    /// go on swinging; a held one adds none): disturbed, undisturbed, the (first)
     /// demonstration's.
     pub swings: Option<[usize; 3]>,
     /// Times the stepper re-planned.
     pub replans: usize,
-    /// How far the disturbance took the arm from where the undisturbed run had it, the largest
-    /// over the disturbed ticks and the variables ([`crate::stepper::Trace::displaced_from`]), data units.
-    pub displaced: f64,
+    /// Per disturbance, how far it took the arm from where the undisturbed run had it
+    /// ([`crate::stepper::Trace::displaced`]), data units (in the JSON of a fold's run, which
+    /// has one, a number).
+    #[serde(serialize_with = "first")]
+    pub displaced: Vec<f64>,
+    /// Whether the reading changes what it commands.
+    #[serde(skip)]
+    pub closed_loop: bool,
+    /// The disturbed run's duration, s.
+    #[serde(skip)]
+    pub seconds: f64,
+}
+
+/// The first of `v` (none: null).
+fn first<S: serde::Serializer>(v: &[f64], s: S) -> Result<S::Ok, S::Error> {
+    v.first().copied().unwrap_or(f64::NAN).serialize(s)
 }
 
 /// The loop's runs of one gesture: per fold, one per method.
@@ -276,66 +104,91 @@ fn text(e: impl std::error::Error + 'static) -> String {
     crate::errors::error_line(&e)
 }
 
-/// `method` on one fold (learned from `train`, the held-out demonstration `target`),
-/// undisturbed and then with each of `disturbances`: one run per disturbance.
+/// What a method's runs in the loop are scored against.
+pub struct Against<'d> {
+    /// The demonstrations: the DTW is the mean over them, the jump over their largest step;
+    /// the first's swings are counted beside the runs'.
+    pub demos: &'d [Demonstration],
+    /// Their diagonal.
+    pub diagonal: f64,
+    /// Their extent per variable (what `k` x the diagonal moves each by).
+    pub extent: Vec<f64>,
+    /// The column whose swings are counted (LElbowRoll), if any.
+    pub swing_joint: Option<usize>,
+}
+
+/// A method's runs in the loop ([`method_runs`]): the undisturbed one, and per set of
+/// disturbances the run scored with its trace, or why it did not run.
+pub type Runs = (Trace, Vec<Result<(LoopRun, Trace), String>>);
+
+/// The one loop study of a method, whichever the plant: `make`'s stepper (of `method`) run
+/// on `plant` from `initial` for at most `limit` ticks of `tick_s` seconds, undisturbed and
+/// then with each set of `sets` (amounts times the diagonal taken from `against`'s extent and
+/// the undisturbed run's end; phases, shares of the undisturbed run's ticks), each scored
+/// against `against`.
 #[allow(clippy::too_many_arguments)]
-fn one(
+pub fn method_runs<'s>(
     method: Method,
-    learned: &Learned,
-    train: &[Demonstration],
-    target: &Demonstration,
-    diag: f64,
-    extent: &[f64],
-    disturbances: &[LoopDisturbance],
+    make: &dyn Fn() -> Result<Box<dyn Stepper + 's>, String>,
     plant: &dyn Plant,
-) -> Result<Vec<LoopRun>, String> {
-    let initial = target.rows.first().ok_or("no samples")?;
-    let period = sample_period(target);
-    let none = Conditions::default();
-    let make = || learned.stepper(method, train, initial, &none, period);
-    let limit = 8 * target.rows.len().max(1) + 400;
-    let plain =
-        (plant.run(make()?.as_mut(), initial, &Disturbance::None, 1, limit)).map_err(text)?;
+    initial: &[f64],
+    against: &Against,
+    sets: &[Vec<Disturbance>],
+    limit: usize,
+    tick_s: f64,
+) -> Result<Runs, String> {
+    let plain = (plant.run(make()?.as_mut(), initial, &[], 1, limit)).map_err(text)?;
     let duration = plain.path.len().saturating_sub(1).max(1);
-    let end = plain.path.last().ok_or("no path")?;
+    let end = plain.path.last().ok_or("no path")?.clone();
+    let diag = against.diagonal;
     let dtw = |rows: &[Vec<f64>]| -> Result<f64, String> {
-        let c = dtw_distance(rows, &target.rows, Band::None).map_err(|e| e.to_string())?;
-        Ok(c.per_step() / diag)
+        let costs = (against.demos.iter())
+            .map(|d| dtw_distance(rows, &d.rows, Band::None).map(|c| c.per_step() / diag))
+            .collect::<Result<Vec<f64>, _>>()
+            .map_err(|e| e.to_string())?;
+        Ok(costs.iter().sum::<f64>() / costs.len().max(1) as f64)
     };
-    let swing_joint = crate::robot::Robot::of_columns(&target.columns).map(|r| r.swing_joint().0);
     let count = |rows: &[Vec<f64>]| -> Result<Option<usize>, String> {
-        swing_joint
+        (against.swing_joint)
             .map(|j| column_swings(rows, j, SWING_MIN_AMPLITUDE_RAD).map_err(|e| e.to_string()))
             .transpose()
     };
-    let (plain_swings, demo_swings) = (count(&plain.path)?, count(&target.rows)?);
+    let demo_rows = against.demos.first().map_or(&[][..], |d| &d.rows[..]);
+    let (plain_swings, demo_swings) = (count(&plain.path)?, count(demo_rows)?);
     let undisturbed_dtw = dtw(&plain.path)?;
-    let demo_step = largest_step(&target.rows, 1);
-    let disturbed = |disturbance: &LoopDisturbance| -> Result<LoopRun, String> {
-        let d = disturbance.of(extent, end);
+    let demo_step = (against.demos.iter())
+        .map(|d| largest_step(&d.rows, 1))
+        .fold(0.0, f64::max);
+    let disturbed = |set: &Vec<Disturbance>| -> Result<(LoopRun, Trace), String> {
+        let set: Vec<Disturbance> = set
+            .iter()
+            .map(|d| d.absolute(&against.extent, &end))
+            .collect();
         let mut s = make()?;
-        let r = plant
-            .run(s.as_mut(), initial, &d, duration, limit)
-            .map_err(text)?;
-        let should_end = match &d {
-            Disturbance::Goal { goal, .. } => goal.clone(),
-            _ => end.clone(),
-        };
-        let from = match disturbance {
-            LoopDisturbance::Goal { at, .. } => (at * duration as f64).round() as usize + 1,
-            _ => r.release.unwrap_or(1),
-        };
+        let r = (plant.run(s.as_mut(), initial, &set, duration, limit)).map_err(text)?;
+        let goal = set.iter().rev().find_map(|d| match &d.kind {
+            Kind::Goal(Amount::Absolute(g)) => Some((d, g)),
+            _ => None,
+        });
+        let should_end = goal.map_or(&end, |(_, g)| g);
+        let moved = goal.map_or(1, |(d, _)| {
+            let at = match d.clock {
+                Clock::Phase => d.at * duration as f64,
+                Clock::Seconds => d.at / tick_s,
+            };
+            at.round() as usize + 1
+        });
         let swings = match (count(&r.path)?, plain_swings, demo_swings) {
             (Some(a), Some(b), Some(c)) => Some([a, b, c]),
             _ => None,
         };
-        Ok(LoopRun {
+        let run = LoopRun {
             method,
-            demonstration: target.source.clone(),
+            demonstration: (against.demos.first()).map_or(String::new(), |d| d.source.clone()),
             error: None,
-            final_error: euclidean(r.path.last().ok_or("no path")?, &should_end) / diag,
+            final_error: euclidean(r.path.last().ok_or("no path")?, should_end) / diag,
             jump: match demo_step > 0.0 {
-                true => r.largest_step_from(from) / demo_step,
+                true => r.largest_step_from(r.release.unwrap_or(1).max(moved)) / demo_step,
                 false => f64::NAN,
             },
             relative_dtw: dtw(&r.free())?,
@@ -343,21 +196,50 @@ fn one(
             finished: r.finished,
             swings,
             replans: s.replans(),
-            displaced: r.displaced_from(&plain.path),
-        })
+            displaced: r.displaced(&plain.path),
+            closed_loop: s.closed_loop(),
+            seconds: (r.path.len() - 1) as f64 * tick_s,
+        };
+        Ok((run, r))
     };
-    Ok(disturbances
-        .iter()
-        .map(|d| disturbed(d).unwrap_or_else(|e| LoopRun::failed(method, target, e)))
+    let runs = sets.iter().map(disturbed).collect();
+    Ok((plain, runs))
+}
+
+/// `method` on one fold (learned from `train`, the held-out demonstration `target`),
+/// undisturbed and then with each of `disturbances`: one run per disturbance.
+fn one(
+    method: Method,
+    learned: &Learned,
+    train: &[Demonstration],
+    target: &Demonstration,
+    against: &Against,
+    disturbances: &[Disturbance],
+    plant: &dyn Plant,
+) -> Result<Vec<LoopRun>, String> {
+    let initial = target.rows.first().ok_or("no samples")?;
+    let period = sample_period(target);
+    let none = Conditions::default();
+    let make = || learned.stepper(method, train, initial, &none, period);
+    let limit = 8 * target.rows.len().max(1) + 400;
+    let sets: Vec<Vec<Disturbance>> = disturbances.iter().map(|d| vec![d.clone()]).collect();
+    let (_, runs) = method_runs(method, &make, plant, initial, against, &sets, limit, period)?;
+    Ok((runs.into_iter())
+        .map(|r| {
+            r.map_or_else(
+                |e| LoopRun::failed(method, &target.source, e),
+                |(run, _)| run,
+            )
+        })
         .collect())
 }
 
 impl LoopRun {
-    /// The run of `method` on the fold of `target` that did not happen, and why.
-    fn failed(method: Method, target: &Demonstration, why: String) -> LoopRun {
+    /// The run of `method` (on the fold of `demonstration`) that did not happen, and why.
+    pub fn failed(method: Method, demonstration: &str, why: String) -> LoopRun {
         LoopRun {
             method,
-            demonstration: target.source.clone(),
+            demonstration: demonstration.to_string(),
             error: Some(why),
             final_error: f64::NAN,
             jump: f64::NAN,
@@ -366,7 +248,9 @@ impl LoopRun {
             finished: false,
             swings: None,
             replans: 0,
-            displaced: f64::NAN,
+            displaced: Vec::new(),
+            closed_loop: false,
+            seconds: f64::NAN,
         }
     }
 }
@@ -380,7 +264,7 @@ pub fn in_loop(
     config: &HsomConfig,
     study: &[GestureLoo],
     methods: &[Method],
-    disturbances: &[LoopDisturbance],
+    disturbances: &[Disturbance],
     plant: &dyn Plant,
     pool: &Pool,
 ) -> Vec<Vec<GestureLoop>> {
@@ -404,6 +288,13 @@ pub fn in_loop(
                 hi - lo
             })
             .collect();
+        let against = Against {
+            demos: std::slice::from_ref(target),
+            diagonal: s.diagonal,
+            extent,
+            swing_joint: crate::robot::Robot::of_columns(&target.columns)
+                .map(|r| r.swing_joint().0),
+        };
         // what the study's fold learned, else learned here (once a fold)
         let kept = s.held_out.get(i).map(|f| &f.learned);
         let period = sample_period(target);
@@ -419,20 +310,10 @@ pub fn in_loop(
                     None => Learned::fit(m, &train, period, GMR_COMPONENTS, &mut hsom)
                         .map(|(l, _)| Arc::new(l)),
                 };
-                let r = learned.and_then(|l| {
-                    one(
-                        m,
-                        &l,
-                        &train,
-                        target,
-                        s.diagonal,
-                        &extent,
-                        disturbances,
-                        plant,
-                    )
-                });
+                let r =
+                    learned.and_then(|l| one(m, &l, &train, target, &against, disturbances, plant));
                 r.unwrap_or_else(|e| {
-                    let failed = LoopRun::failed(m, target, e);
+                    let failed = LoopRun::failed(m, &target.source, e);
                     vec![failed; disturbances.len()]
                 })
             })
@@ -456,7 +337,7 @@ pub fn in_loop(
 /// [`FINAL_SHARE`] of the diagonal, did not jump ([`JUMP_RATIO`]), made at least the
 /// undisturbed run's swings, and the median relative DTW disturbed (without the disturbed ticks) and
 /// undisturbed.
-pub fn loop_markdown(disturbance: &LoopDisturbance, gestures: &[GestureLoop]) -> String {
+pub fn loop_markdown(disturbance: &Disturbance, gestures: &[GestureLoop]) -> String {
     let mut t = Table::new([
         "method",
         "folds run",
@@ -505,7 +386,7 @@ pub fn loop_markdown(disturbance: &LoopDisturbance, gestures: &[GestureLoop]) ->
             },
             med(|r| r.relative_dtw),
             med(|r| r.undisturbed_dtw),
-            med(|r| r.displaced),
+            med(|r| r.displaced.first().copied().unwrap_or(f64::NAN)),
         ]);
     }
     // why a method did not run, each reason once with the folds it stopped
@@ -518,7 +399,7 @@ pub fn loop_markdown(disturbance: &LoopDisturbance, gestures: &[GestureLoop]) ->
             }
         }
     }
-    let mut out = format!("## In the loop: {}\n\n{t}\n", disturbance.name());
+    let mut out = format!("## In the loop: {}\n\n{t}\n", disturbance.describe());
     for (m, w, n) in why {
         out.push_str(&format!("- {}: {w} ({n} folds)\n", m.name()));
     }

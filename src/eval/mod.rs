@@ -43,7 +43,9 @@ pub use fold::{
     all_but, diagonal, fold, fold_scores, run_fold, scored, sitting, Conditioning, FoldInput,
     FoldRuns, MethodRun, Split, Training, GMR_UNCONDITIONED, SWING_MIN_AMPLITUDE_RAD,
 };
-pub use in_loop::{in_loop, loop_markdown, GestureLoop, LoopDisturbance, LoopRun, LOOP_METHODS};
+pub use in_loop::{
+    in_loop, loop_markdown, method_runs, Against, GestureLoop, LoopRun, Runs, LOOP_METHODS,
+};
 pub use learned::{Fitted, Kept, Learned, Planned};
 pub use loo::{
     leave_one_out, loo_folds, loo_map, read_gestures_at, Gestures, LooError, LooSettings,

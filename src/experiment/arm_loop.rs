@@ -1,13 +1,11 @@
-//! `simulate --loop closed`: the learned gesture reproduced in the loop on the simulated arm.
+//! `simulate --loop closed`: the learned gesture reproduced in the loop on the simulated arm,
+//! the loop study of `cosco heldout --disturb` ([`method_runs`]) on the arm's [`ArmLoop`].
 //! Each method's stepper ([`Learned`]: the hierarchy, the DMP on the observed state, GMM/GMR by
-//! its clock) drives the arm at 40 Hz from what its encoders read
-//! ([`crate::sim::in_loop::run_in_loop`]), from the first demonstration's initial posture,
-//! undisturbed and then while a hand holds the arm, a force pushes a link or the goal moves
-//! ([`ArmDisturbance`]). Per method: finished or not, the re-plans, the final error, the largest
-//! step after the release against the demonstrations' largest, the DTW without the disturbed
-//! ticks (disturbed and undisturbed) and the swings. Written into the job's directory:
-//! `in_loop.csv` (the hierarchy's run), `in_loop.png` and the report's section; the clip films
-//! the hierarchy's disturbed run, the disturbance captioned and a pushed link marked.
+//! its clock) drives the arm at 40 Hz from what its encoders read, from the first
+//! demonstration's initial posture, undisturbed and then while a hand holds the arm, a force
+//! pushes a link or the goal moves (every [`Disturbance`] of the flags at once). What this
+//! study keeps of its own: `in_loop.csv` (the hierarchy's run), `in_loop.png`, the report's
+//! section, and the clip's marks (the disturbance captioned, a pushed link marked).
 
 use std::path::Path;
 
@@ -15,15 +13,14 @@ use serde::Serialize;
 
 use crate::condition::Conditions;
 use crate::demos::{sample_period, Demonstration};
-use crate::dtw::{dtw_distance, euclidean, Band as DtwBand};
-use crate::eval::{Learned, Method, GMR_COMPONENTS};
+use crate::eval::{method_runs, Against, Learned, LoopRun, Method, GMR_COMPONENTS};
 use crate::hsom::Hsom;
-use crate::metrics::{column_swings, diagonal};
+use crate::metrics::diagonal;
 use crate::plot::{demo_color, panels_png, Band, Panel, Series, BLACK};
 use crate::robot::Robot;
-use crate::sim::in_loop::{run_in_loop, ArmDisturbance, ArmRun};
-use crate::sim::{ControllerConfig, NaoArm};
-use crate::stepper::kinematic::{free_rows, largest_step};
+use crate::sim::in_loop::ArmLoop;
+use crate::sim::{ControllerConfig, NaoArm, Recording};
+use crate::stepper::{Disturbance, Kind, Trace};
 use crate::table::Table;
 
 use super::ExperimentError;
@@ -43,80 +40,97 @@ pub enum LoopMode {
 /// and the open-loop control.
 const METHODS: [Method; 3] = [Method::Hierarchy, Method::Dmp, Method::GmmGmr];
 
-/// One method's runs in the loop.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct LoopMethod {
-    /// The method.
-    pub method: String,
-    /// Whether the reading changes what it commands.
-    pub closed_loop: bool,
-    /// Why it did not run (it cannot be fitted, or cannot take a disturbance).
-    pub error: Option<String>,
-    /// Whether it said it was done, the arm free, before the time limit.
-    pub finished: bool,
-    /// Its re-plans in the disturbed run.
-    pub replans: usize,
-    /// The disturbed run's duration, s.
-    pub seconds: f64,
-    /// The disturbed run's end from where it should end (the undisturbed run's end; with a
-    /// moved goal, the goal), a share of the demonstrations' diagonal.
-    pub final_error: f64,
-    /// The largest step after the last release (or the goal's move) over the demonstrations'
-    /// largest step (above 2: a jump).
-    pub jump: f64,
-    /// DTW per step of the disturbed run without its disturbed ticks against the
-    /// demonstrations (mean), a share of the diagonal.
-    pub relative_dtw: f64,
-    /// The same of the undisturbed run.
-    pub undisturbed_dtw: f64,
-    /// LElbowRoll's swings over the whole run, the disturbed ticks included (the left arm):
-    /// disturbed, undisturbed.
-    pub swings: Option<[usize; 2]>,
-    /// Per disturbance, how far it took the arm from where the undisturbed run had it (rad, the
-    /// largest over the joints and the ticks it acted; 0 for a goal's move).
-    pub displaced: Vec<f64>,
-}
-
 /// The report's section of the loop.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct LoopSection {
     /// The disturbances, described.
     pub disturbances: Vec<String>,
-    /// Per method, its runs.
-    pub methods: Vec<LoopMethod>,
+    /// Per method, its run.
+    pub methods: Vec<LoopRun>,
+}
+
+/// A run as the report's JSON has it.
+#[derive(Serialize)]
+struct ArmRow<'a> {
+    method: &'a str,
+    closed_loop: bool,
+    error: &'a Option<String>,
+    finished: bool,
+    replans: usize,
+    seconds: f64,
+    final_error: f64,
+    jump: f64,
+    relative_dtw: f64,
+    undisturbed_dtw: f64,
+    swings: Option<[usize; 2]>,
+    displaced: &'a [f64],
+}
+
+/// As `{"disturbances": [...], "methods": [...]}`, each run with whether its loop is closed,
+/// its duration and its swings disturbed and undisturbed.
+impl Serialize for LoopSection {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        #[derive(Serialize)]
+        struct Section<'a> {
+            disturbances: &'a [String],
+            methods: Vec<ArmRow<'a>>,
+        }
+        let methods = (self.methods.iter())
+            .map(|m| ArmRow {
+                method: m.method.name(),
+                closed_loop: m.closed_loop,
+                error: &m.error,
+                finished: m.finished,
+                replans: m.replans,
+                seconds: m.seconds,
+                final_error: m.final_error,
+                jump: m.jump,
+                relative_dtw: m.relative_dtw,
+                undisturbed_dtw: m.undisturbed_dtw,
+                swings: m.swings.map(|[a, b, _]| [a, b]),
+                displaced: &m.displaced,
+            })
+            .collect();
+        let disturbances = &self.disturbances;
+        Section {
+            disturbances,
+            methods,
+        }
+        .serialize(s)
+    }
 }
 
 /// The hierarchy's disturbed run, to film and draw.
 pub struct HierarchyLoop {
     /// The run.
-    pub run: ArmRun,
+    pub run: Recording,
+    /// Per sample of the run: whether a hold, a move or a push had the arm.
+    pub held: Vec<bool>,
     /// Its undisturbed run.
-    pub undisturbed: ArmRun,
+    pub undisturbed: Recording,
     /// The disturbances it ran with.
-    pub disturbances: Vec<ArmDisturbance>,
+    pub disturbances: Vec<Disturbance>,
 }
 
-/// How far `d` took the arm of `run` from where the undisturbed run `plain` had it: the
-/// largest distance over the joints and the ticks it acted.
-fn displaced(run: &ArmRun, plain: &[Vec<f64>], d: &ArmDisturbance) -> f64 {
-    (run.recording
-        .time
-        .iter()
-        .zip(&run.recording.qpos)
-        .zip(plain))
-    .filter(|((t, _), _)| d.acts_at(**t))
-    .flat_map(|((_, a), b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
-    .fold(0.0, f64::max)
+/// `trace`'s readings and commands as a recording of `robot` at `rate` Hz.
+fn recording(trace: Trace, rate: f64, robot: Robot) -> Recording {
+    let mut r = Recording::new(rate, robot);
+    r.time = (0..trace.path.len())
+        .map(|k| k as f64 * (1.0 / rate))
+        .collect();
+    r.qpos = trace.path;
+    r.target = trace.commanded;
+    r
 }
 
 /// Every method of [`METHODS`] in the loop on `arm`, learned from `demos` (the hierarchy is
-/// `model`), undisturbed and with `disturbances`; `in_loop.csv` and `in_loop.png` written into
-/// `out` (listed in `files`). The section and the hierarchy's run.
+/// `model`), undisturbed and with `disturbances` (seconds, amounts absolute); `in_loop.csv`
+/// written into `out` (listed in `files`). The section and the hierarchy's run.
 pub fn closed_loop<const N: usize>(
     arm: &NaoArm<N>,
     model: &Hsom,
     demos: &[Demonstration],
-    disturbances: &[ArmDisturbance],
+    disturbances: &[Disturbance],
     out: &Path,
     files: &mut Vec<String>,
 ) -> Result<(LoopSection, HierarchyLoop), ExperimentError> {
@@ -129,90 +143,46 @@ pub fn closed_loop<const N: usize>(
         record_rate_hz: 1.0 / period,
         ..ControllerConfig::default()
     };
-    let diag = diagonal(demos).max(f64::MIN_POSITIVE);
-    let demo_step = (demos.iter().map(|d| largest_step(&d.rows, 1))).fold(0.0, f64::max);
+    let rate = config.record_rate_hz;
     let longest = demos.iter().map(|d| d.rows.len()).max().unwrap_or(1) as f64 * period;
-    let limit_s = (4.0 * longest + 10.0).min(3600.0);
-    let goal = disturbances.iter().rev().find_map(|d| match d {
-        ArmDisturbance::Goal { goal, at_s } => Some((goal.clone(), *at_s)),
-        _ => None,
-    });
-    let swing_joint = (arm.robot() == Robot::LeftArm).then(|| arm.robot().swing_joint().0);
-    let swings = |rows: &[Vec<f64>]| {
-        swing_joint.and_then(|j| column_swings(rows, j, crate::eval::SWING_MIN_AMPLITUDE_RAD).ok())
+    let limit = ((4.0 * longest + 10.0).min(3600.0) * rate).floor() as usize;
+    let robot = arm.robot();
+    let against = Against {
+        demos,
+        diagonal: diagonal(demos).max(f64::MIN_POSITIVE),
+        extent: Vec::new(),
+        swing_joint: (robot == Robot::LeftArm).then(|| robot.swing_joint().0),
     };
-    let dtw = |rows: &[Vec<f64>]| -> f64 {
-        let costs: Vec<f64> = (demos.iter())
-            .filter_map(|d| dtw_distance(rows, &d.rows, DtwBand::None).ok())
-            .map(|c| c.per_step() / diag)
-            .collect();
-        costs.iter().sum::<f64>() / costs.len().max(1) as f64
-    };
+    let plant = ArmLoop { arm, config };
+    let sets = [disturbances.to_vec()];
     let mut methods = Vec::new();
     let mut hierarchy = None;
     let shared = std::sync::Arc::new(model.clone());
     for method in METHODS {
-        let runs = (|| -> Result<(ArmRun, ArmRun, bool, usize), String> {
+        let runs = (|| {
             let hsom = &mut |_| Ok((shared.clone(), 0.0));
             let (learned, _) = Learned::fit(method, demos, period, GMR_COMPONENTS, hsom)?;
             let none = Conditions::default();
             let make = || learned.stepper(method, demos, &initial, &none, period);
-            let mut plain = make()?;
-            let undisturbed = run_in_loop(arm, &config, plain.as_mut(), &initial, &[], limit_s)
-                .map_err(|e| e.to_string())?;
-            let mut s = make()?;
-            let closed = s.closed_loop();
-            let disturbed = run_in_loop(arm, &config, s.as_mut(), &initial, disturbances, limit_s)
-                .map_err(|e| e.to_string())?;
-            Ok((undisturbed, disturbed, closed, s.replans()))
+            let (plain, mut runs) = method_runs(
+                method, &make, &plant, &initial, &against, &sets, limit, period,
+            )?;
+            Ok::<_, String>((plain, runs.remove(0)?))
         })();
-        let (undisturbed, disturbed, closed, replans) = match runs {
+        let (plain, (mut run, trace)) = match runs {
             Ok(r) => r,
             Err(e) => {
-                methods.push(LoopMethod::failed(method, e));
+                methods.push(LoopRun::failed(method, &first.source, e));
                 continue;
             }
         };
-        let rows = &disturbed.recording.qpos;
-        let should_end = match &goal {
-            Some((g, _)) => g.clone(),
-            None => undisturbed
-                .recording
-                .qpos
-                .last()
-                .cloned()
-                .unwrap_or_default(),
-        };
-        let release = disturbed.held.iter().rposition(|h| *h).map_or(1, |k| k + 1);
-        let moved = goal
-            .as_ref()
-            .map_or(1, |(_, at)| (at / period).round() as usize + 1);
-        let (free_rows, plain_rows) = (
-            free_rows(&disturbed.recording.qpos, &disturbed.held),
-            &undisturbed.recording.qpos,
-        );
-        methods.push(LoopMethod {
-            method: method.name().to_string(),
-            closed_loop: closed,
-            error: None,
-            finished: disturbed.finished,
-            replans,
-            seconds: disturbed.recording.time.last().copied().unwrap_or(0.0),
-            final_error: rows
-                .last()
-                .map_or(f64::NAN, |e| euclidean(e, &should_end) / diag),
-            jump: largest_step(rows, release.max(moved)) / demo_step.max(f64::MIN_POSITIVE),
-            relative_dtw: dtw(&free_rows),
-            undisturbed_dtw: dtw(plain_rows),
-            swings: swings(rows).zip(swings(plain_rows)).map(|(a, b)| [a, b]),
-            displaced: (disturbances.iter())
-                .map(|d| displaced(&disturbed, plain_rows, d))
-                .collect(),
-        });
+        run.seconds = (trace.path.len() - 1) as f64 * (1.0 / rate);
+        methods.push(run);
         if method == Method::Hierarchy {
             hierarchy = Some(HierarchyLoop {
-                run: disturbed,
-                undisturbed,
+                held: trace.held.clone(),
+                run: recording(trace, rate, robot),
+                undisturbed: recording(plain, rate, robot),
                 disturbances: disturbances.to_vec(),
             });
         }
@@ -224,32 +194,13 @@ pub fn closed_loop<const N: usize>(
             .unwrap_or_default();
         ExperimentError::Invalid(format!("the hierarchy could not run in the loop: {why}"))
     })?;
-    write_loop_csv(&out.join("in_loop.csv"), arm.robot(), &hierarchy)?;
+    write_loop_csv(&out.join("in_loop.csv"), robot, &hierarchy)?;
     files.push("in_loop.csv".into());
     let section = LoopSection {
-        disturbances: disturbances.iter().map(ArmDisturbance::describe).collect(),
+        disturbances: disturbances.iter().map(Disturbance::describe).collect(),
         methods,
     };
     Ok((section, hierarchy))
-}
-
-impl LoopMethod {
-    fn failed(method: Method, why: String) -> LoopMethod {
-        LoopMethod {
-            method: method.name().to_string(),
-            closed_loop: false,
-            error: Some(why),
-            finished: false,
-            replans: 0,
-            seconds: f64::NAN,
-            final_error: f64::NAN,
-            jump: f64::NAN,
-            relative_dtw: f64::NAN,
-            undisturbed_dtw: f64::NAN,
-            swings: None,
-            displaced: Vec::new(),
-        }
-    }
 }
 
 /// `in_loop.csv`: per tick, `time`, `disturbed` (1 while a hold, move or push has the arm),
@@ -263,11 +214,11 @@ fn write_loop_csv(path: &Path, robot: Robot, h: &HierarchyLoop) -> Result<(), Ex
         .chain(names.iter().map(|n| format!("{n}_command")));
     let werr = |e: csv::Error| ExperimentError::Invalid(format!("writing {}: {e}", path.display()));
     w.write_record(header.collect::<Vec<_>>()).map_err(werr)?;
-    let rec = &h.run.recording;
+    let rec = &h.run;
     for k in 0..rec.len() {
         let row = [
             format!("{:.3}", rec.time[k]),
-            u8::from(h.run.held[k]).to_string(),
+            u8::from(h.held[k]).to_string(),
         ];
         let row = row
             .into_iter()
@@ -306,7 +257,7 @@ pub fn loop_markdown(s: &LoopSection) -> String {
     ]);
     for m in s.methods.iter().filter(|m| m.error.is_none()) {
         t.row([
-            m.method.clone(),
+            m.method.name().to_string(),
             (if m.closed_loop {
                 "closed"
             } else {
@@ -319,7 +270,8 @@ pub fn loop_markdown(s: &LoopSection) -> String {
             format!("{:.2}", m.jump),
             format!("{:.4}", m.relative_dtw),
             format!("{:.4}", m.undisturbed_dtw),
-            m.swings.map_or("n/a".into(), |[a, b]| format!("{a} / {b}")),
+            m.swings
+                .map_or("n/a".into(), |[a, b, _]| format!("{a} / {b}")),
             match m.displaced.is_empty() {
                 true => "n/a".into(),
                 false => (m.displaced.iter().map(|d| format!("{d:.3}")))
@@ -332,7 +284,7 @@ pub fn loop_markdown(s: &LoopSection) -> String {
     for m in s
         .methods
         .iter()
-        .filter_map(|m| Some((&m.method, m.error.as_ref()?)))
+        .filter_map(|m| Some((m.method.name(), m.error.as_ref()?)))
     {
         out.push_str(&format!("- {} did not run: {}\n", m.0, m.1));
     }
@@ -352,7 +304,7 @@ pub fn loop_png(
     demos: &[Demonstration],
     h: &HierarchyLoop,
 ) -> Result<(), ExperimentError> {
-    let rec = &h.run.recording;
+    let rec = &h.run;
     let out: Vec<Panel> = (panels.iter().enumerate())
         .map(|(i, &(k, name))| {
             let mut p = Panel::new(name, "time (s)", crate::robot::axis_label(name));
@@ -369,13 +321,13 @@ pub fn loop_png(
                 (a.min(v), b.max(v))
             });
             for (j, d) in h.disturbances.iter().enumerate() {
-                if matches!(d, ArmDisturbance::Goal { .. }) {
+                if matches!(d.kind, Kind::Goal(_)) {
                     continue;
                 }
                 p.bands.push(Band {
                     label: Some(d.describe()).filter(|_| first),
                     color: crate::plot::PALETTE[(j + 3) % crate::plot::PALETTE.len()],
-                    points: vec![(d.at_s(), lo, hi), (d.until_s(), lo, hi)],
+                    points: vec![(d.at, lo, hi), (d.until(), lo, hi)],
                 });
             }
             for (j, d) in demos.iter().enumerate() {
@@ -388,7 +340,7 @@ pub fn loop_png(
                 s.label = s.label.filter(|_| first && j == 0);
                 p.series.push(s);
             }
-            let u = &h.undisturbed.recording;
+            let u = &h.undisturbed;
             let mut s = Series::new(
                 "the hierarchy undisturbed",
                 plotters::style::RGBColor(150, 150, 150),
@@ -432,13 +384,13 @@ pub fn mark_frame(
     size: (u32, u32),
     frame: &mut image::RgbImage,
 ) {
-    let t = h.run.recording.time.get(i).copied().unwrap_or(0.0);
+    let t = h.run.time.get(i).copied().unwrap_or(0.0);
     let mut what = Vec::new();
     for d in &h.disturbances {
-        match d {
-            ArmDisturbance::Hold { .. } if d.acts_at(t) => what.push("held".to_string()),
-            ArmDisturbance::Move { .. } if d.acts_at(t) => what.push("moved, held".to_string()),
-            ArmDisturbance::Push { body, force, .. } if d.acts_at(t) => {
+        match &d.kind {
+            Kind::Hold if d.acts_at(t) => what.push("held".to_string()),
+            Kind::Move(_) if d.acts_at(t) => what.push("moved, held".to_string()),
+            Kind::Push { body, force } if d.acts_at(t) => {
                 let n = force.iter().map(|f| f * f).sum::<f64>().sqrt();
                 what.push(format!("{body} pushed, {n:.0} N"));
                 let id = data.model().body_id(body);
@@ -453,7 +405,7 @@ pub fn mark_frame(
                     }
                 }
             }
-            ArmDisturbance::Goal { at_s, .. } if t >= *at_s && t < at_s + GOAL_CAPTION_S => {
+            Kind::Goal(_) if t >= d.at && t < d.at + GOAL_CAPTION_S => {
                 what.push("goal moved".to_string())
             }
             _ => {}

@@ -62,10 +62,7 @@ pub fn record_demonstrations<const N: usize>(
     }
     let mut out = Vec::with_capacity(count);
     for i in 0..count {
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        rng.set_stream(i as u64 + 1);
-        let human = HumanTrajectory::sample(gesture, &settings.variation, &mut rng)
-            .map_err(ExperimentError::Invalid)?;
+        let human = demonstrator(gesture, i, seed, settings)?;
         let controller = Controller::new(ControllerConfig {
             record_rate_hz: settings.record_rate_hz,
             encoder_noise_std: settings.encoder_noise,
@@ -83,6 +80,32 @@ pub fn record_demonstrations<const N: usize>(
         on_done(i);
     }
     Ok(out)
+}
+
+/// The person guiding demonstration `i` (from 0) of `gesture` with `seed`.
+fn demonstrator(
+    gesture: &Gesture,
+    i: usize,
+    seed: u64,
+    settings: &DemoSettings,
+) -> Result<HumanTrajectory, ExperimentError> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(i as u64 + 1);
+    HumanTrajectory::sample(gesture, &settings.variation, &mut rng)
+        .map_err(ExperimentError::Invalid)
+}
+
+/// How long the longest of the `count` demonstrations [`record_demonstrations`] records
+/// lasts, s, known without simulating them (their demonstrators' lengths).
+pub fn demonstration_seconds(
+    gesture: &Gesture,
+    count: usize,
+    seed: u64,
+    settings: &DemoSettings,
+) -> Result<f64, ExperimentError> {
+    (0..count).try_fold(0.0, |longest: f64, i| {
+        Ok(longest.max(demonstrator(gesture, i, seed, settings)?.duration()))
+    })
 }
 
 /// [`record_demonstrations`] as demonstrations named `"<gesture> demonstration N (seed S)"`

@@ -12,12 +12,16 @@ use crate::demos::Demonstration;
 use crate::eval::Training;
 use crate::gesture::Gesture;
 use crate::plot::BLACK;
+use crate::sim::in_loop::resistible_force;
 use crate::sim::{check_reachable_of, demo_wrist_paths, NaoArm, Recording, Touch, Transition};
+use crate::stepper::Kind;
 
 use super::arm_loop::{self, LoopMode};
 use super::baseline::GMR_NAME;
 use super::compare;
-use super::demonstrate::{as_demonstrations, record_demonstrations, write_demos};
+use super::demonstrate::{
+    as_demonstrations, demonstration_seconds, record_demonstrations, write_demos,
+};
 use super::figures::{
     demo_curves, demo_paths, joint_panels_png, reproduction, right_wrist_png, wrist_png, BandTrace,
 };
@@ -27,7 +31,6 @@ use super::report::{DemoInfo, Report};
 use super::variants::{reference_variants, run_variant, variants};
 use super::{film, leave_one_out, DemoSettings, ExperimentError, Progress};
 use crate::robot::Robot;
-use crate::sim::in_loop::ArmDisturbance;
 
 /// The result of a job's step.
 type Result<T> = std::result::Result<T, ExperimentError>;
@@ -89,6 +92,60 @@ fn record_traced<const N: usize>(
         done.set(done.get() + 1);
         on_progress("demonstrating", done.get(), count);
     })
+}
+
+/// The loop's disturbances of `job` (`--hold`, `--push`, `--goal-at`) checked against `arm`
+/// before any work: a goal of one value per joint within the joint ranges (as `cosco
+/// reproduce --goal` holds it), a pushed link of the model, each starting within the motion
+/// (the longest demonstration, known without simulating: `--demos`' files, or the
+/// demonstrators' lengths). A push the servos cannot hold the link against at the initial
+/// posture ([`resistible_force`]) is a warning with the figure.
+fn check_loop<const N: usize>(
+    job: &Job,
+    arm: &NaoArm<N>,
+    state_length: usize,
+) -> Result<Vec<String>> {
+    let robot = arm.robot();
+    let (motion, initial) = match &job.demos {
+        Some(dir) => {
+            let demos = read_demos(std::slice::from_ref(dir), Some(state_length), job.resample)?;
+            let seconds = |d: &Demonstration| {
+                d.rows.len().saturating_sub(1) as f64 * crate::demos::sample_period(d)
+            };
+            let motion = demos.iter().map(seconds).fold(0.0, f64::max);
+            (motion, demos[0].rows.first().cloned().unwrap_or_default())
+        }
+        None => {
+            let g = gesture(robot, &job.gesture, robot == Robot::LeftArm)?;
+            let settings = DemoSettings::default();
+            let motion = demonstration_seconds(&g, job.count, job.seed, &settings)?;
+            (motion, g.initial.to_vec())
+        }
+    };
+    let columns: Vec<String> = robot.joint_names().iter().map(|n| n.to_string()).collect();
+    let links: Vec<String> = (1..arm.model().nbody())
+        .filter_map(|i| arm.model().body_name(i))
+        .collect();
+    let mut warnings = Vec::new();
+    for d in &job.disturbances {
+        (d.check(&columns, Some(&robot.ranges()), Some(&links), motion))
+            .map_err(ExperimentError::Invalid)?;
+        let Kind::Push { body, force } = &d.kind else {
+            continue;
+        };
+        let norm = force.iter().map(|f| f * f).sum::<f64>().sqrt();
+        if let Some((holds, joint)) = resistible_force(arm, &initial, body, *force)? {
+            if norm > holds {
+                warnings.push(format!(
+                    "{}: {norm:.0} N is beyond the {holds:.1} N the servos hold {body} against \
+                     along it at the initial posture ({joint} gives way first, its torque limit \
+                     over the lever of the force about its axis): the arm will be thrown",
+                    d.describe()
+                ));
+            }
+        }
+    }
+    Ok(warnings)
 }
 
 /// The configuration of the main job on `robot` from `path`, or without one the robot's
@@ -177,7 +234,7 @@ pub struct Job {
     /// its encoders ([`super::arm_loop`]); the clip then films the hierarchy's run.
     pub in_loop: LoopMode,
     /// What disturbs the arm in the loop (`--hold`, `--push`, `--goal-at`).
-    pub disturbances: Vec<ArmDisturbance>,
+    pub disturbances: Vec<crate::stepper::Disturbance>,
     /// With `--gesture all`: stream each gesture's last held-out demonstration into the
     /// recogniser and film it captioned with the committed label.
     pub recognize: bool,
@@ -227,6 +284,10 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
     let out = &job.out;
     let (cfg, cfg_name) = job_config(robot, job.config.as_deref())?;
     let arm = load_robot::<N>(robot, job.model.as_deref())?;
+    if job.in_loop == LoopMode::Closed {
+        warnings.extend(check_loop(job, &arm, cfg.params().state_length)?);
+    }
+    std::fs::create_dir_all(out.join("demos")).map_err(ExperimentError::io("creating", out))?;
     let mut files = Vec::new();
 
     // 1. Demonstrations (with their contacts, on a model with collision shapes).
@@ -417,7 +478,7 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
     if job.render {
         let opts = super::film::clip_options();
         let stride = 2;
-        let filmed = in_loop.as_ref().map_or(executed, |(_, h)| &h.run.recording);
+        let filmed = in_loop.as_ref().map_or(executed, |(_, h)| &h.run);
         let frames = filmed.len().div_ceil(stride);
         let progress = |n, _| on_progress("rendering", n, frames);
         let clip = match &in_loop {

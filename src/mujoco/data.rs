@@ -228,6 +228,10 @@ impl<'m> Data<'m> {
     pub fn body_xpos(&self, body: usize) -> [f64; 3] {
         self.vec3(self.raw().xpos, body, self.model.nbody(), "body")
     }
+    /// World position of body `id`'s centre of mass. Panics when `id >= nbody()`.
+    pub fn body_xipos(&self, body: usize) -> [f64; 3] {
+        self.vec3(self.raw().xipos, body, self.model.nbody(), "body")
+    }
     /// World position of joint `id`'s anchor. Panics when `id >= njnt()`.
     pub fn xanchor(&self, joint: usize) -> [f64; 3] {
         self.vec3(self.raw().xanchor, joint, self.model.njnt(), "joint")

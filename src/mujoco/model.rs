@@ -417,6 +417,16 @@ impl Model {
         // Safety: body_mass has nbody entries.
         unsafe { Self::at(self.raw().body_mass, id, self.nbody()) }
     }
+    /// The parent of body `id` (the world's is itself, 0). Panics when `id >= nbody()`.
+    pub fn body_parent(&self, id: usize) -> usize {
+        // Safety: body_parentid has nbody entries.
+        unsafe { Self::at(self.raw().body_parentid, id, self.nbody()) as usize }
+    }
+    /// The body joint `id` moves. Panics when `id >= njnt()`.
+    pub fn joint_body(&self, id: usize) -> usize {
+        // Safety: jnt_bodyid has njnt entries.
+        unsafe { Self::at(self.raw().jnt_bodyid, id, self.njnt()) as usize }
+    }
     /// The body geom `id` belongs to. Panics when `id >= ngeom()`.
     pub fn geom_body(&self, id: usize) -> usize {
         // Safety: geom_bodyid has ngeom entries.

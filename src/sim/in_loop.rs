@@ -2,17 +2,17 @@
 //! read, the [`Stepper`] is given the reading and answers the next posture, and the servos are
 //! sent toward it along a straight line over the tick (with its velocity as the feed-forward),
 //! as a plan is followed ([`crate::sim::Controller::follow`]). Meanwhile the arm can be
-//! disturbed ([`ArmDisturbance`]): a hand holds it where it is, a force pushes one of its
-//! links (MuJoCo's applied forces), or the goal moves.
+//! disturbed ([`Disturbance`], in seconds): a hand holds it where it is, a force pushes one of
+//! its links (MuJoCo's applied forces), or the goal moves.
 //!
 //! [`ArmLoop`] implements [`Plant`], so held-out studies of the loop
 //! ([`crate::eval::in_loop`]) run every method's stepper on the arm as they do in the
 //! kinematic loop.
 //!
 //! ```
-//! use cosco_hsom::sim::in_loop::{run_in_loop, ArmDisturbance};
+//! use cosco_hsom::sim::in_loop::run_in_loop;
 //! use cosco_hsom::sim::{ControllerConfig, NaoArm, NamedPosture};
-//! use cosco_hsom::stepper::ByClock;
+//! use cosco_hsom::stepper::{ByClock, Disturbance};
 //! let arm = NaoArm::load_default()?;
 //! let start = NamedPosture::Stand.angles().to_vec();
 //! let plan: Vec<Vec<f64>> = (0..41)
@@ -20,181 +20,25 @@
 //!     .collect();
 //! let columns = arm.robot().joint_names().iter().map(|n| n.to_string()).collect();
 //! let mut stepper = ByClock::new(columns, plan, "the replay");
-//! let held = [ArmDisturbance::Hold { at_s: 0.25, seconds: 0.25 }];
+//! let held = [Disturbance::parse("hold", "0.25:0.25", cosco_hsom::stepper::Clock::Seconds)?];
 //! let run = run_in_loop(&arm, &ControllerConfig::default(), &mut stepper, &start, &held, 10.0)?;
 //! assert!(run.finished);
 //! assert_eq!(run.recording.len(), 41); // a reading a tick, the initial one first
 //! assert!(run.held[15] && !run.held[25]);
-//! # Ok::<(), cosco_hsom::sim::SimError>(())
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
-use crate::stepper::kinematic::{Disturbance, Trace};
-use crate::stepper::{Plant, Stepper, StepperError};
+use crate::stepper::{Amount, Clock, Disturbance, Kind, Plant, Stepper, StepperError, Trace};
 
 use super::arm::{ArmSim, NaoArm};
 use super::controller::ControllerConfig;
 use super::recording::Recording;
 use super::spec::clamp_posture_of;
 use super::{Result, SimError};
-
-/// What happens to the arm while a stepper drives it, in seconds from the start.
-#[derive(Debug, Clone, PartialEq)]
-pub enum ArmDisturbance {
-    /// From `at_s`, for `seconds`, a hand holds every joint where it was when grabbed (the
-    /// servos keep pushing; the encoders read the held posture).
-    Hold {
-        /// When the hand takes hold, s.
-        at_s: f64,
-        /// How long it holds, s.
-        seconds: f64,
-    },
-    /// From `at_s`, for `seconds`, the hand holds the arm displaced by `by` (rad per joint)
-    /// from where it was.
-    Move {
-        /// When, s.
-        at_s: f64,
-        /// The displacement, one value per joint.
-        by: Vec<f64>,
-        /// How long it is held there, s (at least a physics step).
-        seconds: f64,
-    },
-    /// From `at_s`, for `seconds`, the force `force` (N, world frame = the torso's) pushes
-    /// the body `body` (a link of the model: `LForeArm`, `LBicep`, ...) at its centre of mass.
-    Push {
-        /// When, s.
-        at_s: f64,
-        /// The link pushed (MuJoCo's body name).
-        body: String,
-        /// The force, N.
-        force: [f64; 3],
-        /// How long, s.
-        seconds: f64,
-    },
-    /// At `at_s` the stepper's goal moves to `goal` ([`Stepper::set_goal`]).
-    Goal {
-        /// When, s.
-        at_s: f64,
-        /// The new goal, one value per joint.
-        goal: Vec<f64>,
-    },
-}
-
-/// `T` of a flag's value: seconds, finite and >= 0.
-fn seconds(what: &str, text: &str) -> std::result::Result<f64, String> {
-    match text.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
-        _ => Err(format!("{what} `{text}` is not a time: need seconds >= 0")),
-    }
-}
-
-/// Comma-separated finite numbers.
-fn numbers(what: &str, text: &str) -> std::result::Result<Vec<f64>, String> {
-    (text.split(','))
-        .map(|v| match v.trim().parse::<f64>() {
-            Ok(x) if x.is_finite() => Ok(x),
-            _ => Err(format!("{what}: `{v}` is not a finite number")),
-        })
-        .collect()
-}
-
-impl ArmDisturbance {
-    /// `T:SECONDS`: a hand holds the arm at `T` s for `SECONDS`.
-    pub fn parse_hold(s: &str) -> std::result::Result<ArmDisturbance, String> {
-        match s.split(':').collect::<Vec<_>>()[..] {
-            [t, d] => Ok(ArmDisturbance::Hold {
-                at_s: seconds("the hold's start", t)?,
-                seconds: seconds("the hold's duration", d)?,
-            }),
-            _ => Err(format!("hold `{s}`: expected T:SECONDS (e.g. 1.0:0.5)")),
-        }
-    }
-
-    /// `T:BODY:FX,FY,FZ:SECONDS`: a force (N, torso frame) on the link `BODY` at `T` s for
-    /// `SECONDS`.
-    pub fn parse_push(s: &str) -> std::result::Result<ArmDisturbance, String> {
-        let usage = || {
-            format!("push `{s}`: expected T:BODY:FX,FY,FZ:SECONDS (e.g. 1.0:LForeArm:0,0,-8:0.3)")
-        };
-        match s.split(':').collect::<Vec<_>>()[..] {
-            [t, body, f, d] if !body.trim().is_empty() => {
-                let force = numbers("the push's force", f)?;
-                let force: [f64; 3] = force.try_into().map_err(|_| usage())?;
-                Ok(ArmDisturbance::Push {
-                    at_s: seconds("the push's start", t)?,
-                    body: body.trim().to_string(),
-                    force,
-                    seconds: seconds("the push's duration", d)?,
-                })
-            }
-            _ => Err(usage()),
-        }
-    }
-
-    /// `T:V1,...`: the goal moves to the posture `V1,...` at `T` s.
-    pub fn parse_goal(s: &str) -> std::result::Result<ArmDisturbance, String> {
-        match s.split_once(':') {
-            Some((t, v)) => Ok(ArmDisturbance::Goal {
-                at_s: seconds("the goal's time", t)?,
-                goal: numbers("the goal", v)?,
-            }),
-            None => Err(format!(
-                "goal `{s}`: expected T:V1,V2,... (one value per joint)"
-            )),
-        }
-    }
-
-    /// When it starts, s.
-    pub fn at_s(&self) -> f64 {
-        match self {
-            ArmDisturbance::Hold { at_s, .. }
-            | ArmDisturbance::Move { at_s, .. }
-            | ArmDisturbance::Push { at_s, .. }
-            | ArmDisturbance::Goal { at_s, .. } => *at_s,
-        }
-    }
-
-    /// When it ends, s (a goal's move: when it is made).
-    pub fn until_s(&self) -> f64 {
-        match self {
-            ArmDisturbance::Hold { at_s, seconds }
-            | ArmDisturbance::Move { at_s, seconds, .. }
-            | ArmDisturbance::Push { at_s, seconds, .. } => at_s + seconds,
-            ArmDisturbance::Goal { at_s, .. } => *at_s,
-        }
-    }
-
-    /// Whether it has the arm (holds, moves or pushes it) at `t` s.
-    pub fn acts_at(&self, t: f64) -> bool {
-        !matches!(self, ArmDisturbance::Goal { .. }) && t >= self.at_s() && t < self.until_s()
-    }
-
-    /// One line for people: `held at 1.00 s for 0.50 s`, `LForeArm pushed with (0, 0, -8) N
-    /// at 1.00 s for 0.30 s`, `goal moved at 1.50 s`.
-    pub fn describe(&self) -> String {
-        match self {
-            ArmDisturbance::Hold { at_s, seconds } => {
-                format!("held at {at_s:.2} s for {seconds:.2} s")
-            }
-            ArmDisturbance::Move { at_s, seconds, .. } => {
-                format!("moved at {at_s:.2} s and held for {seconds:.2} s")
-            }
-            ArmDisturbance::Push {
-                at_s,
-                body,
-                force,
-                seconds,
-            } => format!(
-                "{body} pushed with ({}, {}, {}) N at {at_s:.2} s for {seconds:.2} s",
-                force[0], force[1], force[2]
-            ),
-            ArmDisturbance::Goal { at_s, .. } => format!("goal moved at {at_s:.2} s"),
-        }
-    }
-}
 
 /// A stepper's run on the simulated arm.
 #[derive(Debug, Clone, PartialEq)]
@@ -213,8 +57,8 @@ pub struct ArmRun {
 
 /// A disturbance checked against the arm: a pushed link's body id, widths.
 enum Acting<'d> {
-    Still(&'d ArmDisturbance),
-    Push(&'d ArmDisturbance, usize, [f64; 3]),
+    Still(&'d Disturbance),
+    Push(&'d Disturbance, usize, [f64; 3]),
 }
 
 /// `stepper` (made from `initial`) drives a simulation of `arm` from `initial` until it is done
@@ -228,7 +72,7 @@ pub fn run_in_loop<const N: usize>(
     config: &ControllerConfig,
     stepper: &mut dyn Stepper,
     initial: &[f64],
-    disturbances: &[ArmDisturbance],
+    disturbances: &[Disturbance],
     limit_s: f64,
 ) -> Result<ArmRun> {
     let robot = arm.robot();
@@ -261,43 +105,28 @@ pub fn run_in_loop<const N: usize>(
             reason: "expected a finite number >= 0",
         })?;
     let mut acting = Vec::with_capacity(disturbances.len());
+    let columns: Vec<String> = robot.joint_names().iter().map(|n| n.to_string()).collect();
+    let links: Vec<String> = (1..arm.model().nbody())
+        .filter_map(|i| arm.model().body_name(i))
+        .collect();
     for d in disturbances {
-        let times_ok = d.at_s().is_finite() && d.at_s() >= 0.0 && d.until_s().is_finite();
-        if !times_ok || d.until_s() < d.at_s() {
+        let times_ok = d.at.is_finite() && d.at >= 0.0 && d.lasts.is_finite() && d.lasts >= 0.0;
+        if d.clock != Clock::Seconds || !times_ok {
             return Err(SimError::Invalid(format!(
                 "{}: its start and duration must be finite seconds >= 0",
                 d.describe()
             )));
         }
-        acting.push(match d {
-            ArmDisturbance::Push { body, force, .. } => {
-                let Some(id) = arm.model().body_id(body).filter(|&id| id > 0) else {
-                    let links: Vec<String> = (1..arm.model().nbody())
-                        .filter_map(|i| arm.model().body_name(i))
-                        .collect();
-                    return Err(SimError::Invalid(format!(
-                        "a push on `{body}`: the {} has no such link; allowed {}",
-                        robot.name(),
-                        links.join(", ")
-                    )));
-                };
-                if force.iter().any(|v| !v.is_finite()) {
-                    return Err(SimError::Invalid(format!(
-                        "{}: the force must be finite",
-                        d.describe()
-                    )));
-                }
+        (d.check(&columns, None, Some(&links), f64::INFINITY)).map_err(SimError::Invalid)?;
+        acting.push(match &d.kind {
+            Kind::Push { body, force } => {
+                let id = arm.model().body_id(body).unwrap_or_default();
                 Acting::Push(d, id, *force)
             }
-            ArmDisturbance::Move { by, .. } | ArmDisturbance::Goal { goal: by, .. }
-                if by.len() != N =>
-            {
+            Kind::Move(Amount::Diagonal(_)) | Kind::Goal(Amount::Diagonal(_)) => {
                 return Err(SimError::Invalid(format!(
-                    "{}: {} values given; the {} has {N} joints ({})",
-                    d.describe(),
-                    by.len(),
-                    robot.name(),
-                    robot.joint_names().join(", ")
+                    "{}: the simulated arm takes one value per joint, not a share of the diagonal",
+                    d.describe()
                 )));
             }
             _ => Acting::Still(d),
@@ -338,7 +167,7 @@ pub fn run_in_loop<const N: usize>(
         run.recording.wrist.push(sim.wrist_position());
         run.recording.gripper.push(sim.gripper_position());
         run.held.push(held);
-        let pending = acting.iter().any(|a| a.disturbance().until_s() > t);
+        let pending = acting.iter().any(|a| a.disturbance().until() > t);
         if stepper.done() && !held && !pending {
             run.recording.target.push(last.to_vec());
             run.finished = true;
@@ -349,8 +178,8 @@ pub fn run_in_loop<const N: usize>(
             break;
         }
         for (i, d) in disturbances.iter().enumerate() {
-            if let (ArmDisturbance::Goal { at_s, goal }, false) = (d, goals_done[i]) {
-                if *at_s <= t + 1e-9 {
+            if let (Kind::Goal(Amount::Absolute(goal)), false) = (&d.kind, goals_done[i]) {
+                if d.at <= t + 1e-9 {
                     stepper.set_goal(goal).map_err(|e| stepper_error(d, e))?;
                     goals_done[i] = true;
                 }
@@ -385,13 +214,60 @@ pub fn run_in_loop<const N: usize>(
     Ok(run)
 }
 
+/// The largest force along `force` the servos hold the link `body` of `arm` against at
+/// `posture`, N, and the joint that gives way first (`None`: no such link, no force, or no
+/// servo carries it). Statics, gravity aside: a newton along the force at the link's centre
+/// of mass makes about each servo's axis the torque `axis . (r x u)` (`r` from the joint's
+/// anchor); the servo holds up to its torque limit (the model's `forcerange`).
+pub fn resistible_force<const N: usize>(
+    arm: &NaoArm<N>,
+    posture: &[f64],
+    body: &str,
+    force: [f64; 3],
+) -> Result<Option<(f64, String)>> {
+    let model = arm.model();
+    let norm = force.iter().map(|f| f * f).sum::<f64>().sqrt();
+    let Some(b) = model.body_id(body).filter(|_| norm > 0.0) else {
+        return Ok(None);
+    };
+    let mut sim = arm.sim()?;
+    sim.reset_to(&clamp_posture_of::<N>(arm.robot(), posture)?)?;
+    sim.forward()?;
+    let data = sim.data();
+    let p = data.body_xipos(b);
+    let mut weakest: Option<(f64, String)> = None;
+    for a in 0..model.nu() {
+        let (Some(j), Some((lo, hi))) = (model.actuator_joint(a), model.actuator_force_range(a))
+        else {
+            continue;
+        };
+        let carries = std::iter::successors(Some(b), |&k| (k > 0).then(|| model.body_parent(k)))
+            .any(|k| k == model.joint_body(j));
+        let (o, axis) = (data.xanchor(j), data.xaxis(j));
+        let r: [f64; 3] = std::array::from_fn(|k| p[k] - o[k]);
+        let u: [f64; 3] = std::array::from_fn(|k| force[k] / norm);
+        let per_newton = (axis[0] * (r[1] * u[2] - r[2] * u[1])
+            + axis[1] * (r[2] * u[0] - r[0] * u[2])
+            + axis[2] * (r[0] * u[1] - r[1] * u[0]))
+            .abs();
+        if !carries || per_newton < 1e-9 {
+            continue;
+        }
+        let holds = lo.abs().min(hi.abs()) / per_newton;
+        if weakest.as_ref().map_or(true, |(f, _)| holds < *f) {
+            weakest = Some((holds, model.joint_name(j).unwrap_or_default()));
+        }
+    }
+    Ok(weakest)
+}
+
 /// A stepper's refusal of a disturbance, as the simulator's error.
-fn stepper_error(d: &ArmDisturbance, e: StepperError) -> SimError {
+fn stepper_error(d: &Disturbance, e: StepperError) -> SimError {
     SimError::Invalid(format!("{}: {e}", d.describe()))
 }
 
 impl Acting<'_> {
-    fn disturbance(&self) -> &ArmDisturbance {
+    fn disturbance(&self) -> &Disturbance {
         match self {
             Acting::Still(d) | Acting::Push(d, ..) => d,
         }
@@ -415,8 +291,8 @@ fn hand<const N: usize>(
             Acting::Still(d) if d.acts_at(t) => {
                 let at = *grip.get_or_insert_with(|| {
                     let now = sim.posture();
-                    match d {
-                        ArmDisturbance::Move { by, .. } => std::array::from_fn(|j| now[j] + by[j]),
+                    match &d.kind {
+                        Kind::Move(Amount::Absolute(by)) => std::array::from_fn(|j| now[j] + by[j]),
                         _ => now,
                     }
                 });
@@ -427,10 +303,10 @@ fn hand<const N: usize>(
     }
 }
 
-/// The simulated arm as a [`Plant`] for held-out studies of the loop: each run starts at the
-/// stepper's initial posture, a tick is a sample at `config`'s rate, and a disturbance's
-/// phases are shares of the duration given in ticks. A push on `body` given by the study
-/// acts as its force for its share of the duration.
+/// The simulated arm as a [`Plant`]: each run starts at the stepper's initial posture, a tick
+/// is a sample at `config`'s rate, and a disturbance on the phase clock is placed on those
+/// ticks (its start, at least the first tick, and its length, at least a tick for a move,
+/// rounded to ticks of the duration).
 pub struct ArmLoop<'a, const N: usize> {
     /// The arm.
     pub arm: &'a NaoArm<N>,
@@ -443,61 +319,45 @@ impl<const N: usize> Plant for ArmLoop<'_, N> {
         &self,
         stepper: &mut dyn Stepper,
         initial: &[f64],
-        disturbance: &Disturbance,
+        disturbances: &[Disturbance],
         duration: usize,
         limit: usize,
     ) -> std::result::Result<Trace, StepperError> {
         let rate = self.config.record_rate_hz;
-        let secs = |share: f64| (share * duration as f64).round() / rate;
-        let at = |phase: f64| (phase * duration as f64).round().max(1.0) / rate;
-        let d = match disturbance {
-            Disturbance::None => None,
-            Disturbance::Hold { at: p, share } => Some(ArmDisturbance::Hold {
-                at_s: at(*p),
-                seconds: secs(*share),
-            }),
-            Disturbance::Move { at: p, by, share } => Some(ArmDisturbance::Move {
-                at_s: at(*p),
-                by: by.clone(),
-                seconds: secs(*share).max(1.0 / rate),
-            }),
-            Disturbance::Push {
-                at: p,
-                body,
-                force,
-                share,
-            } => Some(ArmDisturbance::Push {
-                at_s: at(*p),
-                body: body.clone(),
-                force: *force,
-                seconds: secs(*share),
-            }),
-            Disturbance::Goal { at: p, goal } => Some(ArmDisturbance::Goal {
-                at_s: (p * duration as f64).round() / rate,
-                goal: goal.clone(),
-            }),
-        };
-        let limit_s = limit as f64 / rate;
-        let r = run_in_loop(
-            self.arm,
-            &self.config,
-            stepper,
-            initial,
-            d.as_slice(),
-            limit_s,
-        )
-        .map_err(|e| StepperError::method("the simulated arm", e))?;
-        let release = match &d {
-            Some(d) if !matches!(d, ArmDisturbance::Goal { .. }) => {
-                r.held.iter().rposition(|h| *h).map(|k| k + 1)
+        let ticks = |share: f64| (share * duration as f64).round();
+        let seconds = |d: &Disturbance| match (d.clock, &d.kind) {
+            (Clock::Seconds, _) => d.clone(),
+            (Clock::Phase, kind) => {
+                let (at, lasts) = match kind {
+                    Kind::Goal(_) => (ticks(d.at) / rate, 0.0),
+                    Kind::Move(_) => (
+                        ticks(d.at).max(1.0) / rate,
+                        (ticks(d.lasts) / rate).max(1.0 / rate),
+                    ),
+                    _ => (ticks(d.at).max(1.0) / rate, ticks(d.lasts) / rate),
+                };
+                let kind = kind.clone();
+                Disturbance {
+                    clock: Clock::Seconds,
+                    at,
+                    lasts,
+                    kind,
+                }
             }
-            _ => None,
         };
+        let d: Vec<Disturbance> = disturbances.iter().map(seconds).collect();
+        let limit_s = limit as f64 / rate;
+        let r = run_in_loop(self.arm, &self.config, stepper, initial, &d, limit_s)
+            .map_err(|e| StepperError::Plant(Box::new(e)))?;
+        let time = &r.recording.time;
         Ok(Trace {
+            acting: (d.iter())
+                .map(|d| time.iter().map(|t| d.acts_at(*t)).collect())
+                .collect(),
+            release: r.held.iter().rposition(|h| *h).map(|k| k + 1),
             path: r.recording.qpos,
             commanded: r.recording.target,
             held: r.held,
-            release,
             finished: r.finished,
         })
     }

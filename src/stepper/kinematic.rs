@@ -1,14 +1,14 @@
 //! A kinematic loop: any [`Stepper`] run on an arm that goes exactly where it is commanded,
-//! except while a [`Disturbance`] has it (held, or moved and held). It is what held-out
+//! except while a [`Disturbance`] has it (held, or moved and held) or its goal moves. It is what held-out
 //! studies of the loop call: the executed path, which ticks were disturbed, whether the
 //! reproduction finished.
 //!
 //! ```
-//! use cosco_hsom::stepper::kinematic::{run, Disturbance};
-//! use cosco_hsom::stepper::ByClock;
+//! use cosco_hsom::stepper::kinematic::run;
+//! use cosco_hsom::stepper::{ByClock, Disturbance};
 //! let plan: Vec<Vec<f64>> = (0..11).map(|i| vec![i as f64 / 10.0]).collect();
 //! let mut s = ByClock::new(vec!["q".into()], plan.clone(), "the replay");
-//! let held = Disturbance::Hold { at: 0.4, share: 0.3 };
+//! let held = [Disturbance::hold(0.4, 0.3)];
 //! let r = run(&mut s, &plan[0], &held, 10, 100).unwrap();
 //! assert!(r.finished);
 //! assert_eq!(r.path[5], r.path[4]); // held from tick 4 to tick 6
@@ -19,6 +19,7 @@
 
 use crate::dtw::euclidean;
 
+use super::disturbance::{Amount, Clock, Disturbance, Kind};
 use super::{Stepper, StepperError};
 
 /// What a stepper runs on: an arm that reads the posture it is in and goes (or is kept from
@@ -26,12 +27,13 @@ use super::{Stepper, StepperError};
 /// [`crate::sim::in_loop::ArmLoop`].
 pub trait Plant: Sync {
     /// `stepper` (made from `initial`) run until it is done and the arm is free, or for
-    /// `limit` ticks, under `disturbance`, whose phases are shares of `duration` ticks.
+    /// `limit` ticks, under `disturbances` (their amounts absolute), whose phases are shares of
+    /// `duration` ticks.
     fn run(
         &self,
         stepper: &mut dyn Stepper,
         initial: &[f64],
-        disturbance: &Disturbance,
+        disturbances: &[Disturbance],
         duration: usize,
         limit: usize,
     ) -> Result<Trace, StepperError>;
@@ -46,59 +48,12 @@ impl Plant for KinematicLoop {
         &self,
         stepper: &mut dyn Stepper,
         initial: &[f64],
-        disturbance: &Disturbance,
+        disturbances: &[Disturbance],
         duration: usize,
         limit: usize,
     ) -> Result<Trace, StepperError> {
-        run(stepper, initial, disturbance, duration, limit)
+        run(stepper, initial, disturbances, duration, limit)
     }
-}
-
-/// What happens to the arm, at a phase of the reproduction's duration (the `duration` given
-/// to [`run`]).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Disturbance {
-    /// The arm goes wherever it is commanded.
-    None,
-    /// From phase `at`, for `share` of the duration, the arm stays where it is whatever is
-    /// commanded.
-    Hold {
-        /// When, 0 to 1.
-        at: f64,
-        /// For how long, a share of the duration (>= 0).
-        share: f64,
-    },
-    /// At phase `at` the arm is displaced by `by` (one value per variable) and held there for
-    /// `share` of the duration (at least the tick it is moved).
-    Move {
-        /// When, 0 to 1.
-        at: f64,
-        /// The displacement.
-        by: Vec<f64>,
-        /// For how long it is held there, a share of the duration (>= 0).
-        share: f64,
-    },
-    /// From phase `at`, for `share` of the duration, a force `force` (N, the robot's torso
-    /// frame) pushes the link `body`: only a simulated arm can be pushed
-    /// ([`crate::sim::in_loop::ArmLoop`]); the kinematic loop refuses it.
-    Push {
-        /// When, 0 to 1.
-        at: f64,
-        /// The link (the model's body name).
-        body: String,
-        /// The force, N.
-        force: [f64; 3],
-        /// For how long, a share of the duration (>= 0).
-        share: f64,
-    },
-    /// At phase `at` the stepper's goal is moved to `goal` ([`Stepper::set_goal`]); the arm
-    /// goes wherever it is commanded.
-    Goal {
-        /// When, 0 to 1.
-        at: f64,
-        /// The new goal.
-        goal: Vec<f64>,
-    },
 }
 
 /// A stepper's run in a loop ([`run`], or any [`Plant`]).
@@ -109,8 +64,10 @@ pub struct Trace {
     /// What the stepper commanded at each tick (`commanded[k]` given `path[k]`; on the
     /// simulated arm the last row repeats the last command).
     pub commanded: Vec<Vec<f64>>,
-    /// Per row of `path`: whether the disturbance had the arm (held or moved) at that tick.
+    /// Per row of `path`: whether a disturbance had the arm (held, moved or pushed) at that tick.
     pub held: Vec<bool>,
+    /// Per disturbance, per row of `path`: whether it had the arm.
+    pub acting: Vec<Vec<bool>>,
     /// The first row of `path` after a hold or a move (`None` without one).
     pub release: Option<usize>,
     /// Whether the stepper said it was done before the tick limit.
@@ -129,14 +86,18 @@ impl Trace {
         free_rows(&self.path, &self.held)
     }
 
-    /// How far the disturbance took the arm from where `plain` (the same stepper's undisturbed
-    /// run) had it at the same ticks: the largest distance over the disturbed ticks and the
-    /// variables (0 without a hold, move or push).
-    pub fn displaced_from(&self, plain: &[Vec<f64>]) -> f64 {
-        (self.path.iter().zip(plain).zip(&self.held))
-            .filter(|(_, h)| **h)
-            .flat_map(|((a, b), _)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
-            .fold(0.0, f64::max)
+    /// Per disturbance, how far it took the arm from where `plain` (the same stepper's
+    /// undisturbed run) had it at the same ticks: the largest distance over the ticks it had
+    /// the arm and the variables (0 for a goal's move).
+    pub fn displaced(&self, plain: &[Vec<f64>]) -> Vec<f64> {
+        (self.acting.iter())
+            .map(|acting| {
+                (self.path.iter().zip(plain).zip(acting))
+                    .filter(|(_, h)| **h)
+                    .flat_map(|((a, b), _)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
+                    .fold(0.0, f64::max)
+            })
+            .collect()
     }
 }
 
@@ -180,17 +141,22 @@ fn check_share(share: f64) -> Result<(), StepperError> {
     })
 }
 
+/// The ticks a disturbance has the arm, `[from, to)`, and a move's displacement (a goal's
+/// move: none).
+type Span<'d> = Option<(usize, usize, Option<&'d Vec<f64>>)>;
+
 /// `stepper` (made from `initial`) run until it is done: each tick it is given the arm's
-/// posture and the arm goes where it commands, except at the ticks `disturbance` holds or
-/// moves it. `duration` (ticks, at least 1) is what the disturbance's phases are shares of
-/// (normally the undisturbed reproduction's or the demonstration's); the tick `k` is at phase
+/// posture and the arm goes where it commands, except at the ticks a disturbance of
+/// `disturbances` (on the phase clock, amounts absolute) holds or moves it. `duration`
+/// (ticks, at least 1) is what the disturbances' phases are shares of (normally the
+/// undisturbed reproduction's or the demonstration's); the tick `k` is at phase
 /// `k / duration`, and a disturbance from phase `at` for `share` has the arm at the ticks
 /// `round(at duration)` to `round(at duration) + round(share duration) - 1`. The run ends
 /// when the stepper is done and the arm is free, or after `limit` ticks (`finished` false).
 pub fn run(
     stepper: &mut dyn Stepper,
     initial: &[f64],
-    disturbance: &Disturbance,
+    disturbances: &[Disturbance],
     duration: usize,
     limit: usize,
 ) -> Result<Trace, StepperError> {
@@ -202,59 +168,86 @@ pub fn run(
         });
     }
     let tick = |phase: f64| (phase * duration as f64).round() as usize;
-    // the ticks the arm is held: [from, to)
-    let (from, to, by) = match disturbance {
-        Disturbance::None | Disturbance::Goal { .. } => (usize::MAX, usize::MAX, None),
-        Disturbance::Push { .. } => {
-            return Err(StepperError::Unsupported {
-                method: "the kinematic loop",
-                reason: "cannot push a link: a push needs the simulated arm".into(),
-            })
+    // per disturbance, the ticks it has the arm, [from, to), and a move's displacement
+    let mut spans: Vec<Span> = Vec::new();
+    let mut goals = Vec::new();
+    for d in disturbances {
+        if d.clock != Clock::Phase {
+            return Err(StepperError::Invalid {
+                what: "the disturbance's clock",
+                value: d.describe(),
+                allowed: "phases of the duration (the kinematic loop counts no seconds)",
+            });
         }
-        Disturbance::Hold { at, share } => {
-            check_phase(*at)?;
-            check_share(*share)?;
-            (tick(*at).max(1), tick(*at).max(1) + tick(*share), None)
-        }
-        Disturbance::Move { at, by, share } => {
-            check_phase(*at)?;
-            check_share(*share)?;
-            if by.len() != initial.len() || by.iter().any(|v| !v.is_finite()) {
-                return Err(StepperError::Invalid {
-                    what: "the displacement",
-                    value: format!("{by:?}"),
-                    allowed: "one finite value per variable",
-                });
+        check_phase(d.at)?;
+        let from = tick(d.at).max(1);
+        spans.push(match &d.kind {
+            Kind::Push { .. } => {
+                return Err(StepperError::Unsupported {
+                    method: "the kinematic loop",
+                    reason: "cannot push a link: a push needs the simulated arm".into(),
+                })
             }
-            let from = tick(*at).max(1);
-            (from, from + tick(*share).max(1), Some(by))
-        }
-    };
-    let goal = match disturbance {
-        Disturbance::Goal { at, goal } => {
-            check_phase(*at)?;
-            Some((tick(*at), goal))
-        }
-        _ => None,
-    };
+            Kind::Hold => {
+                check_share(d.lasts)?;
+                Some((from, from + tick(d.lasts), None))
+            }
+            Kind::Move(Amount::Absolute(by)) => {
+                check_share(d.lasts)?;
+                if by.len() != initial.len() || by.iter().any(|v| !v.is_finite()) {
+                    return Err(StepperError::Invalid {
+                        what: "the displacement",
+                        value: format!("{by:?}"),
+                        allowed: "one finite value per variable",
+                    });
+                }
+                Some((from, from + tick(d.lasts).max(1), Some(by)))
+            }
+            Kind::Goal(Amount::Absolute(goal)) => {
+                goals.push((tick(d.at), goal));
+                None
+            }
+            Kind::Move(_) | Kind::Goal(_) => {
+                return Err(StepperError::Invalid {
+                    what: "the disturbance's amount",
+                    value: d.describe(),
+                    allowed: "one value per variable (a study makes k x the diagonal absolute)",
+                })
+            }
+        });
+    }
+    let spans_ticks = spans.iter().flatten();
     let mut out = Trace {
         path: vec![initial.to_vec()],
         commanded: Vec::new(),
         held: vec![false],
-        release: (to > from && to != usize::MAX).then_some(to),
+        acting: vec![vec![false]; spans.len()],
+        release: spans_ticks
+            .filter(|(from, to, _)| to > from)
+            .map(|s| s.1)
+            .max(),
         finished: false,
     };
     let mut arm = initial.to_vec();
     for k in 0..limit {
-        if let Some((_, g)) = goal.filter(|(at, _)| *at == k) {
+        for (_, g) in goals.iter().filter(|(at, _)| *at == k) {
             stepper.set_goal(g)?;
         }
         let command = stepper.step(&arm)?;
         let next = k + 1;
-        let held = (from..to).contains(&next);
+        let mut held = false;
+        let mut by = None;
+        for (span, acting) in spans.iter().zip(&mut out.acting) {
+            let on = span.is_some_and(|(from, to, _)| (from..to).contains(&next));
+            acting.push(on);
+            held |= on;
+            if let Some((_, _, Some(b))) = span.filter(|(from, _, _)| *from == next) {
+                by = Some(b);
+            }
+        }
         arm = match (held, by) {
-            (true, Some(by)) if next == from => arm.iter().zip(by).map(|(a, b)| a + b).collect(),
-            (true, _) => arm,
+            (true, Some(by)) => arm.iter().zip(by).map(|(a, b)| a + b).collect(),
+            (true, None) => arm,
             (false, _) => command.clone(),
         };
         out.commanded.push(command);

@@ -24,12 +24,14 @@
 //! ```
 
 mod course;
+mod disturbance;
 mod follower;
 pub mod kinematic;
 #[cfg(test)]
 mod tests;
 
 pub use course::{Course, DEFAULT_TOLERANCE};
+pub use disturbance::{Amount, Clock, Disturbance, Kind};
 pub use follower::{Follower, Replan};
 pub use kinematic::{KinematicLoop, Plant, Trace};
 
@@ -110,6 +112,9 @@ pub enum StepperError {
         /// Its error.
         source: Box<dyn std::error::Error + Send + Sync>,
     },
+    /// The plant (the simulated arm) refused the run or failed.
+    #[error(transparent)]
+    Plant(Box<dyn std::error::Error + Send + Sync>),
 }
 
 impl StepperError {

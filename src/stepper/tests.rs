@@ -1,4 +1,4 @@
-use super::kinematic::{run, Disturbance};
+use super::kinematic::run;
 use super::*;
 use crate::condition::{Conditions, ViaPoint};
 
@@ -48,7 +48,7 @@ fn realigning(plan: Vec<Vec<f64>>, conditions: Conditions) -> Realigning {
 fn undisturbed_a_course_is_its_plan_and_never_replans() {
     let plan = arc(50);
     let mut s = realigning(plan.clone(), Conditions::default());
-    let r = run(&mut s, &plan[0], &Disturbance::None, 49, 200).unwrap();
+    let r = run(&mut s, &plan[0], &[], 49, 200).unwrap();
     assert!(r.finished);
     assert_eq!(r.path, plan);
     assert_eq!(s.0.replans(), 0);
@@ -61,12 +61,9 @@ fn held_a_realigned_course_rejoins_without_a_jump_and_a_replay_jumps() {
     let largest = (1..plan.len())
         .map(|k| crate::dtw::euclidean(&plan[k], &plan[k - 1]))
         .fold(0.0, f64::max);
-    let held = Disturbance::Hold {
-        at: 0.4,
-        share: 0.25,
-    };
+    let held = Disturbance::hold(0.4, 0.25);
     let mut s = realigning(plan.clone(), Conditions::default());
-    let r = run(&mut s, &plan[0], &held, 99, 1000).unwrap();
+    let r = run(&mut s, &plan[0], std::slice::from_ref(&held), 99, 1000).unwrap();
     assert!(r.finished);
     let release = r.release.unwrap();
     assert!(r.largest_step_from(release) <= 2.0 * largest + 1e-12);
@@ -74,7 +71,7 @@ fn held_a_realigned_course_rejoins_without_a_jump_and_a_replay_jumps() {
     assert!(s.0.replans() > 0);
     // the negative control: the plan by its clock
     let mut c = ByClock::new(cols(2), plan.clone(), "the replay");
-    let r = run(&mut c, &plan[0], &held, 99, 1000).unwrap();
+    let r = run(&mut c, &plan[0], std::slice::from_ref(&held), 99, 1000).unwrap();
     assert!(r.largest_step_from(release) > 10.0 * largest);
 }
 
@@ -92,11 +89,8 @@ fn a_moved_goal_is_reached_exactly_without_a_jump() {
     let bent = crate::condition::meet(&plan, &conditions.points(), None).unwrap();
     let mut s = realigning(bent.clone(), conditions);
     let goal = vec![-1.1, 0.2];
-    let moved = Disturbance::Goal {
-        at: 0.5,
-        goal: goal.clone(),
-    };
-    let r = run(&mut s, &plan[0], &moved, 79, 1000).unwrap();
+    let moved = Disturbance::goal(0.5, goal.clone());
+    let r = run(&mut s, &plan[0], std::slice::from_ref(&moved), 79, 1000).unwrap();
     assert!(r.finished);
     assert!(crate::dtw::euclidean(r.path.last().unwrap(), &goal) < 1e-9);
     // the path until the goal moved is the plan's
@@ -145,37 +139,25 @@ fn a_kinematic_loop_refuses_a_disturbance_out_of_range() {
     let plan = arc(10);
     let mut s = ByClock::new(cols(2), plan.clone(), "the replay");
     let bad = [
-        Disturbance::Hold {
-            at: 1.5,
-            share: 0.1,
-        },
-        Disturbance::Hold {
-            at: 0.5,
-            share: f64::NAN,
-        },
-        Disturbance::Move {
-            at: 0.5,
-            by: vec![0.1],
-            share: 0.1,
-        },
+        Disturbance::hold(1.5, 0.1),
+        Disturbance::hold(0.5, f64::NAN),
+        Disturbance::moved(0.5, vec![0.1], 0.1),
     ];
     for d in bad {
-        let e = run(&mut s, &plan[0], &d, 9, 100).unwrap_err().to_string();
+        let e = run(&mut s, &plan[0], std::slice::from_ref(&d), 9, 100)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("allowed"), "{e}");
     }
-    assert!(run(&mut s, &plan[0], &Disturbance::None, 0, 100).is_err());
+    assert!(run(&mut s, &plan[0], &[], 0, 100).is_err());
 }
 
 #[test]
 fn a_move_displaces_the_arm_and_holds_it_there() {
     let plan = arc(20);
     let mut s = ByClock::new(cols(2), plan.clone(), "the replay");
-    let d = Disturbance::Move {
-        at: 0.5,
-        by: vec![0.1, -0.2],
-        share: 0.1,
-    };
-    let r = run(&mut s, &plan[0], &d, 20, 100).unwrap();
+    let d = Disturbance::moved(0.5, vec![0.1, -0.2], 0.1);
+    let r = run(&mut s, &plan[0], std::slice::from_ref(&d), 20, 100).unwrap();
     assert_eq!(r.path[10], vec![plan[9][0] + 0.1, plan[9][1] - 0.2]);
     assert_eq!(r.path[11], r.path[10]);
     assert_eq!((r.held[10], r.held[11], r.held[12]), (true, true, false));

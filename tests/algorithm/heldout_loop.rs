@@ -93,6 +93,27 @@ fn held_the_hierarchy_rejoins_and_the_open_loop_control_jumps() {
     assert!(text.contains("- GMM/GMR: "), "{text}");
 }
 
+/// The kinematic loop cannot push a link: refused before the study runs, naming where
+/// pushes run.
+#[test]
+fn a_push_in_the_kinematic_loop_is_refused_naming_where_pushes_run() {
+    let out = cosco()
+        .args(["heldout", "--demos", "nowhere"])
+        .args(["--disturb", "push:0.4:LForeArm:0,0,-8:0.1"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--disturb") && err.contains("simulate"),
+        "{err}"
+    );
+    assert!(
+        err.contains("--loop closed") && err.contains("example heldout"),
+        "{err}"
+    );
+}
+
 #[test]
 fn bad_disturbances_are_refused_naming_the_flag() {
     for (flag, value) in [

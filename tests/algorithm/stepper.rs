@@ -20,8 +20,9 @@ use cosco_hsom::gmr::{ComponentChoice, GmrParams};
 use cosco_hsom::hsom::{Hsom, HsomStepper, NearestStepper};
 use cosco_hsom::metrics::column_swings;
 use cosco_hsom::promp::{PrompSettings, PrompStepper};
-use cosco_hsom::stepper::kinematic::{run, Disturbance, Trace};
+use cosco_hsom::stepper::kinematic::run;
 use cosco_hsom::stepper::{ByClock, Stepper, StepperError};
+use cosco_hsom::stepper::{Disturbance, Trace};
 use hsom_common::{dtw, recommended_for, table1_for};
 
 /// The joint the wave swings (LElbowRoll) and the demonstrations' sample period.
@@ -99,25 +100,18 @@ fn cost(rows: &[Vec<f64>]) -> f64 {
 
 /// Held from phase 0.4 for a quarter of the duration.
 fn hold() -> Disturbance {
-    Disturbance::Hold {
-        at: 0.4,
-        share: 0.25,
-    }
+    Disturbance::hold(0.4, 0.25)
 }
 
 /// Displaced at phase 0.4 by a tenth of the diagonal (on every joint alike) and held there
 /// for a tenth of the duration.
 fn push() -> Disturbance {
     let d = 0.1 * diag() / 6f64.sqrt();
-    Disturbance::Move {
-        at: 0.4,
-        by: vec![d; 6],
-        share: 0.1,
-    }
+    Disturbance::moved(0.4, vec![d; 6], 0.1)
 }
 
 /// `s` run in the kinematic loop under `d`, the duration that of its undisturbed `plan`.
-fn loop_run(s: &mut dyn Stepper, plan: &[Vec<f64>], d: &Disturbance) -> Trace {
+fn loop_run(s: &mut dyn Stepper, plan: &[Vec<f64>], d: &[Disturbance]) -> Trace {
     run(s, initial(), d, plan.len() - 1, 20 * plan.len()).unwrap()
 }
 
@@ -162,7 +156,7 @@ fn undisturbed_the_hierarchy_in_the_loop_is_its_plan() {
         let m = model(algorithm);
         let plan = m.reproduce(initial()).unwrap().postures;
         let mut s = HsomStepper::new(m, initial(), &Conditions::default(), None).unwrap();
-        let r = loop_run(&mut s, &plan, &Disturbance::None);
+        let r = loop_run(&mut s, &plan, &[]);
         assert!(r.finished && s.closed_loop());
         assert_eq!(r.path, plan, "{algorithm:?}");
         assert_eq!(
@@ -186,7 +180,7 @@ fn held_and_moved_the_hierarchy_rejoins_its_gesture_without_a_jump() {
         let plan = m.reproduce(initial()).unwrap().postures;
         for (what, d) in [("held", hold()), ("moved", push())] {
             let mut s = HsomStepper::new(m, initial(), &Conditions::default(), None).unwrap();
-            let r = loop_run(&mut s, &plan, &d);
+            let r = loop_run(&mut s, &plan, std::slice::from_ref(&d));
             let j = judge(
                 &format!("{algorithm:?} {what}"),
                 &r,
@@ -213,7 +207,7 @@ fn the_plan_replayed_by_its_clock_jumps_after_a_hold() {
     // move separates them
     for (what, d) in [("held", hold()), ("moved", push())] {
         let mut s = ByClock::new(columns.clone(), plan.clone(), "the replay");
-        let r = loop_run(&mut s, &plan, &d);
+        let r = loop_run(&mut s, &plan, std::slice::from_ref(&d));
         let j = judge(
             &format!("replayed by its clock, {what}"),
             &r,
@@ -234,12 +228,9 @@ fn a_goal_moved_half_way_is_reached_exactly_without_a_jump() {
         let m = model(algorithm);
         let plan = m.reproduce(initial()).unwrap().postures;
         let goal: Vec<f64> = plan.last().unwrap().iter().map(|v| v + d).collect();
-        let moved = Disturbance::Goal {
-            at: 0.5,
-            goal: goal.clone(),
-        };
+        let moved = Disturbance::goal(0.5, goal.clone());
         let mut s = HsomStepper::new(m, initial(), &Conditions::default(), None).unwrap();
-        let r = loop_run(&mut s, &plan, &moved);
+        let r = loop_run(&mut s, &plan, std::slice::from_ref(&moved));
         let at = ((plan.len() - 1) as f64 * 0.5).round() as usize;
         let jump = r.largest_step_from(at) / step_scale(&plan);
         let error = euclidean(r.path.last().unwrap(), &goal) / diag();
@@ -278,7 +269,7 @@ fn with_a_goal_and_a_via_point_the_loop_is_the_conditioned_reproduction() {
             .unwrap()
             .postures;
         let mut s = HsomStepper::new(m, initial(), &conditions, Some(&ranges)).unwrap();
-        let r = loop_run(&mut s, &bent, &Disturbance::None);
+        let r = loop_run(&mut s, &bent, &[]);
         // the path starts at the initial posture; the bent plan's first row is it read back
         // through the joints' range map (within a few ulps)
         assert_eq!(r.path[1..], bent[1..], "{algorithm:?}");
@@ -287,17 +278,14 @@ fn with_a_goal_and_a_via_point_the_loop_is_the_conditioned_reproduction() {
     let m = model(Algorithm::Events);
     let mut s = NearestStepper::new(m, train().to_vec(), initial(), &conditions, None).unwrap();
     let plan = m.follow_nearest(train(), initial()).unwrap().postures;
-    let r = loop_run(&mut s, &plan, &Disturbance::None);
+    let r = loop_run(&mut s, &plan, &[]);
     let goal = conditions.goal.as_deref().unwrap();
     assert!(euclidean(r.path.last().unwrap(), goal) < 1e-9 * diag());
     let promp = PrompSettings::default().fit(train()).unwrap();
     let (bent, _) = promp.conditioned(initial(), &conditions.points()).unwrap();
     let mut s = PrompStepper::new(&promp, initial(), &conditions, None).unwrap();
     // its conditioned mean starts within the observation noise of the initial posture
-    assert_eq!(
-        loop_run(&mut s, &bent, &Disturbance::None).path[1..],
-        bent[1..]
-    );
+    assert_eq!(loop_run(&mut s, &bent, &[]).path[1..], bent[1..]);
 }
 
 #[test]
@@ -306,26 +294,26 @@ fn the_dmp_closes_its_loop_and_slows_its_phase_while_held() {
     let plan = dmp.reproduce(initial(), None).unwrap();
     let fresh = || DmpStepper::new(&dmp, initial(), &Conditions::default(), None).unwrap();
     let mut s = fresh();
-    assert_eq!(loop_run(&mut s, &plan, &Disturbance::None).path, plan);
+    assert_eq!(loop_run(&mut s, &plan, &[]).path, plan);
     // the phase reached at the start and at the end of the hold, held and not
     let n = plan.len() - 1;
     let (from, to) = (
         (0.4 * n as f64).round() as usize,
         (0.65 * n as f64).round() as usize,
     );
-    let phase_at = |d: &Disturbance, ticks: usize| {
+    let phase_at = |d: &[Disturbance], ticks: usize| {
         let mut s = fresh();
         run(&mut s, initial(), d, n, ticks).unwrap();
         s.phase()
     };
-    let free = phase_at(&Disturbance::None, to) - phase_at(&Disturbance::None, from);
-    let held = phase_at(&hold(), to) - phase_at(&hold(), from);
+    let free = phase_at(&[], to) - phase_at(&[], from);
+    let held = phase_at(&[hold()], to) - phase_at(&[hold()], from);
     eprintln!("DMP phase over the hold: {held:.4} held, {free:.4} free");
     assert!((free - (to - from) as f64 / n as f64).abs() < 1e-9);
     assert!(held < 0.5 * free, "{held} {free}");
     for (what, d) in [("held", hold()), ("moved", push())] {
         let mut s = fresh();
-        let r = loop_run(&mut s, &plan, &d);
+        let r = loop_run(&mut s, &plan, std::slice::from_ref(&d));
         let j = judge(&format!("DMP {what}"), &r, &plan, plan.last().unwrap());
         assert!(j.finished);
     }
@@ -381,7 +369,7 @@ fn every_method_steps_through_a_hold_and_a_move() {
         assert_eq!(s.closed_loop(), *name != "GMM/GMR");
         for (what, d) in [("held", hold()), ("moved", push())] {
             let mut s = make();
-            let r = loop_run(s.as_mut(), &plan, &d);
+            let r = loop_run(s.as_mut(), &plan, std::slice::from_ref(&d));
             let j = judge(&format!("{name} {what}"), &r, &plan, plan.last().unwrap());
             assert!(j.finished);
             if *name == "nearest sequence" {

@@ -14,9 +14,9 @@ use cosco_hsom::gesture::Gesture;
 use cosco_hsom::hsom::{Hsom, HsomStepper};
 use cosco_hsom::metrics::{column_swings, diagonal};
 use cosco_hsom::robot::Robot;
-use cosco_hsom::sim::in_loop::{run_in_loop, ArmDisturbance, ArmRun};
+use cosco_hsom::sim::in_loop::{resistible_force, run_in_loop, ArmRun};
 use cosco_hsom::sim::{execute_postures, ControllerConfig, NaoArm};
-use cosco_hsom::stepper::{ByClock, Stepper};
+use cosco_hsom::stepper::{Amount, ByClock, Clock, Disturbance, Kind, Stepper};
 
 /// LElbowRoll, the wave's swinging joint.
 const ELBOW_ROLL: usize = 3;
@@ -53,7 +53,17 @@ fn swings(rows: &[Vec<f64>]) -> usize {
     column_swings(rows, ELBOW_ROLL, cosco_hsom::eval::SWING_MIN_AMPLITUDE_RAD).unwrap()
 }
 
-fn run(f: &Fold, s: &mut dyn Stepper, d: &[ArmDisturbance]) -> ArmRun {
+/// `kind` from `at` s for `lasts` s.
+fn at_s(at: f64, lasts: f64, kind: Kind) -> Disturbance {
+    Disturbance {
+        clock: Clock::Seconds,
+        at,
+        lasts,
+        kind,
+    }
+}
+
+fn run(f: &Fold, s: &mut dyn Stepper, d: &[Disturbance]) -> ArmRun {
     let initial = &f.target.rows[0];
     run_in_loop(&f.arm, &ControllerConfig::default(), s, initial, d, 60.0).unwrap()
 }
@@ -88,8 +98,8 @@ fn held_the_hierarchy_rejoins_without_a_jump_and_keeps_its_swings_a_replay_by_it
         (ratio - 1.0).abs() <= 0.02,
         "closed / open loop DTW {ratio}"
     );
-    let (at_s, seconds) = window(&plain, 0.25);
-    let hold = [ArmDisturbance::Hold { at_s, seconds }];
+    let (at, seconds) = window(&plain, 0.25);
+    let hold = [at_s(at, seconds, Kind::Hold)];
     let mut s = hierarchy(&f);
     let held = run(&f, &mut s, &hold);
     assert!(held.finished, "the held run finishes");
@@ -127,14 +137,13 @@ fn held_the_hierarchy_rejoins_without_a_jump_and_keeps_its_swings_a_replay_by_it
 fn a_push_moves_the_forearm_and_the_hierarchy_finishes_where_it_should() {
     let f = fold();
     let plain = run(&f, &mut hierarchy(&f), &[]);
-    let (at_s, seconds) = window(&plain, 0.1);
-    let push = [ArmDisturbance::Push {
-        at_s,
+    let (at, seconds) = window(&plain, 0.1);
+    let push = |force| Kind::Push {
         body: "LForeArm".into(),
-        force: [0.0, 0.0, -8.0],
-        seconds,
-    }];
-    let pushed = run(&f, &mut hierarchy(&f), &push);
+        force,
+    };
+    let pushed = [at_s(at, seconds, push([0.0, 0.0, -8.0]))];
+    let pushed = run(&f, &mut hierarchy(&f), &pushed);
     assert!(pushed.finished);
     let moved = (pushed
         .recording
@@ -153,12 +162,7 @@ fn a_push_moves_the_forearm_and_the_hierarchy_finishes_where_it_should() {
     let final_error = euclidean(pushed.recording.qpos.last().unwrap(), end) / f.diagonal;
     assert!(final_error <= 0.02, "final error {final_error}");
     // without a force the same push changes nothing
-    let none = [ArmDisturbance::Push {
-        at_s,
-        body: "LForeArm".into(),
-        force: [0.0; 3],
-        seconds,
-    }];
+    let none = [at_s(at, seconds, push([0.0; 3]))];
     let unpushed = run(&f, &mut hierarchy(&f), &none);
     assert_eq!(unpushed.recording.qpos, plain.recording.qpos);
 }
@@ -178,11 +182,8 @@ fn a_goal_moved_in_the_loop_is_reached_within_the_servos_static_error() {
             end[j] + 0.1 * (hi - lo)
         })
         .collect();
-    let at_s = (0.5 * (plain.recording.len() - 1) as f64).round() / 40.0;
-    let moved = [ArmDisturbance::Goal {
-        at_s,
-        goal: goal.clone(),
-    }];
+    let at = (0.5 * (plain.recording.len() - 1) as f64).round() / 40.0;
+    let moved = [at_s(at, 0.0, Kind::Goal(Amount::Absolute(goal.clone())))];
     let r = run(&f, &mut hierarchy(&f), &moved);
     assert!(r.finished);
     let last = r.recording.qpos.last().unwrap();
@@ -190,7 +191,7 @@ fn a_goal_moved_in_the_loop_is_reached_within_the_servos_static_error() {
         .map(|(a, b)| (a - b).abs())
         .fold(0.0, f64::max);
     assert!(off <= 0.01, "{off} rad from the moved goal");
-    let from = (at_s * 40.0).round() as usize + 1;
+    let from = (at * 40.0).round() as usize + 1;
     let jump = largest_step(&r.recording.qpos, from) / largest_step(&f.target.rows, 1);
     assert!(
         jump <= 2.0,
@@ -206,12 +207,14 @@ fn a_goal_moved_in_the_loop_is_reached_within_the_servos_static_error() {
 #[test]
 fn a_push_on_a_link_the_arm_lacks_is_refused_naming_the_links() {
     let f = fold();
-    let push = [ArmDisturbance::Push {
-        at_s: 0.1,
-        body: "RForeArm".into(),
-        force: [0.0, 0.0, -1.0],
-        seconds: 0.1,
-    }];
+    let push = [at_s(
+        0.1,
+        0.1,
+        Kind::Push {
+            body: "RForeArm".into(),
+            force: [0.0, 0.0, -1.0],
+        },
+    )];
     let initial = &f.target.rows[0];
     let e = run_in_loop(
         &f.arm,
@@ -229,9 +232,12 @@ fn a_push_on_a_link_the_arm_lacks_is_refused_naming_the_links() {
         "x:LForeArm:0,0,1:0.1",
         "1.0::0,0,1:0.1",
     ] {
-        assert!(ArmDisturbance::parse_push(bad).is_err(), "{bad}");
+        assert!(
+            Disturbance::parse("push", bad, Clock::Seconds).is_err(),
+            "{bad}"
+        );
     }
-    assert!(ArmDisturbance::parse_hold("-1:0.5").is_err());
+    assert!(Disturbance::parse("hold", "-1:0.5", Clock::Seconds).is_err());
 }
 
 #[test]
@@ -280,4 +286,77 @@ fn simulate_loop_closed_writes_the_loop_and_refuses_disturbances_without_it() {
     assert!(out.path().join("in_loop.png").exists());
     let json = std::fs::read_to_string(out.path().join("report.json")).unwrap();
     assert!(json.contains("\"in_loop\""));
+}
+
+/// `simulate --loop closed` on the wave with `flags`, into a directory that does not exist:
+/// it fails, writes nothing, and says why on stderr.
+fn refused(flags: &[&str]) -> String {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("x");
+    let a = ["--gesture", "wave", "--seed", "11", "--loop", "closed"];
+    let got = Command::cargo_bin("simulate")
+        .unwrap()
+        .args(a)
+        .args(flags)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(!got.status.success(), "{flags:?} ran");
+    assert!(!out.exists(), "{flags:?} left {}", out.display());
+    String::from_utf8_lossy(&got.stderr).into_owned()
+}
+
+#[test]
+fn a_push_on_a_missing_link_or_a_goal_of_the_wrong_width_is_refused_before_the_job() {
+    let e = refused(&["--push", "5.0:LFoot:0,0,-8:0.2"]);
+    assert!(e.contains("LFoot") && e.contains("LForeArm"), "{e}");
+    let e = refused(&["--goal-at", "6.0:1.4,0.3,-1.39"]);
+    assert!(
+        e.contains("3 values") && e.contains("LShoulderPitch"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_goal_outside_the_joint_ranges_is_refused_naming_the_joint_value_and_range() {
+    let e = refused(&["--goal-at", "4.0:5,0.5,-1.39,-1.01,0,0.25"]);
+    assert!(e.contains("LShoulderPitch") && e.contains('5'), "{e}");
+    assert!(e.contains("[-2.08567, 2.08567]"), "{e}");
+}
+
+#[test]
+fn a_disturbance_after_the_motion_is_refused() {
+    let e = refused(&["--hold", "30:1"]);
+    assert!(e.contains("after the motion"), "{e}");
+    let e = refused(&["--goal-at", "30:1.4,0.3,-1.39,-1.01,0,0.25"]);
+    assert!(e.contains("after the motion"), "{e}");
+}
+
+/// The force the servos hold the forearm against, from their torque limits: a few newtons
+/// (LShoulderPitch's 1.329 N m over some 0.1-0.2 m), so 8000 N throws the arm and 1 N does not.
+#[test]
+fn the_force_the_servos_hold_a_link_against_is_their_torque_over_its_lever() {
+    let arm = NaoArm::load_default().unwrap();
+    let stand = Robot::LeftArm.posture("StandInit").unwrap().to_vec();
+    let down = [0.0, 0.0, -1.0];
+    let (holds, joint) = resistible_force(&arm, &stand, "LForeArm", down)
+        .unwrap()
+        .unwrap();
+    assert!((2.0..=40.0).contains(&holds), "{holds} N ({joint})");
+    assert!(joint.starts_with('L'), "{joint}");
+    // nearer the shoulder, a longer lever for nothing: the upper arm holds more
+    let (bicep, _) = resistible_force(&arm, &stand, "LBicep", down)
+        .unwrap()
+        .unwrap();
+    assert!(
+        bicep > holds,
+        "{bicep} N on the upper arm, {holds} N on the forearm"
+    );
+    assert!(resistible_force(&arm, &stand, "LFoot", down)
+        .unwrap()
+        .is_none());
+    assert!(resistible_force(&arm, &stand, "LForeArm", [0.0; 3])
+        .unwrap()
+        .is_none());
 }

@@ -171,11 +171,11 @@ pub enum Command {
         /// Also run every fold in the loop (each method's stepper, the arm going where it is
         /// commanded) disturbed: `hold:P:D` (held from phase P for D of the duration) or
         /// `move:P:D:K` (moved K x the diagonal at phase P and held for D); repeatable.
-        #[arg(long, value_name = "hold:P:D|move:P:D:K", value_parser = |s: &str| s.parse::<cosco_hsom::eval::LoopDisturbance>())]
-        disturb: Vec<cosco_hsom::eval::LoopDisturbance>,
+        #[arg(long, value_name = "hold:P:D|move:P:D:K", value_parser = cosco_hsom::stepper::Disturbance::kinematic)]
+        disturb: Vec<cosco_hsom::stepper::Disturbance>,
         /// Also run every fold in the loop with its goal moved K x the diagonal at phase P.
-        #[arg(long, value_name = "P:K", value_parser = cosco_hsom::eval::LoopDisturbance::goal_moves)]
-        goal_moves: Vec<cosco_hsom::eval::LoopDisturbance>,
+        #[arg(long, value_name = "P:K", value_parser = cosco_hsom::stepper::Disturbance::goal_moves)]
+        goal_moves: Vec<cosco_hsom::stepper::Disturbance>,
         /// Also draw one fold per gesture (the first sample's plane) as a PNG here.
         #[cfg(feature = "plot")]
         #[arg(long)]

@@ -1,9 +1,7 @@
 use super::*;
 use crate::config::HsomConfig;
-use crate::eval::{
-    in_loop, leave_one_out, GestureLoo, Kinematic, LooSettings, LoopDisturbance, LoopRun, Pool,
-};
-use crate::stepper::KinematicLoop;
+use crate::eval::{in_loop, leave_one_out, GestureLoo, Kinematic, LooSettings, LoopRun, Pool};
+use crate::stepper::{Disturbance, KinematicLoop};
 
 /// Five half circles of growing radius in 2-D, 60 samples each.
 fn arcs() -> Vec<Demonstration> {
@@ -56,7 +54,7 @@ fn study(keep_learned: bool) -> Vec<GestureLoo> {
 
 /// ProMP and the DMP in the loop, held, on every fold of `study`: per fold, one run each.
 fn runs(study: &[GestureLoo]) -> Vec<Vec<LoopRun>> {
-    let hold: LoopDisturbance = "hold:0.4:0.2".parse().unwrap();
+    let hold = Disturbance::disturb("hold:0.4:0.2").unwrap();
     let methods = [Method::ProMP, Method::Dmp];
     let pool = Pool::new(1).unwrap();
     let mut all = in_loop(&quick(), study, &methods, &[hold], &KinematicLoop, &pool);
