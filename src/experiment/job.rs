@@ -287,7 +287,6 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
     if job.in_loop == LoopMode::Closed {
         warnings.extend(check_loop(job, &arm, cfg.params().state_length)?);
     }
-    std::fs::create_dir_all(out.join("demos")).map_err(ExperimentError::io("creating", out))?;
     let mut files = Vec::new();
 
     // 1. Demonstrations (with their contacts, on a model with collision shapes).
