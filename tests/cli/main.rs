@@ -8,3 +8,4 @@ mod hsom_common;
 
 mod bad_input;
 mod cli_cosco;
+mod upper_body_columns;
