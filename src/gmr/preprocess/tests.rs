@@ -5,6 +5,7 @@ use crate::demos::{DemoError, Demonstration};
 use crate::dtw::{dtw, Band};
 use crate::gmr::preprocess::{align_to, choose_reference, preprocess};
 use crate::gmr::{active_range, ComponentChoice, GmrError, GmrParams, IdleTrim};
+use crate::robot::LEFT_ARM_JOINTS;
 use std::f64::consts::PI;
 
 /// A reading-watch-like 2-D gesture: `idle` still samples, a raise and return over `len`
@@ -349,17 +350,7 @@ fn six_joints_with_two_unused_fit_with_default_bic() {
             .collect();
         Demonstration {
             source: format!("six{idle}"),
-            columns: [
-                "LShoulderPitch",
-                "LShoulderRoll",
-                "LElbowYaw",
-                "LElbowRoll",
-                "LWristYaw",
-                "LHand",
-            ]
-            .iter()
-            .map(|s| s.to_string())
-            .collect(),
+            columns: LEFT_ARM_JOINTS.iter().map(|s| s.to_string()).collect(),
             time: None,
             rows,
         }
