@@ -450,17 +450,13 @@ fn limited_fold<E: Executor>(
         .iter()
         .partition(|m| !baseline(m) || learn_from >= MIN_DEMONSTRATIONS);
     let mut f = fold(&run, base, demos, split, diag, executor);
-    f.runs.extend(skip.iter().map(|&method| Run {
-        method,
-        score: None,
-        error: Some(format!(
+    f.runs.extend(skip.iter().map(|&method| {
+        let why = format!(
             "fold {n}: {} needs at least {MIN_DEMONSTRATIONS} demonstrations to learn from, \
              this fold has {learn_from}",
             method.name(),
-        )),
-        postures: Vec::new(),
-        band: None,
-        scores: None,
+        );
+        Run::failed(method, why)
     }));
     f
 }

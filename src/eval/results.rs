@@ -79,6 +79,20 @@ pub struct Run {
     pub scores: Option<FoldScores>,
 }
 
+impl Run {
+    /// `method`'s run that produced no reproduction, and why.
+    pub fn failed(method: Method, error: String) -> Run {
+        Run {
+            method,
+            score: None,
+            error: Some(error),
+            postures: Vec::new(),
+            band: None,
+            scores: None,
+        }
+    }
+}
+
 impl PartialEq for Run {
     fn eq(&self, other: &Run) -> bool {
         let untimed = |r: &Run| {
