@@ -389,6 +389,7 @@ fn held_out(demos: &[Demonstration]) -> [Vec<f64>; 2] {
             gmr: false,
             promp: false,
             dmp: false,
+            dba: false,
             replay: false,
             in_sample: false,
             threads: 2,
