@@ -268,6 +268,7 @@ fn cosco_heldout_on_directories_of_gestures() {
             "gmm_gmr",
             "promp",
             "dmp",
+            "dba",
             "replay"
         ]
     );
