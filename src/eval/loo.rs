@@ -28,6 +28,8 @@ pub struct LooSettings {
     pub promp: bool,
     /// The DMP from the initial posture to the mean end.
     pub dmp: bool,
+    /// The DTW mean of the training demonstrations (DBA).
+    pub dba: bool,
     /// The replay of the nearest training demonstration.
     pub replay: bool,
     /// Learn from all and score against each too.
@@ -53,6 +55,7 @@ impl Default for LooSettings {
             gmr: true,
             promp: true,
             dmp: true,
+            dba: true,
             replay: true,
             in_sample: true,
             conditioning: Conditioning::Unconditioned,
@@ -76,6 +79,7 @@ impl LooSettings {
                 Method::GmmGmr => self.gmr,
                 Method::ProMP => self.promp,
                 Method::Dmp => self.dmp,
+                Method::Dba => self.dba,
                 Method::Replay => self.replay && held_out,
             })
             .collect()

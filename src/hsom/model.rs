@@ -439,6 +439,35 @@ pub(crate) struct DemoSmoothness {
     pub(crate) peak_step: Vec<f64>,
 }
 
+impl DemoSmoothness {
+    /// Of the sequences `demos`, their first `s` variables; `None` where no normalised jerk
+    /// is defined (no demonstration of 5 samples that moves).
+    pub(crate) fn of(demos: &[Vec<Vec<f64>>], s: usize) -> Option<DemoSmoothness> {
+        let jerk = crate::stats::median(demos.iter().filter_map(|d| {
+            let state: Vec<&[f64]> = d.iter().map(|r| &r[..s]).collect();
+            crate::metrics::normalized_jerk(&state, 1.0)
+        }))?;
+        let start_step = demos
+            .iter()
+            .filter(|d| d.len() >= 2)
+            .map(|d| crate::dtw::euclidean(&d[1][..s], &d[0][..s]))
+            .fold(0.0, f64::max);
+        let peak_step = (0..s)
+            .map(|j| {
+                demos
+                    .iter()
+                    .flat_map(|d| d.windows(2).map(move |w| (w[1][j] - w[0][j]).abs()))
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        Some(DemoSmoothness {
+            jerk,
+            start_step,
+            peak_step,
+        })
+    }
+}
+
 /// The consensus weighed by the starts (docs/ALGORITHM.md, section 3.7): where each training
 /// demonstration places every bottom node's events (the node's samples, of every
 /// demonstration, replaced by that demonstration's samples aligned to them, smoothed as
