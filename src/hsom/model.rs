@@ -11,6 +11,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::config::{Algorithm, HsomConfig, HsomParams};
+pub(crate) use crate::metrics::DemoSmoothness;
 use crate::som::SelfOrganizingMap;
 
 use super::errors::HsomError;
@@ -424,47 +425,6 @@ impl Part for EventsModel {
                     .into(),
             ),
         }
-    }
-}
-
-/// How smooth the training demonstrations are (normalised units, per sample).
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub(crate) struct DemoSmoothness {
-    /// Their median normalised jerk.
-    pub(crate) jerk: f64,
-    /// Their largest first step (the distance from the first posture to the second): how
-    /// fast they leave their start.
-    pub(crate) start_step: f64,
-    /// Per variable, their largest step from one sample to the next: how fast they move.
-    pub(crate) peak_step: Vec<f64>,
-}
-
-impl DemoSmoothness {
-    /// Of the sequences `demos`, their first `s` variables; `None` where no normalised jerk
-    /// is defined (no demonstration of 5 samples that moves).
-    pub(crate) fn of(demos: &[Vec<Vec<f64>>], s: usize) -> Option<DemoSmoothness> {
-        let jerk = crate::stats::median(demos.iter().filter_map(|d| {
-            let state: Vec<&[f64]> = d.iter().map(|r| &r[..s]).collect();
-            crate::metrics::normalized_jerk(&state, 1.0)
-        }))?;
-        let start_step = demos
-            .iter()
-            .filter(|d| d.len() >= 2)
-            .map(|d| crate::dtw::euclidean(&d[1][..s], &d[0][..s]))
-            .fold(0.0, f64::max);
-        let peak_step = (0..s)
-            .map(|j| {
-                demos
-                    .iter()
-                    .flat_map(|d| d.windows(2).map(move |w| (w[1][j] - w[0][j]).abs()))
-                    .fold(0.0, f64::max)
-            })
-            .collect();
-        Some(DemoSmoothness {
-            jerk,
-            start_step,
-            peak_step,
-        })
     }
 }
 
