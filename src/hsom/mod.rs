@@ -51,7 +51,7 @@ pub use labels::{Gestures, GESTURES_FORMAT_VERSION, MAX_LABELS};
 pub use memory::{ActivityLevels, ActivityList};
 pub use model::{GestureModel, Hsom, Scoring};
 pub use persist::{FilePart, FORMAT_VERSION};
-pub use recognize::{Recognition, PREFIX_BLEND};
+pub use recognize::{Recognition, PREFIX_BLEND, WEIGHED_SHOWN};
 pub use recognizer::{Commit, Recognizer, StreamCalibration};
 pub use reproduction::{Reproduction, StopReason};
 pub use stepper::{HsomReplan, HsomStepper, NearestReplan, NearestStepper};
