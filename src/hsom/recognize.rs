@@ -69,44 +69,49 @@ fn activity(paths: &[Vec<Vec<f64>>], dim: usize) -> Vec<f64> {
 }
 
 /// A label's weights of the variables in its score (docs/ALGORITHM.md, section 4, item 3),
-/// from its demonstrations `paths`: each variable's activity over the mean activity, so the
-/// weights average 1 (every weight 1 when the gesture moves nothing).
+/// from its demonstrations `paths`: half 1, half the variable's activity over the mean
+/// activity, so the weights average 1 and a variable the gesture holds still counts (a
+/// sequence that moves it is not the gesture); every weight 1 when the gesture moves nothing.
 pub(crate) fn weights(paths: &[Vec<Vec<f64>>], dim: usize) -> Vec<f64> {
     let a = activity(paths, dim);
     let mean = a.iter().sum::<f64>() / a.len().max(1) as f64;
     if !(mean > 0.0 && mean.is_finite()) {
         return vec![1.0; a.len()];
     }
-    a.iter().map(|x| x / mean).collect()
+    a.iter().map(|x| 0.5 * (1.0 + x / mean)).collect()
 }
 
 /// How a label weighs a sequence: each variable's value scaled by the square root of its
-/// weight, then each variable's change from the previous sample scaled by `rate` (0 at the
-/// first sample); Euclidean distances between such rows are the weighted ones.
+/// weight, then each variable's change over `span` samples (from the first sample before
+/// that; 0 at the first) scaled by `rate`; Euclidean distances between such rows are the
+/// weighted ones.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Weighing {
     pub(crate) w: Vec<f64>,
     pub(crate) rate: f64,
+    pub(crate) span: usize,
 }
 
 impl Weighing {
-    /// `model`'s weighing ([`Weighing::with`] its weights from the demonstrations it keeps).
+    /// `model`'s weighing ([`Weighing::with`] its weights from the demonstrations it keeps,
+    /// its changes over the bottom's `actionHorizon`).
     pub(crate) fn of(model: &EventsHsom, rep: &[Vec<f64>]) -> Self {
-        Self::with(weights(&model.paths, model.columns.len()), rep)
+        let span = model.config.params().action_horizon();
+        Self::with(weights(&model.paths, model.columns.len()), rep, span)
     }
 
     /// Weights `w`, and the scale of the changes that makes their spread over `rep` (the
     /// label's reproduction) the weighed values' spread, so the shape of the motion and where
     /// it goes count alike.
-    pub(crate) fn with(w: Vec<f64>, rep: &[Vec<f64>]) -> Self {
+    pub(crate) fn with(w: Vec<f64>, rep: &[Vec<f64>], span: usize) -> Self {
+        let span = span.max(1);
         let n = rep.len().max(1) as f64;
         let (mut values, mut changes) = (0.0, 0.0);
         for (v, w) in w.iter().enumerate() {
             let m = rep.iter().map(|r| r[v]).sum::<f64>() / n;
             values += w * rep.iter().map(|r| (r[v] - m).powi(2)).sum::<f64>() / n;
-            changes += rep
-                .windows(2)
-                .map(|p| (p[1][v] - p[0][v]).powi(2))
+            changes += (rep.iter().zip(rep.iter().skip(span)))
+                .map(|(a, b)| (b[v] - a[v]).powi(2))
                 .sum::<f64>()
                 / n;
         }
@@ -115,10 +120,11 @@ impl Weighing {
         } else {
             0.0
         };
-        Weighing { w, rate }
+        Weighing { w, rate, span }
     }
 
-    /// One row weighed, `prev` the sample before it (`None` at the first).
+    /// One row weighed, `prev` the sample `span` before it (the first one, closer to the
+    /// start; `None` at the first).
     pub(crate) fn row(&self, x: &[f64], prev: Option<&[f64]>) -> Vec<f64> {
         let mut out: Vec<f64> = x.iter().zip(&self.w).map(|(x, w)| x * w.sqrt()).collect();
         out.extend(
@@ -132,7 +138,10 @@ impl Weighing {
     /// Rows weighed.
     pub(crate) fn rows(&self, rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
         (0..rows.len())
-            .map(|t| self.row(&rows[t], t.checked_sub(1).map(|p| rows[p].as_slice())))
+            .map(|t| {
+                let prev = (t > 0).then(|| rows[t.saturating_sub(self.span)].as_slice());
+                self.row(&rows[t], prev)
+            })
             .collect()
     }
 }
@@ -695,12 +704,13 @@ mod tests {
             d(&shake) / d(&nod)
         };
         let w = weights(&nods, 14);
-        assert!(w[1] > 5.0 && w[0] < 1.0, "{w:?}");
-        let weighed = ratio(&Weighing::with(w, reproduction));
+        assert!(w[1] > 3.0 && w[0] < 1.0, "{w:?}");
+        let weighed = ratio(&Weighing::with(w, reproduction, 1));
         // the negative control: every variable weighed 1, values only (the score before)
         let alike = ratio(&Weighing {
             w: vec![1.0; 14],
             rate: 0.0,
+            span: 1,
         });
         assert!(
             weighed > 3.0,

@@ -78,8 +78,8 @@ struct Track {
     out: bool,
     /// The label's weighing of a sample.
     k: Weighing,
-    /// The sample before (normalised).
-    last: Option<Vec<f64>>,
+    /// The samples pushed (normalised), for the changes over the weighing's span.
+    seen: Vec<Vec<f64>>,
 }
 
 impl Track {
@@ -90,13 +90,14 @@ impl Track {
             Weighing {
                 w: Vec::new(),
                 rate: 0.0,
+                span: 1,
             },
             |r| Weighing::of(b, r),
         );
         Track {
             rep: rep.map(|r| Reference::new(&k.rows(&r))),
             k,
-            last: None,
+            seen: Vec::new(),
             prev: vec![f64::INFINITY; m],
             cur: vec![f64::INFINITY; m],
             dist: vec![0.0; m],
@@ -110,8 +111,9 @@ impl Track {
     fn step(&mut self, x: &[f64], i: usize) {
         let Some(rep) = &self.rep else { return };
         let m = rep.len();
-        let y = self.k.row(x, self.last.as_deref());
-        self.last = Some(x.to_vec());
+        self.seen.push(x.to_vec());
+        let prev = (i > 0).then(|| self.seen[i.saturating_sub(self.k.span)].as_slice());
+        let y = self.k.row(x, prev);
         rep.distances(&y, 0, m, &mut self.dist);
         for (j, &c) in self.dist.iter().enumerate() {
             if i == 0 && j == 0 {
