@@ -146,12 +146,12 @@ impl Weighing {
     }
 }
 
+/// Rows of a sequence.
+type Rows = Vec<Vec<f64>>;
+
 /// `norm` (normalised rows) and `model`'s reproduction from its first posture, both weighed
 /// by the label's weighing; `None` when it cannot be reproduced.
-pub(super) fn weighed_pair(
-    model: &EventsHsom,
-    norm: &[Vec<f64>],
-) -> Option<(Vec<Vec<f64>>, Vec<Vec<f64>>)> {
+pub(super) fn weighed_pair(model: &EventsHsom, norm: &[Vec<f64>]) -> Option<(Rows, Rows)> {
     let rep = reproduction_from(model, norm)?;
     let k = Weighing::of(model, &rep);
     Some((k.rows(norm), k.rows(&rep)))
