@@ -105,6 +105,7 @@ def nao_headline(heldout):
     add("GMM/GMR (the paper's baseline)", rec, "gmr")
     add("ProMP conditioned on the initial posture", rec, "promp")
     add("DMP from rest to the demonstrations' mean end", rec, "dmp")
+    add("DBA, the DTW mean of the training demonstrations", rec, "dba")
     return rows
 
 
@@ -115,6 +116,7 @@ LASA_METHODS = {
     "gmm_gmr": "GMM/GMR (the paper's baseline)",
     "promp": "ProMP conditioned on the initial posture",
     "dmp": "DMP from rest to the demonstrations' mean end",
+    "dba": "DBA, the DTW mean of the training demonstrations",
     "replay": "replay of the training demonstration that starts nearest",
 }
 
@@ -189,7 +191,7 @@ def beyond_table(out):
     return "\n".join(lines)
 
 
-NAMES = {**BEYOND_NAMES, "height1": "height 1", "replay": "replay (no model)"}
+NAMES = {**BEYOND_NAMES, "height1": "height 1", "dba": "DBA", "replay": "replay (no model)"}
 
 
 def sittings_table(out):
@@ -444,7 +446,7 @@ def resampled_table(out):
     return "\n".join(lines)
 
 
-UB_METHODS = ["hierarchy", "nearest_sequence", "height1", "gmm_gmr", "promp", "dmp", "replay"]
+UB_METHODS = ["hierarchy", "nearest_sequence", "height1", "gmm_gmr", "promp", "dmp", "dba", "replay"]
 UB_TUNING = [
     ("`configs/nao-upper-body.xml` (nao-gestures at 14 variables, `changeRatio` 1)", "nao-upper-body"),
     ("`changeRatio` 0.6 (nao-gestures' own)", "upper-body-change-ratio-0.6"),
@@ -558,7 +560,7 @@ def upper_body_parts(out):
             gestures.append(g)
     names = {**NAMES, "replay": "replay"}
     lines = [
-        "| gesture | " + " | ".join(names[m] for m in UB_METHODS) + " | hierarchy closer than GMM/GMR / ProMP / DMP / nearest sequence |",
+        "| gesture | " + " | ".join(names[m] for m in UB_METHODS) + " | hierarchy closer than GMM/GMR / ProMP / DMP / DBA / nearest sequence |",
         "|---|" + "---|" * (len(UB_METHODS) + 1),
     ]
     for g in gestures + ["all"]:
@@ -568,7 +570,7 @@ def upper_body_parts(out):
             v = [means[m][k] for k in keys if means[m].get(k) is not None]
             cells.append(f"{median(v):.4f}" if v else "-")
         closer = []
-        for m in ("gmm_gmr", "promp", "dmp", "nearest_sequence"):
+        for m in ("gmm_gmr", "promp", "dmp", "dba", "nearest_sequence"):
             pairs = [(means["hierarchy"][k], means[m][k]) for k in keys if means["hierarchy"][k] is not None and means[m].get(k) is not None]
             closer.append(f"{sum(h < o for h, o in pairs)}")
         lines.append(f"| {'**all**' if g == 'all' else g} | " + " | ".join(cells) + f" | {' / '.join(closer)} of {len(keys)} |")
@@ -588,8 +590,8 @@ def upper_body_parts(out):
     seeds, without, acc, unk = ub_recognition(out)
     h_all = median([v for v in means["hierarchy"].values() if v is not None])
     closest = {m: median([v for v in means[m].values() if v is not None]) for m in UB_METHODS}
-    closer = [f"{names[m]} {closest[m]:.4f}" for m in ("nearest_sequence", "gmm_gmr", "promp", "dmp") if closest[m] < h_all / 1.02]
-    level = [f"{names[m]} {closest[m]:.4f}" for m in ("nearest_sequence", "gmm_gmr", "promp", "dmp") if h_all / 1.02 <= closest[m] <= h_all * 1.02]
+    closer = [f"{names[m]} {closest[m]:.4f}" for m in ("nearest_sequence", "gmm_gmr", "promp", "dmp", "dba") if closest[m] < h_all / 1.02]
+    level = [f"{names[m]} {closest[m]:.4f}" for m in ("nearest_sequence", "gmm_gmr", "promp", "dmp", "dba") if h_all / 1.02 <= closest[m] <= h_all * 1.02]
     lag_lowest = min((per["hierarchy"][0] / per["hierarchy"][1], name) for name, per in lag.items()) if lag else (None, None)
     judged = [
         "- the configuration: `configs/nao-upper-body.xml`, chosen on seeds 31-34 (docs/CONFIG.md, \"The upper body\"): met",

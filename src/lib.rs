@@ -57,6 +57,7 @@ pub mod app;
 pub mod condition;
 pub mod config;
 pub mod curve;
+pub mod dba;
 pub mod demo_sets;
 pub mod demos;
 pub mod dmp;

@@ -106,7 +106,7 @@ fn run_job(
     let demos =
         synthetic_demonstrations(arm, gesture, settings.count, seed, &demo_settings, |_| {})?;
     // the baselines do not depend on the configuration: their folds once per set
-    let baselines = [Method::GmmGmr, Method::ProMP, Method::Dmp];
+    let baselines = [Method::GmmGmr, Method::ProMP, Method::Dmp, Method::Dba];
     let trained = Training::Trained;
     let baseline_folds = folds(arm, &demos, &baselines, None, trained, settings.transition)?;
     let gmr_in_sample = if settings.in_sample {

@@ -270,6 +270,7 @@ def heldout(
     gmr: bool = True,
     promp: bool = True,
     dmp: bool = True,
+    dba: bool = True,
     in_sample: bool = True,
     condition: Optional[Literal["end", "end+mid"]] = None,
     far: Sequence[float] = (),

@@ -117,7 +117,7 @@ impl GmrModel {
 /// the conditioned folds under `conditioned`; with `sittings=True`, the folds taught in two
 /// sittings under `sittings`). The GIL is released while it runs.
 #[pyfunction]
-#[pyo3(signature = (config, gestures, *, columns = None, sample_period = 0.025, height_1 = true, gmr = true, promp = true, dmp = true, in_sample = true, condition = None, far = Vec::new(), sittings = false, threads = 1))]
+#[pyo3(signature = (config, gestures, *, columns = None, sample_period = 0.025, height_1 = true, gmr = true, promp = true, dmp = true, dba = true, in_sample = true, condition = None, far = Vec::new(), sittings = false, threads = 1))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn heldout<'py>(
     py: Python<'py>,
@@ -129,6 +129,7 @@ pub(crate) fn heldout<'py>(
     gmr: bool,
     promp: bool,
     dmp: bool,
+    dba: bool,
     in_sample: bool,
     condition: Option<String>,
     far: Vec<f64>,
@@ -158,6 +159,7 @@ pub(crate) fn heldout<'py>(
         gmr,
         promp,
         dmp,
+        dba,
         replay: true,
         in_sample,
         conditioning: match condition.as_deref() {

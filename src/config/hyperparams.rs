@@ -418,14 +418,6 @@ impl HsomConfig {
     pub fn into_params(self) -> HsomParams {
         self.params
     }
-    /// The same configuration with other reproduction settings; fails when they are out of
-    /// range.
-    pub fn with_reproduction(self, r: ReproductionParams) -> Result<HsomConfig, ConfigError> {
-        let source = self.source.clone();
-        let mut p = self.params;
-        p.reproduction = r;
-        p.check(&source)
-    }
     /// update_period^level, the training period of `level`.
     pub fn period(&self, level: usize) -> u64 {
         (self.params.update_period() as u64).pow(level as u32)

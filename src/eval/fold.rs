@@ -412,14 +412,7 @@ pub fn scored<E: Executor>(
             band: r.band,
             scores: Some(s),
         },
-        Err(e) => Run {
-            method,
-            score: None,
-            error: Some(e),
-            postures: Vec::new(),
-            band: None,
-            scores: None,
-        },
+        Err(e) => Run::failed(method, e),
     }
 }
 

@@ -8,6 +8,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use crate::condition::{meet, Conditions, ConfidenceBand};
+use crate::dba::Dba;
 use crate::demos::Demonstration;
 use crate::dmp::{Dmp, DmpSettings, DmpStepper};
 use crate::dtw::euclidean;
@@ -37,6 +38,8 @@ pub enum Learned {
     Promp(Promp),
     /// The DMP.
     Dmp(Dmp),
+    /// The DTW mean.
+    Dba(Dba),
     /// The replay: nothing learned, the training demonstrations as recorded.
     Replay,
 }
@@ -130,6 +133,10 @@ impl Learned {
                 let (m, s) = timed(|| DmpSettings::default().fit(train));
                 Ok((Learned::Dmp(m.map_err(msg)?), s))
             }
+            Method::Dba => {
+                let (m, s) = timed(|| Dba::fit(train));
+                Ok((Learned::Dba(m.map_err(msg)?), s))
+            }
             Method::Replay => Ok((Learned::Replay, 0.0)),
         }
     }
@@ -203,6 +210,21 @@ impl Learned {
             Learned::Dmp(m) => {
                 let goal = conditions.goal.as_deref();
                 let (p, reproduce_s) = timed(|| m.reproduce(initial, goal).map_err(msg));
+                Ok(Planned {
+                    postures: p?,
+                    reproduce_s,
+                    fitted: None,
+                    band: None,
+                })
+            }
+            Learned::Dba(m) => {
+                let (p, reproduce_s) = timed(|| {
+                    let postures = m.reproduce(initial);
+                    match points.is_empty() {
+                        true => Ok(postures),
+                        false => meet(&postures, &points, None).map_err(msg),
+                    }
+                });
                 Ok(Planned {
                     postures: p?,
                     reproduce_s,

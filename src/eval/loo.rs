@@ -28,6 +28,8 @@ pub struct LooSettings {
     pub promp: bool,
     /// The DMP from the initial posture to the mean end.
     pub dmp: bool,
+    /// The DTW mean of the training demonstrations (DBA).
+    pub dba: bool,
     /// The replay of the nearest training demonstration.
     pub replay: bool,
     /// Learn from all and score against each too.
@@ -53,6 +55,7 @@ impl Default for LooSettings {
             gmr: true,
             promp: true,
             dmp: true,
+            dba: true,
             replay: true,
             in_sample: true,
             conditioning: Conditioning::Unconditioned,
@@ -76,6 +79,7 @@ impl LooSettings {
                 Method::GmmGmr => self.gmr,
                 Method::ProMP => self.promp,
                 Method::Dmp => self.dmp,
+                Method::Dba => self.dba,
                 Method::Replay => self.replay && held_out,
             })
             .collect()
@@ -450,17 +454,13 @@ fn limited_fold<E: Executor>(
         .iter()
         .partition(|m| !baseline(m) || learn_from >= MIN_DEMONSTRATIONS);
     let mut f = fold(&run, base, demos, split, diag, executor);
-    f.runs.extend(skip.iter().map(|&method| Run {
-        method,
-        score: None,
-        error: Some(format!(
+    f.runs.extend(skip.iter().map(|&method| {
+        let why = format!(
             "fold {n}: {} needs at least {MIN_DEMONSTRATIONS} demonstrations to learn from, \
              this fold has {learn_from}",
             method.name(),
-        )),
-        postures: Vec::new(),
-        band: None,
-        scores: None,
+        );
+        Run::failed(method, why)
     }));
     f
 }

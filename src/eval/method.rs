@@ -40,19 +40,24 @@ pub enum Method {
     ///
     /// [`DmpSettings`]: crate::dmp::DmpSettings
     Dmp,
+    /// The DTW mean of the training demonstrations ([`crate::dba`]): DBA initialised at their
+    /// medoid, keeping its length, joined from the initial posture; the sequence nearest all
+    /// of them under alignment, what a reproduction scored by DTW has to beat.
+    Dba,
     /// The training demonstration whose first sample is nearest, as recorded (no model).
     Replay,
 }
 
 impl Method {
     /// Every method, in the order of the tables.
-    pub const ALL: [Method; 7] = [
+    pub const ALL: [Method; 8] = [
         Method::Hierarchy,
         Method::NearestSequence,
         Method::Height1,
         Method::GmmGmr,
         Method::ProMP,
         Method::Dmp,
+        Method::Dba,
         Method::Replay,
     ];
 
@@ -65,6 +70,7 @@ impl Method {
             Method::GmmGmr => "GMM/GMR",
             Method::ProMP => "ProMP",
             Method::Dmp => "DMP",
+            Method::Dba => "DBA",
             Method::Replay => "replay (no model)",
         }
     }

@@ -186,6 +186,7 @@ pub fn png(path: &std::path::Path, study: &[GestureLoo], fold: usize) -> Result<
         Method::GmmGmr => RGBColor(200, 0, 130),
         Method::ProMP => PALETTE[1],
         Method::Dmp => RGBColor(120, 90, 40),
+        Method::Dba => RGBColor(0, 150, 150),
         Method::Replay => PALETTE[2],
     };
     let points = |rows: &[Vec<f64>], period: f64| -> Vec<(f64, f64)> {

@@ -79,6 +79,20 @@ pub struct Run {
     pub scores: Option<FoldScores>,
 }
 
+impl Run {
+    /// `method`'s run that produced no reproduction, and why.
+    pub fn failed(method: Method, error: String) -> Run {
+        Run {
+            method,
+            score: None,
+            error: Some(error),
+            postures: Vec::new(),
+            band: None,
+            scores: None,
+        }
+    }
+}
+
 impl PartialEq for Run {
     fn eq(&self, other: &Run) -> bool {
         let untimed = |r: &Run| {
@@ -572,7 +586,7 @@ impl HeldOutSummary {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct HeldOut {
     /// One fold per demonstration, in order (written per method: `hsom`, `gmr`, `sequence`,
-    /// `promp`, `dmp`, each with its scores, and the reason where a baseline did not run).
+    /// `promp`, `dmp`, `dba`, each with its scores, and the reason where a baseline did not run).
     #[serde(serialize_with = "per_method")]
     pub folds: Vec<Fold>,
     /// CoSCo-HSOM: means over all folds.
@@ -585,6 +599,9 @@ pub struct HeldOut {
     pub promp: Option<HeldOutSummary>,
     /// The DMP: means over the folds where it ran (`None` when it was not run or ran on none).
     pub dmp: Option<HeldOutSummary>,
+    /// The DTW mean: means over the folds where it ran (`None` when it was not run or ran on
+    /// none).
+    pub dba: Option<HeldOutSummary>,
 }
 
 /// The folds as the reports write them: per method.
@@ -601,6 +618,8 @@ fn per_method<S: serde::Serializer>(folds: &[Fold], s: S) -> Result<S::Ok, S::Er
         promp_error: Option<&'a str>,
         dmp: Option<&'a FoldScores>,
         dmp_error: Option<&'a str>,
+        dba: Option<&'a FoldScores>,
+        dba_error: Option<&'a str>,
     }
     s.collect_seq(folds.iter().enumerate().map(|(i, f)| Row {
         held_out: i,
@@ -613,6 +632,8 @@ fn per_method<S: serde::Serializer>(folds: &[Fold], s: S) -> Result<S::Ok, S::Er
         promp_error: f.error(Method::ProMP),
         dmp: f.scores(Method::Dmp),
         dmp_error: f.error(Method::Dmp),
+        dba: f.scores(Method::Dba),
+        dba_error: f.error(Method::Dba),
     }))
 }
 
@@ -637,6 +658,7 @@ impl HeldOut {
             sequence: summary(Method::NearestSequence),
             promp: summary(Method::ProMP),
             dmp: summary(Method::Dmp),
+            dba: summary(Method::Dba),
             folds,
         })
     }

@@ -296,16 +296,16 @@ pub fn loop_markdown(s: &LoopSection) -> String {
     out
 }
 
-/// `in_loop.png`: per joint of `panels`, the demonstrations, the hierarchy's undisturbed and
-/// disturbed runs, and the disturbances' intervals shaded.
+/// `in_loop.png`: per joint of `robot`'s plot panels, the demonstrations, the hierarchy's
+/// undisturbed and disturbed runs, and the disturbances' intervals shaded.
 pub fn loop_png(
     path: &Path,
-    panels: &[(usize, &str)],
+    robot: Robot,
     demos: &[Demonstration],
     h: &HierarchyLoop,
 ) -> Result<(), ExperimentError> {
     let rec = &h.run;
-    let out: Vec<Panel> = (panels.iter().enumerate())
+    let out: Vec<Panel> = (robot.plot_panels().iter().enumerate())
         .map(|(i, &(k, name))| {
             let mut p = Panel::new(name, "time (s)", crate::robot::axis_label(name));
             let first = i == 0;
@@ -359,18 +359,27 @@ pub fn loop_png(
             p
         })
         .collect();
-    panels_png(
-        path,
-        "The hierarchy in the loop on the simulated arm, what its encoders read",
-        &out,
-        2,
-        (620, 380),
-    )
-    .map_err(|e| ExperimentError::Invalid(format!("drawing {}: {e}", path.display())))
+    let title = format!(
+        "The hierarchy in the loop on the simulated Nao {}, what its encoders read",
+        robot.phrase()
+    );
+    panels_png(path, &title, &out, 2, (620, 380))
+        .map_err(|e| ExperimentError::Invalid(format!("drawing {}: {e}", path.display())))
 }
 
 /// How long a goal's move stays captioned in the clip, s.
 const GOAL_CAPTION_S: f64 = 1.0;
+
+/// When the clip's captions ([`mark_frame`]) say what disturbs the arm, from and to (s): a
+/// hold, a move or a push while it acts, a goal's move for [`GOAL_CAPTION_S`].
+pub fn marked_windows(h: &HierarchyLoop) -> Vec<(f64, f64)> {
+    (h.disturbances.iter())
+        .map(|d| match d.kind {
+            Kind::Goal(_) => (d.at, d.at + GOAL_CAPTION_S),
+            _ => (d.at, d.until()),
+        })
+        .collect()
+}
 
 /// Mark the clip's frame of sample `i` of the hierarchy's run: a caption with the time and
 /// what disturbs the arm then (held, moved, a link pushed, the goal moved), and on a pushed

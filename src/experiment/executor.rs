@@ -78,7 +78,9 @@ impl<const N: usize> Executor for ArmExecutor<'_, N> {
             ..MetricsParams::default()
         };
         let transition = match method {
-            Method::GmmGmr | Method::ProMP | Method::Dmp | Method::Replay => Transition::Linear,
+            Method::GmmGmr | Method::ProMP | Method::Dmp | Method::Dba | Method::Replay => {
+                Transition::Linear
+            }
             _ => self.transition,
         };
         execute_and_score(self.arm, postures, transition, targets, &metrics)

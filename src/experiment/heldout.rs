@@ -101,6 +101,7 @@ pub fn leave_one_out<const N: usize>(
         Method::GmmGmr,
         Method::ProMP,
         Method::Dmp,
+        Method::Dba,
     ];
     let all = folds(
         arm,

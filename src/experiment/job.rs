@@ -466,7 +466,7 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
             let model = hsom_model(&run)?.0;
             let (section, h) =
                 arm_loop::closed_loop(&arm, model, &demos, &job.disturbances, out, &mut files)?;
-            arm_loop::loop_png(&out.join("in_loop.png"), &robot.plot_panels(), &demos, &h)?;
+            arm_loop::loop_png(&out.join("in_loop.png"), robot, &demos, &h)?;
             files.push("in_loop.png".into());
             clock.lap("in the loop (every method's stepper on the arm, undisturbed and disturbed)");
             Some((section, h))
@@ -496,7 +496,16 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
             }
         };
         clip.write_gif(&out.join("clip.gif"))?;
-        clip.write_contact_sheet(&out.join("contact_sheet.png"), 8, 4, true)?;
+        // in the loop, every disturbance on the sheet, and the frames' own captions give the
+        // time (a sheet label would cover them)
+        let (picked, labels) = match &in_loop {
+            None => (clip.key_frames(8), true),
+            Some((_, h)) => (
+                clip.key_frames_within(8, &arm_loop::marked_windows(h)),
+                false,
+            ),
+        };
+        clip.write_contact_sheet(&out.join("contact_sheet.png"), &picked, 4, labels)?;
         files.extend(["clip.gif".into(), "contact_sheet.png".into()]);
         clock.lap("rendering (clip + contact sheet)");
     }
@@ -505,10 +514,7 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
     let report = Report {
         title: format!(
             "CoSCo-HSOM on the simulated Nao {}{}",
-            match robot {
-                Robot::LeftArm => "left arm",
-                Robot::UpperBody => "upper body",
-            },
+            robot.phrase(),
             gesture
                 .as_deref()
                 .map(|g| format!(": {g}"))

@@ -452,6 +452,9 @@ pub const PROMP_NAME: &str = "ProMP (held out only)";
 /// The DMP's name in the report's tables (held out only).
 pub const DMP_NAME: &str = "DMP (held out only)";
 
+/// The DTW mean's name in the report's tables (held out only).
+pub const DBA_NAME: &str = "DBA (held out only)";
+
 /// A markdown table with one row per `(name, held-out summary)`: where the reproductions start
 /// and end against the folds' training demonstrations and how smooth they are, the motion the
 /// arm executed beside the postures the method handed the servos (docs/METRICS.md, "Start and
@@ -522,6 +525,8 @@ pub fn folds_table(h: &HeldOut) -> String {
         "ProMP joint DTW",
         "final",
         "swings",
+        "DBA joint DTW",
+        "swings",
     ]);
     let swings = |s: &FoldScores, demo: bool| {
         s.swings.as_ref().map_or("n/a".to_string(), |w| {
@@ -568,6 +573,14 @@ pub fn folds_table(h: &HeldOut) -> String {
             ]),
             (None, Some(e)) => row.extend(not_run(e, 3)),
             (None, None) => row.extend(["n/a", "n/a", "n/a"].map(String::from)),
+        }
+        match (f.scores(Method::Dba), f.error(Method::Dba)) {
+            (Some(d), _) => row.extend([
+                JOINT_DTW.cell(Some(d.fidelity.joint_dtw_rad_per_step.mean), "n/a"),
+                swings(d, false),
+            ]),
+            (None, Some(e)) => row.extend(not_run(e, 2)),
+            (None, None) => row.extend(["n/a", "n/a"].map(String::from)),
         }
         table.row(row);
     }
@@ -653,6 +666,7 @@ impl Report {
                 let held_out_only: Vec<(&str, &HeldOutSummary)> = [
                     h.promp.as_ref().map(|p| (PROMP_NAME, p)),
                     h.dmp.as_ref().map(|d| (DMP_NAME, d)),
+                    h.dba.as_ref().map(|d| (DBA_NAME, d)),
                 ]
                 .into_iter()
                 .flatten()
@@ -688,6 +702,7 @@ impl Report {
                 rows.extend(h.gmr.as_ref().map(|g| ("GMM/GMR", g)));
                 rows.extend(h.promp.as_ref().map(|p| (PROMP_NAME, p)));
                 rows.extend(h.dmp.as_ref().map(|d| (DMP_NAME, d)));
+                rows.extend(h.dba.as_ref().map(|d| (DBA_NAME, d)));
                 rows.extend(h.sequence.as_ref().map(|s| ("nearest sequence", s)));
                 md.push_str(&start_end_table(&rows));
                 let _ = writeln!(md);

@@ -247,17 +247,17 @@ impl GmrValidParams {
                 }
             })?;
         let dataset = DatasetBase::from(records);
-        let rng = ChaCha8Rng::seed_from_u64(p.get_seed());
+        let rng = ChaCha8Rng::seed_from_u64(p.seed);
         let fitted = GaussianMixtureModel::params_with_rng(k, rng)
-            .reg_covariance(p.get_reg_covar())
-            .tolerance(p.get_tolerance())
-            .max_n_iterations(p.get_max_iterations())
+            .reg_covariance(p.reg_covar)
+            .tolerance(p.tolerance)
+            .max_n_iterations(p.max_iterations)
             .n_runs(1)
             .fit(&dataset)
             .map_err(|e| match e {
                 GmmError::NotConverged(_) => GmrError::NotConverged {
                     components: k,
-                    max_iterations: p.get_max_iterations(),
+                    max_iterations: p.max_iterations,
                 },
                 other => GmrError::Em {
                     components: k,
@@ -282,7 +282,7 @@ impl GmrValidParams {
         Gmm::new(weights, means, covariances).map_err(|e| match e {
             GmrError::DegenerateCovariance { component, .. } => GmrError::DegenerateCovariance {
                 component,
-                reg_covar: p.get_reg_covar(),
+                reg_covar: p.reg_covar,
             },
             other => other,
         })
@@ -293,7 +293,7 @@ impl GmrValidParams {
     /// whose fit fails are recorded and skipped; an error only when every count fails, the
     /// last error then). Returns the model and the score of every count tried.
     pub fn fit_gmm(&self, points: &[Vec<f64>]) -> Result<(Gmm, Vec<BicScore>), GmrError> {
-        let (lo, hi) = match self.params().get_components() {
+        let (lo, hi) = match self.params().components {
             ComponentChoice::Fixed(k) => (k, k),
             ComponentChoice::Bic { min, max } => (min, max),
         };

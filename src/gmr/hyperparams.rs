@@ -73,16 +73,16 @@ pub enum ComponentChoice {
 /// [`IdleTrim::default`], DTW alignment on with no band, at least 2 demonstrations.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GmrParams {
-    components: ComponentChoice,
-    reg_covar: f64,
-    tolerance: f64,
-    max_iterations: u64,
-    seed: u64,
-    n_points: usize,
-    sample_period: f64,
-    trim: IdleTrim,
-    align: bool,
-    band: Band,
+    pub(crate) components: ComponentChoice,
+    pub(crate) reg_covar: f64,
+    pub(crate) tolerance: f64,
+    pub(crate) max_iterations: u64,
+    pub(crate) seed: u64,
+    pub(crate) n_points: usize,
+    pub(crate) sample_period: f64,
+    pub(crate) trim: IdleTrim,
+    pub(crate) align: bool,
+    pub(crate) band: Band,
 }
 
 /// Validated parameters: the only type that can fit a model.
@@ -219,48 +219,5 @@ impl GmrValidParams {
     /// The checked parameters.
     pub fn params(&self) -> &GmrParams {
         &self.0
-    }
-}
-
-impl GmrParams {
-    /// Component choice.
-    pub fn get_components(&self) -> ComponentChoice {
-        self.components
-    }
-    /// Covariance regularisation.
-    pub fn get_reg_covar(&self) -> f64 {
-        self.reg_covar
-    }
-    /// EM tolerance.
-    pub fn get_tolerance(&self) -> f64 {
-        self.tolerance
-    }
-    /// EM iteration budget.
-    pub fn get_max_iterations(&self) -> u64 {
-        self.max_iterations
-    }
-    /// Seed.
-    pub fn get_seed(&self) -> u64 {
-        self.seed
-    }
-    /// Points per demonstration.
-    pub fn get_n_points(&self) -> usize {
-        self.n_points
-    }
-    /// Sample period for files without time.
-    pub fn get_sample_period(&self) -> f64 {
-        self.sample_period
-    }
-    /// Idle trimming.
-    pub fn get_trim(&self) -> IdleTrim {
-        self.trim
-    }
-    /// DTW alignment on or off.
-    pub fn get_align(&self) -> bool {
-        self.align
-    }
-    /// Alignment band.
-    pub fn get_band(&self) -> Band {
-        self.band
     }
 }

@@ -240,8 +240,8 @@ pub fn preprocess(
         });
     }
     validate_set(demos, None)?;
-    let trim = p.get_trim();
-    let period = p.get_sample_period();
+    let trim = p.trim;
+    let period = p.sample_period;
     let mut kept = Vec::with_capacity(demos.len());
     let mut trimmed: Vec<Vec<Vec<f64>>> = Vec::with_capacity(demos.len());
     for d in demos {
@@ -254,13 +254,13 @@ pub fn preprocess(
         trimmed.push(d.rows[range.clone()].to_vec());
         kept.push(range);
     }
-    let n = p.get_n_points();
-    let (reference, duration, demos_out) = if p.get_align() {
-        let r = choose_reference(&trimmed, p.get_band())?;
+    let n = p.n_points;
+    let (reference, duration, demos_out) = if p.align {
+        let r = choose_reference(&trimmed, p.band)?;
         let duration = duration_of(&demos[r], &kept[r], period);
         let mut out = Vec::with_capacity(trimmed.len());
         for t in &trimmed {
-            let aligned = align_to(&trimmed[r], t, p.get_band())?;
+            let aligned = align_to(&trimmed[r], t, p.band)?;
             out.push(resample_linear(&aligned, n));
         }
         (Some(r), duration, out)

@@ -45,10 +45,12 @@ mod update;
 
 pub use algorithm::Fit;
 pub use errors::{GestureError, HsomError, PersistError};
+pub(crate) use events::{as_smooth_as, smooth_warp, start_fade};
 pub use kept::kept_demonstrations;
 pub use kept::{BAND_ROWS, KEPT_DEMONSTRATIONS, MAX_LEARNED};
 pub use labels::{Gestures, GESTURES_FORMAT_VERSION, MAX_LABELS};
 pub use memory::{ActivityLevels, ActivityList};
+pub(crate) use model::DemoSmoothness;
 pub use model::{GestureModel, Hsom, Scoring};
 pub use persist::{FilePart, FORMAT_VERSION};
 pub use recognize::{Recognition, PREFIX_BLEND, WEIGHED_SHOWN};

@@ -11,6 +11,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::config::{Algorithm, HsomConfig, HsomParams};
+pub(crate) use crate::metrics::DemoSmoothness;
 use crate::som::SelfOrganizingMap;
 
 use super::errors::HsomError;
@@ -425,18 +426,6 @@ impl Part for EventsModel {
             ),
         }
     }
-}
-
-/// How smooth the training demonstrations are (normalised units, per sample).
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub(crate) struct DemoSmoothness {
-    /// Their median normalised jerk.
-    pub(crate) jerk: f64,
-    /// Their largest first step (the distance from the first posture to the second): how
-    /// fast they leave their start.
-    pub(crate) start_step: f64,
-    /// Per variable, their largest step from one sample to the next: how fast they move.
-    pub(crate) peak_step: Vec<f64>,
 }
 
 /// The consensus weighed by the starts (docs/ALGORITHM.md, section 3.7): where each training

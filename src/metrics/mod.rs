@@ -15,6 +15,7 @@ pub use fidelity::{
     fidelity, fidelity_named, fidelity_of_rows, trimmed_normalized_jerk, DemoScores,
     FidelityReport, MetricsParams, Stat, Trajectory,
 };
+pub(crate) use smoothness::DemoSmoothness;
 pub use smoothness::{
     apex_dwell, column_swings, key_pose, large_swings, normalized_jerk, smoothness,
     velocity_reversals, Smoothness, APEX_RADIUS,

@@ -205,5 +205,46 @@ pub fn column_swings<R: AsRef<[f64]>>(
     large_swings(&values, min_amplitude)
 }
 
+/// How smooth the training demonstrations are (normalised units, per sample).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub(crate) struct DemoSmoothness {
+    /// Their median normalised jerk.
+    pub(crate) jerk: f64,
+    /// Their largest first step (the distance from the first posture to the second): how
+    /// fast they leave their start.
+    pub(crate) start_step: f64,
+    /// Per variable, their largest step from one sample to the next: how fast they move.
+    pub(crate) peak_step: Vec<f64>,
+}
+
+impl DemoSmoothness {
+    /// Of the sequences `demos`, their first `s` variables; `None` where no normalised jerk
+    /// is defined (no demonstration of 5 samples that moves).
+    pub(crate) fn of(demos: &[Vec<Vec<f64>>], s: usize) -> Option<DemoSmoothness> {
+        let jerk = crate::stats::median(demos.iter().filter_map(|d| {
+            let state: Vec<&[f64]> = d.iter().map(|r| &r[..s]).collect();
+            normalized_jerk(&state, 1.0)
+        }))?;
+        let start_step = demos
+            .iter()
+            .filter(|d| d.len() >= 2)
+            .map(|d| euclidean(&d[1][..s], &d[0][..s]))
+            .fold(0.0, f64::max);
+        let peak_step = (0..s)
+            .map(|j| {
+                demos
+                    .iter()
+                    .flat_map(|d| d.windows(2).map(move |w| (w[1][j] - w[0][j]).abs()))
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        Some(DemoSmoothness {
+            jerk,
+            start_step,
+            peak_step,
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests;

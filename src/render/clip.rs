@@ -97,19 +97,52 @@ impl Clip {
             .collect()
     }
 
-    /// A contact sheet of `n` evenly spaced key frames in a grid of `columns` columns,
-    /// optionally labelled with their simulation time.
-    pub fn contact_sheet(&self, n: usize, columns: usize, labels: bool) -> Result<RgbImage> {
+    /// `n` key frames (see [`Clip::key_frames`]) that show every window of `windows` (from,
+    /// to, in the frames' seconds): where no key frame falls inside a window, the one nearest
+    /// its middle moves to the frame there.
+    pub fn key_frames_within(&self, n: usize, windows: &[(f64, f64)]) -> Vec<usize> {
+        let mut picked = self.key_frames(n);
+        let time = |i: usize| self.frames[i].0;
+        for &(from, to) in windows {
+            let inside = |i: &usize| time(*i) >= from && time(*i) < to;
+            let Some(middle) = (0..self.frames.len()).filter(inside).min_by(|a, b| {
+                (time(*a) - (from + to) / 2.0)
+                    .abs()
+                    .total_cmp(&(time(*b) - (from + to) / 2.0).abs())
+            }) else {
+                continue;
+            };
+            if picked.iter().any(inside) {
+                continue;
+            }
+            let nearest = (0..picked.len()).min_by(|a, b| {
+                picked[*a]
+                    .abs_diff(middle)
+                    .cmp(&picked[*b].abs_diff(middle))
+            });
+            if let Some(k) = nearest {
+                picked[k] = middle;
+            }
+        }
+        picked.sort_unstable();
+        picked.dedup();
+        picked
+    }
+
+    /// A contact sheet of the frames `picked` (indices, e.g. [`Clip::key_frames`]) in a grid
+    /// of `columns` columns, optionally labelled with their simulation time.
+    pub fn contact_sheet(
+        &self,
+        picked: &[usize],
+        columns: usize,
+        labels: bool,
+    ) -> Result<RgbImage> {
         if self.frames.is_empty() {
             return Err(RenderError::NoFrames("contact sheet"));
         }
-        let picked: Vec<(Option<String>, &RgbImage)> = self
-            .key_frames(n)
-            .into_iter()
-            .map(|i| {
-                let (t, f) = &self.frames[i];
-                (labels.then(|| format!("t={t:.2}s")), f)
-            })
+        let picked: Vec<(Option<String>, &RgbImage)> = (picked.iter())
+            .filter_map(|&i| self.frames.get(i))
+            .map(|(t, f)| (labels.then(|| format!("t={t:.2}s")), f))
             .collect();
         contact_sheet(&picked, columns)
     }
@@ -118,11 +151,11 @@ impl Clip {
     pub fn write_contact_sheet(
         &self,
         path: &Path,
-        n: usize,
+        picked: &[usize],
         columns: usize,
         labels: bool,
     ) -> Result<()> {
-        let sheet = self.contact_sheet(n, columns, labels)?;
+        let sheet = self.contact_sheet(picked, columns, labels)?;
         save_png(&sheet, path)
     }
 }

@@ -128,6 +128,14 @@ impl Robot {
         }
     }
 
+    /// The robot in a sentence: "left arm" or "upper body" (of the simulated Nao).
+    pub fn phrase(self) -> &'static str {
+        match self {
+            Robot::LeftArm => "left arm",
+            Robot::UpperBody => "upper body",
+        }
+    }
+
     /// The robot of a command-line name; the error lists the names allowed.
     pub fn from_name(name: &str) -> Result<Robot, String> {
         Self::ALL

@@ -449,13 +449,6 @@ impl<'a, const N: usize> ArmSim<'a, N> {
         Ok(())
     }
 
-    /// [`ArmSim::set_targets`] with out-of-range values clamped to the joint limits.
-    pub fn set_targets_clamped(&mut self, targets: &[f64]) -> Result<()> {
-        let p = clamp_posture_of(self.arm.robot, targets)?;
-        self.command(&p, &[0.0; N], false);
-        Ok(())
-    }
-
     /// Set the servo targets (checked) and advance the physics by one time step.
     pub fn step_with_targets(&mut self, targets: &[f64]) -> Result<()> {
         self.set_targets(targets)?;

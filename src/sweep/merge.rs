@@ -523,6 +523,7 @@ fn box_plot(
         Method::GmmGmr => GMR_COLOR,
         Method::ProMP => crate::plot::PALETTE[1],
         Method::Dmp => RGBColor(120, 90, 40),
+        Method::Dba => RGBColor(0, 150, 150),
         _ => RGBColor(31, 119, 180),
     };
     let panels: Vec<BoxPanel> = combos

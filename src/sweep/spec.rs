@@ -51,6 +51,8 @@ pub enum MethodAxis {
     Promp,
     /// The DMP baseline alone ([`eval::Method::Dmp`]).
     Dmp,
+    /// The DTW mean alone ([`eval::Method::Dba`]).
+    Dba,
 }
 
 impl MethodAxis {
@@ -62,6 +64,7 @@ impl MethodAxis {
             MethodAxis::Both => "both",
             MethodAxis::Promp => "promp",
             MethodAxis::Dmp => "dmp",
+            MethodAxis::Dba => "dba",
         }
     }
 
@@ -73,6 +76,7 @@ impl MethodAxis {
             MethodAxis::Both => &[Method::Hierarchy, Method::GmmGmr],
             MethodAxis::Promp => &[Method::ProMP],
             MethodAxis::Dmp => &[Method::Dmp],
+            MethodAxis::Dba => &[Method::Dba],
         }
     }
 }
@@ -85,6 +89,7 @@ pub fn method_name(m: Method) -> &'static str {
         Method::GmmGmr => MethodAxis::Gmr.name(),
         Method::ProMP => MethodAxis::Promp.name(),
         Method::Dmp => MethodAxis::Dmp.name(),
+        Method::Dba => MethodAxis::Dba.name(),
         other => other.name(),
     }
 }

@@ -28,6 +28,7 @@ fn study(conditioning: Conditioning) -> GestureLoo {
         gmr: false,
         promp: true,
         dmp: true,
+        dba: true,
         replay: false,
         in_sample: false,
         conditioning,

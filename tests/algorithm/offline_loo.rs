@@ -268,6 +268,7 @@ fn cosco_heldout_on_directories_of_gestures() {
             "gmm_gmr",
             "promp",
             "dmp",
+            "dba",
             "replay"
         ]
     );
@@ -389,6 +390,7 @@ fn held_out(demos: &[Demonstration]) -> [Vec<f64>; 2] {
             gmr: false,
             promp: false,
             dmp: false,
+            dba: false,
             replay: false,
             in_sample: false,
             threads: 2,

@@ -329,7 +329,8 @@ fn png_gif_and_contact_sheet_are_written() {
     assert_eq!(&std::fs::read(&gif).unwrap()[..6], b"GIF89a");
 
     let sheet = dir.path().join("sheet.png");
-    clip.write_contact_sheet(&sheet, 6, 3, true).unwrap();
+    clip.write_contact_sheet(&sheet, &clip.key_frames(6), 3, true)
+        .unwrap();
     let img = image::open(&sheet).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (3 * 120 + 4 * 4, 2 * 90 + 3 * 4));
     // the falling arm: first and last key frames differ

@@ -30,6 +30,7 @@ fn the_hierarchy_claps_with_both_arms_together_and_touches_nothing() {
         gmr: false,
         promp: false,
         dmp: false,
+        dba: false,
         replay: false,
         in_sample: false,
         threads: 2,

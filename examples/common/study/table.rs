@@ -137,6 +137,16 @@ fn columns(in_sample: bool) -> Vec<Column> {
                 paired_promp(r).and_then(|(_, p)| ratio(p.normalized_jerk, p.demo_normalized_jerk))
             }],
         ),
+        col(
+            "DBA joint DTW",
+            4,
+            vec![|r| r.heldout.dba.as_ref().map(|d| d.joint_dtw_rad_per_step)],
+        ),
+        col(
+            "DBA swings",
+            1,
+            vec![|r| r.heldout.dba.as_ref().map(|d| d.swings)],
+        ),
     ];
     if in_sample {
         c.push(col(

@@ -133,7 +133,7 @@ pub enum Command {
         #[arg(long, num_args = 1.., required_unless_present = "recognition")]
         demos: Vec<PathBuf>,
         /// The recognition study (with --taught and --untaught) instead of reproduction.
-        #[arg(long, requires = "taught", conflicts_with_all = ["demos", "no_height_1", "no_gmr", "no_promp", "no_dmp", "no_in_sample", "condition", "far", "sittings"])]
+        #[arg(long, requires = "taught", conflicts_with_all = ["demos", "no_height_1", "no_gmr", "no_promp", "no_dmp", "no_dba", "no_in_sample", "condition", "far", "sittings"])]
         recognition: bool,
         #[command(flatten)]
         study: Option<RecognitionArgs>,
@@ -151,6 +151,9 @@ pub enum Command {
         /// Leave out the DMP.
         #[arg(long)]
         no_dmp: bool,
+        /// Leave out the DTW mean (DBA).
+        #[arg(long)]
+        no_dba: bool,
         /// Also run every fold conditioned on the held-out demonstration's last posture
         /// (`end`), or on it and its posture at phase 0.5 (`end+mid`), beside the
         /// unconditioned run.

@@ -71,6 +71,7 @@ fn a_fold_keeps_what_its_methods_learned_when_asked() {
         Method::NearestSequence,
         Method::ProMP,
         Method::Dmp,
+        Method::Dba,
     ];
     assert_eq!(methods, expected);
     // the hierarchy and the nearest sequence share one model

@@ -2,7 +2,6 @@
 //! nodes' postures and offsets.
 
 use super::encode::bottom_events;
-use super::encode::dist2;
 use super::traces::{trace_places, trace_postures_at, TRACE_HEAD};
 use crate::hsom::model::{DemoSmoothness, EventsHsom, Model, Part, StartKnots};
 
@@ -109,7 +108,7 @@ pub(super) fn aligned_samples(norm: &[Vec<Vec<f64>>], max_aligned: usize) -> Ali
 /// of all taking one sample of `b` (a stair that a traced plan's short events, each the mean
 /// of a few samples, would carry into its knots as uneven steps: docs/ALGORITHM.md, section
 /// 3.7).
-pub(super) fn smooth_warp(warp: &[f64], b: &[Vec<f64>]) -> Vec<Vec<f64>> {
+pub(crate) fn smooth_warp(warp: &[f64], b: &[Vec<f64>]) -> Vec<Vec<f64>> {
     let n = warp.len();
     if n == 0 || b.is_empty() {
         return Vec::new();
@@ -377,28 +376,8 @@ impl EventsHsom {
                 .then(|| StartKnots::mean(&rows, &vec![1.0; rows.len()])[..s].to_vec())
         };
         let (start, end) = (mean(|d| d.first()), mean(|d| d.last()));
-        let jerk = crate::stats::median(
-            norm.iter()
-                .filter_map(|d| crate::metrics::normalized_jerk(&state_rows(d, s), 1.0)),
-        );
-        let start_step = norm
-            .iter()
-            .filter(|d| d.len() >= 2)
-            .map(|d| dist2(&d[1][..s], &d[0][..s]).sqrt())
-            .fold(0.0, f64::max);
-        let peak_step = (0..s)
-            .map(|j| {
-                norm.iter()
-                    .flat_map(|d| d.windows(2).map(move |w| (w[1][j] - w[0][j]).abs()))
-                    .fold(0.0, f64::max)
-            })
-            .collect();
         let fade = super::start::start_fade(norm, s);
-        let smoothness = jerk.map(|jerk| DemoSmoothness {
-            jerk,
-            start_step,
-            peak_step,
-        });
+        let smoothness = DemoSmoothness::of(norm, s);
         let e = &mut self.part;
         e.demo_smoothness = smoothness;
         e.start_fade = fade;
@@ -478,9 +457,4 @@ impl EventsHsom {
         }
         self.part.traces = Some(traces);
     }
-}
-
-/// The state part (the first `s` values) of each of `rows`.
-fn state_rows(rows: &[Vec<f64>], s: usize) -> Vec<&[f64]> {
-    rows.iter().map(|r| &r[..s]).collect()
 }

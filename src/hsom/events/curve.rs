@@ -615,7 +615,11 @@ const SMOOTHING: [f64; 7] = [1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0];
 /// enough (a plan whose events are shorter than the demonstrations'), the least weight that
 /// meets the rest: smoothing more would flatten the motion, not slow it. As they are where
 /// they already are (or without a target), the most smoothed where none does.
-fn as_smooth_as(y: &[Vec<f64>], slope: &[f64], target: Option<DemoSmoothness>) -> Vec<Vec<f64>> {
+pub(crate) fn as_smooth_as(
+    y: &[Vec<f64>],
+    slope: &[f64],
+    target: Option<DemoSmoothness>,
+) -> Vec<Vec<f64>> {
     let Some(target) = target else {
         return y.to_vec();
     };

@@ -46,3 +46,6 @@ pub(super) use levels::used;
 pub(super) use traces::{trace_places, trace_width, trace_words, TRACED_CHUNKS};
 
 pub(crate) use super::followers::END;
+pub(crate) use consensus::smooth_warp;
+pub(crate) use curve::as_smooth_as;
+pub(crate) use start::start_fade;
