@@ -167,7 +167,7 @@ def test_heldout_scores_every_method_on_the_same_folds(demos):
     assert g["gesture"] == "gesture"
     assert len(g["held_out"]) == 4 and len(g["in_sample"]) == 4
     methods = [r["method"] for r in g["held_out"][0]["runs"]]
-    assert methods == ["hierarchy", "nearest_sequence", "height1", "gmm_gmr", "promp", "dmp", "replay"]
+    assert methods == ["hierarchy", "nearest_sequence", "height1", "gmm_gmr", "promp", "dmp", "dba", "replay"]
     for fold in g["held_out"]:
         for run in fold["runs"]:
             assert run["error"] is None, run
@@ -188,6 +188,7 @@ def test_heldout_scores_every_method_on_the_same_folds(demos):
         gmr=False,
         promp=False,
         dmp=False,
+        dba=False,
         in_sample=False,
     )
     assert [g["gesture"] for g in two["gestures"]] == ["a", "b"]
