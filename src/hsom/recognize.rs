@@ -485,6 +485,9 @@ impl GestureModel {
         if self.labels.is_empty() {
             return Err(GestureError::NoLabels);
         }
+        if self.calibration.len() != self.labels.len() {
+            return Err(GestureError::Recalibrate);
+        }
         self.branches
             .iter()
             .map(|b| b.as_events().ok_or(GestureError::NeedsEvents))
