@@ -124,7 +124,7 @@ fn recognize(c: &mut Criterion) {
     let mut g = c.benchmark_group("recognizer_4_labels");
     g.bench_function("first_push", |b| {
         b.iter_batched(
-            || cosco_hsom::hsom::Recognizer::new(&model, cal).unwrap(),
+            || cosco_hsom::hsom::Recognizer::new(&model, cal.clone()).unwrap(),
             |mut r| {
                 r.push(black_box(&query[0])).unwrap();
                 r
@@ -135,7 +135,7 @@ fn recognize(c: &mut Criterion) {
     g.bench_function("299_more_pushes", |b| {
         b.iter_batched(
             || {
-                let mut r = cosco_hsom::hsom::Recognizer::new(&model, cal).unwrap();
+                let mut r = cosco_hsom::hsom::Recognizer::new(&model, cal.clone()).unwrap();
                 r.push(&query[0]).unwrap();
                 r
             },

@@ -43,7 +43,7 @@ fn streams(
     let c = model.stream_calibration()?;
     tests
         .iter()
-        .map(|(e, d)| Ok(stream(model, c, &d.rows, e.as_deref(), policy)?))
+        .map(|(e, d)| Ok(stream(model, &c, &d.rows, e.as_deref(), policy)?))
         .collect()
 }
 

@@ -165,12 +165,12 @@ impl GestureModel {
     /// changes.
     fn recognizer(&self, py: Python<'_>) -> PyResult<Recognizer> {
         let calibration = match self.stream.get() {
-            Some(c) => *c,
+            Some(c) => c.clone(),
             None => {
                 let c = py
                     .allow_threads(|| self.inner.stream_calibration())
                     .map_err(|e| py_err(&e))?;
-                *self.stream.get_or_init(|| c)
+                self.stream.get_or_init(|| c).clone()
             }
         };
         let inner = cosco_hsom::hsom::Recognizer::new(Arc::clone(&self.inner), calibration)
@@ -326,6 +326,17 @@ impl Recognition {
         label_dict(py, labels.zip(self.inner.thresholds.iter().copied()))
     }
 
+    /// Per label, the variables its score weighs most (heaviest first) with their weights
+    /// (a label's weights average 1: what its gesture moves weighs more than what it holds).
+    #[getter]
+    fn weighed<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for ((l, _), w) in self.inner.scores.iter().zip(&self.inner.weighed) {
+            d.set_item(l, w.clone())?;
+        }
+        Ok(d)
+    }
+
     /// The earliest sample from which the best label stayed the same (early recognition).
     #[getter]
     fn decided_at(&self) -> usize {
@@ -362,6 +373,7 @@ impl Recognition {
         }
         d.set_item("scores", scores)?;
         d.set_item("thresholds", r.thresholds.clone())?;
+        d.set_item("weighed", r.weighed.clone())?;
         d.set_item("decided_at", r.decided_at)?;
         d.set_item("samples", r.samples)?;
         Ok(d)

@@ -54,7 +54,8 @@ pub fn recognize_paths(model: &GestureModel, path: &Path) -> Result<Vec<Recognis
 }
 
 /// `cosco recognize`'s line for one answer: the file, the label (or `unknown`) and what was
-/// expected, the early decision and every score with its threshold.
+/// expected, the early decision, every score with its threshold, and per label the variables
+/// its score weighs most with their weights.
 pub fn answer_line(file: &str, expected: Option<&str>, r: &Recognition) -> String {
     let scores: Vec<String> = r
         .scores
@@ -62,14 +63,21 @@ pub fn answer_line(file: &str, expected: Option<&str>, r: &Recognition) -> Strin
         .zip(&r.thresholds)
         .map(|((l, s), t)| format!("{l} {s:.4} (threshold {t:.4})"))
         .collect();
+    let weighed: Vec<String> = (r.scores.iter().zip(&r.weighed))
+        .map(|((l, _), w)| {
+            let w: Vec<String> = w.iter().map(|(v, w)| format!("{v} {w:.2}")).collect();
+            format!("{l}: {}", w.join(", "))
+        })
+        .collect();
     format!(
-        "{}: {}{} | decided at sample {} of {} | scores: {}",
+        "{}: {}{} | decided at sample {} of {} | scores: {} | weighed most: {}",
         file,
         r.label.as_deref().unwrap_or("unknown"),
         expected.map_or(String::new(), |e| format!(" (expected {e})")),
         r.decided_at,
         r.samples,
-        scores.join(", ")
+        scores.join(", "),
+        weighed.join("; ")
     )
 }
 

@@ -29,6 +29,12 @@ fn model_files_of_the_format_cosco_train_writes_load_and_reproduce_as_they_did()
         let want = expect(&format!("gestures-{g}-rep.csv"));
         assert_eq!(reproduced("gestures.bin", Some(g)), want, "{g}");
     }
+    // files of the format before the weighed score (version 26): they reproduce (above), and
+    // recognition asks for them to be retrained, its thresholds being another score's
+    let old = crate::hsom::GestureModel::load(&fixture("gestures.bin")).unwrap();
+    let e = old.recognizer().err().unwrap();
+    assert!(matches!(e, crate::hsom::GestureError::Recalibrate), "{e}");
+    assert!(e.to_string().contains("retrain"), "{e}");
     // the control: another gesture's reproduction is not this one's
     assert_ne!(
         reproduced("gestures.bin", Some("salute")),

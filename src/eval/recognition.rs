@@ -215,7 +215,7 @@ fn answer(
         source: Box::new(e),
     };
     let r = model.recognize(&demo.rows).map_err(gesture)?;
-    let streamed = match q.calibration {
+    let streamed = match &q.calibration {
         None => None,
         Some(c) => {
             let expected = q.taught.then_some(label);
@@ -272,7 +272,7 @@ fn untaught_answers(
             let q = Query {
                 label,
                 taught: false,
-                calibration,
+                calibration: calibration.clone(),
             };
             answer(model, &q, d, what)
         })

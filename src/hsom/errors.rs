@@ -209,6 +209,10 @@ pub enum GestureError {
     /// Recognition asked of a model without labels.
     #[error("a single-gesture model has no labels to recognise: train on labelled directories (demos/<label>/*.csv)")]
     NoLabels,
+    /// A model of several gestures read from a file of an older format: its thresholds are
+    /// calibrated on another score.
+    #[error("the model's recognition thresholds were calibrated by an older version's score (model format 26): retrain it with `cosco train` to recognise with it (it still reproduces every gesture)")]
+    Recalibrate,
     /// A label that is not a plain word.
     #[error("gesture label {label:?} (from {source_dir}) is not a plain word: use letters, digits, '_' and '-' only")]
     BadLabel {

@@ -53,7 +53,7 @@ pub use memory::{ActivityLevels, ActivityList};
 pub(crate) use model::DemoSmoothness;
 pub use model::{GestureModel, Hsom, Scoring};
 pub use persist::{FilePart, FORMAT_VERSION};
-pub use recognize::{Recognition, PREFIX_BLEND};
+pub use recognize::{Recognition, PREFIX_BLEND, WEIGHED_SHOWN};
 pub use recognizer::{Commit, Recognizer, StreamCalibration};
 pub use reproduction::{Reproduction, StopReason};
 pub use stepper::{HsomReplan, HsomStepper, NearestReplan, NearestStepper};

@@ -27,7 +27,11 @@ const MAGIC: &[u8; 8] = b"COSCOHSM";
 /// First line of a plain-text model file.
 const TEXT_MAGIC: &str = "cosco-hsom model";
 /// Format version of model files, of one gesture or several (the header says which).
-pub const FORMAT_VERSION: u32 = 26;
+pub const FORMAT_VERSION: u32 = 27;
+/// The oldest version read: a file of several gestures older than [`FORMAT_VERSION`] holds
+/// thresholds calibrated on the unweighed score, so it loads and reproduces, and recognition
+/// asks for it to be retrained ([`GestureError::Recalibrate`](super::GestureError)).
+const OLDEST_READ: u32 = 26;
 /// The most bytes a model file may hold (what bincode may be asked to read).
 const MAX_MODEL_BYTES: usize = 1 << 30;
 
@@ -168,6 +172,7 @@ fn encode<T: Serialize>(kind: Kind, value: &T, fmt: Format) -> Vec<u8> {
 /// A model file whose header was read: its kind, its model's bytes, and the checksum.
 struct Opened<'a> {
     kind: Kind,
+    version: u32,
     fmt: Format,
     body: &'a [u8],
     signed: &'a [u8],
@@ -179,8 +184,8 @@ struct Opened<'a> {
 /// "retrain" error; newer: "written by a newer version"), then kind, before anything else.
 fn open<'a>(bytes: &'a [u8], fmt: Format, path: &'a Path) -> Result<Opened<'a>, PersistError> {
     let version = |found: u32| match found {
-        v if v == FORMAT_VERSION => Ok(()),
-        v if v < FORMAT_VERSION => Err(PersistError::Version {
+        v if (OLDEST_READ..=FORMAT_VERSION).contains(&v) => Ok(v),
+        v if v < OLDEST_READ => Err(PersistError::Version {
             path: path.to_path_buf(),
             found: v,
             expected: FORMAT_VERSION,
@@ -207,7 +212,7 @@ fn open<'a>(bytes: &'a [u8], fmt: Format, path: &'a Path) -> Result<Opened<'a>, 
                     path: path.to_path_buf(),
                 });
             }
-            version(u32::from_le_bytes([
+            let version = version(u32::from_le_bytes([
                 bytes[8], bytes[9], bytes[10], bytes[11],
             ]))?;
             if bytes.len() < 14 + 8 {
@@ -223,6 +228,7 @@ fn open<'a>(bytes: &'a [u8], fmt: Format, path: &'a Path) -> Result<Opened<'a>, 
             stored.copy_from_slice(sum);
             Ok(Opened {
                 kind,
+                version,
                 fmt,
                 body: &signed[14..],
                 signed,
@@ -251,7 +257,7 @@ fn open<'a>(bytes: &'a [u8], fmt: Format, path: &'a Path) -> Result<Opened<'a>, 
                 .strip_prefix("version ")
                 .and_then(|v| v.trim().parse::<u32>().ok())
                 .ok_or_else(|| corrupted(path, format!("bad version line {}", quoted(l))))?;
-            version(found)?;
+            let version = version(found)?;
             let l = next("kind line")?;
             let word = l.strip_prefix("kind ").unwrap_or("");
             let kind = Kind::ALL
@@ -269,6 +275,7 @@ fn open<'a>(bytes: &'a [u8], fmt: Format, path: &'a Path) -> Result<Opened<'a>, 
             let signed = &bytes[..body_end];
             Ok(Opened {
                 kind,
+                version,
                 fmt,
                 body: &signed[head..],
                 signed,
@@ -513,8 +520,12 @@ impl ModelFile for GestureModel {
         if file.kind != Kind::Several {
             return Ok(Hsom::decode_checked(file)?.into());
         }
-        let model: GestureModel = file.decode()?;
+        let mut model: GestureModel = file.decode()?;
         model.check().map_err(|what| corrupted(file.path, what))?;
+        if file.version < FORMAT_VERSION {
+            // thresholds of another score: recognition refuses until retrained
+            model.calibration.clear();
+        }
         Ok(model)
     }
 }

@@ -19,7 +19,7 @@ use crate::dtw::pruned::Reference;
 
 use super::errors::{GestureError, HsomError};
 use super::model::{EventsHsom, GestureModel, Scoring};
-use super::recognize::{reproduction_from, Recognition};
+use super::recognize::{reproduction_from, weighed_pair, Recognition, Weighing};
 
 /// What a [`Recognizer`] committed to.
 #[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
@@ -30,15 +30,37 @@ pub struct Commit {
     pub samples: usize,
 }
 
-/// What the model's own kept demonstrations say about prefixes: the largest ratio of a
-/// prefix's score (open-ended DTW per sample against the reproduction) to the whole
-/// sequence's score (DTW per step), over every prefix of every kept demonstration of every
-/// label, each against its own label's reproduction from its first posture. Infinite (no
-/// label is ever ruled out early) when the model keeps no demonstration to measure it on.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// What the model's own kept demonstrations say about prefixes (docs/ALGORITHM.md, section 4,
+/// item 7). The **rise**: per stretch of the reproduction covered (one of [`RISE_BINS`]), the
+/// largest ratio of a prefix's score (open-ended DTW per sample against the reproduction) to
+/// the whole sequence's score (DTW per step), over every prefix ending in that stretch or
+/// later of every kept demonstration of every label, each against its own label's
+/// reproduction from its first posture; infinite (no label is ever ruled out early) when the
+/// model keeps no demonstration to measure it on. The **holds**: per label, how far into its
+/// reproduction a stream must be before the recogniser may commit to it, from the other
+/// labels' kept demonstrations standing in for a gesture it never saw.
+#[derive(Debug, Clone, PartialEq)]
 pub struct StreamCalibration {
-    /// The largest prefix score over whole score.
-    pub rise: f64,
+    /// Per stretch of the reproduction covered, the largest prefix score over whole score.
+    pub rise: Vec<f64>,
+    /// Per label (in the model's order): the largest fraction of its reproduction at which a
+    /// stand-in stream met the rule for committing to it.
+    pub holds: Vec<f64>,
+}
+
+/// The stretches of a reproduction the rise is measured on (twentieths: its resolution).
+pub const RISE_BINS: usize = 20;
+
+impl StreamCalibration {
+    /// The prefix score above which label `g` (`threshold`) is out after `samples` samples
+    /// against a reproduction of `m` samples (0 for a threshold of 0: out at the first miss).
+    fn ceiling(&self, threshold: f64, samples: usize, m: usize) -> f64 {
+        let bin = (samples * RISE_BINS / m.max(1)).min(RISE_BINS - 1);
+        match threshold == 0.0 {
+            true => 0.0,
+            false => threshold * self.rise.get(bin).copied().unwrap_or(f64::INFINITY),
+        }
+    }
 }
 
 /// One label's open-ended DTW against its reproduction, a row per sample pushed.
@@ -54,13 +76,28 @@ struct Track {
     score: f64,
     /// The prefix score passed the label's ceiling.
     out: bool,
+    /// The label's weighing of a sample.
+    k: Weighing,
+    /// The samples pushed (normalised), for the changes over the weighing's span.
+    seen: Vec<Vec<f64>>,
 }
 
 impl Track {
-    fn new(rep: Option<Vec<Vec<f64>>>) -> Self {
+    fn new(b: &EventsHsom, first: &[Vec<f64>]) -> Self {
+        let rep = reproduction_from(b, first);
         let m = rep.as_ref().map_or(0, Vec::len);
+        let k = rep.as_ref().map_or(
+            Weighing {
+                w: Vec::new(),
+                rate: 0.0,
+                span: 1,
+            },
+            |r| Weighing::of(b, r),
+        );
         Track {
-            rep: rep.map(|r| Reference::new(&r)),
+            rep: rep.map(|r| Reference::new(&k.rows(&r))),
+            k,
+            seen: Vec::new(),
             prev: vec![f64::INFINITY; m],
             cur: vec![f64::INFINITY; m],
             dist: vec![0.0; m],
@@ -74,7 +111,10 @@ impl Track {
     fn step(&mut self, x: &[f64], i: usize) {
         let Some(rep) = &self.rep else { return };
         let m = rep.len();
-        rep.distances(x, 0, m, &mut self.dist);
+        self.seen.push(x.to_vec());
+        let prev = (i > 0).then(|| self.seen[i.saturating_sub(self.k.span)].as_slice());
+        let y = self.k.row(x, prev);
+        rep.distances(&y, 0, m, &mut self.dist);
         for (j, &c) in self.dist.iter().enumerate() {
             if i == 0 && j == 0 {
                 self.cur[0] = c;
@@ -111,8 +151,8 @@ impl Track {
 /// (a reference, an `Arc`).
 pub struct Recognizer<M: Borrow<GestureModel>> {
     model: M,
-    /// Per label: the prefix score above which no recognisable demonstration of it goes.
-    ceilings: Vec<f64>,
+    /// When a label is out, and when one left may be committed to.
+    calibration: StreamCalibration,
     rows: Vec<Vec<f64>>,
     tracks: Vec<Track>,
     commit: Option<Commit>,
@@ -122,26 +162,71 @@ impl GestureModel {
     /// [`StreamCalibration`] of this model, measured on the demonstrations it keeps.
     pub fn stream_calibration(&self) -> Result<StreamCalibration, GestureError> {
         let branches = self.labelled()?;
-        let mut rise: Option<f64> = None;
-        for b in &branches {
-            for rows in kept_rows(b) {
-                let Some(rep) = reproduction_from(b, &rows) else {
-                    continue;
-                };
-                let Ok((whole, prefix)) = dtw_with_prefixes(&rows, &rep) else {
-                    continue;
-                };
-                let w = whole.per_step();
-                if !(w > 0.0 && w.is_finite()) {
+        // per label k, per kept demonstration of k, per label g: the demonstration against
+        // g's reproduction from its first posture
+        let scored: Vec<Vec<Vec<Option<Scored>>>> = branches
+            .iter()
+            .map(|b| {
+                (kept_rows(b).iter())
+                    .map(|rows| branches.iter().map(|g| Scored::of(g, rows)).collect())
+                    .collect()
+            })
+            .collect();
+        let mut rise = vec![f64::NAN; RISE_BINS];
+        for (k, demos) in scored.iter().enumerate() {
+            for s in demos.iter().filter_map(|d| d[k].as_ref()) {
+                if !(s.whole > 0.0 && s.whole.is_finite()) {
                     continue;
                 }
-                let top = prefix.iter().fold(0.0, |a: f64, p| a.max(p / w));
-                rise = Some(rise.map_or(top, |r| r.max(top)));
+                for (i, p) in s.prefix.iter().enumerate() {
+                    let bin = ((i + 1) * RISE_BINS / s.reproduction.max(1)).min(RISE_BINS - 1);
+                    rise[bin] = f64::max(rise[bin], p / s.whole);
+                }
             }
         }
-        Ok(StreamCalibration {
-            rise: rise.unwrap_or(f64::INFINITY),
-        })
+        // a stretch no prefix ended in: the one before it; then the largest from there on
+        for b in 1..RISE_BINS {
+            if rise[b].is_nan() {
+                rise[b] = rise[b - 1];
+            }
+        }
+        let mut top = f64::NAN;
+        for r in rise.iter_mut().rev() {
+            top = f64::max(top, *r);
+            *r = if top.is_nan() { f64::INFINITY } else { top };
+        }
+        let c = StreamCalibration {
+            rise,
+            holds: Vec::new(),
+        };
+        let thresholds = self.thresholds();
+        let mut holds = vec![0.0; branches.len()];
+        for (k, demos) in scored.iter().enumerate() {
+            for d in demos {
+                // a stand-in for a gesture never seen: k's demonstration, k untaught
+                let samples = d
+                    .iter()
+                    .flatten()
+                    .map(|s| s.prefix.len())
+                    .max()
+                    .unwrap_or(0);
+                let mut out: Vec<bool> = (0..d.len()).map(|g| g == k || d[g].is_none()).collect();
+                for i in 0..samples {
+                    let at = |g: usize| d[g].as_ref().map_or(f64::INFINITY, |s| s.prefix[i]);
+                    let m = |g: usize| d[g].as_ref().map_or(1, |s| s.reproduction);
+                    for (g, out) in out.iter_mut().enumerate() {
+                        *out |= at(g).is_nan() || at(g) > c.ceiling(thresholds[g], i + 1, m(g));
+                    }
+                    let mut left = (0..d.len()).filter(|&g| !out[g]);
+                    if let (Some(g), None) = (left.next(), left.next()) {
+                        if at(g) <= thresholds[g] {
+                            holds[g] = f64::max(holds[g], (i + 1) as f64 / m(g).max(1) as f64);
+                        }
+                    }
+                }
+            }
+        }
+        Ok(StreamCalibration { holds, ..c })
     }
 
     /// Per label (in the model's order), its threshold: the score above which a sequence is
@@ -172,31 +257,61 @@ impl GestureModel {
     }
 }
 
-/// Rule out every label whose prefix score passed its ceiling (for good: no recognisable
-/// demonstration of it scores a prefix that high), then commit (after `samples` samples) when
-/// one label is left and within its threshold, or none is left (unknown).
+/// Rule out every label whose prefix score passed its ceiling (its threshold times the rise
+/// at the stretch of its reproduction covered: for good, no recognisable demonstration of it
+/// scored a prefix that high), then commit (after `samples` samples) when one label is left,
+/// within its threshold and past its hold, or none is left (unknown).
 fn decide(
     tracks: &mut [Track],
-    ceilings: &[f64],
+    c: &StreamCalibration,
     m: &GestureModel,
     samples: usize,
 ) -> Option<Commit> {
-    for (t, &c) in tracks.iter_mut().zip(ceilings) {
-        if t.score.is_nan() || t.score > c {
+    let length = |t: &Track| t.rep.as_ref().map_or(1, |r| r.len());
+    for (t, cal) in tracks.iter_mut().zip(&m.calibration) {
+        if t.score.is_nan() || t.score > c.ceiling(cal.threshold, samples, length(t)) {
             t.out = true;
         }
     }
     let mut left = tracks.iter().enumerate().filter(|(_, t)| !t.out);
+    let past = |k: usize, t: &Track| {
+        samples as f64 / length(t).max(1) as f64 > c.holds.get(k).copied().unwrap_or(0.0)
+    };
     match (left.next(), left.next()) {
         (None, _) => Some(Commit {
             label: None,
             samples,
         }),
-        (Some((k, t)), None) if t.score <= m.calibration[k].threshold => Some(Commit {
-            label: Some(m.labels[k].clone()),
-            samples,
-        }),
+        (Some((k, t)), None) if t.score <= m.calibration[k].threshold && past(k, t) => {
+            Some(Commit {
+                label: Some(m.labels[k].clone()),
+                samples,
+            })
+        }
         _ => None,
+    }
+}
+
+/// A sequence against one label's reproduction from its first posture.
+struct Scored {
+    /// Per prefix (index: its samples - 1), its open-ended score.
+    prefix: Vec<f64>,
+    /// The whole sequence's score.
+    whole: f64,
+    /// The reproduction's samples.
+    reproduction: usize,
+}
+
+impl Scored {
+    /// `rows` (normalised) against `b`'s reproduction; `None` when it cannot be made.
+    fn of(b: &EventsHsom, rows: &[Vec<f64>]) -> Option<Self> {
+        let (q, rep) = weighed_pair(b, rows)?;
+        let (whole, prefix) = dtw_with_prefixes(&q, &rep).ok()?;
+        Some(Scored {
+            prefix,
+            whole: whole.per_step(),
+            reproduction: rep.len(),
+        })
     }
 }
 
@@ -221,21 +336,9 @@ impl<M: Borrow<GestureModel>> Recognizer<M> {
     pub fn new(model: M, calibration: StreamCalibration) -> Result<Self, GestureError> {
         let m = model.borrow();
         m.labelled()?;
-        let ceilings = m
-            .calibration
-            .iter()
-            .map(|c| {
-                // 0 x infinity: a label whose threshold is 0 is out at the first miss
-                if c.threshold == 0.0 {
-                    0.0
-                } else {
-                    c.threshold * calibration.rise
-                }
-            })
-            .collect();
         Ok(Recognizer {
             model,
-            ceilings,
+            calibration,
             rows: Vec::new(),
             tracks: Vec::new(),
             commit: None,
@@ -271,17 +374,14 @@ impl<M: Borrow<GestureModel>> Recognizer<M> {
         let x = shared.normalise(sample);
         if i == 0 {
             let first = std::slice::from_ref(&x);
-            self.tracks = branches
-                .iter()
-                .map(|b| Track::new(reproduction_from(b, first)))
-                .collect();
+            self.tracks = branches.iter().map(|b| Track::new(b, first)).collect();
         }
         self.rows.push(sample.to_vec());
         for t in &mut self.tracks {
             t.step(&x, i);
         }
         if self.commit.is_none() && m.scoring == Scoring::Reproduction {
-            self.commit = decide(&mut self.tracks, &self.ceilings, m, self.rows.len());
+            self.commit = decide(&mut self.tracks, &self.calibration, m, self.rows.len());
         }
         Ok(self.commit.clone())
     }

@@ -361,8 +361,11 @@ fn streamed_the_rule_commits_rightly_and_the_first_sample_control_fails() {
     assert_eq!((rule.taught, rule.untaught), (16, 6));
     assert_eq!(rule.finish_differs, 0);
     assert_eq!(rule.wrong, 0, "{rule:?}");
-    // on these near shapes it commits rightly to most, never wrongly (13 of 16 here)
-    assert!(rule.right * 4 >= 3 * rule.taught, "{rule:?}");
+    // on these near shapes, which share their start and their end in pairs, it holds until
+    // the pair parts (the other of a pair stands in for a shape never seen): it commits
+    // rightly to half, never wrongly, and to no untaught stroke (8 of 16 and 0 of 6 here)
+    assert!(rule.right * 2 >= rule.taught, "{rule:?}");
+    assert_eq!(rule.untaught_committed, 0, "{rule:?}");
     let failed = first.failures();
     assert!(
         failed.iter().any(|f| f.starts_with("wrong commits")),

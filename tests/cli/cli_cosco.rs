@@ -731,9 +731,9 @@ fn train_from_a_saved_model_teaches_it_more_and_refuses_bad_input_leaving_it_unt
     .stderr(
         predicate::str::contains("c2.xml").and(predicate::str::contains("not the configuration")),
     );
-    // a model file of another format version
+    // a model file of a format version no longer read (the one before the oldest read)
     let mut old = before.clone();
-    old[8] = old[8].wrapping_sub(1);
+    old[8] = old[8].wrapping_sub(2);
     std::fs::write(d.join("old.bin"), &old).unwrap();
     train(&[
         "--from".as_ref(),

@@ -59,12 +59,12 @@ impl Streamed {
 /// `policy`; `expected` is the gesture's label (`None`: untaught).
 pub fn stream(
     model: &GestureModel,
-    calibration: crate::hsom::StreamCalibration,
+    calibration: &crate::hsom::StreamCalibration,
     rows: &[Vec<f64>],
     expected: Option<&str>,
     policy: Policy,
 ) -> Result<Streamed, GestureError> {
-    let mut r = Recognizer::new(model, calibration)?;
+    let mut r = Recognizer::new(model, calibration.clone())?;
     let mut committed: Option<Option<String>> = None;
     let mut at = None;
     for (i, row) in rows.iter().enumerate() {
