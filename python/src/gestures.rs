@@ -361,19 +361,13 @@ impl Recognition {
         let d = PyDict::new(py);
         d.set_item("label", r.label.clone())?;
         d.set_item("best", r.best.clone())?;
-        let scores = PyList::empty(py);
-        for (l, s) in &r.scores {
-            scores.append(PyList::new(
-                py,
-                [
-                    l.into_pyobject(py)?.into_any(),
-                    s.into_pyobject(py)?.into_any(),
-                ],
-            )?)?;
-        }
-        d.set_item("scores", scores)?;
+        d.set_item("scores", json_pairs(py, &r.scores)?)?;
         d.set_item("thresholds", r.thresholds.clone())?;
-        d.set_item("weighed", r.weighed.clone())?;
+        let weighed = PyList::empty(py);
+        for w in &r.weighed {
+            weighed.append(json_pairs(py, w)?)?;
+        }
+        d.set_item("weighed", weighed)?;
         d.set_item("decided_at", r.decided_at)?;
         d.set_item("samples", r.samples)?;
         Ok(d)
@@ -394,4 +388,19 @@ impl Recognition {
                 .join(", ")
         )
     }
+}
+
+/// `(name, value)` pairs as JSON writes them: a list of two-element lists.
+fn json_pairs<'py>(py: Python<'py>, pairs: &[(String, f64)]) -> PyResult<Bound<'py, PyList>> {
+    let out = PyList::empty(py);
+    for (l, v) in pairs {
+        out.append(PyList::new(
+            py,
+            [
+                l.into_pyobject(py)?.into_any(),
+                v.into_pyobject(py)?.into_any(),
+            ],
+        )?)?;
+    }
+    Ok(out)
 }
