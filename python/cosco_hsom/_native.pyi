@@ -228,6 +228,9 @@ class Recognition:
     @property
     def thresholds(self) -> Dict[str, float]: ...
     @property
+    def weighed(self) -> Dict[str, List[Tuple[str, float]]]:
+        """Per label, the variables its score weighs most (heaviest first) with their weights."""
+    @property
     def decided_at(self) -> int:
         """The earliest sample from which the best label stayed the same."""
     @property
