@@ -78,8 +78,6 @@ struct Track {
     out: bool,
     /// The label's weighing of a sample.
     k: Weighing,
-    /// The samples pushed (normalised), for the changes over the weighing's span.
-    seen: Vec<Vec<f64>>,
 }
 
 impl Track {
@@ -97,7 +95,6 @@ impl Track {
         Track {
             rep: rep.map(|r| Reference::new(&k.rows(&r))),
             k,
-            seen: Vec::new(),
             prev: vec![f64::INFINITY; m],
             cur: vec![f64::INFINITY; m],
             dist: vec![0.0; m],
@@ -106,14 +103,15 @@ impl Track {
         }
     }
 
-    /// Row `i` of the DTW for normalised sample `x`: the recurrence of
+    /// The DTW's row for the last of the normalised samples pushed, `seen` (row `i`, the
+    /// sample the weighing's span before it giving its change): the recurrence of
     /// [`dtw_with_prefixes`], so each prefix's score is the one it gives.
-    fn step(&mut self, x: &[f64], i: usize) {
+    fn step(&mut self, seen: &[Vec<f64>]) {
         let Some(rep) = &self.rep else { return };
         let m = rep.len();
-        self.seen.push(x.to_vec());
-        let prev = (i > 0).then(|| self.seen[i.saturating_sub(self.k.span)].as_slice());
-        let y = self.k.row(x, prev);
+        let i = seen.len() - 1;
+        let prev = (i > 0).then(|| seen[i.saturating_sub(self.k.span)].as_slice());
+        let y = self.k.row(&seen[i], prev);
         rep.distances(&y, 0, m, &mut self.dist);
         for (j, &c) in self.dist.iter().enumerate() {
             if i == 0 && j == 0 {
@@ -154,6 +152,8 @@ pub struct Recognizer<M: Borrow<GestureModel>> {
     /// When a label is out, and when one left may be committed to.
     calibration: StreamCalibration,
     rows: Vec<Vec<f64>>,
+    /// The same samples normalised, which every label's track reads.
+    norm: Vec<Vec<f64>>,
     tracks: Vec<Track>,
     commit: Option<Commit>,
 }
@@ -340,6 +340,7 @@ impl<M: Borrow<GestureModel>> Recognizer<M> {
             model,
             calibration,
             rows: Vec::new(),
+            norm: Vec::new(),
             tracks: Vec::new(),
             commit: None,
         })
@@ -377,8 +378,9 @@ impl<M: Borrow<GestureModel>> Recognizer<M> {
             self.tracks = branches.iter().map(|b| Track::new(b, first)).collect();
         }
         self.rows.push(sample.to_vec());
+        self.norm.push(x);
         for t in &mut self.tracks {
-            t.step(&x, i);
+            t.step(&self.norm);
         }
         if self.commit.is_none() && m.scoring == Scoring::Reproduction {
             self.commit = decide(&mut self.tracks, &self.calibration, m, self.rows.len());
