@@ -119,7 +119,7 @@ class Hsom:
         """Levels, sizes and quality measures (what `cosco inspect` prints)."""
 
 class GestureModel:
-    """Several gestures in one hierarchy: a shared bottom level, a branch per label."""
+    """Several gestures in one model: a branch per label, each the gesture learned alone."""
 
     @staticmethod
     def fit(

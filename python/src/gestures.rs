@@ -13,8 +13,8 @@ use cosco_hsom::hsom::StreamCalibration;
 use crate::model::Config;
 use crate::{app_err, array2, label_dict, labelled_sets, posture_of, py_err, rows_of};
 
-/// Several gestures in one hierarchy (a shared bottom level, a branch of upper levels per
-/// label): reproduction on cue, recognition with `unknown`, continuation of a prefix.
+/// Several gestures in one model (a branch per label, each the gesture learned alone, in the
+/// units of all of them): reproduction on cue, recognition with `unknown`, continuation of a prefix.
 #[pyclass(module = "cosco_hsom", name = "GestureModel", frozen)]
 pub(crate) struct GestureModel {
     inner: Arc<cosco_hsom::hsom::GestureModel>,
@@ -205,9 +205,8 @@ impl GestureModel {
         self.inner.columns().to_vec()
     }
 
-    /// The configuration the model was trained with; with several labels, trainingSteps is
-    /// the configured value times the number of labels (the shared bottom level sees every
-    /// gesture as often as a gesture learned alone).
+    /// The configuration the model was trained with (every label's branch is trained with
+    /// it, as the gesture alone).
     #[getter]
     fn config(&self) -> Config {
         Config {

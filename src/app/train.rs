@@ -33,7 +33,7 @@ use crate::robot::Robot;
 /// Check the demonstrations against the configuration (one gesture's as a set, at least
 /// one; every label's set, each with demonstrations; see [`demos::validate_set`]), then fit
 /// the model of one gesture or several ([`HsomConfig::fit_model`]), calling
-/// `progress(done, total)` now and then when given (with several, the shared bottom level's
+/// `progress(done, total)` now and then when given (with several, over every gesture's
 /// training).
 pub fn train<'a>(
     cfg: &HsomConfig,
@@ -102,10 +102,7 @@ pub fn update_files(
     let cfg = model.branches()[0].config();
     if let Some(path) = config {
         let given = files::config(Some(path))?;
-        let mut p = cfg.params().clone();
-        // a model of several gestures trains its shared bottom trainingSteps per label
-        p.training_steps /= model.labels().len().max(1);
-        if given.params() != &p {
+        if given.params() != cfg.params() {
             return Err(super::Error::file(
                 path,
                 format!(

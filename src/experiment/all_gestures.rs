@@ -206,8 +206,8 @@ impl AllReport {
             s,
             "Configuration {}; {} demonstrations per gesture (seed {}, encoder noise {} rad), \
              leave-one-out: each fold learns from {} of every gesture and is scored on the \
-             remaining one of each. One hierarchy: a shared bottom level (postures) and one \
-             branch of upper levels per gesture (docs/ALGORITHM.md, section 4).\n",
+             remaining one of each. One model: one branch per gesture, each learned alone in the \
+             units of all of them (docs/ALGORITHM.md, section 4).\n",
             self.config,
             self.count,
             self.seed,

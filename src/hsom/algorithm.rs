@@ -2,7 +2,7 @@
 //! every level at once; the replay of the training data; the quality summary. The model it
 //! makes is described in [`super::model`].
 
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 use crate::config::{HsomConfig, MemoryMode, Normalisation};
@@ -20,21 +20,6 @@ use super::model::{EventsHsom, EventsModel, Hsom, Model, PaperModel, Part, MAX_N
 
 fn demo_columns(demos: &[Demonstration]) -> Vec<String> {
     demos.first().map(|d| d.columns.clone()).unwrap_or_default()
-}
-
-/// The order in which the bottom level sees its training samples.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Presentation {
-    /// The demonstrations one after the other, each sample in turn (the paper's, whose upper
-    /// levels learn from the sequence while the bottom does).
-    InOrder,
-    /// Each step one sample drawn uniformly from every demonstration's samples (from the
-    /// configuration's seed). For a bottom shared by several gestures: in order, the map
-    /// follows each gesture's demonstrations in turn and the next gesture pulls away the nodes
-    /// the last one placed; drawn at random, every gesture keeps its share to the end of
-    /// training (docs/ALGORITHM.md, section 4). Only with the events
-    /// extension, whose upper levels are trained afterwards on the events.
-    Shuffled,
 }
 
 /// How a model is fitted ([`HsomConfig::fit_model`]): the default trains quietly.
@@ -65,29 +50,55 @@ impl HsomConfig {
 
     /// One gesture's hierarchy as `how` says.
     pub(super) fn fit_one(&self, demos: &[Demonstration], how: Fit<'_>) -> Result<Hsom, HsomError> {
-        let mut model = self.fit_presented(demos, how, Presentation::InOrder)?;
-        if let (false, Hsom::Events(m)) = (how.untrained, &mut model) {
-            m.learn_postures(demos.iter().map(|d| d.rows.as_slice()));
-        }
-        Ok(model)
+        self.fit_one_in(demos, how, None)
     }
 
-    /// Fit with the bottom's samples presented as `presentation` says; the bottom level
-    /// shared by several gestures draws them at random (see [`Presentation`]).
-    pub(super) fn fit_presented(
+    /// [`HsomConfig::fit_one`] in the units of `units` ([`Warm::units`]: a gesture of a model
+    /// of several, in the units of all of them), else in its demonstrations' own.
+    pub(super) fn fit_one_in(
         &self,
         demos: &[Demonstration],
         how: Fit<'_>,
-        presentation: Presentation,
+        units: Option<&Warm<'_>>,
     ) -> Result<Hsom, HsomError> {
         let series = demo_series(demos);
         let learn = !how.untrained;
         let columns = demo_columns(demos);
-        let mut model = self.fit_from(&series, how.progress, learn, columns, presentation, None)?;
+        let mut model = self.fit_from(&series, how.progress, learn, columns, units)?;
         if learn {
             model.set_period(demos.first().and_then(crate::demos::median_interval));
+            if let Hsom::Events(m) = &mut model {
+                m.learn_postures(demos.iter().map(|d| d.rows.as_slice()));
+            }
         }
         Ok(model)
+    }
+
+    /// The offset and scale of the bottom input for demonstrations `series` (what
+    /// [`HsomConfig::fit_from`] normalises by without a [`Warm`] start).
+    pub(super) fn units(&self, series: &[Series<'_>]) -> Result<(Vec<f64>, Vec<f64>), HsomError> {
+        let p = self.params();
+        check_series(series, p.state_length, p.action_horizon())?;
+        let (lo, hi) = bounds(series, p.state_length)?;
+        Ok(self.units_of(&lo, &hi))
+    }
+
+    fn units_of(&self, lo: &[f64], hi: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let range: Vec<f64> = lo.iter().zip(hi).map(|(a, b)| b - a).collect();
+        match self.params().normalisation {
+            Normalisation::None => (vec![0.0; lo.len()], vec![1.0; lo.len()]),
+            Normalisation::Global => {
+                let m = range.iter().cloned().fold(0.0, f64::max);
+                (lo.to_vec(), vec![if m > 0.0 { m } else { 1.0 }; lo.len()])
+            }
+            Normalisation::PerDimension => (
+                lo.to_vec(),
+                range
+                    .iter()
+                    .map(|&r| if r > 0.0 { r } else { 1.0 })
+                    .collect(),
+            ),
+        }
     }
 
     /// Fit `series` from the seeded initial weights (`warm` `None`) or going on from a
@@ -99,7 +110,6 @@ impl HsomConfig {
         progress: Option<&dyn Fn(usize, usize)>,
         learn: bool,
         columns: Vec<String>,
-        presentation: Presentation,
         warm: Option<&Warm<'_>>,
     ) -> Result<Hsom, HsomError> {
         let p = self.params();
@@ -110,48 +120,11 @@ impl HsomConfig {
         } else {
             (0..state).map(|i| format!("x{i}")).collect()
         };
-        // normalisation of the bottom input
-        let mut lo = vec![f64::INFINITY; state];
-        let mut hi = vec![f64::NEG_INFINITY; state];
-        for s in series {
-            for r in s.rows {
-                for d in 0..state {
-                    lo[d] = lo[d].min(r[d]);
-                    hi[d] = hi[d].max(r[d]);
-                }
-            }
-        }
-        let range: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| b - a).collect();
-        // a column whose range overflows cannot be normalised
-        if let Some(d) = range.iter().position(|r| !r.is_finite()) {
-            let (s, i) = series
-                .iter()
-                .flat_map(|s| (0..s.rows.len()).map(move |i| (s, i)))
-                .find(|(s, i)| s.rows[*i][d] == hi[d])
-                .expect("the maximum is a sample");
-            return Err(HsomError::OutOfScale {
-                demo: s.source.to_string(),
-                row: i,
-                column: d,
-                value: hi[d],
-                normalised: f64::INFINITY,
-            });
-        }
-        let (offset, scale) = match (warm, p.normalisation) {
+        let (lo, hi) = bounds(series, state)?;
+        let (offset, scale) = match warm {
             // an update keeps the model's normalisation: the maps are in its units
-            (Some(w), _) => (w.offset.to_vec(), w.scale.to_vec()),
-            (None, Normalisation::None) => (vec![0.0; state], vec![1.0; state]),
-            (None, Normalisation::Global) => {
-                let m = range.iter().cloned().fold(0.0, f64::max);
-                (lo.clone(), vec![if m > 0.0 { m } else { 1.0 }; state])
-            }
-            (None, Normalisation::PerDimension) => (
-                lo.clone(),
-                range
-                    .iter()
-                    .map(|&r| if r > 0.0 { r } else { 1.0 })
-                    .collect(),
-            ),
+            Some(w) => (w.offset.to_vec(), w.scale.to_vec()),
+            None => self.units_of(&lo, &hi),
         };
         let norm: Vec<Vec<Vec<f64>>> = series
             .iter()
@@ -237,22 +210,7 @@ impl HsomConfig {
         let horizon = p.action_horizon();
         let chunk = (total / 100).max(1);
         let events = p.kind() == crate::config::Algorithm::Events;
-        // the events extension trains the upper levels afterwards, so only the bottom's
-        // samples are drawn (the paper's levels learn from the sequence as it is presented)
-        let shuffled = events && presentation == Presentation::Shuffled;
-        let samples: usize = norm.iter().map(|r| r.len() - 1).sum();
         for s in 1..=total as u64 {
-            if shuffled {
-                // one of every demonstration's samples (but the last), uniformly
-                let mut g = rng.gen_range(0..samples);
-                d = 0;
-                while g >= norm[d].len() - 1 {
-                    g -= norm[d].len() - 1;
-                    d += 1;
-                }
-                pos = g;
-                stm.clear();
-            }
             {
                 let demo = &norm[d];
                 let x = &mut bufs[0];
@@ -295,7 +253,7 @@ impl HsomConfig {
                 stm.push(l, b, &maps[l]);
             }
             pos += 1;
-            if !shuffled && pos + 1 >= norm[d].len() {
+            if pos + 1 >= norm[d].len() {
                 stm.clear();
                 d = (d + 1) % norm.len();
                 pos = 0;
@@ -347,6 +305,36 @@ impl HsomConfig {
     }
 }
 
+/// Per variable, the lowest and highest value of `series` (`state` variables); a variable
+/// whose range overflows cannot be normalised.
+fn bounds(series: &[Series<'_>], state: usize) -> Result<(Vec<f64>, Vec<f64>), HsomError> {
+    let mut lo = vec![f64::INFINITY; state];
+    let mut hi = vec![f64::NEG_INFINITY; state];
+    for s in series {
+        for r in s.rows {
+            for d in 0..state {
+                lo[d] = lo[d].min(r[d]);
+                hi[d] = hi[d].max(r[d]);
+            }
+        }
+    }
+    if let Some(d) = (0..state).position(|d| !(hi[d] - lo[d]).is_finite()) {
+        let (s, i) = series
+            .iter()
+            .flat_map(|s| (0..s.rows.len()).map(move |i| (s, i)))
+            .find(|(s, i)| s.rows[*i][d] == hi[d])
+            .expect("the maximum is a sample");
+        return Err(HsomError::OutOfScale {
+            demo: s.source.to_string(),
+            row: i,
+            column: d,
+            value: hi[d],
+            normalised: f64::INFINITY,
+        });
+    }
+    Ok((lo, hi))
+}
+
 /// `x` as the bottom level sees it with `offset` and `scale`: (x - offset) / scale.
 fn normalised(x: &[f64], offset: &[f64], scale: &[f64]) -> Vec<f64> {
     x.iter()
@@ -357,8 +345,7 @@ fn normalised(x: &[f64], offset: &[f64], scale: &[f64]) -> Vec<f64> {
 
 impl EventsHsom {
     /// Where reproduction places each bottom node's events, learned from these (raw)
-    /// demonstrations ([`EventsHsom::fit_postures`]). A bottom shared by several gestures
-    /// gets none of its own: each branch learns its own.
+    /// demonstrations ([`EventsHsom::fit_postures`]).
     pub(super) fn learn_postures<'a>(&mut self, demos: impl Iterator<Item = &'a [Vec<f64>]>) {
         let norm: Vec<Vec<Vec<f64>>> = demos.map(|rows| self.normalise_rows(rows)).collect();
         self.fit_postures(&norm);

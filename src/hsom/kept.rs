@@ -96,8 +96,8 @@ pub(crate) fn band_path(rows: &[Vec<f64>]) -> Vec<Vec<f64>> {
 
 /// Where an update's training starts ([`crate::config::HsomConfig::fit_from`]): a trained
 /// model's maps (its bottom alone for the events extension, whose upper levels are fitted
-/// anew), its normalisation and training counts, the point of the schedule to go on from and
-/// the update's seed.
+/// anew; none: the seeded initial weights, [`Warm::units`]), its normalisation and training
+/// counts, the point of the schedule to go on from and the update's seed.
 pub(crate) struct Warm<'a> {
     pub(crate) maps: &'a [SelfOrganizingMap],
     pub(crate) offset: &'a [f64],
@@ -106,6 +106,21 @@ pub(crate) struct Warm<'a> {
     /// The share of the schedule already done: the earlier demonstrations' share of all.
     pub(crate) from: f64,
     pub(crate) seed: u64,
+}
+
+impl<'a> Warm<'a> {
+    /// A start from the seeded initial weights (`seed`) and the whole schedule in the units
+    /// `offset` and `scale`: a gesture learned in the units of a model of several.
+    pub(crate) fn units(offset: &'a [f64], scale: &'a [f64], seed: u64) -> Warm<'a> {
+        Warm {
+            maps: &[],
+            offset,
+            scale,
+            trained: &[],
+            from: 0.0,
+            seed,
+        }
+    }
 }
 
 /// The paths kept of training demonstrations `norm` (normalised, of lengths `lens`), and

@@ -1,17 +1,14 @@
-//! Several gestures in one hierarchy (docs/ALGORITHM.md, section
-//! 4): a [`GestureModel`] is one bottom level (the postures) shared by every gesture
-//! and, above it, one branch of upper levels per gesture label. Training fits the bottom on
-//! every demonstration, then each label's upper levels on that label's demonstrations (the
-//! events extension's own training, unchanged); the label primes the top of the hierarchy on
-//! reproduction, and recognition ([`super::recognize`]) pushes a sequence up every branch.
+//! Several gestures in one model (docs/ALGORITHM.md, section 4): a [`GestureModel`] is one
+//! branch per gesture label, each the gesture learned alone (its own bottom level and upper
+//! levels, trained on that label's demonstrations), all in the units of every gesture's
+//! demonstrations, so that recognition ([`super::recognize`]) compares their scores; the
+//! label chooses the branch on reproduction.
 //!
 //! A single-gesture model (no label) loads as a [`GestureModel`] with one unlabelled branch,
 //! and is saved as an [`Hsom`]; a file of several gestures holds the labels, their
-//! recognition calibration and every branch (which holds the branch's own postures of the
-//! shared bottom nodes, [`EventsHsom::fit_postures`]), in the one description of
-//! [`super::persist`], its header saying the kind. Older files get the "retrain" error.
+//! recognition calibration and every branch, in the one description of [`super::persist`],
+//! its header saying the kind. Older files get the "retrain" error.
 
-use std::path::PathBuf;
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -19,12 +16,12 @@ use rand_chacha::ChaCha8Rng;
 use crate::config::{Algorithm, HsomConfig};
 use crate::demos::{check_gesture_columns, is_plain_label, Demonstration};
 
-use super::algorithm::{Fit, Presentation};
-use super::errors::{GestureError, HsomError, PersistError};
-use super::inputs::spread;
+use super::algorithm::Fit;
+use super::errors::{GestureError, HsomError};
+use super::inputs::{demo_series, spread};
+use super::kept::Warm;
 use super::model::{EventsHsom, GestureModel, Hsom, Scoring};
 use super::persist::FORMAT_VERSION;
-use super::recognize::branch_seed;
 
 /// Format version of a multi-gesture model file: the one version of model files (the header
 /// says the kind).
@@ -114,9 +111,8 @@ impl<'a, const N: usize> From<&'a [(String, Vec<Demonstration>); N]> for Gesture
 impl HsomConfig {
     /// Fit a model of one gesture or several, as `how` says (trained, or the untrained
     /// negative control; a progress callback). One gesture: its hierarchy, the model's one
-    /// unlabelled branch. Labelled sets: one hierarchy, the bottom level trained on all of
-    /// them, then one branch of upper levels per label; each label's recognition threshold is
-    /// calibrated on its training data (leave-one-out). Labels must be plain words, distinct,
+    /// unlabelled branch. Labelled sets: one branch per label, the gesture learned alone
+    /// in the units of all of them; each label's recognition threshold is calibrated on its training data (leave-one-out). Labels must be plain words, distinct,
     /// each with demonstrations of the same columns, and the algorithm the events extension.
     pub fn fit_model<'a>(
         &self,
@@ -150,46 +146,32 @@ impl HsomConfig {
             check_gesture_columns(sets, i)?;
         }
         let all: Vec<Demonstration> = sets.iter().flat_map(|(_, d)| d.clone()).collect();
-        // the shared bottom sees every gesture as often as a gesture learned alone does:
-        // trainingSteps per label
-        let cfg = if sets.len() > 1 {
-            let mut p = self.params().clone();
-            p.training_steps = p.training_steps.saturating_mul(sets.len());
-            p.check(self.source()).map_err(|e| {
-                GestureError::Persist(PersistError::Corrupted {
-                    path: PathBuf::from(self.source()),
-                    what: e.to_string(),
-                })
-            })?
-        } else {
-            self.clone()
-        };
-        let learn = !how.untrained;
-        // drawn at random when shared and trained (docs/ALGORITHM.md, section 4)
-        let order = match sets.len() > 1 && learn {
-            true => Presentation::Shuffled,
-            false => Presentation::InOrder,
-        };
-        let shared = cfg.fit_presented(&all, how, order)?;
-        let Hsom::Events(shared) = shared else {
-            return Err(GestureError::NeedsEvents);
-        };
-        let norm: Vec<Vec<Vec<Vec<f64>>>> = sets
-            .iter()
-            .map(|(_, demos)| {
-                demos
-                    .iter()
-                    .map(|d| shared.normalise_rows(&d.rows))
-                    .collect()
-            })
-            .collect();
+        // every gesture in the units of all of them (recognition compares their scores),
+        // each learned alone in them: its own bottom level, trainingSteps on its own
+        // demonstrations, and its upper levels (docs/ALGORITHM.md, section 4)
+        let (offset, scale) = self.units(&demo_series(&all))?;
         let seed = self.params().seed;
-        let branches: Vec<EventsHsom> = norm
-            .iter()
-            .enumerate()
-            .map(|(g, n)| shared.build_branch(n, learn, branch_seed(seed, g, None)))
+        let units = Warm::units(&offset, &scale, seed);
+        let mut branches: Vec<EventsHsom> = Vec::with_capacity(sets.len());
+        for (g, (_, demos)) in sets.iter().enumerate() {
+            let progress = |done: usize, total: usize| {
+                if let Some(p) = how.progress {
+                    p(g * total + done, total * sets.len());
+                }
+            };
+            let fit = Fit {
+                progress: Some(&progress),
+                untrained: how.untrained,
+            };
+            let Hsom::Events(b) = self.fit_one_in(demos, fit, Some(&units))? else {
+                return Err(GestureError::NeedsEvents);
+            };
+            branches.push(*b);
+        }
+        let norm: Vec<Vec<Vec<Vec<f64>>>> = (sets.iter().zip(&branches))
+            .map(|((_, demos), b)| demos.iter().map(|d| b.normalise_rows(&d.rows)).collect())
             .collect();
-        let calibration = super::recognize::calibrate(&shared, &branches, &norm, learn, seed);
+        let calibration = super::recognize::calibrate(&branches, &norm, !how.untrained, seed);
         Ok(GestureModel {
             labels: sets.iter().map(|(l, _)| l.clone()).collect(),
             branches: branches
@@ -203,10 +185,11 @@ impl HsomConfig {
 }
 
 impl EventsHsom {
-    /// A branch: this model's bottom level (and normalisation) with every statistic
-    /// recomputed and the upper levels trained on `norm` (normalised demonstrations of one
-    /// gesture) by the events extension's own training; trained (`learn`), it places the
-    /// shared nodes' events where its gesture has them ([`EventsHsom::fit_postures`]).
+    /// This model's bottom level (and normalisation) with every statistic recomputed and
+    /// the upper levels trained on `norm` (normalised demonstrations of its gesture, some
+    /// of them held out) by the events extension's own training; trained (`learn`), it
+    /// places the nodes' events where the demonstrations have them
+    /// ([`EventsHsom::fit_postures`]).
     pub(crate) fn build_branch(
         &self,
         norm: &[Vec<Vec<f64>>],
@@ -249,8 +232,8 @@ impl GestureModel {
         &self.labels
     }
 
-    /// The branches: one [`Hsom`] per label (one for a single-gesture model), each with the
-    /// shared bottom level.
+    /// The branches: one [`Hsom`] per label (one for a single-gesture model), each in the
+    /// units of all of them.
     pub fn branches(&self) -> &[Hsom] {
         &self.branches
     }
@@ -310,11 +293,11 @@ impl GestureModel {
             let same = b.config == first.config
                 && b.columns == first.columns
                 && b.offset == first.offset
-                && b.scale == first.scale
-                && b.maps[0] == first.maps[0];
+                && b.scale == first.scale;
             if !same {
                 return Err(format!(
-                    "gesture {l:?} does not share the first gesture's bottom level"
+                    "gesture {l:?} does not share the first gesture's configuration, \
+                     variables and units"
                 ));
             }
         }

@@ -4,7 +4,7 @@
 //! normalisation, training counts, hits, quality figures, columns, demonstration lengths and
 //! the bottom's dwell times) and the part of its algorithm: [`PaperModel`] (the paper's,
 //! Table I) or [`EventsModel`] (the events extension). [`Hsom`] is one of the two.
-//! [`GestureModel`] is several gestures over one shared bottom level. Training lives in
+//! [`GestureModel`] is several gestures, one branch each. Training lives in
 //! [`super::algorithm`] and [`super::events`], reproduction in [`super::paper`] and
 //! [`super::events`], recognition in [`super::recognize`].
 
@@ -467,8 +467,8 @@ pub(crate) struct TracedChunk {
     pub(crate) words: Vec<u32>,
 }
 
-/// One hierarchy for one or several gestures: a shared bottom level, one branch of upper
-/// levels per label (every branch is an [`Hsom`] whose bottom is the shared one).
+/// A model of one or several gestures: one branch per label, each an [`Hsom`] of its
+/// gesture alone, all in the same units.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct GestureModel {
     /// Empty for a single-gesture model (one unlabelled branch).

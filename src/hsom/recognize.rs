@@ -25,7 +25,7 @@ pub(crate) fn branch_seed(seed: u64, g: usize, held_out: Option<usize>) -> u64 {
 
 /// Per sample of `norm` (normalised rows; its bottom inputs: the posture and the posture
 /// `actionHorizon` later), the RMS distance to the nearest bottom node `model`'s gesture used
-/// (the bottom is shared; the branch's event durations say which nodes its gesture visited).
+/// (the branch's event durations say which nodes its gesture visited).
 pub(crate) fn posture_distances(model: &EventsHsom, norm: &[Vec<f64>]) -> Vec<f64> {
     let map = &model.maps[0];
     let used = used(model, 0);
@@ -363,16 +363,14 @@ pub(crate) fn new_demonstration_bounds(own: &[Vec<f64>]) -> Vec<f64> {
 /// demonstration), and its threshold: what a new demonstration of the gesture may score, from
 /// those own held-out scores ([`new_demonstration_bounds`]).
 pub(crate) fn calibrate(
-    shared: &EventsHsom,
     branches: &[EventsHsom],
     norm: &[Vec<Vec<Vec<f64>>>],
     learn: bool,
     seed: u64,
 ) -> Vec<Calibration> {
-    let h = shared.maps.len();
-    let events: Vec<Vec<Vec<(usize, f64)>>> = norm
-        .iter()
-        .map(|n| n.iter().map(|d| bottom_events(shared, d)).collect())
+    let h = branches[0].maps.len();
+    let events: Vec<Vec<Vec<(usize, f64)>>> = (norm.iter().zip(branches))
+        .map(|(n, b)| n.iter().map(|d| bottom_events(b, d)).collect())
         .collect();
     let per: Vec<(Vec<f64>, Vec<f64>)> = (0..branches.len())
         .map(|g| {
@@ -386,7 +384,7 @@ pub(crate) fn calibrate(
                             .filter(|&(j, _)| j != i)
                             .map(|(_, d)| d.clone())
                             .collect();
-                        shared.build_branch(&rest, learn, branch_seed(seed, g, Some(i)))
+                        branches[g].build_branch(&rest, learn, branch_seed(seed, g, Some(i)))
                     })
                     .collect()
             } else {
@@ -494,22 +492,22 @@ impl GestureModel {
             .collect()
     }
 
-    /// The branches, the normalised rows and their bottom events, after checking the rows.
+    /// The branches, the normalised rows (every branch has the same units) and their bottom
+    /// events in each branch, after checking the rows.
     #[allow(clippy::type_complexity)]
     fn checked_events(
         &self,
         rows: &[Vec<f64>],
-    ) -> Result<(Vec<&EventsHsom>, Vec<Vec<f64>>, Vec<(usize, f64)>), GestureError> {
+    ) -> Result<(Vec<&EventsHsom>, Vec<Vec<f64>>, Vec<Vec<(usize, f64)>>), GestureError> {
         let branches = self.labelled()?;
-        let shared = branches[0];
         // a sequence of at least 2 samples (an action horizon of 1)
         let sequence = Series {
             source: "the sequence",
             rows,
         };
-        check_series(&[sequence], shared.columns.len(), 1)?;
-        let norm = shared.normalise_rows(rows);
-        let ev = bottom_events(shared, &norm);
+        check_series(&[sequence], branches[0].columns.len(), 1)?;
+        let norm = branches[0].normalise_rows(rows);
+        let ev = branches.iter().map(|b| bottom_events(b, &norm)).collect();
         Ok((branches, norm, ev))
     }
 
@@ -536,28 +534,30 @@ impl GestureModel {
             .collect()
     }
 
-    /// Per label, the score of the first `samples` samples (`evidence`) and the bottom events
-    /// `events`; `complete`: the sequence ends there.
+    /// Per label, the score of the first `samples` samples (`evidence`) and of the bottom
+    /// events in its branch (`events`) complete within them; `complete`: the sequence ends
+    /// there.
     fn scores_of(
         &self,
         branches: &[&EventsHsom],
         evidence: &[Evidence],
         samples: usize,
-        events: &[(usize, f64)],
+        events: &[Vec<(usize, f64)>],
         complete: bool,
     ) -> Vec<f64> {
         branches
             .iter()
             .zip(&self.calibration)
             .zip(evidence)
-            .map(|((b, c), e)| match self.scoring {
+            .zip(events)
+            .map(|(((b, c), e), events)| match self.scoring {
                 Scoring::Reproduction if complete => e.whole,
                 Scoring::Reproduction => e.prefix[samples.clamp(1, e.prefix.len()) - 1],
                 _ => {
                     let mut d = if self.scoring == Scoring::Postures {
                         vec![None; b.maps.len()]
                     } else {
-                        level_distances(b, events, complete)
+                        level_distances(b, completed(events, samples), complete)
                     };
                     d[0] = mean_of(&e.postures, samples);
                     self.scoring.score(&d, &c.reference)
@@ -585,15 +585,16 @@ impl GestureModel {
         let best = argmin(&fin);
         let horizon = branches[0].config.params().action_horizon();
         let mut decided_at = rows.len();
+        // the prefixes ending with the named gesture's events
         let mut done = 0.0;
-        let mut ends = Vec::with_capacity(ev.len());
-        for &(_, d) in &ev {
+        let mut ends = Vec::with_capacity(ev[best].len());
+        for &(_, d) in &ev[best] {
             done += d;
             ends.push(done);
         }
-        for p in (1..=ev.len()).rev() {
-            let at = ((ends[p - 1] as usize) + horizon).min(rows.len());
-            let prefix = self.scores_of(&branches, &post, ends[p - 1] as usize, &ev[..p], false);
+        for &end in ends.iter().rev() {
+            let at = ((end as usize) + horizon).min(rows.len());
+            let prefix = self.scores_of(&branches, &post, end as usize, &ev, false);
             if argmin(&prefix) != best {
                 break;
             }
@@ -654,6 +655,18 @@ impl GestureModel {
             },
         ))
     }
+}
+
+/// The first of `events` (node, samples) complete within `samples` samples.
+fn completed(events: &[(usize, f64)], samples: usize) -> &[(usize, f64)] {
+    let mut done = 0.0;
+    let n = (events.iter())
+        .take_while(|(_, d)| {
+            done += d;
+            done as usize <= samples
+        })
+        .count();
+    &events[..n]
 }
 
 /// Samples over which a continued prefix closes the gap to the reproduction (0.25 s at the

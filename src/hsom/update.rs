@@ -5,31 +5,32 @@
 //! A model keeps at most [`KEPT_DEMONSTRATIONS`](super::KEPT_DEMONSTRATIONS) of the demonstrations of each gesture it
 //! learned from, a uniform sample of them all (reservoir sampling, seeded), normalised and
 //! resampled to [`BAND_ROWS`](super::BAND_ROWS) rows with each one's length ([`Kept`]). An update:
-//! 1. trains the bottom map on the new demonstrations and the kept ones (rehearsal), as
-//!    training at once presents them (one gesture: in order, the new ones first; several:
-//!    drawn at random from every gesture's). More of known gestures: it goes on from its
-//!    weights over the end of its schedule, the share of the steps and the rates that the new
-//!    demonstrations' share of all learned from would have had (a model of the paper's
-//!    algorithm goes on training every level so). A new gesture: the whole schedule from the
-//!    seeded initial weights, as training at once on the kept and new demonstrations does,
-//!    since the map must make room for postures it never saw;
-//! 2. fits every gesture's upper levels and plans again on its kept and new demonstrations
-//!    (the bottom moved under them), and recognition's calibration on all of them;
+//! 1. trains the gesture's bottom map on the new demonstrations and the kept ones
+//!    (rehearsal), in order, the new ones first, going on from its weights over the end of
+//!    its schedule: the share of the steps and the rates that the new demonstrations' share
+//!    of all learned from would have had (a model of the paper's algorithm goes on training
+//!    every level so);
+//! 2. fits the gesture's upper levels and plans again on its kept and new demonstrations
+//!    (the bottom moved under them);
 //! 3. keeps the sample of demonstrations up to date.
+//!
+//! In a model of several gestures each gesture is taught so, on its own branch; a new
+//! gesture is learned alone in the model's units; the gestures not taught stay as they
+//! were; recognition is calibrated again on every gesture's kept and new demonstrations.
 //!
 //! Its cost is bounded by the configuration: whatever the number of demonstrations learned
 //! from, it learns from at most [`KEPT_DEMONSTRATIONS`](super::KEPT_DEMONSTRATIONS) earlier ones per gesture.
 
 use crate::demos::{median_interval, same_rate, Demonstration};
 
-use super::algorithm::Presentation;
+use super::algorithm::Fit;
 use super::errors::{GestureError, HsomError};
 use super::inputs::Series;
 use super::kept::{band_path, Kept};
-use super::kept::{keep, kept, mixed, Warm};
+use super::kept::{keep, mixed, Warm};
 use super::labels::check_label;
 use super::model::{EventsHsom, GestureModel, Hsom, Model, Part};
-use super::recognize::{branch_seed, calibrate};
+use super::recognize::calibrate;
 
 impl<A: Part> Model<A> {
     /// The kept demonstrations in the data's units, each at its own length (read between two
@@ -225,7 +226,6 @@ impl<A: Part> Model<A> {
             progress,
             true,
             self.columns.clone(),
-            Presentation::InOrder,
             Some(&warm),
         )?;
         if let Hsom::Events(m) = &mut model {
@@ -263,10 +263,9 @@ impl GestureModel {
     }
 
     /// This model taught every `(label, demonstrations)` of `sets` more, in one update (a
-    /// label it does not hold adds the gesture): the shared bottom goes on learning from the
-    /// new demonstrations and every gesture's kept ones, every gesture's upper levels and
-    /// plans are fitted again on its kept and new demonstrations, and recognition is
-    /// calibrated again on all of them. Labels must be plain, distinct words, demonstrations
+    /// label it does not hold adds the gesture): each gesture taught more goes on learning, as
+    /// a gesture alone does, from its new demonstrations and its kept ones; a new one is
+    /// learned alone in the model's units; recognition is calibrated again on all of them. Labels must be plain, distinct words, demonstrations
     /// of the model's columns and sample period. With no demonstrations, the model as it is.
     pub fn update_labelled(
         &self,
@@ -305,70 +304,45 @@ impl GestureModel {
             .iter()
             .map(|l| branch(l).map(|b| b.kept_rows()).unwrap_or_default())
             .collect();
-        let names: Vec<Vec<String>> = (labels.iter().zip(&earlier))
-            .map(|(l, k)| kept_names(l, k.len()))
-            .collect();
-        let per_label: Vec<Vec<Series<'_>>> = (labels.iter().enumerate())
-            .map(|(g, l)| series(new_of(l), &earlier[g], &names[g], false))
-            .collect();
-        let all: Vec<Series<'_>> = per_label.iter().flatten().copied().collect();
-        // the shared bottom sees trainingSteps per label, as when taught at once
-        let base = first.config.params().training_steps / self.labels.len().max(1);
-        let cfg = if labels.len() > 1 {
-            let mut p = first.config.params().clone();
-            p.training_steps = base.saturating_mul(labels.len());
-            p.check(first.config.source()).map_err(HsomError::from)?
-        } else {
-            first.config.clone()
-        };
-        let columns = first.columns.clone();
-        let shared = match labels.len() > self.labels.len() {
-            // a new gesture needs room on the map, which only the whole schedule's early,
-            // wide neighbourhoods make: the bottom learns again, from the seeded initial
-            // weights, from every gesture's kept and new demonstrations, as training at once
-            // on them does
-            true => cfg.fit_from(&all, progress, true, columns, Presentation::Shuffled, None)?,
-            // more of known gestures: the bottom goes on from its weights over the end of the
-            // schedule, the earlier demonstrations' share of it done
-            false => {
-                let learned: u64 = (self.branches.iter()).map(|b| b.learned().0).sum();
-                let new: usize = sets.iter().map(|(_, d)| d.len()).sum();
-                let from = learned as f64 / (learned as f64 + new as f64);
-                let warm = first.warm(1, from);
-                cfg.fit_from(
-                    &all,
-                    progress,
-                    true,
-                    columns,
-                    Presentation::Shuffled,
-                    Some(&warm),
-                )?
-            }
-        };
-        let Hsom::Events(shared) = shared else {
-            return Err(GestureError::NeedsEvents);
-        };
-        let norm: Vec<Vec<Vec<Vec<f64>>>> = per_label
-            .iter()
-            .map(|s| s.iter().map(|s| shared.normalise_rows(s.rows)).collect())
-            .collect();
         let seed = first.config.params().seed;
-        let mut branches: Vec<EventsHsom> = (norm.iter().enumerate())
-            .map(|(g, n)| shared.build_branch(n, true, branch_seed(seed, g, None)))
-            .collect();
-        let calibration = calibrate(&shared, &branches, &norm, true, seed);
-        for (g, (l, b)) in labels.iter().zip(&mut branches).enumerate() {
-            let fresh = &norm[g][earlier[g].len()..];
-            let (paths, record) = match branch(l) {
-                Some(old) => old.remembered(&shared, fresh, u32::from(!fresh.is_empty())),
-                None => {
-                    let (paths, mut record) = kept(fresh, fresh.iter().map(Vec::len), seed);
-                    record.period = first.kept.period;
-                    (paths, record)
+        let units = Warm::units(&first.offset, &first.scale, seed);
+        let taught = sets.iter().filter(|(_, d)| !d.is_empty()).count();
+        let mut at = 0;
+        // each gesture taught more goes on as a gesture alone does; a new one is learned
+        // alone in the model's units; the others stay as they are
+        let mut branches: Vec<EventsHsom> = Vec::with_capacity(labels.len());
+        for l in &labels {
+            let new = new_of(l);
+            let k = at;
+            at += usize::from(!new.is_empty());
+            let step = |done: usize, total: usize| {
+                if let Some(p) = progress {
+                    p(k * total + done, total * taught);
                 }
             };
-            (b.paths, b.kept) = (paths, record);
+            let fit = Fit {
+                progress: Some(&step),
+                untrained: false,
+            };
+            let b = match branch(l) {
+                Some(b) if new.is_empty() => Hsom::Events(Box::new(b.clone())),
+                Some(b) => b.updated(new, fit.progress)?,
+                None => first.config.fit_one_in(new, fit, Some(&units))?,
+            };
+            let Hsom::Events(b) = b else {
+                return Err(GestureError::NeedsEvents);
+            };
+            branches.push(*b);
         }
+        // recognition calibrated on every gesture's kept and new demonstrations
+        let norm: Vec<Vec<Vec<Vec<f64>>>> = (labels.iter().zip(&earlier))
+            .map(|(l, k)| {
+                (k.iter().chain(new_of(l).iter().map(|d| &d.rows)))
+                    .map(|rows| first.normalise_rows(rows))
+                    .collect()
+            })
+            .collect();
+        let calibration = calibrate(&branches, &norm, true, seed);
         Ok(GestureModel {
             labels,
             branches: branches

@@ -85,17 +85,6 @@ fn trained(height: usize) -> EventsHsom {
         .into_events()
 }
 
-/// Mean distance of `rows` (with their postures `horizon` samples later, as the bottom is
-/// trained) to the bottom map: its quantization error on them.
-fn bottom_error(m: &EventsHsom, rows: &[Vec<f64>], horizon: usize) -> f64 {
-    let norm = m.normalise_rows(rows);
-    let n = norm.len() - 1;
-    let inputs: Vec<Vec<f64>> = (0..n)
-        .map(|i| [norm[i].as_slice(), &norm[(i + horizon).min(n)]].concat())
-        .collect();
-    m.maps[0].quantization_error(&inputs)
-}
-
 #[test]
 fn events_tile_the_demonstration_and_hold_their_durations() {
     let m = trained(3);
