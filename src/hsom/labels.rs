@@ -9,7 +9,6 @@
 //! recognition calibration and every branch, in the one description of [`super::persist`],
 //! its header saying the kind. Older files get the "retrain" error.
 
-
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 

@@ -221,13 +221,9 @@ impl<A: Part> Model<A> {
             crate::config::Algorithm::Paper => self.maps.len(),
         };
         let warm = self.warm(levels, from);
-        let mut model = self.config.fit_from(
-            &all,
-            progress,
-            true,
-            self.columns.clone(),
-            Some(&warm),
-        )?;
+        let mut model =
+            self.config
+                .fit_from(&all, progress, true, self.columns.clone(), Some(&warm))?;
         if let Hsom::Events(m) = &mut model {
             m.learn_postures(all.iter().map(|s| s.rows));
         }

@@ -145,7 +145,11 @@ fn a_gesture_of_small_motions_keeps_its_swings_among_larger_ones() {
         })
         .collect();
     let nod = (0..3)
-        .map(|i| demo(noisy(100 + i, &|t| (0.0, 0.1 * (5.0 * std::f64::consts::PI * t).sin()))))
+        .map(|i| {
+            demo(noisy(100 + i, &|t| {
+                (0.0, 0.1 * (5.0 * std::f64::consts::PI * t).sin())
+            }))
+        })
         .collect();
     sets.push(("nod".into(), nod));
     // a bottom of 16 nodes
@@ -172,12 +176,25 @@ fn a_gesture_of_small_motions_keeps_its_swings_among_larger_ones() {
     let shared = shared_cfg
         .check("test")
         .unwrap()
-        .fit_from(&series, None, true, vec!["x".into(), "y".into()], Some(&units))
+        .fit_from(
+            &series,
+            None,
+            true,
+            vec!["x".into(), "y".into()],
+            Some(&units),
+        )
         .unwrap()
         .into_events();
-    let norm: Vec<Vec<Vec<f64>>> = sets[4].1.iter().map(|d| b.normalise_rows(&d.rows)).collect();
+    let norm: Vec<Vec<Vec<f64>>> = sets[4]
+        .1
+        .iter()
+        .map(|d| b.normalise_rows(&d.rows))
+        .collect();
     let on_shared = swings(&shared.build_branch(&norm, true, cfg.params().seed));
-    assert!(own.abs_diff(want) <= 1, "own bottom: {own} swings, demonstrations {want}");
+    assert!(
+        own.abs_diff(want) <= 1,
+        "own bottom: {own} swings, demonstrations {want}"
+    );
     assert!(
         on_shared.abs_diff(want) > 1,
         "the control, a shared bottom: {on_shared} swings, demonstrations {want}"
