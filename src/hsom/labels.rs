@@ -124,7 +124,7 @@ impl HsomConfig {
         }
     }
 
-    fn fit_labelled(
+    pub(super) fn fit_labelled(
         &self,
         sets: &[(String, Vec<Demonstration>)],
         how: Fit<'_>,
@@ -184,6 +184,35 @@ impl HsomConfig {
 }
 
 impl EventsHsom {
+    /// This branch's gesture learned again, bottom level and all, from `norm` alone (its
+    /// normalised demonstrations but one: a held-out branch for calibration), in its units.
+    pub(crate) fn without(&self, norm: &[Vec<Vec<f64>>], learn: bool, seed: u64) -> EventsHsom {
+        let raw: Vec<Vec<Vec<f64>>> = (norm.iter())
+            .map(|d| d.iter().map(|r| self.denormalise(r)).collect())
+            .collect();
+        let series: Vec<super::inputs::Series<'_>> = (raw.iter())
+            .map(|rows| super::inputs::Series {
+                source: "a held-out branch's demonstration",
+                rows,
+            })
+            .collect();
+        let units = Warm::units(&self.offset, &self.scale, seed);
+        let fitted = self
+            .config
+            .fit_from(&series, None, learn, self.columns.clone(), Some(&units));
+        match fitted {
+            Ok(Hsom::Events(mut m)) => {
+                m.kept.period = self.kept.period;
+                if learn {
+                    m.fit_postures(norm);
+                }
+                *m
+            }
+            // the demonstrations were fitted once in these units: a refit cannot fail
+            _ => self.build_branch(norm, learn, seed),
+        }
+    }
+
     /// This model's bottom level (and normalisation) with every statistic recomputed and
     /// the upper levels trained on `norm` (normalised demonstrations of its gesture, some
     /// of them held out) by the events extension's own training; trained (`learn`), it

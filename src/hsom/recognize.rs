@@ -384,7 +384,7 @@ pub(crate) fn calibrate(
                             .filter(|&(j, _)| j != i)
                             .map(|(_, d)| d.clone())
                             .collect();
-                        branches[g].build_branch(&rest, learn, branch_seed(seed, g, Some(i)))
+                        branches[g].without(&rest, learn, branch_seed(seed, g, Some(i)))
                     })
                     .collect()
             } else {

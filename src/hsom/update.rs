@@ -14,9 +14,10 @@
 //!    (the bottom moved under them);
 //! 3. keeps the sample of demonstrations up to date.
 //!
-//! In a model of several gestures each gesture is taught so, on its own branch; a new
-//! gesture is learned alone in the model's units; the gestures not taught stay as they
-//! were; recognition is calibrated again on every gesture's kept and new demonstrations.
+//! In a model of several gestures each gesture is taught so, on its own branch, and the
+//! gestures not taught stay as they were; a new gesture has every gesture learned again at
+//! once from its kept and new demonstrations, in the units of all of them; recognition is
+//! calibrated again on every gesture's kept and new demonstrations.
 //!
 //! Its cost is bounded by the configuration: whatever the number of demonstrations learned
 //! from, it learns from at most [`KEPT_DEMONSTRATIONS`](super::KEPT_DEMONSTRATIONS) earlier ones per gesture.
@@ -260,8 +261,9 @@ impl GestureModel {
 
     /// This model taught every `(label, demonstrations)` of `sets` more, in one update (a
     /// label it does not hold adds the gesture): each gesture taught more goes on learning, as
-    /// a gesture alone does, from its new demonstrations and its kept ones; a new one is
-    /// learned alone in the model's units; recognition is calibrated again on all of them. Labels must be plain, distinct words, demonstrations
+    /// a gesture alone does, from its new demonstrations and its kept ones; with a new one,
+    /// every gesture is learned again at once from its kept and new demonstrations;
+    /// recognition is calibrated again on all of them. Labels must be plain, distinct words, demonstrations
     /// of the model's columns and sample period. With no demonstrations, the model as it is.
     pub fn update_labelled(
         &self,
@@ -300,14 +302,19 @@ impl GestureModel {
             .iter()
             .map(|l| branch(l).map(|b| b.kept_rows()).unwrap_or_default())
             .collect();
+        if labels.len() > self.labels.len() {
+            return self.relearned(first, &labels, &earlier, sets, progress);
+        }
         let seed = first.config.params().seed;
-        let units = Warm::units(&first.offset, &first.scale, seed);
         let taught = sets.iter().filter(|(_, d)| !d.is_empty()).count();
         let mut at = 0;
-        // each gesture taught more goes on as a gesture alone does; a new one is learned
-        // alone in the model's units; the others stay as they are
+        // each gesture taught more goes on as a gesture alone does; the others stay as
+        // they are
         let mut branches: Vec<EventsHsom> = Vec::with_capacity(labels.len());
-        for l in &labels {
+        for (l, b) in labels.iter().zip(&self.branches) {
+            let Some(b) = b.as_events() else {
+                return Err(GestureError::NeedsEvents);
+            };
             let new = new_of(l);
             let k = at;
             at += usize::from(!new.is_empty());
@@ -316,14 +323,9 @@ impl GestureModel {
                     p(k * total + done, total * taught);
                 }
             };
-            let fit = Fit {
-                progress: Some(&step),
-                untrained: false,
-            };
-            let b = match branch(l) {
-                Some(b) if new.is_empty() => Hsom::Events(Box::new(b.clone())),
-                Some(b) => b.updated(new, fit.progress)?,
-                None => first.config.fit_one_in(new, fit, Some(&units))?,
+            let b = match new.is_empty() {
+                true => Hsom::Events(Box::new(b.clone())),
+                false => b.updated(new, Some(&step))?,
             };
             let Hsom::Events(b) = b else {
                 return Err(GestureError::NeedsEvents);
@@ -348,6 +350,61 @@ impl GestureModel {
             calibration,
             scoring: self.scoring,
         })
+    }
+}
+
+impl GestureModel {
+    /// [`GestureModel::update_labelled`] adding a gesture (`labels`: every label after it;
+    /// `earlier`: each one's kept demonstrations, in the data's units): every gesture learned
+    /// again at once from its kept and new demonstrations, as training at once on them does,
+    /// in the units of all of them (the model's were its first gestures', which may not span
+    /// the new one: a variable they held still has the scale of its noise), with each known
+    /// gesture's record of what it learned from carried on.
+    fn relearned(
+        &self,
+        first: &EventsHsom,
+        labels: &[String],
+        earlier: &[Vec<Vec<Vec<f64>>>],
+        sets: &[(String, Vec<Demonstration>)],
+        progress: Option<&dyn Fn(usize, usize)>,
+    ) -> Result<GestureModel, GestureError> {
+        let none: Vec<Demonstration> = Vec::new();
+        let new_of = |l: &str| sets.iter().find(|(x, _)| x == l).map_or(&none, |(_, d)| d);
+        let all: Vec<(String, Vec<Demonstration>)> = (labels.iter().zip(earlier))
+            .map(|(l, kept)| {
+                let mut demos: Vec<Demonstration> = (kept.iter())
+                    .zip(kept_names(l, kept.len()))
+                    .map(|(rows, source)| Demonstration {
+                        source,
+                        columns: first.columns.clone(),
+                        time: None,
+                        rows: rows.clone(),
+                    })
+                    .collect();
+                demos.extend(new_of(l).iter().cloned());
+                (l.clone(), demos)
+            })
+            .collect();
+        let fit = Fit {
+            progress,
+            untrained: false,
+        };
+        let mut model = first.config.fit_labelled(&all, fit)?;
+        for (l, b) in labels.iter().zip(&mut model.branches) {
+            let Hsom::Events(b) = b else {
+                return Err(GestureError::NeedsEvents);
+            };
+            let fresh: Vec<Vec<Vec<f64>>> = (new_of(l).iter())
+                .map(|d| b.normalise_rows(&d.rows))
+                .collect();
+            let old = self.labels.iter().position(|x| x == l);
+            if let Some(old) = old.and_then(|g| self.branches[g].as_events()) {
+                (b.paths, b.kept) = old.remembered(&**b, &fresh, u32::from(!fresh.is_empty()));
+            }
+            b.kept.period = first.kept.period;
+        }
+        model.scoring = self.scoring;
+        Ok(model)
     }
 }
 
