@@ -9,15 +9,12 @@
 //! recognition calibration and every branch, in the one description of [`super::persist`],
 //! its header saying the kind. Older files get the "retrain" error.
 
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-
 use crate::config::{Algorithm, HsomConfig};
 use crate::demos::{check_gesture_columns, is_plain_label, Demonstration};
 
 use super::algorithm::Fit;
 use super::errors::{GestureError, HsomError};
-use super::inputs::{demo_series, spread};
+use super::inputs::{demo_series, Series};
 use super::kept::Warm;
 use super::model::{EventsHsom, GestureModel, Hsom, Scoring};
 use super::persist::FORMAT_VERSION;
@@ -111,8 +108,9 @@ impl HsomConfig {
     /// Fit a model of one gesture or several, as `how` says (trained, or the untrained
     /// negative control; a progress callback). One gesture: its hierarchy, the model's one
     /// unlabelled branch. Labelled sets: one branch per label, the gesture learned alone
-    /// in the units of all of them; each label's recognition threshold is calibrated on its training data (leave-one-out). Labels must be plain words, distinct,
-    /// each with demonstrations of the same columns, and the algorithm the events extension.
+    /// in the units of all of them; each label's recognition threshold is calibrated on its
+    /// training data (leave-one-out). Labels must be plain words, distinct, each with
+    /// demonstrations of the same columns, and the algorithm the events extension.
     pub fn fit_model<'a>(
         &self,
         sets: impl Into<Gestures<'a>>,
@@ -170,7 +168,7 @@ impl HsomConfig {
         let norm: Vec<Vec<Vec<Vec<f64>>>> = (sets.iter().zip(&branches))
             .map(|((_, demos), b)| demos.iter().map(|d| b.normalise_rows(&d.rows)).collect())
             .collect();
-        let calibration = super::recognize::calibrate(&branches, &norm, !how.untrained, seed);
+        let calibration = super::recognize::calibrate(&branches, &norm, !how.untrained, seed)?;
         Ok(GestureModel {
             labels: sets.iter().map(|(l, _)| l.clone()).collect(),
             branches: branches
@@ -186,38 +184,40 @@ impl HsomConfig {
 impl EventsHsom {
     /// This branch's gesture learned again, bottom level and all, from `norm` alone (its
     /// normalised demonstrations but one: a held-out branch for calibration), in its units.
-    pub(crate) fn without(&self, norm: &[Vec<Vec<f64>>], learn: bool, seed: u64) -> EventsHsom {
+    pub(crate) fn without(
+        &self,
+        norm: &[Vec<Vec<f64>>],
+        learn: bool,
+        seed: u64,
+    ) -> Result<EventsHsom, HsomError> {
         let raw: Vec<Vec<Vec<f64>>> = (norm.iter())
             .map(|d| d.iter().map(|r| self.denormalise(r)).collect())
             .collect();
-        let series: Vec<super::inputs::Series<'_>> = (raw.iter())
-            .map(|rows| super::inputs::Series {
-                source: "a held-out branch's demonstration",
+        let series: Vec<Series<'_>> = (raw.iter())
+            .map(|rows| Series {
+                source: "a demonstration of a held-out branch",
                 rows,
             })
             .collect();
         let units = Warm::units(&self.offset, &self.scale, seed);
-        let fitted = self
-            .config
-            .fit_from(&series, None, learn, self.columns.clone(), Some(&units));
-        match fitted {
-            Ok(Hsom::Events(mut m)) => {
-                m.kept.period = self.kept.period;
-                if learn {
-                    m.fit_postures(norm);
-                }
-                *m
-            }
-            // the demonstrations were fitted once in these units: a refit cannot fail
-            _ => self.build_branch(norm, learn, seed),
+        let columns = self.columns.clone();
+        let Hsom::Events(mut m) = self.config.fit_from(&series, None, learn, columns, Some(&units))?
+        else {
+            return Err(HsomError::NoDemonstrations);
+        };
+        m.kept.period = self.kept.period;
+        if learn {
+            m.fit_postures(norm);
         }
+        Ok(*m)
     }
 
     /// This model's bottom level (and normalisation) with every statistic recomputed and
-    /// the upper levels trained on `norm` (normalised demonstrations of its gesture, some
-    /// of them held out) by the events extension's own training; trained (`learn`), it
-    /// places the nodes' events where the demonstrations have them
-    /// ([`EventsHsom::fit_postures`]).
+    /// the upper levels trained on `norm` (normalised demonstrations of a gesture) by the
+    /// events extension's own training; trained (`learn`), it places the nodes' events where
+    /// the demonstrations have them ([`EventsHsom::fit_postures`]). The negative control of
+    /// a gesture's levels on a bottom learned from other gestures too.
+    #[cfg(test)]
     pub(crate) fn build_branch(
         &self,
         norm: &[Vec<Vec<f64>>],
@@ -233,12 +233,12 @@ impl EventsHsom {
         b.lookup = vec![0.0; h];
         b.part.threshold = vec![0.0; h];
         let lens: Vec<f64> = norm.iter().map(|d| d.len() as f64).collect();
-        b.demo_len = spread(&lens);
+        b.demo_len = super::inputs::spread(&lens);
         let period = b.kept.period;
         (b.paths, b.kept) = super::kept::kept(norm, norm.iter().map(Vec::len), seed);
         b.kept.period = period;
         b.replay(norm);
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(seed);
         b.fit_events(norm, learn, &mut rng);
         if learn {
             b.fit_postures(norm);

@@ -7,7 +7,7 @@
 
 use crate::dtw::{argmin, dtw_distance, dtw_with_prefixes, open_end_cost, Band};
 
-use super::errors::GestureError;
+use super::errors::{GestureError, HsomError};
 use super::events::{
     a_part, b_part, bottom_events, chunk_input, chunks, summary, used, DurationCode, Item,
 };
@@ -367,57 +367,46 @@ pub(crate) fn calibrate(
     norm: &[Vec<Vec<Vec<f64>>>],
     learn: bool,
     seed: u64,
-) -> Vec<Calibration> {
+) -> Result<Vec<Calibration>, HsomError> {
     let h = branches[0].maps.len();
-    let events: Vec<Vec<Vec<(usize, f64)>>> = (norm.iter().zip(branches))
-        .map(|(n, b)| n.iter().map(|d| bottom_events(b, d)).collect())
-        .collect();
-    let per: Vec<(Vec<f64>, Vec<f64>)> = (0..branches.len())
-        .map(|g| {
-            // each own demonstration's branch: trained without it (with it, when alone)
-            let loo: Vec<EventsHsom> = if norm[g].len() >= 2 {
-                (0..norm[g].len())
-                    .map(|i| {
-                        let rest: Vec<Vec<Vec<f64>>> = norm[g]
-                            .iter()
-                            .enumerate()
-                            .filter(|&(j, _)| j != i)
-                            .map(|(_, d)| d.clone())
-                            .collect();
-                        branches[g].without(&rest, learn, branch_seed(seed, g, Some(i)))
-                    })
-                    .collect()
-            } else {
-                vec![branches[g].clone()]
-            };
-            let own: Vec<Vec<Option<f64>>> = loo
-                .iter()
-                .zip(&norm[g])
-                .zip(&events[g])
-                .map(|((b, n), ev)| all_distances(b, n, ev))
-                .collect();
-            let reference = level_means(&own, h);
-            let scoring = Scoring::default();
-            let own_scores: Vec<f64> = match scoring {
-                Scoring::Reproduction => loo
-                    .iter()
-                    .zip(&norm[g])
-                    .map(|(b, n)| reproduction_distance(b, n))
-                    .collect(),
-                _ => own.iter().map(|d| scoring.score(d, &reference)).collect(),
-            };
-            let own_scores: Vec<f64> = own_scores.into_iter().filter(|v| v.is_finite()).collect();
-            (reference, own_scores)
-        })
-        .collect();
+    let mut per: Vec<(Vec<f64>, Vec<f64>)> = Vec::with_capacity(branches.len());
+    for g in 0..branches.len() {
+        // each own demonstration's branch: trained without it (with it, when alone)
+        let loo: Vec<EventsHsom> = match norm[g].len() >= 2 {
+            true => (0..norm[g].len())
+                .map(|i| {
+                    let rest: Vec<Vec<Vec<f64>>> = (norm[g].iter().enumerate())
+                        .filter(|&(j, _)| j != i)
+                        .map(|(_, d)| d.clone())
+                        .collect();
+                    branches[g].without(&rest, learn, branch_seed(seed, g, Some(i)))
+                })
+                .collect::<Result<_, _>>()?,
+            false => vec![branches[g].clone()],
+        };
+        let own: Vec<Vec<Option<f64>>> = (loo.iter().zip(&norm[g]))
+            .map(|(b, n)| all_distances(b, n, &bottom_events(b, n)))
+            .collect();
+        let reference = level_means(&own, h);
+        let scoring = Scoring::default();
+        let own_scores: Vec<f64> = match scoring {
+            Scoring::Reproduction => (loo.iter().zip(&norm[g]))
+                .map(|(b, n)| reproduction_distance(b, n))
+                .collect(),
+            _ => own.iter().map(|d| scoring.score(d, &reference)).collect(),
+        };
+        let own_scores: Vec<f64> = own_scores.into_iter().filter(|v| v.is_finite()).collect();
+        per.push((reference, own_scores));
+    }
     let own: Vec<Vec<f64>> = per.iter().map(|p| p.1.clone()).collect();
-    per.into_iter()
+    Ok(per
+        .into_iter()
         .zip(new_demonstration_bounds(&own))
         .map(|((reference, _), threshold)| Calibration {
             reference,
             threshold,
         })
-        .collect()
+        .collect())
 }
 
 /// How many of a label's heaviest variables a [`Recognition`] names.

@@ -340,7 +340,7 @@ impl GestureModel {
                     .collect()
             })
             .collect();
-        let calibration = calibrate(&branches, &norm, true, seed);
+        let calibration = calibrate(&branches, &norm, true, seed)?;
         Ok(GestureModel {
             labels,
             branches: branches
