@@ -201,7 +201,9 @@ impl EventsHsom {
             .collect();
         let units = Warm::units(&self.offset, &self.scale, seed);
         let columns = self.columns.clone();
-        let Hsom::Events(mut m) = self.config.fit_from(&series, None, learn, columns, Some(&units))?
+        let Hsom::Events(mut m) =
+            self.config
+                .fit_from(&series, None, learn, columns, Some(&units))?
         else {
             return Err(HsomError::NoDemonstrations);
         };
@@ -215,9 +217,9 @@ impl EventsHsom {
     /// This model's bottom level (and normalisation) with every statistic recomputed and
     /// the upper levels trained on `norm` (normalised demonstrations of a gesture) by the
     /// events extension's own training; trained (`learn`), it places the nodes' events where
-    /// the demonstrations have them ([`EventsHsom::fit_postures`]). The negative control of
-    /// a gesture's levels on a bottom learned from other gestures too.
-    #[cfg(test)]
+    /// the demonstrations have them ([`EventsHsom::fit_postures`]): a held-out branch of a
+    /// gesture of two demonstrations, and the negative control of a gesture's levels on a
+    /// bottom learned from other gestures too.
     pub(crate) fn build_branch(
         &self,
         norm: &[Vec<Vec<f64>>],

@@ -371,18 +371,25 @@ pub(crate) fn calibrate(
     let h = branches[0].maps.len();
     let mut per: Vec<(Vec<f64>, Vec<f64>)> = Vec::with_capacity(branches.len());
     for g in 0..branches.len() {
-        // each own demonstration's branch: trained without it (with it, when alone)
-        let loo: Vec<EventsHsom> = match norm[g].len() >= 2 {
-            true => (0..norm[g].len())
+        // each own demonstration's branch: trained without it, bottom level and all; with
+        // one demonstration left, its levels on the label's own bottom (a bottom trained on
+        // one demonstration replays it, a stand-in unlike a model that averages several);
+        // with it, when alone
+        let loo: Vec<EventsHsom> = match norm[g].len() {
+            0 | 1 => vec![branches[g].clone()],
+            n => (0..n)
                 .map(|i| {
                     let rest: Vec<Vec<Vec<f64>>> = (norm[g].iter().enumerate())
                         .filter(|&(j, _)| j != i)
                         .map(|(_, d)| d.clone())
                         .collect();
-                    branches[g].without(&rest, learn, branch_seed(seed, g, Some(i)))
+                    let seed = branch_seed(seed, g, Some(i));
+                    match n {
+                        2 => Ok(branches[g].build_branch(&rest, learn, seed)),
+                        _ => branches[g].without(&rest, learn, seed),
+                    }
                 })
                 .collect::<Result<_, _>>()?,
-            false => vec![branches[g].clone()],
         };
         let own: Vec<Vec<Option<f64>>> = (loo.iter().zip(&norm[g]))
             .map(|(b, n)| all_distances(b, n, &bottom_events(b, n)))
