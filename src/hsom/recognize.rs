@@ -489,7 +489,7 @@ impl GestureModel {
     }
 
     /// The branches, the normalised rows (every branch has the same units) and their bottom
-    /// events in each branch, after checking the rows.
+    /// events in each branch (none for the scores by reproduction), after checking the rows.
     #[allow(clippy::type_complexity)]
     fn checked_events(
         &self,
@@ -503,7 +503,14 @@ impl GestureModel {
         };
         check_series(&[sequence], branches[0].columns.len(), 1)?;
         let norm = branches[0].normalise_rows(rows);
-        let ev = branches.iter().map(|b| bottom_events(b, &norm)).collect();
+        // the scores by reproduction read no events (recognize finds its decision points
+        // in the named gesture's own)
+        let ev = (branches.iter())
+            .map(|b| match self.scoring {
+                Scoring::Reproduction => Vec::new(),
+                _ => bottom_events(b, &norm),
+            })
+            .collect();
         Ok((branches, norm, ev))
     }
 
@@ -583,8 +590,12 @@ impl GestureModel {
         let mut decided_at = rows.len();
         // the prefixes ending with the named gesture's events
         let mut done = 0.0;
-        let mut ends = Vec::with_capacity(ev[best].len());
-        for &(_, d) in &ev[best] {
+        let named = match ev[best].is_empty() {
+            true => bottom_events(branches[best], &norm),
+            false => ev[best].clone(),
+        };
+        let mut ends = Vec::with_capacity(named.len());
+        for &(_, d) in &named {
             done += d;
             ends.push(done);
         }
