@@ -9,8 +9,9 @@
 //! eliminates labels: a label is out once its prefix score passes its ceiling, the label's
 //! threshold (what a whole new demonstration of it may score) times the model's rise (how far
 //! above its whole score a prefix of one of the model's own kept demonstrations ever scored,
-//! [`StreamCalibration`]). When one label is left and its prefix scores within its threshold,
-//! the recogniser commits to it; when none is left, to unknown.
+//! [`StreamCalibration`]). When one label is left, past its hold, and its prefix scores within
+//! its threshold and within its own demonstrations' held-out prefixes that far into the
+//! gesture, the recogniser commits to it; when none is left, to unknown.
 
 use std::borrow::Borrow;
 
@@ -38,7 +39,11 @@ pub struct Commit {
 /// reproduction from its first posture; infinite (no label is ever ruled out early) when the
 /// model keeps no demonstration to measure it on. The **holds**: per label, how far into its
 /// reproduction a stream must be before the recogniser may commit to it, from the other
-/// labels' kept demonstrations standing in for a gesture it never saw.
+/// labels' kept demonstrations standing in for a gesture it never saw. The **envelope**: per
+/// label, how far from its reproduction a prefix of a new demonstration of it may be that far
+/// into the gesture, from its own kept demonstrations each scored by the label learned again
+/// without it (a one-class check: a prefix farther than every held-out one is not this label
+/// yet, whatever the other labels say).
 #[derive(Debug, Clone, PartialEq)]
 pub struct StreamCalibration {
     /// Per stretch of the reproduction covered, the largest prefix score over whole score.
@@ -46,6 +51,11 @@ pub struct StreamCalibration {
     /// Per label (in the model's order): the largest fraction of its reproduction at which a
     /// stand-in stream met the rule for committing to it.
     pub holds: Vec<f64>,
+    /// Per label (in the model's order), per stretch of its reproduction covered (one of
+    /// [`RISE_BINS`]): the largest prefix score of one of its kept demonstrations, each against
+    /// the reproduction of the label learned again without it, over the prefixes ending in
+    /// that stretch or later; infinite (no bound) where none was measured.
+    pub envelope: Vec<Vec<f64>>,
 }
 
 /// The stretches of a reproduction the rise is measured on (twentieths: its resolution).
@@ -55,12 +65,49 @@ impl StreamCalibration {
     /// The prefix score above which label `g` (`threshold`) is out after `samples` samples
     /// against a reproduction of `m` samples (0 for a threshold of 0: out at the first miss).
     fn ceiling(&self, threshold: f64, samples: usize, m: usize) -> f64 {
-        let bin = (samples * RISE_BINS / m.max(1)).min(RISE_BINS - 1);
         match threshold == 0.0 {
             true => 0.0,
-            false => threshold * self.rise.get(bin).copied().unwrap_or(f64::INFINITY),
+            false => {
+                threshold
+                    * self
+                        .rise
+                        .get(bin(samples, m))
+                        .copied()
+                        .unwrap_or(f64::INFINITY)
+            }
         }
     }
+
+    /// The largest prefix score label `g`'s own held-out demonstrations reached after
+    /// `samples` samples against a reproduction of `m` samples, or later.
+    fn envelope(&self, g: usize, samples: usize, m: usize) -> f64 {
+        (self.envelope.get(g))
+            .and_then(|e| e.get(bin(samples, m)))
+            .copied()
+            .unwrap_or(f64::INFINITY)
+    }
+}
+
+/// The stretch of a reproduction of `m` samples that `samples` samples cover.
+fn bin(samples: usize, m: usize) -> usize {
+    (samples * RISE_BINS / m.max(1)).min(RISE_BINS - 1)
+}
+
+/// Per stretch, the largest of `per` (a score per stretch a prefix ended in; NaN: none) over
+/// that stretch and every later one; a stretch with no prefix takes the one before it, and
+/// infinite where nothing was measured from there on.
+fn from_here_on(mut per: Vec<f64>) -> Vec<f64> {
+    for b in 1..per.len() {
+        if per[b].is_nan() {
+            per[b] = per[b - 1];
+        }
+    }
+    let mut top = f64::NAN;
+    for r in per.iter_mut().rev() {
+        top = f64::max(top, *r);
+        *r = if top.is_nan() { f64::INFINITY } else { top };
+    }
+    per
 }
 
 /// One label's open-ended DTW against its reproduction, a row per sample pushed.
@@ -179,25 +226,18 @@ impl GestureModel {
                     continue;
                 }
                 for (i, p) in s.prefix.iter().enumerate() {
-                    let bin = ((i + 1) * RISE_BINS / s.reproduction.max(1)).min(RISE_BINS - 1);
-                    rise[bin] = f64::max(rise[bin], p / s.whole);
+                    let b = bin(i + 1, s.reproduction);
+                    rise[b] = f64::max(rise[b], p / s.whole);
                 }
             }
         }
-        // a stretch no prefix ended in: the one before it; then the largest from there on
-        for b in 1..RISE_BINS {
-            if rise[b].is_nan() {
-                rise[b] = rise[b - 1];
-            }
-        }
-        let mut top = f64::NAN;
-        for r in rise.iter_mut().rev() {
-            top = f64::max(top, *r);
-            *r = if top.is_nan() { f64::INFINITY } else { top };
-        }
+        let envelope = (branches.iter())
+            .map(|b| held_out_envelope(b))
+            .collect::<Result<_, _>>()?;
         let c = StreamCalibration {
-            rise,
+            rise: from_here_on(rise),
             holds: Vec::new(),
+            envelope,
         };
         let thresholds = self.thresholds();
         let mut holds = vec![0.0; branches.len()];
@@ -260,7 +300,7 @@ impl GestureModel {
 /// Rule out every label whose prefix score passed its ceiling (its threshold times the rise
 /// at the stretch of its reproduction covered: for good, no recognisable demonstration of it
 /// scored a prefix that high), then commit (after `samples` samples) when one label is left,
-/// within its threshold and past its hold, or none is left (unknown).
+/// past its hold, within its threshold and within its envelope, or none is left (unknown).
 fn decide(
     tracks: &mut [Track],
     c: &StreamCalibration,
@@ -282,7 +322,11 @@ fn decide(
             label: None,
             samples,
         }),
-        (Some((k, t)), None) if t.score <= m.calibration[k].threshold && past(k, t) => {
+        (Some((k, t)), None)
+            if t.score <= m.calibration[k].threshold
+                && t.score <= c.envelope(k, samples, length(t))
+                && past(k, t) =>
+        {
             Some(Commit {
                 label: Some(m.labels[k].clone()),
                 samples,
@@ -313,6 +357,39 @@ impl Scored {
             reproduction: rep.len(),
         })
     }
+}
+
+/// [`StreamCalibration::envelope`] of one label's branch `b`: each kept demonstration's
+/// prefixes against the reproduction of `b` learned again without it (as the label's
+/// threshold is calibrated: bottom level and all; with two, on `b`'s own bottom, since a
+/// bottom of one demonstration replays it); no bound with fewer than two.
+fn held_out_envelope(b: &EventsHsom) -> Result<Vec<f64>, GestureError> {
+    let kept = kept_rows(b);
+    let learn = b.trained.first().is_some_and(|&t| t > 0);
+    let seed = b.config.params().seed;
+    let mut per = vec![f64::NAN; RISE_BINS];
+    if kept.len() < 2 {
+        return Ok(from_here_on(per));
+    }
+    for (i, own) in kept.iter().enumerate() {
+        let rest: Vec<Vec<Vec<f64>>> = (kept.iter().enumerate())
+            .filter(|&(j, _)| j != i)
+            .map(|(_, d)| d.clone())
+            .collect();
+        let seed = super::recognize::branch_seed(seed, 0, Some(i));
+        let without = match rest.len() {
+            1 => b.build_branch(&rest, learn, seed),
+            _ => b.without(&rest, learn, seed)?,
+        };
+        let Some(s) = Scored::of(&without, own) else {
+            continue;
+        };
+        for (j, p) in s.prefix.iter().enumerate() {
+            let k = bin(j + 1, s.reproduction);
+            per[k] = f64::max(per[k], *p);
+        }
+    }
+    Ok(from_here_on(per))
 }
 
 /// The kept demonstrations of `b` (normalised), each at its own length.

@@ -362,9 +362,10 @@ fn streamed_the_rule_commits_rightly_and_the_first_sample_control_fails() {
     assert_eq!(rule.finish_differs, 0);
     assert_eq!(rule.wrong, 0, "{rule:?}");
     // on these near shapes, which share their start and their end in pairs, it holds until
-    // the pair parts (the other of a pair stands in for a shape never seen): it commits
-    // rightly to half, never wrongly, and to no untaught stroke (8 of 16 and 0 of 6 here)
-    assert!(rule.right * 2 >= rule.taught, "{rule:?}");
+    // the pair parts (the other of a pair stands in for a shape never seen) and until the
+    // stroke is within its label's own held-out prefixes: it commits rightly to 7 of 16,
+    // never wrongly, and to no untaught stroke (0 of 6)
+    assert!(rule.right * 16 >= rule.taught * 7, "{rule:?}");
     assert_eq!(rule.untaught_committed, 0, "{rule:?}");
     let failed = first.failures();
     assert!(

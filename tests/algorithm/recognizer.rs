@@ -215,3 +215,30 @@ fn cosco_recognize_stream_prints_the_commit_and_the_whole_answer() {
     bad(format!("{header}\n{row1}\n0,1,1\n"), &["line 3", "time"]);
     bad(format!("{header}\n{row1}\n"), &["at least 2"]);
 }
+
+/// A stroke tilted off a taught one follows it far enough for the other label to be ruled
+/// out and for its hold to pass; the envelope (how far the label's own held-out
+/// demonstrations were from it that far in) keeps the recogniser from committing to it. The
+/// negative control: the same calibration with no envelope commits those strokes.
+#[test]
+fn a_stroke_tilted_off_a_taught_one_is_not_committed_to_it() {
+    let two = config()
+        .fit_model(&sets(&APEXES[..2]), cosco_hsom::hsom::Fit::default())
+        .unwrap();
+    let c = two.stream_calibration().unwrap();
+    assert!(c.envelope.iter().flatten().all(|e| e.is_finite()), "{c:?}");
+    let tilted: Vec<_> = [[0.4, 1.0], [1.0, 0.3]]
+        .into_iter()
+        .flat_map(|apex| (100..104).map(move |s| gesture(apex, s)))
+        .collect();
+    let committed = |c: &cosco_hsom::hsom::StreamCalibration| {
+        (tilted.iter())
+            .map(|rows| stream(&two, c, rows, None, Policy::Rule).unwrap())
+            .filter(|s| matches!(s.committed, Some(Some(_))))
+            .count()
+    };
+    assert_eq!(committed(&c), 0);
+    let mut open = c.clone();
+    open.envelope = vec![vec![f64::INFINITY; c.rise.len()]; 2];
+    assert_eq!(committed(&open), tilted.len());
+}
