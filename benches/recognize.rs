@@ -120,6 +120,14 @@ fn recognize(c: &mut Criterion) {
         })
     });
     g.finish();
+    // once a model: the rise, the holds, and each label learned again without each of its
+    // kept demonstrations for the envelope
+    let mut g = c.benchmark_group("recognizer_calibration_4_labels");
+    g.sample_size(10);
+    g.bench_function("stream_calibration", |b| {
+        b.iter(|| model.stream_calibration().unwrap())
+    });
+    g.finish();
     let cal = model.stream_calibration().unwrap();
     let mut g = c.benchmark_group("recognizer_4_labels");
     g.bench_function("first_push", |b| {
