@@ -5,6 +5,8 @@
 //! score, from its own demonstrations held out), the answer is `unknown`. The scores of the
 //! levels' chunks and of the bottom's postures ([`Scoring`]) remain for comparison.
 
+use rayon::iter::{IntoParallelRefIterator, ParallelIterator};
+
 use crate::dtw::{argmin, dtw_distance, dtw_with_prefixes, open_end_cost, Band};
 
 use super::errors::{GestureError, HsomError};
@@ -517,8 +519,10 @@ impl GestureModel {
     /// Per label, what a normalised sequence is scored on: its per-sample posture distances,
     /// or (scoring by reproduction) the gesture reproduced from its first posture.
     fn evidence_of(&self, branches: &[&EventsHsom], norm: &[Vec<f64>]) -> Vec<Evidence> {
+        // the labels side by side (rayon: within a study's pool on its threads, elsewhere on
+        // one a core); each label's evidence is its own, so the answers are the same
         branches
-            .iter()
+            .par_iter()
             .map(|b| match self.scoring {
                 Scoring::Reproduction => {
                     let d = weighed_pair(b, norm).and_then(|(q, r)| dtw_with_prefixes(&q, &r).ok());
