@@ -75,6 +75,7 @@ class Hsom:
         goal: Optional[npt.ArrayLike] = None,
         via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None,
         band: Literal[False] = False,
+        duration: Optional[float] = None,
     ) -> np.ndarray: ...
     @overload
     def reproduce(
@@ -84,11 +85,14 @@ class Hsom:
         goal: Optional[npt.ArrayLike] = None,
         via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None,
         band: Literal[True],
+        duration: Optional[float] = None,
     ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]: ...
-    def reproduce(self, initial: npt.ArrayLike, *, goal: Optional[npt.ArrayLike] = None, via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None, band: bool = False) -> Any:  # type: ignore[misc]
+    def reproduce(self, initial: npt.ArrayLike, *, goal: Optional[npt.ArrayLike] = None, via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None, band: bool = False, duration: Optional[float] = None) -> Any:  # type: ignore[misc]
         """Reproduce from an initial posture: one row per step, the first the initial posture;
         ending exactly at `goal` and passing each `(phase, posture)` of `via` when given; with
-        band=True, (postures, lower, upper): the central 95 % band about them."""
+        band=True, (postures, lower, upper): the central 95 % band about them; with `duration`
+        (seconds), retimed to last that long at 40 Hz, its path kept (a duration the servos
+        cannot follow raises ValueError naming the shortest)."""
     def follow_nearest(self, demos: Sequence[npt.ArrayLike], initial: npt.ArrayLike) -> np.ndarray:
         """The nearest-sequence baseline: of `demos`, the one whose first posture is nearest
         `initial`, its bottom events through this model's bottom code, no level above."""
@@ -141,9 +145,10 @@ class GestureModel:
     @property
     def learned(self) -> Dict[str, Dict[str, int]]:
         """Per label, `{"demonstrations": n, "kept": k, "updates": u}`."""
-    def reproduce(self, label: Optional[str], initial: npt.ArrayLike) -> np.ndarray:
+    def reproduce(self, label: Optional[str], initial: npt.ArrayLike, *, duration: Optional[float] = None) -> np.ndarray:
         """Reproduce gesture `label` from an initial posture: one row per step, the first the
-        initial posture. None only for a single-gesture model."""
+        initial posture. None only for a single-gesture model. With `duration` (seconds),
+        retimed to last that long at 40 Hz, its path kept."""
     def scores(self, sequence: _Array2) -> Dict[str, float]:
         """Per label, the score of a whole sequence (lower is closer; see Recognition.thresholds)."""
     def recognize(self, sequence: _Array2) -> "Recognition":

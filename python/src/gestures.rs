@@ -108,14 +108,20 @@ impl GestureModel {
 
     /// Reproduce gesture `label` from an initial posture: a 2-D array, one row per step (the
     /// first row is the initial posture). `label` is None only for a single-gesture model.
-    #[pyo3(signature = (label, initial))]
+    /// `duration` (seconds) retimes it to last that long, its path kept (as `Hsom.reproduce`).
+    #[pyo3(signature = (label, initial, *, duration = None))]
     fn reproduce<'py>(
         &self,
         py: Python<'py>,
         label: Option<&str>,
         initial: &Bound<'py, PyAny>,
+        duration: Option<f64>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        crate::model::reproduce(py, &self.inner, &self.name, label, initial, None, false)
+        let how = crate::model::How {
+            duration,
+            ..Default::default()
+        };
+        crate::model::reproduce(py, &self.inner, &self.name, label, initial, how)
     }
 
     /// Gesture `label` in the loop from an initial posture, through `goal` and `via` as

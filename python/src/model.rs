@@ -236,7 +236,10 @@ impl Hsom {
     /// list of `(phase, posture)` (phase 0 the start, 1 the end), makes it pass each posture
     /// at its phase (read between two rows). With `band=True`, a tuple: the postures and the
     /// lower and upper ends of their central 95 % band (2-D arrays of the same shape).
-    #[pyo3(signature = (initial, *, goal = None, via = None, band = false))]
+    /// `duration` (seconds) retimes it to last that long at 40 Hz, its path kept (as `cosco
+    /// reproduce --duration`; a duration the servos cannot follow is refused, naming the
+    /// shortest).
+    #[pyo3(signature = (initial, *, goal = None, via = None, band = false, duration = None))]
     fn reproduce<'py>(
         &self,
         py: Python<'py>,
@@ -244,16 +247,14 @@ impl Hsom {
         goal: Option<&Bound<'py, PyAny>>,
         via: Option<Vec<(f64, Bound<'py, PyAny>)>>,
         band: bool,
+        duration: Option<f64>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        reproduce(
-            py,
-            &self.inner,
-            &self.name,
-            None,
-            initial,
-            Some((goal, via)),
+        let how = How {
+            conditioning: Some((goal, via)),
             band,
-        )
+            duration,
+        };
+        reproduce(py, &self.inner, &self.name, None, initial, how)
     }
 
     /// The hierarchy in the loop from an initial posture, through `goal` and `via` as
@@ -411,29 +412,42 @@ type Conditioning<'a, 'py> = (
     Option<Vec<(f64, Bound<'py, PyAny>)>>,
 );
 
+/// How `reproduce` is asked to reproduce: through a goal and via-points, with the band, in a
+/// given duration (seconds).
+#[derive(Default)]
+pub(crate) struct How<'a, 'py> {
+    pub(crate) conditioning: Option<Conditioning<'a, 'py>>,
+    pub(crate) band: bool,
+    pub(crate) duration: Option<f64>,
+}
+
 /// Gesture `label` of `model` (named `name` in messages; `None` for a model of one gesture)
 /// reproduced from `initial`, as `Hsom.reproduce` and `GestureModel.reproduce` give it: the
 /// label checked before the posture, as `cosco reproduce --gesture` does; through the goal and
-/// via-points when `conditioning` is given; with `band`, the postures and the lower and upper
-/// ends of their central 95 % band.
+/// via-points when `how` has them; retimed to its duration when it has one; with its `band`,
+/// the postures and the lower and upper ends of their central 95 % band.
 pub(crate) fn reproduce<'py>(
     py: Python<'py>,
     model: &cosco_hsom::hsom::GestureModel,
     name: &str,
     label: Option<&str>,
     initial: &Bound<'py, PyAny>,
-    conditioning: Option<Conditioning<'_, 'py>>,
-    band: bool,
+    how: How<'_, 'py>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let branch = model.branch(label).map_err(|e| py_err(&e))?;
     let initial = posture_of(initial, "initial")?;
-    let conditions = conditioning
+    let conditions = (how.conditioning)
         .map(|(goal, via)| crate::stepper::conditions_of(goal, via))
         .transpose()?;
+    let (band, duration) = (how.band, how.duration);
     let width = model.columns().len();
     let (rep, lohi) = py
         .allow_threads(|| {
             let rep = app::reproduce(model, name, label, &initial, conditions.as_ref())?;
+            let rep = match duration {
+                Some(d) => app::with_duration(&rep, model.columns(), d)?,
+                None => rep,
+            };
             let phases = conditions.as_ref().map(|c| c.phases()).unwrap_or_default();
             let lohi = match band {
                 true => Some(branch.band(&rep.postures, &phases).ok_or_else(|| {

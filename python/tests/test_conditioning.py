@@ -95,3 +95,23 @@ def test_the_dmp_agrees_with_movement_primitives():
     assert agreement < 0.01
     # negative control: too few basis functions to learn the same forcing term
     assert gap(4) > 0.01
+
+
+def test_a_duration_retimes_the_reproduction_and_keeps_its_path(demos):
+    cfg = cosco_hsom.Config.from_xml(SHAPE_XML)
+    model = cosco_hsom.Hsom.fit(cfg, demos, columns=["x", "y"])
+    initial = demos[0][0]
+    plain = model.reproduce(initial)
+    own = (len(plain) - 1) / 40.0
+    for factor in (0.5, 2.0):
+        path = model.reproduce(initial, duration=factor * own)
+        assert abs((len(path) - 1) / 40.0 / (factor * own) - 1) <= 0.05
+        phases = np.linspace(0, 1, 101)
+        gap = np.mean([np.abs(at_phase(path, p) - at_phase(plain, p)).mean() for p in phases])
+        assert gap <= 0.05 * np.abs(np.vstack(demos)).max()
+        # negative control: the reproduction at its own tempo is not of that duration
+        assert abs(len(plain) / len(path) - 1) > 0.05
+    path, lo, hi = model.reproduce(initial, band=True, duration=2 * own)
+    assert lo.shape == path.shape == hi.shape
+    with pytest.raises(ValueError, match="--duration"):
+        model.reproduce(initial, duration=-1.0)

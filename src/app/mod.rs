@@ -58,8 +58,8 @@ pub use recognize::{
     answer_line, recognize_files, recognize_paths, recognize_stream, RecognisedFile,
 };
 pub use reproduce::{
-    conditions, continue_file, reproduce, reproduce_file, resume, stepper, ReproduceFile,
-    ReproduceRequest,
+    conditions, continue_file, reproduce, reproduce_file, resume, stepper, with_duration,
+    ReproduceFile, ReproduceRequest,
 };
 pub use train::{train, train_files, update, update_files};
 

@@ -104,6 +104,7 @@ pub fn export(a: ExportArgs) -> Result<Vec<String>> {
             via: a.via,
             band: a.band,
             robot: None,
+            duration: None,
         }),
         (None, None) => anyhow::bail!("--reproduction: give --reproduction FILE or --model FILE"),
     };

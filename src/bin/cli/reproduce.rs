@@ -54,6 +54,10 @@ pub struct ReproduceArgs {
     /// Default: whichever robot's joints the model's variables are (none for other data).
     #[arg(long)]
     pub robot: Option<cosco_hsom::robot::Robot>,
+    /// Reproduce the gesture in this many seconds, its shape kept (the tempo changes, not
+    /// the path); a duration the robot's servos cannot follow is refused, naming the shortest.
+    #[arg(long, value_name = "SECONDS", conflicts_with_all = ["prefix_from", "resume_from"])]
+    pub duration: Option<f64>,
     /// Output CSV.
     #[arg(long)]
     pub out: PathBuf,
@@ -71,6 +75,7 @@ impl From<ReproduceArgs> for ReproduceFile {
                 via: a.via,
                 band: a.band,
                 robot: a.robot,
+                duration: a.duration,
             },
             prefix_from: a.prefix_from,
             prefix: a.prefix,
