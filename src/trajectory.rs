@@ -47,6 +47,22 @@ pub enum ExportError {
         /// Safety fraction.
         fraction: f64,
     },
+    /// A duration the robot's servos cannot follow.
+    #[error("--duration {duration_s} is too fast for the {robot}'s servos: {joint} would move at {ratio:.2} times its maximum velocity ({max_velocity}/s); the shortest this gesture can take is {shortest_s} s")]
+    TooShort {
+        /// The duration asked, s.
+        duration_s: f64,
+        /// The robot.
+        robot: String,
+        /// The joint fastest for its servo.
+        joint: String,
+        /// Its speed over its maximum at that duration.
+        ratio: f64,
+        /// Its documented maximum.
+        max_velocity: f64,
+        /// The shortest duration the servos follow, s.
+        shortest_s: f64,
+    },
     /// A trajectory joint without limits.
     #[error("joint `{joint}` has no limits in {source_name} (joints there: {}); export only the robot's joints, or give the robot's limits", known.join(", "))]
     UnknownJoint {

@@ -113,73 +113,21 @@ pub fn reproduce(
     rep.map_err(|e| naming_model(e, model, model_name))
 }
 
-/// The rate of a reproduction's steps, Hz: the recordings' (a step is a sample of the
-/// demonstrations; `cosco export` reads a `step` column at this rate).
-const STEP_RATE_HZ: f64 = crate::export::DEFAULT_STEP_RATE_HZ;
-
-/// The longest duration `--duration` takes, seconds (an hour).
-const LONGEST_DURATION_S: f64 = 3600.0;
-
-/// `rep` (a reproduction of variables `columns`) retimed to last `duration_s` seconds at the
-/// steps' rate: the same path read at another pace (linearly between its postures, so
-/// nothing is added to it), its shape kept and only its tempo changed. When the variables are
-/// a robot's joints, a duration its servos cannot follow (a joint faster than its maximum
-/// velocity on the path) is refused, naming the shortest they can.
+/// `rep` (a reproduction of variables `columns`, a step every 1/40 s) retimed to last
+/// `duration_s` seconds, its path kept ([`crate::export::limits::at_duration`]); each new
+/// step's level that of the nearest original step.
 pub fn with_duration(
     rep: &Reproduction,
     columns: &[String],
     duration_s: f64,
 ) -> Result<Reproduction> {
-    let what = || format!("--duration {duration_s}");
-    if !(duration_s.is_finite() && duration_s > 0.0 && duration_s <= LONGEST_DURATION_S) {
-        return Err(Error::value(
-            what(),
-            format!("is not a duration: give seconds above 0 and at most {LONGEST_DURATION_S}"),
-        ));
-    }
-    let n = (duration_s * STEP_RATE_HZ).round() as usize + 1;
-    if n < 2 {
-        return Err(Error::value(
-            what(),
-            format!("is shorter than one step of the reproduction (1/{STEP_RATE_HZ} s)"),
-        ));
-    }
-    if rep.postures.len() < 2 {
-        return Err(Error::value(
-            what(),
-            "cannot retime a reproduction of a single posture (the gesture did not move)",
-        ));
-    }
-    let len = rep.postures.len();
-    if let Some(robot) = crate::robot::Robot::of_columns(columns) {
-        // the joint fastest for its servo at the gesture's own tempo; retimed to n steps, the
-        // path read linearly between its postures moves (len - 1) / (n - 1) times as fast, and
-        // no two samples of it are farther apart than that
-        let times = (0..len).map(|k| k as f64 / STEP_RATE_HZ).collect();
-        let own = crate::export::Trajectory::new(columns.to_vec(), times, rep.postures.clone())?;
-        let limits = crate::export::limits::RobotLimits::of(robot);
-        if let Some(f) = limits.fastest(&own)? {
-            let ratio = f.ratio * (len - 1) as f64 / (n - 1) as f64;
-            let steps = (f.ratio * (len - 1) as f64 - 1e-9).ceil().max(1.0);
-            if ratio > 1.0 {
-                return Err(Error::value(
-                    what(),
-                    format!(
-                        "is too fast for the {}'s servos: {} would move at {ratio:.2} times its maximum velocity ({}/s); the shortest this gesture can take is {} s",
-                        robot.name(),
-                        f.joint,
-                        f.max_velocity,
-                        steps / STEP_RATE_HZ
-                    ),
-                ));
-            }
-        }
-    }
-    // each new step's level: that of the nearest original step
+    let rate = crate::export::DEFAULT_STEP_RATE_HZ;
+    let postures = crate::export::limits::at_duration(columns, &rep.postures, rate, duration_s)?;
+    let (n, len) = (postures.len(), rep.postures.len());
     let nearest = |k: usize| ((k * (len - 1)) as f64 / (n - 1) as f64).round() as usize;
     Ok(Reproduction {
         steps: (0..n).collect(),
-        postures: crate::curve::resample_linear(&rep.postures, n),
+        postures,
         predicted_by: (0..n)
             .map(|k| rep.predicted_by[nearest(k).min(len - 1)])
             .collect(),

@@ -96,6 +96,12 @@ struct Args {
     /// demonstrations with the committed label, and the report says when it committed.
     #[arg(long)]
     recognize: bool,
+    /// Reproduce the gesture in this many seconds, its path kept (the tempo changes, not the
+    /// path), as `cosco reproduce --duration`: a duration the servos cannot follow is refused
+    /// naming the shortest. The hierarchy's reproduction of the main job (not with `--gesture
+    /// all` or `--loop closed`).
+    #[arg(long, value_name = "SECONDS")]
+    duration: Option<f64>,
     /// Turn warnings into errors (posture values clamped into the joint ranges before
     /// execution): the outputs are written, the exit status is 1.
     #[arg(long)]
@@ -114,6 +120,16 @@ fn run(a: Args) -> Result<()> {
         anyhow::bail!(
             "--recognize streams the held-out gestures of --gesture all: give --gesture all"
         );
+    }
+    if let Some(d) = a.duration {
+        if a.gesture.as_deref() == Some("all") || a.loop_mode == LoopMode::Closed {
+            anyhow::bail!(
+                "--duration {d} retimes the main job's reproduction: not with --gesture all or --loop closed"
+            );
+        }
+        if !(d.is_finite() && d > 0.0 && d <= 3600.0) {
+            anyhow::bail!("--duration {d}: expected seconds above 0 and at most 3600");
+        }
     }
     if a.loop_mode == LoopMode::Closed && a.gesture.as_deref() == Some("all") {
         anyhow::bail!("--loop closed runs one gesture in the loop; --gesture all is not one");
@@ -138,6 +154,7 @@ fn run(a: Args) -> Result<()> {
         in_loop: a.loop_mode,
         disturbances,
         recognize: a.recognize,
+        duration: a.duration,
     };
     if let Some(d) = &job.demos {
         let line = cosco_hsom::resample::report_line(std::slice::from_ref(d), job.resample)?;

@@ -181,6 +181,9 @@ pub struct FoldInput<'a> {
     pub progress: Option<&'a dyn Fn(usize, usize)>,
     /// Keep what the methods learned in the [`Fold`] ([`Fold::learned`]), for the loop study.
     pub keep: bool,
+    /// The hierarchy's reproduction retimed to this many seconds, its path kept
+    /// ([`crate::export::limits::at_duration`]; `None`: its own tempo).
+    pub duration: Option<f64>,
 }
 
 impl<'a> FoldInput<'a> {
@@ -198,6 +201,7 @@ impl<'a> FoldInput<'a> {
             gmr_components: GMR_COMPONENTS,
             progress: None,
             keep: false,
+            duration: None,
         }
     }
 }
@@ -302,7 +306,10 @@ pub fn run_fold<E: Executor>(
         let (learned, train_s) =
             Learned::fit(method, train, period, input.gmr_components, &mut hsom)?;
         let speed = executor.gmr_lead_in_speed(train, period);
-        let p = learned.plan(method, train, initial, &conditions, period, speed)?;
+        let mut p = learned.plan(method, train, initial, &conditions, period, speed)?;
+        if let (Method::Hierarchy, Some(d)) = (method, input.duration) {
+            p = p.at_duration(&target.columns, period, d)?;
+        }
         let executed = executor.execute(method, &p.postures, input.targets)?;
         Ok(MethodRun {
             postures: p.postures,

@@ -81,6 +81,32 @@ pub struct Planned {
     pub band: Option<ConfidenceBand>,
 }
 
+impl Planned {
+    /// The plan retimed to last `duration_s` seconds at its `period`, its path kept (the band
+    /// with it; [`crate::export::limits::at_duration`]: refused when `names` are a robot's
+    /// joints that cannot move that fast).
+    pub(super) fn at_duration(
+        self,
+        names: &[String],
+        period: f64,
+        duration_s: f64,
+    ) -> Result<Planned, String> {
+        let rate = 1.0 / period;
+        let postures = crate::export::limits::at_duration(names, &self.postures, rate, duration_s)
+            .map_err(msg)?;
+        let n = postures.len();
+        let band = (self.band).map(|b| ConfidenceBand {
+            lo: crate::curve::resample_linear(&b.lo, n),
+            hi: crate::curve::resample_linear(&b.hi, n),
+        });
+        Ok(Planned {
+            postures,
+            band,
+            ..self
+        })
+    }
+}
+
 /// The error and its causes on one line.
 pub(super) fn msg(e: impl std::error::Error + 'static) -> String {
     crate::errors::error_line(&e)

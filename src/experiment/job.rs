@@ -238,6 +238,9 @@ pub struct Job {
     /// With `--gesture all`: stream each gesture's last held-out demonstration into the
     /// recogniser and film it captioned with the committed label.
     pub recognize: bool,
+    /// The hierarchy's reproduction retimed to this many seconds, its path kept (`--duration`;
+    /// [`crate::export::limits::at_duration`]).
+    pub duration: Option<f64>,
 }
 
 /// What the main job produced: the report (also written as `report.md` and `report.json`) and
@@ -336,13 +339,21 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
     clock.lap("demonstrations (simulate + record)");
 
     // 2-4. Training, reproduction from the initial posture on the simulated arm, metrics.
-    let run = hsom_on_arm(&arm, &cfg, &demos, job.transition, on_progress)?;
+    let run = hsom_on_arm(
+        &arm,
+        &cfg,
+        &demos,
+        job.transition,
+        job.duration,
+        on_progress,
+    )?;
     clock.split_lap(
         "training",
         run.train_s,
         "reproduction (predict + execute) and metrics",
     );
-    let hsom_result = write_hsom_run(out, &run, Vec::new(), &mut files)?;
+    let retimed = (job.duration).map(|d| format!("retimed to {d} s (--duration), its path kept"));
+    let hsom_result = write_hsom_run(out, &run, retimed.into_iter().collect(), &mut files)?;
     let executed = &run.executed.trace;
     clock.lap("writing the model and reproduction.csv");
 

@@ -108,6 +108,7 @@ pub fn hsom_on_arm<const N: usize>(
     cfg: &HsomConfig,
     demos: &[Demonstration],
     transition: Transition,
+    duration: Option<f64>,
     on_progress: Progress<'_>,
 ) -> Result<MethodRun<Recording>, ExperimentError> {
     let total = cfg.params().training_steps;
@@ -115,6 +116,7 @@ pub fn hsom_on_arm<const N: usize>(
     let input = FoldInput {
         config: Some(cfg),
         progress: Some(&progress),
+        duration,
         ..FoldInput::new(demos, demos)
     };
     on_arm(arm, transition, Method::Hierarchy, &input)

@@ -300,3 +300,57 @@ pub fn slow_to_limits(
         },
     ))
 }
+
+/// The longest duration [`at_duration`] takes, seconds (an hour).
+const LONGEST_DURATION_S: f64 = 3600.0;
+
+/// `postures` (one every `1 / rate_hz` s) retimed to last `duration_s` seconds at the same
+/// rate: the same path read at another pace (linearly between its postures, so nothing is
+/// added to it), its shape kept and only its tempo changed. When `names` are a robot's joints,
+/// a duration its servos cannot follow (a joint faster than its maximum velocity on the path)
+/// is refused, naming the shortest they can.
+pub fn at_duration(
+    names: &[String],
+    postures: &[Vec<f64>],
+    rate_hz: f64,
+    duration_s: f64,
+) -> Result<Vec<Vec<f64>>, ExportError> {
+    let bad = |allowed| ExportError::Option {
+        option: "--duration",
+        value: format!("{duration_s}"),
+        allowed,
+    };
+    if !(duration_s.is_finite() && duration_s > 0.0 && duration_s <= LONGEST_DURATION_S) {
+        return Err(bad("seconds above 0 and at most 3600"));
+    }
+    let n = (duration_s * rate_hz).round() as usize + 1;
+    if n < 2 {
+        return Err(bad("at least one step of the reproduction (1/40 s)"));
+    }
+    let len = postures.len();
+    if len < 2 {
+        return Err(bad("a reproduction of more than one posture to retime"));
+    }
+    if let Some(robot) = Robot::of_columns(names) {
+        // the joint fastest for its servo at the gesture's own tempo; retimed to n steps, the
+        // path read linearly between its postures moves (len - 1) / (n - 1) times as fast, and
+        // no two samples of it are farther apart than that
+        let times = (0..len).map(|k| k as f64 / rate_hz).collect();
+        let own = Trajectory::new(names.to_vec(), times, postures.to_vec())?;
+        if let Some(f) = RobotLimits::of(robot).fastest(&own)? {
+            let ratio = f.ratio * (len - 1) as f64 / (n - 1) as f64;
+            if ratio > 1.0 {
+                let steps = (f.ratio * (len - 1) as f64 - 1e-9).ceil().max(1.0);
+                return Err(ExportError::TooShort {
+                    duration_s,
+                    robot: robot.name().into(),
+                    joint: f.joint,
+                    ratio,
+                    max_velocity: f.max_velocity,
+                    shortest_s: steps / rate_hz,
+                });
+            }
+        }
+    }
+    Ok(crate::curve::resample_linear(postures, n))
+}

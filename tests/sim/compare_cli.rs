@@ -323,3 +323,52 @@ fn simulate_with_one_demonstration_notes_that_the_baseline_did_not_run() {
     );
     assert!(!out.join("gmr_model.txt").exists());
 }
+
+#[test]
+fn simulate_duration_retimes_the_reproduction_and_refuses_what_the_servos_cannot_follow() {
+    let tmp = tempfile::tempdir().unwrap();
+    let simulate = |args: &[&str], out: &Path| {
+        let o = Command::cargo_bin("simulate")
+            .unwrap()
+            .args([
+                "--gesture",
+                "wave",
+                "--no-render",
+                "--no-variants",
+                "--no-heldout",
+            ])
+            .args(args)
+            .arg("--out")
+            .arg(out)
+            .output()
+            .unwrap();
+        (
+            o.status.success(),
+            String::from_utf8_lossy(&o.stderr).to_string(),
+        )
+    };
+    let out = tmp.path().join("slow");
+    let (ok, err) = simulate(&["--duration", "14"], &out);
+    assert!(ok, "{err}");
+    // 14 s of commanded postures at 40 Hz, said in the report
+    let rows = std::fs::read_to_string(out.join("reproduction.csv")).unwrap();
+    assert_eq!(rows.lines().count(), 1 + 14 * 40 + 1);
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("retimed to 14 s (--duration)"), "{md}");
+    // too fast for the servos: refused, naming the shortest duration they follow
+    let (ok, err) = simulate(&["--duration", "1"], &tmp.path().join("fast"));
+    assert!(
+        !ok && err.contains("the shortest this gesture can take is"),
+        "{err}"
+    );
+    // with --gesture all, refused before anything is recorded
+    let all = tmp.path().join("all");
+    let o = Command::cargo_bin("simulate")
+        .unwrap()
+        .args(["--gesture", "all", "--duration", "5", "--out"])
+        .arg(&all)
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(!all.exists());
+}
