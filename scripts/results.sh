@@ -96,6 +96,7 @@ run arm_loop $ex/heldout --seeds 11-15 --hold 0.4:0.25 --push 0.4:LForeArm:0,0,-
 run swing_folds $ex/swing_folds --seeds 12 --out docs/figures
 run replay $ex/replay_baseline --seeds 11-15
 run ceiling $ex/encoding_ceiling --seeds 11-15
+run duration $ex/retime --seeds 11-15
 rm -rf "$out/sweep" # finished runs are skipped: measure this commit's
 run sweep $bin/cosco sweep --spec configs/sweeps/paper-comparison.toml --out "$out/sweep"
 # The upper body (its own script, which rewrites its parts of the docs from the outputs too).
