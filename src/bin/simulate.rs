@@ -127,9 +127,7 @@ fn run(a: Args) -> Result<()> {
                 "--duration {d} retimes the main job's reproduction: not with --gesture all or --loop closed"
             );
         }
-        if !(d.is_finite() && d > 0.0 && d <= 3600.0) {
-            anyhow::bail!("--duration {d}: expected seconds above 0 and at most 3600");
-        }
+        cosco_hsom::export::limits::check_duration(d)?;
     }
     if a.loop_mode == LoopMode::Closed && a.gesture.as_deref() == Some("all") {
         anyhow::bail!("--loop closed runs one gesture in the loop; --gesture all is not one");

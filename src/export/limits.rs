@@ -304,6 +304,19 @@ pub fn slow_to_limits(
 /// The longest duration [`at_duration`] takes, seconds (an hour).
 const LONGEST_DURATION_S: f64 = 3600.0;
 
+/// A duration [`at_duration`] takes at all: seconds above 0, at most an hour (checked before
+/// any work, as `simulate --duration` does).
+pub fn check_duration(duration_s: f64) -> Result<(), ExportError> {
+    if duration_s.is_finite() && duration_s > 0.0 && duration_s <= LONGEST_DURATION_S {
+        return Ok(());
+    }
+    Err(ExportError::Option {
+        option: "--duration",
+        value: format!("{duration_s}"),
+        allowed: "seconds above 0 and at most 3600",
+    })
+}
+
 /// `postures` (one every `1 / rate_hz` s) retimed to last `duration_s` seconds at the same
 /// rate: the same path read at another pace (linearly between its postures, so nothing is
 /// added to it), its shape kept and only its tempo changed. When `names` are a robot's joints,
@@ -320,12 +333,12 @@ pub fn at_duration(
         value: format!("{duration_s}"),
         allowed,
     };
-    if !(duration_s.is_finite() && duration_s > 0.0 && duration_s <= LONGEST_DURATION_S) {
-        return Err(bad("seconds above 0 and at most 3600"));
-    }
+    check_duration(duration_s)?;
     let n = (duration_s * rate_hz).round() as usize + 1;
     if n < 2 {
-        return Err(bad("at least one step of the reproduction (1/40 s)"));
+        return Err(bad(
+            "at least one step of the reproduction (one sample period)",
+        ));
     }
     let len = postures.len();
     if len < 2 {
