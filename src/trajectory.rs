@@ -92,7 +92,7 @@ pub enum ExportError {
         allowed: &'static str,
     },
     /// A motion that brings two parts of the robot into contact (seen on the simulated robot).
-    #[error("the motion brings {} and {} into contact at t = {time_s:.2} s ({} on the simulated {robot}); the robot's motors do not stop for it: change the reproduction (a goal, via-points), or export it anyway with --allow-contact", parts[0], parts[1], contact_depth(*depth_m))]
+    #[error("the motion brings {} and {} into contact at t = {time_s:.2} s ({} on the simulated {robot}); the robot's motors do not stop for it: change the reproduction (a goal, via-points), give the demonstrations it was learned from with --demos when every one of them makes this contact (the gesture's own, as the clap's hands), or export it anyway with --allow-contact", parts[0], parts[1], contact_depth(*depth_m))]
     Contact {
         /// When the contact begins, s from the start of the exported motion.
         time_s: f64,

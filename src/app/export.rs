@@ -26,6 +26,7 @@ pub enum ExportFrom {
 /// when asked. Returns the report's lines.
 pub fn export(from: &ExportFrom, r: &ExportRequest) -> Result<Vec<String>> {
     crate::fsutil::check_output(&r.out)?;
+    let mut r = r.clone();
     let (d, band) = match from {
         ExportFrom::Reproduction(path) => (read_reproduction(path)?, None),
         ExportFrom::Model(q) => {
@@ -34,6 +35,18 @@ pub fn export(from: &ExportFrom, r: &ExportRequest) -> Result<Vec<String>> {
             }
             let conditions = conditions(q.goal.as_ref(), &q.via);
             let done = q.run(&conditions, None)?;
+            if r.own_contacts.is_empty() {
+                let (kept, period) = &done.kept;
+                let kept: Vec<Demonstration> = (kept.iter())
+                    .map(|rows| Demonstration {
+                        rows: rows.clone(),
+                        source: q.model.display().to_string(),
+                        columns: done.columns.clone(),
+                        time: None,
+                    })
+                    .collect();
+                r.own_contacts = own_contacts(&kept, 1.0 / period.unwrap_or(1.0 / r.step_rate))?;
+            }
             let d = Demonstration {
                 rows: done.rep.postures,
                 source: q.model.display().to_string(),
@@ -44,12 +57,41 @@ pub fn export(from: &ExportFrom, r: &ExportRequest) -> Result<Vec<String>> {
         }
     };
     let t = Trajectory::from_demonstration(&d, r.step_rate)?;
-    let lines = export_request(r, &t)?;
+    let lines = export_request(&r, &t)?;
     // the band once the trajectory is written
     if let Some((path, bytes)) = band {
         files::write(&path, &bytes?)?;
     }
     Ok(lines)
+}
+
+/// The contacts every one of `demos` makes ([`crate::sim::own_contacts`]), each executed on
+/// the simulated upper body when its columns are the upper body's joints (values held within
+/// the joint ranges; `rate_hz`: the rows' rate when a demonstration has no `time`); none for
+/// any other robot, or without the simulator.
+pub fn own_contacts(demos: &[Demonstration], rate_hz: f64) -> Result<Vec<[String; 2]>> {
+    #[cfg(feature = "sim")]
+    {
+        use crate::robot::Robot;
+        let upper = |d: &Demonstration| Robot::of_columns(&d.columns) == Some(Robot::UpperBody);
+        if demos.is_empty() || !demos.iter().all(upper) {
+            return Ok(Vec::new());
+        }
+        let sim = |e: crate::sim::SimError| crate::export::ExportError::Arm(Box::new(e));
+        let arm = crate::sim::NaoArm::<14>::load_shipped(Robot::UpperBody).map_err(sim)?;
+        let executions = (demos.iter())
+            .map(|d| {
+                let period = d.time.as_ref().map_or(1.0 / rate_hz, |_| crate::demos::sample_period(d));
+                crate::experiment::upper_body::execute_contacts(&arm, &d.rows, period).map_err(sim)
+            })
+            .collect::<std::result::Result<Vec<_>, _>>()?;
+        Ok(crate::sim::own_contacts(&executions))
+    }
+    #[cfg(not(feature = "sim"))]
+    {
+        let _ = (demos, rate_hz);
+        Ok(Vec::new())
+    }
 }
 
 /// `cosco demos import`: the sensor_msgs/msg/JointState messages of `topic` in the bag,

@@ -49,7 +49,7 @@ use std::path::PathBuf;
 pub use evaluate::{evaluate_files, inspect, Evaluation};
 #[cfg(feature = "ros2")]
 pub use export::import;
-pub use export::{export, ExportFrom};
+pub use export::{export, own_contacts, ExportFrom};
 pub use files::{
     check_model_output, config, demonstrations_from_rows, load_gesture_model, read_demos,
     read_reproduction, save_gesture_model,

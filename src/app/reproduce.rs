@@ -241,6 +241,9 @@ pub(super) struct Reproduced {
     pub columns: Vec<String>,
     /// The reproduction.
     pub rep: Reproduction,
+    /// The gesture's kept demonstrations, in the data's units, and their sample period, s
+    /// (`None`: recorded without times).
+    pub kept: (Vec<Vec<Vec<f64>>>, Option<f64>),
     /// The band as `--band` writes it, when asked: its file, and its bytes or why there are
     /// none.
     pub band: Option<(PathBuf, Result<Vec<u8>>)>,
@@ -293,6 +296,7 @@ impl ReproduceRequest {
         Ok(Reproduced {
             columns: m.columns().to_vec(),
             rep,
+            kept: branch.kept_demonstrations(),
             band,
         })
     }
@@ -352,7 +356,9 @@ pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
             (m.columns().to_vec(), rep, Some(label), Ok(()))
         }
         _ => {
-            let Reproduced { columns, rep, band } = q.run(&conditions, r.resume_from.as_deref())?;
+            let Reproduced {
+                columns, rep, band, ..
+            } = q.run(&conditions, r.resume_from.as_deref())?;
             let band = match band {
                 Some((path, bytes)) => bytes.and_then(|b| files::write(&path, &b)),
                 None => Ok(()),

@@ -36,9 +36,10 @@ impl Default for DemoSettings {
     }
 }
 
-/// Record `count` demonstrations of `gesture` on the simulated arm. Everything random comes
-/// from `seed`: demonstration `i` uses its own sub-stream, so demonstration 0 is the same
-/// whatever `count` is.
+/// Record `count` demonstrations of `gesture` on the simulated arm, the encoders' readings held
+/// within the joint ranges ([`within_ranges`]). Everything random comes from `seed`:
+/// demonstration `i` uses its own sub-stream, so demonstration 0 is the same whatever `count`
+/// is.
 pub fn record_demonstrations<const N: usize>(
     arm: &NaoArm<N>,
     gesture: &Gesture,
@@ -60,6 +61,7 @@ pub fn record_demonstrations<const N: usize>(
             arm.robot().name()
         )));
     }
+    let ranges = arm.robot().ranges();
     let mut out = Vec::with_capacity(count);
     for i in 0..count {
         let human = demonstrator(gesture, i, seed, settings)?;
@@ -76,10 +78,24 @@ pub fn record_demonstrations<const N: usize>(
             .with_hold(1.0 / settings.record_rate_hz)?;
         let mut sim = arm.sim()?;
         sim.set_posture(&targets[0])?;
-        out.push(controller.follow(&mut sim, &trajectory)?);
+        let mut rec = controller.follow(&mut sim, &trajectory)?;
+        within_ranges(&mut rec.qpos, &ranges);
+        out.push(rec);
         on_done(i);
     }
     Ok(out)
+}
+
+/// Hold every reading of `qpos` within its joint's range, as the robot's encoders report it:
+/// the simulated joints' limits are soft, and a joint driven to its limit (a hand opened
+/// fully, an elbow rolled in) reads up to a few milliradians past it, which `cosco export`
+/// would refuse.
+fn within_ranges(qpos: &mut [Vec<f64>], ranges: &[(f64, f64)]) {
+    for row in qpos {
+        for (v, (lo, hi)) in row.iter_mut().zip(ranges) {
+            *v = v.clamp(*lo, *hi);
+        }
+    }
 }
 
 /// The person guiding demonstration `i` (from 0) of `gesture` with `seed`.

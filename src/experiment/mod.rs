@@ -17,6 +17,7 @@ pub mod heldout;
 pub mod job;
 pub mod output;
 pub mod report;
+pub mod signature;
 pub mod upper_body;
 pub mod variants;
 

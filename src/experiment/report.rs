@@ -634,6 +634,18 @@ impl Report {
                 d.file, d.samples, d.duration_s
             );
         }
+        let executions: Option<Vec<Vec<Touch>>> =
+            self.demos.iter().map(|d| d.contacts.clone()).collect();
+        let own = crate::sim::own_contacts(&executions.unwrap_or_default());
+        if !own.is_empty() {
+            let pairs: Vec<String> = own.iter().map(|p| format!("{} and {}", p[0], p[1])).collect();
+            let _ = writeln!(
+                md,
+                "- the gesture's own contacts (every demonstration makes them; a reproduction \
+                 may too): {}",
+                pairs.join("; ")
+            );
+        }
         let _ = writeln!(
             md,
             "\nEvery metric is computed on the trajectory executed by the simulated arm, against \

@@ -18,8 +18,11 @@ pub struct FoldContacts {
     pub gesture: String,
     /// The held-out demonstration (its file).
     pub demonstration: String,
-    /// The contacts between two parts of the robot during the execution.
+    /// The contacts between two parts of the robot during the execution, the gesture's own
+    /// (every one of its demonstrations makes them, [`crate::sim::own_contacts`]) left out.
     pub touches: Vec<Touch>,
+    /// The gesture's own contacts the execution made.
+    pub own: Vec<Touch>,
     /// Why it was not executed (no reproduction, or the simulator refused it).
     pub error: Option<String>,
 }
@@ -68,6 +71,27 @@ pub fn hierarchy_contacts(
         .flat_map(|g| (0..g.held_out.len()).map(move |i| (g, i)))
         .collect();
     let pool = crate::eval::Pool::new(threads.max(1))?;
+    let gestures: Vec<&GestureLoo> = study.iter().filter(|g| upper(g)).collect();
+    let demos: Vec<(usize, usize)> = (gestures.iter().enumerate())
+        .flat_map(|(k, g)| (0..g.demonstrations.len()).map(move |i| (k, i)))
+        .collect();
+    let demo_contacts = pool.map(
+        &demos,
+        |&(k, i)| {
+            let d = &gestures[k].demonstrations[i];
+            execute_contacts(&arm, &d.rows, sample_period(d)).unwrap_or_default()
+        },
+        None,
+    );
+    let own: Vec<(String, Vec<[String; 2]>)> = (gestures.iter().enumerate())
+        .map(|(k, g)| {
+            let of: Vec<Vec<Touch>> = (demos.iter().zip(&demo_contacts))
+                .filter(|((kk, _), _)| *kk == k)
+                .map(|(_, c)| c.clone())
+                .collect();
+            (g.gesture.clone(), crate::sim::own_contacts(&of))
+        })
+        .collect();
     Ok(pool.map(
         &jobs,
         |&(g, i)| {
@@ -83,10 +107,13 @@ pub fn hierarchy_contacts(
                 Ok(t) => (t, None),
                 Err(e) => (Vec::new(), Some(e)),
             };
+            let mine = (own.iter().find(|(name, _)| *name == g.gesture)).map_or(&[][..], |o| &o.1);
+            let (own, touches) = touches.into_iter().partition(|t| mine.contains(&t.limbs()));
             FoldContacts {
                 gesture: g.gesture.clone(),
                 demonstration: fold.demonstration.clone(),
                 touches,
+                own,
                 error,
             }
         },
@@ -107,15 +134,23 @@ pub fn contacts_section(study: &[GestureLoo], threads: usize) -> Result<Option<S
             gestures.push(&f.gesture);
         }
     }
-    let mut table = Table::new(["gesture", "folds executed", "with a contact", "contacts"]);
+    let mut table = Table::new([
+        "gesture",
+        "folds executed",
+        "with the gesture's own contact",
+        "with another contact",
+        "other contacts",
+    ]);
     for g in &gestures {
         let of: Vec<&FoldContacts> = folds.iter().filter(|f| f.gesture == *g).collect();
         let executed = of.iter().filter(|f| f.error.is_none()).count();
         let touched = of.iter().filter(|f| !f.touches.is_empty()).count();
+        let own = of.iter().filter(|f| !f.own.is_empty()).count();
         let count: usize = of.iter().map(|f| f.touches.len()).sum();
         table.row([
             g.to_string(),
             format!("{executed} of {}", of.len()),
+            own.to_string(),
             touched.to_string(),
             count.to_string(),
         ]);
@@ -127,7 +162,9 @@ pub fn contacts_section(study: &[GestureLoo], threads: usize) -> Result<Option<S
          reproduction executed on the upper body's model (models/nao_upper_body.xml: the \
          position servos follow its postures at the demonstrations' rate from its first \
          posture): {touched} of {executed} executed folds made a contact between two parts of \
-         the robot ({} folds).\n\n{table}",
+         the robot other than the gesture's own ({} folds). A gesture's own contact is one \
+         that every one of its demonstrations, executed the same way, makes (a pair of limbs: \
+         a hand's palm and fingers are one): the clap's hands.\n\n{table}",
         folds.len()
     );
     for f in folds
@@ -154,6 +191,7 @@ pub fn contacts_section(study: &[GestureLoo], threads: usize) -> Result<Option<S
         json: serde_json::json!({
             "executed": executed,
             "with_contact": touched,
+            "with_own_contact": folds.iter().filter(|f| !f.own.is_empty()).count(),
             "folds": folds,
         }),
     }))

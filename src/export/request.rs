@@ -41,6 +41,10 @@ pub struct ExportRequest {
     pub robot: Option<Robot>,
     /// Export a motion that brings two parts of the robot into contact anyway (reported).
     pub allow_contact: bool,
+    /// The gesture's own contacts: pairs of limbs ([`crate::sim::Touch::limbs`]) that every
+    /// demonstration of the gesture brings into contact (the clap's hands). A contact between
+    /// them is exported and reported as the gesture's own; every other is refused.
+    pub own_contacts: Vec<[String; 2]>,
     /// Another robot: the joint ranges from this MJCF file (with `velocity_table`).
     pub mjcf: Option<PathBuf>,
     /// Another robot: CSV `joint,max_velocity` of the joints to export (with `mjcf`).
@@ -116,10 +120,21 @@ fn contact_lines(
     contacts: &[crate::sim::Touch],
 ) -> Result<Vec<String>, ExportError> {
     let robot = robot.name().replace('-', " ");
-    match contacts.first() {
-        None => Ok(vec![format!(
+    let own = |c: &&crate::sim::Touch| r.own_contacts.contains(&c.limbs());
+    let (mine, others): (Vec<_>, Vec<_>) = contacts.iter().partition(own);
+    let mut lines: Vec<String> = Vec::new();
+    if !mine.is_empty() {
+        lines.push(format!(
+            "contacts of the gesture's own (every demonstration makes them; {} contact(s)):",
+            mine.len()
+        ));
+        lines.extend(mine.iter().map(|c| format!("  {}", c.describe())));
+    }
+    match others.first() {
+        None if mine.is_empty() => Ok(vec![format!(
             "contacts: none (the motion executed on the simulated {robot})"
         )]),
+        None => Ok(lines),
         Some(c) if !r.allow_contact => Err(ExportError::Contact {
             time_s: c.start_s,
             parts: c.parts.clone(),
@@ -127,12 +142,12 @@ fn contact_lines(
             robot,
         }),
         Some(_) => {
-            let mut v = vec![format!(
+            lines.push(format!(
                 "--allow-contact: exported although the motion brings two parts of the simulated {robot} into contact ({} contact(s)):",
-                contacts.len()
-            )];
-            v.extend(contacts.iter().map(|c| format!("  {}", c.describe())));
-            Ok(v)
+                others.len()
+            ));
+            lines.extend(others.iter().map(|c| format!("  {}", c.describe())));
+            Ok(lines)
         }
     }
 }

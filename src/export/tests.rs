@@ -39,6 +39,7 @@ fn opts(format: Format) -> ExportRequest {
         executed: false,
         robot: Some(crate::robot::Robot::LeftArm),
         allow_contact: false,
+        own_contacts: Vec::new(),
     }
 }
 

@@ -11,16 +11,18 @@ const HEAD_YAW: usize = 0;
 const HEAD_PITCH: usize = 1;
 const R_ELBOW_ROLL: usize = 11;
 
-/// Both hands before the chest, about 12 cm apart, palms facing (found on the reference
-/// chains: each gripper about (0.15, +-0.06, 0.04) m).
-pub const CLAP_OPEN: ArmPose = [1.0, 0.06, -1.04, -1.26, -1.23, 0.5];
-/// The hands together: each gripper about 3.5 cm from the midline, the hands' shells a few
-/// millimetres apart (a clap's palms meet; the model's shells must not).
-pub const CLAP_SHUT: ArmPose = [0.96, -0.11, -1.0, -1.15, -1.19, 0.5];
+/// Both hands before the chest, open, about 13 cm apart (the gripper sites), palms turned
+/// towards each other.
+pub const CLAP_OPEN: ArmPose = [0.5, 0.15, -0.85, -1.0, -0.45, 1.0];
+/// The hands driven together: commanded past each other, so the servos press them into
+/// contact (the clap's own contact: the hands' shells meet, the gripper sites about 2.5 cm
+/// apart).
+pub const CLAP_SHUT: ArmPose = [0.5, -0.15, -0.4, -1.1, -0.45, 1.0];
 /// Arms opened wide to the sides, forearms raised, hands open.
 pub const WELCOME: ArmPose = [0.2, 1.1, -1.0, -0.35, -1.0, 1.0];
-/// Elbows out, forearms forward, palms up, hands open.
-pub const SHRUG: ArmPose = [1.25, 0.6, -1.3, -1.3, -1.4, 1.0];
+/// Elbows out, forearms turned out, palms up (each palm's normal within 15 degrees of
+/// vertical), hands open.
+pub const SHRUG: ArmPose = [1.1, 0.5, -1.9, -1.0, -1.6, 1.0];
 
 fn gesture(name: &'static str, description: &'static str, segments: Vec<Segment>) -> Gesture {
     Gesture {

@@ -147,6 +147,16 @@ fn kept_names(label: &str, n: usize) -> Vec<String> {
 }
 
 impl Hsom {
+    /// The kept demonstrations in the data's units ([`Model::kept_rows`]) and their sample
+    /// period, s (`None`: recorded without times).
+    pub(crate) fn kept_demonstrations(&self) -> (Vec<Vec<Vec<f64>>>, Option<f64>) {
+        let rows = match self {
+            Hsom::Paper(m) => m.kept_rows(),
+            Hsom::Events(m) => m.kept_rows(),
+        };
+        (rows, self.kept().period)
+    }
+
     /// This model taught `demos` more, from the model and them alone (docs/ALGORITHM.md,
     /// section 10); with no demonstrations, the model as it is.
     pub fn update(&self, demos: &[Demonstration]) -> Result<Hsom, HsomError> {

@@ -32,7 +32,7 @@ pub use execute::{
     clamp_to_ranges, clamp_to_ranges_of, execute_postures, key_pose_indices, Transition,
 };
 pub use interp::Interpolation;
-pub use recording::{Recording, Touch};
+pub use recording::{limb, own_contacts, Recording, Touch};
 pub use score::{
     check_reachable, check_reachable_of, demo_wrist_paths, evaluate, site_path, trajectory,
     wrist_path, LEAD_IN_PEAK_SPEED, RIGHT_WRIST_SITE, SWING_JOINT,

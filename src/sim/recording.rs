@@ -56,6 +56,40 @@ impl Touch {
     }
 }
 
+impl Touch {
+    /// The two limbs in contact, sorted ([`limb`]).
+    pub fn limbs(&self) -> [String; 2] {
+        let mut l = self.parts.clone().map(|p| limb(&p).to_string());
+        l.sort();
+        l
+    }
+}
+
+/// The limb a body of the shipped models belongs to: a hand's palm (`l_wrist`, `r_wrist`) and
+/// its fingers (`LHand_fingers`, `RHand_fingers`) are one hand, `left hand` or `right hand`;
+/// every other body is its own limb.
+pub fn limb(body: &str) -> &str {
+    match body {
+        "l_wrist" | "LHand_fingers" => "left hand",
+        "r_wrist" | "RHand_fingers" => "right hand",
+        b => b,
+    }
+}
+
+/// A gesture's own contacts: the pairs of limbs in contact ([`Touch::limbs`]) in every one of
+/// `executions` (each the contacts of one demonstration, executed); none when there is none,
+/// or when one execution made none.
+pub fn own_contacts(executions: &[Vec<Touch>]) -> Vec<[String; 2]> {
+    let Some((first, rest)) = executions.split_first() else {
+        return Vec::new();
+    };
+    let mut own: Vec<[String; 2]> = first.iter().map(Touch::limbs).collect();
+    own.sort();
+    own.dedup();
+    own.retain(|pair| rest.iter().all(|e| e.iter().any(|t| &t.limbs() == pair)));
+    own
+}
+
 /// Gathers the contacts seen at each physics step into [`Touch`] intervals: two parts touch
 /// when their shapes meet or penetrate (a contact within the pair's margin, still apart, is
 /// none); a pair seen again within `gap_s` of its last sighting extends its interval.

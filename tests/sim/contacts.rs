@@ -250,3 +250,59 @@ fn reproduce_refuses_an_initial_posture_far_outside_the_joint_ranges() {
         .failure()
         .stderr(predicate::str::contains("left-arm, upper-body"));
 }
+
+#[test]
+fn the_claps_hands_are_its_own_contact_and_export_while_a_hand_in_the_chest_is_still_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |name: &str| dir.path().join(name);
+    cosco()
+        .args(["demos", "--robot", "upper-body", "--gesture", "clap", "--count", "3"])
+        .args(["--seed", "41", "--out"])
+        .arg(d("demos"))
+        .assert()
+        .success();
+    let config = concat!(env!("CARGO_MANIFEST_DIR"), "/configs/nao-upper-body.xml");
+    cosco()
+        .args(["train", "--config", config, "--demos"])
+        .arg(d("demos"))
+        .arg("--out")
+        .arg(d("m.bin"))
+        .assert()
+        .success();
+    let initial = d("demos").join("demo_01.csv");
+    cosco()
+        .args(["reproduce", "--model"])
+        .arg(d("m.bin"))
+        .arg("--initial-from")
+        .arg(&initial)
+        .arg("--out")
+        .arg(d("rep.csv"))
+        .assert()
+        .success();
+    // from the model: its kept demonstrations say the hands' contact is the clap's own
+    cosco()
+        .args(["export", "--format", "naoqi", "--model"])
+        .arg(d("m.bin"))
+        .arg("--initial-from")
+        .arg(&initial)
+        .arg("--out")
+        .arg(d("m.json"))
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("contacts of the gesture's own"))
+        .stdout(predicate::str::contains("LHand_fingers and RHand_fingers"));
+    // the reproduction alone: nothing says whose the contact is, so it is refused ...
+    export(&d("rep.csv"), &d("r.json"), &[])
+        .failure()
+        .stderr(predicate::str::contains("into contact"));
+    // ... and exported with the demonstrations it was learned from
+    let demos = d("demos").display().to_string();
+    export(&d("rep.csv"), &d("r.json"), &["--demos", &demos])
+        .success()
+        .stdout(predicate::str::contains("contacts of the gesture's own"));
+    // the clap's own contact allows no other: the hand in the chest is refused as before
+    write_motion(&d("chest.csv"), Robot::UpperBody, INTO_CHEST);
+    export(&d("chest.csv"), &d("c.json"), &["--demos", &demos])
+        .failure()
+        .stderr(predicate::str::contains("torso"));
+}

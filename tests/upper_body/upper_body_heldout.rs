@@ -7,6 +7,7 @@
 use cosco_hsom::config::load_config;
 use cosco_hsom::eval::{leave_one_out, two_arms, Kinematic, LooSettings, Method};
 use cosco_hsom::experiment::demonstrate::{record_demonstrations, DemoSettings};
+use cosco_hsom::experiment::signature::signature;
 use cosco_hsom::experiment::upper_body::{contacts_section, execute_contacts};
 use cosco_hsom::gesture::Gesture;
 use cosco_hsom::metrics::two_arms::{arm_lag, LagSpread};
@@ -14,7 +15,7 @@ use cosco_hsom::robot::Robot;
 use cosco_hsom::sim::NaoArm;
 
 #[test]
-fn the_hierarchy_claps_with_both_arms_together_and_touches_nothing() {
+fn the_hierarchy_claps_with_both_arms_together_its_hands_meeting_and_touches_nothing_else() {
     let arm = NaoArm::<14>::load_shipped(Robot::UpperBody).unwrap();
     let clap = Gesture::by_name(Robot::UpperBody, "clap").unwrap();
     let demos: Vec<_> = record_demonstrations(&arm, &clap, 3, 41, &DemoSettings::default(), |_| {})
@@ -73,9 +74,16 @@ fn the_hierarchy_claps_with_both_arms_together_and_touches_nothing() {
     let lag = arm_lag(&delayed).unwrap();
     assert!(!spread.contains(lag), "lag {lag} in {spread:?}");
 
-    // executed on the simulated upper body: no contact
+    // every fold's reproduction keeps the clap's signature: the hands meet more than once
+    for fold in &study[0].held_out {
+        let rows = &fold.run(Method::Hierarchy).unwrap().postures;
+        let s = signature(&arm, "clap", rows).unwrap().unwrap();
+        assert!(s.holds, "{}: {s:?}", fold.demonstration);
+    }
+    // executed on the simulated upper body: the hands' contact, the clap's own, and no other
     let section = contacts_section(&study, 2).unwrap().unwrap();
     assert_eq!(section.json["executed"], 3, "{}", section.markdown);
+    assert_eq!(section.json["with_own_contact"], 3, "{}", section.markdown);
     assert_eq!(section.json["with_contact"], 0, "{}", section.markdown);
     // the same path reports a contact: the left hand driven into the chest
     let rest = Robot::UpperBody.posture("StandInit").unwrap().to_vec();

@@ -78,6 +78,12 @@ pub struct ExportArgs {
     /// report, with every contact).
     #[arg(long)]
     pub allow_contact: bool,
+    /// The demonstrations the reproduction was learned from (a directory of CSVs or files;
+    /// with --reproduction): a contact every one of them makes, executed on the simulated
+    /// robot (the clap's hands), is the gesture's own and is exported, said so. With --model
+    /// the model's kept demonstrations say it.
+    #[arg(long, num_args = 1.., requires = "reproduction")]
+    pub demos: Vec<PathBuf>,
     /// Another robot: the joint ranges from this MJCF file (with --velocity-table).
     #[arg(long, requires = "velocity_table")]
     pub mjcf: Option<PathBuf>,
@@ -122,6 +128,13 @@ pub fn export(a: ExportArgs) -> Result<Vec<String>> {
         executed: a.executed,
         robot: a.robot,
         allow_contact: a.allow_contact,
+        own_contacts: match a.demos.is_empty() {
+            true => Vec::new(),
+            false => app::own_contacts(
+                &app::files::read_demos(&a.demos, None, None)?,
+                a.step_rate,
+            )?,
+        },
     };
     Ok(app::export(&from, &request)?)
 }

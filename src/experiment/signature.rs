@@ -1,0 +1,182 @@
+//! Each upper-body gesture's signature: the one measurable thing that makes it the gesture its
+//! name says (the clap's hands meet, the shrug's palms face up, ...), measured on postures
+//! through the shipped model's kinematics (docs/METRICS.md, "Gesture signatures").
+
+use serde::Serialize;
+
+use crate::sim::{NaoArm, SimError};
+
+/// A gesture's signature measured on one trajectory.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Signature {
+    /// The gesture.
+    pub gesture: String,
+    /// The rule, for people.
+    pub rule: &'static str,
+    /// What was measured, in the rule's unit.
+    pub measured: f64,
+    /// Whether the rule holds.
+    pub holds: bool,
+}
+
+/// The clap: the gripper sites come within this distance, m ...
+pub const CLAP_MEET_M: f64 = 0.04;
+/// ... and part beyond this distance between two meetings, m.
+pub const CLAP_PART_M: f64 = 0.07;
+
+/// The rule of each upper-body gesture: (gesture, rule, the threshold, whether the measure
+/// must reach at least it (true) or at most it).
+const RULES: [(&str, &str, f64, bool); 8] = [
+    ("clap", "times the gripper sites come within 4 cm (parting beyond 7 cm between)", 2.0, true),
+    ("shrug", "both palms' angle from facing up at the apex, degrees", 30.0, false),
+    ("welcome", "the gripper sites' largest distance, m", 0.48, true),
+    ("wave-right", "the right elbow's swings (RElbowRoll reversals of 0.2 rad or more)", 4.0, true),
+    ("nod", "the head's nods (HeadPitch reversals of 0.15 rad or more)", 4.0, true),
+    ("shake-head", "the head's turns (HeadYaw reversals of 0.4 rad or more)", 3.0, true),
+    ("reading-watch", "the top camera's angle to the left wrist (the watch) at its closest with the head turned left 0.2 rad or more, degrees", 45.0, false),
+    ("salute", "the right gripper's distance to the top camera at its closest, m", 0.10, false),
+];
+
+/// The signature of `gesture` (an upper-body gesture's name) measured on `rows` (upper-body
+/// postures, NAOqi order, clamped into the joint ranges); `None` for a gesture without one.
+pub fn signature(
+    arm: &NaoArm<14>,
+    gesture: &str,
+    rows: &[Vec<f64>],
+) -> Result<Option<Signature>, SimError> {
+    let Some(&(_, rule, threshold, at_least)) = RULES.iter().find(|r| r.0 == gesture) else {
+        return Ok(None);
+    };
+    let measured = match gesture {
+        "wave-right" => reversals(rows, 11, 0.2) as f64,
+        "nod" => reversals(rows, 1, 0.15) as f64,
+        "shake-head" => reversals(rows, 0, 0.4) as f64,
+        _ => kinematic(arm, gesture, rows)?,
+    };
+    let holds = match at_least {
+        true => measured >= threshold,
+        false => measured <= threshold,
+    };
+    Ok(Some(Signature {
+        gesture: gesture.to_string(),
+        rule,
+        measured,
+        holds,
+    }))
+}
+
+/// How many times column `j` of `rows` turns back after moving at least `min` since its last
+/// turn (the first excursion from the start counts from the first row).
+pub fn reversals(rows: &[Vec<f64>], j: usize, min: f64) -> usize {
+    let (mut count, mut extreme, mut direction) = (0, None::<f64>, 0.0_f64);
+    let Some(first) = rows.first() else {
+        return 0;
+    };
+    let mut anchor = first[j];
+    for r in rows {
+        let v = r[j];
+        let e = extreme.unwrap_or(anchor);
+        if direction == 0.0 {
+            if (v - anchor).abs() >= min {
+                direction = (v - anchor).signum();
+                extreme = Some(v);
+            }
+        } else if (v - e) * direction > 0.0 {
+            extreme = Some(v);
+        } else if (e - v) * direction >= min {
+            count += 1;
+            direction = -direction;
+            anchor = e;
+            extreme = Some(v);
+        }
+    }
+    count
+}
+
+/// The measures that need the model's kinematics.
+fn kinematic(arm: &NaoArm<14>, gesture: &str, rows: &[Vec<f64>]) -> Result<f64, SimError> {
+    let model = arm.model();
+    let site = |name: &str| {
+        model
+            .site_id(name)
+            .ok_or_else(|| SimError::InvalidTrajectory(format!("the model has no site {name}")))
+    };
+    let (l, r, lw, rw, cam) = (
+        site("l_gripper")?,
+        site("r_gripper")?,
+        site("l_wrist")?,
+        site("r_wrist")?,
+        site("camera_top")?,
+    );
+    let mut sim = arm.sim()?;
+    let mut frames = Vec::with_capacity(rows.len());
+    for q in rows {
+        sim.set_posture_clamped(q)?;
+        sim.forward()?;
+        let d = sim.data();
+        frames.push(Frame {
+            grippers: [d.site_xpos(l), d.site_xpos(r)],
+            palms: [palm_up_deg(&d.site_xmat(lw)), palm_up_deg(&d.site_xmat(rw))],
+            camera: (d.site_xpos(cam), d.site_xmat(cam)),
+            watch: (q[0] >= 0.2).then(|| d.site_xpos(lw)),
+        });
+    }
+    let fold = |f: &dyn Fn(&Frame) -> f64, max: bool| {
+        let init = if max { f64::NEG_INFINITY } else { f64::INFINITY };
+        (frames.iter().map(f)).fold(init, if max { f64::max } else { f64::min })
+    };
+    Ok(match gesture {
+        "clap" => meetings(frames.iter().map(|f| distance(&f.grippers[0], &f.grippers[1]))) as f64,
+        "shrug" => fold(&|f| f.palms[0].max(f.palms[1]), false),
+        "welcome" => fold(&|f| distance(&f.grippers[0], &f.grippers[1]), true),
+        "reading-watch" => fold(&|f| f.watch.map_or(180.0, |w| angle_to(&f.camera, &w)), false),
+        _ => fold(&|f| distance(&f.camera.0, &f.grippers[1]), false),
+    })
+}
+
+/// One posture's positions and angles.
+struct Frame {
+    grippers: [[f64; 3]; 2],
+    palms: [f64; 2],
+    camera: ([f64; 3], [f64; 9]),
+    /// The left wrist, when the head is turned left by 0.2 rad or more.
+    watch: Option<[f64; 3]>,
+}
+
+/// How many times a distance comes within [`CLAP_MEET_M`], parting beyond [`CLAP_PART_M`]
+/// between two meetings.
+fn meetings(distances: impl Iterator<Item = f64>) -> usize {
+    let (mut count, mut apart) = (0, true);
+    for d in distances {
+        if apart && d < CLAP_MEET_M {
+            count += 1;
+            apart = false;
+        } else if d > CLAP_PART_M {
+            apart = true;
+        }
+    }
+    count
+}
+
+fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The angle between a hand's palm normal and straight up, degrees: the palm faces the hand
+/// frame's -z (`xmat` row-major, its columns the frame's axes in the torso frame).
+fn palm_up_deg(xmat: &[f64; 9]) -> f64 {
+    (-xmat[8]).clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+/// The angle between the camera's view (its frame's x-axis) and the direction to `target`,
+/// degrees.
+fn angle_to(camera: &([f64; 3], [f64; 9]), target: &[f64; 3]) -> f64 {
+    let (p, m) = camera;
+    let to: Vec<f64> = (0..3).map(|i| target[i] - p[i]).collect();
+    let n = to.iter().map(|v| v * v).sum::<f64>().sqrt();
+    if n == 0.0 {
+        return 0.0;
+    }
+    let cos = (m[0] * to[0] + m[3] * to[1] + m[6] * to[2]) / n;
+    cos.clamp(-1.0, 1.0).acos().to_degrees()
+}
