@@ -81,7 +81,10 @@ pub fn own_contacts(demos: &[Demonstration], rate_hz: f64) -> Result<Vec<[String
         let arm = crate::sim::NaoArm::<14>::load_shipped(Robot::UpperBody).map_err(sim)?;
         let executions = (demos.iter())
             .map(|d| {
-                let period = d.time.as_ref().map_or(1.0 / rate_hz, |_| crate::demos::sample_period(d));
+                let period = d
+                    .time
+                    .as_ref()
+                    .map_or(1.0 / rate_hz, |_| crate::demos::sample_period(d));
                 crate::experiment::upper_body::execute_contacts(&arm, &d.rows, period).map_err(sim)
             })
             .collect::<std::result::Result<Vec<_>, _>>()?;

@@ -638,7 +638,10 @@ impl Report {
             self.demos.iter().map(|d| d.contacts.clone()).collect();
         let own = crate::sim::own_contacts(&executions.unwrap_or_default());
         if !own.is_empty() {
-            let pairs: Vec<String> = own.iter().map(|p| format!("{} and {}", p[0], p[1])).collect();
+            let pairs: Vec<String> = own
+                .iter()
+                .map(|p| format!("{} and {}", p[0], p[1]))
+                .collect();
             let _ = writeln!(
                 md,
                 "- the gesture's own contacts (every demonstration makes them; a reproduction \

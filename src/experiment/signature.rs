@@ -95,6 +95,59 @@ pub fn reversals(rows: &[Vec<f64>], j: usize, min: f64) -> usize {
 
 /// The measures that need the model's kinematics.
 fn kinematic(arm: &NaoArm<14>, gesture: &str, rows: &[Vec<f64>]) -> Result<f64, SimError> {
+    let frames = frames(arm, rows)?;
+    if gesture == "clap" {
+        return Ok(meetings(frames.iter().map(Frame::grippers_apart)) as f64);
+    }
+    Ok(extreme(gesture, &frames).map_or(f64::NAN, |(_, v)| v))
+}
+
+/// The sample of `rows` that shows `gesture` (an upper-body gesture's name) best: where its
+/// signature's measure is at its extreme (the clap: the hands closest; the wave and the head
+/// gestures: the swinging joint farthest from its first value); `None` for no rows.
+pub fn apex(arm: &NaoArm<14>, gesture: &str, rows: &[Vec<f64>]) -> Result<Option<usize>, SimError> {
+    let frames = frames(arm, rows)?;
+    Ok(match gesture {
+        "clap" => extreme("clap", &frames).map(|(i, _)| i),
+        "shrug" | "welcome" | "reading-watch" | "salute" => {
+            extreme(gesture, &frames).map(|(i, _)| i)
+        }
+        _ => {
+            // the joint that swings: its value farthest from the first
+            let j = match gesture {
+                "nod" => 1,
+                "shake-head" => 0,
+                _ => 11,
+            };
+            (0..rows.len()).max_by(|&a, &b| {
+                let far = |k: usize| (rows[k][j] - rows[0][j]).abs();
+                far(a).total_cmp(&far(b))
+            })
+        }
+    })
+}
+
+/// The sample where a kinematic measure is at its extreme, and its value.
+fn extreme(gesture: &str, frames: &[Frame]) -> Option<(usize, f64)> {
+    let (f, max): (&dyn Fn(&Frame) -> f64, bool) = match gesture {
+        "clap" => (&Frame::grippers_apart, false),
+        "shrug" => (&|f: &Frame| f.palms[0].max(f.palms[1]), false),
+        "welcome" => (&Frame::grippers_apart, true),
+        "reading-watch" => (
+            &|f: &Frame| f.watch.map_or(180.0, |w| angle_to(&f.camera, &w)),
+            false,
+        ),
+        _ => (&|f: &Frame| distance(&f.camera.0, &f.grippers[1]), false),
+    };
+    let values = frames.iter().map(f).enumerate();
+    match max {
+        true => values.max_by(|a, b| a.1.total_cmp(&b.1)),
+        false => values.min_by(|a, b| a.1.total_cmp(&b.1)),
+    }
+}
+
+/// Each posture of `rows` through the model's kinematics.
+fn frames(arm: &NaoArm<14>, rows: &[Vec<f64>]) -> Result<Vec<Frame>, SimError> {
     let model = arm.model();
     let site = |name: &str| {
         model
@@ -121,17 +174,7 @@ fn kinematic(arm: &NaoArm<14>, gesture: &str, rows: &[Vec<f64>]) -> Result<f64, 
             watch: (q[0] >= 0.2).then(|| d.site_xpos(lw)),
         });
     }
-    let fold = |f: &dyn Fn(&Frame) -> f64, max: bool| {
-        let init = if max { f64::NEG_INFINITY } else { f64::INFINITY };
-        (frames.iter().map(f)).fold(init, if max { f64::max } else { f64::min })
-    };
-    Ok(match gesture {
-        "clap" => meetings(frames.iter().map(|f| distance(&f.grippers[0], &f.grippers[1]))) as f64,
-        "shrug" => fold(&|f| f.palms[0].max(f.palms[1]), false),
-        "welcome" => fold(&|f| distance(&f.grippers[0], &f.grippers[1]), true),
-        "reading-watch" => fold(&|f| f.watch.map_or(180.0, |w| angle_to(&f.camera, &w)), false),
-        _ => fold(&|f| distance(&f.camera.0, &f.grippers[1]), false),
-    })
+    Ok(frames)
 }
 
 /// One posture's positions and angles.
@@ -141,6 +184,12 @@ struct Frame {
     camera: ([f64; 3], [f64; 9]),
     /// The left wrist, when the head is turned left by 0.2 rad or more.
     watch: Option<[f64; 3]>,
+}
+
+impl Frame {
+    fn grippers_apart(&self) -> f64 {
+        distance(&self.grippers[0], &self.grippers[1])
+    }
 }
 
 /// How many times a distance comes within [`CLAP_MEET_M`], parting beyond [`CLAP_PART_M`]
@@ -159,7 +208,11 @@ fn meetings(distances: impl Iterator<Item = f64>) -> usize {
 }
 
 fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt()
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).powi(2))
+        .sum::<f64>()
+        .sqrt()
 }
 
 /// The angle between a hand's palm normal and straight up, degrees: the palm faces the hand
@@ -180,3 +233,6 @@ fn angle_to(camera: &([f64; 3], [f64; 9]), target: &[f64; 3]) -> f64 {
     let cos = (m[0] * to[0] + m[3] * to[1] + m[6] * to[2]) / n;
     cos.clamp(-1.0, 1.0).acos().to_degrees()
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,4 +1,4 @@
-//! A 3x5 pixel font for labels on contact sheets (digits, a few letters and signs), so that
+//! A 3x5 pixel font for labels on contact sheets (digits, lower-case letters and a few signs), so that
 //! no font file or text-rendering crate is needed (ab_glyph, in the tree through plotters,
 //! would redraw every contact sheet the main job writes, which stays as it is).
 
@@ -24,6 +24,30 @@ fn glyph(c: char) -> Option<[u8; 5]> {
         '#' => [0b101, 0b111, 0b101, 0b111, 0b101],
         's' => [0b000, 0b111, 0b110, 0b011, 0b111],
         't' => [0b010, 0b111, 0b010, 0b010, 0b011],
+        'a' => [0b000, 0b011, 0b101, 0b101, 0b011],
+        'b' => [0b100, 0b110, 0b101, 0b101, 0b110],
+        'c' => [0b000, 0b011, 0b100, 0b100, 0b011],
+        'd' => [0b001, 0b011, 0b101, 0b101, 0b011],
+        'e' => [0b010, 0b101, 0b111, 0b100, 0b011],
+        'f' => [0b011, 0b100, 0b110, 0b100, 0b100],
+        'g' => [0b011, 0b101, 0b011, 0b001, 0b110],
+        'h' => [0b100, 0b110, 0b101, 0b101, 0b101],
+        'i' => [0b010, 0b000, 0b010, 0b010, 0b010],
+        'j' => [0b001, 0b000, 0b001, 0b101, 0b010],
+        'k' => [0b100, 0b101, 0b110, 0b110, 0b101],
+        'l' => [0b110, 0b010, 0b010, 0b010, 0b111],
+        'm' => [0b000, 0b111, 0b111, 0b101, 0b101],
+        'n' => [0b000, 0b110, 0b101, 0b101, 0b101],
+        'o' => [0b000, 0b010, 0b101, 0b101, 0b010],
+        'p' => [0b110, 0b101, 0b110, 0b100, 0b100],
+        'q' => [0b011, 0b101, 0b011, 0b001, 0b001],
+        'r' => [0b000, 0b101, 0b110, 0b100, 0b100],
+        'u' => [0b000, 0b101, 0b101, 0b101, 0b011],
+        'v' => [0b000, 0b101, 0b101, 0b101, 0b010],
+        'w' => [0b000, 0b101, 0b101, 0b111, 0b111],
+        'x' => [0b000, 0b101, 0b010, 0b010, 0b101],
+        'y' => [0b101, 0b101, 0b011, 0b001, 0b110],
+        'z' => [0b111, 0b001, 0b010, 0b100, 0b111],
         ' ' => [0; 5],
         _ => return None,
     })

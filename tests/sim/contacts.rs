@@ -256,7 +256,15 @@ fn the_claps_hands_are_its_own_contact_and_export_while_a_hand_in_the_chest_is_s
     let dir = tempfile::tempdir().unwrap();
     let d = |name: &str| dir.path().join(name);
     cosco()
-        .args(["demos", "--robot", "upper-body", "--gesture", "clap", "--count", "3"])
+        .args([
+            "demos",
+            "--robot",
+            "upper-body",
+            "--gesture",
+            "clap",
+            "--count",
+            "3",
+        ])
         .args(["--seed", "41", "--out"])
         .arg(d("demos"))
         .assert()

@@ -7,10 +7,10 @@
 #![cfg(feature = "sim")]
 
 use cosco_hsom::experiment::demonstrate::{record_demonstrations, DemoSettings};
-use cosco_hsom::gesture::Gesture;
-use cosco_hsom::robot::Robot;
 use cosco_hsom::experiment::signature::signature;
+use cosco_hsom::gesture::Gesture;
 use cosco_hsom::gesture::{mirror, upper, Segment};
+use cosco_hsom::robot::Robot;
 use cosco_hsom::sim::{own_contacts, NaoArm, Recording};
 
 fn record(arm: &NaoArm<14>, name: &str, count: usize, seed: u64) -> Vec<Recording> {
@@ -67,7 +67,11 @@ fn each_gesture_has_its_signature_and_the_others_do_not() {
                 let s = signature(&arm, name, &r.qpos).unwrap().unwrap();
                 // its own demonstrations hold it; every other gesture's miss it (the
                 // negative control of each signature)
-                assert_eq!(s.holds, name == other, "{name}'s signature on {other}: {s:?}");
+                assert_eq!(
+                    s.holds,
+                    name == other,
+                    "{name}'s signature on {other}: {s:?}"
+                );
             }
         }
         assert!(!recs.is_empty());

@@ -130,10 +130,9 @@ pub fn export(a: ExportArgs) -> Result<Vec<String>> {
         allow_contact: a.allow_contact,
         own_contacts: match a.demos.is_empty() {
             true => Vec::new(),
-            false => app::own_contacts(
-                &app::files::read_demos(&a.demos, None, None)?,
-                a.step_rate,
-            )?,
+            false => {
+                app::own_contacts(&app::files::read_demos(&a.demos, None, None)?, a.step_rate)?
+            }
         },
     };
     Ok(app::export(&from, &request)?)
