@@ -77,7 +77,10 @@ pub fn own_contacts(demos: &[Demonstration], rate_hz: f64) -> Result<Vec<[String
         if demos.is_empty() || !demos.iter().all(upper) {
             return Ok(Vec::new());
         }
-        let sim = |e: crate::sim::SimError| crate::export::ExportError::Arm(Box::new(e));
+        let sim = |e: crate::sim::SimError| crate::export::ExportError::Invalid {
+            source_name: "the demonstrations on the simulated upper-body".into(),
+            reason: e.to_string(),
+        };
         let arm = crate::sim::NaoArm::<14>::load_shipped(Robot::UpperBody).map_err(sim)?;
         let executions = (demos.iter())
             .map(|d| {
