@@ -4,6 +4,7 @@
 
 use serde::Serialize;
 
+use crate::dtw::euclidean;
 use crate::sim::{NaoArm, SimError};
 
 /// A gesture's signature measured on one trajectory.
@@ -137,7 +138,7 @@ fn extreme(gesture: &str, frames: &[Frame]) -> Option<(usize, f64)> {
             &|f: &Frame| f.watch.map_or(180.0, |w| angle_to(&f.camera, &w)),
             false,
         ),
-        _ => (&|f: &Frame| distance(&f.camera.0, &f.grippers[1]), false),
+        _ => (&|f: &Frame| euclidean(&f.camera.0, &f.grippers[1]), false),
     };
     let values = frames.iter().map(f).enumerate();
     match max {
@@ -188,7 +189,7 @@ struct Frame {
 
 impl Frame {
     fn grippers_apart(&self) -> f64 {
-        distance(&self.grippers[0], &self.grippers[1])
+        euclidean(&self.grippers[0], &self.grippers[1])
     }
 }
 
@@ -205,14 +206,6 @@ fn meetings(distances: impl Iterator<Item = f64>) -> usize {
         }
     }
     count
-}
-
-fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).powi(2))
-        .sum::<f64>()
-        .sqrt()
 }
 
 /// The angle between a hand's palm normal and straight up, degrees: the palm faces the hand
