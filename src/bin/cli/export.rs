@@ -78,11 +78,11 @@ pub struct ExportArgs {
     /// report, with every contact).
     #[arg(long)]
     pub allow_contact: bool,
-    /// The demonstrations the reproduction was learned from (a directory of CSVs or files;
-    /// with --reproduction): a contact every one of them makes, executed on the simulated
-    /// robot (the clap's hands), is the gesture's own and is exported, said so. With --model
-    /// the model's kept demonstrations say it.
-    #[arg(long, num_args = 1.., requires = "reproduction")]
+    /// The demonstrations the motion was learned from (a directory of CSVs or files): a
+    /// contact every one of them makes, executed on the simulated robot (the clap's hands), is
+    /// the gesture's own and is exported, said so. Without it, a --model's kept demonstrations
+    /// say it, and a --reproduction has no contact of its own.
+    #[arg(long, num_args = 1..)]
     pub demos: Vec<PathBuf>,
     /// Another robot: the joint ranges from this MJCF file (with --velocity-table).
     #[arg(long, requires = "velocity_table")]
