@@ -55,7 +55,7 @@ fn apexes(path: &std::path::Path, options: RenderOptions, seed: u64) -> Result<(
     let mut renderer = Renderer::new(arm.model(), options)?;
     let mut sim = arm.sim()?;
     let mut frames = Vec::new();
-    for g in Gesture::all(Robot::UpperBody) {
+    for g in Gesture::every(Robot::UpperBody) {
         let rec =
             record_demonstrations(&arm, &g, 1, seed, &DemoSettings::default(), |_| {})?.remove(0);
         let k = apex(&arm, g.name, &rec.qpos)?.context("an empty demonstration")?;

@@ -11,6 +11,8 @@
 //!   and executing and scoring a reproduction on it.
 //! - [`som`]: a Kohonen map.
 //! - [`hsom`]: the CoSCo-HSOM hierarchy: activity lists, training, reproduction, save/load.
+//! - [`aim`]: pointing and gaze at a point in space through the Nao's kinematics, and the
+//!   via-points that carry a reproduction's held part through the aimed posture.
 //! - [`condition`]: a goal and via-points beyond the initial posture, and bending a trajectory
 //!   onto them exactly.
 //! - [`config`]: the XML configuration, validated once into a checked type.
@@ -53,6 +55,7 @@
 //! wrist paths: those need the arm's kinematics), and builds without libmujoco-dev.
 #![warn(missing_docs)]
 
+pub mod aim;
 pub mod app;
 pub mod condition;
 pub mod config;

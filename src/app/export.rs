@@ -17,7 +17,7 @@ pub enum ExportFrom {
     /// one column per joint).
     Reproduction(PathBuf),
     /// A gesture of a saved model reproduced on the spot, as `cosco reproduce` does.
-    Model(ReproduceRequest),
+    Model(Box<ReproduceRequest>),
 }
 
 /// `cosco export`: check where the output goes, build the trajectory (the reproduction file's,

@@ -58,7 +58,7 @@ pub use recognize::{
     answer_line, recognize_files, recognize_paths, recognize_stream, RecognisedFile,
 };
 pub use reproduce::{
-    conditions, continue_file, reproduce, reproduce_file, resume, stepper, with_duration,
+    aimed, conditions, continue_file, reproduce, reproduce_file, resume, stepper, with_duration,
     ReproduceFile, ReproduceRequest,
 };
 pub use train::{train, train_files, update, update_files};
@@ -82,6 +82,9 @@ pub enum Error {
     /// A goal or via-point was refused.
     #[error(transparent)]
     Condition(#[from] crate::condition::ConditionError),
+    /// A target to point or look at was refused.
+    #[error(transparent)]
+    Aim(#[from] crate::aim::AimError),
     /// A stepper refused a posture or a goal, or could not re-plan.
     #[error(transparent)]
     Stepper(#[from] crate::stepper::StepperError),

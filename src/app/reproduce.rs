@@ -113,6 +113,34 @@ pub fn reproduce(
     rep.map_err(|e| naming_model(e, model, model_name))
 }
 
+/// `conditions` and the via-points that aim the reproduction of gesture `label` of `model`
+/// (`model_name` in messages) from `initial` at `aim` ([`crate::aim`]): the reproduction
+/// through `conditions` alone, its held part's posture aimed, and that posture passed along
+/// the held part ([`crate::aim::via_points`]); with what was solved. The model's variables
+/// must be a robot's joints.
+pub fn aimed(
+    model: &GestureModel,
+    model_name: &str,
+    label: Option<&str>,
+    initial: &[f64],
+    conditions: &Conditions,
+    aim: &crate::aim::Aim,
+) -> Result<(Conditions, crate::aim::Aimed)> {
+    let columns = model.columns();
+    let robot = crate::robot::Robot::of_columns(columns).ok_or_else(|| {
+        Error::value(
+            "--point-at and --look-at",
+            format!(
+                "aim through a Nao's kinematics: the model {model_name} learned {} ({}), not the joints of the left arm or the upper body",
+                columns.len(),
+                columns.join(", ")
+            ),
+        )
+    })?;
+    let rows = reproduce(model, model_name, label, initial, Some(conditions))?.postures;
+    Ok(crate::aim::aim_conditions(robot, &rows, conditions, aim)?)
+}
+
 /// `rep` (a reproduction of variables `columns`, a step every 1/40 s) retimed to last
 /// `duration_s` seconds, its path kept ([`crate::export::limits::at_duration`]); each new
 /// step's level that of the nearest original step.
@@ -215,6 +243,8 @@ pub struct ReproduceRequest {
     pub robot: Option<crate::robot::Robot>,
     /// The reproduction retimed to last this many seconds, its shape kept ([`with_duration`]).
     pub duration: Option<f64>,
+    /// What the held part points and looks at ([`aimed`]).
+    pub aim: crate::aim::Aim,
 }
 
 /// What `cosco reproduce` is asked: a [`ReproduceRequest`], or the continuation of a prefix,
@@ -271,6 +301,21 @@ impl ReproduceRequest {
                 "applies to a reproduction from an initial posture, not with --resume-from",
             ));
         }
+        if let (Some(_), false) = (resume_from, self.aim.is_empty()) {
+            return Err(Error::value(
+                "--point-at and --look-at",
+                "apply to a reproduction from an initial posture, not with --resume-from",
+            ));
+        }
+        let aimed;
+        let conditions = match self.aim.is_empty() {
+            true => conditions,
+            false => {
+                let label = self.gesture.as_deref();
+                aimed = self::aimed(&m, &name, label, &initial, conditions, &self.aim)?.0;
+                &aimed
+            }
+        };
         let rep = match resume_from {
             Some(path) => {
                 let reading = read_for_columns(path, branch.columns())?.rows;
@@ -343,6 +388,12 @@ pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
     if !conditions.is_empty() && (r.prefix_from.is_some() || r.resume_from.is_some()) {
         return Err(Error::value(
             "--goal and --via",
+            "apply to a reproduction from an initial posture, not with --prefix-from or --resume-from",
+        ));
+    }
+    if !q.aim.is_empty() && (r.prefix_from.is_some() || r.resume_from.is_some()) {
+        return Err(Error::value(
+            "--point-at and --look-at",
             "apply to a reproduction from an initial posture, not with --prefix-from or --resume-from",
         ));
     }

@@ -27,7 +27,7 @@ pub const CLAP_PART_M: f64 = 0.07;
 
 /// The rule of each upper-body gesture: (gesture, rule, the threshold, whether the measure
 /// must reach at least it (true) or at most it).
-const RULES: [(&str, &str, f64, bool); 8] = [
+const RULES: [(&str, &str, f64, bool); 10] = [
     ("clap", "times the gripper sites come within 4 cm (parting beyond 7 cm between)", 2.0, true),
     ("shrug", "both palms' angle from facing up at the apex, degrees", 30.0, false),
     ("welcome", "the gripper sites' largest distance, m", 0.48, true),
@@ -36,7 +36,32 @@ const RULES: [(&str, &str, f64, bool); 8] = [
     ("shake-head", "the head's turns (HeadYaw reversals of 0.4 rad or more)", 3.0, true),
     ("reading-watch", "the top camera's angle to the left wrist (the watch) at its closest with the head turned left 0.2 rad or more, degrees", 45.0, false),
     ("salute", "the right gripper's distance to the top camera at its closest, m", 0.10, false),
+    ("point-left", "the left arm held outstretched ahead (LElbowRoll within 0.3 rad of straight, the gripper 0.15 m or more ahead of the torso) for the longest stretch, s", 0.5, true),
+    ("point-right", "the right arm held outstretched ahead (RElbowRoll within 0.3 rad of straight, the gripper 0.15 m or more ahead of the torso) for the longest stretch, s", 0.5, true),
 ];
+
+/// The rows a second of the trajectories a signature measures (the encoders' 40 Hz).
+const RATE_HZ: f64 = 40.0;
+
+/// The longest stretch (s) that `arm` is held outstretched ahead in `rows` (upper-body
+/// postures): its ElbowRoll within 0.3 rad of straight, its gripper 0.15 m or more ahead.
+fn outstretched(rows: &[Vec<f64>], arm: crate::aim::Arm) -> f64 {
+    let at = arm
+        .offset(crate::robot::Robot::UpperBody)
+        .expect("the upper body has both arms");
+    let ahead: Vec<f64> = (rows.iter())
+        .map(|r| {
+            let straight = r[at + 3].abs() <= 0.3;
+            let forward = arm.gripper(&r[at..at + 5])[0] >= 0.15;
+            if straight && forward {
+                0.0
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    crate::aim::longest_within(&ahead, 0.5) as f64 / RATE_HZ
+}
 
 /// The signature of `gesture` (an upper-body gesture's name) measured on `rows` (upper-body
 /// postures, NAOqi order, clamped into the joint ranges); `None` for a gesture without one.
@@ -52,6 +77,8 @@ pub fn signature(
         "wave-right" => reversals(rows, 11, 0.2) as f64,
         "nod" => reversals(rows, 1, 0.15) as f64,
         "shake-head" => reversals(rows, 0, 0.4) as f64,
+        "point-left" => outstretched(rows, crate::aim::Arm::Left),
+        "point-right" => outstretched(rows, crate::aim::Arm::Right),
         _ => kinematic(arm, gesture, rows)?,
     };
     let holds = match at_least {
@@ -112,6 +139,12 @@ pub fn apex(arm: &NaoArm<14>, gesture: &str, rows: &[Vec<f64>]) -> Result<Option
         "clap" => extreme("clap", &frames).map(|(i, _)| i),
         "shrug" | "welcome" | "reading-watch" | "salute" => {
             extreme(gesture, &frames).map(|(i, _)| i)
+        }
+        "point-left" | "point-right" if !rows.is_empty() => {
+            // the middle of the held part
+            let at = if gesture == "point-left" { 2 } else { 8 };
+            let (a, b) = crate::aim::held_span(rows, at..at + 4);
+            Some((a + b) / 2)
         }
         _ => {
             // the joint that swings: its value farthest from the first

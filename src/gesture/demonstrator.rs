@@ -154,14 +154,17 @@ impl HumanTrajectory {
             // Each segment's duration varies a little around the overall speed too.
             let jitter = 1.0 + uniform(rng, (-0.05, 0.05)) * (variation.speed > 0.0) as u8 as f64;
             match seg {
-                Segment::Move {
-                    to,
-                    duration,
-                    perturb,
-                } => {
+                Segment::Move { to, duration, .. } | Segment::Aim { to, duration, .. } => {
                     let d = duration / speed * jitter;
                     let mut target = to.clone();
-                    if *perturb {
+                    if let Segment::Aim { spread, .. } = seg {
+                        for &(j, deg) in spread {
+                            let aim =
+                                Normal::new(0.0, deg.to_radians()).map_err(|e| e.to_string())?;
+                            target[j] += aim.sample(rng);
+                        }
+                    }
+                    if !matches!(seg, Segment::Move { perturb: false, .. }) {
                         for (j, v) in target.iter_mut().enumerate() {
                             let (lo, hi) = limits[j];
                             *v = (*v + amp.sample(rng)).clamp(lo + 0.02, hi - 0.02);

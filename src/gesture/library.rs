@@ -64,6 +64,17 @@ pub enum Segment {
         /// Number of periods.
         cycles: f64,
     },
+    /// Move to `to` as a perturbed [`Segment::Move`] does, the joints of `spread` varied
+    /// further, each by its standard deviation (degrees): a person pointing at something else
+    /// in each demonstration.
+    Aim {
+        /// The key pose reached at the end, before the spread.
+        to: Pose,
+        /// Nominal duration in seconds.
+        duration: f64,
+        /// `(joint index in NAOqi order, standard deviation in degrees)`.
+        spread: Vec<(usize, f64)>,
+    },
 }
 
 /// A named gesture: where it starts and the segments it goes through.
@@ -87,7 +98,7 @@ impl Gesture {
         let mut best = &self.initial;
         let mut best_d = 0.0;
         for s in &self.segments {
-            if let Segment::Move { to, .. } = s {
+            if let Segment::Move { to, .. } | Segment::Aim { to, .. } = s {
                 let d: f64 = to
                     .iter()
                     .zip(&self.initial)
@@ -212,5 +223,48 @@ pub fn salute() -> Gesture {
                 perturb: false,
             },
         ],
+    }
+}
+
+/// The left arm outstretched forward, a little up and out, the elbow nearly straight, the
+/// hand closed: pointing (the ray from the shoulder through the gripper about 10 degrees up
+/// and 20 degrees to the left).
+pub const POINT_LEFT: ArmPose = [-0.15, 0.35, -1.0, -0.1, 0.0, 0.0];
+
+/// How widely a pointing gesture's direction varies from one demonstration to the next:
+/// ShoulderPitch's and ShoulderRoll's standard deviation, degrees.
+pub const POINT_SPREAD_DEG: f64 = 10.0;
+
+/// Raise the arm to `to` (a posture of the whole robot) in 1.3 s and hold it pointing for a
+/// second; the pointing arm's ShoulderPitch is joint `shoulder` (and its ShoulderRoll the
+/// next), varied by [`POINT_SPREAD_DEG`].
+pub fn pointing(to: Pose, shoulder: usize) -> Vec<Segment> {
+    vec![
+        Segment::Aim {
+            to,
+            duration: 1.3,
+            spread: vec![
+                (shoulder, POINT_SPREAD_DEG),
+                (shoulder + 1, POINT_SPREAD_DEG),
+            ],
+        },
+        Segment::Hold { duration: 1.0 },
+    ]
+}
+
+/// Point with the left arm at something ahead: raise it, hold it pointing, lower it.
+pub fn point_left() -> Gesture {
+    let mut segments = pointing(POINT_LEFT.to_vec(), 0);
+    segments.push(Segment::Move {
+        to: stand_init(Robot::LeftArm),
+        duration: 1.3,
+        perturb: false,
+    });
+    Gesture {
+        name: "point-left",
+        description: "raise the left arm and point at something, hold it about a second, lower it",
+        robot: Robot::LeftArm,
+        initial: stand_init(Robot::LeftArm),
+        segments,
     }
 }

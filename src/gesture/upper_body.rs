@@ -3,7 +3,8 @@
 //! the left arm 2..8, the right arm 8..14.
 
 use super::library::{
-    mirror, stand_init, upper, ArmPose, Gesture, Segment, READING_WATCH, SALUTE, WAVE_UP,
+    mirror, pointing, stand_init, upper, ArmPose, Gesture, Segment, POINT_LEFT, READING_WATCH,
+    SALUTE, WAVE_UP,
 };
 use crate::robot::Robot;
 
@@ -50,7 +51,36 @@ fn home(duration: f64) -> Segment {
     }
 }
 
-/// Every upper-body gesture.
+/// The pointing gestures of the upper body: `point-left` and `point-right` (the head looks
+/// ahead; aim them with `--point-at` and `--look-at`).
+pub fn aimed() -> Vec<Gesture> {
+    let rest_pose = stand_init(Robot::UpperBody);
+    let left_rest: ArmPose = rest_pose[2..8].try_into().expect("six left-arm joints");
+    let rest: ArmPose = rest_pose[8..14].try_into().expect("six right-arm joints");
+    let point = |name, description, left, right, shoulder| {
+        let mut segments = pointing(upper([0.0, 0.0], left, right), shoulder);
+        segments.push(home(1.3));
+        gesture(name, description, segments)
+    };
+    vec![
+        point(
+            "point-left",
+            "raise the left arm and point at something, hold it about a second, lower it",
+            POINT_LEFT,
+            rest,
+            2,
+        ),
+        point(
+            "point-right",
+            "raise the right arm and point at something, hold it about a second, lower it",
+            left_rest,
+            mirror(POINT_LEFT),
+            8,
+        ),
+    ]
+}
+
+/// The upper body's gestures that `--gesture all` teaches together.
 pub fn all() -> Vec<Gesture> {
     let rest_pose = stand_init(Robot::UpperBody);
     let left_rest: ArmPose = rest_pose[2..8].try_into().expect("six left-arm joints");

@@ -43,6 +43,12 @@ pub struct ExportArgs {
     /// `cosco reproduce --band` does.
     #[arg(long, requires = "model")]
     pub band: Option<PathBuf>,
+    /// Point at X,Y,Z (with --model; metres, torso frame), as `cosco reproduce --point-at`.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = cosco_hsom::aim::parse_point, requires = "model")]
+    pub point_at: Option<[f64; 3]>,
+    /// Look at X,Y,Z (with --model; the upper body), as `cosco reproduce --look-at`.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = cosco_hsom::aim::parse_point, requires = "model")]
+    pub look_at: Option<[f64; 3]>,
     /// Output format: naoqi (JSON for ALMotion.angleInterpolation), ros2 (MCAP with a
     /// trajectory_msgs/msg/JointTrajectory) or csv.
     #[arg(long)]
@@ -101,7 +107,7 @@ pub struct ExportArgs {
 pub fn export(a: ExportArgs) -> Result<Vec<String>> {
     let from = match (a.reproduction, a.model) {
         (Some(path), _) => ExportFrom::Reproduction(path),
-        (None, Some(model)) => ExportFrom::Model(ReproduceRequest {
+        (None, Some(model)) => ExportFrom::Model(Box::new(ReproduceRequest {
             model,
             gesture: a.gesture,
             initial: a.initial,
@@ -111,7 +117,11 @@ pub fn export(a: ExportArgs) -> Result<Vec<String>> {
             band: a.band,
             robot: None,
             duration: None,
-        }),
+            aim: cosco_hsom::aim::Aim {
+                point_at: a.point_at,
+                look_at: a.look_at,
+            },
+        })),
         (None, None) => anyhow::bail!("--reproduction: give --reproduction FILE or --model FILE"),
     };
     let request = ExportRequest {

@@ -58,6 +58,16 @@ pub struct ReproduceArgs {
     /// the path); a duration the robot's servos cannot follow is refused, naming the shortest.
     #[arg(long, value_name = "SECONDS", conflicts_with_all = ["prefix_from", "resume_from"])]
     pub duration: Option<f64>,
+    /// Point at X,Y,Z (metres, in the torso frame: x forward, y to the robot's left, z up):
+    /// during the held part, the ray from the pointing arm's shoulder through its gripper
+    /// passes through it; a target the arm cannot point at is refused, naming the closest
+    /// direction it can.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = cosco_hsom::aim::parse_point, conflicts_with_all = ["prefix_from", "resume_from"])]
+    pub point_at: Option<[f64; 3]>,
+    /// Look at X,Y,Z (the upper body; metres, torso frame): during the held part the top
+    /// camera's optical axis passes through it.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = cosco_hsom::aim::parse_point, conflicts_with_all = ["prefix_from", "resume_from"])]
+    pub look_at: Option<[f64; 3]>,
     /// Output CSV.
     #[arg(long)]
     pub out: PathBuf,
@@ -76,6 +86,10 @@ impl From<ReproduceArgs> for ReproduceFile {
                 band: a.band,
                 robot: a.robot,
                 duration: a.duration,
+                aim: cosco_hsom::aim::Aim {
+                    point_at: a.point_at,
+                    look_at: a.look_at,
+                },
             },
             prefix_from: a.prefix_from,
             prefix: a.prefix,
