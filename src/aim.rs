@@ -532,13 +532,7 @@ pub fn solve(robot: Robot, rows: &[Vec<f64>], aim: &Aim) -> Result<Aimed, AimErr
 /// pointing arm's ShoulderPitch to ElbowRoll, the head's when looking) set to the aimed
 /// posture's, the other joints as the row has them.
 pub fn via_points(robot: Robot, rows: &[Vec<f64>], aimed: &Aimed, aim: &Aim) -> Vec<ViaPoint> {
-    let mut aimed_joints: Vec<usize> = Vec::new();
-    if let Some(at) = aimed.arm.and_then(|a| a.offset(robot)) {
-        aimed_joints.extend(at..at + 4);
-    }
-    if aim.look_at.is_some() {
-        aimed_joints.extend(0..2);
-    }
+    let aimed_joints = aimed_joints(robot, aimed.arm, aim);
     let last = (rows.len() - 1) as f64;
     let (a, b) = aimed.span;
     let mut at: Vec<usize> = (a..=b).step_by(VIA_EVERY).collect();
@@ -558,6 +552,106 @@ pub fn via_points(robot: Robot, rows: &[Vec<f64>], aimed: &Aimed, aim: &Aim) -> 
             }
         })
         .collect()
+}
+
+/// The joints an aim sets: the pointing arm's ShoulderPitch to ElbowRoll, the head's when
+/// looking.
+fn aimed_joints(robot: Robot, arm: Option<Arm>, aim: &Aim) -> Vec<usize> {
+    let mut joints: Vec<usize> = Vec::new();
+    if let Some(at) = arm
+        .filter(|_| aim.point_at.is_some())
+        .and_then(|a| a.offset(robot))
+    {
+        joints.extend(at..at + 4);
+    }
+    if aim.look_at.is_some() {
+        joints.extend(0..2);
+    }
+    joints
+}
+
+/// A reproduction in the loop aimed at a target that may move: the user's own via-points,
+/// the aim's, and what was solved; [`Aiming::retarget`] solves a new target from the same
+/// held posture and gives the via-points to follow from then on.
+#[derive(Debug, Clone)]
+pub struct Aiming {
+    robot: Robot,
+    aim: Aim,
+    solved: Aimed,
+    own: Vec<ViaPoint>,
+    via: Vec<ViaPoint>,
+}
+
+impl Aiming {
+    /// `rows` (a reproduction of `robot`'s joints through `conditions`) aimed at `aim`
+    /// ([`aim_conditions`]): the conditions to start the stepper with, and the aiming.
+    pub fn new(
+        robot: Robot,
+        rows: &[Vec<f64>],
+        conditions: &Conditions,
+        aim: &Aim,
+    ) -> Result<(Conditions, Aiming), AimError> {
+        let (aimed, solved) = aim_conditions(robot, rows, conditions, aim)?;
+        let via = aimed.via[conditions.via.len()..].to_vec();
+        let aiming = Aiming {
+            robot,
+            aim: *aim,
+            solved,
+            own: conditions.via.clone(),
+            via,
+        };
+        Ok((aimed, aiming))
+    }
+
+    /// What it is aimed at.
+    pub fn aim(&self) -> Aim {
+        self.aim
+    }
+
+    /// What was solved for the current aim.
+    pub fn solved(&self) -> &Aimed {
+        &self.solved
+    }
+
+    /// Every via-point to follow: the user's, then the aim's.
+    pub fn via(&self) -> Vec<ViaPoint> {
+        self.own.iter().chain(&self.via).cloned().collect()
+    }
+
+    /// The same reproduction aimed at `aim` instead: solved from the same held posture (the
+    /// pointing arm and the held part as at the start; a gaze may be added or dropped,
+    /// pointing only when the reproduction pointed from the start), the aim's via-points at
+    /// the same phases with the newly aimed joints ([`Aiming::via`]).
+    pub fn retargeted(&self, aim: &Aim) -> Result<Aiming, AimError> {
+        let (robot, arm) = (self.robot, self.solved.arm);
+        if aim.point_at.is_some() && arm.is_none() {
+            return Err(AimError::Unsupported(
+                "point_at: the reproduction was not aimed with point_at at the start (its pointing arm and held part are chosen then)".into(),
+            ));
+        }
+        let mut posture = self.solved.held.clone();
+        if let (Some(arm), Some(target)) = (arm, aim.point_at) {
+            posture = point(robot, arm, &posture, target)?;
+        }
+        if let Some(target) = aim.look_at {
+            posture = look(robot, &posture, target)?;
+        }
+        // the joints either aim sets: those no longer aimed return to the held posture
+        let both = Aim {
+            point_at: aim.point_at.or(self.aim.point_at),
+            look_at: aim.look_at.or(self.aim.look_at),
+        };
+        let joints = aimed_joints(robot, arm, &both);
+        let mut next = self.clone();
+        for v in &mut next.via {
+            for &j in &joints {
+                v.posture[j] = posture[j];
+            }
+        }
+        next.solved.posture = posture;
+        next.aim = *aim;
+        Ok(next)
+    }
 }
 
 /// `conditions` and the via-points that carry `rows` (a reproduction of `robot`'s joints

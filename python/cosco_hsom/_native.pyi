@@ -8,6 +8,7 @@ import numpy.typing as npt
 
 _Path = Union[str, PathLike]
 _Array2 = Union[npt.ArrayLike, Sequence[Sequence[float]]]
+_Point = Tuple[float, float, float]
 
 class Config:
     """A validated CoSCo-HSOM configuration (the XML schema of docs/CONFIG.md)."""
@@ -76,6 +77,8 @@ class Hsom:
         via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None,
         band: Literal[False] = False,
         duration: Optional[float] = None,
+        point_at: Optional[_Point] = None,
+        look_at: Optional[_Point] = None,
     ) -> np.ndarray: ...
     @overload
     def reproduce(
@@ -86,13 +89,17 @@ class Hsom:
         via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None,
         band: Literal[True],
         duration: Optional[float] = None,
+        point_at: Optional[_Point] = None,
+        look_at: Optional[_Point] = None,
     ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]: ...
-    def reproduce(self, initial: npt.ArrayLike, *, goal: Optional[npt.ArrayLike] = None, via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None, band: bool = False, duration: Optional[float] = None) -> Any:  # type: ignore[misc]
+    def reproduce(self, initial: npt.ArrayLike, *, goal: Optional[npt.ArrayLike] = None, via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None, band: bool = False, duration: Optional[float] = None, point_at: Optional[_Point] = None, look_at: Optional[_Point] = None) -> Any:  # type: ignore[misc]
         """Reproduce from an initial posture: one row per step, the first the initial posture;
         ending exactly at `goal` and passing each `(phase, posture)` of `via` when given; with
         band=True, (postures, lower, upper): the central 95 % band about them; with `duration`
         (seconds), retimed to last that long at 40 Hz, its path kept (a duration the servos
-        cannot follow raises ValueError naming the shortest)."""
+        cannot follow raises ValueError naming the shortest); `point_at` / `look_at`
+        ((x, y, z) metres, torso frame): the held part points / looks there (a target out of
+        reach raises ValueError naming the closest direction)."""
     def follow_nearest(self, demos: Sequence[npt.ArrayLike], initial: npt.ArrayLike) -> np.ndarray:
         """The nearest-sequence baseline: of `demos`, the one whose first posture is nearest
         `initial`, its bottom events through this model's bottom code, no level above."""
@@ -112,9 +119,12 @@ class Hsom:
         initial: npt.ArrayLike,
         goal: Optional[npt.ArrayLike] = None,
         via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None,
+        *,
+        point_at: Optional[_Point] = None,
+        look_at: Optional[_Point] = None,
     ) -> "Stepper":
-        """The hierarchy in the loop from `initial`, through `goal` and `via` as `reproduce`
-        takes them: `step(observed)` gives the next posture to command."""
+        """The hierarchy in the loop from `initial`, through `goal`, `via`, `point_at` and
+        `look_at` as `reproduce` takes them: `step(observed)` gives the next posture to command."""
     @property
     def columns(self) -> List[str]: ...
     @property
@@ -145,10 +155,11 @@ class GestureModel:
     @property
     def learned(self) -> Dict[str, Dict[str, int]]:
         """Per label, `{"demonstrations": n, "kept": k, "updates": u}`."""
-    def reproduce(self, label: Optional[str], initial: npt.ArrayLike, *, duration: Optional[float] = None) -> np.ndarray:
+    def reproduce(self, label: Optional[str], initial: npt.ArrayLike, *, duration: Optional[float] = None, point_at: Optional[_Point] = None, look_at: Optional[_Point] = None) -> np.ndarray:
         """Reproduce gesture `label` from an initial posture: one row per step, the first the
         initial posture. None only for a single-gesture model. With `duration` (seconds),
-        retimed to last that long at 40 Hz, its path kept."""
+        retimed to last that long at 40 Hz, its path kept; `point_at` / `look_at` aim the held
+        part as Hsom.reproduce does."""
     def scores(self, sequence: _Array2) -> Dict[str, float]:
         """Per label, the score of a whole sequence (lower is closer; see Recognition.thresholds)."""
     def recognize(self, sequence: _Array2) -> "Recognition":
@@ -164,6 +175,9 @@ class GestureModel:
         initial: npt.ArrayLike,
         goal: Optional[npt.ArrayLike] = None,
         via: Optional[Sequence[Tuple[float, npt.ArrayLike]]] = None,
+        *,
+        point_at: Optional[_Point] = None,
+        look_at: Optional[_Point] = None,
     ) -> "Stepper":
         """Gesture `label` in the loop from `initial` (None only for a single-gesture model),
         through `goal` and `via` as `Hsom.reproduce` takes them."""
@@ -192,6 +206,18 @@ class Stepper:
         this tick on (reached exactly, without a jump)."""
     @goal.setter
     def goal(self, goal: npt.ArrayLike) -> None: ...
+    @property
+    def point_at(self) -> Optional[_Point]:
+        """What the held part points at, or None; setting it moves the target from this tick
+        on (a stepper made with point_at)."""
+    @point_at.setter
+    def point_at(self, target: Optional[_Point]) -> None: ...
+    @property
+    def look_at(self) -> Optional[_Point]:
+        """What the top camera looks at during the held part, or None; setting it moves the
+        gaze from this tick on (a stepper made with point_at or look_at)."""
+    @look_at.setter
+    def look_at(self, target: Optional[_Point]) -> None: ...
     @property
     def phase(self) -> float:
         """How far along the reproduction is, 0 to 1."""

@@ -108,17 +108,22 @@ impl GestureModel {
 
     /// Reproduce gesture `label` from an initial posture: a 2-D array, one row per step (the
     /// first row is the initial posture). `label` is None only for a single-gesture model.
-    /// `duration` (seconds) retimes it to last that long, its path kept (as `Hsom.reproduce`).
-    #[pyo3(signature = (label, initial, *, duration = None))]
+    /// `duration` (seconds) retimes it to last that long, its path kept; `point_at` and
+    /// `look_at`, `(x, y, z)` in metres in the torso frame, aim its held part (as
+    /// `Hsom.reproduce`).
+    #[pyo3(signature = (label, initial, *, duration = None, point_at = None, look_at = None))]
     fn reproduce<'py>(
         &self,
         py: Python<'py>,
         label: Option<&str>,
         initial: &Bound<'py, PyAny>,
         duration: Option<f64>,
+        point_at: Option<[f64; 3]>,
+        look_at: Option<[f64; 3]>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let how = crate::model::How {
             duration,
+            aim: cosco_hsom::aim::Aim { point_at, look_at },
             ..Default::default()
         };
         crate::model::reproduce(py, &self.inner, &self.name, label, initial, how)
@@ -127,8 +132,9 @@ impl GestureModel {
     /// Gesture `label` in the loop from an initial posture, through `goal` and `via` as
     /// `Hsom.reproduce` takes them: a `Stepper`, whose `step(observed)` gives the next posture
     /// to command from the posture the encoders read at this tick. `label` is None only for a
-    /// single-gesture model.
-    #[pyo3(signature = (label, initial, goal = None, via = None))]
+    /// single-gesture model. `point_at` and `look_at` aim its held part (as `Hsom.stepper`).
+    #[pyo3(signature = (label, initial, goal = None, via = None, *, point_at = None, look_at = None))]
+    #[allow(clippy::too_many_arguments)]
     fn stepper(
         &self,
         py: Python<'_>,
@@ -136,8 +142,19 @@ impl GestureModel {
         initial: &Bound<'_, PyAny>,
         goal: Option<&Bound<'_, PyAny>>,
         via: Option<Vec<(f64, Bound<'_, PyAny>)>>,
+        point_at: Option<[f64; 3]>,
+        look_at: Option<[f64; 3]>,
     ) -> PyResult<crate::stepper::Stepper> {
-        crate::stepper::Stepper::new(py, &self.inner, label, &self.name, initial, goal, via)
+        let aim = cosco_hsom::aim::Aim { point_at, look_at };
+        crate::stepper::Stepper::new(
+            py,
+            &self.inner,
+            label,
+            &self.name,
+            initial,
+            (goal, via),
+            aim,
+        )
     }
 
     /// Per label (in the model's order), the score of a whole sequence (2-D, samples x

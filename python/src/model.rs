@@ -8,6 +8,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
+use cosco_hsom::aim::Aim;
 use cosco_hsom::app;
 use cosco_hsom::config::{HsomConfig, HsomParams};
 
@@ -238,8 +239,10 @@ impl Hsom {
     /// lower and upper ends of their central 95 % band (2-D arrays of the same shape).
     /// `duration` (seconds) retimes it to last that long at 40 Hz, its path kept (as `cosco
     /// reproduce --duration`; a duration the servos cannot follow is refused, naming the
-    /// shortest).
-    #[pyo3(signature = (initial, *, goal = None, via = None, band = false, duration = None))]
+    /// shortest). `point_at` and `look_at`, `(x, y, z)` in metres in the torso frame, aim the
+    /// held part (as `cosco reproduce --point-at/--look-at`; a model of a Nao's joints).
+    #[pyo3(signature = (initial, *, goal = None, via = None, band = false, duration = None, point_at = None, look_at = None))]
+    #[allow(clippy::too_many_arguments)]
     fn reproduce<'py>(
         &self,
         py: Python<'py>,
@@ -248,11 +251,14 @@ impl Hsom {
         via: Option<Vec<(f64, Bound<'py, PyAny>)>>,
         band: bool,
         duration: Option<f64>,
+        point_at: Option<[f64; 3]>,
+        look_at: Option<[f64; 3]>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let how = How {
             conditioning: Some((goal, via)),
             band,
             duration,
+            aim: Aim { point_at, look_at },
         };
         reproduce(py, &self.inner, &self.name, None, initial, how)
     }
@@ -260,15 +266,20 @@ impl Hsom {
     /// The hierarchy in the loop from an initial posture, through `goal` and `via` as
     /// `reproduce` takes them: a `Stepper`, whose `step(observed)` gives the next posture to
     /// command from the posture the encoders read at this tick (docs/ALGORITHM.md, section 11).
-    #[pyo3(signature = (initial, goal = None, via = None))]
+    /// `point_at` and `look_at` aim its held part as `reproduce` does; the stepper's
+    /// `point_at` and `look_at` move the target while it runs.
+    #[pyo3(signature = (initial, goal = None, via = None, *, point_at = None, look_at = None))]
     fn stepper(
         &self,
         py: Python<'_>,
         initial: &Bound<'_, PyAny>,
         goal: Option<&Bound<'_, PyAny>>,
         via: Option<Vec<(f64, Bound<'_, PyAny>)>>,
+        point_at: Option<[f64; 3]>,
+        look_at: Option<[f64; 3]>,
     ) -> PyResult<crate::stepper::Stepper> {
-        crate::stepper::Stepper::new(py, &self.inner, None, &self.name, initial, goal, via)
+        let aim = Aim { point_at, look_at };
+        crate::stepper::Stepper::new(py, &self.inner, None, &self.name, initial, (goal, via), aim)
     }
 
     /// The nearest-sequence baseline (docs/ALGORITHM.md, section 3.6): of
@@ -407,18 +418,19 @@ pub(crate) fn learned_dict<'py>(
 }
 
 /// The goal and via-points of `Hsom.reproduce` (a posture; a list of `(phase, posture)`).
-type Conditioning<'a, 'py> = (
+pub(crate) type Conditioning<'a, 'py> = (
     Option<&'a Bound<'py, PyAny>>,
     Option<Vec<(f64, Bound<'py, PyAny>)>>,
 );
 
 /// How `reproduce` is asked to reproduce: through a goal and via-points, with the band, in a
-/// given duration (seconds).
+/// given duration (seconds), aimed.
 #[derive(Default)]
 pub(crate) struct How<'a, 'py> {
     pub(crate) conditioning: Option<Conditioning<'a, 'py>>,
     pub(crate) band: bool,
     pub(crate) duration: Option<f64>,
+    pub(crate) aim: Aim,
 }
 
 /// Gesture `label` of `model` (named `name` in messages; `None` for a model of one gesture)
@@ -439,10 +451,17 @@ pub(crate) fn reproduce<'py>(
     let conditions = (how.conditioning)
         .map(|(goal, via)| crate::stepper::conditions_of(goal, via))
         .transpose()?;
-    let (band, duration) = (how.band, how.duration);
+    let (band, duration, aim) = (how.band, how.duration, how.aim);
     let width = model.columns().len();
     let (rep, lohi) = py
         .allow_threads(|| {
+            let conditions = match aim.is_empty() {
+                true => conditions,
+                false => {
+                    let given = conditions.unwrap_or_default();
+                    Some(app::aimed(model, name, label, &initial, &given, &aim)?.0)
+                }
+            };
             let rep = app::reproduce(model, name, label, &initial, conditions.as_ref())?;
             let rep = match duration {
                 Some(d) => app::with_duration(&rep, model.columns(), d)?,

@@ -5,11 +5,13 @@ use std::sync::Arc;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
+use cosco_hsom::aim::{Aim, Aiming};
 use cosco_hsom::app;
 use cosco_hsom::condition::{Conditions, ViaPoint};
 use cosco_hsom::hsom::{GestureModel, Hsom, HsomStepper};
 use cosco_hsom::stepper::Stepper as _;
 
+use crate::model::Conditioning;
 use crate::{app_err, posture_of, py_err};
 
 /// The hierarchy in the loop: `step(observed)` gives the next posture to command from the
@@ -19,6 +21,8 @@ use crate::{app_err, posture_of, py_err};
 pub(crate) struct Stepper {
     inner: HsomStepper<Arc<Hsom>>,
     goal: Option<Vec<f64>>,
+    /// What the held part is aimed at, when it is.
+    aiming: Option<Aiming>,
 }
 
 /// The conditions of `goal` and `via` (a list of `(phase, posture)`), as `Hsom.reproduce`
@@ -50,19 +54,37 @@ impl Stepper {
         label: Option<&str>,
         name: &str,
         initial: &Bound<'_, PyAny>,
-        goal: Option<&Bound<'_, PyAny>>,
-        via: Option<Vec<(f64, Bound<'_, PyAny>)>>,
+        (goal, via): Conditioning<'_, '_>,
+        aim: Aim,
     ) -> PyResult<Self> {
         let model = Arc::new(model.branch(label).map_err(|e| py_err(&e))?.clone());
         let initial = posture_of(initial, "initial")?;
         let conditions = conditions_of(goal, via)?;
-        let inner = py
-            .allow_threads(|| app::stepper(model, name, &initial, &conditions))
+        let (inner, aiming) = py
+            .allow_threads(|| match aim.is_empty() {
+                true => Ok((app::stepper(model, name, &initial, &conditions)?, None)),
+                false => app::aimed_stepper(model, name, &initial, &conditions, &aim)
+                    .map(|(s, a)| (s, Some(a))),
+            })
             .map_err(app_err)?;
         Ok(Stepper {
             inner,
             goal: conditions.goal,
+            aiming,
         })
+    }
+
+    /// Aim at `aim` from this tick on (the stepper made with an aim).
+    fn retarget(&mut self, aim: Aim) -> PyResult<()> {
+        let Some(aiming) = &self.aiming else {
+            return Err(pyo3::exceptions::PyValueError::new_err(
+                "the stepper was made without point_at or look_at: its held part is chosen when it is made (give point_at or look_at to Hsom.stepper)",
+            ));
+        };
+        let next = aiming.retargeted(&aim).map_err(|e| py_err(&e))?;
+        self.inner.set_via(next.via()).map_err(|e| py_err(&e))?;
+        self.aiming = Some(next);
+        Ok(())
     }
 }
 
@@ -102,6 +124,41 @@ impl Stepper {
         self.inner.set_goal(&goal).map_err(|e| py_err(&e))?;
         self.goal = Some(goal);
         Ok(())
+    }
+
+    /// The point `(x, y, z)` the held part points at, or None. Setting it moves the target
+    /// from this tick on: solved from the same held posture and the rest of the reproduction
+    /// bent onto it (a stepper made with `point_at`).
+    #[getter]
+    fn point_at(&self) -> Option<(f64, f64, f64)> {
+        let p = self.aiming.as_ref().and_then(|a| a.aim().point_at);
+        p.map(|[x, y, z]| (x, y, z))
+    }
+
+    #[setter]
+    fn set_point_at(&mut self, target: Option<[f64; 3]>) -> PyResult<()> {
+        let aim = self.aiming.as_ref().map(Aiming::aim).unwrap_or_default();
+        self.retarget(Aim {
+            point_at: target,
+            ..aim
+        })
+    }
+
+    /// The point `(x, y, z)` the top camera looks at during the held part, or None. Setting
+    /// it moves the gaze from this tick on (a stepper made with `point_at` or `look_at`).
+    #[getter]
+    fn look_at(&self) -> Option<(f64, f64, f64)> {
+        let p = self.aiming.as_ref().and_then(|a| a.aim().look_at);
+        p.map(|[x, y, z]| (x, y, z))
+    }
+
+    #[setter]
+    fn set_look_at(&mut self, target: Option<[f64; 3]>) -> PyResult<()> {
+        let aim = self.aiming.as_ref().map(Aiming::aim).unwrap_or_default();
+        self.retarget(Aim {
+            look_at: target,
+            ..aim
+        })
     }
 
     /// How far along the reproduction is, 0 to 1.

@@ -122,3 +122,83 @@ def test_a_model_of_two_upper_body_gestures_recognises_held_out_ones(cfg, taught
     )
     for g, d in held_out.items():
         assert swapped.recognize(d).label != g
+
+
+def rot(axis, a):
+    """The rotation by `a` about the unit axis x, y or z (0, 1, 2)."""
+    c, s = np.cos(a), np.sin(a)
+    i, j = [(1, 2), (2, 0), (0, 1)][axis]
+    m = np.eye(3)
+    m[i, i], m[i, j], m[j, i], m[j, j] = c, -s, s, c
+    return m
+
+
+def pointing_deg(rows, target):
+    """The angle between the left arm's pointing ray (shoulder through l_gripper, the chain of
+    models/nao_upper_body.xml) and the direction to `target`, per row, degrees."""
+    shoulder = np.array([0.0, 0.098, 0.100])
+    out = []
+    for q in rows[:, 2:7]:
+        r1 = rot(1, q[0]) @ rot(2, q[1])
+        r2 = r1 @ rot(0, q[2]) @ rot(2, q[3])
+        r3 = r2 @ rot(0, q[4])
+        g = shoulder + r1 @ [0.105, 0.015, 0] + r2 @ [0.05595, 0, 0] + r3 @ [0.05775, 0, -0.01231]
+        a, b = g - shoulder, np.asarray(target) - shoulder
+        out.append(np.degrees(np.arccos(np.clip(a @ b / np.linalg.norm(a) / np.linalg.norm(b), -1, 1))))
+    return np.array(out)
+
+
+def gaze_deg(rows, target):
+    """The angle between the top camera's optical axis and the direction to `target`, degrees."""
+    out = []
+    for q in rows[:, :2]:
+        r = rot(2, q[0]) @ rot(1, q[1])
+        o = np.array([0, 0, 0.1265]) + r @ [0.05871, 0, 0.06364]
+        d = r @ rot(1, 0.0209435) @ [1.0, 0, 0]
+        b = np.asarray(target) - o
+        out.append(np.degrees(np.arccos(np.clip(d @ b / np.linalg.norm(b), -1, 1))))
+    return np.array(out)
+
+
+def longest_within(values, tolerance):
+    best = run = 0
+    for v in values:
+        run = run + 1 if v <= tolerance else 0
+        best = max(best, run)
+    return best
+
+
+def test_a_pointing_gesture_points_and_looks_at_a_target_and_follows_it_when_it_moves(cosco_bin, root, cfg):
+    demos = record(cosco_bin, root / "point", "point-left", 4, 9)
+    model = cosco_hsom.Hsom.fit(cfg, demos[:3], columns=JOINTS)
+    initial = demos[3][0]
+    target = (1.2, 1.0, 0.5)
+    plain = model.reproduce(initial)
+    aimed = model.reproduce(initial, point_at=target, look_at=target)
+    # the held part points within 2 degrees for at least 0.5 s (20 rows at 40 Hz), the camera
+    # looks within 1 degree; the unconditioned reproduction (the negative control) does neither
+    assert longest_within(pointing_deg(aimed, target), 2.0) >= 20
+    assert longest_within(gaze_deg(aimed, target), 1.0) >= 20
+    assert longest_within(pointing_deg(plain, target), 2.0) < 20
+    assert longest_within(gaze_deg(plain, target), 1.0) < 20
+    # in the loop, the target moved before the held part: the rest follows the new one
+    moved = (1.5, 0.6, 0.9)
+    s = model.stepper(initial, point_at=target)
+    assert s.point_at == target and s.look_at is None
+    commands, observed = [], initial
+    while not s.done:
+        if len(commands) == 15:
+            s.point_at = moved
+        observed = s.step(observed)
+        commands.append(observed)
+    commands = np.array(commands)
+    assert s.point_at == moved
+    assert longest_within(pointing_deg(commands, moved), 2.0) >= 20
+    assert longest_within(pointing_deg(commands, target), 2.0) < 20
+    # no jump where the target moved
+    assert np.abs(np.diff(commands, axis=0)).max() < 0.15
+    # a target the arm cannot point at names the closest direction it can
+    with pytest.raises(ValueError, match="closest direction"):
+        model.reproduce(initial, point_at=(-0.5, -2.0, 0.1))
+    with pytest.raises(ValueError, match="made without point_at"):
+        model.stepper(initial).point_at = target

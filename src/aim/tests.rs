@@ -165,3 +165,81 @@ fn the_kinematics_are_the_simulated_models() {
         1e-9
     ));
 }
+
+/// A left-arm pointing gesture as rows: rise over 40 rows, hold 40, fall 40.
+fn pointing_rows() -> Vec<Vec<f64>> {
+    let rest = crate::gesture::stand_init(Robot::LeftArm);
+    let top = crate::gesture::library::POINT_LEFT;
+    (0..120)
+        .map(|i| {
+            let s = match i {
+                0..40 => crate::curve::minimum_jerk_at(i as f64 / 40.0),
+                40..80 => 1.0,
+                _ => 1.0 - crate::curve::minimum_jerk_at((i - 80) as f64 / 40.0),
+            };
+            rest.iter().zip(top).map(|(a, b)| a + s * (b - a)).collect()
+        })
+        .collect()
+}
+
+#[test]
+fn an_aim_gives_via_points_along_the_held_part_and_a_new_target_moves_them() {
+    let robot = Robot::LeftArm;
+    let rows = pointing_rows();
+    let t = [1.5, 1.0, 0.2];
+    let aim = Aim {
+        point_at: Some(t),
+        look_at: None,
+    };
+    let (conditions, aiming) = Aiming::new(robot, &rows, &Conditions::default(), &aim).unwrap();
+    let (a, b) = aiming.solved().span;
+    // the hold, and the ends of the rise and the fall within 5 % of the apex
+    assert!((30..=40).contains(&a) && (79..=90).contains(&b), "{a}..{b}");
+    assert!(conditions.via.len() >= 5);
+    for v in &conditions.via {
+        let i = (v.phase * 119.0).round() as usize;
+        assert!((a..=b).contains(&i));
+        assert!(angle_to(Arm::Left.shoulder(), Arm::Left.pointing(&v.posture[..5]), t) < 1e-6);
+        // the wrist and the hand as the row has them
+        assert_eq!(v.posture[4..], rows[i][4..]);
+    }
+    let moved = [1.0, 0.2, 0.8];
+    let next = aiming
+        .retargeted(&Aim {
+            point_at: Some(moved),
+            look_at: None,
+        })
+        .unwrap();
+    assert_eq!(next.via().len(), conditions.via.len());
+    for (v, old) in next.via().iter().zip(&conditions.via) {
+        assert_eq!(v.phase, old.phase);
+        assert!(
+            angle_to(
+                Arm::Left.shoulder(),
+                Arm::Left.pointing(&v.posture[..5]),
+                moved
+            ) < 1e-6
+        );
+    }
+    // a look on the left arm, and a point on an aim that only looked, are refused
+    let look = Aim {
+        point_at: None,
+        look_at: Some(t),
+    };
+    assert!(aiming.retargeted(&look).is_err());
+    let up = Robot::UpperBody;
+    let rest = crate::gesture::stand_init(up);
+    let rows: Vec<Vec<f64>> = pointing_rows()
+        .iter()
+        .map(|r| {
+            let mut q = rest.clone();
+            q[2..8].copy_from_slice(r);
+            q
+        })
+        .collect();
+    let (_, looking) = Aiming::new(up, &rows, &Conditions::default(), &look).unwrap();
+    assert!(matches!(
+        looking.retargeted(&aim),
+        Err(AimError::Unsupported(_))
+    ));
+}

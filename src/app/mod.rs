@@ -58,8 +58,8 @@ pub use recognize::{
     answer_line, recognize_files, recognize_paths, recognize_stream, RecognisedFile,
 };
 pub use reproduce::{
-    aimed, conditions, continue_file, reproduce, reproduce_file, resume, stepper, with_duration,
-    ReproduceFile, ReproduceRequest,
+    aimed, aimed_stepper, conditions, continue_file, reproduce, reproduce_file, resume, stepper,
+    with_duration, ReproduceFile, ReproduceRequest,
 };
 pub use train::{train, train_files, update, update_files};
 

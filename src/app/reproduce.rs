@@ -113,6 +113,44 @@ pub fn reproduce(
     rep.map_err(|e| naming_model(e, model, model_name))
 }
 
+/// The robot whose kinematics aim a model of `columns` (`model_name` in messages): its
+/// variables must be the joints of the left arm or the upper body.
+fn robot_to_aim(columns: &[String], model_name: &str) -> Result<crate::robot::Robot> {
+    crate::robot::Robot::of_columns(columns).ok_or_else(|| {
+        Error::value(
+            "--point-at and --look-at",
+            format!(
+                "aim through a Nao's kinematics: the model {model_name} learned {} ({}), not the joints of the left arm or the upper body",
+                columns.len(),
+                columns.join(", ")
+            ),
+        )
+    })
+}
+
+/// [`stepper`] aimed at `aim`: the hierarchy's reproduction through `conditions`, its held
+/// part aimed ([`crate::aim::Aiming`]), the stepper started through the aim's via-points;
+/// with the aiming, to move the target while it runs ([`crate::aim::Aiming::retargeted`],
+/// then [`HsomStepper::set_via`](crate::stepper::Follower::set_via)).
+pub fn aimed_stepper<M: Borrow<Hsom>>(
+    model: M,
+    model_name: &str,
+    initial: &[f64],
+    conditions: &Conditions,
+    aim: &crate::aim::Aim,
+) -> Result<(HsomStepper<M>, crate::aim::Aiming)> {
+    let m = model.borrow();
+    let robot = robot_to_aim(m.columns(), model_name)?;
+    check_arm_range(m.columns(), initial)?;
+    let ranges = arm_ranges(m.columns());
+    conditions.check(m.columns(), ranges.as_deref(), initial)?;
+    let rows = (m.reproduce_conditioned(initial, conditions, ranges.as_deref()))
+        .map_err(|e| naming_model(e, m, model_name))?
+        .postures;
+    let (aimed, aiming) = crate::aim::Aiming::new(robot, &rows, conditions, aim)?;
+    Ok((stepper(model, model_name, initial, &aimed)?, aiming))
+}
+
 /// `conditions` and the via-points that aim the reproduction of gesture `label` of `model`
 /// (`model_name` in messages) from `initial` at `aim` ([`crate::aim`]): the reproduction
 /// through `conditions` alone, its held part's posture aimed, and that posture passed along
@@ -126,17 +164,7 @@ pub fn aimed(
     conditions: &Conditions,
     aim: &crate::aim::Aim,
 ) -> Result<(Conditions, crate::aim::Aimed)> {
-    let columns = model.columns();
-    let robot = crate::robot::Robot::of_columns(columns).ok_or_else(|| {
-        Error::value(
-            "--point-at and --look-at",
-            format!(
-                "aim through a Nao's kinematics: the model {model_name} learned {} ({}), not the joints of the left arm or the upper body",
-                columns.len(),
-                columns.join(", ")
-            ),
-        )
-    })?;
+    let robot = robot_to_aim(model.columns(), model_name)?;
     let rows = reproduce(model, model_name, label, initial, Some(conditions))?.postures;
     Ok(crate::aim::aim_conditions(robot, &rows, conditions, aim)?)
 }

@@ -322,6 +322,23 @@ impl Course {
     /// commanded, so the command does not jump).
     pub fn set_goal(&mut self, goal: &[f64]) -> Result<(), StepperError> {
         let conditions = self.with_goal(goal)?;
+        self.rebend(conditions)
+    }
+
+    /// Replace the via-points (phases of the whole reproduction, as at the start): checked as
+    /// the goal is, and the plan's rest from the posture last commanded re-bent onto the goal
+    /// and the via-points ahead. Those behind the current phase no longer matter.
+    pub fn set_via(&mut self, via: Vec<crate::condition::ViaPoint>) -> Result<(), StepperError> {
+        let conditions = Conditions {
+            goal: self.conditions.goal.clone(),
+            via,
+        };
+        conditions.check(&self.columns, self.ranges.as_deref(), self.initial())?;
+        self.rebend(conditions)
+    }
+
+    /// Take `conditions` and re-bend the rest onto them; on a refusal, nothing changes.
+    fn rebend(&mut self, conditions: Conditions) -> Result<(), StepperError> {
         let kept = std::mem::replace(&mut self.conditions, conditions);
         match self.bent(self.rows[self.at..].to_vec()) {
             Ok(rest) => {

@@ -60,6 +60,12 @@ impl<R: Replan> Follower<R> {
     pub fn course(&self) -> &Course {
         &self.course
     }
+
+    /// Replace the via-points from this tick on ([`Course::set_via`]): the rest re-bent onto
+    /// those ahead, from the posture last commanded.
+    pub fn set_via(&mut self, via: Vec<crate::condition::ViaPoint>) -> Result<(), StepperError> {
+        self.course.set_via(via)
+    }
 }
 
 impl<R: Replan> Stepper for Follower<R> {

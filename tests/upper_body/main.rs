@@ -7,6 +7,7 @@
 mod common;
 
 mod nao_tables;
+mod pointing;
 mod simulate_upper_body;
 mod upper_body_demos;
 mod upper_body_heldout;
