@@ -135,6 +135,7 @@ pub fn continuation_folds(
                 conditions: Default::default(),
                 band: None,
                 learned: None,
+                aimed: None,
             };
             fold_scores(&run, &executor, &train, held, diagonal(demos))
                 .map_err(ExperimentError::Invalid)

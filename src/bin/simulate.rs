@@ -7,6 +7,7 @@ use std::process::ExitCode;
 
 use anyhow::Result;
 use clap::Parser;
+use cosco_hsom::aim::Aim;
 use cosco_hsom::experiment::arm_loop::LoopMode;
 use cosco_hsom::experiment::job;
 use cosco_hsom::robot::Robot;
@@ -25,10 +26,10 @@ struct Args {
     #[arg(long, default_value = "left-arm")]
     robot: Robot,
     /// Gesture of the synthetic demonstrations. Left arm: reading-watch (default), wave,
-    /// reach-point, salute, or `all`: one hierarchy learns every gesture (`--count`
+    /// reach-point, salute, point-left, or `all`: one hierarchy learns every gesture (`--count`
     /// demonstrations each, one held out in turn), reproduces each on cue, and recognises the
     /// held-out ones. Upper body: wave-right (default), clap, welcome, shrug, nod, shake-head,
-    /// reading-watch, salute.
+    /// reading-watch, salute, point-left, point-right.
     #[arg(long)]
     gesture: Option<String>,
     /// CoSCo-HSOM configuration (XML); default: the shipped configs/nao-gestures.xml (the recommended events extension; configs/table1.xml is the paper taken literally), on the upper body configs/nao-upper-body.xml.
@@ -102,6 +103,20 @@ struct Args {
     /// all` or `--loop closed`).
     #[arg(long, value_name = "SECONDS")]
     duration: Option<f64>,
+    /// Point at X,Y,Z (metres, in the torso frame: x forward, y to the robot's left, z up), as
+    /// `cosco reproduce --point-at`: during the held part of the hierarchy's reproduction of
+    /// the main job, the ray from the pointing arm's shoulder through its gripper passes
+    /// through it (before `--duration` retimes it); the report says how near the executed
+    /// motion pointed. A target the arm cannot point at from the gesture's apex is refused
+    /// before any work, naming the closest direction it can. Not with `--gesture all` or
+    /// `--loop closed`.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = cosco_hsom::aim::parse_point)]
+    point_at: Option<[f64; 3]>,
+    /// Look at X,Y,Z (the upper body; metres, torso frame), as `cosco reproduce --look-at`:
+    /// during the held part the top camera's optical axis passes through it; the report says
+    /// how near the executed motion looked. Checked and refused as `--point-at`.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = cosco_hsom::aim::parse_point)]
+    look_at: Option<[f64; 3]>,
     /// Turn warnings into errors (posture values clamped into the joint ranges before
     /// execution): the outputs are written, the exit status is 1.
     #[arg(long)]
@@ -129,6 +144,16 @@ fn run(a: Args) -> Result<()> {
         }
         cosco_hsom::export::limits::check_duration(d)?;
     }
+    let aim = Aim {
+        point_at: a.point_at,
+        look_at: a.look_at,
+    };
+    if !aim.is_empty() && (a.gesture.as_deref() == Some("all") || a.loop_mode == LoopMode::Closed) {
+        anyhow::bail!(
+            "{} aims the main job's reproduction: not with --gesture all or --loop closed",
+            job::aim_flags(&aim)
+        );
+    }
     if a.loop_mode == LoopMode::Closed && a.gesture.as_deref() == Some("all") {
         anyhow::bail!("--loop closed runs one gesture in the loop; --gesture all is not one");
     }
@@ -153,7 +178,17 @@ fn run(a: Args) -> Result<()> {
         disturbances,
         recognize: a.recognize,
         duration: a.duration,
+        aim,
     };
+    // the targets on the gesture's apex, before anything is recorded (recorded demonstrations:
+    // on the first one's held part, before anything is written)
+    if !aim.is_empty() && job.demos.is_none() {
+        job::check_aim(
+            job.robot,
+            &job::gesture(job.robot, &job.gesture, false)?,
+            &aim,
+        )?;
+    }
     if let Some(d) = &job.demos {
         let line = cosco_hsom::resample::report_line(std::slice::from_ref(d), job.resample)?;
         if let Some(l) = line {

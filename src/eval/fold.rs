@@ -6,6 +6,7 @@
 use std::borrow::Cow;
 use std::sync::Arc;
 
+use crate::aim::{Aim, Aimed};
 use crate::condition::{Conditions, ConfidenceBand};
 use crate::config::HsomConfig;
 use crate::curve::at_phase;
@@ -14,10 +15,10 @@ use crate::dtw::{dtw, euclidean, Band};
 use crate::gmr::ComponentChoice;
 use crate::hsom::Hsom;
 use crate::metrics::{column_swings, trimmed_normalized_jerk, MetricsParams, StartEndReference};
-use crate::robot::arm_ranges;
+use crate::robot::{arm_ranges, Robot};
 
 use super::executor::{Executed, Executor};
-use super::learned::{msg, timed, Fitted, Kept, Learned};
+use super::learned::{msg, timed, Fitted, Kept, Learned, Planned};
 use super::method::{Method, GMR_COMPONENTS};
 use super::results::{Commanded, ConditionErrors, Fold, FoldScores, Run, Score, Swings};
 
@@ -184,6 +185,11 @@ pub struct FoldInput<'a> {
     /// The hierarchy's reproduction retimed to this many seconds, its path kept
     /// ([`crate::export::limits::at_duration`]; `None`: its own tempo).
     pub duration: Option<f64>,
+    /// What the hierarchy's reproduction points and looks at during its held part
+    /// ([`crate::aim::aim_conditions`]: via-points through the aimed posture, solved on its
+    /// reproduction through the fold's conditions alone), before any retiming (empty: not
+    /// aimed).
+    pub aim: Aim,
 }
 
 impl<'a> FoldInput<'a> {
@@ -202,6 +208,7 @@ impl<'a> FoldInput<'a> {
             progress: None,
             keep: false,
             duration: None,
+            aim: Aim::default(),
         }
     }
 }
@@ -227,6 +234,9 @@ pub struct MethodRun<T> {
     pub band: Option<ConfidenceBand>,
     /// What the method learned (`None` for a run made otherwise).
     pub learned: Option<Arc<Learned>>,
+    /// What the hierarchy's postures were aimed at, solved ([`FoldInput::aim`]; `None` when
+    /// not aimed), its held part in rows of `postures`.
+    pub aimed: Option<Aimed>,
 }
 
 /// Each method of a fold with its run, or the reason it produced none.
@@ -307,8 +317,20 @@ pub fn run_fold<E: Executor>(
             Learned::fit(method, train, period, input.gmr_components, &mut hsom)?;
         let speed = executor.gmr_lead_in_speed(train, period);
         let mut p = learned.plan(method, train, initial, &conditions, period, speed)?;
+        let (mut used, mut aimed) = (conditions.clone(), None);
+        if method == Method::Hierarchy && !input.aim.is_empty() {
+            let (c, a) = aim_conditions(&target.columns, initial, &conditions, &input.aim, &p)?;
+            let q = learned.plan(method, train, initial, &c, period, speed)?;
+            p = Planned {
+                reproduce_s: p.reproduce_s + q.reproduce_s,
+                ..q
+            };
+            (used, aimed) = (c, Some(a));
+        }
         if let (Method::Hierarchy, Some(d)) = (method, input.duration) {
+            let len = p.postures.len();
             p = p.at_duration(&target.columns, period, d)?;
+            aimed = aimed.map(|a| retimed_span(a, len, p.postures.len()));
         }
         let executed = executor.execute(method, &p.postures, input.targets)?;
         Ok(MethodRun {
@@ -317,12 +339,50 @@ pub fn run_fold<E: Executor>(
             train_s,
             reproduce_s: p.reproduce_s,
             fitted: p.fitted,
-            conditions: conditions.clone(),
+            conditions: used,
             band: p.band,
             learned: Some(Arc::new(learned)),
+            aimed,
         })
     };
     methods.iter().map(|&m| (m, run(m))).collect()
+}
+
+/// `conditions` and the via-points that aim `plan` (the hierarchy's reproduction from
+/// `initial` through `conditions` alone, of the variables `columns`) at `aim`
+/// ([`crate::aim::aim_conditions`]), with what was solved; checked as `cosco reproduce
+/// --point-at` checks them (against the robot's joint ranges). Refused when `columns` are not
+/// a robot's joints.
+fn aim_conditions(
+    columns: &[String],
+    initial: &[f64],
+    conditions: &Conditions,
+    aim: &Aim,
+    plan: &Planned,
+) -> Result<(Conditions, Aimed), String> {
+    let robot = Robot::of_columns(columns).ok_or_else(|| {
+        format!(
+            "--point-at and --look-at aim through a Nao's kinematics: the demonstrations' variables are {}, not the joints of the left arm or the upper body",
+            columns.join(", ")
+        )
+    })?;
+    let (aimed, solved) =
+        crate::aim::aim_conditions(robot, &plan.postures, conditions, aim).map_err(msg)?;
+    (aimed.check(columns, Some(&robot.ranges()), initial)).map_err(msg)?;
+    Ok((aimed, solved))
+}
+
+/// `aimed` with its held part in rows of the reproduction of `len` rows retimed to `n` rows
+/// (the same path read at another pace: row `i` is at row `i (n - 1) / (len - 1)`).
+fn retimed_span(aimed: Aimed, len: usize, n: usize) -> Aimed {
+    let at = |i: usize| {
+        let scaled = (i * (n - 1)) as f64 / (len - 1).max(1) as f64;
+        (scaled.round() as usize).min(n - 1)
+    };
+    Aimed {
+        span: (at(aimed.span.0), at(aimed.span.1)),
+        ..aimed
+    }
 }
 
 /// Every metric of `run` (executed by `executor`) against its first target, the motion's and

@@ -270,7 +270,15 @@ pub fn compare(job: &CompareJob, on_progress: Progress<'_>) -> Result<Report> {
     clock.lap("read demonstrations");
 
     let mut files = Vec::new();
-    let run = hsom_on_arm(&arm, &cfg, &demos, job.transition, None, on_progress)?;
+    let run = hsom_on_arm(
+        &arm,
+        &cfg,
+        &demos,
+        job.transition,
+        None,
+        Default::default(),
+        on_progress,
+    )?;
     let notes = vec![format!("transition: {:?}", job.transition)];
     let hsom_result = write_hsom_run(out, &run, notes, &mut files)?;
     clock.lap("CoSCo-HSOM (train + reproduce + execute + metrics)");

@@ -6,6 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::aim::{gaze_errors, pointing_errors, Aim, AimError, Aimed, Point};
 use crate::config::{load_config_or_robots, HsomConfig};
 use crate::demo_sets::read_demos;
 use crate::demos::Demonstration;
@@ -58,6 +59,88 @@ pub fn gesture(robot: Robot, name: &str, all: bool) -> Result<Gesture> {
             Gesture::names(robot).join(", ")
         ))
     })
+}
+
+/// `aim`'s flags as given: `--point-at X,Y,Z`, `--look-at X,Y,Z`.
+pub fn aim_flags(aim: &Aim) -> String {
+    let flag =
+        |name: &str, t: Option<Point>| t.map(|t| format!("{name} {},{},{}", t[0], t[1], t[2]));
+    (flag("--point-at", aim.point_at).into_iter())
+        .chain(flag("--look-at", aim.look_at))
+        .collect::<Vec<_>>()
+        .join(" and ")
+}
+
+/// A refused target, naming its flag and value when the refusal does not.
+fn aim_refused(e: AimError, aim: &Aim) -> ExperimentError {
+    let flag = match &e {
+        AimError::Unreachable { what, .. } if what == "the head" => Aim {
+            point_at: None,
+            ..*aim
+        },
+        AimError::Unreachable { .. } => Aim {
+            look_at: None,
+            ..*aim
+        },
+        _ => return ExperimentError::Invalid(e.to_string()),
+    };
+    ExperimentError::Invalid(format!("{}: {e}", aim_flags(&flag)))
+}
+
+/// The targets of `aim` checked on `gesture`'s apex, before any work (the held part of its
+/// reproductions is near it): the pointing arm ([`crate::aim::pointing_arm`] of its initial
+/// posture and apex) pointed at `--point-at`, then the head turned to `--look-at`
+/// ([`crate::aim::point`], [`crate::aim::look`]), each within the joint ranges. A target the
+/// arm or the head cannot reach is refused naming the closest direction it can; `--look-at`
+/// on the left arm, which has no head, is refused.
+pub fn check_aim(robot: Robot, gesture: &Gesture, aim: &Aim) -> Result<()> {
+    let apex = gesture.apex();
+    let mut posture = apex.clone();
+    if let Some(target) = aim.point_at {
+        let arm = crate::aim::pointing_arm(robot, &[gesture.initial.clone(), apex]);
+        posture =
+            crate::aim::point(robot, arm, &posture, target).map_err(|e| aim_refused(e, aim))?;
+    }
+    if let Some(target) = aim.look_at {
+        crate::aim::look(robot, &posture, target).map_err(|e| aim_refused(e, aim))?;
+    }
+    Ok(())
+}
+
+/// The report's notes on what the hierarchy's reproduction was aimed at (`aimed`, solved for
+/// `aim`): the angle between the target and the pointing ray (the top camera's optical axis)
+/// on the encoders' rows of `executed` over the held part, the largest and the median.
+fn aim_notes(robot: Robot, aim: &Aim, aimed: Option<&Aimed>, executed: &Recording) -> Vec<String> {
+    let rows = &executed.qpos;
+    let Some(aimed) = aimed.filter(|_| !rows.is_empty()) else {
+        return Vec::new();
+    };
+    let last = rows.len() - 1;
+    let held = &rows[aimed.span.0.min(last)..=aimed.span.1.min(last)];
+    let seconds = held.len() as f64 / executed.rate_hz;
+    let within = |errors: Vec<f64>| {
+        let largest = errors.iter().copied().fold(0.0, f64::max);
+        let median = crate::stats::median(errors).unwrap_or(f64::NAN);
+        format!("within {largest:.2} deg of it over the held part ({seconds:.2} s) after execution (median {median:.2} deg)")
+    };
+    let at = |t: Point| format!("aimed at ({}, {}, {}) m", t[0], t[1], t[2]);
+    let mut notes = Vec::new();
+    if let (Some(t), Some(arm)) = (aim.point_at, aimed.arm) {
+        notes.push(format!(
+            "{} (--point-at): the {} arm's pointing ray {}",
+            at(t),
+            arm.name(),
+            within(pointing_errors(robot, arm, held, t))
+        ));
+    }
+    if let Some(t) = aim.look_at {
+        notes.push(format!(
+            "{} (--look-at): the top camera's optical axis {}",
+            at(t),
+            within(gaze_errors(held, t))
+        ));
+    }
+    notes
 }
 
 /// Record synthetic demonstrations in the simulator (stage `demonstrating`).
@@ -241,6 +324,9 @@ pub struct Job {
     /// The hierarchy's reproduction retimed to this many seconds, its path kept (`--duration`;
     /// [`crate::export::limits::at_duration`]).
     pub duration: Option<f64>,
+    /// What the hierarchy's reproduction points and looks at during its held part
+    /// (`--point-at`, `--look-at`; [`crate::eval::FoldInput::aim`]), before any retiming.
+    pub aim: Aim,
 }
 
 /// What the main job produced: the report (also written as `report.md` and `report.json`) and
@@ -325,6 +411,11 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
     for d in &demos {
         check_reachable_of(robot, &d.rows, &d.source)?;
     }
+    // recorded demonstrations: the aim checked on the first one's held part before anything
+    // is written (`simulate` checks a synthetic gesture's apex before recording, `check_aim`)
+    if job.demos.is_some() && !job.aim.is_empty() {
+        crate::aim::solve(robot, &demos[0].rows, &job.aim).map_err(|e| aim_refused(e, &job.aim))?;
+    }
     let demo_files = write_demos(&out.join("demos"), &demos)?;
     let demo_info: Vec<DemoInfo> = demos
         .iter()
@@ -345,6 +436,7 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
         &demos,
         job.transition,
         job.duration,
+        job.aim,
         on_progress,
     )?;
     clock.split_lap(
@@ -352,9 +444,10 @@ fn main_job_on<const N: usize>(job: &Job, on_progress: Progress<'_>) -> Result<J
         run.train_s,
         "reproduction (predict + execute) and metrics",
     );
-    let retimed = (job.duration).map(|d| format!("retimed to {d} s (--duration), its path kept"));
-    let hsom_result = write_hsom_run(out, &run, retimed.into_iter().collect(), &mut files)?;
     let executed = &run.executed.trace;
+    let mut notes = aim_notes(robot, &job.aim, run.aimed.as_ref(), executed);
+    notes.extend((job.duration).map(|d| format!("retimed to {d} s (--duration), its path kept")));
+    let hsom_result = write_hsom_run(out, &run, notes, &mut files)?;
     clock.lap("writing the model and reproduction.csv");
 
     // 5. Plots.

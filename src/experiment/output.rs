@@ -5,6 +5,7 @@
 use std::path::Path;
 use std::time::Instant;
 
+use crate::aim::Aim;
 use crate::config::HsomConfig;
 use crate::config::DEFAULT_CONFIG_NAME;
 use crate::demos::{write_csv, Demonstration};
@@ -101,14 +102,16 @@ pub fn hsom_model(run: &MethodRun<Recording>) -> Result<(&Hsom, &Reproduction), 
 }
 
 /// Train CoSCo-HSOM with `cfg` on `demos` (stage `training` to `on_progress`), reproduce from
-/// the first one's initial posture, execute on the arm with `transition` and score against
-/// all of them (the main job's in-sample run).
+/// the first one's initial posture (aimed at `aim`, then retimed to `duration` seconds, when
+/// given; [`FoldInput::aim`], [`FoldInput::duration`]), execute on the arm with `transition`
+/// and score against all of them (the main job's in-sample run).
 pub fn hsom_on_arm<const N: usize>(
     arm: &NaoArm<N>,
     cfg: &HsomConfig,
     demos: &[Demonstration],
     transition: Transition,
     duration: Option<f64>,
+    aim: Aim,
     on_progress: Progress<'_>,
 ) -> Result<MethodRun<Recording>, ExperimentError> {
     let total = cfg.params().training_steps;
@@ -117,6 +120,7 @@ pub fn hsom_on_arm<const N: usize>(
         config: Some(cfg),
         progress: Some(&progress),
         duration,
+        aim,
         ..FoldInput::new(demos, demos)
     };
     on_arm(arm, transition, Method::Hierarchy, &input)

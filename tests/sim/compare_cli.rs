@@ -372,3 +372,82 @@ fn simulate_duration_retimes_the_reproduction_and_refuses_what_the_servos_cannot
     assert!(!o.status.success());
     assert!(!all.exists());
 }
+
+#[test]
+fn simulate_point_at_aims_the_executed_reproduction_and_refuses_what_it_cannot_aim() {
+    use cosco_hsom::aim::{longest_within, pointing_errors, Arm};
+    use cosco_hsom::robot::Robot;
+    let tmp = tempfile::tempdir().unwrap();
+    let simulate = |args: &[&str], out: &Path| {
+        let o = Command::cargo_bin("simulate")
+            .unwrap()
+            .args([
+                "--no-render",
+                "--no-variants",
+                "--no-heldout",
+                "--count",
+                "3",
+            ])
+            .args(args)
+            .arg("--out")
+            .arg(out)
+            .output()
+            .unwrap();
+        (
+            o.status.success(),
+            String::from_utf8_lossy(&o.stderr).to_string(),
+        )
+    };
+    let target = [1.5, 1.2, 0.6];
+    // the longest stretch of the executed encoder rows (40 Hz) whose pointing ray is within 3
+    // degrees of the target, in seconds
+    let pointing_within_3_deg = |out: &Path| {
+        let executed = cosco_hsom::demos::read_csv(&out.join("reproduction.csv")).unwrap();
+        let errors = pointing_errors(Robot::LeftArm, Arm::Left, &executed.rows, target);
+        longest_within(&errors, 3.0) as f64 / 40.0
+    };
+    let aimed = tmp.path().join("aimed");
+    let (ok, err) = simulate(
+        &["--gesture", "point-left", "--point-at", "1.5,1.2,0.6"],
+        &aimed,
+    );
+    assert!(ok, "{err}");
+    let md = std::fs::read_to_string(aimed.join("report.md")).unwrap();
+    assert!(
+        md.contains("aimed at (1.5, 1.2, 0.6) m (--point-at): the left arm's pointing ray within"),
+        "{md}"
+    );
+    let held = pointing_within_3_deg(&aimed);
+    assert!(held >= 0.5, "pointed within 3 deg for {held} s");
+    // the control: the same gesture unaimed does not point there
+    let plain = tmp.path().join("plain");
+    let (ok, err) = simulate(&["--gesture", "point-left"], &plain);
+    assert!(ok, "{err}");
+    assert_eq!(pointing_within_3_deg(&plain), 0.0);
+    // behind the robot on its right: refused before anything is recorded, naming the closest
+    // direction the left arm reaches
+    let behind = tmp.path().join("behind");
+    let (ok, err) = simulate(
+        &["--gesture", "point-left", "--point-at", "-0.5,-2,0.1"],
+        &behind,
+    );
+    assert!(!ok && err.contains("closest direction"), "{err}");
+    assert!(err.contains("--point-at -0.5,-2,0.1"), "{err}");
+    assert!(!behind.exists());
+    // every gesture, and a gaze on the arm without a head: refused before anything is recorded
+    for (args, says) in [
+        (
+            &["--gesture", "all", "--point-at", "1.5,1.2,0.6"][..],
+            "not with --gesture all",
+        ),
+        (
+            &["--gesture", "point-left", "--look-at", "1.5,1.2,0.6"][..],
+            "--look-at turns the head",
+        ),
+    ] {
+        let out = tmp.path().join("refused");
+        let (ok, err) = simulate(args, &out);
+        assert!(!ok && err.contains(says), "{args:?}: {err}");
+        assert!(!out.exists(), "{args:?}");
+    }
+}
