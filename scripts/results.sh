@@ -97,6 +97,7 @@ run swing_folds $ex/swing_folds --seeds 12 --out docs/figures
 run replay $ex/replay_baseline --seeds 11-15
 run ceiling $ex/encoding_ceiling --seeds 11-15
 run duration $ex/retime --seeds 11-15
+run pointing $ex/pointing --seeds 41-45 --left-seeds 11-20
 rm -rf "$out/sweep" # finished runs are skipped: measure this commit's
 run sweep $bin/cosco sweep --spec configs/sweeps/paper-comparison.toml --out "$out/sweep"
 # The upper body (its own script, which rewrites its parts of the docs from the outputs too).
