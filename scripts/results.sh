@@ -98,6 +98,7 @@ run replay $ex/replay_baseline --seeds 11-15
 run ceiling $ex/encoding_ceiling --seeds 11-15
 run duration $ex/retime --seeds 11-15
 run pointing $ex/pointing --seeds 41-45 --left-seeds 11-20
+$ex/upper_body_frames --width 480 --pointing docs/figures/pointing.png
 rm -rf "$out/sweep" # finished runs are skipped: measure this commit's
 run sweep $bin/cosco sweep --spec configs/sweeps/paper-comparison.toml --out "$out/sweep"
 # The upper body (its own script, which rewrites its parts of the docs from the outputs too).

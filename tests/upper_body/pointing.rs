@@ -83,27 +83,25 @@ fn the_right_arm_points_and_the_head_looks_at_a_target_no_demonstration_pointed_
         String::from_utf8_lossy(&out.stderr)
     );
     let initial_text: Vec<String> = initial.iter().map(f64::to_string).collect();
+    // `cosco <args> --model m.bin --initial ... --out <out>`
+    let run = |args: &[&str], out: &std::path::Path| {
+        let mut c = cosco();
+        c.args(args).arg("--model").arg(&m);
+        c.args(["--initial", &initial_text.join(",")])
+            .arg("--out")
+            .arg(out);
+        c.output().unwrap()
+    };
+    let ok = |out: &std::process::Output| {
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
     let rep = dir.path().join("aimed.csv");
-    let out = cosco()
-        .args([
-            "reproduce",
-            "--point-at",
-            "1.2,-0.85,0.45",
-            "--look-at",
-            "1.2,-0.85,0.45",
-        ])
-        .arg("--model")
-        .arg(&m)
-        .args(["--initial", &initial_text.join(",")])
-        .arg("--out")
-        .arg(&rep)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let t = "1.2,-0.85,0.45";
+    ok(&run(&["reproduce", "--point-at", t, "--look-at", t], &rep));
     // `step`, then the 14 joints
     let text = std::fs::read_to_string(&rep).unwrap();
     let rows: Vec<Vec<f64>> = (text.lines().skip(1))
@@ -111,36 +109,16 @@ fn the_right_arm_points_and_the_head_looks_at_a_target_no_demonstration_pointed_
         .collect();
     assert!(longest_within(&right(&rows), 2.0) >= HALF_SECOND);
     let json = dir.path().join("aimed.json");
-    let out = cosco()
-        .args([
-            "export",
-            "--format",
-            "naoqi",
-            "--point-at",
-            "1.2,-0.85,0.45",
-        ])
-        .arg("--model")
-        .arg(&m)
-        .args(["--initial", &initial_text.join(",")])
-        .arg("--out")
-        .arg(&json)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    ok(&run(
+        &["export", "--format", "naoqi", "--point-at", t],
+        &json,
+    ));
+    assert!(json.exists());
     // a target the arm cannot point at: refused, naming the closest direction
-    let out = cosco()
-        .args(["reproduce", "--point-at", "-0.5,2,0.1"])
-        .arg("--model")
-        .arg(&m)
-        .args(["--initial", &initial_text.join(",")])
-        .arg("--out")
-        .arg(dir.path().join("no.csv"))
-        .output()
-        .unwrap();
+    let out = run(
+        &["reproduce", "--point-at", "-0.5,2,0.1"],
+        &dir.path().join("no.csv"),
+    );
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success());
     assert!(
