@@ -163,3 +163,49 @@ fn a_move_displaces_the_arm_and_holds_it_there() {
     assert_eq!((r.held[10], r.held[11], r.held[12]), (true, true, false));
     assert_eq!(r.release, Some(12));
 }
+
+#[test]
+fn replaced_via_points_are_passed_from_then_on_and_a_refused_set_changes_nothing() {
+    let plan = arc(80);
+    let via = |posture: Vec<f64>| ViaPoint {
+        phase: 0.75,
+        posture,
+    };
+    let first = Conditions {
+        goal: None,
+        via: vec![via(vec![-0.8, 0.7])],
+    };
+    let bent = crate::condition::meet(&plan, &first.points(), None).unwrap();
+    let mut course = Course::new(cols(2), bent.clone(), first, None).unwrap();
+    let mut path = Vec::new();
+    for k in 0..80 {
+        if k == 30 {
+            // the wrong width is refused, and the course keeps its via-point
+            assert!(course.set_via(vec![via(vec![0.0])]).is_err());
+            course.set_via(vec![via(vec![-0.3, 0.5])]).unwrap();
+        }
+        let observed = path.last().cloned().unwrap_or(plan[0].clone());
+        path.push(
+            course
+                .step_with(&observed, true, |c| Ok(c.realigned()))
+                .unwrap(),
+        );
+    }
+    // the path until then is the first plan's; afterwards it passes the new via-point (read
+    // between two rows at its phase of the rest) and never jumps
+    assert_eq!(path[..30], bent[1..31]);
+    let nearest = (path.iter())
+        .map(|p| crate::dtw::euclidean(p, &[-0.3, 0.5]))
+        .fold(f64::INFINITY, f64::min);
+    assert!(nearest < 0.02, "{nearest}");
+    // the control: the first plan does not pass there
+    let before = (bent.iter())
+        .map(|p| crate::dtw::euclidean(p, &[-0.3, 0.5]))
+        .fold(f64::INFINITY, f64::min);
+    assert!(before > 0.1, "{before}");
+    let largest = (1..bent.len())
+        .map(|k| crate::dtw::euclidean(&bent[k], &bent[k - 1]))
+        .fold(0.0, f64::max);
+    let steps = (31..path.len()).map(|k| crate::dtw::euclidean(&path[k], &path[k - 1]));
+    assert!(steps.fold(0.0, f64::max) < 2.0 * largest);
+}
