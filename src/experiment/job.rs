@@ -43,7 +43,11 @@ pub const DEFAULT_ENCODER_NOISE: f64 = 0.001;
 /// when the command takes it: `all`) and names the robot whose gesture it is, if another's.
 pub fn gesture(robot: Robot, name: &str, all: bool) -> Result<Gesture> {
     Gesture::by_name(robot, name).ok_or_else(|| {
-        let all = if all { ", or all (every gesture)" } else { "" };
+        let all = if all {
+            ", or all (every gesture but the pointing ones)"
+        } else {
+            ""
+        };
         let other = (Robot::ALL.into_iter())
             .find(|&r| Gesture::by_name(r, name).is_some())
             .map_or(String::new(), |r| {
