@@ -179,6 +179,16 @@ pub enum AimError {
         /// The least distance.
         minimum: f64,
     },
+    /// Farther than [`MAX_DISTANCE`] from the torso's origin.
+    #[error("{what}: the target ({x}, {y}, {z}) m is {distance:.0} m away; allowed up to {MAX_DISTANCE} m (a direction that far off is the same from a nearer point on the line)", x = target[0], y = target[1], z = target[2])]
+    TooFar {
+        /// `--point-at` or `--look-at`.
+        what: String,
+        /// The target.
+        target: Point,
+        /// Its distance from the torso's origin.
+        distance: f64,
+    },
     /// A value that is not a finite number.
     #[error("{what}: ({x}, {y}, {z}) is not a point: need three finite numbers (metres)", x = target[0], y = target[1], z = target[2])]
     NonFinite {
@@ -309,14 +319,26 @@ impl Chain<'_> {
     }
 }
 
+/// The farthest target, metres from the torso's origin.
+pub const MAX_DISTANCE: f64 = 1000.0;
+
+/// `target` is a point of finite values within [`MAX_DISTANCE`].
 fn finite(what: &str, target: Point) -> Result<(), AimError> {
-    if target.iter().all(|v| v.is_finite()) {
-        return Ok(());
+    if !target.iter().all(|v| v.is_finite()) {
+        return Err(AimError::NonFinite {
+            what: what.into(),
+            target,
+        });
     }
-    Err(AimError::NonFinite {
-        what: what.into(),
-        target,
-    })
+    let distance = target.iter().map(|v| v * v).sum::<f64>().sqrt();
+    if distance > MAX_DISTANCE {
+        return Err(AimError::TooFar {
+            what: what.into(),
+            target,
+            distance,
+        });
+    }
+    Ok(())
 }
 
 fn unreachable(what: String, origin: Point, closest: Point, target: Point, off: f64) -> AimError {

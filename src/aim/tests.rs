@@ -77,6 +77,12 @@ fn a_target_behind_the_other_shoulder_is_refused_naming_the_closest_direction() 
         Err(AimError::NonFinite { .. })
     ));
     assert!(matches!(
+        point(robot, Arm::Left, &held, [1e300, 0.0, 0.0]),
+        Err(AimError::TooFar { .. })
+    ));
+    // far, but within the bound: solved as the direction
+    assert!(point(robot, Arm::Left, &held, [900.0, 300.0, 100.0]).is_ok());
+    assert!(matches!(
         point(robot, Arm::Right, &held, [1.0, -0.5, 0.1]),
         Err(AimError::Unsupported(_))
     ));
