@@ -363,7 +363,7 @@ fn unreachable(what: String, origin: Point, closest: Point, target: Point, off: 
 pub fn point(robot: Robot, arm: Arm, posture: &[f64], target: Point) -> Result<Vec<f64>, AimError> {
     finite("--point-at", target)?;
     let at = arm.offset(robot).ok_or_else(|| {
-        AimError::Unsupported(format!("the {} has no {} arm", robot.name(), arm.name()))
+        AimError::Unsupported(format!("the {} has no {} arm", robot.phrase(), arm.name()))
     })?;
     let distance = (Vector3::from(target) - Vector3::from(arm.shoulder())).norm();
     if distance < MIN_POINT_DISTANCE {
@@ -409,7 +409,7 @@ pub fn look(robot: Robot, posture: &[f64], target: Point) -> Result<Vec<f64>, Ai
     if robot != Robot::UpperBody {
         return Err(AimError::Unsupported(format!(
             "--look-at turns the head: the {} has none (give --robot upper-body)",
-            robot.name()
+            robot.phrase()
         )));
     }
     let (origin, _) = camera(&posture[..2]);
@@ -718,4 +718,34 @@ pub fn longest_within(values: &[f64], tolerance: f64) -> usize {
         best = best.max(run);
     }
     best
+}
+
+/// What `rows` (postures of `robot`, `rate_hz` a second) do for `aim`, in words: how long the
+/// pointing arm's ray (the top camera's axis) stays within 1 degree of each target, and the
+/// nearest it comes; e.g. `the left arm points within 1 deg of (1.5, 1, 0.5) m for 1.40 s
+/// (nearest 0.00 deg)`.
+pub fn summary(robot: Robot, rows: &[Vec<f64>], aim: &Aim, rate_hz: f64) -> Vec<String> {
+    let held = |errors: Vec<f64>, who: String, verb: &str, t: Point| {
+        let nearest = errors.iter().copied().fold(f64::INFINITY, f64::min);
+        let seconds = longest_within(&errors, 1.0) as f64 / rate_hz;
+        format!(
+            "{who} {verb} within 1 deg of ({}, {}, {}) m for {seconds:.2} s (nearest {nearest:.2} deg)",
+            t[0], t[1], t[2]
+        )
+    };
+    let mut lines = Vec::new();
+    if let Some(t) = aim.point_at {
+        let arm = pointing_arm(robot, rows);
+        let errors = pointing_errors(robot, arm, rows, t);
+        lines.push(held(errors, format!("the {} arm", arm.name()), "points", t));
+    }
+    if let Some(t) = aim.look_at.filter(|_| robot == Robot::UpperBody) {
+        lines.push(held(
+            gaze_errors(rows, t),
+            "the top camera".into(),
+            "looks",
+            t,
+        ));
+    }
+    lines
 }

@@ -452,10 +452,17 @@ pub fn reproduce_file(r: &ReproduceFile) -> Result<String> {
     band?;
     files::write(&r.out, &bytes)?;
     let n = rep.postures.len();
-    Ok(match label {
+    let mut line = match label {
         Some(l) => format!("{n} postures of {l} written to {}", r.out.display()),
         None => format!("{n} postures written to {}", r.out.display()),
-    })
+    };
+    if let Some(robot) = crate::robot::Robot::of_columns(&columns).filter(|_| !q.aim.is_empty()) {
+        let rate = crate::export::DEFAULT_STEP_RATE_HZ;
+        for said in crate::aim::summary(robot, &rep.postures, &q.aim, rate) {
+            line += &format!("; {said}");
+        }
+    }
+    Ok(line)
 }
 
 /// The first `prefix` samples of a demonstration file, continued by the gesture the

@@ -101,7 +101,18 @@ fn the_right_arm_points_and_the_head_looks_at_a_target_no_demonstration_pointed_
     };
     let rep = dir.path().join("aimed.csv");
     let t = "1.2,-0.85,0.45";
-    ok(&run(&["reproduce", "--point-at", t, "--look-at", t], &rep));
+    let out = run(&["reproduce", "--point-at", t, "--look-at", t], &rep);
+    ok(&out);
+    // the line says how long it points and looks
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        said.contains("the right arm points within 1 deg of (1.2, -0.85, 0.45) m for"),
+        "{said}"
+    );
+    assert!(
+        said.contains("the top camera looks within 1 deg of"),
+        "{said}"
+    );
     // `step`, then the 14 joints
     let text = std::fs::read_to_string(&rep).unwrap();
     let rows: Vec<Vec<f64>> = (text.lines().skip(1))
