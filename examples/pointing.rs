@@ -122,12 +122,8 @@ fn demonstrated(robot: Robot, arm: Arm, demos: &[Demonstration]) -> Result<Vec<P
     demos
         .iter()
         .map(|d| {
-            let held = aim::held_span(&d.rows, at..at + 4);
-            let n = (held.1 - held.0 + 1) as f64;
-            let q: Vec<f64> = (at..at + 5)
-                .map(|j| d.rows[held.0..=held.1].iter().map(|r| r[j]).sum::<f64>() / n)
-                .collect();
-            Ok(arm.pointing(&q))
+            let held = aim::held_posture(&d.rows, aim::held_span(&d.rows, at..at + 4));
+            Ok(arm.pointing(&held[at..at + 5]))
         })
         .collect()
 }

@@ -491,6 +491,16 @@ pub fn held_span(rows: &[Vec<f64>], joints: std::ops::Range<usize>) -> (usize, u
     (start, end)
 }
 
+/// The mean posture of `rows` over `span` (first and last row inclusive, as [`held_span`]
+/// gives it).
+pub fn held_posture(rows: &[Vec<f64>], span: (usize, usize)) -> Vec<f64> {
+    let part = &rows[span.0..=span.1];
+    let count = part.len() as f64;
+    (0..rows[0].len())
+        .map(|j| part.iter().map(|r| r[j]).sum::<f64>() / count)
+        .collect()
+}
+
 /// How near the apex a row of the held part stays, as a fraction of the apex's distance from
 /// the first row.
 pub const HOLD_BAND: f64 = 0.05;
@@ -530,10 +540,7 @@ pub fn solve(robot: Robot, rows: &[Vec<f64>], aim: &Aim) -> Result<Aimed, AimErr
         None => 0..rows[0].len(),
     };
     let span = held_span(rows, joints);
-    let count = (span.1 - span.0 + 1) as f64;
-    let held: Vec<f64> = (0..rows[0].len())
-        .map(|j| rows[span.0..=span.1].iter().map(|r| r[j]).sum::<f64>() / count)
-        .collect();
+    let held = held_posture(rows, span);
     let mut posture = held.clone();
     if let (Some(arm), Some(target)) = (arm, aim.point_at) {
         posture = point(robot, arm, &posture, target)?;

@@ -74,13 +74,16 @@ impl Stepper {
         })
     }
 
-    /// Aim at `aim` from this tick on (the stepper made with an aim).
-    fn retarget(&mut self, aim: Aim) -> PyResult<()> {
+    /// Aim, from this tick on, at the current aim as `change` leaves it (a stepper made with
+    /// an aim).
+    fn retarget(&mut self, change: impl FnOnce(&mut Aim)) -> PyResult<()> {
         let Some(aiming) = &self.aiming else {
             return Err(pyo3::exceptions::PyValueError::new_err(
                 "the stepper was made without point_at or look_at: its held part is chosen when it is made (give point_at or look_at to Hsom.stepper)",
             ));
         };
+        let mut aim = aiming.aim();
+        change(&mut aim);
         let next = aiming.retargeted(&aim).map_err(|e| py_err(&e))?;
         self.inner.set_via(next.via()).map_err(|e| py_err(&e))?;
         self.aiming = Some(next);
@@ -137,11 +140,7 @@ impl Stepper {
 
     #[setter]
     fn set_point_at(&mut self, target: Option<[f64; 3]>) -> PyResult<()> {
-        let aim = self.aiming.as_ref().map(Aiming::aim).unwrap_or_default();
-        self.retarget(Aim {
-            point_at: target,
-            ..aim
-        })
+        self.retarget(|aim| aim.point_at = target)
     }
 
     /// The point `(x, y, z)` the top camera looks at during the held part, or None. Setting
@@ -154,11 +153,7 @@ impl Stepper {
 
     #[setter]
     fn set_look_at(&mut self, target: Option<[f64; 3]>) -> PyResult<()> {
-        let aim = self.aiming.as_ref().map(Aiming::aim).unwrap_or_default();
-        self.retarget(Aim {
-            look_at: target,
-            ..aim
-        })
+        self.retarget(|aim| aim.look_at = target)
     }
 
     /// How far along the reproduction is, 0 to 1.
